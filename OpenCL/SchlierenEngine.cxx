@@ -1,0 +1,749 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SchlierenEngine.h"
+#include "SchlierenOpenCL.h"
+
+// The physics, compiled as C++ for the CPU backend and for the host-side film.
+#include "SchlierenPhysics.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <thread>
+
+namespace schlieren
+{
+
+static_assert(sizeof(sch_params) % 4 == 0, "sch_params must hold only 4-byte members");
+static_assert(sizeof(RayRecord) == SCH_RECORD * sizeof(float), "RayRecord mirrors SCH_RECORD");
+
+// ------------------------------------------------------------------ field preparation
+
+void Volume::GetBounds(double b[6]) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = Origin[a], hi = Origin[a] + (Dimensions[a] - 1) * Spacing[a];
+    b[2 * a] = std::min(lo, hi);
+    b[2 * a + 1] = std::max(lo, hi);
+  }
+}
+
+static void CheckGrid(const int dims[3], const double spacing[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] < 2)
+    {
+      std::ostringstream msg;
+      msg << "The volume is " << dims[0] << " x " << dims[1] << " x " << dims[2]
+          << " points: tracing needs at least 2 points along every axis (axis " << "xyz"[a]
+          << " has " << dims[a] << "). Give the source or reader a 3D extent.";
+      throw Error(msg.str());
+    }
+    if (!(spacing[a] > 0) || !std::isfinite(spacing[a]))
+    {
+      std::ostringstream msg;
+      msg << "The grid spacing along " << "xyz"[a] << " is " << spacing[a]
+          << ": it must be positive and finite.";
+      throw Error(msg.str());
+    }
+  }
+}
+
+std::string ValidateIndex(const float* n1, std::size_t count)
+{
+  std::size_t nonfinite = 0, nonpositive = 0, first = count;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const float v = n1[i];
+    if (!std::isfinite(v))
+    {
+      ++nonfinite;
+      first = std::min(first, i);
+    }
+    else if (v <= -1.0f)
+    {
+      ++nonpositive;
+      first = std::min(first, i);
+    }
+  }
+  if (nonfinite == 0 && nonpositive == 0)
+    return std::string();
+  std::ostringstream msg;
+  msg << "n_minus_1 is not usable: ";
+  if (nonfinite)
+    msg << nonfinite << " of " << count << " points are NaN or Inf";
+  if (nonfinite && nonpositive)
+    msg << " and ";
+  if (nonpositive)
+    msg << nonpositive << " of " << count << " points have n <= 0";
+  msg << " (first at point " << first
+      << "). Check the input arrays (density, temperature, pressure) for invalid values, or mask "
+         "them before tracing.";
+  return msg.str();
+}
+
+template <typename Store>
+static void GradientLoop(const int dims[3], const double spacing[3], const float* n1, Store store)
+{
+  const std::size_t sx = 1, sy = dims[0], sz = static_cast<std::size_t>(dims[0]) * dims[1];
+  const std::size_t strides[3] = { sx, sy, sz };
+  auto worker = [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const int ijk[3] = { i, j, k };
+          const std::size_t idx = i * sx + j * sy + k * sz;
+          double g[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            const std::size_t s = strides[a];
+            if (ijk[a] == 0)
+              g[a] = (double(n1[idx + s]) - n1[idx]) / spacing[a];
+            else if (ijk[a] == dims[a] - 1)
+              g[a] = (double(n1[idx]) - n1[idx - s]) / spacing[a];
+            else
+              g[a] = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
+          }
+          store(idx, g);
+        }
+  };
+  const int nt = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> threads;
+  for (int t = 0; t < nt; ++t)
+  {
+    const int k0 = dims[2] * t / nt, k1 = dims[2] * (t + 1) / nt;
+    threads.emplace_back(worker, k0, k1);
+  }
+  for (auto& th : threads)
+    th.join();
+}
+
+void ComputeGradient(const int dims[3], const double spacing[3], const float* n1, float* grad3)
+{
+  CheckGrid(dims, spacing);
+  GradientLoop(dims, spacing, n1, [grad3](std::size_t idx, const double g[3]) {
+    grad3[3 * idx] = static_cast<float>(g[0]);
+    grad3[3 * idx + 1] = static_cast<float>(g[1]);
+    grad3[3 * idx + 2] = static_cast<float>(g[2]);
+  });
+}
+
+void PackField(const int dims[3], const double spacing[3], const float* n1, float* out)
+{
+  CheckGrid(dims, spacing);
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::string bad = ValidateIndex(n1, n);
+  if (!bad.empty())
+    throw Error(bad);
+  GradientLoop(dims, spacing, n1, [out, n1](std::size_t idx, const double g[3]) {
+    out[4 * idx] = n1[idx];
+    out[4 * idx + 1] = static_cast<float>(g[0]);
+    out[4 * idx + 2] = static_cast<float>(g[1]);
+    out[4 * idx + 3] = static_cast<float>(g[2]);
+  });
+}
+
+// ------------------------------------------------------------------ names
+
+Backend ParseBackend(const std::string& name)
+{
+  if (name == "Auto" || name == "auto")
+    return Backend::Auto;
+  if (name == "OpenCL" || name == "opencl")
+    return Backend::OpenCL;
+  if (name == "CPU" || name == "cpu")
+    return Backend::CPU;
+  throw Error("Unknown backend '" + name + "': use Auto, OpenCL or CPU.");
+}
+
+const char* BackendName(Backend b)
+{
+  switch (b)
+  {
+    case Backend::Auto:
+      return "Auto";
+    case Backend::OpenCL:
+      return "OpenCL";
+    case Backend::CPU:
+      return "CPU";
+  }
+  return "?";
+}
+
+// ------------------------------------------------------------------ film
+
+static void Normalize(double v[3])
+{
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  for (int a = 0; a < 3; ++a)
+    v[a] /= n;
+}
+
+static void Cross(const double a[3], const double b[3], double c[3])
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void FilmGeometry::GetImageOrigin(double origin[2]) const
+{
+  origin[0] = Dot(Center, Right) + Corner[0] + 0.5 * PixelSize;
+  origin[1] = Dot(Center, Up) + Corner[1] + 0.5 * PixelSize;
+}
+
+FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
+{
+  CheckGrid(volume.Dimensions, volume.Spacing);
+  FilmGeometry f;
+  const double dlen = std::sqrt(Dot(s.ViewDirection, s.ViewDirection));
+  if (!(dlen > 0) || !std::isfinite(dlen))
+    throw Error("ViewDirection must be a non-zero, finite vector.");
+  for (int a = 0; a < 3; ++a)
+    f.Direction[a] = s.ViewDirection[a] / dlen;
+  double up[3] = { s.ViewUp[0], s.ViewUp[1], s.ViewUp[2] };
+  const double along = Dot(up, f.Direction);
+  for (int a = 0; a < 3; ++a)
+    up[a] -= along * f.Direction[a];
+  const double ulen = std::sqrt(Dot(up, up));
+  if (!(ulen > 1e-6 * std::sqrt(Dot(s.ViewUp, s.ViewUp))) || !std::isfinite(ulen))
+    throw Error("ViewUp is zero or parallel to ViewDirection: choose an up vector across the beam.");
+  Normalize(up);
+  Cross(f.Direction, up, f.Right);
+  Normalize(f.Right);
+  Cross(f.Right, f.Direction, f.Up);
+  Normalize(f.Up);
+
+  if (s.Resolution[0] < 1 || s.Resolution[1] < 1 || s.Resolution[0] > 16384 ||
+    s.Resolution[1] > 16384)
+  {
+    std::ostringstream msg;
+    msg << "Resolution " << s.Resolution[0] << " x " << s.Resolution[1]
+        << " is out of range: each side must be 1 to 16384 pixels.";
+    throw Error(msg.str());
+  }
+  double b[6];
+  volume.GetBounds(b);
+  double h[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    f.Center[a] = 0.5 * (b[2 * a] + b[2 * a + 1]);
+    h[a] = 0.5 * (b[2 * a + 1] - b[2 * a]);
+  }
+  double wa = 0, wb = 0, wd = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    wa += h[a] * std::fabs(f.Right[a]);
+    wb += h[a] * std::fabs(f.Up[a]);
+    wd += h[a] * std::fabs(f.Direction[a]);
+  }
+  f.Size[0] = s.Resolution[0];
+  f.Size[1] = s.Resolution[1];
+  f.PixelSize = std::max(2 * wa / f.Size[0], 2 * wb / f.Size[1]);
+  f.Corner[0] = -0.5 * f.Size[0] * f.PixelSize;
+  f.Corner[1] = -0.5 * f.Size[1] * f.PixelSize;
+  f.FrontPlane = -wd * 1.001;
+  if (!std::isfinite(s.FilmDistance))
+    throw Error("FilmDistance must be finite.");
+  f.FilmPlane = wd + s.FilmDistance;
+  return f;
+}
+
+static double MinSpacing(const Volume& v)
+{
+  return std::min(v.Spacing[0], std::min(v.Spacing[1], v.Spacing[2]));
+}
+
+static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGeometry& f)
+{
+  if (!(s.StepSize > 0) || !std::isfinite(s.StepSize) || s.StepSize > 1e3)
+  {
+    std::ostringstream msg;
+    msg << "StepSize " << s.StepSize << " voxels is out of range: use a value in (0, 1000].";
+    throw Error(msg.str());
+  }
+  sch_params P;
+  std::memset(&P, 0, sizeof(P));
+  P.nx = volume.Dimensions[0];
+  P.ny = volume.Dimensions[1];
+  P.nz = volume.Dimensions[2];
+  double b[6];
+  volume.GetBounds(b);
+  P.ox = static_cast<float>(volume.Origin[0] - f.Center[0]);
+  P.oy = static_cast<float>(volume.Origin[1] - f.Center[1]);
+  P.oz = static_cast<float>(volume.Origin[2] - f.Center[2]);
+  P.isx = static_cast<float>(1.0 / volume.Spacing[0]);
+  P.isy = static_cast<float>(1.0 / volume.Spacing[1]);
+  P.isz = static_cast<float>(1.0 / volume.Spacing[2]);
+  P.hx = static_cast<float>(0.5 * (b[1] - b[0]));
+  P.hy = static_cast<float>(0.5 * (b[3] - b[2]));
+  P.hz = static_cast<float>(0.5 * (b[5] - b[4]));
+  P.dx = static_cast<float>(f.Direction[0]);
+  P.dy = static_cast<float>(f.Direction[1]);
+  P.dz = static_cast<float>(f.Direction[2]);
+  P.rx = static_cast<float>(f.Right[0]);
+  P.ry = static_cast<float>(f.Right[1]);
+  P.rz = static_cast<float>(f.Right[2]);
+  P.tx = static_cast<float>(f.Up[0]);
+  P.ty = static_cast<float>(f.Up[1]);
+  P.tz = static_cast<float>(f.Up[2]);
+  P.sFront = static_cast<float>(f.FrontPlane);
+  P.sFilm = static_cast<float>(f.FilmPlane);
+  P.filmA0 = static_cast<float>(f.Corner[0]);
+  P.filmB0 = static_cast<float>(f.Corner[1]);
+  P.pixel = static_cast<float>(f.PixelSize);
+  P.filmNx = f.Size[0];
+  P.filmNy = f.Size[1];
+  const double step = s.StepSize * MinSpacing(volume);
+  P.step = static_cast<float>(step);
+  const double diag = 2 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy + double(P.hz) * P.hz);
+  double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / step + 16;
+  P.maxSteps = static_cast<int>(std::min(maxSteps, 1e9));
+  P.seed = s.Seed;
+  P.pass = 0;
+  P.integrator = static_cast<int>(s.Method);
+  P.jitter = s.Jitter ? 1 : 0;
+  if (s.RankCount < 1 || s.RankIndex < 0 || s.RankIndex >= s.RankCount)
+    throw Error("RankIndex must be in [0, RankCount).");
+  P.rayOffset = s.RankIndex;
+  P.rayStride = s.RankCount;
+  return P;
+}
+
+// ------------------------------------------------------------------ film sums
+
+void FilmSums::Resize(int nx, int ny)
+{
+  Size[0] = nx;
+  Size[1] = ny;
+  const std::size_t n = static_cast<std::size_t>(nx) * ny;
+  Count.assign(n, 0.0);
+  Weight.assign(n, 0.0);
+  DeflectionX.assign(n, 0.0);
+  DeflectionY.assign(n, 0.0);
+  MaxAbsKnife = MaxDrift = 0.0;
+  Photons = Samples = FailedRays = MissedRays = 0.0;
+  Passes = 0;
+}
+
+void FilmSums::Merge(const FilmSums& o)
+{
+  if (o.Size[0] != Size[0] || o.Size[1] != Size[1])
+    throw Error("FilmSums::Merge: films of different sizes.");
+  for (std::size_t i = 0; i < Count.size(); ++i)
+  {
+    Count[i] += o.Count[i];
+    Weight[i] += o.Weight[i];
+    DeflectionX[i] += o.DeflectionX[i];
+    DeflectionY[i] += o.DeflectionY[i];
+  }
+  MaxAbsKnife = std::max(MaxAbsKnife, o.MaxAbsKnife);
+  MaxDrift = std::max(MaxDrift, o.MaxDrift);
+  Photons += o.Photons;
+  Samples += o.Samples;
+  FailedRays += o.FailedRays;
+  MissedRays += o.MissedRays;
+}
+
+namespace
+{
+struct Splatter
+{
+  const sch_params& P;
+  const TraceSettings& S;
+  FilmSums& F;
+  float ca, sa, k;
+  bool manual;
+
+  Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f)
+    : P(p)
+    , S(s)
+    , F(f)
+  {
+    const double ang = s.KnifeAngle * 3.14159265358979323846 / 180.0;
+    ca = static_cast<float>(std::cos(ang));
+    sa = static_cast<float>(std::sin(ang));
+    k = static_cast<float>(s.CutoffScale);
+    manual = s.CutoffScale > 0;
+  }
+
+  void Add(const float* rec, std::size_t count)
+  {
+    const unsigned lost = SCH_RAY_MAXSTEPS | SCH_RAY_TURNED | SCH_RAY_NONFINITE | SCH_RAY_OFFFILM;
+    for (std::size_t r = 0; r < count; ++r, rec += SCH_RECORD)
+    {
+      const unsigned flags = static_cast<unsigned>(rec[SCH_REC_FLAGS]);
+      F.Photons += 1;
+      F.Samples += rec[SCH_REC_SAMPLES];
+      if (flags & SCH_RAY_MISSED)
+        F.MissedRays += 1;
+      if (flags & lost)
+      {
+        F.FailedRays += 1;
+        continue;
+      }
+      F.MaxDrift = std::max(F.MaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
+      const float ex = rec[SCH_REC_EX], ey = rec[SCH_REC_EY];
+      F.MaxAbsKnife = std::max(F.MaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
+      const double fi = std::floor((rec[SCH_REC_A] - P.filmA0) / P.pixel);
+      const double fj = std::floor((rec[SCH_REC_B] - P.filmB0) / P.pixel);
+      if (fi < 0 || fj < 0 || fi >= P.filmNx || fj >= P.filmNy)
+        continue; // landed off the film
+      const std::size_t idx = static_cast<std::size_t>(fj) * P.filmNx + static_cast<std::size_t>(fi);
+      F.Count[idx] += 1;
+      F.DeflectionX[idx] += ex;
+      F.DeflectionY[idx] += ey;
+      if (manual)
+        F.Weight[idx] += sch_knife_weight(ex, ey, ca, sa, k);
+    }
+  }
+};
+
+std::size_t RaysForRank(const sch_params& P)
+{
+  const std::size_t pixels = static_cast<std::size_t>(P.filmNx) * P.filmNy;
+  if (pixels <= static_cast<std::size_t>(P.rayOffset))
+    return 0;
+  return (pixels - P.rayOffset + P.rayStride - 1) / P.rayStride;
+}
+
+// The CPU backend: the C++ build of SchlierenPhysics.h on std::thread.
+void TraceChunkCPU(const float* field, const sch_params& P, std::size_t first, std::size_t count,
+  float* out)
+{
+  const unsigned nt = std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<std::size_t> next(0);
+  const std::size_t block = 256;
+  auto worker = [&]() {
+    for (;;)
+    {
+      const std::size_t b0 = next.fetch_add(block);
+      if (b0 >= count)
+        break;
+      const std::size_t b1 = std::min(count, b0 + block);
+      for (std::size_t k = b0; k < b1; ++k)
+      {
+        const int pix = static_cast<int>(P.rayOffset + (first + k) * P.rayStride);
+        float a, b;
+        sch_emit(&P, pix, &a, &b);
+        sch_trace(field, &P, a, b, out + k * SCH_RECORD);
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (unsigned t = 0; t + 1 < nt; ++t)
+    threads.emplace_back(worker);
+  worker();
+  for (auto& th : threads)
+    th.join();
+}
+
+// The OpenCL backend: holds the device buffers for one Accumulate call.
+class OpenCLTracer
+{
+public:
+  OpenCLTracer(const Volume& volume, std::size_t chunk, int raysPerItem)
+    : RT(ocl::GetRuntime())
+    , RaysPerItem(std::max(1, raysPerItem))
+  {
+    const std::size_t bytes = volume.NumberOfPoints() * 4 * sizeof(float);
+    if (bytes > RT.MaxAlloc)
+    {
+      std::ostringstream msg;
+      msg << "The volume needs " << bytes / (1 << 20) << " MiB on the OpenCL device '"
+          << RT.DeviceName << "', which allows " << RT.MaxAlloc / (1 << 20)
+          << " MiB per buffer. Resample the data to fewer points, or choose Backend CPU.";
+      throw Error(msg.str());
+    }
+    std::ostringstream opts;
+    opts << "-DSCH_RAYS_PER_ITEM=" << RaysPerItem << " -cl-std=CL1.2";
+    cl_program prog = ocl::GetProgram("SchlierenTrace.cl", EmbeddedKernelSource(), opts.str());
+    cl_int err = CL_SUCCESS;
+    Kernel = clCreateKernel(prog, "sch_trace_rays", &err);
+    ocl::Check(err, "clCreateKernel(sch_trace_rays)");
+    PointsKernel = clCreateKernel(prog, "sch_trace_points", &err);
+    ocl::Check(err, "clCreateKernel(sch_trace_points)");
+    Field = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes,
+      const_cast<float*>(volume.Field), &err);
+    ocl::Check(err, "clCreateBuffer(field)");
+    Chunk = chunk;
+    Out = clCreateBuffer(RT.Context, CL_MEM_WRITE_ONLY, std::max<std::size_t>(1, chunk) * SCH_RECORD * sizeof(float), nullptr, &err);
+    ocl::Check(err, "clCreateBuffer(records)");
+  }
+  ~OpenCLTracer()
+  {
+    if (Out)
+      clReleaseMemObject(Out);
+    if (Field)
+      clReleaseMemObject(Field);
+    if (Kernel)
+      clReleaseKernel(Kernel);
+    if (PointsKernel)
+      clReleaseKernel(PointsKernel);
+  }
+  OpenCLTracer(const OpenCLTracer&) = delete;
+  OpenCLTracer& operator=(const OpenCLTracer&) = delete;
+
+  void Trace(const sch_params& P, std::size_t first, std::size_t count, float* out)
+  {
+    const int f = static_cast<int>(first), c = static_cast<int>(count);
+    ocl::Check(clSetKernelArg(Kernel, 0, sizeof(cl_mem), &Field), "clSetKernelArg(field)");
+    ocl::Check(clSetKernelArg(Kernel, 1, sizeof(sch_params), &P), "clSetKernelArg(params)");
+    ocl::Check(clSetKernelArg(Kernel, 2, sizeof(int), &f), "clSetKernelArg(first)");
+    ocl::Check(clSetKernelArg(Kernel, 3, sizeof(int), &c), "clSetKernelArg(count)");
+    ocl::Check(clSetKernelArg(Kernel, 4, sizeof(cl_mem), &Out), "clSetKernelArg(out)");
+    const std::size_t global = (count + RaysPerItem - 1) / RaysPerItem;
+    ocl::Check(clEnqueueNDRangeKernel(RT.Queue, Kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr),
+      "clEnqueueNDRangeKernel(sch_trace_rays)");
+    ocl::Check(clEnqueueReadBuffer(RT.Queue, Out, CL_TRUE, 0, count * SCH_RECORD * sizeof(float), out,
+                 0, nullptr, nullptr),
+      "clEnqueueReadBuffer(records)");
+  }
+
+  void TracePoints(const sch_params& P, const float* ab, std::size_t count, float* out)
+  {
+    cl_int err = CL_SUCCESS;
+    cl_mem abBuf = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      std::max<std::size_t>(1, count) * 2 * sizeof(float), const_cast<float*>(ab), &err);
+    ocl::Check(err, "clCreateBuffer(points)");
+    const int c = static_cast<int>(count);
+    clSetKernelArg(PointsKernel, 0, sizeof(cl_mem), &Field);
+    clSetKernelArg(PointsKernel, 1, sizeof(sch_params), &P);
+    clSetKernelArg(PointsKernel, 2, sizeof(cl_mem), &abBuf);
+    clSetKernelArg(PointsKernel, 3, sizeof(int), &c);
+    clSetKernelArg(PointsKernel, 4, sizeof(cl_mem), &Out);
+    const std::size_t global = count;
+    cl_int st = clEnqueueNDRangeKernel(RT.Queue, PointsKernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
+    if (st == CL_SUCCESS)
+      st = clEnqueueReadBuffer(RT.Queue, Out, CL_TRUE, 0, count * SCH_RECORD * sizeof(float), out, 0,
+        nullptr, nullptr);
+    clReleaseMemObject(abBuf);
+    ocl::Check(st, "sch_trace_points");
+  }
+
+  ocl::Runtime& RT;
+  int RaysPerItem;
+  std::size_t Chunk = 0;
+  cl_kernel Kernel = nullptr, PointsKernel = nullptr;
+  cl_mem Field = nullptr, Out = nullptr;
+};
+
+// Chooses the backend; returns the OpenCL tracer or null for the CPU.
+std::unique_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSettings& s,
+  std::size_t chunk, std::string& used, std::string& device, std::string& warnings)
+{
+  if (s.Device == Backend::CPU)
+  {
+    used = "CPU";
+    device = "CPU (" + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+    return nullptr;
+  }
+  try
+  {
+    auto t = std::make_unique<OpenCLTracer>(volume, chunk, s.RaysPerWorkItem);
+    used = "OpenCL";
+    device = t->RT.DeviceName;
+    return t;
+  }
+  catch (const Error& e)
+  {
+    if (s.Device == Backend::OpenCL)
+      throw;
+    used = "CPU";
+    device = "CPU (" + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+    warnings += std::string("OpenCL is not usable, tracing on the CPU instead: ") + e.what() + "\n";
+    return nullptr;
+  }
+}
+
+void CheckVolume(const Volume& v)
+{
+  CheckGrid(v.Dimensions, v.Spacing);
+  if (!v.Field)
+    throw Error("The volume has no field data.");
+}
+} // namespace
+
+void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
+  std::string* backendUsed, std::string* deviceName, std::string* warnings,
+  const ProgressFunction& progress)
+{
+  CheckVolume(volume);
+  if (s.Passes < 1 || s.Passes > 1000000)
+  {
+    std::ostringstream msg;
+    msg << "Passes is " << s.Passes << ": it must be at least 1 (and at most 1000000).";
+    throw Error(msg.str());
+  }
+  const FilmGeometry film = MakeFilm(volume, s);
+  sch_params P = MakeParams(volume, s, film);
+  if (sums.Size[0] != film.Size[0] || sums.Size[1] != film.Size[1] || sums.Count.empty())
+    sums.Resize(film.Size[0], film.Size[1]);
+
+  const std::size_t rays = RaysForRank(P);
+  const std::size_t chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), 1 << 16);
+  std::string used, device, warn;
+  std::unique_ptr<OpenCLTracer> cl = OpenBackend(volume, s, chunk, used, device, warn);
+  std::vector<float> records(chunk * SCH_RECORD);
+  Splatter splat(P, s, sums);
+  const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
+  double done = 0;
+  for (int pass = 0; pass < s.Passes; ++pass)
+  {
+    P.pass = sums.Passes + pass;
+    for (std::size_t first = 0; first < rays; first += chunk)
+    {
+      const std::size_t count = std::min(chunk, rays - first);
+      if (cl)
+        cl->Trace(P, first, count, records.data());
+      else
+        TraceChunkCPU(volume.Field, P, first, count, records.data());
+      splat.Add(records.data(), count);
+      done += count;
+      if (progress && !progress(done / total))
+        throw Error("aborted");
+    }
+  }
+  sums.Passes += s.Passes;
+  if (backendUsed)
+    *backendUsed = used;
+  if (deviceName)
+    *deviceName = device;
+  if (warnings)
+    *warnings += warn;
+}
+
+TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSums& sums)
+{
+  TraceResult r;
+  r.Film = MakeFilm(volume, s);
+  const std::size_t n = static_cast<std::size_t>(r.Film.Size[0]) * r.Film.Size[1];
+  if (sums.Count.size() != n || sums.Passes < 1)
+    throw Error("Finalize: the sums do not belong to this film, or hold no pass.");
+  r.Intensity.assign(n, 0.f);
+  r.Deflection.assign(2 * n, 0.f);
+  const double passes = sums.Passes;
+  const double ang = s.KnifeAngle * 3.14159265358979323846 / 180.0;
+  const double ca = std::cos(ang), sa = std::sin(ang);
+  double k = s.CutoffScale;
+  if (s.Mode == Cutoff::KnifeEdge && !(k > 0))
+    k = sums.MaxAbsKnife > 0 ? 0.5 / sums.MaxAbsKnife : 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double c = sums.Count[i];
+    if (c > 0)
+    {
+      r.Deflection[2 * i] = static_cast<float>(sums.DeflectionX[i] / c);
+      r.Deflection[2 * i + 1] = static_cast<float>(sums.DeflectionY[i] / c);
+    }
+    double I = 0;
+    switch (s.Mode)
+    {
+      case Cutoff::KnifeEdge:
+        // manual k: per-photon clamped weights; automatic k: no photon reaches the clamp, so the
+        // sum of 0.5 - k e.a over photons is exact
+        I = s.CutoffScale > 0 ? sums.Weight[i] / passes
+                              : (0.5 * c - k * (sums.DeflectionX[i] * ca + sums.DeflectionY[i] * sa)) / passes;
+        break;
+      case Cutoff::Shadowgraph:
+        I = c / passes;
+        break;
+    }
+    r.Intensity[i] = static_cast<float>(I);
+  }
+  r.CutoffScaleUsed = s.Mode == Cutoff::KnifeEdge ? k : 0.0;
+  r.Photons = sums.Photons;
+  r.Samples = sums.Samples;
+  r.FailedRays = sums.FailedRays;
+  r.MissedRays = sums.MissedRays;
+  r.MaxDrift = sums.MaxDrift;
+  if (sums.FailedRays > 0)
+  {
+    std::ostringstream msg;
+    msg << sums.FailedRays << " of " << sums.Photons
+        << " rays failed (turned back, hit the step limit or went non-finite) and were dropped "
+           "from the image.\n";
+    r.Warnings += msg.str();
+  }
+  return r;
+}
+
+TraceResult Trace(const Volume& volume, const TraceSettings& s, const ProgressFunction& progress)
+{
+  FilmSums sums;
+  std::string used, device, warn;
+  const auto t0 = std::chrono::steady_clock::now();
+  Accumulate(volume, s, sums, &used, &device, &warn, progress);
+  const auto t1 = std::chrono::steady_clock::now();
+  TraceResult r = Finalize(volume, s, sums);
+  r.BackendUsed = used;
+  r.DeviceName = device;
+  r.Warnings = warn + r.Warnings;
+  r.Seconds = std::chrono::duration<double>(t1 - t0).count();
+  return r;
+}
+
+std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
+  const std::vector<float>& ab, std::string* backendUsed)
+{
+  CheckVolume(volume);
+  const FilmGeometry film = MakeFilm(volume, s);
+  const sch_params P = MakeParams(volume, s, film);
+  const std::size_t count = ab.size() / 2;
+  std::vector<RayRecord> out(count);
+  std::string used, device, warn;
+  std::unique_ptr<OpenCLTracer> cl = OpenBackend(volume, s, std::max<std::size_t>(count, 1), used, device, warn);
+  float* rec = reinterpret_cast<float*>(out.data());
+  if (cl)
+    cl->TracePoints(P, ab.data(), count, rec);
+  else
+    for (std::size_t k = 0; k < count; ++k)
+      sch_trace(volume.Field, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
+  // the flags travel as floats in the record; turn them into integers
+  for (RayRecord& r : out)
+  {
+    float f;
+    std::memcpy(&f, &r.Flags, sizeof(f));
+    r.Flags = static_cast<std::uint32_t>(f);
+  }
+  if (backendUsed)
+    *backendUsed = used;
+  return out;
+}
+
+DeviceInfo QueryOpenCLDevice()
+{
+  DeviceInfo info;
+  try
+  {
+    ocl::Runtime& rt = ocl::GetRuntime();
+    info.Available = true;
+    info.Name = rt.DeviceName;
+    info.Platform = rt.PlatformName;
+    info.Version = rt.Version;
+    info.MaxAlloc = rt.MaxAlloc;
+    info.GlobalMemory = rt.GlobalMemory;
+  }
+  catch (const Error& e)
+  {
+    info.Reason = e.what();
+  }
+  return info;
+}
+
+void BuildOpenCLProgram(const std::string& name, const std::string& source, const std::string& options)
+{
+  ocl::GetProgram(name, source, options);
+}
+
+} // namespace schlieren

@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenEngine.h
+ * @brief The VTK-free tracing engine: plain arrays in, plain images out.
+ *
+ * The engine takes a volume of n-1 on a regular grid (with its gradient, packed 4 floats per point)
+ * and traces a collimated beam through it on one of two backends built from one physics source
+ * (SchlierenPhysics.h): OpenCL (any device; PoCL on a CPU) or the CPU (std::thread). It returns the
+ * film image. Every failure is reported by throwing schlieren::Error with a message for the user.
+ *
+ * Units: SI; world units for lengths, radians for deflections.
+ */
+#ifndef SchlierenEngine_h
+#define SchlierenEngine_h
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace schlieren
+{
+
+/** Every error the engine reports. The message says what went wrong and what to do. */
+class Error : public std::runtime_error
+{
+public:
+  explicit Error(const std::string& what)
+    : std::runtime_error(what)
+  {
+  }
+};
+
+/** A regular grid (non-owning). `field` holds 4 floats per point: n-1, dn/dx, dn/dy, dn/dz, x fastest. */
+struct Volume
+{
+  int Dimensions[3] = { 0, 0, 0 };
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  const float* Field = nullptr;
+
+  std::size_t NumberOfPoints() const
+  {
+    return static_cast<std::size_t>(Dimensions[0]) * Dimensions[1] * Dimensions[2];
+  }
+  /** The point bounds: xmin, xmax, ymin, ymax, zmin, zmax. */
+  void GetBounds(double bounds[6]) const;
+};
+
+/**
+ * Packs n-1 and its gradient (central differences in world units, one-sided at the borders) into
+ * the 4-float layout of Volume::Field. `out` must hold 4 * number of points floats.
+ * Throws Error if a dimension is below 2, a spacing is not positive, or n-1 is NaN/Inf or <= -1.
+ */
+void PackField(const int dims[3], const double spacing[3], const float* nMinus1, float* out);
+
+/** The same gradient written into a 3-component array (for the `grad_n` output of filters). */
+void ComputeGradient(const int dims[3], const double spacing[3], const float* nMinus1, float* grad3);
+
+/**
+ * Checks n-1 for NaN/Inf and for n <= 0; returns an empty string if fine, else a message that
+ * gives how many points are bad and the first one.
+ */
+std::string ValidateIndex(const float* nMinus1, std::size_t count);
+
+enum class Backend
+{
+  Auto,   ///< OpenCL if a device works, else CPU with a warning
+  OpenCL, ///< OpenCL or an error
+  CPU     ///< the C++ build of the same physics, on std::thread
+};
+
+enum class Integrator
+{
+  Euler = 0,   ///< the paper's explicit Euler (first order)
+  Midpoint = 1 ///< explicit midpoint (second order, two samples per step)
+};
+
+enum class Cutoff
+{
+  KnifeEdge = 0,  ///< I = 0.5 - k e.a, per photon, clamped to [0, 1]
+  Shadowgraph = 1 ///< no cutoff: density of photons arriving on the film
+};
+
+/** Everything that defines a trace besides the volume. */
+struct TraceSettings
+{
+  double ViewDirection[3] = { 0, 0, -1 }; ///< the beam travels along this world vector
+  double ViewUp[3] = { 0, 1, 0 };         ///< film "up" (made orthogonal to ViewDirection)
+  int Resolution[2] = { 512, 512 };       ///< film pixels
+  int Passes = 1;                         ///< progressive passes, one jittered photon per pixel each
+  double StepSize = 0.5;                  ///< base step, in voxels (of the smallest spacing)
+  Integrator Method = Integrator::Euler;
+  Cutoff Mode = Cutoff::KnifeEdge;
+  double KnifeAngle = 0.0;  ///< degrees in the film plane; 0: knife normal along film x
+  double CutoffScale = 0.0; ///< k; 0 means automatic: the largest deflection maps to full contrast
+  double FilmDistance = 0.0; ///< world units from the back of the volume's box to the film plane
+  bool Jitter = true;        ///< jitter photons inside their pixel (false: pixel centres)
+  std::uint32_t Seed = 1;
+  int MaxSteps = 0;          ///< per ray; 0: 8 times the box diagonal over the step
+  Backend Device = Backend::Auto;
+  int RaysPerWorkItem = 4;   ///< OpenCL: rays traced by each work-item
+  int RankIndex = 0;         ///< trace only pixels p with p % RankCount == RankIndex (MPI split)
+  int RankCount = 1;
+};
+
+/** The film's place in the world. */
+struct FilmGeometry
+{
+  double Direction[3]; ///< unit beam direction
+  double Right[3];     ///< film x axis (unit), Direction x Up
+  double Up[3];        ///< film y axis (unit)
+  double Center[3];    ///< centre of the volume's point bounds; film coordinates are measured from it
+  double PixelSize;    ///< world units
+  int Size[2];         ///< pixels
+  double Corner[2];    ///< film coordinate (from Center) of the lower-left corner of pixel (0, 0)
+  double FrontPlane;   ///< emission plane: (x - Center) . Direction
+  double FilmPlane;    ///< film plane: (x - Center) . Direction
+  /** World-projected coordinate of the centre of pixel (0, 0): Center.Right + Corner + half a pixel. */
+  void GetImageOrigin(double origin[2]) const;
+};
+
+/** Computes the film that covers the volume's projection with square pixels. */
+FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& settings);
+
+/** Per-pixel sums over photons; these add across passes and across MPI ranks. */
+struct FilmSums
+{
+  int Size[2] = { 0, 0 };
+  std::vector<double> Count;   ///< photons landed
+  std::vector<double> Weight;  ///< summed knife-edge weights (manual CutoffScale only)
+  std::vector<double> DeflectionX, DeflectionY; ///< summed deflections
+  double MaxAbsKnife = 0.0;    ///< max over photons of |e . a| (for the automatic scale)
+  double Photons = 0.0, Samples = 0.0, FailedRays = 0.0, MissedRays = 0.0;
+  double MaxDrift = 0.0;       ///< max over rays of | |v| - n |
+  int Passes = 0;
+
+  void Resize(int nx, int ny);
+  /** Adds another rank's sums (same size). */
+  void Merge(const FilmSums& other);
+};
+
+/** The finished image. */
+struct TraceResult
+{
+  FilmGeometry Film;
+  std::vector<float> Intensity;  ///< nx*ny
+  std::vector<float> Deflection; ///< 2*nx*ny, radians along film x and y (mean of the photons)
+  double CutoffScaleUsed = 0.0;
+  std::string BackendUsed;  ///< "OpenCL" or "CPU"
+  std::string DeviceName;
+  std::string Warnings;     ///< what the user should know (fallbacks, failed rays)
+  double Photons = 0, Samples = 0, FailedRays = 0, MissedRays = 0, MaxDrift = 0;
+  double Seconds = 0; ///< tracing time
+};
+
+/** Called with progress in [0, 1]; return false to abort (Trace then throws Error("aborted")). */
+using ProgressFunction = std::function<bool(double)>;
+
+/**
+ * Traces and accumulates `settings.Passes` passes into `sums` (which may already hold earlier passes
+ * of the same film). Does not normalise; see Finalize. Reports the backend used.
+ */
+void Accumulate(const Volume& volume, const TraceSettings& settings, FilmSums& sums,
+  std::string* backendUsed = nullptr, std::string* deviceName = nullptr,
+  std::string* warnings = nullptr, const ProgressFunction& progress = nullptr);
+
+/** Turns sums into the image: intensity per the cutoff, mean deflection. */
+TraceResult Finalize(const Volume& volume, const TraceSettings& settings, const FilmSums& sums);
+
+/** Accumulate + Finalize. */
+TraceResult Trace(const Volume& volume, const TraceSettings& settings,
+  const ProgressFunction& progress = nullptr);
+
+/** One ray's record, as the kernels write it (see SchlierenPhysics.h, SCH_REC_*). */
+struct RayRecord
+{
+  float LandA, LandB;     ///< film coordinates where it lands
+  float DeflX, DeflY;     ///< radians along film x, y
+  float OpticalPathExcess;///< integral of (n-1) ds in the volume
+  std::uint32_t Flags;    ///< SCH_RAY_* bits
+  float Samples;
+  float Drift;
+};
+
+/**
+ * Traces rays that start on the emission plane at the given film coordinates (a, b pairs, relative
+ * to the volume centre) and returns their records. For tests and probes.
+ */
+std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& settings,
+  const std::vector<float>& filmAB, std::string* backendUsed = nullptr);
+
+/** OpenCL facts. */
+struct DeviceInfo
+{
+  bool Available = false;
+  std::string Name, Platform, Version, Reason;
+  std::uint64_t MaxAlloc = 0, GlobalMemory = 0;
+};
+/** The device the OpenCL backend would use (the first GPU, else the first device; or the one named
+ * by the environment variable SCHLIEREN_OPENCL_DEVICE, a substring of the device name). */
+DeviceInfo QueryOpenCLDevice();
+
+/** Builds OpenCL source on the engine's device; throws Error with the build log on failure.
+ * The program is cached per device, options and source. */
+void BuildOpenCLProgram(const std::string& name, const std::string& source, const std::string& options);
+
+/** The embedded kernel text (physics header + kernels), as the OpenCL backend compiles it. */
+const char* EmbeddedKernelSource();
+
+Backend ParseBackend(const std::string& name);
+const char* BackendName(Backend b);
+
+} // namespace schlieren
+
+#endif

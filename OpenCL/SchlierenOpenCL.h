@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenOpenCL.h
+ * @brief Internal: the OpenCL device, context, queue and program cache of the engine.
+ *
+ * One process-wide runtime: the device is chosen once (SCHLIEREN_OPENCL_DEVICE, a substring of the
+ * device name, else the first GPU, else the first device). Programs are cached per device, build
+ * options and source hash for the life of the process; a failed build is cached too and reports the
+ * kernel name, status, options and the full build log.
+ */
+#ifndef SchlierenOpenCL_h
+#define SchlierenOpenCL_h
+
+#ifndef CL_TARGET_OPENCL_VERSION
+#define CL_TARGET_OPENCL_VERSION 120
+#endif
+#include <CL/cl.h>
+
+#include <cstdint>
+#include <string>
+
+namespace schlieren
+{
+namespace ocl
+{
+
+/** The name of an OpenCL status code (CL_OUT_OF_RESOURCES, ...). */
+const char* StatusName(cl_int status);
+
+/** Throws schlieren::Error("<what>: <status name> (<code>)") if status is not CL_SUCCESS. */
+void Check(cl_int status, const char* what);
+
+struct Runtime
+{
+  cl_platform_id Platform = nullptr;
+  cl_device_id Device = nullptr;
+  cl_context Context = nullptr;
+  cl_command_queue Queue = nullptr;
+  std::string DeviceName, PlatformName, Version;
+  std::uint64_t MaxAlloc = 0, GlobalMemory = 0;
+  std::size_t MaxWorkGroup = 1;
+};
+
+/** The runtime, created on first use; throws schlieren::Error if no device can be used. */
+Runtime& GetRuntime();
+
+/** A built program (cached); throws schlieren::Error with the build log on failure. */
+cl_program GetProgram(const std::string& name, const std::string& source, const std::string& options);
+
+} // namespace ocl
+} // namespace schlieren
+
+#endif
