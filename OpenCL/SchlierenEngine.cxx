@@ -148,6 +148,114 @@ void PackField(const int dims[3], const double spacing[3], const float* n1, floa
   });
 }
 
+// ------------------------------------------------------------------ octree
+
+double ComputeOctreeLevels(const int dims[3], const float* n1, double tol, unsigned char* levels,
+  int maxLevel)
+{
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] < 2)
+      throw Error("ComputeOctreeLevels: every dimension needs at least 2 points.");
+  if (!(tol >= 0) || !std::isfinite(tol))
+    throw Error("The octree tolerance must be a finite value >= 0.");
+  maxLevel = std::max(0, std::min(maxLevel, 10));
+  const std::size_t N = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::memset(levels, 0, N);
+  const int cells[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
+  std::vector<float> lo, hi, lo2, hi2;
+  for (int L = 1; L <= maxLevel; ++L)
+  {
+    const int B = 1 << L;
+    int nb[3];
+    for (int a = 0; a < 3; ++a)
+      nb[a] = (cells[a] + B - 1) / B;
+    // separable min/max of the points that the block's cells touch, grown by one: block b along an
+    // axis covers points [b B - 1, b B + B + 1], clamped to the grid
+    auto window = [&](int a, int b, int& p0, int& p1) {
+      p0 = std::max(0, b * B - 1);
+      p1 = std::min(dims[a] - 1, b * B + B + 1);
+    };
+    // x
+    lo.assign(static_cast<std::size_t>(nb[0]) * dims[1] * dims[2], 0.f);
+    hi.assign(lo.size(), 0.f);
+    for (int k = 0; k < dims[2]; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int b = 0; b < nb[0]; ++b)
+        {
+          int p0, p1;
+          window(0, b, p0, p1);
+          const float* row = n1 + (static_cast<std::size_t>(k) * dims[1] + j) * dims[0];
+          float mn = row[p0], mx = row[p0];
+          for (int i = p0 + 1; i <= p1; ++i)
+          {
+            mn = std::min(mn, row[i]);
+            mx = std::max(mx, row[i]);
+          }
+          const std::size_t o = (static_cast<std::size_t>(k) * dims[1] + j) * nb[0] + b;
+          lo[o] = mn;
+          hi[o] = mx;
+        }
+    // y
+    lo2.assign(static_cast<std::size_t>(nb[0]) * nb[1] * dims[2], 0.f);
+    hi2.assign(lo2.size(), 0.f);
+    for (int k = 0; k < dims[2]; ++k)
+      for (int b = 0; b < nb[1]; ++b)
+      {
+        int p0, p1;
+        window(1, b, p0, p1);
+        for (int bx = 0; bx < nb[0]; ++bx)
+        {
+          float mn = 1e30f, mx = -1e30f;
+          for (int j = p0; j <= p1; ++j)
+          {
+            const std::size_t o = (static_cast<std::size_t>(k) * dims[1] + j) * nb[0] + bx;
+            mn = std::min(mn, lo[o]);
+            mx = std::max(mx, hi[o]);
+          }
+          const std::size_t o2 = (static_cast<std::size_t>(k) * nb[1] + b) * nb[0] + bx;
+          lo2[o2] = mn;
+          hi2[o2] = mx;
+        }
+      }
+    // z, and the level of every cell of blocks that pass
+    bool any = false;
+    for (int bz = 0; bz < nb[2]; ++bz)
+    {
+      int p0, p1;
+      window(2, bz, p0, p1);
+      for (int by = 0; by < nb[1]; ++by)
+        for (int bx = 0; bx < nb[0]; ++bx)
+        {
+          float mn = 1e30f, mx = -1e30f;
+          for (int k = p0; k <= p1; ++k)
+          {
+            const std::size_t o = (static_cast<std::size_t>(k) * nb[1] + by) * nb[0] + bx;
+            mn = std::min(mn, lo2[o]);
+            mx = std::max(mx, hi2[o]);
+          }
+          if (double(mx) - double(mn) > tol)
+            continue;
+          any = true;
+          for (int k = bz * B; k < std::min(cells[2], bz * B + B); ++k)
+            for (int j = by * B; j < std::min(cells[1], by * B + B); ++j)
+            {
+              unsigned char* row = levels + (static_cast<std::size_t>(k) * dims[1] + j) * dims[0];
+              for (int i = bx * B; i < std::min(cells[0], bx * B + B); ++i)
+                row[i] = static_cast<unsigned char>(L);
+            }
+        }
+    }
+    if (!any)
+      break;
+  }
+  std::size_t skip = 0, total = 0;
+  for (int k = 0; k < cells[2]; ++k)
+    for (int j = 0; j < cells[1]; ++j)
+      for (int i = 0; i < cells[0]; ++i, ++total)
+        skip += levels[(static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i] > 0;
+  return total ? double(skip) / total : 0.0;
+}
+
 // ------------------------------------------------------------------ names
 
 Backend ParseBackend(const std::string& name)
@@ -317,7 +425,28 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
     throw Error("RankIndex must be in [0, RankCount).");
   P.rayOffset = s.RankIndex;
   P.rayStride = s.RankCount;
+  P.useLevels = (s.UseOctree && volume.Levels) ? 1 : 0;
+  P.keepInvariant = s.KeepInvariant ? 1 : 0;
+  P.estimate = s.EstimateError ? 1 : 0;
+  P.featureTol = 0.0f; // see SetFeatureTolerance
   return P;
+}
+
+// A step that leaves more than 1 % of the field's index range unexplained by the gradient (or more
+// than the octree tolerance) has jumped over structure. Reads the whole field: call it once the
+// backend has accepted the volume.
+static void SetFeatureTolerance(sch_params& P, const Volume& volume)
+{
+  float lo = volume.Field[0], hi = volume.Field[0];
+  const std::size_t n = volume.NumberOfPoints();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    lo = std::min(lo, volume.Field[4 * i]);
+    hi = std::max(hi, volume.Field[4 * i]);
+  }
+  P.featureTol = static_cast<float>(std::max(volume.LevelTolerance, 0.01 * (double(hi) - lo)));
+  if (!(P.featureTol > 0))
+    P.featureTol = 1e-30f;
 }
 
 // ------------------------------------------------------------------ film sums
@@ -331,8 +460,10 @@ void FilmSums::Resize(int nx, int ny)
   Weight.assign(n, 0.0);
   DeflectionX.assign(n, 0.0);
   DeflectionY.assign(n, 0.0);
-  MaxAbsKnife = MaxDrift = 0.0;
+  ErrorSum.assign(n, 0.0);
+  MaxAbsKnife = MaxDrift = MaxError = 0.0;
   Photons = Samples = FailedRays = MissedRays = 0.0;
+  UnderresolvedRays = SideRays = Steps = 0.0;
   Passes = 0;
 }
 
@@ -346,9 +477,14 @@ void FilmSums::Merge(const FilmSums& o)
     Weight[i] += o.Weight[i];
     DeflectionX[i] += o.DeflectionX[i];
     DeflectionY[i] += o.DeflectionY[i];
+    ErrorSum[i] += o.ErrorSum[i];
   }
   MaxAbsKnife = std::max(MaxAbsKnife, o.MaxAbsKnife);
   MaxDrift = std::max(MaxDrift, o.MaxDrift);
+  MaxError = std::max(MaxError, o.MaxError);
+  UnderresolvedRays += o.UnderresolvedRays;
+  SideRays += o.SideRays;
+  Steps += o.Steps;
   Photons += o.Photons;
   Samples += o.Samples;
   FailedRays += o.FailedRays;
@@ -379,20 +515,25 @@ struct Splatter
 
   void Add(const float* rec, std::size_t count)
   {
-    const unsigned lost = SCH_RAY_MAXSTEPS | SCH_RAY_TURNED | SCH_RAY_NONFINITE | SCH_RAY_OFFFILM;
     for (std::size_t r = 0; r < count; ++r, rec += SCH_RECORD)
     {
       const unsigned flags = static_cast<unsigned>(rec[SCH_REC_FLAGS]);
       F.Photons += 1;
       F.Samples += rec[SCH_REC_SAMPLES];
+      F.Steps += rec[SCH_REC_STEPS];
       if (flags & SCH_RAY_MISSED)
         F.MissedRays += 1;
-      if (flags & lost)
+      if (flags & SCH_RAY_UNDERRESOLVED)
+        F.UnderresolvedRays += 1;
+      if (flags & SCH_RAY_SIDE)
+        F.SideRays += 1;
+      if (flags & SCH_RAY_LOST)
       {
         F.FailedRays += 1;
         continue;
       }
       F.MaxDrift = std::max(F.MaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
+      F.MaxError = std::max(F.MaxError, double(rec[SCH_REC_ERROR]));
       const float ex = rec[SCH_REC_EX], ey = rec[SCH_REC_EY];
       F.MaxAbsKnife = std::max(F.MaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
       const double fi = std::floor((rec[SCH_REC_A] - P.filmA0) / P.pixel);
@@ -403,6 +544,7 @@ struct Splatter
       F.Count[idx] += 1;
       F.DeflectionX[idx] += ex;
       F.DeflectionY[idx] += ey;
+      F.ErrorSum[idx] += rec[SCH_REC_ERROR];
       if (manual)
         F.Weight[idx] += sch_knife_weight(ex, ey, ca, sa, k);
     }
@@ -418,8 +560,8 @@ std::size_t RaysForRank(const sch_params& P)
 }
 
 // The CPU backend: the C++ build of SchlierenPhysics.h on std::thread.
-void TraceChunkCPU(const float* field, const sch_params& P, std::size_t first, std::size_t count,
-  float* out)
+void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_params& P,
+  std::size_t first, std::size_t count, float* out)
 {
   const unsigned nt = std::max(1u, std::thread::hardware_concurrency());
   std::atomic<std::size_t> next(0);
@@ -436,7 +578,7 @@ void TraceChunkCPU(const float* field, const sch_params& P, std::size_t first, s
         const int pix = static_cast<int>(P.rayOffset + (first + k) * P.rayStride);
         float a, b;
         sch_emit(&P, pix, &a, &b);
-        sch_trace(field, &P, a, b, out + k * SCH_RECORD);
+        sch_trace(field, levels, &P, a, b, out + k * SCH_RECORD);
       }
     }
   };
@@ -476,6 +618,12 @@ public:
     Field = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes,
       const_cast<float*>(volume.Field), &err);
     ocl::Check(err, "clCreateBuffer(field)");
+    // the octree levels, or one byte that no kernel reads when there are none
+    static unsigned char none = 0;
+    Levels = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      volume.Levels ? volume.NumberOfPoints() : 1,
+      const_cast<unsigned char*>(volume.Levels ? volume.Levels : &none), &err);
+    ocl::Check(err, "clCreateBuffer(levels)");
     Chunk = chunk;
     Out = clCreateBuffer(RT.Context, CL_MEM_WRITE_ONLY, std::max<std::size_t>(1, chunk) * SCH_RECORD * sizeof(float), nullptr, &err);
     ocl::Check(err, "clCreateBuffer(records)");
@@ -486,6 +634,8 @@ public:
       clReleaseMemObject(Out);
     if (Field)
       clReleaseMemObject(Field);
+    if (Levels)
+      clReleaseMemObject(Levels);
     if (Kernel)
       clReleaseKernel(Kernel);
     if (PointsKernel)
@@ -498,10 +648,11 @@ public:
   {
     const int f = static_cast<int>(first), c = static_cast<int>(count);
     ocl::Check(clSetKernelArg(Kernel, 0, sizeof(cl_mem), &Field), "clSetKernelArg(field)");
-    ocl::Check(clSetKernelArg(Kernel, 1, sizeof(sch_params), &P), "clSetKernelArg(params)");
-    ocl::Check(clSetKernelArg(Kernel, 2, sizeof(int), &f), "clSetKernelArg(first)");
-    ocl::Check(clSetKernelArg(Kernel, 3, sizeof(int), &c), "clSetKernelArg(count)");
-    ocl::Check(clSetKernelArg(Kernel, 4, sizeof(cl_mem), &Out), "clSetKernelArg(out)");
+    ocl::Check(clSetKernelArg(Kernel, 1, sizeof(cl_mem), &Levels), "clSetKernelArg(levels)");
+    ocl::Check(clSetKernelArg(Kernel, 2, sizeof(sch_params), &P), "clSetKernelArg(params)");
+    ocl::Check(clSetKernelArg(Kernel, 3, sizeof(int), &f), "clSetKernelArg(first)");
+    ocl::Check(clSetKernelArg(Kernel, 4, sizeof(int), &c), "clSetKernelArg(count)");
+    ocl::Check(clSetKernelArg(Kernel, 5, sizeof(cl_mem), &Out), "clSetKernelArg(out)");
     const std::size_t global = (count + RaysPerItem - 1) / RaysPerItem;
     ocl::Check(clEnqueueNDRangeKernel(RT.Queue, Kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr),
       "clEnqueueNDRangeKernel(sch_trace_rays)");
@@ -518,10 +669,11 @@ public:
     ocl::Check(err, "clCreateBuffer(points)");
     const int c = static_cast<int>(count);
     clSetKernelArg(PointsKernel, 0, sizeof(cl_mem), &Field);
-    clSetKernelArg(PointsKernel, 1, sizeof(sch_params), &P);
-    clSetKernelArg(PointsKernel, 2, sizeof(cl_mem), &abBuf);
-    clSetKernelArg(PointsKernel, 3, sizeof(int), &c);
-    clSetKernelArg(PointsKernel, 4, sizeof(cl_mem), &Out);
+    clSetKernelArg(PointsKernel, 1, sizeof(cl_mem), &Levels);
+    clSetKernelArg(PointsKernel, 2, sizeof(sch_params), &P);
+    clSetKernelArg(PointsKernel, 3, sizeof(cl_mem), &abBuf);
+    clSetKernelArg(PointsKernel, 4, sizeof(int), &c);
+    clSetKernelArg(PointsKernel, 5, sizeof(cl_mem), &Out);
     const std::size_t global = count;
     cl_int st = clEnqueueNDRangeKernel(RT.Queue, PointsKernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
     if (st == CL_SUCCESS)
@@ -535,7 +687,7 @@ public:
   int RaysPerItem;
   std::size_t Chunk = 0;
   cl_kernel Kernel = nullptr, PointsKernel = nullptr;
-  cl_mem Field = nullptr, Out = nullptr;
+  cl_mem Field = nullptr, Levels = nullptr, Out = nullptr;
 };
 
 // Chooses the backend; returns the OpenCL tracer or null for the CPU.
@@ -594,6 +746,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   const std::size_t chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), 1 << 16);
   std::string used, device, warn;
   std::unique_ptr<OpenCLTracer> cl = OpenBackend(volume, s, chunk, used, device, warn);
+  SetFeatureTolerance(P, volume);
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
   const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
@@ -607,7 +760,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
       if (cl)
         cl->Trace(P, first, count, records.data());
       else
-        TraceChunkCPU(volume.Field, P, first, count, records.data());
+        TraceChunkCPU(volume.Field, volume.Levels, P, first, count, records.data());
       splat.Add(records.data(), count);
       done += count;
       if (progress && !progress(done / total))
@@ -632,6 +785,8 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     throw Error("Finalize: the sums do not belong to this film, or hold no pass.");
   r.Intensity.assign(n, 0.f);
   r.Deflection.assign(2 * n, 0.f);
+  if (s.EstimateError)
+    r.ErrorEstimate.assign(n, 0.f);
   const double passes = sums.Passes;
   const double ang = s.KnifeAngle * 3.14159265358979323846 / 180.0;
   const double ca = std::cos(ang), sa = std::sin(ang);
@@ -645,6 +800,8 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     {
       r.Deflection[2 * i] = static_cast<float>(sums.DeflectionX[i] / c);
       r.Deflection[2 * i + 1] = static_cast<float>(sums.DeflectionY[i] / c);
+      if (s.EstimateError)
+        r.ErrorEstimate[i] = static_cast<float>(sums.ErrorSum[i] / c);
     }
     double I = 0;
     switch (s.Mode)
@@ -667,6 +824,19 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   r.FailedRays = sums.FailedRays;
   r.MissedRays = sums.MissedRays;
   r.MaxDrift = sums.MaxDrift;
+  r.MaxError = sums.MaxError;
+  r.UnderresolvedRays = sums.UnderresolvedRays;
+  r.SideRays = sums.SideRays;
+  r.Steps = sums.Steps;
+  if (sums.UnderresolvedRays > 0)
+  {
+    std::ostringstream msg;
+    msg << sums.UnderresolvedRays << " of " << sums.Photons
+        << " rays took steps longer than a feature of the field (a shock or an interface crossed in "
+           "one step): their deflection may be badly wrong. Lower StepSize (or the octree "
+           "tolerance) until this warning goes.\n";
+    r.Warnings += msg.str();
+  }
   if (sums.FailedRays > 0)
   {
     std::ostringstream msg;
@@ -698,17 +868,18 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
 {
   CheckVolume(volume);
   const FilmGeometry film = MakeFilm(volume, s);
-  const sch_params P = MakeParams(volume, s, film);
+  sch_params P = MakeParams(volume, s, film);
   const std::size_t count = ab.size() / 2;
   std::vector<RayRecord> out(count);
   std::string used, device, warn;
   std::unique_ptr<OpenCLTracer> cl = OpenBackend(volume, s, std::max<std::size_t>(count, 1), used, device, warn);
+  SetFeatureTolerance(P, volume);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)
     cl->TracePoints(P, ab.data(), count, rec);
   else
     for (std::size_t k = 0; k < count; ++k)
-      sch_trace(volume.Field, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
+      sch_trace(volume.Field, volume.Levels, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
   // the flags travel as floats in the record; turn them into integers
   for (RayRecord& r : out)
   {

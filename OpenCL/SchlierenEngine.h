@@ -40,6 +40,10 @@ struct Volume
   double Origin[3] = { 0, 0, 0 };
   double Spacing[3] = { 1, 1, 1 };
   const float* Field = nullptr;
+  /** Optional min-max octree level per cell (see ComputeOctreeLevels); null: fixed steps. */
+  const unsigned char* Levels = nullptr;
+  /** The index tolerance the levels were built for (for the step-quality checks). */
+  double LevelTolerance = 0.0;
 
   std::size_t NumberOfPoints() const
   {
@@ -60,6 +64,16 @@ void PackField(const int dims[3], const double spacing[3], const float* nMinus1,
 void ComputeGradient(const int dims[3], const double spacing[3], const float* nMinus1, float* grad3);
 
 /**
+ * The min-max octree of the paper (section 4.2), stored as a level per cell: level j means that the
+ * aligned block of 2^j cells holding the cell, grown by a one-cell halo, spans no more than
+ * `tolerance` in n-1, so a ray may cross the block in one straight step. `levels` holds one byte per
+ * grid point (the cell whose lower corner it is; the last layer is unused). Returns the fraction of
+ * cells at level >= 1. Levels stop at maxLevel (2^maxLevel cells).
+ */
+double ComputeOctreeLevels(const int dims[3], const float* nMinus1, double tolerance,
+  unsigned char* levels, int maxLevel = 7);
+
+/**
  * Checks n-1 for NaN/Inf and for n <= 0; returns an empty string if fine, else a message that
  * gives how many points are bad and the first one.
  */
@@ -74,8 +88,10 @@ enum class Backend
 
 enum class Integrator
 {
-  Euler = 0,   ///< the paper's explicit Euler (first order)
-  Midpoint = 1 ///< explicit midpoint (second order, two samples per step)
+  Euler = 0,    ///< the paper's explicit Euler (first order, 1 sample per step)
+  Midpoint = 1, ///< explicit midpoint (second order, 2 samples per step)
+  RK4 = 2,      ///< classical Runge-Kutta (fourth order, 4 samples per step)
+  Straight = 3  ///< line of sight: grad n integrated along the unbent ray (no refraction)
 };
 
 enum class Cutoff
@@ -93,6 +109,9 @@ struct TraceSettings
   int Passes = 1;                         ///< progressive passes, one jittered photon per pixel each
   double StepSize = 0.5;                  ///< base step, in voxels (of the smallest spacing)
   Integrator Method = Integrator::Euler;
+  bool KeepInvariant = false; ///< rescale v = n dx/ds to |v| = n after every step
+  bool EstimateError = false; ///< trace each ray again at twice the step: per-pixel error estimate
+  bool UseOctree = true;      ///< skip through uniform blocks when the volume has Levels
   Cutoff Mode = Cutoff::KnifeEdge;
   double KnifeAngle = 0.0;  ///< degrees in the film plane; 0: knife normal along film x
   double CutoffScale = 0.0; ///< k; 0 means automatic: the largest deflection maps to full contrast
@@ -132,9 +151,12 @@ struct FilmSums
   std::vector<double> Count;   ///< photons landed
   std::vector<double> Weight;  ///< summed knife-edge weights (manual CutoffScale only)
   std::vector<double> DeflectionX, DeflectionY; ///< summed deflections
+  std::vector<double> ErrorSum; ///< summed step-doubling error estimates (EstimateError only)
   double MaxAbsKnife = 0.0;    ///< max over photons of |e . a| (for the automatic scale)
   double Photons = 0.0, Samples = 0.0, FailedRays = 0.0, MissedRays = 0.0;
+  double UnderresolvedRays = 0.0, SideRays = 0.0, Steps = 0.0;
   double MaxDrift = 0.0;       ///< max over rays of | |v| - n |
+  double MaxError = 0.0;       ///< max over rays of the step-doubling estimate
   int Passes = 0;
 
   void Resize(int nx, int ny);
@@ -148,11 +170,13 @@ struct TraceResult
   FilmGeometry Film;
   std::vector<float> Intensity;  ///< nx*ny
   std::vector<float> Deflection; ///< 2*nx*ny, radians along film x and y (mean of the photons)
+  std::vector<float> ErrorEstimate; ///< nx*ny, radians (EstimateError only, else empty)
   double CutoffScaleUsed = 0.0;
   std::string BackendUsed;  ///< "OpenCL" or "CPU"
   std::string DeviceName;
   std::string Warnings;     ///< what the user should know (fallbacks, failed rays)
   double Photons = 0, Samples = 0, FailedRays = 0, MissedRays = 0, MaxDrift = 0;
+  double UnderresolvedRays = 0, SideRays = 0, Steps = 0, MaxError = 0;
   double Seconds = 0; ///< tracing time
 };
 
@@ -180,9 +204,25 @@ struct RayRecord
   float LandA, LandB;     ///< film coordinates where it lands
   float DeflX, DeflY;     ///< radians along film x, y
   float OpticalPathExcess;///< integral of (n-1) ds in the volume
-  std::uint32_t Flags;    ///< SCH_RAY_* bits
+  std::uint32_t Flags;    ///< RayFlags bits
   float Samples;
-  float Drift;
+  float Drift;            ///< |v| - n at exit
+  float Error;            ///< step-doubling estimate (EstimateError only)
+  float Path;             ///< geometric path length in the volume
+  float Mismatch;         ///< largest index change a step did not predict
+  float Steps;
+};
+
+/** RayRecord::Flags bits (the same as SCH_RAY_* in SchlierenPhysics.h). */
+enum RayFlags : std::uint32_t
+{
+  RayMissed = 1,
+  RayMaxSteps = 2,
+  RayTurned = 4,
+  RayNonFinite = 8,
+  RayOffFilm = 16,
+  RayUnderresolved = 32,
+  RaySide = 64
 };
 
 /**

@@ -22,49 +22,62 @@
 #define SCH_FN static inline
 #define SCH_GLOBAL __global
 typedef uint sch_uint;
+typedef uchar sch_uchar;
 #define sch_sqrt sqrt
 #define sch_floor floor
 #define sch_fabs fabs
 #define sch_cos cos
 #define sch_sin sin
 #define sch_isfinite isfinite
+#define sch_fmin fmin
 #else
 #include <math.h>
 #include <stdint.h>
 #define SCH_FN static inline
 #define SCH_GLOBAL
 typedef uint32_t sch_uint;
+typedef unsigned char sch_uchar;
 #define sch_sqrt sqrtf
 #define sch_floor floorf
 #define sch_fabs fabsf
 #define sch_cos cosf
 #define sch_sin sinf
 #define sch_isfinite isfinite
+#define sch_fmin fminf
 #endif
 
 /* Number of floats per output ray record. */
-#define SCH_RECORD 8
+#define SCH_RECORD 12
 /* Record layout. */
-#define SCH_REC_A 0       /* landing film coordinate along r (world units, from c) */
-#define SCH_REC_B 1       /* landing film coordinate along t */
-#define SCH_REC_EX 2      /* deflection along r (radians) */
-#define SCH_REC_EY 3      /* deflection along t (radians) */
-#define SCH_REC_OPL 4     /* excess optical path: integral of (n-1) ds inside the volume */
-#define SCH_REC_FLAGS 5   /* SCH_RAY_* bits, stored as a float (exact below 2^24) */
-#define SCH_REC_SAMPLES 6 /* field samples taken */
-#define SCH_REC_DRIFT 7   /* |v| - n at exit: the drift of the ray invariant (error indicator) */
+#define SCH_REC_A 0        /* landing film coordinate along r (world units, from c) */
+#define SCH_REC_B 1        /* landing film coordinate along t */
+#define SCH_REC_EX 2       /* deflection along r (radians) */
+#define SCH_REC_EY 3       /* deflection along t (radians) */
+#define SCH_REC_OPL 4      /* excess optical path: integral of (n-1) ds inside the volume */
+#define SCH_REC_FLAGS 5    /* SCH_RAY_* bits, stored as a float (exact below 2^24) */
+#define SCH_REC_SAMPLES 6  /* field samples taken */
+#define SCH_REC_DRIFT 7    /* |v| - n at exit: the drift of the ray invariant (error indicator) */
+#define SCH_REC_ERROR 8    /* step-doubling estimate of the deflection error (radians), if asked */
+#define SCH_REC_PATH 9     /* geometric path length inside the volume */
+#define SCH_REC_MISMATCH 10 /* largest |dn - grad n . dx| over a step: structure a step missed */
+#define SCH_REC_STEPS 11   /* steps taken */
 
 /* Ray status bits. */
-#define SCH_RAY_MISSED 1u    /* never entered the volume: undeflected */
-#define SCH_RAY_MAXSTEPS 2u  /* gave up after the step limit */
-#define SCH_RAY_TURNED 4u    /* turned back against the beam (total internal reflection-like) */
-#define SCH_RAY_NONFINITE 8u /* the state became NaN/Inf */
-#define SCH_RAY_OFFFILM 16u  /* could not reach the film plane (parallel to it) */
+#define SCH_RAY_MISSED 1u        /* never entered the volume: undeflected */
+#define SCH_RAY_MAXSTEPS 2u      /* gave up after the step limit */
+#define SCH_RAY_TURNED 4u        /* turned back against the beam */
+#define SCH_RAY_NONFINITE 8u     /* the state became NaN/Inf */
+#define SCH_RAY_OFFFILM 16u      /* could not reach the film plane (parallel to it) */
+#define SCH_RAY_UNDERRESOLVED 32u /* a step jumped over structure (e.g. a shock): the result is suspect */
+#define SCH_RAY_SIDE 64u         /* left through a side of the box (grazing or strongly bent) */
+/* Rays whose photon is dropped from the image. */
+#define SCH_RAY_LOST (SCH_RAY_MAXSTEPS | SCH_RAY_TURNED | SCH_RAY_NONFINITE | SCH_RAY_OFFFILM)
 
 /* Integrators. */
-#define SCH_EULER 0
-#define SCH_MIDPOINT 1
-#define SCH_RK4 2
+#define SCH_EULER 0     /* the paper's explicit Euler: 1 sample per step, first order */
+#define SCH_MIDPOINT 1  /* explicit midpoint: 2 samples per step, second order */
+#define SCH_RK4 2       /* classical Runge-Kutta: 4 samples per step, fourth order */
+#define SCH_STRAIGHT 3  /* line of sight: grad n integrated along the unbent ray (Yates 1993) */
 
 /* Cutoffs. */
 #define SCH_KNIFE 0
@@ -98,7 +111,10 @@ typedef struct
   int integrator;
   int jitter;           /* 0: rays through pixel centres; 1: jittered inside each pixel */
   int rayOffset, rayStride; /* ray k traces pixel rayOffset + k * rayStride */
-  int pad0;
+  int useLevels;        /* 1: skip through octree blocks (levels buffer), 0: fixed steps */
+  int keepInvariant;    /* 1: rescale v so that |v| = n after every step */
+  int estimate;         /* 1: trace again at twice the base step and store the difference */
+  float featureTol;     /* index change a step may leave unexplained before it is flagged */
 } sch_params;
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
@@ -254,105 +270,270 @@ SCH_FN void sch_emit(const sch_params* P, int pix, float* a, float* b)
 
 /* ---------------------------------------------------------------- tracing */
 
+/* |v| - n computed without cancellation: v = ne d0 + w with ne = 1 + ne1, n = 1 + n1. */
+SCH_FN float sch_invariant_gap(float ne1, float n1, sch_v3 d0, sch_v3 w)
+{
+  float ne = 1.0f + ne1, n = 1.0f + n1;
+  sch_v3 v = sch_axpy(ne, d0, w);
+  float vn = sch_sqrt(sch_dot(v, v));
+  /* |v|^2 - n^2 = 2 ne d0.w + |w|^2 - (n1 - ne1)(n + ne) */
+  float num = 2.0f * ne * sch_dot(d0, w) + sch_dot(w, w) - (n1 - ne1) * (n + ne);
+  return num / (vn + n);
+}
+
+/* The step allowed at x: the base step, or the distance to the far side of the octree block that
+ * holds x when that is longer (paper section 4.2; the block is uniform within the tolerance, with a
+ * one-voxel halo, so the ray may cross it in one straight step). */
+SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels, const sch_params* P, sch_v3 x, sch_v3 dir,
+  float base)
+{
+  float f[3], is[3], dI[3];
+  int n[3], c[3], a;
+  f[0] = (x.x - P->ox) * P->isx;
+  f[1] = (x.y - P->oy) * P->isy;
+  f[2] = (x.z - P->oz) * P->isz;
+  n[0] = P->nx;
+  n[1] = P->ny;
+  n[2] = P->nz;
+  is[0] = P->isx;
+  is[1] = P->isy;
+  is[2] = P->isz;
+  dI[0] = dir.x * is[0];
+  dI[1] = dir.y * is[1];
+  dI[2] = dir.z * is[2];
+  for (a = 0; a < 3; ++a)
+  {
+    f[a] = f[a] < 0.0f ? 0.0f : (f[a] > (float)(n[a] - 1) ? (float)(n[a] - 1) : f[a]);
+    c[a] = (int)f[a];
+    if (c[a] > n[a] - 2)
+      c[a] = n[a] - 2;
+  }
+  int lvl = (int)levels[((long)c[2] * n[1] + c[1]) * n[0] + c[0]];
+  if (lvl == 0)
+    return base;
+  float B = (float)(1 << lvl);
+  float t = 1e30f;
+  for (a = 0; a < 3; ++a)
+  {
+    float lo = sch_floor((float)c[a] / B) * B;
+    float hi = lo + B;
+    if (dI[a] > 1e-20f)
+      t = sch_fmin(t, (hi - f[a]) / dI[a]);
+    else if (dI[a] < -1e-20f)
+      t = sch_fmin(t, (f[a] - lo) / -dI[a]);
+  }
+  /* a hair past the block face, so that the next lookup sees the next block */
+  t += 0.01f * base;
+  return t > base ? t : base;
+}
+
+typedef struct
+{
+  sch_v3 x;       /* where the ray left the volume (first point outside) */
+  sch_v3 w;       /* integral of grad n ds */
+  float ne1;      /* n - 1 where it entered */
+  float n1;       /* n - 1 at the last sample */
+  float opl, path, samples, steps, mismatch;
+  sch_uint flags;
+} sch_ray;
+
+/* March from x (on the box) with base step `base` until the ray leaves the box. */
+SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P, sch_v3 x, float base, sch_ray* R)
+{
+  sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
+  sch_v3 w = sch_make(0.0f, 0.0f, 0.0f);
+  sch_uint flags = 0u;
+  float samples = 1.0f, opl = 0.0f, path = 0.0f, mismatch = 0.0f;
+  /* the index where the ray enters is the background the deflection is measured against */
+  sch_sample s = sch_sample_field(field, P, x);
+  float ne1 = s.n1;
+  float ne = 1.0f + ne1;
+  int it;
+  for (it = 0; it < P->maxSteps; ++it)
+  {
+    sch_v3 v = sch_axpy(ne, d0, w);
+    float n = 1.0f + s.n1;
+    float ds = base;
+    if (P->useLevels)
+      ds = sch_skip(levels, P, x, sch_scale(v, 1.0f / n), base);
+    sch_v3 xn, dw;
+    float dopl;
+    if (P->integrator == SCH_STRAIGHT)
+    {
+      xn = sch_axpy(ds, d0, x);
+      dw = sch_scale(s.g, ds);
+      dopl = ds * s.n1;
+    }
+    else if (P->integrator == SCH_MIDPOINT)
+    {
+      /* half step with the slope at x, full step with the slope at the midpoint */
+      sch_v3 xm = sch_axpy(0.5f * ds / n, v, x);
+      sch_v3 vm = sch_axpy(0.5f * ds, s.g, v);
+      sch_sample sm = sch_sample_field(field, P, xm);
+      samples += 1.0f;
+      xn = sch_axpy(ds / (1.0f + sm.n1), vm, x);
+      dw = sch_scale(sm.g, ds);
+      dopl = ds * sm.n1;
+    }
+    else if (P->integrator == SCH_RK4)
+    {
+      /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
+      sch_v3 k1x = sch_scale(v, 1.0f / n);
+      sch_sample sa = sch_sample_field(field, P, sch_axpy(0.5f * ds, k1x, x));
+      sch_v3 v2 = sch_axpy(0.5f * ds, s.g, v);
+      sch_v3 k2x = sch_scale(v2, 1.0f / (1.0f + sa.n1));
+      sch_sample sb = sch_sample_field(field, P, sch_axpy(0.5f * ds, k2x, x));
+      sch_v3 v3 = sch_axpy(0.5f * ds, sa.g, v);
+      sch_v3 k3x = sch_scale(v3, 1.0f / (1.0f + sb.n1));
+      sch_sample sc = sch_sample_field(field, P, sch_axpy(ds, k3x, x));
+      sch_v3 v4 = sch_axpy(ds, sb.g, v);
+      sch_v3 k4x = sch_scale(v4, 1.0f / (1.0f + sc.n1));
+      samples += 3.0f;
+      sch_v3 kx = sch_add(sch_add(k1x, k4x), sch_scale(sch_add(k2x, k3x), 2.0f));
+      sch_v3 kw = sch_add(sch_add(s.g, sc.g), sch_scale(sch_add(sa.g, sb.g), 2.0f));
+      xn = sch_axpy(ds / 6.0f, kx, x);
+      dw = sch_scale(kw, ds / 6.0f);
+      dopl = ds / 6.0f * (s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1));
+    }
+    else
+    {
+      /* the paper's explicit Euler: x += ds v / n, v += ds grad n */
+      xn = sch_axpy(ds / n, v, x);
+      dw = sch_scale(s.g, ds);
+      dopl = ds * s.n1;
+    }
+    sch_v3 dx = sch_add(xn, sch_scale(x, -1.0f));
+    x = xn;
+    w = sch_add(w, dw);
+    opl += dopl;
+    path += ds;
+    if (!(sch_isfinite(x.x) && sch_isfinite(x.y) && sch_isfinite(x.z) && sch_isfinite(w.x) &&
+          sch_isfinite(w.y) && sch_isfinite(w.z)))
+    {
+      flags |= SCH_RAY_NONFINITE;
+      break;
+    }
+    if (ne + sch_dot(d0, w) <= 0.0f)
+    {
+      flags |= SCH_RAY_TURNED;
+      break;
+    }
+    if (!sch_inside(P, x))
+      break;
+    sch_sample sn = sch_sample_field(field, P, x);
+    samples += 1.0f;
+    /* a step longer than a feature: the index changed in a way the gradient did not predict */
+    float act = sn.n1 - s.n1;
+    float mis = sch_fabs(act - sch_dot(s.g, dx));
+    if (P->integrator != SCH_STRAIGHT)
+    {
+      mismatch = mis > mismatch ? mis : mismatch;
+      if (mis > 0.5f * sch_fabs(act) && mis > P->featureTol)
+        flags |= SCH_RAY_UNDERRESOLVED;
+    }
+    if (P->keepInvariant)
+    {
+      /* rescale v to |v| = n(x); written so that no term near 1 is subtracted */
+      float gap = sch_invariant_gap(ne1, sn.n1, d0, w);
+      sch_v3 vv = sch_axpy(ne, d0, w);
+      float scale = -gap / sch_sqrt(sch_dot(vv, vv)); /* scale - 1 */
+      w = sch_add(sch_scale(w, 1.0f + scale), sch_scale(d0, ne * scale));
+    }
+    s = sn;
+  }
+  if (it >= P->maxSteps)
+    flags |= SCH_RAY_MAXSTEPS;
+  R->x = x;
+  R->w = w;
+  R->ne1 = ne1;
+  R->n1 = s.n1;
+  R->opl = opl;
+  R->path = path;
+  R->samples = samples;
+  R->steps = (float)it;
+  R->mismatch = mismatch;
+  R->flags = flags;
+}
+
+/* Deflection of a marched ray on the film axes: (w . r, w . t) / |v|. */
+SCH_FN void sch_deflection(const sch_params* P, const sch_ray* R, float* ex, float* ey)
+{
+  sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
+  sch_v3 v = sch_axpy(1.0f + R->ne1, d0, R->w);
+  float vn = sch_sqrt(sch_dot(v, v));
+  *ex = sch_dot(R->w, sch_make(P->rx, P->ry, P->rz)) / vn;
+  *ey = sch_dot(R->w, sch_make(P->tx, P->ty, P->tz)) / vn;
+}
+
 /* Trace one ray that starts on the emission plane at film coordinates (a, b) and write its record. */
-SCH_FN void sch_trace(SCH_GLOBAL const float* field, const sch_params* P, float a, float b,
-  float* rec)
+SCH_FN void sch_trace(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P, float a, float b, float* rec)
 {
   sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
   sch_v3 ra = sch_make(P->rx, P->ry, P->rz);
   sch_v3 ta = sch_make(P->tx, P->ty, P->tz);
   sch_v3 o = sch_add(sch_add(sch_scale(ra, a), sch_scale(ta, b)), sch_scale(d0, P->sFront));
-  sch_uint flags = 0u;
-  float samples = 0.0f;
-  float opl = 0.0f;
-  float drift = 0.0f;
-  sch_v3 x = o;
-  sch_v3 w = sch_make(0.0f, 0.0f, 0.0f);
-  float ne = 1.0f;
+  sch_ray R;
+  R.x = o;
+  R.w = sch_make(0.0f, 0.0f, 0.0f);
+  R.ne1 = R.n1 = R.opl = R.path = R.samples = R.steps = R.mismatch = 0.0f;
+  R.flags = 0u;
+  float err = 0.0f;
   float s0, s1;
   if (!sch_clip_box(P, o, d0, &s0, &s1) || s1 <= 0.0f)
   {
-    flags |= SCH_RAY_MISSED;
+    R.flags = SCH_RAY_MISSED;
   }
   else
   {
-    x = sch_axpy(s0 > 0.0f ? s0 : 0.0f, d0, o);
-    float ds = P->step;
-    /* the index where the ray enters is the background the deflection is measured against */
-    sch_sample s = sch_sample_field(field, P, x);
-    samples += 1.0f;
-    ne = 1.0f + s.n1;
-    int it;
-    /* march until the ray leaves the box; a tiny tolerance keeps rays that start on a face */
-    for (it = 0; it < P->maxSteps; ++it)
+    sch_v3 entry = sch_axpy(s0 > 0.0f ? s0 : 0.0f, d0, o);
+    sch_march(field, levels, P, entry, P->step, &R);
+    /* it left through a side if the exit point is not beyond the back of the box */
+    if (!(R.flags & SCH_RAY_LOST) && sch_dot(sch_axpy(-s1, d0, sch_axpy(-1.0f, o, R.x)), d0) < -P->step)
+      R.flags |= SCH_RAY_SIDE;
+    if (P->estimate)
     {
-      sch_v3 v = sch_axpy(ne, d0, w);
-      if (P->integrator == SCH_MIDPOINT)
-      {
-        /* half step with the slope at x, full step with the slope at the midpoint */
-        sch_v3 xm = sch_axpy(0.5f * ds / (1.0f + s.n1), v, x);
-        sch_v3 vm = sch_axpy(0.5f * ds, s.g, v);
-        sch_sample sm = sch_sample_field(field, P, xm);
-        samples += 1.0f;
-        x = sch_axpy(ds / (1.0f + sm.n1), vm, x);
-        w = sch_axpy(ds, sm.g, w);
-        opl += ds * sm.n1;
-      }
-      else
-      {
-        /* the paper's explicit Euler: x += ds v / n, v += ds grad n */
-        x = sch_axpy(ds / (1.0f + s.n1), v, x);
-        w = sch_axpy(ds, s.g, w);
-        opl += ds * s.n1;
-      }
-      if (!(sch_isfinite(x.x) && sch_isfinite(x.y) && sch_isfinite(x.z) && sch_isfinite(w.x) &&
-            sch_isfinite(w.y) && sch_isfinite(w.z)))
-      {
-        flags |= SCH_RAY_NONFINITE;
-        break;
-      }
-      if (ne + sch_dot(d0, w) <= 0.0f)
-      {
-        flags |= SCH_RAY_TURNED;
-        break;
-      }
-      if (!sch_inside(P, x))
-        break;
-      s = sch_sample_field(field, P, x);
-      samples += 1.0f;
+      /* step doubling: the difference to a trace at twice the step, scaled by the scheme's order */
+      sch_ray R2;
+      sch_march(field, levels, P, entry, 2.0f * P->step, &R2);
+      float ex1, ey1, ex2, ey2;
+      sch_deflection(P, &R, &ex1, &ey1);
+      sch_deflection(P, &R2, &ex2, &ey2);
+      float order = P->integrator == SCH_RK4 ? 15.0f : (P->integrator == SCH_MIDPOINT ? 3.0f : 1.0f);
+      err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
+      R.samples += R2.samples;
     }
-    if (it >= P->maxSteps)
-      flags |= SCH_RAY_MAXSTEPS;
-    sch_v3 vexit = sch_axpy(ne, d0, w);
-    float vn = sch_sqrt(sch_dot(vexit, vexit));
-    /* the ray invariant |v| = n, measured against the index where the ray left */
-    drift = vn - (1.0f + s.n1);
   }
-  sch_v3 v = sch_axpy(ne, d0, w);
+  float ex, ey;
+  sch_deflection(P, &R, &ex, &ey);
+  sch_v3 v = sch_axpy(1.0f + R.ne1, d0, R.w);
   float vn = sch_sqrt(sch_dot(v, v));
-  float ex = sch_dot(w, ra) / vn;
-  float ey = sch_dot(w, ta) / vn;
   /* straight flight from the exit point to the film plane */
-  float dd = (ne + sch_dot(w, d0)) / vn;
-  float la = sch_dot(x, ra), lb = sch_dot(x, ta);
+  float dd = sch_dot(v, d0) / vn;
+  float la = sch_dot(R.x, ra), lb = sch_dot(R.x, ta);
   if (dd > 1e-6f)
   {
-    float t = (P->sFilm - sch_dot(x, d0)) / dd;
+    float t = (P->sFilm - sch_dot(R.x, d0)) / dd;
     la += t * ex;
     lb += t * ey;
   }
   else
   {
-    flags |= SCH_RAY_OFFFILM;
+    R.flags |= SCH_RAY_OFFFILM;
   }
   rec[SCH_REC_A] = la;
   rec[SCH_REC_B] = lb;
   rec[SCH_REC_EX] = ex;
   rec[SCH_REC_EY] = ey;
-  rec[SCH_REC_OPL] = opl;
-  rec[SCH_REC_FLAGS] = (float)flags;
-  rec[SCH_REC_SAMPLES] = samples;
-  rec[SCH_REC_DRIFT] = drift;
+  rec[SCH_REC_OPL] = R.opl;
+  rec[SCH_REC_FLAGS] = (float)R.flags;
+  rec[SCH_REC_SAMPLES] = R.samples;
+  rec[SCH_REC_DRIFT] = (R.flags & SCH_RAY_MISSED) ? 0.0f : sch_invariant_gap(R.ne1, R.n1, d0, R.w);
+  rec[SCH_REC_ERROR] = err;
+  rec[SCH_REC_PATH] = R.path;
+  rec[SCH_REC_MISMATCH] = R.mismatch;
+  rec[SCH_REC_STEPS] = R.steps;
 }
 
 /* ---------------------------------------------------------------- cutoffs */

@@ -13,8 +13,8 @@
 
 /* Trace rays k = first .. first + count - 1 of a pass; ray k goes through pixel
  * P.rayOffset + k * P.rayStride and writes SCH_RECORD floats at out[(k - first) * SCH_RECORD]. */
-__kernel void sch_trace_rays(__global const float* field, const sch_params P, const int first,
-  const int count, __global float* out)
+__kernel void sch_trace_rays(__global const float* field, __global const uchar* levels,
+  const sch_params P, const int first, const int count, __global float* out)
 {
   int base = (int)get_global_id(0) * SCH_RAYS_PER_ITEM;
   for (int r = 0; r < SCH_RAYS_PER_ITEM; ++r)
@@ -26,21 +26,21 @@ __kernel void sch_trace_rays(__global const float* field, const sch_params P, co
     float a, b;
     sch_emit(&P, pix, &a, &b);
     float rec[SCH_RECORD];
-    sch_trace(field, &P, a, b, rec);
+    sch_trace(field, levels, &P, a, b, rec);
     for (int c = 0; c < SCH_RECORD; ++c)
       out[(long)k * SCH_RECORD + c] = rec[c];
   }
 }
 
 /* Trace rays from explicit film coordinates (ab[2k], ab[2k+1]): used by tests and probes. */
-__kernel void sch_trace_points(__global const float* field, const sch_params P,
-  __global const float* ab, const int count, __global float* out)
+__kernel void sch_trace_points(__global const float* field, __global const uchar* levels,
+  const sch_params P, __global const float* ab, const int count, __global float* out)
 {
   int k = (int)get_global_id(0);
   if (k >= count)
     return;
   float rec[SCH_RECORD];
-  sch_trace(field, &P, ab[2 * k], ab[2 * k + 1], rec);
+  sch_trace(field, levels, &P, ab[2 * k], ab[2 * k + 1], rec);
   for (int c = 0; c < SCH_RECORD; ++c)
     out[(long)k * SCH_RECORD + c] = rec[c];
 }
