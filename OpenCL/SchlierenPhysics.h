@@ -327,9 +327,28 @@ SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels, const sch_params* P, s
   return t > base ? t : base;
 }
 
+/* Distance from x (inside the box) along the unit direction d to the box's boundary. */
+SCH_FN float sch_exit_distance(const sch_params* P, sch_v3 x, sch_v3 d)
+{
+  float t = 1e30f;
+  if (d.x > 1e-20f)
+    t = sch_fmin(t, (P->hx - x.x) / d.x);
+  else if (d.x < -1e-20f)
+    t = sch_fmin(t, (-P->hx - x.x) / d.x);
+  if (d.y > 1e-20f)
+    t = sch_fmin(t, (P->hy - x.y) / d.y);
+  else if (d.y < -1e-20f)
+    t = sch_fmin(t, (-P->hy - x.y) / d.y);
+  if (d.z > 1e-20f)
+    t = sch_fmin(t, (P->hz - x.z) / d.z);
+  else if (d.z < -1e-20f)
+    t = sch_fmin(t, (-P->hz - x.z) / d.z);
+  return t > 0.0f ? t : 0.0f;
+}
+
 typedef struct
 {
-  sch_v3 x;       /* where the ray left the volume (first point outside) */
+  sch_v3 x;       /* where the ray left the volume (on the box, a hair outside) */
   sch_v3 w;       /* integral of grad n ds */
   float ne1;      /* n - 1 where it entered */
   float n1;       /* n - 1 at the last sample */
@@ -355,8 +374,12 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
     sch_v3 v = sch_axpy(ne, d0, w);
     float n = 1.0f + s.n1;
     float ds = base;
+    sch_v3 dir = sch_scale(v, 1.0f / sch_sqrt(sch_dot(v, v)));
     if (P->useLevels)
-      ds = sch_skip(levels, P, x, sch_scale(v, 1.0f / n), base);
+      ds = sch_skip(levels, P, x, dir, base);
+    /* the last step ends on the box: no gradient is integrated beyond the data */
+    float tex = sch_exit_distance(P, x, dir) + 1e-3f * base;
+    ds = ds < tex ? ds : tex;
     sch_v3 xn, dw;
     float dopl;
     if (P->integrator == SCH_STRAIGHT)
@@ -423,10 +446,15 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
       break;
     sch_sample sn = sch_sample_field(field, P, x);
     samples += 1.0f;
-    /* a step longer than a feature: the index changed in a way the gradient did not predict */
+    /* a step longer than a feature: over a step of more than one cell, the index changed in a way
+     * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
+     * cannot jump over anything: trilinear data has no structure finer than a cell. */
     float act = sn.n1 - s.n1;
-    float mis = sch_fabs(act - sch_dot(s.g, dx));
-    if (P->integrator != SCH_STRAIGHT)
+    float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(s.g, sn.g), dx));
+    float cells = sch_fabs(dx.x) * P->isx;
+    cells = sch_fabs(dx.y) * P->isy > cells ? sch_fabs(dx.y) * P->isy : cells;
+    cells = sch_fabs(dx.z) * P->isz > cells ? sch_fabs(dx.z) * P->isz : cells;
+    if (P->integrator != SCH_STRAIGHT && cells > 1.0f)
     {
       mismatch = mis > mismatch ? mis : mismatch;
       if (mis > 0.5f * sch_fabs(act) && mis > P->featureTol)
@@ -444,6 +472,11 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
   }
   if (it >= P->maxSteps)
     flags |= SCH_RAY_MAXSTEPS;
+  else if (!(flags & (SCH_RAY_NONFINITE | SCH_RAY_TURNED)))
+  {
+    /* the index where the ray left, for the invariant |v| = n */
+    s = sch_sample_field(field, P, x);
+  }
   R->x = x;
   R->w = w;
   R->ne1 = ne1;

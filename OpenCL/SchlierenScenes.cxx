@@ -28,8 +28,24 @@ double SceneIndex(Scene scene, const SceneParameters& p, double x, double y, dou
       const double n2 = p.GradientA + p.GradientB * ry;
       return n2 > 0 ? std::sqrt(n2) - 1.0 : std::nan("");
     }
+    case Scene::NormalShock:
+    {
+      const double r = NormalShockDensityRatio(p.Mach);
+      const double rho = p.Density * (1.0 + (r - 1.0) * 0.5 * (1.0 + std::tanh(rx / p.Width)));
+      return GladstoneDaleAir * rho;
+    }
   }
   return 0.0;
+}
+
+double NormalShockDensityRatio(double m, double g)
+{
+  return (g + 1) * m * m / ((g - 1) * m * m + 2);
+}
+
+double NormalShockPressureRatio(double m, double g)
+{
+  return 1 + 2 * g * (m * m - 1) / (g + 1);
 }
 
 void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const double origin[3],
@@ -39,6 +55,8 @@ void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const d
     throw Error("GaussianSphere: Width must be positive.");
   if (scene == Scene::LuneburgLens && !(p.Radius > 0))
     throw Error("LuneburgLens: Radius must be positive.");
+  if (scene == Scene::NormalShock && (!(p.Width > 0) || !(p.Mach >= 1) || !(p.Density > 0)))
+    throw Error("NormalShock: Width and Density must be positive and Mach at least 1.");
   std::size_t idx = 0;
   for (int k = 0; k < dims[2]; ++k)
   {
@@ -77,6 +95,8 @@ const char* SceneName(Scene scene)
       return "LuneburgLens";
     case Scene::LinearGradient:
       return "LinearGradient";
+    case Scene::NormalShock:
+      return "NormalShock";
   }
   return "?";
 }

@@ -21,8 +21,16 @@ enum class Scene
   Uniform = 0,        ///< n - 1 = Amplitude everywhere
   GaussianSphere = 1, ///< n = 1 + Amplitude exp(-r^2 / Width^2), r from Center
   LuneburgLens = 2,   ///< n = sqrt(2 - r^2 / Radius^2) for r < Radius, 1 outside
-  LinearGradient = 3  ///< n^2 = GradientA + GradientB (y - Center[1])
+  LinearGradient = 3, ///< n^2 = GradientA + GradientB (y - Center[1])
+  NormalShock = 4     ///< a plane normal shock in air at x = Center[0], normal along x: upstream
+                      ///< density Density (x < Center[0]), downstream Density * rho2/rho1 for Mach
+                      ///< (gamma = 1.4), a tanh profile of thickness Width; n - 1 = K_air rho
 };
+
+/** Normal-shock density ratio rho2/rho1 = (g+1) M^2 / ((g-1) M^2 + 2). */
+double NormalShockDensityRatio(double mach, double gamma = 1.4);
+/** Normal-shock pressure ratio p2/p1 = 1 + 2 g (M^2 - 1) / (g + 1). */
+double NormalShockPressureRatio(double mach, double gamma = 1.4);
 
 struct SceneParameters
 {
@@ -32,6 +40,8 @@ struct SceneParameters
   double Center[3] = { 0, 0, 0 };
   double GradientA = 1.0;
   double GradientB = 0.01;
+  double Mach = 2.0;      ///< NormalShock
+  double Density = 1.2;   ///< NormalShock: upstream density, kg/m^3
 };
 
 /** The index n - 1 of a scene at one world point. */

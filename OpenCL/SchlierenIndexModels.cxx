@@ -1,0 +1,620 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SchlierenIndexModels.h"
+
+#include "SchlierenEngine.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace schlieren
+{
+namespace
+{
+
+// K in cm^3/g and M in g/mol as tabulated; converted to SI (x 1e-3 both) on use.
+struct GasRow
+{
+  Gas Id;
+  const char* Name;
+  const char* Alias;
+  double KcgsPerGram;
+  double GramsPerMole;
+};
+
+const GasRow GasTable[] = {
+  { Gas::Air, "Air", "Air", 0.2256, 28.9641 },
+  { Gas::Helium, "He", "Helium", 0.1954, 4.002602 },
+  { Gas::Nitrogen, "N2", "Nitrogen", 0.2381, 28.0134 },
+  { Gas::Oxygen, "O2", "Oxygen", 0.1888, 31.9988 },
+  { Gas::Argon, "Ar", "Argon", 0.1576, 39.948 },
+  { Gas::CarbonDioxide, "CO2", "CarbonDioxide", 0.2265, 44.0095 },
+  { Gas::Hydrogen, "H2", "Hydrogen", 1.5395, 2.01588 },
+  { Gas::Water, "H2O", "Water", 0.3127, 18.01528 },
+  { Gas::Methane, "CH4", "Methane", 0.617, 16.0425 },
+  { Gas::CarbonMonoxide, "CO", "CarbonMonoxide", 0.268, 28.0101 },
+};
+constexpr int NumberOfGasRows = static_cast<int>(sizeof(GasTable) / sizeof(GasTable[0]));
+static_assert(NumberOfGasRows == static_cast<int>(Gas::NumberOfGases), "one row per gas");
+
+const GasProperties* BuildProperties()
+{
+  static GasProperties props[NumberOfGasRows];
+  for (int i = 0; i < NumberOfGasRows; ++i)
+  {
+    const GasRow& r = GasTable[i];
+    props[i] = GasProperties{ r.Id, r.Name, r.Alias, r.KcgsPerGram * 1e-3, r.GramsPerMole * 1e-3 };
+  }
+  return props;
+}
+
+std::string Lower(const std::string& s)
+{
+  std::string out(s);
+  for (char& c : out)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string Num(double v)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.9g", v);
+  return buf;
+}
+
+/** Counts the points where `bad(value)` holds; remembers the first. */
+struct BadPoints
+{
+  std::size_t Count = 0;
+  std::size_t First = 0;
+  double FirstValue = 0.0;
+  void Add(std::size_t i, double v)
+  {
+    if (this->Count++ == 0)
+    {
+      this->First = i;
+      this->FirstValue = v;
+    }
+  }
+};
+
+template <typename Bad>
+BadPoints Scan(const float* a, std::size_t n, Bad bad)
+{
+  BadPoints b;
+  for (std::size_t i = 0; i < n; ++i)
+    if (bad(static_cast<double>(a[i])))
+      b.Add(i, a[i]);
+  return b;
+}
+
+/** "<name>: 3 of 1000 points <problem> (first at index 5: -12). <todo>" */
+[[noreturn]] void ThrowBad(const std::string& name, const BadPoints& b, std::size_t n,
+  const std::string& problem, const std::string& todo, const std::string& valueLabel = "")
+{
+  // `problem` is worded for many points ("are ...", "have ..."); one point gets "is", "has".
+  std::string what = problem;
+  if (b.Count == 1 && what.compare(0, 4, "are ") == 0)
+    what = "is " + what.substr(4);
+  else if (b.Count == 1 && what.compare(0, 5, "have ") == 0)
+    what = "has " + what.substr(5);
+  throw Error(name + ": " + std::to_string(b.Count) + " of " + std::to_string(n) + " points " +
+    what + " (first at index " + std::to_string(b.First) + ": " + valueLabel +
+    Num(b.FirstValue) + "). " + todo);
+}
+
+void CheckPointers(const void* in, const void* out, const char* what)
+{
+  if (!in || !out)
+    throw Error(std::string(what) + ": an input or output array is null; pass arrays of n values.");
+}
+
+bool NotPositiveFinite(double v)
+{
+  return !(v > 0.0) || !std::isfinite(v);
+}
+
+const char* TemperatureHint = "Temperature must be a finite, positive value in kelvin: check the "
+                              "array, and convert Celsius or non-dimensional data (ToKelvin, "
+                              "ScaleByReference).";
+const char* PressureHint = "Pressure must be a finite, positive absolute pressure in pascal: "
+                           "check the array, use absolute (not gauge) pressure, and convert other "
+                           "units or non-dimensional data (ToPascal, ScaleByReference).";
+
+void CheckTemperatureArray(const float* T, std::size_t n)
+{
+  BadPoints b = Scan(T, n, NotPositiveFinite);
+  if (b.Count)
+    ThrowBad("temperature", b, n, "are not positive or not finite", TemperatureHint);
+}
+
+void CheckPressureArray(const float* p, std::size_t n)
+{
+  BadPoints b = Scan(p, n, NotPositiveFinite);
+  if (b.Count)
+    ThrowBad("pressure", b, n, "are not positive or not finite", PressureHint);
+}
+
+constexpr double FractionTolerance = 1e-6;
+
+bool BadFraction(double y)
+{
+  return !(y >= -FractionTolerance && y <= 1.0 + FractionTolerance);
+}
+
+double ClampFraction(double y)
+{
+  return y < 0.0 ? 0.0 : (y > 1.0 ? 1.0 : y);
+}
+
+const char* FractionHint = "Mass fractions must lie in [0, 1]: check that the array holds mass "
+                           "fractions (not mole fractions, percent or a passive scalar on another "
+                           "scale).";
+
+std::string SpeciesLabel(const Gas* species, std::size_t s)
+{
+  return std::string("mass fraction of ") + GetGasProperties(species[s]).Name + " (species " +
+    std::to_string(s) + ")";
+}
+
+//--- Ciddor -------------------------------------------------------------------------------------
+
+// Saturation vapour pressure over water (IAPWS-IF97, NIST's Appendix A-I), T in K, Pa.
+double SaturationOverWater(double T)
+{
+  const double K1 = 1.16705214528e3, K2 = -7.24213167032e5, K3 = -1.70738469401e1,
+               K4 = 1.20208247025e4, K5 = -3.23255503223e6, K6 = 1.49151086135e1,
+               K7 = -4.82326573616e3, K8 = 4.05113405421e5, K9 = -2.38555575678e-1,
+               K10 = 6.50175348448e2;
+  const double omega = T + K9 / (T - K10);
+  const double A = omega * omega + K1 * omega + K2;
+  const double B = K3 * omega * omega + K4 * omega + K5;
+  const double C = K6 * omega * omega + K7 * omega + K8;
+  const double X = -B + std::sqrt(B * B - 4.0 * A * C);
+  const double r = 2.0 * C / X;
+  return 1e6 * r * r * r * r;
+}
+
+// Sublimation pressure over ice (IAPWS), T in K, Pa.
+double SaturationOverIce(double T)
+{
+  const double A1 = -13.928169, A2 = 34.7078238;
+  const double theta = T / 273.16;
+  const double Y = A1 * (1.0 - std::pow(theta, -1.5)) + A2 * (1.0 - std::pow(theta, -1.25));
+  return 611.657 * std::exp(Y);
+}
+
+constexpr double CiddorR = 8.314472;      // J/(mol K), as in NIST's calculator
+constexpr double CiddorMw = 0.018015;     // kg/mol, water
+constexpr double CiddorRhoWs = 0.00985938; // kg/m^3, water vapour at 20 C, 1333 Pa
+constexpr double WavelengthMin = 300.0, WavelengthMax = 1700.0; // nm
+
+void CheckWavelength(double wavelength)
+{
+  if (!(wavelength >= WavelengthMin && wavelength <= WavelengthMax))
+    throw Error("wavelength: " + Num(wavelength) +
+      " nm is outside the range of the Ciddor equation, 300-1700 nm (vacuum wavelength in nm). "
+      "Give the wavelength in nanometres (e.g. 632.8), or use Gladstone-Dale outside that range.");
+}
+
+// Water-vapour mole fraction from the humidity input; < 0 or >= 1 means bad.
+double WaterMoleFraction(double T, double p, double humidity, HumidityMeasure measure)
+{
+  if (measure == HumidityMeasure::MoleFraction)
+    return humidity;
+  return EnhancementFactor(p, T) * humidity * SaturationVapourPressure(T) / p;
+}
+
+// n - 1 with checked inputs.
+double CiddorUnchecked(double T, double p, double xw, double wavelength, double co2)
+{
+  const double sigma = 1000.0 / wavelength; // um^-1
+  const double s2 = sigma * sigma;
+  const double s4 = s2 * s2, s6 = s4 * s2;
+
+  const double Ma = 0.0289635 + 1.2011e-8 * (co2 - 400.0);
+  const double naxs =
+    1e-8 * (5792105.0 / (238.0185 - s2) + 167917.0 / (57.362 - s2)) * (1.0 + 0.534e-6 * (co2 - 450.0));
+  const double nws = 1.022e-8 * (295.235 + 2.6422 * s2 - 0.032380 * s4 + 0.004028 * s6);
+
+  const double T0 = 288.15, p0 = 101325.0;
+  const double Za = CiddorCompressibility(p0, T0, 0.0);
+  const double rhoAxs = p0 * Ma / (Za * CiddorR * T0);
+
+  const double Z = CiddorCompressibility(p, T, xw);
+  const double rhoA = p * Ma * (1.0 - xw) / (Z * CiddorR * T);
+  const double rhoW = p * CiddorMw * xw / (Z * CiddorR * T);
+  return (rhoA / rhoAxs) * naxs + (rhoW / CiddorRhoWs) * nws;
+}
+
+std::string HumidityName(HumidityMeasure measure)
+{
+  return measure == HumidityMeasure::Relative ? "relative humidity" : "water-vapour mole fraction";
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------------------------
+const GasProperties& GetGasProperties(Gas gas)
+{
+  static const GasProperties* props = BuildProperties();
+  const int i = static_cast<int>(gas);
+  if (i < 0 || i >= NumberOfGasRows)
+    throw Error("gas: " + std::to_string(i) + " is not a gas of the table; valid gases are " +
+      GasNames() + ".");
+  return props[i];
+}
+
+double GladstoneDaleConstant(Gas gas)
+{
+  return GetGasProperties(gas).GladstoneDale;
+}
+
+double MolarMass(Gas gas)
+{
+  return GetGasProperties(gas).MolarMass;
+}
+
+Gas ParseGas(const std::string& name)
+{
+  const std::string key = Lower(name);
+  for (const GasRow& r : GasTable)
+    if (key == Lower(r.Name) || key == Lower(r.Alias))
+      return r.Id;
+  throw Error("gas: '" + name + "' is not a known gas. Use one of " + GasNames() +
+    " (case does not matter), or give the Gladstone-Dale constant directly.");
+}
+
+std::string GasNames()
+{
+  std::string s;
+  for (const GasRow& r : GasTable)
+  {
+    if (!s.empty())
+      s += ", ";
+    s += r.Name;
+    if (std::string(r.Alias) != r.Name)
+      s += std::string(" (") + r.Alias + ")";
+  }
+  return s;
+}
+
+//------------------------------------------------------------------------------------------------
+void GladstoneDale(const float* rho, std::size_t n, double K, float* nMinus1)
+{
+  CheckPointers(rho, nMinus1, "Gladstone-Dale");
+  if (!(K > 0.0) || !std::isfinite(K))
+    throw Error("Gladstone-Dale constant: " + Num(K) +
+      " m^3/kg is not a positive number. Use a value in m^3/kg (air at 632.8 nm: 2.256e-4; "
+      "1 cm^3/g = 1e-3 m^3/kg).");
+  BadPoints b = Scan(rho, n, [](double v) { return !(v >= 0.0) || !std::isfinite(v); });
+  if (b.Count)
+    ThrowBad("density", b, n, "are negative or not finite",
+      "Density must be a finite value >= 0 in kg/m^3: check the array and its scaling.");
+  for (std::size_t i = 0; i < n; ++i)
+    nMinus1[i] = static_cast<float>(K * static_cast<double>(rho[i]));
+}
+
+void GladstoneDale(const float* rho, const float* K, std::size_t n, float* nMinus1)
+{
+  CheckPointers(rho, nMinus1, "Gladstone-Dale");
+  CheckPointers(K, nMinus1, "Gladstone-Dale");
+  BadPoints bk = Scan(K, n, NotPositiveFinite);
+  if (bk.Count)
+    ThrowBad("Gladstone-Dale constant", bk, n, "are not positive or not finite",
+      "K must be positive, in m^3/kg (air at 632.8 nm: 2.256e-4).");
+  BadPoints b = Scan(rho, n, [](double v) { return !(v >= 0.0) || !std::isfinite(v); });
+  if (b.Count)
+    ThrowBad("density", b, n, "are negative or not finite",
+      "Density must be a finite value >= 0 in kg/m^3: check the array and its scaling.");
+  for (std::size_t i = 0; i < n; ++i)
+    nMinus1[i] = static_cast<float>(static_cast<double>(K[i]) * static_cast<double>(rho[i]));
+}
+
+namespace
+{
+// Checks scalar fractions; returns the balance fraction.
+double CheckScalarFractions(const Gas* species, const double* Y, std::size_t count)
+{
+  if (count && (!species || !Y))
+    throw Error("mass fractions: the species or fraction list is null; pass `count` of each.");
+  double sum = 0.0;
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    if (BadFraction(Y[s]))
+      throw Error(SpeciesLabel(species, s) + ": " + Num(Y[s]) + " is outside [0, 1]. " +
+        FractionHint);
+    sum += ClampFraction(Y[s]);
+  }
+  if (sum > 1.0 + FractionTolerance)
+    throw Error("mass fractions: they sum to " + Num(sum) +
+      ", above 1. The listed species must not include the balance gas and must sum to at most 1: "
+      "renormalise them or leave one species out as the balance.");
+  return sum >= 1.0 ? 0.0 : 1.0 - sum;
+}
+} // namespace
+
+double MixtureConstant(const Gas* species, const double* Y, std::size_t count, Gas balance)
+{
+  const double rest = CheckScalarFractions(species, Y, count);
+  double K = rest * GladstoneDaleConstant(balance);
+  for (std::size_t s = 0; s < count; ++s)
+    K += ClampFraction(Y[s]) * GladstoneDaleConstant(species[s]);
+  return K;
+}
+
+double MixtureMolarMass(const Gas* species, const double* Y, std::size_t count, Gas balance)
+{
+  const double rest = CheckScalarFractions(species, Y, count);
+  double invM = rest / MolarMass(balance);
+  for (std::size_t s = 0; s < count; ++s)
+    invM += ClampFraction(Y[s]) / MolarMass(species[s]);
+  return 1.0 / invM;
+}
+
+void MixtureFractionConstant(const float* f, std::size_t n, Gas gas0, Gas gasF, float* K, float* M)
+{
+  CheckPointers(f, K, "mixture fraction");
+  const GasProperties& g0 = GetGasProperties(gas0);
+  const GasProperties& gF = GetGasProperties(gasF);
+  BadPoints b = Scan(f, n, BadFraction);
+  if (b.Count)
+    ThrowBad("mixture fraction", b, n, "are outside [0, 1] or not finite",
+      std::string("The mixture fraction is the mass fraction of ") + gF.Name + " (the rest is " +
+        g0.Name + "): check the array and its scaling.");
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double y = ClampFraction(f[i]);
+    K[i] = static_cast<float>((1.0 - y) * g0.GladstoneDale + y * gF.GladstoneDale);
+    if (M)
+      M[i] = static_cast<float>(1.0 / ((1.0 - y) / g0.MolarMass + y / gF.MolarMass));
+  }
+}
+
+void SpeciesConstant(const float* const* Y, const Gas* species, std::size_t nSpecies,
+  std::size_t n, Gas balance, float* K, float* M)
+{
+  if (!K)
+    throw Error("species mass fractions: the output array K is null; pass an array of n values.");
+  if (nSpecies && (!Y || !species))
+    throw Error("species mass fractions: the array or species list is null; pass nSpecies of each.");
+  const GasProperties& gb = GetGasProperties(balance);
+  for (std::size_t s = 0; s < nSpecies; ++s)
+  {
+    if (!Y[s])
+      throw Error(SpeciesLabel(species, s) + ": the array is null; pass an array of n values.");
+    BadPoints b = Scan(Y[s], n, BadFraction);
+    if (b.Count)
+      ThrowBad(SpeciesLabel(species, s), b, n, "are outside [0, 1] or not finite", FractionHint);
+  }
+  BadPoints sums;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double sum = 0.0;
+    for (std::size_t s = 0; s < nSpecies; ++s)
+      sum += ClampFraction(Y[s][i]);
+    if (sum > 1.0 + FractionTolerance)
+      sums.Add(i, sum);
+  }
+  if (sums.Count)
+    ThrowBad("mass fractions", sums, n, "have fractions that sum above 1",
+      std::string("The listed species must not include the balance gas (") + gb.Name +
+        ") and must sum to at most 1 at every point: renormalise them, or leave one species out "
+        "as the balance.",
+      "sum ");
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double sum = 0.0, k = 0.0, invM = 0.0;
+    for (std::size_t s = 0; s < nSpecies; ++s)
+    {
+      const double y = ClampFraction(Y[s][i]);
+      const GasProperties& g = GetGasProperties(species[s]);
+      sum += y;
+      k += y * g.GladstoneDale;
+      invM += y / g.MolarMass;
+    }
+    const double rest = sum >= 1.0 ? 0.0 : 1.0 - sum;
+    k += rest * gb.GladstoneDale;
+    invM += rest / gb.MolarMass;
+    K[i] = static_cast<float>(k);
+    if (M)
+      M[i] = static_cast<float>(1.0 / invM);
+  }
+}
+
+//------------------------------------------------------------------------------------------------
+double IdealGasDensity(double p, double T, double M)
+{
+  if (NotPositiveFinite(T))
+    throw Error("temperature: " + Num(T) + " K is not positive. " + TemperatureHint);
+  if (NotPositiveFinite(p))
+    throw Error("pressure: " + Num(p) + " Pa is not positive. " + PressureHint);
+  if (NotPositiveFinite(M))
+    throw Error("molar mass: " + Num(M) + " kg/mol is not positive. Give it in kg/mol (air: "
+      "0.0289641).");
+  return p * M / (MolarGasConstant * T);
+}
+
+void IdealGasDensity(const float* p, const float* T, std::size_t n, ScalarField M, float* rho)
+{
+  CheckPointers(p, rho, "ideal-gas density");
+  CheckPointers(T, rho, "ideal-gas density");
+  CheckTemperatureArray(T, n);
+  CheckPressureArray(p, n);
+  if (M.Array)
+  {
+    BadPoints b = Scan(M.Array, n, NotPositiveFinite);
+    if (b.Count)
+      ThrowBad("molar mass", b, n, "are not positive or not finite",
+        "Molar mass must be positive, in kg/mol (air: 0.0289641).");
+  }
+  else if (NotPositiveFinite(M.Value))
+    throw Error("molar mass: " + Num(M.Value) +
+      " kg/mol is not positive. Give it in kg/mol (air: 0.0289641).");
+  for (std::size_t i = 0; i < n; ++i)
+    rho[i] = static_cast<float>(
+      static_cast<double>(p[i]) * M[i] / (MolarGasConstant * static_cast<double>(T[i])));
+}
+
+//------------------------------------------------------------------------------------------------
+double SaturationVapourPressure(double T)
+{
+  if (NotPositiveFinite(T))
+    throw Error("temperature: " + Num(T) + " K is not positive. " + TemperatureHint);
+  return T >= 273.15 ? SaturationOverWater(T) : SaturationOverIce(T);
+}
+
+double EnhancementFactor(double p, double T)
+{
+  const double t = T - 273.15;
+  return 1.00062 + 3.14e-8 * p + 5.6e-7 * t * t;
+}
+
+double CiddorCompressibility(double p, double T, double xw)
+{
+  const double a0 = 1.58123e-6, a1 = -2.9331e-8, a2 = 1.1043e-10;
+  const double b0 = 5.707e-6, b1 = -2.051e-8;
+  const double c0 = 1.9898e-4, c1 = -2.376e-6;
+  const double d = 1.83e-11, e = -0.765e-8;
+  const double t = T - 273.15;
+  const double pt = p / T;
+  return 1.0 - pt * (a0 + a1 * t + a2 * t * t + (b0 + b1 * t) * xw + (c0 + c1 * t) * xw * xw) +
+    pt * pt * (d + e * xw * xw);
+}
+
+double CiddorIndex(
+  double T, double p, double humidity, double wavelength, double co2, HumidityMeasure measure)
+{
+  CheckWavelength(wavelength);
+  if (NotPositiveFinite(T))
+    throw Error("temperature: " + Num(T) + " K is not positive. " + TemperatureHint);
+  if (NotPositiveFinite(p))
+    throw Error("pressure: " + Num(p) + " Pa is not positive. " + PressureHint);
+  if (!(humidity >= 0.0 && humidity <= 1.0))
+    throw Error("humidity: the " + HumidityName(measure) + " " + Num(humidity) +
+      " is outside [0, 1]. Give it as a fraction (50 % is 0.5).");
+  if (!(co2 >= 0.0) || !std::isfinite(co2))
+    throw Error("CO2: " + Num(co2) + " umol/mol is not a valid concentration. Give it in umol/mol "
+      "(ppm by amount; 450 is Ciddor's standard air).");
+  const double xw = WaterMoleFraction(T, p, humidity, measure);
+  if (!(xw < 1.0))
+    throw Error("humidity: the water-vapour mole fraction would be " + Num(xw) + " at " + Num(T) +
+      " K and " + Num(p) + " Pa (saturation pressure above the pressure). Lower the humidity.");
+  return CiddorUnchecked(T, p, xw, wavelength, co2);
+}
+
+void CiddorIndex(const float* T, const float* p, std::size_t n, ScalarField humidity,
+  double wavelength, ScalarField co2, float* nMinus1, HumidityMeasure measure)
+{
+  CheckPointers(T, nMinus1, "Ciddor");
+  CheckPointers(p, nMinus1, "Ciddor");
+  CheckWavelength(wavelength);
+  CheckTemperatureArray(T, n);
+  CheckPressureArray(p, n);
+
+  auto badHumidity = [](double h) { return !(h >= 0.0 && h <= 1.0); };
+  const std::string humidityTodo = "Give the " + HumidityName(measure) +
+    " as a fraction in [0, 1] (50 % is 0.5).";
+  if (humidity.Array)
+  {
+    BadPoints b = Scan(humidity.Array, n, badHumidity);
+    if (b.Count)
+      ThrowBad("humidity", b, n, "are outside [0, 1] or not finite", humidityTodo);
+  }
+  else if (badHumidity(humidity.Value))
+    throw Error("humidity: the " + HumidityName(measure) + " " + Num(humidity.Value) +
+      " is outside [0, 1]. " + humidityTodo);
+
+  auto badCO2 = [](double c) { return !(c >= 0.0) || !std::isfinite(c); };
+  const char* co2Todo = "Give CO2 in umol/mol (ppm by amount; 450 is Ciddor's standard air).";
+  if (co2.Array)
+  {
+    BadPoints b = Scan(co2.Array, n, badCO2);
+    if (b.Count)
+      ThrowBad("CO2", b, n, "are negative or not finite", co2Todo);
+  }
+  else if (badCO2(co2.Value))
+    throw Error("CO2: " + Num(co2.Value) + " umol/mol is not a valid concentration. " + co2Todo);
+
+  // Mole fractions first, so that a bad point stops the run before anything is written.
+  BadPoints saturated;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double xw = WaterMoleFraction(T[i], p[i], humidity[i], measure);
+    if (!(xw < 1.0))
+      saturated.Add(i, xw);
+  }
+  if (saturated.Count)
+    ThrowBad("humidity", saturated, n,
+      "have a water-vapour mole fraction of 1 or more (saturation pressure above the pressure)",
+      "Lower the humidity there, or check the temperature and pressure units.", "x_w ");
+
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double t = T[i], pp = p[i];
+    const double xw = WaterMoleFraction(t, pp, humidity[i], measure);
+    nMinus1[i] = static_cast<float>(CiddorUnchecked(t, pp, xw, wavelength, co2[i]));
+  }
+}
+
+//------------------------------------------------------------------------------------------------
+double ToKelvin(double value, TemperatureUnit unit)
+{
+  switch (unit)
+  {
+    case TemperatureUnit::Kelvin:
+      return value;
+    case TemperatureUnit::Celsius:
+      return value + 273.15;
+  }
+  throw Error("temperature unit: " + std::to_string(static_cast<int>(unit)) +
+    " is not a unit; use Kelvin (0) or Celsius (1).");
+}
+
+double ToPascal(double value, PressureUnit unit)
+{
+  switch (unit)
+  {
+    case PressureUnit::Pascal:
+      return value;
+    case PressureUnit::Kilopascal:
+      return value * 1e3;
+    case PressureUnit::Atmosphere:
+      return value * 101325.0;
+    case PressureUnit::Bar:
+      return value * 1e5;
+  }
+  throw Error("pressure unit: " + std::to_string(static_cast<int>(unit)) +
+    " is not a unit; use Pascal (0), Kilopascal (1), Atmosphere (2) or Bar (3).");
+}
+
+void ToKelvin(const float* in, std::size_t n, TemperatureUnit unit, float* out)
+{
+  CheckPointers(in, out, "temperature conversion");
+  ToKelvin(0.0, unit); // validates the unit
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = static_cast<float>(ToKelvin(static_cast<double>(in[i]), unit));
+}
+
+void ToPascal(const float* in, std::size_t n, PressureUnit unit, float* out)
+{
+  CheckPointers(in, out, "pressure conversion");
+  ToPascal(0.0, unit); // validates the unit
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = static_cast<float>(ToPascal(static_cast<double>(in[i]), unit));
+}
+
+void ScaleByReference(const float* in, std::size_t n, double reference, float* out)
+{
+  CheckPointers(in, out, "reference scaling");
+  if (NotPositiveFinite(reference))
+    throw Error("reference value: " + Num(reference) +
+      " is not a positive number. Give the free-stream (reference) value in SI units: kg/m^3 for "
+      "density, K for temperature, Pa for pressure.");
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = static_cast<float>(static_cast<double>(in[i]) * reference);
+}
+
+} // namespace schlieren
