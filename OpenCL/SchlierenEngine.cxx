@@ -737,6 +737,8 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     msg << "Passes is " << s.Passes << ": it must be at least 1 (and at most 1000000).";
     throw Error(msg.str());
   }
+  if (s.Method == Integrator::Auto)
+    throw Error("Accumulate: resolve Integrator Auto first (ResolveAuto).");
   const FilmGeometry film = MakeFilm(volume, s);
   sch_params P = MakeParams(volume, s, film);
   if (sums.Size[0] != film.Size[0] || sums.Size[1] != film.Size[1] || sums.Count.empty())
@@ -828,7 +830,16 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   r.UnderresolvedRays = sums.UnderresolvedRays;
   r.SideRays = sums.SideRays;
   r.Steps = sums.Steps;
-  if (sums.UnderresolvedRays > 0)
+  if (sums.UnderresolvedRays > 0 && s.AutoMeasuredError >= 0)
+  {
+    std::ostringstream msg;
+    msg << sums.UnderresolvedRays << " of " << sums.Photons
+        << " rays took steps longer than a feature of the field; Auto measured the error of this "
+           "setting on its pilot rays at "
+        << s.AutoMeasuredError << " rad, within the tolerance " << s.Tolerance << " rad.\n";
+    r.Warnings += msg.str();
+  }
+  else if (sums.UnderresolvedRays > 0)
   {
     std::ostringstream msg;
     msg << sums.UnderresolvedRays << " of " << sums.Photons
@@ -848,14 +859,164 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   return r;
 }
 
-TraceResult Trace(const Volume& volume, const TraceSettings& s, const ProgressFunction& progress)
+const char* IntegratorName(Integrator m)
+{
+  switch (m)
+  {
+    case Integrator::Euler:
+      return "Euler";
+    case Integrator::Midpoint:
+      return "Midpoint";
+    case Integrator::RK4:
+      return "RK4";
+    case Integrator::Straight:
+      return "Straight";
+    case Integrator::Auto:
+      return "Auto";
+  }
+  return "?";
+}
+
+TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice)
+{
+  AutoChoice c;
+  c.Method = in.Method;
+  c.StepSize = in.StepSize;
+  c.Met = true;
+  if (in.Method != Integrator::Auto)
+  {
+    c.Report = std::string(IntegratorName(in.Method)) + " at " + std::to_string(in.StepSize) + " voxel";
+    if (choice)
+      *choice = c;
+    return in;
+  }
+  CheckVolume(volume);
+  const FilmGeometry film = MakeFilm(volume, in);
+  const std::vector<float> ab = PilotRays(volume, in);
+  TraceSettings ref = in;
+  ref.Method = Integrator::RK4;
+  ref.StepSize = 0.125;
+  ref.UseOctree = false;
+  ref.EstimateError = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<RayRecord> R = TraceRays(volume, ref, ab);
+  double emax = 0;
+  for (const RayRecord& r : R)
+    emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
+  const double tol = in.Tolerance > 0 ? in.Tolerance : 0.01 * emax;
+  struct Candidate
+  {
+    Integrator M;
+    double Step;
+  };
+  std::vector<Candidate> candidates;
+  for (double st : { 8.0, 4.0, 2.0, 1.0 })
+    candidates.push_back({ Integrator::Straight, st });
+  for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
+      candidates.push_back({ m, st });
+  bool found = false;
+  double bestCost = 1e300, bestErr = 1e300;
+  AutoChoice fallback;
+  for (const Candidate& cand : candidates)
+  {
+    TraceSettings t = in;
+    t.Method = cand.M;
+    t.StepSize = cand.Step;
+    t.EstimateError = false;
+    const std::vector<RayRecord> T = TraceRays(volume, t, ab);
+    double err = 0, land = 0, samples = 0;
+    bool lost = false;
+    // rays the candidate loses where the reference does not disqualify it; steps over structure
+    // do not by themselves: their effect is in the measured error
+    const std::uint32_t bad = RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm;
+    for (std::size_t k = 0; k < T.size(); ++k)
+    {
+      samples += T[k].Samples;
+      if (R[k].Flags & bad)
+        continue; // the reference itself cannot be trusted here: nothing to compare
+      if (T[k].Flags & bad)
+        lost = true; // it fails (or steps over structure) where the reference does not
+      err = std::max(err, double(std::hypot(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
+      land = std::max(land, double(std::hypot(T[k].LandA - R[k].LandA, T[k].LandB - R[k].LandB)));
+    }
+    land /= film.PixelSize;
+    if (lost)
+      continue;
+    if (err <= tol && land <= 0.5 && samples < bestCost)
+    {
+      found = true;
+      bestCost = samples;
+      c.Method = cand.M;
+      c.StepSize = cand.Step;
+      c.ExpectedError = err;
+      c.ExpectedLandingError = land;
+      c.SamplesPerRay = samples / T.size();
+    }
+    if (!found && err < bestErr)
+    {
+      bestErr = err;
+      fallback.Method = cand.M;
+      fallback.StepSize = cand.Step;
+      fallback.ExpectedError = err;
+      fallback.ExpectedLandingError = land;
+      fallback.SamplesPerRay = samples / T.size();
+    }
+  }
+  if (!found)
+  {
+    const double tolKeep = tol;
+    c = fallback;
+    c.Tolerance = tolKeep;
+    c.Met = false;
+  }
+  c.Tolerance = tol;
+  const double ms = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() * 1e3;
+  std::ostringstream rep;
+  rep << "Auto chose " << IntegratorName(c.Method) << " at " << c.StepSize << " voxel: expected "
+      << "deflection error " << c.ExpectedError << " rad (tolerance " << tol << " rad), landing error "
+      << c.ExpectedLandingError << " pixel, " << c.SamplesPerRay << " samples per ray (pilot of "
+      << ab.size() / 2 << " rays, " << static_cast<int>(ms) << " ms)";
+  if (!c.Met)
+    rep << "; no candidate met the tolerance: using the most accurate one";
+  c.Report = rep.str();
+  if (choice)
+    *choice = c;
+  TraceSettings out = in;
+  out.Method = c.Method;
+  out.StepSize = c.StepSize;
+  out.AutoMeasuredError = c.Met ? c.ExpectedError : -1.0;
+  return out;
+}
+
+std::vector<float> PilotRays(const Volume& volume, const TraceSettings& s)
+{
+  const FilmGeometry film = MakeFilm(volume, s);
+  std::vector<float> ab;
+  const int np = 16;
+  const double w = film.Size[0] * film.PixelSize, h = film.Size[1] * film.PixelSize;
+  for (int j = 0; j < np; ++j)
+    for (int i = 0; i < np; ++i)
+    {
+      ab.push_back(static_cast<float>(film.Corner[0] + (i + 0.5) * w / np));
+      ab.push_back(static_cast<float>(film.Corner[1] + (j + 0.5) * h / np));
+    }
+  return ab;
+}
+
+TraceResult Trace(const Volume& volume, const TraceSettings& requested, const ProgressFunction& progress)
 {
   FilmSums sums;
   std::string used, device, warn;
+  AutoChoice choice;
+  const TraceSettings s = ResolveAuto(volume, requested, &choice);
+  if (!choice.Met)
+    warn += choice.Report + "\n";
   const auto t0 = std::chrono::steady_clock::now();
   Accumulate(volume, s, sums, &used, &device, &warn, progress);
   const auto t1 = std::chrono::steady_clock::now();
   TraceResult r = Finalize(volume, s, sums);
+  r.Choice = choice;
   r.BackendUsed = used;
   r.DeviceName = device;
   r.Warnings = warn + r.Warnings;
@@ -867,6 +1028,8 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const std::vector<float>& ab, std::string* backendUsed)
 {
   CheckVolume(volume);
+  if (s.Method == Integrator::Auto)
+    throw Error("TraceRays: resolve Integrator Auto first (ResolveAuto).");
   const FilmGeometry film = MakeFilm(volume, s);
   sch_params P = MakeParams(volume, s, film);
   const std::size_t count = ab.size() / 2;

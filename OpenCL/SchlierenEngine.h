@@ -91,7 +91,8 @@ enum class Integrator
   Euler = 0,    ///< the paper's explicit Euler (first order, 1 sample per step)
   Midpoint = 1, ///< explicit midpoint (second order, 2 samples per step)
   RK4 = 2,      ///< classical Runge-Kutta (fourth order, 4 samples per step)
-  Straight = 3  ///< line of sight: grad n integrated along the unbent ray (no refraction)
+  Straight = 3, ///< line of sight: grad n integrated along the unbent ray (no refraction)
+  Auto = 4      ///< the cheapest of the above (and step) that meets TraceSettings::Tolerance
 };
 
 enum class Cutoff
@@ -112,6 +113,11 @@ struct TraceSettings
   bool KeepInvariant = false; ///< rescale v = n dx/ds to |v| = n after every step
   bool EstimateError = false; ///< trace each ray again at twice the step: per-pixel error estimate
   bool UseOctree = true;      ///< skip through uniform blocks when the volume has Levels
+  /** Integrator Auto: the deflection error allowed, radians; <= 0 means 1 % of the largest
+   * deflection of the pilot rays. */
+  double Tolerance = 0.0;
+  /** Set by ResolveAuto: the pilot's measured error of the chosen setting (radians); -1 otherwise. */
+  double AutoMeasuredError = -1.0;
   Cutoff Mode = Cutoff::KnifeEdge;
   double KnifeAngle = 0.0;  ///< degrees in the film plane; 0: knife normal along film x
   double CutoffScale = 0.0; ///< k; 0 means automatic: the largest deflection maps to full contrast
@@ -164,6 +170,19 @@ struct FilmSums
   void Merge(const FilmSums& other);
 };
 
+/** What Integrator::Auto chose, and why. */
+struct AutoChoice
+{
+  Integrator Method = Integrator::Euler;
+  double StepSize = 0.5;        ///< voxels
+  double Tolerance = 0;         ///< radians, as applied
+  double ExpectedError = 0;     ///< radians: the largest pilot deflection error of the choice
+  double ExpectedLandingError = 0; ///< film pixels
+  double SamplesPerRay = 0;
+  bool Met = false;             ///< false: no candidate met the tolerance; the most accurate is used
+  std::string Report;           ///< one line for the user
+};
+
 /** The finished image. */
 struct TraceResult
 {
@@ -177,8 +196,24 @@ struct TraceResult
   std::string Warnings;     ///< what the user should know (fallbacks, failed rays)
   double Photons = 0, Samples = 0, FailedRays = 0, MissedRays = 0, MaxDrift = 0;
   double UnderresolvedRays = 0, SideRays = 0, Steps = 0, MaxError = 0;
+  AutoChoice Choice; ///< what was traced with (for Auto: what it chose)
   double Seconds = 0; ///< tracing time
 };
+
+/**
+ * Resolves Integrator::Auto: traces a pilot of 16 x 16 rays across the film with each candidate
+ * (line of sight; Euler, midpoint, RK4 at several steps) and against a reference (RK4 at 1/8 voxel,
+ * no octree) on the same grid, and returns the settings of the cheapest candidate (fewest samples)
+ * whose deflection error is within the tolerance and whose landing error is within half a pixel.
+ * The reference shares the grid, so this measures integration error, not the grid's own.
+ * Settings whose Method is not Auto come back unchanged.
+ */
+TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr);
+
+/** The film coordinates of Auto's pilot rays: the centres of a 16 x 16 grid over the film. */
+std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings);
+
+const char* IntegratorName(Integrator m);
 
 /** Called with progress in [0, 1]; return false to abort (Trace then throws Error("aborted")). */
 using ProgressFunction = std::function<bool(double)>;

@@ -377,8 +377,12 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
     sch_v3 dir = sch_scale(v, 1.0f / sch_sqrt(sch_dot(v, v)));
     if (P->useLevels)
       ds = sch_skip(levels, P, x, dir, base);
-    /* the last step ends on the box: no gradient is integrated beyond the data */
-    float tex = sch_exit_distance(P, x, dir) + 1e-3f * base;
+    /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
+     * the boundary and heading out (a grazing ray on a face) has left */
+    float tex = sch_exit_distance(P, x, dir);
+    if (it > 0 && tex < 1e-3f * base)
+      break;
+    tex += 1e-4f * base;
     ds = ds < tex ? ds : tex;
     sch_v3 xn, dw;
     float dopl;
