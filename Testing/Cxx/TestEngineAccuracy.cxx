@@ -14,7 +14,7 @@
 //    samples, image deflection within 2.6e-5 of max eps of the fixed-step image.
 //  - normal shock (M = 2, 2 voxels thick), beam at 40 deg: errors 76 %, 8 %, 4.5 % at 8, 4, 2 voxel
 //    steps (flagged), 0.4 % at 1 voxel (not flagged).
-#include "SchlierenTesting.h"
+#include "SchlierenOracles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,20 +23,8 @@ using namespace schlieren;
 
 namespace
 {
-const double kPi = 3.14159265358979323846;
-
-TraceSettings Beam(double dx, double dy, double dz, double ux, double uy, double uz)
-{
-  TraceSettings s;
-  s.Device = Backend::CPU;
-  s.ViewDirection[0] = dx;
-  s.ViewDirection[1] = dy;
-  s.ViewDirection[2] = dz;
-  s.ViewUp[0] = ux;
-  s.ViewUp[1] = uy;
-  s.ViewUp[2] = uz;
-  return s;
-}
+using schtest::Beam;
+using schtest::kPi;
 
 // Largest landing distance between two sets of records.
 double LandingError(const std::vector<RayRecord>& a, const std::vector<RayRecord>& b)
@@ -188,39 +176,20 @@ void TestOctree()
     "a field that alternates by more than the tolerance has no skippable block");
 }
 
-// Snell across a plane normal shock: the tangential part of v = n d is conserved.
+// Snell across a plane normal shock (two voxels thick) on 128^3: the tangential part of v = n d is
+// conserved. Steps longer than the shock are wrong and flagged; steps of a voxel are right.
 void TestShock()
 {
-  SceneParameters p;
-  p.Mach = 2;
-  p.Density = 1.2;
-  const int n = 128;
-  const double h = 2.0 / (n - 1);
-  p.Width = h; // a tanh profile about two voxels thick
-  schtest::SceneVolume sv(Scene::NormalShock, p, n, 1.0);
-  const double al = 40 * kPi / 180;
-  TraceSettings s = Beam(std::sin(al), 0, -std::cos(al), 0, 1, 0);
-  std::vector<float> ab;
-  for (int i = -3; i <= 3; ++i)
-  {
-    ab.push_back(0.05f * i);
-    ab.push_back(0.0f);
-  }
-  const double n1 = 1 + GladstoneDaleAir * p.Density;
-  const double n2 = 1 + GladstoneDaleAir * p.Density * NormalShockDensityRatio(p.Mach);
-  const double vz = -n1 * std::cos(al), vx = std::sqrt(n2 * n2 - vz * vz);
-  // film right axis r = d0 x up = (cos al, 0, sin al); e = d . r
-  const double exact = (vx / n2) * std::cos(al) + (vz / n2) * std::sin(al);
+  schtest::OracleCase c = schtest::ShockCase(128, 2.0);
   for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5 })
   {
     for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
     {
+      TraceSettings s = c.S;
       s.Method = m;
       s.StepSize = st;
-      const std::vector<RayRecord> r = TraceRays(sv.V, s, ab);
-      double err = 0;
-      for (const RayRecord& x : r)
-        err = std::max(err, std::fabs(x.DeflX - exact) / std::fabs(exact));
+      const std::vector<RayRecord> r = TraceRays(c.SV->V, s, c.AB);
+      const double err = c.Error(r) / c.Magnitude;
       const bool flagged = (AllFlags(r) & RayUnderresolved) != 0;
       std::printf("shock, %s at %g voxel: %.1f %% off Snell, %s\n", IntegratorName(m), st, 100 * err,
         flagged ? "flagged" : "not flagged");
@@ -236,10 +205,10 @@ void TestShock()
     }
   }
   // the image says so too
-  TraceSettings t = Beam(std::sin(al), 0, -std::cos(al), 0, 1, 0);
+  TraceSettings t = c.S;
   t.Resolution[0] = t.Resolution[1] = 32;
   t.StepSize = 8;
-  const TraceResult img = Trace(sv.V, t);
+  const TraceResult img = Trace(c.SV->V, t);
   CHECK(img.UnderresolvedRays > 0 && img.Warnings.find("longer than a feature") != std::string::npos,
     "the image reports rays that stepped over the shock, and says what to do");
 }
@@ -380,117 +349,23 @@ void TestErrorEstimate()
 // tracer, set the error; TestShock covers it.)
 void TestAuto()
 {
-  struct Case
-  {
-    const char* Name;
-    schtest::SceneVolume* SV;
-    TraceSettings S;
-    std::vector<float> AB;
-    std::function<double(const std::vector<RayRecord>&)> Error; // against the known answer
-    double Tolerance;
-  };
-  SceneParameters pg;
-  pg.Amplitude = 1e-4;
-  pg.Width = 0.25;
-  schtest::SceneVolume gauss(Scene::GaussianSphere, pg, 96, 1.0);
-  SceneParameters pl;
-  schtest::SceneVolume lens(Scene::LuneburgLens, pl, 96, 1.0);
-  SceneParameters pr;
-  pr.GradientA = 1.0;
-  pr.GradientB = 0.2;
-  schtest::SceneVolume linear(Scene::LinearGradient, pr, 96, 1.0);
   // every case is judged on Auto's own pilot rays (16 x 16 over the film), against the known answer
-  std::vector<Case> cases;
-  {
-    Case c{ "Gaussian sphere", &gauss, Beam(0, 0, -1, 0, 1, 0), {}, nullptr, 0 };
-    c.S.Resolution[0] = c.S.Resolution[1] = 64;
-    c.AB = PilotRays(gauss.V, c.S);
-    const std::vector<float> ab = c.AB;
-    c.Error = [ab](const std::vector<RayRecord>& r) {
-      double e = 0;
-      for (std::size_t k = 0; k < r.size(); ++k)
-      {
-        const double a = ab[2 * k], b = ab[2 * k + 1];
-        const double f = -(2 * std::sqrt(kPi) * 1e-4 / 0.25) * std::exp(-(a * a + b * b) / 0.0625);
-        e = std::max(e, std::hypot(r[k].DeflX - f * a, r[k].DeflY - f * b));
-      }
-      return e;
-    };
-    c.Tolerance = 0.03 * std::sqrt(2 * kPi) * 1e-4 * std::exp(-0.5); // 3 % of max eps: above the grid's own
-    cases.push_back(c);
-  }
-  {
-    Case c{ "Luneburg lens", &lens, Beam(1, 0, 0, 0, 0, 1), {}, nullptr, 0 };
-    c.S.Resolution[0] = c.S.Resolution[1] = 64;
-    c.AB = PilotRays(lens.V, c.S);
-    const std::vector<float> ab = c.AB;
-    // inside the lens the exit direction is (.., -h/R); outside it the ray is straight; the rim
-    // (0.97 R < h < 1.03 R), where rays leave almost across the beam, has no usable answer
-    c.Error = [ab](const std::vector<RayRecord>& r) {
-      double e = 0;
-      for (std::size_t k = 0; k < r.size(); ++k)
-      {
-        const double a = ab[2 * k], b = ab[2 * k + 1], h = std::hypot(a, b);
-        if (h > 0.97 && h < 1.03)
-          continue;
-        const double ex = h < 1 ? -a : 0.0, ey = h < 1 ? -b : 0.0;
-        e = std::max(e, double(std::hypot(r[k].DeflX - ex, r[k].DeflY - ey)));
-        // and the image must be right: rays through the lens land on the pole (within half a
-        // pixel, Auto's own landing criterion), the others where they started
-        const double la = h < 1 ? 0.0 : a, lb = h < 1 ? 0.0 : b;
-        if (std::hypot(r[k].LandA - la, r[k].LandB - lb) > 0.5 * (2.0 / 64))
-          e = 1e9;
-      }
-      return e;
-    };
-    c.Tolerance = 0.01;
-    cases.push_back(c);
-  }
-  {
-    // the linear medium of ORACLES, n^2 = 1 + 0.2 y, beam along x: y(x) = y0 + b (x - x0)^2 / (4 C^2)
-    // with C^2 = 1 + 0.2 y0, known for every ray: through the back face (x = 1), or, for rays near
-    // the top, through the top face where the parabola reaches y = 1
-    Case c{ "linear gradient", &linear, Beam(1, 0, 0, 0, 1, 0), {}, nullptr, 0 };
-    c.S.Resolution[0] = c.S.Resolution[1] = 64;
-    c.AB = PilotRays(linear.V, c.S);
-    const std::vector<float> ab = c.AB;
-    c.Error = [ab](const std::vector<RayRecord>& r) {
-      const double B = 0.2;
-      double e = 0;
-      for (std::size_t k = 0; k < r.size(); ++k)
-      {
-        const double y0 = ab[2 * k + 1], C2 = 1 + B * y0;
-        double run = 2.0;                              // x - x0 at the exit
-        if (y0 + B * run * run / (4 * C2) > 1)
-          run = std::sqrt((1 - y0) * 4 * C2 / B);      // leaves through the top
-        const double slope = B * run / (2 * C2);
-        const double ey = slope / std::sqrt(1 + slope * slope);
-        const double yl = y0 + B * run * run / (4 * C2) + slope * (2.0 - run); // straight on to x = 1
-        e = std::max(e, double(std::hypot(r[k].DeflX, r[k].DeflY - ey)));
-        if (std::fabs(r[k].LandB - yl) > 0.5 * (2.0 / 64))
-          e = 1e9;
-      }
-      return e;
-    };
-    c.Tolerance = 1e-3; // 0.5 % of the largest deflection (0.2 rad)
-    cases.push_back(c);
-  }
-  for (Case& c : cases)
+  std::vector<schtest::OracleCase> cases = { schtest::GaussianCase(96), schtest::LuneburgCase(96),
+    schtest::LinearCase(96) };
+  for (schtest::OracleCase& c : cases)
   {
     TraceSettings s = c.S;
     s.Method = Integrator::Auto;
     s.Tolerance = c.Tolerance;
     AutoChoice choice;
     const TraceSettings chosen = ResolveAuto(c.SV->V, s, &choice);
-    std::printf("%s: %s\n", c.Name, choice.Report.c_str());
+    std::printf("%s: %s\n", c.Name.c_str(), choice.Report.c_str());
     const std::vector<RayRecord> r = TraceRays(c.SV->V, chosen, c.AB);
     const double err = c.Error(r);
-    double samples = 0;
-    for (const RayRecord& x : r)
-      samples += x.Samples;
+    const double samples = schtest::SampleCount(r);
     // the cheapest fixed setting that meets the tolerance against the known answer
     double cheapest = 1e300;
-    std::string cheapestName;
+    std::string cheapestName = "none";
     for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
       for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
       {
@@ -498,9 +373,7 @@ void TestAuto()
         t.Method = m;
         t.StepSize = st;
         const std::vector<RayRecord> q = TraceRays(c.SV->V, t, c.AB);
-        double qs = 0;
-        for (const RayRecord& x : q)
-          qs += x.Samples;
+        const double qs = schtest::SampleCount(q);
         if (c.Error(q) <= c.Tolerance && qs < cheapest)
         {
           cheapest = qs;
@@ -509,10 +382,10 @@ void TestAuto()
       }
     std::printf("%s: Auto's error against the known answer %.3g (tolerance %.3g), %.0f samples; the "
                 "cheapest fixed setting that meets it: %s, %.0f samples\n",
-      c.Name, err, c.Tolerance, samples, cheapestName.c_str(), cheapest);
-    CHECK(choice.Met, std::string(c.Name) + ": Auto found a setting");
-    CHECK_NEAR(err, 0.0, c.Tolerance, std::string(c.Name) + ": Auto meets its tolerance against the known answer");
-    CHECK(samples <= 1.01 * cheapest, std::string(c.Name) + ": Auto costs no more than the cheapest fixed setting that meets the tolerance");
+      c.Name.c_str(), err, c.Tolerance, samples, cheapestName.c_str(), cheapest);
+    CHECK(choice.Met, c.Name + ": Auto found a setting");
+    CHECK_NEAR(err, 0.0, c.Tolerance, c.Name + ": Auto meets its tolerance against the known answer");
+    CHECK(samples <= 1.01 * cheapest, c.Name + ": Auto costs no more than the cheapest fixed setting that meets the tolerance");
   }
 }
 } // namespace

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The speed-versus-accuracy chart's data (a benchmark, not a test): every method x step x octree
+// tolerance on four known-answer scenes. For each: the time per pass of a full film and the error
+// of the same setting against the scene's closed form (SchlierenOracles.h, on Auto's pilot rays),
+// relative to the answer's largest deflection. Prints a table and the Pareto front, writes a CSV
+// for Testing/Benchmarks/accuracy_chart.py.
+//
+//   SchlierenAccuracyChart [--size N] [--film N] [--backend CPU|OpenCL] [--csv file]
+#include "SchlierenOracles.h"
+
+#include <chrono>
+#include <cstring>
+#include <fstream>
+
+using namespace schlieren;
+
+int main(int argc, char** argv)
+{
+  int size = 96, filmSize = 128;
+  std::string backend = "CPU", csv = "accuracy_chart.csv";
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    if (!std::strcmp(argv[i], "--size"))
+      size = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--film"))
+      filmSize = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--backend"))
+      backend = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--csv"))
+      csv = argv[i + 1];
+  }
+  std::ofstream out(csv);
+  out << "scene,method,step,octree_tolerance,ms_per_pass,samples_per_ray,relative_error,flagged\n";
+  std::vector<schtest::OracleCase> cases = { schtest::GaussianCase(size), schtest::LuneburgCase(size),
+    schtest::ShockCase(size, 2.0), schtest::LinearCase(size) };
+  std::printf("Speed against accuracy, %d^3 grids, %d^2 film, backend %s\n\n", size, filmSize, backend.c_str());
+  std::printf("| scene | method | step (voxel) | octree tol (of range) | ms/pass | samples/ray | error (of max deflection) | flagged |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  for (schtest::OracleCase& c : cases)
+  {
+    const Volume base = c.SV->V;
+    float lo = 1e30f, hi = -1e30f;
+    for (float v : c.SV->N1)
+    {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    struct Row
+    {
+      std::string Method;
+      double Step, Tol, Ms, Err;
+    };
+    std::vector<Row> rows;
+    std::vector<unsigned char> levels(base.NumberOfPoints());
+    for (double rel : { 0.0, 1e-4, 1e-2 })
+    {
+      Volume v = base;
+      if (rel > 0)
+      {
+        v.LevelTolerance = rel * (double(hi) - lo);
+        ComputeOctreeLevels(v.Dimensions, c.SV->N1.data(), v.LevelTolerance, levels.data());
+        v.Levels = levels.data();
+      }
+      for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+        for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
+        {
+          TraceSettings s = c.S;
+          s.Device = ParseBackend(backend);
+          s.Method = m;
+          s.StepSize = st;
+          const std::vector<RayRecord> r = TraceRays(v, s, c.AB);
+          const double err = std::min(c.Error(r) / c.Magnitude, 1e3);
+          bool flagged = false;
+          for (const RayRecord& x : r)
+            flagged = flagged || (x.Flags & RayUnderresolved);
+          s.Resolution[0] = s.Resolution[1] = filmSize;
+          s.Passes = 1;
+          TraceResult img = Trace(v, s); // warm-up: program build, upload
+          img = Trace(v, s);
+          const double ms = img.Seconds * 1e3;
+          const double spr = img.Samples / img.Photons;
+          std::printf("| %s | %s | %g | %g | %.1f | %.0f | %.3g | %s |\n", c.Name.c_str(), IntegratorName(m), st,
+            rel, ms, spr, err, flagged ? "yes" : "");
+          out << c.Name << "," << IntegratorName(m) << "," << st << "," << rel << "," << ms << "," << spr
+              << "," << err << "," << (flagged ? 1 : 0) << "\n";
+          rows.push_back({ IntegratorName(m), st, rel, ms, err });
+        }
+    }
+    // Pareto front: no other setting is both faster and more accurate
+    std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.Ms < b.Ms; });
+    std::printf("\nPareto front for %s (fastest first):", c.Name.c_str());
+    double best = 1e300;
+    for (const Row& r : rows)
+      if (r.Err < best)
+      {
+        best = r.Err;
+        std::printf(" [%s %g vox, octree %g: %.1f ms, %.2g]", r.Method.c_str(), r.Step, r.Tol, r.Ms, r.Err);
+      }
+    std::printf("\n\n");
+  }
+  std::printf("CSV written to %s\n", csv.c_str());
+  return 0;
+}
