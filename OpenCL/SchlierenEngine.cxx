@@ -363,7 +363,10 @@ FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
   f.FrontPlane = -wd * 1.001;
   if (!std::isfinite(s.FilmDistance))
     throw Error("FilmDistance must be finite.");
-  f.FilmPlane = wd + s.FilmDistance;
+  // A shadowgraph's film is FilmDistance behind the back of the box. Every other cutoff images
+  // the volume's centre plane, as a schlieren camera focused on the test section does (BOS: the
+  // photons are then referred to the background, see Splatter); FilmDistance defocuses it.
+  f.FilmPlane = s.Mode == Cutoff::Shadowgraph ? wd + s.FilmDistance : s.FilmDistance;
   return f;
 }
 
@@ -429,6 +432,8 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.keepInvariant = s.KeepInvariant ? 1 : 0;
   P.estimate = s.EstimateError ? 1 : 0;
   P.featureTol = 0.0f; // see SetFeatureTolerance
+  // steps no longer than the smallest spacing cannot jump over a cell: no need to check them
+  P.cellStep = static_cast<float>(MinSpacing(volume));
   return P;
 }
 
@@ -451,48 +456,86 @@ static void SetFeatureTolerance(sch_params& P, const Volume& volume)
 
 // ------------------------------------------------------------------ film sums
 
+std::vector<std::vector<double>*> FilmSums::PixelChannels()
+{
+  return { &Count, &Weight, &DeflectionX, &DeflectionY, &AbsDeflection, &Red, &Green, &Blue, &Phase,
+    &ShiftX, &ShiftY, &ErrorSum };
+}
+
+std::vector<double*> FilmSums::Totals()
+{
+  return { &Photons, &Samples, &FailedRays, &MissedRays, &UnderresolvedRays, &SideRays, &Steps };
+}
+
+std::vector<double*> FilmSums::Maxima()
+{
+  return { &MaxAbsKnife, &MaxAbsDeflection, &MaxDrift, &MaxError };
+}
+
 void FilmSums::Resize(int nx, int ny)
 {
   Size[0] = nx;
   Size[1] = ny;
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
-  Count.assign(n, 0.0);
-  Weight.assign(n, 0.0);
-  DeflectionX.assign(n, 0.0);
-  DeflectionY.assign(n, 0.0);
-  ErrorSum.assign(n, 0.0);
-  MaxAbsKnife = MaxDrift = MaxError = 0.0;
-  Photons = Samples = FailedRays = MissedRays = 0.0;
-  UnderresolvedRays = SideRays = Steps = 0.0;
+  for (std::vector<double>* c : PixelChannels())
+    c->assign(n, 0.0);
+  for (double* t : Totals())
+    *t = 0.0;
+  for (double* m : Maxima())
+    *m = 0.0;
   Passes = 0;
 }
 
 void FilmSums::Merge(const FilmSums& o)
 {
   if (o.Size[0] != Size[0] || o.Size[1] != Size[1])
-    throw Error("FilmSums::Merge: films of different sizes.");
-  for (std::size_t i = 0; i < Count.size(); ++i)
+    throw schlieren::Error("FilmSums::Merge: films of different sizes.");
+  FilmSums& other = const_cast<FilmSums&>(o);
+  const auto mine = PixelChannels(), theirs = other.PixelChannels();
+  for (std::size_t c = 0; c < mine.size(); ++c)
+    for (std::size_t i = 0; i < mine[c]->size(); ++i)
+      (*mine[c])[i] += (*theirs[c])[i];
+  const auto t0 = Totals(), t1 = other.Totals();
+  for (std::size_t i = 0; i < t0.size(); ++i)
+    *t0[i] += *t1[i];
+  const auto m0 = Maxima(), m1 = other.Maxima();
+  for (std::size_t i = 0; i < m0.size(); ++i)
+    *m0[i] = std::max(*m0[i], *m1[i]);
+}
+
+void FilmSums::ToArrays(std::vector<double>& additive, std::vector<double>& maxima)
+{
+  additive.clear();
+  for (std::vector<double>* c : PixelChannels())
+    additive.insert(additive.end(), c->begin(), c->end());
+  for (double* t : Totals())
+    additive.push_back(*t);
+  maxima.clear();
+  for (double* m : Maxima())
+    maxima.push_back(*m);
+}
+
+void FilmSums::FromArrays(const std::vector<double>& additive, const std::vector<double>& maxima)
+{
+  std::size_t pos = 0;
+  for (std::vector<double>* c : PixelChannels())
   {
-    Count[i] += o.Count[i];
-    Weight[i] += o.Weight[i];
-    DeflectionX[i] += o.DeflectionX[i];
-    DeflectionY[i] += o.DeflectionY[i];
-    ErrorSum[i] += o.ErrorSum[i];
+    if (pos + c->size() > additive.size())
+      throw schlieren::Error("FilmSums::FromArrays: the arrays do not match this film.");
+    std::copy(additive.begin() + pos, additive.begin() + pos + c->size(), c->begin());
+    pos += c->size();
   }
-  MaxAbsKnife = std::max(MaxAbsKnife, o.MaxAbsKnife);
-  MaxDrift = std::max(MaxDrift, o.MaxDrift);
-  MaxError = std::max(MaxError, o.MaxError);
-  UnderresolvedRays += o.UnderresolvedRays;
-  SideRays += o.SideRays;
-  Steps += o.Steps;
-  Photons += o.Photons;
-  Samples += o.Samples;
-  FailedRays += o.FailedRays;
-  MissedRays += o.MissedRays;
+  for (double* t : Totals())
+    *t = additive.at(pos++);
+  std::size_t m = 0;
+  for (double* x : Maxima())
+    *x = maxima.at(m++);
 }
 
 namespace
 {
+// Puts photons on the film. Runs on the host, in ray order, for both backends: the image does not
+// depend on the order threads finish in, and both backends share this code.
 struct Splatter
 {
   const sch_params& P;
@@ -500,6 +543,7 @@ struct Splatter
   FilmSums& F;
   float ca, sa, k;
   bool manual;
+  double twoPiOverLambda, tilt, bgPlane, period;
 
   Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f)
     : P(p)
@@ -511,9 +555,43 @@ struct Splatter
     sa = static_cast<float>(std::sin(ang));
     k = static_cast<float>(s.CutoffScale);
     manual = s.CutoffScale > 0;
+    twoPiOverLambda = 2 * 3.14159265358979323846 / (s.Wavelength * 1e-9);
+    tilt = 2 * 3.14159265358979323846 * s.ReferenceTilt;
+    bgPlane = P.sFront - s.BackgroundDistance;
+    period = s.BackgroundPeriod > 0 ? s.BackgroundPeriod : 6.0 * P.pixel;
   }
 
-  void Add(const float* rec, std::size_t count)
+  // the photon's weight under the cutoff, with energy weighting or (optionally) photon killing
+  float CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const
+  {
+    float w = 1.0f;
+    switch (S.Mode)
+    {
+      case Cutoff::KnifeEdge:
+        w = sch_knife_weight(ex, ey, ca, sa, k);
+        break;
+      case Cutoff::Circular:
+        w = sch_circular_weight(ex, ey, k, 0);
+        break;
+      case Cutoff::ComplementCircular:
+        w = sch_circular_weight(ex, ey, k, 1);
+        break;
+      case Cutoff::Interferometry:
+        w = sch_fringe_weight(static_cast<float>(phase), static_cast<float>(tilt * landA));
+        break;
+      default:
+        w = 1.0f;
+    }
+    if (S.RussianRoulette)
+    {
+      // the photon survives with probability w and then carries all its energy: same mean
+      const sch_uint h = sch_hash(P.seed * 747796405u ^ sch_hash(pix * 2891336453u + static_cast<sch_uint>(P.pass)));
+      w = sch_unit(h) < w ? 1.0f : 0.0f;
+    }
+    return w;
+  }
+
+  void Add(const float* rec, std::size_t first, std::size_t count)
   {
     for (std::size_t r = 0; r < count; ++r, rec += SCH_RECORD)
     {
@@ -535,18 +613,54 @@ struct Splatter
       F.MaxDrift = std::max(F.MaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
       F.MaxError = std::max(F.MaxError, double(rec[SCH_REC_ERROR]));
       const float ex = rec[SCH_REC_EX], ey = rec[SCH_REC_EY];
+      const double absE = std::hypot(double(ex), double(ey));
       F.MaxAbsKnife = std::max(F.MaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
-      const double fi = std::floor((rec[SCH_REC_A] - P.filmA0) / P.pixel);
-      const double fj = std::floor((rec[SCH_REC_B] - P.filmB0) / P.pixel);
+      F.MaxAbsDeflection = std::max(F.MaxAbsDeflection, absE);
+      const int pix = static_cast<int>(P.rayOffset + (first + r) * P.rayStride);
+      double la = rec[SCH_REC_A], lb = rec[SCH_REC_B];
+      double bosWeight = 0, shiftX = 0, shiftY = 0;
+      if (S.Mode == Cutoff::BOS)
+      {
+        // the camera sees the background point the photon left from, where the exit ray seems
+        // to come from: back along the exit direction to the background plane
+        float a0, b0;
+        sch_emit(&P, pix, &a0, &b0);
+        bosWeight = sch_bos_pattern(a0, b0, static_cast<float>(period), S.BackgroundPattern, P.seed);
+        la -= (P.sFilm - bgPlane) * ex;
+        lb -= (P.sFilm - bgPlane) * ey;
+        shiftX = la - a0;
+        shiftY = lb - b0;
+      }
+      const double fi = std::floor((la - P.filmA0) / P.pixel);
+      const double fj = std::floor((lb - P.filmB0) / P.pixel);
       if (fi < 0 || fj < 0 || fi >= P.filmNx || fj >= P.filmNy)
         continue; // landed off the film
       const std::size_t idx = static_cast<std::size_t>(fj) * P.filmNx + static_cast<std::size_t>(fi);
+      const double phase = twoPiOverLambda * rec[SCH_REC_OPL];
       F.Count[idx] += 1;
       F.DeflectionX[idx] += ex;
       F.DeflectionY[idx] += ey;
+      F.AbsDeflection[idx] += absE;
       F.ErrorSum[idx] += rec[SCH_REC_ERROR];
-      if (manual)
-        F.Weight[idx] += sch_knife_weight(ex, ey, ca, sa, k);
+      F.Phase[idx] += phase;
+      if (S.Mode == Cutoff::ColorFilter)
+      {
+        float cr, cg, cb;
+        sch_hue_rgb(ex, ey, &cr, &cg, &cb);
+        // value k|e| (manual k, clamped) or |e| (automatic: k applied in Finalize)
+        const double v = manual ? std::min(1.0, k * absE) : absE;
+        F.Red[idx] += v * cr;
+        F.Green[idx] += v * cg;
+        F.Blue[idx] += v * cb;
+      }
+      else if (S.Mode == Cutoff::BOS)
+      {
+        F.Weight[idx] += bosWeight;
+        F.ShiftX[idx] += shiftX;
+        F.ShiftY[idx] += shiftY;
+      }
+      else if (manual || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
+        F.Weight[idx] += CutoffWeight(ex, ey, static_cast<float>(la), phase, static_cast<sch_uint>(pix));
     }
   }
 };
@@ -739,6 +853,14 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   }
   if (s.Method == Integrator::Auto)
     throw Error("Accumulate: resolve Integrator Auto first (ResolveAuto).");
+  if (s.RussianRoulette && !(s.CutoffScale > 0) &&
+    (s.Mode == Cutoff::KnifeEdge || s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular))
+    throw Error("Photon killing (RussianRoulette) needs a fixed CutoffScale: the automatic scale is "
+                "known only after the trace.");
+  if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))
+    throw Error("Wavelength must be between 100 and 100000 nm.");
+  if (s.Mode == Cutoff::BOS && !(s.BackgroundDistance >= 0 && std::isfinite(s.BackgroundDistance)))
+    throw Error("BackgroundDistance must be a finite distance >= 0.");
   const FilmGeometry film = MakeFilm(volume, s);
   sch_params P = MakeParams(volume, s, film);
   if (sums.Size[0] != film.Size[0] || sums.Size[1] != film.Size[1] || sums.Count.empty())
@@ -763,7 +885,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
         cl->Trace(P, first, count, records.data());
       else
         TraceChunkCPU(volume.Field, volume.Levels, P, first, count, records.data());
-      splat.Add(records.data(), count);
+      splat.Add(records.data(), first, count);
       done += count;
       if (progress && !progress(done / total))
         throw Error("aborted");
@@ -778,23 +900,149 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     *warnings += warn;
 }
 
-TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSums& sums)
+// Film filters (paper section 6): every per-pixel sum is convolved with the same kernel, so that
+// ratios (mean deflection, BOS pattern) stay consistent; the total stays the same.
+static void FilterChannel(std::vector<double>& c, int nx, int ny, const std::vector<double>& kernel,
+  int radius, bool separable)
+{
+  std::vector<double> tmp(c.size(), 0.0);
+  if (separable)
+  {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        const double v = c[static_cast<std::size_t>(j) * nx + i];
+        if (v == 0)
+          continue;
+        for (int d = -radius; d <= radius; ++d)
+          if (i + d >= 0 && i + d < nx)
+            tmp[static_cast<std::size_t>(j) * nx + i + d] += v * kernel[d + radius];
+      }
+    std::fill(c.begin(), c.end(), 0.0);
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        const double v = tmp[static_cast<std::size_t>(j) * nx + i];
+        if (v == 0)
+          continue;
+        for (int d = -radius; d <= radius; ++d)
+          if (j + d >= 0 && j + d < ny)
+            c[static_cast<std::size_t>(j + d) * nx + i] += v * kernel[d + radius];
+      }
+    return;
+  }
+  const int w = 2 * radius + 1;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+    {
+      const double v = c[static_cast<std::size_t>(j) * nx + i];
+      if (v == 0)
+        continue;
+      for (int dj = -radius; dj <= radius; ++dj)
+        for (int di = -radius; di <= radius; ++di)
+          if (i + di >= 0 && i + di < nx && j + dj >= 0 && j + dj < ny)
+            tmp[static_cast<std::size_t>(j + dj) * nx + i + di] += v * kernel[(dj + radius) * w + di + radius];
+    }
+  c.swap(tmp);
+}
+
+static void FilterSums(FilmSums& f, const TraceSettings& s)
+{
+  if (s.Filter == FilmFilter::None)
+    return;
+  if (!(s.FilterWidth > 0) || s.FilterWidth > 64)
+    throw Error("FilterWidth must be in (0, 64] pixels.");
+  std::vector<double> kernel;
+  int radius = 0;
+  bool separable = false;
+  if (s.Filter == FilmFilter::Gaussian)
+  {
+    const double sigma = s.FilterWidth;
+    radius = static_cast<int>(std::ceil(3 * sigma));
+    double sum = 0;
+    for (int d = -radius; d <= radius; ++d)
+    {
+      kernel.push_back(std::exp(-0.5 * d * d / (sigma * sigma)));
+      sum += kernel.back();
+    }
+    for (double& k : kernel)
+      k /= sum;
+    separable = true;
+  }
+  else
+  {
+    // cone of radius FilterWidth / sqrt(passes): wide while few photons, sharp as they add up
+    const double r = std::max(1.0, s.FilterWidth / std::sqrt(double(std::max(1, f.Passes))));
+    radius = static_cast<int>(std::floor(r));
+    double sum = 0;
+    for (int dj = -radius; dj <= radius; ++dj)
+      for (int di = -radius; di <= radius; ++di)
+      {
+        kernel.push_back(std::max(0.0, 1.0 - std::hypot(di, dj) / (r + 0.5)));
+        sum += kernel.back();
+      }
+    for (double& k : kernel)
+      k /= sum;
+  }
+  for (std::vector<double>* c : f.PixelChannels())
+    FilterChannel(*c, f.Size[0], f.Size[1], kernel, radius, separable);
+}
+
+const char* CutoffName(Cutoff c)
+{
+  switch (c)
+  {
+    case Cutoff::KnifeEdge:
+      return "KnifeEdge";
+    case Cutoff::Shadowgraph:
+      return "Shadowgraph";
+    case Cutoff::Circular:
+      return "Circular";
+    case Cutoff::ComplementCircular:
+      return "ComplementCircular";
+    case Cutoff::ColorFilter:
+      return "ColorFilter";
+    case Cutoff::Interferometry:
+      return "Interferometry";
+    case Cutoff::BOS:
+      return "BOS";
+  }
+  return "?";
+}
+
+TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSums& raw)
 {
   TraceResult r;
   r.Film = MakeFilm(volume, s);
   const std::size_t n = static_cast<std::size_t>(r.Film.Size[0]) * r.Film.Size[1];
-  if (sums.Count.size() != n || sums.Passes < 1)
+  if (raw.Count.size() != n || raw.Passes < 1)
     throw Error("Finalize: the sums do not belong to this film, or hold no pass.");
+  FilmSums sums = raw;
+  FilterSums(sums, s);
   r.Intensity.assign(n, 0.f);
   r.Deflection.assign(2 * n, 0.f);
   if (s.EstimateError)
     r.ErrorEstimate.assign(n, 0.f);
+  if (s.Mode == Cutoff::ColorFilter)
+    r.RGB.assign(3 * n, 0.f);
+  if (s.Mode == Cutoff::Interferometry)
+    r.Phase.assign(n, 0.f);
+  if (s.Mode == Cutoff::BOS)
+    r.Displacement.assign(2 * n, 0.f);
   const double passes = sums.Passes;
   const double ang = s.KnifeAngle * 3.14159265358979323846 / 180.0;
   const double ca = std::cos(ang), sa = std::sin(ang);
+  const bool manual = s.CutoffScale > 0;
+  // the automatic scale maps the largest deflection to full contrast
   double k = s.CutoffScale;
-  if (s.Mode == Cutoff::KnifeEdge && !(k > 0))
-    k = sums.MaxAbsKnife > 0 ? 0.5 / sums.MaxAbsKnife : 0.0;
+  if (!manual)
+  {
+    if (s.Mode == Cutoff::KnifeEdge)
+      k = sums.MaxAbsKnife > 0 ? 0.5 / sums.MaxAbsKnife : 0.0;
+    else
+      k = sums.MaxAbsDeflection > 0 ? 1.0 / sums.MaxAbsDeflection : 0.0;
+  }
+  const bool weighted = manual || s.RussianRoulette;
   for (std::size_t i = 0; i < n; ++i)
   {
     const double c = sums.Count[i];
@@ -804,23 +1052,52 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
       r.Deflection[2 * i + 1] = static_cast<float>(sums.DeflectionY[i] / c);
       if (s.EstimateError)
         r.ErrorEstimate[i] = static_cast<float>(sums.ErrorSum[i] / c);
+      if (s.Mode == Cutoff::Interferometry)
+        r.Phase[i] = static_cast<float>(sums.Phase[i] / c);
+      if (s.Mode == Cutoff::BOS)
+      {
+        r.Displacement[2 * i] = static_cast<float>(sums.ShiftX[i] / c);
+        r.Displacement[2 * i + 1] = static_cast<float>(sums.ShiftY[i] / c);
+      }
     }
     double I = 0;
+    // with the automatic k no photon reaches a clamp, so the sums of the linear weights are exact
     switch (s.Mode)
     {
       case Cutoff::KnifeEdge:
-        // manual k: per-photon clamped weights; automatic k: no photon reaches the clamp, so the
-        // sum of 0.5 - k e.a over photons is exact
-        I = s.CutoffScale > 0 ? sums.Weight[i] / passes
-                              : (0.5 * c - k * (sums.DeflectionX[i] * ca + sums.DeflectionY[i] * sa)) / passes;
+        I = weighted ? sums.Weight[i] / passes
+                     : (0.5 * c - k * (sums.DeflectionX[i] * ca + sums.DeflectionY[i] * sa)) / passes;
         break;
+      case Cutoff::Circular:
+        I = weighted ? sums.Weight[i] / passes : (c - k * sums.AbsDeflection[i]) / passes;
+        break;
+      case Cutoff::ComplementCircular:
+        I = weighted ? sums.Weight[i] / passes : k * sums.AbsDeflection[i] / passes;
+        break;
+      case Cutoff::ColorFilter:
+      {
+        const double scale = (manual ? 1.0 : k) / passes;
+        r.RGB[3 * i] = static_cast<float>(sums.Red[i] * scale);
+        r.RGB[3 * i + 1] = static_cast<float>(sums.Green[i] * scale);
+        r.RGB[3 * i + 2] = static_cast<float>(sums.Blue[i] * scale);
+        I = (manual ? 0.0 : k * sums.AbsDeflection[i]) / passes;
+        if (manual)
+          I = std::max(r.RGB[3 * i], std::max(r.RGB[3 * i + 1], r.RGB[3 * i + 2]));
+        break;
+      }
       case Cutoff::Shadowgraph:
         I = c / passes;
+        break;
+      case Cutoff::Interferometry:
+        I = sums.Weight[i] / passes;
+        break;
+      case Cutoff::BOS:
+        I = c > 0 ? sums.Weight[i] / c : 0.0;
         break;
     }
     r.Intensity[i] = static_cast<float>(I);
   }
-  r.CutoffScaleUsed = s.Mode == Cutoff::KnifeEdge ? k : 0.0;
+  r.CutoffScaleUsed = (s.Mode == Cutoff::Shadowgraph || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::BOS) ? 0.0 : k;
   r.Photons = sums.Photons;
   r.Samples = sums.Samples;
   r.FailedRays = sums.FailedRays;

@@ -97,8 +97,20 @@ enum class Integrator
 
 enum class Cutoff
 {
-  KnifeEdge = 0,  ///< I = 0.5 - k e.a, per photon, clamped to [0, 1]
-  Shadowgraph = 1 ///< no cutoff: density of photons arriving on the film
+  KnifeEdge = 0,          ///< I = 0.5 - k e.a, per photon, clamped to [0, 1]
+  Shadowgraph = 1,        ///< no cutoff: density of photons arriving on the film
+  Circular = 2,           ///< a pinhole stop: I = 1 - k|e|
+  ComplementCircular = 3, ///< a dot stop (dark field): I = k|e|
+  ColorFilter = 4,        ///< hue from the direction of e in the film plane, value k|e| (rgb)
+  Interferometry = 5,     ///< fringes of the optical phase against a reference beam
+  BOS = 6                 ///< background-oriented schlieren: a dot/stripe background seen through the flow
+};
+
+enum class FilmFilter
+{
+  None = 0,     ///< each photon in the pixel it lands in
+  Gaussian = 1, ///< Gaussian of standard deviation FilterWidth pixels
+  Cone = 2      ///< cone of radius FilterWidth / sqrt(passes) pixels (at least 1): sharpens as passes add up
 };
 
 /** Everything that defines a trace besides the volume. */
@@ -121,7 +133,18 @@ struct TraceSettings
   Cutoff Mode = Cutoff::KnifeEdge;
   double KnifeAngle = 0.0;  ///< degrees in the film plane; 0: knife normal along film x
   double CutoffScale = 0.0; ///< k; 0 means automatic: the largest deflection maps to full contrast
-  double FilmDistance = 0.0; ///< world units from the back of the volume's box to the film plane
+  /** Shadowgraph: world units from the back of the volume's box to the film. Other cutoffs: the
+   * camera images the volume's centre plane (a focused schlieren system) and FilmDistance moves
+   * the imaged plane along the beam (defocus). */
+  double FilmDistance = 0.0;
+  double Wavelength = 632.8; ///< nm (Interferometry; world units are taken as metres)
+  double ReferenceTilt = 0.0; ///< Interferometry: reference-beam fringes per world unit along film x
+  double BackgroundDistance = 1.0; ///< BOS: world units from the front of the volume's box to the background
+  int BackgroundPattern = 0;       ///< BOS: 0 dots, 1 stripes (along film x)
+  double BackgroundPeriod = 0.0;   ///< BOS: dot spacing or stripe period, world units; 0: 6 pixels
+  FilmFilter Filter = FilmFilter::None;
+  double FilterWidth = 1.0;  ///< pixels
+  bool RussianRoulette = false; ///< photon killing instead of energy weighting (manual CutoffScale)
   bool Jitter = true;        ///< jitter photons inside their pixel (false: pixel centres)
   std::uint32_t Seed = 1;
   int MaxSteps = 0;          ///< per ray; 0: 8 times the box diagonal over the step
@@ -142,7 +165,7 @@ struct FilmGeometry
   int Size[2];         ///< pixels
   double Corner[2];    ///< film coordinate (from Center) of the lower-left corner of pixel (0, 0)
   double FrontPlane;   ///< emission plane: (x - Center) . Direction
-  double FilmPlane;    ///< film plane: (x - Center) . Direction
+  double FilmPlane;    ///< the plane the film images: (x - Center) . Direction
   /** World-projected coordinate of the centre of pixel (0, 0): Center.Right + Corner + half a pixel. */
   void GetImageOrigin(double origin[2]) const;
 };
@@ -155,19 +178,33 @@ struct FilmSums
 {
   int Size[2] = { 0, 0 };
   std::vector<double> Count;   ///< photons landed
-  std::vector<double> Weight;  ///< summed knife-edge weights (manual CutoffScale only)
+  std::vector<double> Weight;  ///< summed per-photon weights of the cutoff (manual CutoffScale,
+                               ///< Interferometry, BOS; see Finalize)
   std::vector<double> DeflectionX, DeflectionY; ///< summed deflections
+  std::vector<double> AbsDeflection; ///< summed |e|
+  std::vector<double> Red, Green, Blue; ///< ColorFilter: summed value x hue colour
+  std::vector<double> Phase;   ///< summed optical phase against the entry index, radians
+  std::vector<double> ShiftX, ShiftY; ///< BOS: summed apparent displacement of the background
   std::vector<double> ErrorSum; ///< summed step-doubling error estimates (EstimateError only)
   double MaxAbsKnife = 0.0;    ///< max over photons of |e . a| (for the automatic scale)
-  double Photons = 0.0, Samples = 0.0, FailedRays = 0.0, MissedRays = 0.0;
-  double UnderresolvedRays = 0.0, SideRays = 0.0, Steps = 0.0;
+  double MaxAbsDeflection = 0.0; ///< max over photons of |e|
   double MaxDrift = 0.0;       ///< max over rays of | |v| - n |
   double MaxError = 0.0;       ///< max over rays of the step-doubling estimate
+  double Photons = 0.0, Samples = 0.0, FailedRays = 0.0, MissedRays = 0.0;
+  double UnderresolvedRays = 0.0, SideRays = 0.0, Steps = 0.0;
   int Passes = 0;
 
   void Resize(int nx, int ny);
-  /** Adds another rank's sums (same size). */
+  /** Adds another rank's sums (same size, same passes). */
   void Merge(const FilmSums& other);
+  /** Every per-pixel channel, every additive total, every maximum: for generic loops and MPI. */
+  std::vector<std::vector<double>*> PixelChannels();
+  std::vector<double*> Totals();
+  std::vector<double*> Maxima();
+  /** Flattens the additive parts (channels, then totals) and the maxima, for a sum-reduce and a
+   * max-reduce across ranks; FromArrays puts reduced arrays back. */
+  void ToArrays(std::vector<double>& additive, std::vector<double>& maxima);
+  void FromArrays(const std::vector<double>& additive, const std::vector<double>& maxima);
 };
 
 /** What Integrator::Auto chose, and why. */
@@ -190,6 +227,9 @@ struct TraceResult
   std::vector<float> Intensity;  ///< nx*ny
   std::vector<float> Deflection; ///< 2*nx*ny, radians along film x and y (mean of the photons)
   std::vector<float> ErrorEstimate; ///< nx*ny, radians (EstimateError only, else empty)
+  std::vector<float> RGB;        ///< 3*nx*ny (ColorFilter only, else empty)
+  std::vector<float> Phase;      ///< nx*ny, radians (Interferometry only, else empty)
+  std::vector<float> Displacement; ///< 2*nx*ny, world units (BOS only, else empty)
   double CutoffScaleUsed = 0.0;
   std::string BackendUsed;  ///< "OpenCL" or "CPU"
   std::string DeviceName;
@@ -214,6 +254,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, A
 std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings);
 
 const char* IntegratorName(Integrator m);
+const char* CutoffName(Cutoff c);
 
 /** Called with progress in [0, 1]; return false to abort (Trace then throws Error("aborted")). */
 using ProgressFunction = std::function<bool(double)>;

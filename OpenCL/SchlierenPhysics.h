@@ -30,6 +30,8 @@ typedef uchar sch_uchar;
 #define sch_sin sin
 #define sch_isfinite isfinite
 #define sch_fmin fmin
+#define sch_atan2 atan2
+#define sch_exp exp
 #else
 #include <math.h>
 #include <stdint.h>
@@ -44,6 +46,8 @@ typedef unsigned char sch_uchar;
 #define sch_sin sinf
 #define sch_isfinite isfinite
 #define sch_fmin fminf
+#define sch_atan2 atan2f
+#define sch_exp expf
 #endif
 
 /* Number of floats per output ray record. */
@@ -53,7 +57,7 @@ typedef unsigned char sch_uchar;
 #define SCH_REC_B 1        /* landing film coordinate along t */
 #define SCH_REC_EX 2       /* deflection along r (radians) */
 #define SCH_REC_EY 3       /* deflection along t (radians) */
-#define SCH_REC_OPL 4      /* excess optical path: integral of (n-1) ds inside the volume */
+#define SCH_REC_OPL 4      /* optical path against the entry index: integral of (n - n_entry) ds */
 #define SCH_REC_FLAGS 5    /* SCH_RAY_* bits, stored as a float (exact below 2^24) */
 #define SCH_REC_SAMPLES 6  /* field samples taken */
 #define SCH_REC_DRIFT 7    /* |v| - n at exit: the drift of the ray invariant (error indicator) */
@@ -115,6 +119,7 @@ typedef struct
   int keepInvariant;    /* 1: rescale v so that |v| = n after every step */
   int estimate;         /* 1: trace again at twice the base step and store the difference */
   float featureTol;     /* index change a step may leave unexplained before it is flagged */
+  float cellStep;       /* the longest step that moves at most one cell along every axis */
 } sch_params;
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
@@ -260,9 +265,16 @@ SCH_FN void sch_emit(const sch_params* P, int pix, float* a, float* b)
   float jx = 0.5f, jy = 0.5f;
   if (P->jitter)
   {
-    sch_uint h = sch_hash(P->seed ^ sch_hash((sch_uint)pix * 2654435761u ^ sch_hash((sch_uint)P->pass + 0x9e3779b9u)));
-    jx = sch_unit(h);
-    jy = sch_unit(sch_hash(h ^ 0x68bc21ebu));
+    /* a random offset per pixel and seed, then the R2 low-discrepancy sequence over the passes
+     * (additive recurrence with the plastic number): the passes of a pixel never repeat and fill
+     * it evenly, and the same seed gives the same photons */
+    sch_uint h = sch_hash(P->seed ^ sch_hash((sch_uint)pix * 2654435761u + 0x9e3779b9u));
+    float ox = sch_unit(h), oy = sch_unit(sch_hash(h ^ 0x68bc21ebu));
+    float p = (float)P->pass;
+    jx = ox + p * 0.7548776662f;
+    jy = oy + p * 0.5698402910f;
+    jx -= sch_floor(jx);
+    jy -= sch_floor(jy);
   }
   *a = P->filmA0 + ((float)ix + jx) * P->pixel;
   *b = P->filmB0 + ((float)iy + jy) * P->pixel;
@@ -373,40 +385,46 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
   {
     sch_v3 v = sch_axpy(ne, d0, w);
     float n = 1.0f + s.n1;
+    float invn = 1.0f / n;
     float ds = base;
-    sch_v3 dir = sch_scale(v, 1.0f / sch_sqrt(sch_dot(v, v)));
+    /* v / n is the unit direction to first order (|v| = n): good enough to aim the step */
+    sch_v3 dir = sch_scale(v, invn);
     if (P->useLevels)
       ds = sch_skip(levels, P, x, dir, base);
     /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
-     * the boundary and heading out (a grazing ray on a face) has left */
-    float tex = sch_exit_distance(P, x, dir);
-    if (it > 0 && tex < 1e-3f * base)
-      break;
-    tex += 1e-4f * base;
-    ds = ds < tex ? ds : tex;
+     * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
+     * end point is outside pays for the exact distance. */
+    if (!sch_inside(P, sch_axpy(ds, dir, x)))
+    {
+      float tex = sch_exit_distance(P, x, dir);
+      if (it > 0 && tex < 1e-3f * base)
+        break;
+      tex += 1e-4f * base;
+      ds = ds < tex ? ds : tex;
+    }
     sch_v3 xn, dw;
     float dopl;
     if (P->integrator == SCH_STRAIGHT)
     {
       xn = sch_axpy(ds, d0, x);
       dw = sch_scale(s.g, ds);
-      dopl = ds * s.n1;
+      dopl = ds * (s.n1 - ne1);
     }
     else if (P->integrator == SCH_MIDPOINT)
     {
       /* half step with the slope at x, full step with the slope at the midpoint */
-      sch_v3 xm = sch_axpy(0.5f * ds / n, v, x);
+      sch_v3 xm = sch_axpy(0.5f * ds * invn, v, x);
       sch_v3 vm = sch_axpy(0.5f * ds, s.g, v);
       sch_sample sm = sch_sample_field(field, P, xm);
       samples += 1.0f;
       xn = sch_axpy(ds / (1.0f + sm.n1), vm, x);
       dw = sch_scale(sm.g, ds);
-      dopl = ds * sm.n1;
+      dopl = ds * (sm.n1 - ne1);
     }
     else if (P->integrator == SCH_RK4)
     {
       /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
-      sch_v3 k1x = sch_scale(v, 1.0f / n);
+      sch_v3 k1x = sch_scale(v, invn);
       sch_sample sa = sch_sample_field(field, P, sch_axpy(0.5f * ds, k1x, x));
       sch_v3 v2 = sch_axpy(0.5f * ds, s.g, v);
       sch_v3 k2x = sch_scale(v2, 1.0f / (1.0f + sa.n1));
@@ -421,26 +439,21 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
       sch_v3 kw = sch_add(sch_add(s.g, sc.g), sch_scale(sch_add(sa.g, sb.g), 2.0f));
       xn = sch_axpy(ds / 6.0f, kx, x);
       dw = sch_scale(kw, ds / 6.0f);
-      dopl = ds / 6.0f * (s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1));
+      dopl = ds / 6.0f * (s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1) - 6.0f * ne1);
     }
     else
     {
       /* the paper's explicit Euler: x += ds v / n, v += ds grad n */
-      xn = sch_axpy(ds / n, v, x);
+      xn = sch_axpy(ds * invn, v, x);
       dw = sch_scale(s.g, ds);
-      dopl = ds * s.n1;
+      dopl = ds * (s.n1 - ne1);
     }
     sch_v3 dx = sch_add(xn, sch_scale(x, -1.0f));
     x = xn;
     w = sch_add(w, dw);
     opl += dopl;
     path += ds;
-    if (!(sch_isfinite(x.x) && sch_isfinite(x.y) && sch_isfinite(x.z) && sch_isfinite(w.x) &&
-          sch_isfinite(w.y) && sch_isfinite(w.z)))
-    {
-      flags |= SCH_RAY_NONFINITE;
-      break;
-    }
+    /* a NaN fails every comparison: it leaves the loop through sch_inside and is caught below */
     if (ne + sch_dot(d0, w) <= 0.0f)
     {
       flags |= SCH_RAY_TURNED;
@@ -453,16 +466,19 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
     /* a step longer than a feature: over a step of more than one cell, the index changed in a way
      * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
      * cannot jump over anything: trilinear data has no structure finer than a cell. */
-    float act = sn.n1 - s.n1;
-    float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(s.g, sn.g), dx));
-    float cells = sch_fabs(dx.x) * P->isx;
-    cells = sch_fabs(dx.y) * P->isy > cells ? sch_fabs(dx.y) * P->isy : cells;
-    cells = sch_fabs(dx.z) * P->isz > cells ? sch_fabs(dx.z) * P->isz : cells;
-    if (P->integrator != SCH_STRAIGHT && cells > 1.0f)
+    if (P->integrator != SCH_STRAIGHT && (ds > P->cellStep || P->useLevels))
     {
-      mismatch = mis > mismatch ? mis : mismatch;
-      if (mis > 0.5f * sch_fabs(act) && mis > P->featureTol)
-        flags |= SCH_RAY_UNDERRESOLVED;
+      float act = sn.n1 - s.n1;
+      float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(s.g, sn.g), dx));
+      float cells = sch_fabs(dx.x) * P->isx;
+      cells = sch_fabs(dx.y) * P->isy > cells ? sch_fabs(dx.y) * P->isy : cells;
+      cells = sch_fabs(dx.z) * P->isz > cells ? sch_fabs(dx.z) * P->isz : cells;
+      if (cells > 1.0f)
+      {
+        mismatch = mis > mismatch ? mis : mismatch;
+        if (mis > 0.5f * sch_fabs(act) && mis > P->featureTol)
+          flags |= SCH_RAY_UNDERRESOLVED;
+      }
     }
     if (P->keepInvariant)
     {
@@ -474,6 +490,9 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
     }
     s = sn;
   }
+  if (!(sch_isfinite(x.x) && sch_isfinite(x.y) && sch_isfinite(x.z) && sch_isfinite(w.x) &&
+        sch_isfinite(w.y) && sch_isfinite(w.z)))
+    flags |= SCH_RAY_NONFINITE;
   if (it >= P->maxSteps)
     flags |= SCH_RAY_MAXSTEPS;
   else if (!(flags & (SCH_RAY_NONFINITE | SCH_RAY_TURNED)))
@@ -575,12 +594,78 @@ SCH_FN void sch_trace(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
 
 /* ---------------------------------------------------------------- cutoffs */
 
-/* Knife-edge energy weighting: the fraction of the light-source image that passes a knife whose
- * normal in the film plane is (ca, sa), for deflection (ex, ey) and scale k. */
+/* Energy weighting (paper section 5.3): the fraction of a photon's light that passes the cutoff in
+ * the focal plane, for deflection (ex, ey) and scale k, clamped to [0, 1]. */
+
+/* knife edge whose normal in the film plane is (ca, sa) */
 SCH_FN float sch_knife_weight(float ex, float ey, float ca, float sa, float k)
 {
   float I = 0.5f - k * (ex * ca + ey * sa);
   return I < 0.0f ? 0.0f : (I > 1.0f ? 1.0f : I);
+}
+
+/* circular (pinhole) stop: I = 1 - k |e|; complement (a dot in the focal plane): I = k |e| */
+SCH_FN float sch_circular_weight(float ex, float ey, float k, int complement)
+{
+  float I = k * sch_sqrt(ex * ex + ey * ey);
+  I = I > 1.0f ? 1.0f : I;
+  return complement ? I : 1.0f - I;
+}
+
+/* colour filter: the hue of the deflection's direction in the film plane (0 along +x, through
+ * green at +120 degrees), full saturation; value comes separately (k |e|). */
+SCH_FN void sch_hue_rgb(float ex, float ey, float* r, float* g, float* b)
+{
+  float h = 0.0f;
+  if (ex != 0.0f || ey != 0.0f)
+  {
+    h = sch_atan2(ey, ex) * (3.0f / 3.14159265358979f); /* sixths of a turn, in (-3, 3] */
+    if (h < 0.0f)
+      h += 6.0f;
+  }
+  float f = h - sch_floor(h);
+  int i = (int)h;
+  float q = 1.0f - f;
+  float R, G, B;
+  if (i == 0) { R = 1.0f; G = f; B = 0.0f; }
+  else if (i == 1) { R = q; G = 1.0f; B = 0.0f; }
+  else if (i == 2) { R = 0.0f; G = 1.0f; B = f; }
+  else if (i == 3) { R = 0.0f; G = q; B = 1.0f; }
+  else if (i == 4) { R = f; G = 0.0f; B = 1.0f; }
+  else { R = 1.0f; G = 0.0f; B = q; }
+  *r = R;
+  *g = G;
+  *b = B;
+}
+
+/* interferometry: a photon with phase phi (radians) against a reference beam of phase ref */
+SCH_FN float sch_fringe_weight(float phi, float ref)
+{
+  return 0.5f * (1.0f + sch_cos(phi - ref));
+}
+
+/* background-oriented schlieren: a pattern of dots (kind 0) or stripes (kind 1) of period `period`
+ * (world units) on the background, seeded; values in [0, 1] */
+SCH_FN float sch_bos_pattern(float a, float b, float period, int kind, sch_uint seed)
+{
+  if (kind == 1)
+    return 0.5f + 0.5f * sch_cos(6.28318530718f * a / period);
+  /* one dot per cell at a hashed place, Gaussian of radius period/4; the 3 x 3 neighbourhood */
+  float u = a / period, v = b / period;
+  int ci = (int)sch_floor(u), cj = (int)sch_floor(v);
+  float I = 0.0f;
+  int di, dj;
+  for (dj = -1; dj <= 1; ++dj)
+    for (di = -1; di <= 1; ++di)
+    {
+      sch_uint h = sch_hash(seed ^ sch_hash((sch_uint)(ci + di) * 73856093u ^ (sch_uint)(cj + dj) * 19349663u));
+      float cx = (float)(ci + di) + 0.15f + 0.7f * sch_unit(h);
+      float cy = (float)(cj + dj) + 0.15f + 0.7f * sch_unit(sch_hash(h ^ 0x5bd1e995u));
+      float r2 = (u - cx) * (u - cx) + (v - cy) * (v - cy);
+      float d = sch_exp(-r2 * 32.0f); /* 1/e radius of a quarter period */
+      I = d > I ? d : I;
+    }
+  return I;
 }
 
 #endif

@@ -34,6 +34,7 @@ int main(int argc, char** argv)
 {
   int size = 256, film = 512, passes = 3;
   double step = 0.5;
+  int rpi = 0;
   std::string backends = "CPU,OpenCL";
   for (int i = 1; i + 1 < argc; i += 2)
   {
@@ -47,6 +48,8 @@ int main(int argc, char** argv)
       step = std::atof(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--backends"))
       backends = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--rays-per-item"))
+      rpi = std::atoi(argv[i + 1]);
   }
   const double A = 1e-4, w = 0.25;
   SceneParameters p;
@@ -86,6 +89,8 @@ int main(int argc, char** argv)
     s.StepSize = step;
     s.Passes = 1;
     s.CutoffScale = 1000;
+    if (rpi > 0)
+      s.RaysPerWorkItem = rpi;
     try
     {
       // first trace: includes the program build (cached after) and the upload

@@ -21,6 +21,9 @@ inline schlieren::TraceSettings Beam(double dx, double dy, double dz, double ux,
 {
   schlieren::TraceSettings s;
   s.Device = schlieren::Backend::CPU;
+  // a film behind the volume (not a camera focused inside it): landing positions are where the
+  // rays really go, which the known answers describe
+  s.Mode = schlieren::Cutoff::Shadowgraph;
   s.ViewDirection[0] = dx;
   s.ViewDirection[1] = dy;
   s.ViewDirection[2] = dz;

@@ -234,6 +234,7 @@ void TestLuneburg(bool haveCL)
     s.ViewUp[1] = 0;
     s.ViewUp[2] = 1;
     s.StepSize = 0.25;
+    s.Mode = Cutoff::Shadowgraph; // the film at the back of the box: the far pole
     std::string used;
     std::vector<RayRecord> rec = TraceRays(sv.V, s, ab, &used);
     double land = 0, dir = 0;
