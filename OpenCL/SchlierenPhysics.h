@@ -361,6 +361,7 @@ SCH_FN float sch_exit_distance(const sch_params* P, sch_v3 x, sch_v3 d)
 typedef struct
 {
   sch_v3 x;       /* where the ray left the volume (on the box, a hair outside) */
+  sch_v3 dev;     /* integral of w / n ds: how far the ray moved across the beam */
   sch_v3 w;       /* integral of grad n ds */
   float ne1;      /* n - 1 where it entered */
   float n1;       /* n - 1 at the last sample */
@@ -374,6 +375,7 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
 {
   sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
   sch_v3 w = sch_make(0.0f, 0.0f, 0.0f);
+  sch_v3 dev = sch_make(0.0f, 0.0f, 0.0f);
   sch_uint flags = 0u;
   float samples = 1.0f, opl = 0.0f, path = 0.0f, mismatch = 0.0f;
   /* the index where the ray enters is the background the deflection is measured against */
@@ -402,12 +404,15 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
       tex += 1e-4f * base;
       ds = ds < tex ? ds : tex;
     }
-    sch_v3 xn, dw;
+    /* ddev: the step's part across the beam, w / n, summed apart from x so that the sideways
+     * displacement keeps its digits next to coordinates of order one */
+    sch_v3 xn, dw, ddev;
     float dopl;
     if (P->integrator == SCH_STRAIGHT)
     {
       xn = sch_axpy(ds, d0, x);
       dw = sch_scale(s.g, ds);
+      ddev = sch_make(0.0f, 0.0f, 0.0f);
       dopl = ds * (s.n1 - ne1);
     }
     else if (P->integrator == SCH_MIDPOINT)
@@ -419,6 +424,7 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
       samples += 1.0f;
       xn = sch_axpy(ds / (1.0f + sm.n1), vm, x);
       dw = sch_scale(sm.g, ds);
+      ddev = sch_scale(sch_axpy(0.5f * ds, s.g, w), ds / (1.0f + sm.n1));
       dopl = ds * (sm.n1 - ne1);
     }
     else if (P->integrator == SCH_RK4)
@@ -439,6 +445,12 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
       sch_v3 kw = sch_add(sch_add(s.g, sc.g), sch_scale(sch_add(sa.g, sb.g), 2.0f));
       xn = sch_axpy(ds / 6.0f, kx, x);
       dw = sch_scale(kw, ds / 6.0f);
+      /* the same stages with v_i = ne d0 + w_i: only the w_i / n_i parts */
+      sch_v3 d1 = sch_scale(w, invn);
+      sch_v3 d2 = sch_scale(sch_axpy(0.5f * ds, s.g, w), 1.0f / (1.0f + sa.n1));
+      sch_v3 d3 = sch_scale(sch_axpy(0.5f * ds, sa.g, w), 1.0f / (1.0f + sb.n1));
+      sch_v3 d4 = sch_scale(sch_axpy(ds, sb.g, w), 1.0f / (1.0f + sc.n1));
+      ddev = sch_scale(sch_add(sch_add(d1, d4), sch_scale(sch_add(d2, d3), 2.0f)), ds / 6.0f);
       dopl = ds / 6.0f * (s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1) - 6.0f * ne1);
     }
     else
@@ -446,10 +458,12 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
       /* the paper's explicit Euler: x += ds v / n, v += ds grad n */
       xn = sch_axpy(ds * invn, v, x);
       dw = sch_scale(s.g, ds);
+      ddev = sch_scale(w, ds * invn);
       dopl = ds * (s.n1 - ne1);
     }
     sch_v3 dx = sch_add(xn, sch_scale(x, -1.0f));
     x = xn;
+    dev = sch_add(dev, ddev);
     w = sch_add(w, dw);
     opl += dopl;
     path += ds;
@@ -501,6 +515,7 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
     s = sch_sample_field(field, P, x);
   }
   R->x = x;
+  R->dev = dev;
   R->w = w;
   R->ne1 = ne1;
   R->n1 = s.n1;
@@ -533,6 +548,7 @@ SCH_FN void sch_trace(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
   sch_ray R;
   R.x = o;
   R.w = sch_make(0.0f, 0.0f, 0.0f);
+  R.dev = sch_make(0.0f, 0.0f, 0.0f);
   R.ne1 = R.n1 = R.opl = R.path = R.samples = R.steps = R.mismatch = 0.0f;
   R.flags = 0u;
   float err = 0.0f;
@@ -567,7 +583,8 @@ SCH_FN void sch_trace(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
   float vn = sch_sqrt(sch_dot(v, v));
   /* straight flight from the exit point to the film plane */
   float dd = sch_dot(v, d0) / vn;
-  float la = sch_dot(R.x, ra), lb = sch_dot(R.x, ta);
+  /* across the beam: where it started plus how far it moved (x itself has lost those digits) */
+  float la = a + sch_dot(R.dev, ra), lb = b + sch_dot(R.dev, ta);
   if (dd > 1e-6f)
   {
     float t = (P->sFilm - sch_dot(R.x, d0)) / dd;

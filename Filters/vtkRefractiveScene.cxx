@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkRefractiveScene.h"
+
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include "SchlierenEngine.h"
+#include "SchlierenScenes.h"
+
+vtkStandardNewMacro(vtkRefractiveScene);
+
+//------------------------------------------------------------------------------
+vtkRefractiveScene::vtkRefractiveScene()
+{
+  this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(1);
+}
+
+//------------------------------------------------------------------------------
+vtkRefractiveScene::~vtkRefractiveScene() = default;
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveScene::ComputeGrid(double origin[3], double spacing[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = this->Bounds[2 * a], hi = this->Bounds[2 * a + 1];
+    if (this->Dimensions[a] < 1)
+    {
+      vtkErrorMacro("Dimensions must be at least 1 along each axis; got " << this->Dimensions[0]
+                                                                          << " " << this->Dimensions[1]
+                                                                          << " " << this->Dimensions[2]
+                                                                          << ".");
+      return false;
+    }
+    if (this->Dimensions[a] > 1 && !(hi > lo))
+    {
+      vtkErrorMacro("Bounds along axis " << a << " are [" << lo << ", " << hi
+                                         << "]: the max must exceed the min.");
+      return false;
+    }
+    origin[a] = lo;
+    spacing[a] = this->Dimensions[a] > 1 ? (hi - lo) / (this->Dimensions[a] - 1)
+                                         : (hi > lo ? hi - lo : 1.0);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractiveScene::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  double origin[3], spacing[3];
+  if (!this->ComputeGrid(origin, spacing))
+  {
+    return 0;
+  }
+  int whole[6] = { 0, this->Dimensions[0] - 1, 0, this->Dimensions[1] - 1, 0,
+    this->Dimensions[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractiveScene::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  double origin[3], spacing[3];
+  if (!output || !this->ComputeGrid(origin, spacing))
+  {
+    return 0;
+  }
+
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  output->SetOrigin(origin);
+  output->SetSpacing(spacing);
+  output->SetExtent(ext);
+  if (ext[1] < ext[0] || ext[3] < ext[2] || ext[5] < ext[4])
+  {
+    return 1; // an empty piece
+  }
+
+  // The requested piece is a grid of its own whose first point is (ext[0], ext[2], ext[4]).
+  const int dims[3] = { ext[1] - ext[0] + 1, ext[3] - ext[2] + 1, ext[5] - ext[4] + 1 };
+  const double pieceOrigin[3] = { origin[0] + ext[0] * spacing[0], origin[1] + ext[2] * spacing[1],
+    origin[2] + ext[4] * spacing[2] };
+  const vtkIdType count = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+
+  vtkNew<vtkFloatArray> nMinus1;
+  nMinus1->SetName("n_minus_1");
+  nMinus1->SetNumberOfTuples(count);
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(count);
+
+  schlieren::SceneParameters p;
+  p.Amplitude = this->Amplitude;
+  p.Width = this->Width;
+  p.Radius = this->Radius;
+  for (int a = 0; a < 3; ++a)
+  {
+    p.Center[a] = this->Center[a];
+  }
+  p.GradientA = this->GradientA;
+  p.GradientB = this->GradientB;
+  try
+  {
+    schlieren::FillScene(static_cast<schlieren::Scene>(this->Scene), p, dims, pieceOrigin, spacing,
+      nMinus1->GetPointer(0), density->GetPointer(0));
+  }
+  catch (const schlieren::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    output->Initialize();
+    return 0;
+  }
+
+  output->GetPointData()->SetScalars(nMinus1);
+  output->GetPointData()->AddArray(density);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveScene::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Scene: " << this->Scene << " ("
+     << schlieren::SceneName(static_cast<schlieren::Scene>(this->Scene)) << ")\n";
+  os << indent << "Dimensions: " << this->Dimensions[0] << " " << this->Dimensions[1] << " "
+     << this->Dimensions[2] << "\n";
+  os << indent << "Bounds: " << this->Bounds[0] << " " << this->Bounds[1] << " " << this->Bounds[2]
+     << " " << this->Bounds[3] << " " << this->Bounds[4] << " " << this->Bounds[5] << "\n";
+  os << indent << "Amplitude: " << this->Amplitude << "\n";
+  os << indent << "Width: " << this->Width << "\n";
+  os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "Center: " << this->Center[0] << " " << this->Center[1] << " " << this->Center[2]
+     << "\n";
+  os << indent << "GradientA: " << this->GradientA << "\n";
+  os << indent << "GradientB: " << this->GradientB << "\n";
+}

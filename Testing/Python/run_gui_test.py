@@ -1,0 +1,45 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Runs test_gui.py in the ParaView GUI under Xvfb and turns its outcome into an exit status.
+
+Run with Debian's Python: /usr/bin/python3 run_gui_test.py --paraview /usr/bin/paraview
+    --plugin <Schlieren.so> --result <file> [--xvfb-run /usr/bin/xvfb-run]
+
+Passes only if paraview exits 0 and the script wrote "PASS" to the result file (a script that did
+not run at all cannot pass).
+"""
+import argparse
+import os
+import subprocess
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+parser = argparse.ArgumentParser()
+parser.add_argument("--paraview", required=True)
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--result", required=True)
+parser.add_argument("--xvfb-run", default="xvfb-run")
+parser.add_argument("--timeout", type=float, default=120)
+args = parser.parse_args()
+
+if os.path.exists(args.result):
+    os.remove(args.result)
+env = dict(os.environ, SCHLIEREN_PLUGIN=args.plugin, SCHLIEREN_GUI_RESULT=args.result)
+command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.paraview, "--dr",
+           "--script=" + os.path.join(here, "test_gui.py"), "--exit"]
+print(" ".join(command))
+sys.stdout.flush()
+try:
+    rc = subprocess.call(command, env=env, timeout=args.timeout)
+except subprocess.TimeoutExpired:
+    print("FAIL: the GUI did not exit within %g s" % args.timeout)
+    sys.exit(1)
+
+text = open(args.result).read() if os.path.exists(args.result) else ""
+print(text)
+if rc != 0:
+    print("FAIL: paraview exited with status %d" % rc)
+    sys.exit(1)
+if not text.rstrip().endswith("PASS"):
+    print("FAIL: the GUI script did not report PASS (result file %s)" % args.result)
+    sys.exit(1)
+print("test_gui: passed")

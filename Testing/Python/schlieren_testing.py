@@ -1,0 +1,156 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Helpers shared by the Python tests of the Schlieren plugin.
+
+Each test script is run by pvpython, pvbatch or the paraview GUI with the built plugin's path in
+the argument ``--plugin PATH`` (or the environment variable SCHLIEREN_PLUGIN). The known answers are
+those of ../../../shared/ORACLES.md.
+"""
+import math
+import os
+import sys
+
+import numpy as np
+
+# Knife-edge scale used by the tests: k * max|eps| = 1000 * 1.52e-4 = 0.15 keeps every photon's
+# weight 0.5 - k e.a inside [0, 1], so the clamp never acts and I = 0.5 - k eps.a exactly.
+KNIFE_SCALE = 1000.0
+
+
+def argument(name, default=None):
+    """The value after `name` on the command line (``--name value`` or ``--name=value``)."""
+    for i, a in enumerate(sys.argv):
+        if a == name and i + 1 < len(sys.argv):
+            return sys.argv[i + 1]
+        if a.startswith(name + "="):
+            return a[len(name) + 1:]
+    return default
+
+
+def plugin_path():
+    path = argument("--plugin", os.environ.get("SCHLIEREN_PLUGIN"))
+    if not path or not os.path.exists(path):
+        raise RuntimeError("the Schlieren plugin was not found: pass --plugin PATH (got %r)" % path)
+    return path
+
+
+def load_plugin(ns):
+    """Loads the plugin (client and server side) into the namespace `ns` (pass globals())."""
+    from paraview import simple
+
+    simple.LoadPlugin(plugin_path(), remote=False, ns=ns)
+
+
+class CapturedOutput:
+    """Collects what VTK writes to its output window (errors, warnings) while active.
+
+    In pvpython, print() goes through the output window too: print only after leaving the block.
+    """
+
+    def __enter__(self):
+        from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+
+        self._previous = vtkOutputWindow.GetInstance()
+        self._window = vtkStringOutputWindow()
+        vtkOutputWindow.SetInstance(self._window)
+        self.text = ""
+        return self
+
+    def __exit__(self, *args):
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+
+        self.text = self._window.GetOutput()
+        vtkOutputWindow.SetInstance(self._previous)
+        return False
+
+
+class Checker:
+    """Counts failed checks and reports them; `finish()` raises if any failed."""
+
+    def __init__(self, name):
+        self.name = name
+        self.failures = []
+        self.count = 0
+
+    def check(self, condition, message):
+        self.count += 1
+        status = "ok  " if condition else "FAIL"
+        print("%s %s" % (status, message))
+        sys.stdout.flush()
+        if not condition:
+            self.failures.append(message)
+        return bool(condition)
+
+    def close(self, value, expected, tolerance, message):
+        """|value - expected| <= tolerance (scalars or arrays: the largest difference)."""
+        diff = float(np.max(np.abs(np.asarray(value, dtype=float) - np.asarray(expected, dtype=float))))
+        return self.check(diff <= tolerance, "%s: max |difference| = %.3g (tolerance %.3g)" % (message, diff, tolerance))
+
+    def finish(self):
+        print("%s: %d checks, %d failed" % (self.name, self.count, len(self.failures)))
+        sys.stdout.flush()
+        if self.failures:
+            raise AssertionError("%s failed: %s" % (self.name, "; ".join(self.failures)))
+
+
+def image_arrays(data):
+    """Numpy views of a SchlierenImage output: X, Y (pixel-centre film coordinates, world units),
+    intensity (ny, nx), deflection (ny, nx, 2) and the field data as a dict."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    nx, ny, nz = data.GetDimensions()
+    ox, oy, _ = data.GetOrigin()
+    hx, hy, _ = data.GetSpacing()
+    X, Y = np.meshgrid(ox + hx * np.arange(nx), oy + hy * np.arange(ny))
+    pd = data.GetPointData()
+    intensity = vtk_to_numpy(pd.GetArray("intensity")).reshape(ny, nx).astype(float)
+    deflection = vtk_to_numpy(pd.GetArray("deflection")).reshape(ny, nx, 2).astype(float)
+    fields = {}
+    fd = data.GetFieldData()
+    for i in range(fd.GetNumberOfArrays()):
+        a = fd.GetAbstractArray(i)
+        fields[a.GetName()] = a.GetValue(0)
+    return X, Y, intensity, deflection, fields
+
+
+def gaussian_deflection(X, Y, amplitude, width):
+    """Closed-form deflection of the weak Gaussian sphere n = 1 + A exp(-r^2/s^2), beam along -z
+    (film x = world x, film y = world y): eps = -(2 sqrt(pi) A / s) (x, y) exp(-rho^2 / s^2)."""
+    f = -(2.0 * math.sqrt(math.pi) * amplitude / width) * np.exp(-(X ** 2 + Y ** 2) / width ** 2)
+    return np.stack([f * X, f * Y], axis=-1)
+
+
+def gaussian_max_deflection(amplitude):
+    """Largest |eps| of the weak Gaussian sphere: sqrt(2 pi) A exp(-1/2) (at rho = s / sqrt 2)."""
+    return math.sqrt(2.0 * math.pi) * amplitude * math.exp(-0.5)
+
+
+def mpi_pipeline(ns):
+    """The pipeline that test_mpi.py runs on 2 ranks and test_mpi_compare.py on one: an off-centre
+    Gaussian sphere (64^3), its index, an oblique knife-edge image with the automatic scale (the
+    largest deflection is reduced across ranks) and a shadowgraph 2 units behind the volume
+    (photons land in pixels traced by the other rank). `ns` is the namespace the plugin was loaded
+    into (see load_plugin). Returns (index, knife, shadow)."""
+    scene = ns["RefractiveScene"](Scene="GaussianSphere", Dimensions=[64, 64, 64],
+                                   Bounds=[-1, 1, -1, 1, -1, 1], Amplitude=1e-4, Width=0.3,
+                                   Center=[0.1, -0.05, 0.02])
+    index = ns["RefractiveIndex"](Input=scene, Model="GladstoneDale")
+    index.InputArray = ["POINTS", "density"]
+    knife = ns["SchlierenImage"](Input=index, ViewDirection=[0.3, -0.2, -1.0], ViewUp=[0, 1, 0],
+                                  Resolution=[96, 80], Passes=2, Seed=3, Cutoff="KnifeEdge",
+                                  CutoffScale=0.0, KnifeAngle=30.0)
+    shadow = ns["SchlierenImage"](Input=index, Resolution=[64, 64], Passes=2, Seed=5,
+                                   Cutoff="Shadowgraph", FilmDistance=2.0, Integrator="Midpoint")
+    return index, knife, shadow
+
+
+def image_record(prefix, data):
+    """A dict of numpy arrays describing a SchlierenImage output (for np.savez)."""
+    X, Y, I, D, F = image_arrays(data)
+    return {
+        prefix + "_intensity": I,
+        prefix + "_deflection": D,
+        prefix + "_origin": np.array(data.GetOrigin()),
+        prefix + "_spacing": np.array(data.GetSpacing()),
+        prefix + "_cutoff_scale": np.array(F.get("cutoff_scale", np.nan)),
+        prefix + "_photons": np.array(F.get("photons", np.nan)),
+    }

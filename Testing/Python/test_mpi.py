@@ -1,0 +1,69 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""SchlierenImage under MPI: 2 ranks of pvbatch. Writes the images (and the RefractiveIndex pieces)
+to --output, for test_mpi_compare.py to compare with a one-process run of the same pipeline.
+
+Run: mpiexec -n 2 pvbatch --mpi test_mpi.py --plugin <Schlieren.so> --output <dir>/mpi_images.npz
+
+Checked here: there really are 2 ranks, RefractiveScene/RefractiveIndex really are split into two
+pieces that tile the volume, rank 0 holds the whole image and rank 1 an empty one.
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import numpy as np
+from paraview import simple
+from paraview import servermanager as sm
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+import schlieren_testing as st
+
+st.load_plugin(globals())
+T = st.Checker("test_mpi")
+output = st.argument("--output")
+if not output:
+    raise RuntimeError("pass --output FILE.npz")
+if os.path.exists(output):
+    os.remove(output)  # a failed run must not leave an older result for test_mpi_compare.py
+
+ranks = sm.ActiveConnection.GetNumberOfDataPartitions()
+T.check(ranks == 2, "pvbatch runs on 2 ranks (got %d)" % ranks)
+
+index, knife, shadow = st.mpi_pipeline(globals())
+record = {}
+
+# The index is computed piecewise: each rank holds one piece (point extents of neighbouring
+# pieces share their boundary plane); together they cover 64^3.
+covered = np.zeros((64, 64, 64), dtype=int)
+extents = []
+for r in range(ranks):
+    piece = sm.Fetch(index, r)
+    e = piece.GetExtent()
+    extents.append(e)
+    covered[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1] += 1
+    pd = piece.GetPointData()
+    record["piece%d_extent" % r] = np.array(piece.GetExtent())
+    record["piece%d_n_minus_1" % r] = vtk_to_numpy(pd.GetArray("n_minus_1")).copy()
+    record["piece%d_grad_n" % r] = vtk_to_numpy(pd.GetArray("grad_n")).copy()
+T.check(covered.min() == 1 and covered.max() <= 2 and covered.sum() < 2 * 64 ** 3,
+        "RefractiveIndex pieces %s cover the 64^3 volume, each point once or twice" % (extents,))
+
+for name, proxy in (("knife", knife), ("shadow", shadow)):
+    with st.CapturedOutput() as out:
+        image = sm.Fetch(proxy, 0)
+        empty = sm.Fetch(proxy, 1)
+    T.check("ERROR" not in out.text, "%s: no error reported%s" % (name, "" if "ERROR" not in out.text else ": " + out.text[:500]))
+    T.check(image.GetNumberOfPoints() > 0 and empty.GetNumberOfPoints() == 0,
+            "%s: rank 0 holds the image (%d pixels), rank 1 an empty one (%d)"
+            % (name, image.GetNumberOfPoints(), empty.GetNumberOfPoints()))
+    record.update(st.image_record(name, image))
+
+# A sanity check that the traced image is the sphere's: max |deflection| near sqrt(2 pi) A e^-1/2
+# (coarse here: 64^3 and an oblique view; the pixel-exact comparison is test_mpi_compare.py).
+dmax = np.abs(record["knife_deflection"]).max() / st.gaussian_max_deflection(1e-4)
+T.check(0.8 < dmax < 1.1, "knife: max |deflection| / max|eps| = %.3f" % dmax)
+
+np.savez(output, **record)
+print("wrote %s" % output)
+T.finish()
