@@ -40,8 +40,9 @@ schlieren_install() {
 
 schlieren_build() {
   echo "== configuring and building in $SCHLIEREN_BUILD"
-  cmake -S "$SCHLIEREN_ROOT" -B "$SCHLIEREN_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release > "$SCHLIEREN_BUILD.configure.log" 2>&1 ||
-    { cat "$SCHLIEREN_BUILD.configure.log" >&2; exit 1; }
+  mkdir -p "$SCHLIEREN_BUILD"
+  cmake -S "$SCHLIEREN_ROOT" -B "$SCHLIEREN_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release > "$SCHLIEREN_BUILD/configure.log" 2>&1 ||
+    { cat "$SCHLIEREN_BUILD/configure.log" >&2; exit 1; }
   cmake --build "$SCHLIEREN_BUILD" -j "$(nproc)"
 }
 
