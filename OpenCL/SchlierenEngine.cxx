@@ -687,12 +687,11 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
       if (b0 >= count)
         break;
       const std::size_t b1 = std::min(count, b0 + block);
-      for (std::size_t k = b0; k < b1; ++k)
+      for (std::size_t k = b0; k < b1; k += SCH_PACKET)
       {
         const int pix = static_cast<int>(P.rayOffset + (first + k) * P.rayStride);
-        float a, b;
-        sch_emit(&P, pix, &a, &b);
-        sch_trace(field, levels, &P, a, b, out + k * SCH_RECORD);
+        const int n = static_cast<int>(std::min<std::size_t>(SCH_PACKET, b1 - k));
+        sch_trace_packet(field, levels, &P, pix, P.rayStride, n, out + k * SCH_RECORD);
       }
     }
   };

@@ -53,35 +53,36 @@ typedef unsigned char sch_uchar;
 /* Number of floats per output ray record. */
 #define SCH_RECORD 12
 /* Record layout. */
-#define SCH_REC_A 0        /* landing film coordinate along r (world units, from c) */
-#define SCH_REC_B 1        /* landing film coordinate along t */
-#define SCH_REC_EX 2       /* deflection along r (radians) */
-#define SCH_REC_EY 3       /* deflection along t (radians) */
-#define SCH_REC_OPL 4      /* optical path against the entry index: integral of (n - n_entry) ds */
-#define SCH_REC_FLAGS 5    /* SCH_RAY_* bits, stored as a float (exact below 2^24) */
-#define SCH_REC_SAMPLES 6  /* field samples taken */
-#define SCH_REC_DRIFT 7    /* |v| - n at exit: the drift of the ray invariant (error indicator) */
-#define SCH_REC_ERROR 8    /* step-doubling estimate of the deflection error (radians), if asked */
-#define SCH_REC_PATH 9     /* geometric path length inside the volume */
+#define SCH_REC_A 0         /* landing film coordinate along r (world units, from c) */
+#define SCH_REC_B 1         /* landing film coordinate along t */
+#define SCH_REC_EX 2        /* deflection along r (radians) */
+#define SCH_REC_EY 3        /* deflection along t (radians) */
+#define SCH_REC_OPL 4       /* optical path against the entry index: integral of (n - n_entry) ds */
+#define SCH_REC_FLAGS 5     /* SCH_RAY_* bits, stored as a float (exact below 2^24) */
+#define SCH_REC_SAMPLES 6   /* field samples taken */
+#define SCH_REC_DRIFT 7     /* |v| - n at exit: the drift of the ray invariant (error indicator) */
+#define SCH_REC_ERROR 8     /* step-doubling estimate of the deflection error (radians), if asked */
+#define SCH_REC_PATH 9      /* geometric path length inside the volume */
 #define SCH_REC_MISMATCH 10 /* largest |dn - grad n . dx| over a step: structure a step missed */
-#define SCH_REC_STEPS 11   /* steps taken */
+#define SCH_REC_STEPS 11    /* steps taken */
 
 /* Ray status bits. */
-#define SCH_RAY_MISSED 1u        /* never entered the volume: undeflected */
-#define SCH_RAY_MAXSTEPS 2u      /* gave up after the step limit */
-#define SCH_RAY_TURNED 4u        /* turned back against the beam */
-#define SCH_RAY_NONFINITE 8u     /* the state became NaN/Inf */
-#define SCH_RAY_OFFFILM 16u      /* could not reach the film plane (parallel to it) */
-#define SCH_RAY_UNDERRESOLVED 32u /* a step jumped over structure (e.g. a shock): the result is suspect */
-#define SCH_RAY_SIDE 64u         /* left through a side of the box (grazing or strongly bent) */
+#define SCH_RAY_MISSED 1u    /* never entered the volume: undeflected */
+#define SCH_RAY_MAXSTEPS 2u  /* gave up after the step limit */
+#define SCH_RAY_TURNED 4u    /* turned back against the beam */
+#define SCH_RAY_NONFINITE 8u /* the state became NaN/Inf */
+#define SCH_RAY_OFFFILM 16u  /* could not reach the film plane (parallel to it) */
+#define SCH_RAY_UNDERRESOLVED                                                                      \
+  32u                    /* a step jumped over structure (e.g. a shock): the result is suspect */
+#define SCH_RAY_SIDE 64u /* left through a side of the box (grazing or strongly bent) */
 /* Rays whose photon is dropped from the image. */
 #define SCH_RAY_LOST (SCH_RAY_MAXSTEPS | SCH_RAY_TURNED | SCH_RAY_NONFINITE | SCH_RAY_OFFFILM)
 
 /* Integrators. */
-#define SCH_EULER 0     /* the paper's explicit Euler: 1 sample per step, first order */
-#define SCH_MIDPOINT 1  /* explicit midpoint: 2 samples per step, second order */
-#define SCH_RK4 2       /* classical Runge-Kutta: 4 samples per step, fourth order */
-#define SCH_STRAIGHT 3  /* line of sight: grad n integrated along the unbent ray (Yates 1993) */
+#define SCH_EULER 0    /* the paper's explicit Euler: 1 sample per step, first order */
+#define SCH_MIDPOINT 1 /* explicit midpoint: 2 samples per step, second order */
+#define SCH_RK4 2      /* classical Runge-Kutta: 4 samples per step, fourth order */
+#define SCH_STRAIGHT 3 /* line of sight: grad n integrated along the unbent ray (Yates 1993) */
 
 /* Cutoffs. */
 #define SCH_KNIFE 0
@@ -96,30 +97,30 @@ typedef struct
  * host and every device lay it out the same way. */
 typedef struct
 {
-  int nx, ny, nz;  /* grid points */
-  int maxSteps;    /* per ray */
-  float ox, oy, oz; /* position of point (0,0,0), relative to the centre */
-  float isx, isy, isz; /* 1 / spacing */
-  float hx, hy, hz;    /* half extent of the box of grid points (box is [-h, h]) */
-  float dx, dy, dz;    /* beam direction d0 (unit) */
-  float rx, ry, rz;    /* film right axis (unit) */
-  float tx, ty, tz;    /* film top axis (unit) */
-  float sFront;        /* emission plane: x . d0 = sFront */
-  float sFilm;         /* film plane: x . d0 = sFilm */
+  int nx, ny, nz;       /* grid points */
+  int maxSteps;         /* per ray */
+  float ox, oy, oz;     /* position of point (0,0,0), relative to the centre */
+  float isx, isy, isz;  /* 1 / spacing */
+  float hx, hy, hz;     /* half extent of the box of grid points (box is [-h, h]) */
+  float dx, dy, dz;     /* beam direction d0 (unit) */
+  float rx, ry, rz;     /* film right axis (unit) */
+  float tx, ty, tz;     /* film top axis (unit) */
+  float sFront;         /* emission plane: x . d0 = sFront */
+  float sFilm;          /* film plane: x . d0 = sFilm */
   float filmA0, filmB0; /* film coordinate of the lower-left corner of pixel (0,0) */
   float pixel;          /* pixel size in world units (square pixels) */
   int filmNx, filmNy;
-  float step;           /* base step in world units */
+  float step; /* base step in world units */
   sch_uint seed;
   int pass;
   int integrator;
-  int jitter;           /* 0: rays through pixel centres; 1: jittered inside each pixel */
+  int jitter;               /* 0: rays through pixel centres; 1: jittered inside each pixel */
   int rayOffset, rayStride; /* ray k traces pixel rayOffset + k * rayStride */
-  int useLevels;        /* 1: skip through octree blocks (levels buffer), 0: fixed steps */
-  int keepInvariant;    /* 1: rescale v so that |v| = n after every step */
-  int estimate;         /* 1: trace again at twice the base step and store the difference */
-  float featureTol;     /* index change a step may leave unexplained before it is flagged */
-  float cellStep;       /* the longest step that moves at most one cell along every axis */
+  int useLevels;            /* 1: skip through octree blocks (levels buffer), 0: fixed steps */
+  int keepInvariant;        /* 1: rescale v so that |v| = n after every step */
+  int estimate;             /* 1: trace again at twice the base step and store the difference */
+  float featureTol;         /* index change a step may leave unexplained before it is flagged */
+  float cellStep;           /* the longest step that moves at most one cell along every axis */
 } sch_params;
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
@@ -130,13 +131,22 @@ SCH_FN sch_v3 sch_make(float x, float y, float z)
   r.z = z;
   return r;
 }
-SCH_FN sch_v3 sch_add(sch_v3 a, sch_v3 b) { return sch_make(a.x + b.x, a.y + b.y, a.z + b.z); }
-SCH_FN sch_v3 sch_scale(sch_v3 a, float s) { return sch_make(a.x * s, a.y * s, a.z * s); }
+SCH_FN sch_v3 sch_add(sch_v3 a, sch_v3 b)
+{
+  return sch_make(a.x + b.x, a.y + b.y, a.z + b.z);
+}
+SCH_FN sch_v3 sch_scale(sch_v3 a, float s)
+{
+  return sch_make(a.x * s, a.y * s, a.z * s);
+}
 SCH_FN sch_v3 sch_axpy(float s, sch_v3 a, sch_v3 y)
 {
   return sch_make(s * a.x + y.x, s * a.y + y.y, s * a.z + y.z);
 }
-SCH_FN float sch_dot(sch_v3 a, sch_v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+SCH_FN float sch_dot(sch_v3 a, sch_v3 b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 /* ---------------------------------------------------------------- hashing and jitter */
 
@@ -151,14 +161,17 @@ SCH_FN sch_uint sch_hash(sch_uint x)
 }
 
 /* Uniform in [0, 1) with 24 random bits. */
-SCH_FN float sch_unit(sch_uint h) { return (float)(h >> 8) * (1.0f / 16777216.0f); }
+SCH_FN float sch_unit(sch_uint h)
+{
+  return (float)(h >> 8) * (1.0f / 16777216.0f);
+}
 
 /* ---------------------------------------------------------------- sampling */
 
 typedef struct
 {
-  float n1;      /* n - 1 */
-  sch_v3 g;      /* grad n */
+  float n1; /* n - 1 */
+  sch_v3 g; /* grad n */
 } sch_sample;
 
 /* Trilinear interpolation of the packed field at p (relative to the centre); outside the grid the
@@ -222,7 +235,8 @@ SCH_FN int sch_inside(const sch_params* P, sch_v3 p)
   return sch_fabs(p.x) <= P->hx && sch_fabs(p.y) <= P->hy && sch_fabs(p.z) <= P->hz;
 }
 
-/* Slab test of the line o + s d against the box [-h, h]; returns 1 and the parameter range on a hit. */
+/* Slab test of the line o + s d against the box [-h, h]; returns 1 and the parameter range on a
+ * hit. */
 SCH_FN int sch_clip_box(const sch_params* P, sch_v3 o, sch_v3 d, float* s0, float* s1)
 {
   float lo = -1e30f, hi = 1e30f;
@@ -257,7 +271,8 @@ SCH_FN int sch_clip_box(const sch_params* P, sch_v3 o, sch_v3 d, float* s0, floa
   return hi > lo;
 }
 
-/* Film coordinates of ray pixel `pix` in pass P->pass: jittered inside the pixel or at its centre. */
+/* Film coordinates of ray pixel `pix` in pass P->pass: jittered inside the pixel or at its centre.
+ */
 SCH_FN void sch_emit(const sch_params* P, int pix, float* a, float* b)
 {
   int ix = pix % P->filmNx;
@@ -296,7 +311,10 @@ SCH_FN float sch_invariant_gap(float ne1, float n1, sch_v3 d0, sch_v3 w)
 /* The step allowed at x: the base step, or the distance to the far side of the octree block that
  * holds x when that is longer (paper section 4.2; the block is uniform within the tolerance, with a
  * one-voxel halo, so the ray may cross it in one straight step). */
-SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels, const sch_params* P, sch_v3 x, sch_v3 dir,
+SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P,
+  sch_v3 x,
+  sch_v3 dir,
   float base)
 {
   float f[3], is[3], dI[3];
@@ -360,171 +378,220 @@ SCH_FN float sch_exit_distance(const sch_params* P, sch_v3 x, sch_v3 d)
 
 typedef struct
 {
-  sch_v3 x;       /* where the ray left the volume (on the box, a hair outside) */
-  sch_v3 dev;     /* integral of w / n ds: how far the ray moved across the beam */
-  sch_v3 w;       /* integral of grad n ds */
-  float ne1;      /* n - 1 where it entered */
-  float n1;       /* n - 1 at the last sample */
+  sch_v3 x;   /* where the ray left the volume (on the box, a hair outside) */
+  sch_v3 dev; /* integral of w / n ds: how far the ray moved across the beam */
+  sch_v3 w;   /* integral of grad n ds */
+  float ne1;  /* n - 1 where it entered */
+  float n1;   /* n - 1 at the last sample */
   float opl, path, samples, steps, mismatch;
   sch_uint flags;
 } sch_ray;
 
-/* March from x (on the box) with base step `base` until the ray leaves the box. */
-SCH_FN void sch_march(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar* levels,
-  const sch_params* P, sch_v3 x, float base, sch_ray* R)
+/* The state of one ray's march: the whole loop of sch_march, one step at a time, so that a
+ * work-item can advance several rays in turn (their memory accesses then overlap). */
+typedef struct
 {
-  sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
-  sch_v3 w = sch_make(0.0f, 0.0f, 0.0f);
-  sch_v3 dev = sch_make(0.0f, 0.0f, 0.0f);
-  sch_uint flags = 0u;
-  float samples = 1.0f, opl = 0.0f, path = 0.0f, mismatch = 0.0f;
-  /* the index where the ray enters is the background the deflection is measured against */
-  sch_sample s = sch_sample_field(field, P, x);
-  float ne1 = s.n1;
-  float ne = 1.0f + ne1;
+  sch_v3 x, w, dev;
+  sch_sample s;
+  float ne1, ne, base;
+  float samples, opl, path, mismatch;
+  sch_uint flags;
   int it;
-  for (it = 0; it < P->maxSteps; ++it)
+} sch_walk;
+
+SCH_FN void sch_walk_begin(SCH_GLOBAL const float* field,
+  const sch_params* P,
+  sch_v3 x,
+  float base,
+  sch_walk* W)
+{
+  W->x = x;
+  W->w = sch_make(0.0f, 0.0f, 0.0f);
+  W->dev = sch_make(0.0f, 0.0f, 0.0f);
+  W->flags = 0u;
+  W->samples = 1.0f;
+  W->opl = W->path = W->mismatch = 0.0f;
+  W->base = base;
+  W->it = 0;
+  /* the index where the ray enters is the background the deflection is measured against */
+  W->s = sch_sample_field(field, P, x);
+  W->ne1 = W->s.n1;
+  W->ne = 1.0f + W->ne1;
+}
+
+/* One step; returns 0 when the ray has left the box or failed. */
+SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
+  SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P,
+  sch_walk* W)
+{
+  if (W->it >= P->maxSteps)
+    return 0;
+  sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
+  sch_v3 v = sch_axpy(W->ne, d0, W->w);
+  float n = 1.0f + W->s.n1;
+  float invn = 1.0f / n;
+  float ds = W->base;
+  /* v / n is the unit direction to first order (|v| = n): good enough to aim the step */
+  sch_v3 dir = sch_scale(v, invn);
+  if (P->useLevels)
+    ds = sch_skip(levels, P, W->x, dir, W->base);
+  /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
+   * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
+   * end point is outside pays for the exact distance. */
+  if (!sch_inside(P, sch_axpy(ds, dir, W->x)))
   {
-    sch_v3 v = sch_axpy(ne, d0, w);
-    float n = 1.0f + s.n1;
-    float invn = 1.0f / n;
-    float ds = base;
-    /* v / n is the unit direction to first order (|v| = n): good enough to aim the step */
-    sch_v3 dir = sch_scale(v, invn);
-    if (P->useLevels)
-      ds = sch_skip(levels, P, x, dir, base);
-    /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
-     * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
-     * end point is outside pays for the exact distance. */
-    if (!sch_inside(P, sch_axpy(ds, dir, x)))
-    {
-      float tex = sch_exit_distance(P, x, dir);
-      if (it > 0 && tex < 1e-3f * base)
-        break;
-      tex += 1e-4f * base;
-      ds = ds < tex ? ds : tex;
-    }
-    /* ddev: the step's part across the beam, w / n, summed apart from x so that the sideways
-     * displacement keeps its digits next to coordinates of order one */
-    sch_v3 xn, dw, ddev;
-    float dopl;
-    if (P->integrator == SCH_STRAIGHT)
-    {
-      xn = sch_axpy(ds, d0, x);
-      dw = sch_scale(s.g, ds);
-      ddev = sch_make(0.0f, 0.0f, 0.0f);
-      dopl = ds * (s.n1 - ne1);
-    }
-    else if (P->integrator == SCH_MIDPOINT)
-    {
-      /* half step with the slope at x, full step with the slope at the midpoint */
-      sch_v3 xm = sch_axpy(0.5f * ds * invn, v, x);
-      sch_v3 vm = sch_axpy(0.5f * ds, s.g, v);
-      sch_sample sm = sch_sample_field(field, P, xm);
-      samples += 1.0f;
-      xn = sch_axpy(ds / (1.0f + sm.n1), vm, x);
-      dw = sch_scale(sm.g, ds);
-      ddev = sch_scale(sch_axpy(0.5f * ds, s.g, w), ds / (1.0f + sm.n1));
-      dopl = ds * (sm.n1 - ne1);
-    }
-    else if (P->integrator == SCH_RK4)
-    {
-      /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
-      sch_v3 k1x = sch_scale(v, invn);
-      sch_sample sa = sch_sample_field(field, P, sch_axpy(0.5f * ds, k1x, x));
-      sch_v3 v2 = sch_axpy(0.5f * ds, s.g, v);
-      sch_v3 k2x = sch_scale(v2, 1.0f / (1.0f + sa.n1));
-      sch_sample sb = sch_sample_field(field, P, sch_axpy(0.5f * ds, k2x, x));
-      sch_v3 v3 = sch_axpy(0.5f * ds, sa.g, v);
-      sch_v3 k3x = sch_scale(v3, 1.0f / (1.0f + sb.n1));
-      sch_sample sc = sch_sample_field(field, P, sch_axpy(ds, k3x, x));
-      sch_v3 v4 = sch_axpy(ds, sb.g, v);
-      sch_v3 k4x = sch_scale(v4, 1.0f / (1.0f + sc.n1));
-      samples += 3.0f;
-      sch_v3 kx = sch_add(sch_add(k1x, k4x), sch_scale(sch_add(k2x, k3x), 2.0f));
-      sch_v3 kw = sch_add(sch_add(s.g, sc.g), sch_scale(sch_add(sa.g, sb.g), 2.0f));
-      xn = sch_axpy(ds / 6.0f, kx, x);
-      dw = sch_scale(kw, ds / 6.0f);
-      /* the same stages with v_i = ne d0 + w_i: only the w_i / n_i parts */
-      sch_v3 d1 = sch_scale(w, invn);
-      sch_v3 d2 = sch_scale(sch_axpy(0.5f * ds, s.g, w), 1.0f / (1.0f + sa.n1));
-      sch_v3 d3 = sch_scale(sch_axpy(0.5f * ds, sa.g, w), 1.0f / (1.0f + sb.n1));
-      sch_v3 d4 = sch_scale(sch_axpy(ds, sb.g, w), 1.0f / (1.0f + sc.n1));
-      ddev = sch_scale(sch_add(sch_add(d1, d4), sch_scale(sch_add(d2, d3), 2.0f)), ds / 6.0f);
-      dopl = ds / 6.0f * (s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1) - 6.0f * ne1);
-    }
-    else
-    {
-      /* the paper's explicit Euler: x += ds v / n, v += ds grad n */
-      xn = sch_axpy(ds * invn, v, x);
-      dw = sch_scale(s.g, ds);
-      ddev = sch_scale(w, ds * invn);
-      dopl = ds * (s.n1 - ne1);
-    }
-    sch_v3 dx = sch_add(xn, sch_scale(x, -1.0f));
-    x = xn;
-    dev = sch_add(dev, ddev);
-    w = sch_add(w, dw);
-    opl += dopl;
-    path += ds;
-    /* a NaN fails every comparison: it leaves the loop through sch_inside and is caught below */
-    if (ne + sch_dot(d0, w) <= 0.0f)
-    {
-      flags |= SCH_RAY_TURNED;
-      break;
-    }
-    if (!sch_inside(P, x))
-      break;
-    sch_sample sn = sch_sample_field(field, P, x);
-    samples += 1.0f;
-    /* a step longer than a feature: over a step of more than one cell, the index changed in a way
-     * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
-     * cannot jump over anything: trilinear data has no structure finer than a cell. */
-    if (P->integrator != SCH_STRAIGHT && (ds > P->cellStep || P->useLevels))
-    {
-      float act = sn.n1 - s.n1;
-      float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(s.g, sn.g), dx));
-      float cells = sch_fabs(dx.x) * P->isx;
-      cells = sch_fabs(dx.y) * P->isy > cells ? sch_fabs(dx.y) * P->isy : cells;
-      cells = sch_fabs(dx.z) * P->isz > cells ? sch_fabs(dx.z) * P->isz : cells;
-      if (cells > 1.0f)
-      {
-        mismatch = mis > mismatch ? mis : mismatch;
-        if (mis > 0.5f * sch_fabs(act) && mis > P->featureTol)
-          flags |= SCH_RAY_UNDERRESOLVED;
-      }
-    }
-    if (P->keepInvariant)
-    {
-      /* rescale v to |v| = n(x); written so that no term near 1 is subtracted */
-      float gap = sch_invariant_gap(ne1, sn.n1, d0, w);
-      sch_v3 vv = sch_axpy(ne, d0, w);
-      float scale = -gap / sch_sqrt(sch_dot(vv, vv)); /* scale - 1 */
-      w = sch_add(sch_scale(w, 1.0f + scale), sch_scale(d0, ne * scale));
-    }
-    s = sn;
+    float tex = sch_exit_distance(P, W->x, dir);
+    if (W->it > 0 && tex < 1e-3f * W->base)
+      return 0;
+    tex += 1e-4f * W->base;
+    ds = ds < tex ? ds : tex;
   }
-  if (!(sch_isfinite(x.x) && sch_isfinite(x.y) && sch_isfinite(x.z) && sch_isfinite(w.x) &&
-        sch_isfinite(w.y) && sch_isfinite(w.z)))
-    flags |= SCH_RAY_NONFINITE;
-  if (it >= P->maxSteps)
-    flags |= SCH_RAY_MAXSTEPS;
-  else if (!(flags & (SCH_RAY_NONFINITE | SCH_RAY_TURNED)))
+  /* ddev: the step's part across the beam, w / n, summed apart from x so that the sideways
+   * displacement keeps its digits next to coordinates of order one */
+  sch_v3 xn, dw, ddev;
+  float dopl;
+  if (P->integrator == SCH_STRAIGHT)
+  {
+    xn = sch_axpy(ds, d0, W->x);
+    dw = sch_scale(W->s.g, ds);
+    ddev = sch_make(0.0f, 0.0f, 0.0f);
+    dopl = ds * (W->s.n1 - W->ne1);
+  }
+  else if (P->integrator == SCH_MIDPOINT)
+  {
+    /* half step with the slope at x, full step with the slope at the midpoint */
+    sch_v3 xm = sch_axpy(0.5f * ds * invn, v, W->x);
+    sch_v3 vm = sch_axpy(0.5f * ds, W->s.g, v);
+    sch_sample sm = sch_sample_field(field, P, xm);
+    W->samples += 1.0f;
+    xn = sch_axpy(ds / (1.0f + sm.n1), vm, W->x);
+    dw = sch_scale(sm.g, ds);
+    ddev = sch_scale(sch_axpy(0.5f * ds, W->s.g, W->w), ds / (1.0f + sm.n1));
+    dopl = ds * (sm.n1 - W->ne1);
+  }
+  else if (P->integrator == SCH_RK4)
+  {
+    /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
+    sch_v3 k1x = sch_scale(v, invn);
+    sch_sample sa = sch_sample_field(field, P, sch_axpy(0.5f * ds, k1x, W->x));
+    sch_v3 v2 = sch_axpy(0.5f * ds, W->s.g, v);
+    sch_v3 k2x = sch_scale(v2, 1.0f / (1.0f + sa.n1));
+    sch_sample sb = sch_sample_field(field, P, sch_axpy(0.5f * ds, k2x, W->x));
+    sch_v3 v3 = sch_axpy(0.5f * ds, sa.g, v);
+    sch_v3 k3x = sch_scale(v3, 1.0f / (1.0f + sb.n1));
+    sch_sample sc = sch_sample_field(field, P, sch_axpy(ds, k3x, W->x));
+    sch_v3 v4 = sch_axpy(ds, sb.g, v);
+    sch_v3 k4x = sch_scale(v4, 1.0f / (1.0f + sc.n1));
+    W->samples += 3.0f;
+    sch_v3 kx = sch_add(sch_add(k1x, k4x), sch_scale(sch_add(k2x, k3x), 2.0f));
+    sch_v3 kw = sch_add(sch_add(W->s.g, sc.g), sch_scale(sch_add(sa.g, sb.g), 2.0f));
+    xn = sch_axpy(ds / 6.0f, kx, W->x);
+    dw = sch_scale(kw, ds / 6.0f);
+    /* the same stages with v_i = ne d0 + w_i: only the w_i / n_i parts */
+    sch_v3 d1 = sch_scale(W->w, invn);
+    sch_v3 d2 = sch_scale(sch_axpy(0.5f * ds, W->s.g, W->w), 1.0f / (1.0f + sa.n1));
+    sch_v3 d3 = sch_scale(sch_axpy(0.5f * ds, sa.g, W->w), 1.0f / (1.0f + sb.n1));
+    sch_v3 d4 = sch_scale(sch_axpy(ds, sb.g, W->w), 1.0f / (1.0f + sc.n1));
+    ddev = sch_scale(sch_add(sch_add(d1, d4), sch_scale(sch_add(d2, d3), 2.0f)), ds / 6.0f);
+    dopl = ds / 6.0f * (W->s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1) - 6.0f * W->ne1);
+  }
+  else
+  {
+    /* the paper's explicit Euler: x += ds v / n, v += ds grad n */
+    xn = sch_axpy(ds * invn, v, W->x);
+    dw = sch_scale(W->s.g, ds);
+    ddev = sch_scale(W->w, ds * invn);
+    dopl = ds * (W->s.n1 - W->ne1);
+  }
+  sch_v3 dx = sch_add(xn, sch_scale(W->x, -1.0f));
+  W->x = xn;
+  W->dev = sch_add(W->dev, ddev);
+  W->w = sch_add(W->w, dw);
+  W->opl += dopl;
+  W->path += ds;
+  /* a NaN fails every comparison: it leaves the loop through sch_inside and is caught below */
+  if (W->ne + sch_dot(d0, W->w) <= 0.0f)
+  {
+    W->flags |= SCH_RAY_TURNED;
+    return 0;
+  }
+  if (!sch_inside(P, W->x))
+    return 0;
+  sch_sample sn = sch_sample_field(field, P, W->x);
+  W->samples += 1.0f;
+  /* a step longer than a feature: over a step of more than one cell, the index changed in a way
+   * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
+   * cannot jump over anything: trilinear data has no structure finer than a cell. */
+  if (P->integrator != SCH_STRAIGHT && (ds > P->cellStep || P->useLevels))
+  {
+    float act = sn.n1 - W->s.n1;
+    float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(W->s.g, sn.g), dx));
+    float cells = sch_fabs(dx.x) * P->isx;
+    cells = sch_fabs(dx.y) * P->isy > cells ? sch_fabs(dx.y) * P->isy : cells;
+    cells = sch_fabs(dx.z) * P->isz > cells ? sch_fabs(dx.z) * P->isz : cells;
+    if (cells > 1.0f)
+    {
+      W->mismatch = mis > W->mismatch ? mis : W->mismatch;
+      if (mis > 0.5f * sch_fabs(act) && mis > P->featureTol)
+        W->flags |= SCH_RAY_UNDERRESOLVED;
+    }
+  }
+  if (P->keepInvariant)
+  {
+    /* rescale v to |v| = n(x); written so that no term near 1 is subtracted */
+    float gap = sch_invariant_gap(W->ne1, sn.n1, d0, W->w);
+    sch_v3 vv = sch_axpy(W->ne, d0, W->w);
+    float scale = -gap / sch_sqrt(sch_dot(vv, vv)); /* scale - 1 */
+    W->w = sch_add(sch_scale(W->w, 1.0f + scale), sch_scale(d0, W->ne * scale));
+  }
+  W->s = sn;
+  W->it++;
+  return 1;
+}
+
+/* After the last step: the final flags and the record of the march. */
+SCH_FN void sch_walk_end(SCH_GLOBAL const float* field,
+  const sch_params* P,
+  sch_walk* W,
+  sch_ray* R)
+{
+  if (!(sch_isfinite(W->x.x) && sch_isfinite(W->x.y) && sch_isfinite(W->x.z) &&
+        sch_isfinite(W->w.x) && sch_isfinite(W->w.y) && sch_isfinite(W->w.z)))
+    W->flags |= SCH_RAY_NONFINITE;
+  if (W->it >= P->maxSteps)
+    W->flags |= SCH_RAY_MAXSTEPS;
+  else if (!(W->flags & (SCH_RAY_NONFINITE | SCH_RAY_TURNED)))
   {
     /* the index where the ray left, for the invariant |v| = n */
-    s = sch_sample_field(field, P, x);
+    W->s = sch_sample_field(field, P, W->x);
   }
-  R->x = x;
-  R->dev = dev;
-  R->w = w;
-  R->ne1 = ne1;
-  R->n1 = s.n1;
-  R->opl = opl;
-  R->path = path;
-  R->samples = samples;
-  R->steps = (float)it;
-  R->mismatch = mismatch;
-  R->flags = flags;
+  R->x = W->x;
+  R->dev = W->dev;
+  R->w = W->w;
+  R->ne1 = W->ne1;
+  R->n1 = W->s.n1;
+  R->opl = W->opl;
+  R->path = W->path;
+  R->samples = W->samples;
+  R->steps = (float)W->it;
+  R->mismatch = W->mismatch;
+  R->flags = W->flags;
+}
+
+/* March from x (on the box) with base step `base` until the ray leaves the box. */
+SCH_FN void sch_march(SCH_GLOBAL const float* field,
+  SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P,
+  sch_v3 x,
+  float base,
+  sch_ray* R)
+{
+  sch_walk W;
+  sch_walk_begin(field, P, x, base, &W);
+  while (sch_walk_step(field, levels, P, &W))
+    ;
+  sch_walk_end(field, P, &W, R);
 }
 
 /* Deflection of a marched ray on the film axes: (w . r, w . t) / |v|. */
@@ -537,32 +604,57 @@ SCH_FN void sch_deflection(const sch_params* P, const sch_ray* R, float* ex, flo
   *ey = sch_dot(R->w, sch_make(P->tx, P->ty, P->tz)) / vn;
 }
 
-/* Trace one ray that starts on the emission plane at film coordinates (a, b) and write its record. */
-SCH_FN void sch_trace(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar* levels,
-  const sch_params* P, float a, float b, float* rec)
+/* Where the ray of film point (a, b) starts (o, on the emission plane) and enters the box (entry);
+ * s1 is where the straight line would leave it. Returns 0 if the ray misses the box. */
+SCH_FN int sch_entry(const sch_params* P, float a, float b, sch_v3* o, sch_v3* entry, float* s1)
 {
+  sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
+  *o = sch_add(sch_add(sch_scale(sch_make(P->rx, P->ry, P->rz), a),
+                 sch_scale(sch_make(P->tx, P->ty, P->tz), b)),
+    sch_scale(d0, P->sFront));
+  float s0;
+  if (!sch_clip_box(P, *o, d0, &s0, s1) || *s1 <= 0.0f)
+  {
+    *entry = *o;
+    return 0;
+  }
+  *entry = sch_axpy(s0 > 0.0f ? s0 : 0.0f, d0, *o);
+  return 1;
+}
+
+/* A ray that missed the box: straight, undeflected. */
+SCH_FN void sch_missed(sch_v3 o, sch_ray* R)
+{
+  R->x = o;
+  R->w = sch_make(0.0f, 0.0f, 0.0f);
+  R->dev = sch_make(0.0f, 0.0f, 0.0f);
+  R->ne1 = R->n1 = R->opl = R->path = R->samples = R->steps = R->mismatch = 0.0f;
+  R->flags = SCH_RAY_MISSED;
+}
+
+/* The record of a marched (or missed) ray: side exits, the step-doubling estimate, deflection,
+ * and the flight to the film. */
+SCH_FN void sch_record(SCH_GLOBAL const float* field,
+  SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P,
+  float a,
+  float b,
+  sch_v3 o,
+  sch_v3 entry,
+  float s1,
+  sch_ray* Rp,
+  float* rec)
+{
+  sch_ray R = *Rp;
   sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
   sch_v3 ra = sch_make(P->rx, P->ry, P->rz);
   sch_v3 ta = sch_make(P->tx, P->ty, P->tz);
-  sch_v3 o = sch_add(sch_add(sch_scale(ra, a), sch_scale(ta, b)), sch_scale(d0, P->sFront));
-  sch_ray R;
-  R.x = o;
-  R.w = sch_make(0.0f, 0.0f, 0.0f);
-  R.dev = sch_make(0.0f, 0.0f, 0.0f);
-  R.ne1 = R.n1 = R.opl = R.path = R.samples = R.steps = R.mismatch = 0.0f;
-  R.flags = 0u;
   float err = 0.0f;
-  float s0, s1;
-  if (!sch_clip_box(P, o, d0, &s0, &s1) || s1 <= 0.0f)
+  if (!(R.flags & SCH_RAY_MISSED))
   {
-    R.flags = SCH_RAY_MISSED;
-  }
-  else
-  {
-    sch_v3 entry = sch_axpy(s0 > 0.0f ? s0 : 0.0f, d0, o);
-    sch_march(field, levels, P, entry, P->step, &R);
     /* it left through a side if the exit point is not beyond the back of the box */
-    if (!(R.flags & SCH_RAY_LOST) && sch_dot(sch_axpy(-s1, d0, sch_axpy(-1.0f, o, R.x)), d0) < -P->step)
+    if (!(R.flags & SCH_RAY_LOST) &&
+      sch_dot(sch_axpy(-s1, d0, sch_axpy(-1.0f, o, R.x)), d0) < -P->step)
       R.flags |= SCH_RAY_SIDE;
     if (P->estimate)
     {
@@ -572,7 +664,8 @@ SCH_FN void sch_trace(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
       float ex1, ey1, ex2, ey2;
       sch_deflection(P, &R, &ex1, &ey1);
       sch_deflection(P, &R2, &ex2, &ey2);
-      float order = P->integrator == SCH_RK4 ? 15.0f : (P->integrator == SCH_MIDPOINT ? 3.0f : 1.0f);
+      float order =
+        P->integrator == SCH_RK4 ? 15.0f : (P->integrator == SCH_MIDPOINT ? 3.0f : 1.0f);
       err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
       R.samples += R2.samples;
     }
@@ -607,6 +700,83 @@ SCH_FN void sch_trace(SCH_GLOBAL const float* field, SCH_GLOBAL const sch_uchar*
   rec[SCH_REC_PATH] = R.path;
   rec[SCH_REC_MISMATCH] = R.mismatch;
   rec[SCH_REC_STEPS] = R.steps;
+}
+
+/* Trace one ray that starts on the emission plane at film coordinates (a, b) and write its record. */
+SCH_FN void sch_trace(SCH_GLOBAL const float* field,
+  SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P,
+  float a,
+  float b,
+  float* rec)
+{
+  sch_v3 o, entry;
+  float s1 = 0.0f;
+  sch_ray R;
+  if (sch_entry(P, a, b, &o, &entry, &s1))
+    sch_march(field, levels, P, entry, P->step, &R);
+  else
+    sch_missed(o, &R);
+  sch_record(field, levels, P, a, b, o, entry, s1, &R, rec);
+}
+
+#ifndef SCH_PACKET
+#define SCH_PACKET 4
+#endif
+
+/* Trace `count` (at most SCH_PACKET) rays of a pass, through pixels pix0, pix0 + stride, ...,
+ * advancing them in turn one step at a time: each ray's steps depend on each other, the rays do
+ * not, so the memory reads of several rays are in flight together. The same arithmetic per ray
+ * as sch_trace: the records are identical. */
+SCH_FN void sch_trace_packet(SCH_GLOBAL const float* field,
+  SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P,
+  int pix0,
+  int stride,
+  int count,
+  float* rec)
+{
+  sch_walk W[SCH_PACKET];
+  sch_v3 O[SCH_PACKET], E[SCH_PACKET];
+  float A[SCH_PACKET], B[SCH_PACKET], S1[SCH_PACKET];
+  int hit[SCH_PACKET], live[SCH_PACKET];
+  int r, any = 0;
+  for (r = 0; r < SCH_PACKET; ++r)
+  {
+    live[r] = 0;
+    hit[r] = 0;
+    if (r < count)
+    {
+      sch_emit(P, pix0 + r * stride, &A[r], &B[r]);
+      S1[r] = 0.0f;
+      hit[r] = sch_entry(P, A[r], B[r], &O[r], &E[r], &S1[r]);
+      if (hit[r])
+      {
+        sch_walk_begin(field, P, E[r], P->step, &W[r]);
+        live[r] = 1;
+        any = 1;
+      }
+    }
+  }
+  while (any)
+  {
+    any = 0;
+    for (r = 0; r < SCH_PACKET; ++r)
+      if (live[r])
+      {
+        live[r] = sch_walk_step(field, levels, P, &W[r]);
+        any |= live[r];
+      }
+  }
+  for (r = 0; r < count && r < SCH_PACKET; ++r)
+  {
+    sch_ray R;
+    if (hit[r])
+      sch_walk_end(field, P, &W[r], &R);
+    else
+      sch_missed(O[r], &R);
+    sch_record(field, levels, P, A[r], B[r], O[r], E[r], S1[r], &R, rec + r * SCH_RECORD);
+  }
 }
 
 /* ---------------------------------------------------------------- cutoffs */
@@ -644,12 +814,42 @@ SCH_FN void sch_hue_rgb(float ex, float ey, float* r, float* g, float* b)
   int i = (int)h;
   float q = 1.0f - f;
   float R, G, B;
-  if (i == 0) { R = 1.0f; G = f; B = 0.0f; }
-  else if (i == 1) { R = q; G = 1.0f; B = 0.0f; }
-  else if (i == 2) { R = 0.0f; G = 1.0f; B = f; }
-  else if (i == 3) { R = 0.0f; G = q; B = 1.0f; }
-  else if (i == 4) { R = f; G = 0.0f; B = 1.0f; }
-  else { R = 1.0f; G = 0.0f; B = q; }
+  if (i == 0)
+  {
+    R = 1.0f;
+    G = f;
+    B = 0.0f;
+  }
+  else if (i == 1)
+  {
+    R = q;
+    G = 1.0f;
+    B = 0.0f;
+  }
+  else if (i == 2)
+  {
+    R = 0.0f;
+    G = 1.0f;
+    B = f;
+  }
+  else if (i == 3)
+  {
+    R = 0.0f;
+    G = q;
+    B = 1.0f;
+  }
+  else if (i == 4)
+  {
+    R = f;
+    G = 0.0f;
+    B = 1.0f;
+  }
+  else
+  {
+    R = 1.0f;
+    G = 0.0f;
+    B = q;
+  }
   *r = R;
   *g = G;
   *b = B;
@@ -675,7 +875,8 @@ SCH_FN float sch_bos_pattern(float a, float b, float period, int kind, sch_uint 
   for (dj = -1; dj <= 1; ++dj)
     for (di = -1; di <= 1; ++di)
     {
-      sch_uint h = sch_hash(seed ^ sch_hash((sch_uint)(ci + di) * 73856093u ^ (sch_uint)(cj + dj) * 19349663u));
+      sch_uint h = sch_hash(
+        seed ^ sch_hash((sch_uint)(ci + di) * 73856093u ^ (sch_uint)(cj + dj) * 19349663u));
       float cx = (float)(ci + di) + 0.15f + 0.7f * sch_unit(h);
       float cy = (float)(cj + dj) + 0.15f + 0.7f * sch_unit(sch_hash(h ^ 0x5bd1e995u));
       float r2 = (u - cx) * (u - cx) + (v - cy) * (v - cy);
