@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenScenes.h"
 #include "SchlierenEngine.h"
+#include "SchlierenIndexModels.h"
 
 #include <cmath>
 #include <sstream>
@@ -8,8 +9,55 @@
 namespace schlieren
 {
 
+ScenePointValues ScenePoint(Scene scene, const SceneParameters& p, double x, double y, double z)
+{
+  ScenePointValues v;
+  const double rx = x - p.Center[0], ry = y - p.Center[1], rz = z - p.Center[2];
+  if (scene == Scene::HeliumPlume)
+  {
+    // distance above the nozzle, and the jet's widening and decay
+    const double h = ry + p.Radius;
+    double f = 0;
+    if (h >= 0)
+    {
+      const double spread = 1.0 + h / (4.0 * p.Radius);
+      const double b = p.Radius * spread * (1.0 + 0.15 * std::sin(2.5 * h / p.Radius));
+      f = p.Amplitude / spread * std::exp(-(rx * rx + rz * rz) / (b * b));
+    }
+    else
+    {
+      const double b = p.Radius;
+      f = p.Amplitude * std::exp(-(rx * rx + rz * rz) / (b * b)) * std::exp(-h * h / (0.25 * b * b));
+    }
+    const Gas he = Gas::Helium;
+    const double T = 293.15, P = 101325.0;
+    const double K = MixtureConstant(&he, &f, 1, Gas::Air);
+    const double M = MixtureMolarMass(&he, &f, 1, Gas::Air);
+    v.MixtureFraction = f;
+    v.Density = IdealGasDensity(P, T, M);
+    v.NMinus1 = K * v.Density;
+    return v;
+  }
+  if (scene == Scene::BlastWave)
+  {
+    const double r = std::sqrt(rx * rx + ry * ry + rz * rz);
+    const double R = p.Radius * std::pow(std::max(p.Time, 1e-6), 0.4);
+    // inside: 6 rho0 (r/R)^7.5 (Sedov-like), outside rho0, joined over the shock thickness
+    const double inner = 6.0 * std::pow(std::min(r / R, 1.0), 7.5);
+    const double sw = 0.5 * (1.0 - std::tanh((r - R) / p.Width));
+    v.Density = p.Density * (1.0 + (inner - 1.0) * sw);
+    v.NMinus1 = GladstoneDaleAir * v.Density;
+    return v;
+  }
+  v.NMinus1 = SceneIndex(scene, p, x, y, z);
+  v.Density = v.NMinus1 / GladstoneDaleAir; // air with this index (the shock's is its real density)
+  return v;
+}
+
 double SceneIndex(Scene scene, const SceneParameters& p, double x, double y, double z)
 {
+  if (scene == Scene::HeliumPlume || scene == Scene::BlastWave)
+    return ScenePoint(scene, p, x, y, z).NMinus1;
   const double rx = x - p.Center[0], ry = y - p.Center[1], rz = z - p.Center[2];
   const double r2 = rx * rx + ry * ry + rz * rz;
   switch (scene)
@@ -34,6 +82,8 @@ double SceneIndex(Scene scene, const SceneParameters& p, double x, double y, dou
       const double rho = p.Density * (1.0 + (r - 1.0) * 0.5 * (1.0 + std::tanh(rx / p.Width)));
       return GladstoneDaleAir * rho;
     }
+    default:
+      break;
   }
   return 0.0;
 }
@@ -49,8 +99,13 @@ double NormalShockPressureRatio(double m, double g)
 }
 
 void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const double origin[3],
-  const double spacing[3], float* nMinus1, float* density)
+  const double spacing[3], float* nMinus1, float* density, float* mixtureFraction)
 {
+  if (scene == Scene::HeliumPlume && (!(p.Radius > 0) || !(p.Amplitude >= 0 && p.Amplitude <= 1)))
+    throw Error("HeliumPlume: Radius must be positive and Amplitude (the helium mass fraction at "
+                "the nozzle) between 0 and 1.");
+  if (scene == Scene::BlastWave && (!(p.Radius > 0) || !(p.Width > 0) || !(p.Density > 0)))
+    throw Error("BlastWave: Radius, Width and Density must be positive.");
   if (scene == Scene::GaussianSphere && !(p.Width > 0))
     throw Error("GaussianSphere: Width must be positive.");
   if (scene == Scene::LuneburgLens && !(p.Radius > 0))
@@ -67,7 +122,8 @@ void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const d
       for (int i = 0; i < dims[0]; ++i, ++idx)
       {
         const double x = origin[0] + i * spacing[0];
-        const double n1 = SceneIndex(scene, p, x, y, z);
+        const ScenePointValues pv = ScenePoint(scene, p, x, y, z);
+        const double n1 = pv.NMinus1;
         if (!std::isfinite(n1) || n1 <= -1.0)
         {
           std::ostringstream msg;
@@ -77,7 +133,9 @@ void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const d
         }
         nMinus1[idx] = static_cast<float>(n1);
         if (density)
-          density[idx] = static_cast<float>(n1 / GladstoneDaleAir);
+          density[idx] = static_cast<float>(pv.Density);
+        if (mixtureFraction)
+          mixtureFraction[idx] = static_cast<float>(pv.MixtureFraction);
       }
     }
   }
@@ -97,6 +155,10 @@ const char* SceneName(Scene scene)
       return "LinearGradient";
     case Scene::NormalShock:
       return "NormalShock";
+    case Scene::HeliumPlume:
+      return "HeliumPlume";
+    case Scene::BlastWave:
+      return "BlastWave";
   }
   return "?";
 }

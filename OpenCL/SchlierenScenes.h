@@ -22,9 +22,19 @@ enum class Scene
   GaussianSphere = 1, ///< n = 1 + Amplitude exp(-r^2 / Width^2), r from Center
   LuneburgLens = 2,   ///< n = sqrt(2 - r^2 / Radius^2) for r < Radius, 1 outside
   LinearGradient = 3, ///< n^2 = GradientA + GradientB (y - Center[1])
-  NormalShock = 4     ///< a plane normal shock in air at x = Center[0], normal along x: upstream
+  NormalShock = 4,    ///< a plane normal shock in air at x = Center[0], normal along x: upstream
                       ///< density Density (x < Center[0]), downstream Density * rho2/rho1 for Mach
                       ///< (gamma = 1.4), a tanh profile of thickness Width; n - 1 = K_air rho
+  HeliumPlume = 5,    ///< a round helium jet rising along +y into still air at 293.15 K, 1 atm (the
+                      ///< paper's combustion-like case): helium mass fraction Amplitude on the axis
+                      ///< at the nozzle (y = Center[1] - Radius), Gaussian across with half-width
+                      ///< Radius (1 + y'/ (4 Radius)), decaying as 1 / (1 + y' / (4 Radius)), with a
+                      ///< slow puffing ripple; n - 1 by the mass-weighted Gladstone-Dale mixture at
+                      ///< the ideal-gas density (SchlierenIndexModels)
+  BlastWave = 6       ///< a spherical blast in air about Center: Sedov-Taylor radius
+                      ///< R = Radius (Time)^(2/5), a strong-shock density jump (6 rho0 for
+                      ///< gamma = 1.4) of thickness Width behind which the density falls as
+                      ///< (r/R)^7.5; rho0 = Density; for time series (Time > 0)
 };
 
 /** Normal-shock density ratio rho2/rho1 = (g+1) M^2 / ((g-1) M^2 + 2). */
@@ -41,16 +51,28 @@ struct SceneParameters
   double GradientA = 1.0;
   double GradientB = 0.01;
   double Mach = 2.0;      ///< NormalShock
-  double Density = 1.2;   ///< NormalShock: upstream density, kg/m^3
+  double Density = 1.2;   ///< NormalShock, BlastWave: ambient density, kg/m^3
+  double Time = 1.0;      ///< BlastWave: time in units of the time the shock takes to reach Radius
 };
+
+/** Everything a scene models at one point. */
+struct ScenePointValues
+{
+  double NMinus1 = 0;
+  double Density = 0;          ///< kg/m^3 (for analytic index scenes: air with that index)
+  double MixtureFraction = 0;  ///< helium mass fraction (HeliumPlume), else 0
+};
+
+/** The fields of a scene at one world point. */
+ScenePointValues ScenePoint(Scene scene, const SceneParameters& p, double x, double y, double z);
 
 /** The index n - 1 of a scene at one world point. */
 double SceneIndex(Scene scene, const SceneParameters& p, double x, double y, double z);
 
-/** Fills n - 1 (and, if `density` is not null, the Gladstone-Dale air density) on a grid.
+/** Fills n - 1 (and, where not null, density and helium mass fraction) on a grid.
  * Throws schlieren::Error on invalid parameters (e.g. n^2 <= 0 somewhere for LinearGradient). */
 void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const double origin[3],
-  const double spacing[3], float* nMinus1, float* density);
+  const double spacing[3], float* nMinus1, float* density, float* mixtureFraction = nullptr);
 
 const char* SceneName(Scene scene);
 

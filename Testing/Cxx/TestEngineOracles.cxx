@@ -267,6 +267,36 @@ void TestLuneburg(bool haveCL)
     CHECK(*it > 100.0, "the focus gathers more than 100 pixels' worth of light");
   }
 }
+// The physical scenes use the index models: their values are those of ORACLES.
+void TestPhysicalScenes()
+{
+  SceneParameters p;
+  p.Radius = 0.1;
+  p.Center[1] = 0;
+  for (double f : { 0.5, 1.0 })
+  {
+    p.Amplitude = f;
+    // on the axis at the nozzle (y = Center - Radius) the helium mass fraction is Amplitude
+    const ScenePointValues v = ScenePoint(Scene::HeliumPlume, p, 0, -0.1, 0);
+    CHECK_NEAR(v.MixtureFraction, f, 1e-12, "helium plume: mass fraction on the nozzle axis");
+    CHECK_NEAR(v.NMinus1, f == 0.5 ? 6.1546e-5 : 3.2513e-5, 5e-9,
+      "helium plume: n - 1 of ORACLES' helium/air mixture at 293.15 K, 101325 Pa");
+  }
+  CHECK_NEAR(ScenePoint(Scene::HeliumPlume, p, 2.0, 0.5, 0).NMinus1, 2.7164e-4, 5e-8,
+    "helium plume: air far from the jet");
+  SceneParameters b;
+  b.Radius = 0.5;
+  b.Width = 1e-3;
+  b.Density = 1.2;
+  b.Time = 1.0;
+  const double out = ScenePoint(Scene::BlastWave, b, 0.51, 0, 0).Density;
+  const double in = ScenePoint(Scene::BlastWave, b, 0.49, 0, 0).Density;
+  CHECK_NEAR(out, 1.2, 1e-6, "blast wave: ambient density outside the shock");
+  CHECK_NEAR(in / 1.2, 6.0 * std::pow(0.98, 7.5), 1e-6, "blast wave: strong-shock jump (gamma = 1.4) behind it");
+  b.Time = 32.0; // R grows as t^(2/5): 32^0.4 = 4
+  CHECK_NEAR(ScenePoint(Scene::BlastWave, b, 1.99, 0, 0).Density / 1.2, 6.0 * std::pow(1.99 / 2.0, 7.5), 1e-6,
+    "blast wave: Sedov-Taylor radius R = Radius t^(2/5)");
+}
 } // namespace
 
 int main()
@@ -276,5 +306,6 @@ int main()
   TestGaussianDeflection(haveCL);
   TestKnifeEdgeImage(haveCL);
   TestLuneburg(haveCL);
+  TestPhysicalScenes();
   return schtest::Finish();
 }
