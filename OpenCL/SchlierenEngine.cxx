@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <thread>
@@ -722,6 +723,9 @@ public:
     }
     std::ostringstream opts;
     opts << "-DSCH_RAYS_PER_ITEM=" << RaysPerItem << " -cl-std=CL1.2";
+    // extra OpenCL build options, for experiments (e.g. -cl-mad-enable)
+    if (const char* extra = std::getenv("SCHLIEREN_CL_OPTIONS"))
+      opts << " " << extra;
     cl_program prog = ocl::GetProgram("SchlierenTrace.cl", EmbeddedKernelSource(), opts.str());
     cl_int err = CL_SUCCESS;
     Kernel = clCreateKernel(prog, "sch_trace_rays", &err);
@@ -866,7 +870,15 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     sums.Resize(film.Size[0], film.Size[1]);
 
   const std::size_t rays = RaysForRank(P);
-  const std::size_t chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), 1 << 16);
+  // chunks of about 8 M samples (~0.1-0.2 s on a CPU): progress and abort are checked between
+  // chunks, so an abort stops the trace within one chunk
+  const double samplesPerRay = std::max(1.0, 2.0 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy +
+                                                 double(P.hz) * P.hz) / P.step *
+      (s.Method == Integrator::RK4 ? 4 : (s.Method == Integrator::Midpoint ? 2 : 1)));
+  std::size_t chunk = 4096;
+  while (chunk < (1u << 16) && (2 * chunk) * samplesPerRay <= 8e6)
+    chunk *= 2;
+  chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
   std::unique_ptr<OpenCLTracer> cl = OpenBackend(volume, s, chunk, used, device, warn);
   SetFeatureTolerance(P, volume);
