@@ -117,6 +117,8 @@ int vtkRefractiveScene::RequestData(
   }
   p.GradientA = this->GradientA;
   p.GradientB = this->GradientB;
+  p.Mach = this->Mach;
+  p.Density = this->Density;
   try
   {
     schlieren::FillScene(static_cast<schlieren::Scene>(this->Scene), p, dims, pieceOrigin, spacing,
@@ -151,4 +153,6 @@ void vtkRefractiveScene::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "GradientA: " << this->GradientA << "\n";
   os << indent << "GradientB: " << this->GradientB << "\n";
+  os << indent << "Mach: " << this->Mach << "\n";
+  os << indent << "Density: " << this->Density << " kg/m^3\n";
 }

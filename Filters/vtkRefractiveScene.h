@@ -4,9 +4,9 @@
  * @brief   analytic refractive-index scenes with known answers, on an image grid
  *
  * vtkRefractiveScene is a source that fills a regular grid with the refractive index of an analytic
- * scene (schlieren::FillScene): a uniform medium, a weak Gaussian sphere, a Luneburg lens or a
- * linear gradient. These scenes have closed-form ray paths and deflections, which makes them the
- * known answers of the tests and a quick demo of the plugin.
+ * scene (schlieren::FillScene): a uniform medium, a weak Gaussian sphere, a Luneburg lens, a
+ * linear gradient or a plane normal shock in air. These scenes have closed-form ray paths and
+ * deflections, which makes them the known answers of the tests and a quick demo of the plugin.
  *
  * The output is a vtkImageData with the point arrays `n_minus_1` (float, n - 1, the active scalars)
  * and `density` (float, kg/m^3: the density of air that has this index by Gladstone-Dale,
@@ -17,7 +17,11 @@
  * Amplitude (n - 1 at the centre of a Gaussian sphere, or everywhere for the uniform scene; default
  * 1e-4), Width (the Gaussian's 1/e radius, world units, default 0.25), Radius (of the Luneburg lens,
  * default 1), Center (default 0 0 0), GradientA and GradientB (the linear medium
- * n^2 = GradientA + GradientB (y - Center_y); defaults 1 and 0.01 per world unit).
+ * n^2 = GradientA + GradientB (y - Center_y); defaults 1 and 0.01 per world unit), Mach (default
+ * 2) and Density (kg/m^3, default 1.2) for the normal shock: a plane shock at x = Center_x with its
+ * normal along x, upstream density Density (x < Center_x) and downstream Density rho2/rho1,
+ * rho2/rho1 = (g + 1) M^2 / ((g - 1) M^2 + 2) with g = 1.4 (2.667 at Mach 2), joined by
+ * 0.5 (1 + tanh((x - Center_x) / Width)); n - 1 = 2.256e-4 m^3/kg rho.
  *
  * The source produces sub-extents: under MPI each rank fills only its own piece.
  *
@@ -45,19 +49,21 @@ public:
     UNIFORM = 0,
     GAUSSIAN_SPHERE = 1,
     LUNEBURG_LENS = 2,
-    LINEAR_GRADIENT = 3
+    LINEAR_GRADIENT = 3,
+    NORMAL_SHOCK = 4
   };
 
   ///@{
   /**
    * The scene to fill (a SceneType). Default GAUSSIAN_SPHERE.
    */
-  vtkSetClampMacro(Scene, int, UNIFORM, LINEAR_GRADIENT);
+  vtkSetClampMacro(Scene, int, UNIFORM, NORMAL_SHOCK);
   vtkGetMacro(Scene, int);
   void SetSceneToUniform() { this->SetScene(UNIFORM); }
   void SetSceneToGaussianSphere() { this->SetScene(GAUSSIAN_SPHERE); }
   void SetSceneToLuneburgLens() { this->SetScene(LUNEBURG_LENS); }
   void SetSceneToLinearGradient() { this->SetScene(LINEAR_GRADIENT); }
+  void SetSceneToNormalShock() { this->SetScene(NORMAL_SHOCK); }
   ///@}
 
   ///@{
@@ -88,7 +94,8 @@ public:
 
   ///@{
   /**
-   * The Gaussian sphere's 1/e radius, world units (> 0). Default 0.25.
+   * The Gaussian sphere's 1/e radius, or the normal shock's tanh thickness, world units (> 0).
+   * Default 0.25.
    */
   vtkSetClampMacro(Width, double, 1e-12, VTK_DOUBLE_MAX);
   vtkGetMacro(Width, double);
@@ -121,6 +128,22 @@ public:
   vtkGetMacro(GradientB, double);
   ///@}
 
+  ///@{
+  /**
+   * NORMAL_SHOCK: the upstream Mach number (>= 1; clamped to [1, 100]). Default 2.
+   */
+  vtkSetClampMacro(Mach, double, 1.0, 100.0);
+  vtkGetMacro(Mach, double);
+  ///@}
+
+  ///@{
+  /**
+   * NORMAL_SHOCK: the upstream density, kg/m^3 (> 0; clamped to [1e-12, 1e6]). Default 1.2.
+   */
+  vtkSetClampMacro(Density, double, 1e-12, 1e6);
+  vtkGetMacro(Density, double);
+  ///@}
+
 protected:
   vtkRefractiveScene();
   ~vtkRefractiveScene() override;
@@ -142,6 +165,8 @@ protected:
   double Center[3] = { 0, 0, 0 };
   double GradientA = 1.0;
   double GradientB = 0.01;
+  double Mach = 2.0;
+  double Density = 1.2;
 
 private:
   vtkRefractiveScene(const vtkRefractiveScene&) = delete;

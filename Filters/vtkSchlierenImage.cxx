@@ -9,17 +9,20 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkLogger.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include "SchlierenEngine.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -147,10 +150,22 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.Passes = self->GetPasses();
   s.StepSize = self->GetStepSize();
   s.Method = static_cast<schlieren::Integrator>(self->GetIntegrator());
+  s.Tolerance = self->GetTolerance();
+  s.KeepInvariant = self->GetKeepInvariant();
+  s.EstimateError = self->GetEstimateError();
+  s.UseOctree = self->GetUseOctree();
   s.Mode = static_cast<schlieren::Cutoff>(self->GetCutoff());
   s.KnifeAngle = self->GetKnifeAngle();
   s.CutoffScale = self->GetCutoffScale();
   s.FilmDistance = self->GetFilmDistance();
+  s.Wavelength = self->GetWavelength();
+  s.ReferenceTilt = self->GetReferenceTilt();
+  s.BackgroundDistance = self->GetBackgroundDistance();
+  s.BackgroundPattern = self->GetBackgroundPattern();
+  s.BackgroundPeriod = self->GetBackgroundPeriod();
+  s.Filter = static_cast<schlieren::FilmFilter>(self->GetFilter());
+  s.FilterWidth = self->GetFilterWidth();
+  s.RussianRoulette = self->GetRussianRoulette();
   s.Jitter = self->GetJitter();
   s.Seed = static_cast<std::uint32_t>(self->GetSeed());
   switch (self->GetBackend())
@@ -167,6 +182,159 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   }
   return s;
 }
+
+/** What the input says about its octree (vtkRefractionOctree's array and field data). */
+struct OctreeInfo
+{
+  bool Present = false;      ///< the point array `octree_level` is there
+  bool HasTolerance = false; ///< and the field data `octree_tolerance`
+  double Tolerance = 0.0;
+  int MaxLevel = 7;
+};
+
+/** A number of the field data, or `fallback`. */
+double FieldNumber(vtkDataSet* ds, const char* name, double fallback, bool* found = nullptr)
+{
+  vtkDataArray* a = ds->GetFieldData() ? ds->GetFieldData()->GetArray(name) : nullptr;
+  const bool ok = a && a->GetNumberOfTuples() > 0 && a->GetNumberOfComponents() == 1 &&
+    std::isfinite(a->GetComponent(0, 0));
+  if (found)
+  {
+    *found = ok;
+  }
+  return ok ? a->GetComponent(0, 0) : fallback;
+}
+
+/** The piece's octree levels (as bytes) and what its field data says about them. */
+OctreeInfo ReadOctree(vtkImageData* input, std::vector<unsigned char>& levels)
+{
+  OctreeInfo info;
+  vtkDataArray* array = input->GetPointData()->GetArray("octree_level");
+  if (!array || array->GetNumberOfComponents() != 1 ||
+    array->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    return info;
+  }
+  info.Present = true;
+  levels.resize(static_cast<std::size_t>(array->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    const double v = array->GetComponent(i, 0);
+    levels[i] = static_cast<unsigned char>(std::max(0.0, std::min(10.0, v)));
+  }
+  info.Tolerance = FieldNumber(input, "octree_tolerance", 0.0, &info.HasTolerance);
+  info.HasTolerance = info.HasTolerance && info.Tolerance >= 0;
+  info.MaxLevel = static_cast<int>(FieldNumber(input, "octree_max_level", 7.0));
+  return info;
+}
+
+/** A float point array of `pixels` tuples from an engine image, with component names. */
+vtkSmartPointer<vtkFloatArray> FloatArray(const char* name, const std::vector<float>& values,
+  int components, vtkIdType pixels, const char* c0 = nullptr, const char* c1 = nullptr,
+  const char* c2 = nullptr)
+{
+  auto a = vtkSmartPointer<vtkFloatArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  const char* names[3] = { c0, c1, c2 };
+  for (int c = 0; c < components && c < 3; ++c)
+  {
+    if (names[c])
+    {
+      a->SetComponentName(c, names[c]);
+    }
+  }
+  a->SetNumberOfTuples(pixels);
+  std::copy(values.begin(), values.begin() + static_cast<std::size_t>(components) * pixels,
+    a->GetPointer(0));
+  return a;
+}
+
+/**
+ * Resolves Integrator Auto (settings.Method) into the integrator and step it chooses; other
+ * integrators come back unchanged. Rank 0 resolves (its pilot traces the same rays as every other
+ * rank would; doing it once and broadcasting the choice makes every rank trace with the same
+ * setting even if their backends were to round differently) and every rank adopts its choice.
+ * Collective under MPI. Returns false (with an error reported) if Auto failed.
+ */
+bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
+  schlieren::TraceSettings& settings, schlieren::AutoChoice& choice,
+  vtkMultiProcessController* controller, int ranks, int rank)
+{
+  if (settings.Method != schlieren::Integrator::Auto)
+  {
+    choice = schlieren::AutoChoice();
+    choice.Method = settings.Method;
+    choice.StepSize = settings.StepSize;
+    return true;
+  }
+  std::string error;
+  // ok, method, step, measured error, expected error, landing error, samples per ray,
+  // tolerance, met
+  std::vector<double> numbers(9, 0.0);
+  if (rank == 0)
+  {
+    try
+    {
+      schlieren::TraceSettings pilot = settings;
+      pilot.RankIndex = 0;
+      pilot.RankCount = 1;
+      const schlieren::TraceSettings chosen = schlieren::ResolveAuto(volume, pilot, &choice);
+      numbers = { 1.0, double(static_cast<int>(chosen.Method)), chosen.StepSize,
+        chosen.AutoMeasuredError, choice.ExpectedError, choice.ExpectedLandingError,
+        choice.SamplesPerRay, choice.Tolerance, choice.Met ? 1.0 : 0.0 };
+    }
+    catch (const schlieren::Error& e)
+    {
+      error = e.what();
+      numbers.assign(9, 0.0);
+    }
+  }
+  std::string text = error.empty() ? choice.Report : error;
+  if (ranks > 1)
+  {
+    controller->Broadcast(numbers.data(), static_cast<vtkIdType>(numbers.size()), 0);
+    vtkIdType length = static_cast<vtkIdType>(text.size());
+    controller->Broadcast(&length, 1, 0);
+    std::vector<char> chars(text.begin(), text.end());
+    chars.resize(static_cast<std::size_t>(length) + 1, '\0');
+    controller->Broadcast(chars.data(), length + 1, 0);
+    text.assign(chars.data(), static_cast<std::size_t>(length));
+  }
+  if (numbers[0] != 1.0)
+  {
+    if (rank == 0)
+    {
+      vtkErrorWithObjectMacro(self, << text);
+    }
+    else
+    {
+      vtkErrorWithObjectMacro(self, "Integrator Auto failed on rank 0 (see its error); no image.");
+    }
+    return false;
+  }
+  settings.Method = static_cast<schlieren::Integrator>(static_cast<int>(numbers[1]));
+  settings.StepSize = numbers[2];
+  settings.AutoMeasuredError = numbers[3];
+  choice.Method = settings.Method;
+  choice.StepSize = settings.StepSize;
+  choice.ExpectedError = numbers[4];
+  choice.ExpectedLandingError = numbers[5];
+  choice.SamplesPerRay = numbers[6];
+  choice.Tolerance = numbers[7];
+  choice.Met = numbers[8] == 1.0;
+  choice.Report = text;
+  if (rank == 0)
+  {
+    vtkLog(INFO, << "SchlierenImage: " << choice.Report);
+    if (!choice.Met)
+    {
+      vtkWarningWithObjectMacro(self, << choice.Report);
+    }
+  }
+  return true;
+}
+
 }
 
 //------------------------------------------------------------------------------
@@ -278,10 +446,12 @@ int vtkSchlierenImage::RequestData(
     return ok == 1;
   };
 
-  // 1. This rank's piece of n - 1.
+  // 1. This rank's piece of n - 1 (and of the octree levels, where asked for and present).
   std::string problem;
   int ext[6] = { 0, -1, 0, -1, 0, -1 };
   std::vector<float> values;
+  std::vector<unsigned char> pieceLevels;
+  OctreeInfo octree;
   if (!input || !output)
   {
     problem = NotAnImage(vtkDataObject::GetData(inInfo));
@@ -319,6 +489,10 @@ int vtkSchlierenImage::RequestData(
       {
         values[i] = static_cast<float>(array->GetComponent(i, 0));
       }
+      if (this->UseOctree)
+      {
+        octree = ReadOctree(input, pieceLevels);
+      }
     }
   }
   else if (ranks == 1)
@@ -336,7 +510,8 @@ int vtkSchlierenImage::RequestData(
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   const std::size_t total = volume.NumberOfPoints();
   std::vector<float> field;
-  if (ranks == 1 && std::equal(ext, ext + 6, whole))
+  const bool wholePiece = ranks == 1 && std::equal(ext, ext + 6, whole);
+  if (wholePiece)
   {
     field.swap(values);
   }
@@ -376,12 +551,58 @@ int vtkSchlierenImage::RequestData(
       return 0;
     }
   }
+  std::vector<float>().swap(values);
+
+  // 2b. The octree levels of the whole volume. One process with the whole volume: the input's
+  // `octree_level` as it is. Otherwise (MPI pieces, whose levels stop at the piece borders): the
+  // levels of the gathered volume, recomputed at the tolerance the octree filter used.
+  if (ranks > 1)
+  {
+    // every rank the same: the octree if any piece has one, the smallest tolerance, the highest level
+    double local[3] = { octree.Present ? 1.0 : 0.0,
+      octree.Present && octree.HasTolerance ? -octree.Tolerance : -VTK_DOUBLE_MAX,
+      octree.Present ? double(octree.MaxLevel) : -1.0 };
+    double global[3];
+    controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
+    octree.Present = global[0] > 0;
+    octree.HasTolerance = global[1] > -VTK_DOUBLE_MAX;
+    octree.Tolerance = octree.HasTolerance ? -global[1] : 0.0;
+    octree.MaxLevel = static_cast<int>(global[2]);
+  }
+  std::vector<unsigned char> levels;
+  std::string octreeNote;
+  if (this->UseOctree && octree.Present)
+  {
+    if (wholePiece && pieceLevels.size() == total)
+    {
+      levels.swap(pieceLevels);
+    }
+    else if (octree.HasTolerance && volume.Dimensions[0] >= 2 && volume.Dimensions[1] >= 2 &&
+      volume.Dimensions[2] >= 2)
+    {
+      levels.resize(total);
+      // ValidateIndex runs in PackField below; ComputeOctreeLevels itself only reads values
+      schlieren::ComputeOctreeLevels(
+        volume.Dimensions, field.data(), octree.Tolerance, levels.data(), octree.MaxLevel);
+    }
+    else
+    {
+      octreeNote = "The input has the point array 'octree_level' but not the field data "
+                   "'octree_tolerance' it was built for, and the levels of its pieces cannot be "
+                   "joined: tracing without the octree. Apply RefractionOctree right before "
+                   "SchlierenImage.";
+    }
+  }
+  if (!octreeNote.empty() && rank == 0)
+  {
+    vtkWarningMacro(<< octreeNote);
+  }
   this->UpdateProgress(0.05);
 
-  // 3. n - 1 and its gradient, packed; then this rank's share of the photons.
+  // 3. n - 1 and its gradient, packed; Auto resolved (on rank 0, broadcast); then this rank's
+  // share of the photons.
   schlieren::TraceSettings settings = SettingsOf(this);
-  settings.RankIndex = rank;
-  settings.RankCount = ranks;
+  schlieren::AutoChoice choice;
   std::vector<float> packed;
   schlieren::FilmSums sums;
   std::string backendUsed, deviceName, warnings;
@@ -391,6 +612,29 @@ int vtkSchlierenImage::RequestData(
     schlieren::PackField(volume.Dimensions, volume.Spacing, field.data(), packed.data());
     std::vector<float>().swap(field);
     volume.Field = packed.data();
+    if (!levels.empty())
+    {
+      volume.Levels = levels.data();
+      volume.LevelTolerance = octree.HasTolerance ? octree.Tolerance : 0.0;
+    }
+    problem.clear();
+  }
+  catch (const schlieren::Error& e)
+  {
+    problem = e.what();
+  }
+  if (!agree(problem))
+  {
+    return 0;
+  }
+  if (!ResolveIntegrator(this, volume, settings, choice, controller, ranks, rank))
+  {
+    return 0;
+  }
+  settings.RankIndex = rank;
+  settings.RankCount = ranks;
+  try
+  {
     const schlieren::FilmGeometry film = schlieren::MakeFilm(volume, settings);
     sums.Resize(film.Size[0], film.Size[1]);
     schlieren::Accumulate(volume, settings, sums, &backendUsed, &deviceName, &warnings,
@@ -465,15 +709,6 @@ int vtkSchlierenImage::RequestData(
   output->SetOrigin(origin[0], origin[1], 0.0);
 
   const vtkIdType pixels = static_cast<vtkIdType>(nx) * ny;
-  vtkNew<vtkFloatArray> intensity;
-  intensity->SetName("intensity");
-  intensity->SetNumberOfTuples(pixels);
-  vtkNew<vtkFloatArray> deflection;
-  deflection->SetName("deflection");
-  deflection->SetNumberOfComponents(2);
-  deflection->SetComponentName(0, "x");
-  deflection->SetComponentName(1, "y");
-  deflection->SetNumberOfTuples(pixels);
   if (result.Intensity.size() != static_cast<std::size_t>(pixels) ||
     result.Deflection.size() != 2 * static_cast<std::size_t>(pixels))
   {
@@ -481,10 +716,25 @@ int vtkSchlierenImage::RequestData(
     output->Initialize();
     return 0;
   }
-  std::copy(result.Intensity.begin(), result.Intensity.end(), intensity->GetPointer(0));
-  std::copy(result.Deflection.begin(), result.Deflection.end(), deflection->GetPointer(0));
-  output->GetPointData()->SetScalars(intensity);
-  output->GetPointData()->AddArray(deflection);
+  vtkPointData* pd = output->GetPointData();
+  pd->SetScalars(FloatArray("intensity", result.Intensity, 1, pixels));
+  pd->AddArray(FloatArray("deflection", result.Deflection, 2, pixels, "x", "y"));
+  if (!result.RGB.empty())
+  {
+    pd->AddArray(FloatArray("rgb", result.RGB, 3, pixels, "r", "g", "b"));
+  }
+  if (!result.Phase.empty())
+  {
+    pd->AddArray(FloatArray("phase", result.Phase, 1, pixels));
+  }
+  if (!result.Displacement.empty())
+  {
+    pd->AddArray(FloatArray("bos_displacement", result.Displacement, 2, pixels, "x", "y"));
+  }
+  if (!result.ErrorEstimate.empty())
+  {
+    pd->AddArray(FloatArray("error_estimate", result.ErrorEstimate, 1, pixels));
+  }
 
   vtkFieldData* fd = output->GetFieldData();
   auto addNumber = [fd](const char* name, double value) {
@@ -504,9 +754,27 @@ int vtkSchlierenImage::RequestData(
   addString("device", result.DeviceName.empty() ? deviceName : result.DeviceName);
   addNumber("photons", result.Photons);
   addNumber("samples", result.Samples);
+  addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
   addNumber("failed_rays", result.FailedRays);
   addNumber("missed_rays", result.MissedRays);
+  addNumber("underresolved_rays", result.UnderresolvedRays);
+  addNumber("side_rays", result.SideRays);
   addNumber("max_drift", result.MaxDrift);
+  addNumber("max_error", result.MaxError);
+  addString("integrator", schlieren::IntegratorName(settings.Method));
+  addNumber("step_size", settings.StepSize);
+  addNumber("octree", volume.Levels ? 1.0 : 0.0);
+  if (volume.Levels)
+  {
+    addNumber("octree_tolerance", volume.LevelTolerance);
+  }
+  if (this->Integrator == AUTO_INTEGRATOR)
+  {
+    addString("auto_report", choice.Report);
+    addNumber("expected_error", choice.ExpectedError);
+    addNumber("auto_tolerance", choice.Tolerance);
+    addNumber("auto_met", choice.Met ? 1.0 : 0.0);
+  }
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -522,12 +790,30 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Resolution: " << this->Resolution[0] << " " << this->Resolution[1] << "\n";
   os << indent << "Passes: " << this->Passes << "\n";
   os << indent << "StepSize: " << this->StepSize << " voxels\n";
-  os << indent << "Integrator: " << (this->Integrator == MIDPOINT ? "Midpoint" : "Euler") << "\n";
-  os << indent << "Cutoff: " << (this->Cutoff == SHADOWGRAPH ? "Shadowgraph" : "KnifeEdge") << "\n";
+  os << indent << "Integrator: "
+     << schlieren::IntegratorName(static_cast<schlieren::Integrator>(this->Integrator)) << "\n";
+  os << indent << "Tolerance: " << this->Tolerance
+     << (this->Tolerance > 0 ? " rad" : " (automatic: 1 % of the largest deflection)") << "\n";
+  os << indent << "KeepInvariant: " << (this->KeepInvariant ? "On" : "Off") << "\n";
+  os << indent << "EstimateError: " << (this->EstimateError ? "On" : "Off") << "\n";
+  os << indent << "UseOctree: " << (this->UseOctree ? "On" : "Off") << "\n";
+  os << indent << "Cutoff: " << schlieren::CutoffName(static_cast<schlieren::Cutoff>(this->Cutoff))
+     << "\n";
   os << indent << "KnifeAngle: " << this->KnifeAngle << " degrees\n";
   os << indent << "CutoffScale: " << this->CutoffScale << (this->CutoffScale == 0 ? " (automatic)" : "")
      << "\n";
   os << indent << "FilmDistance: " << this->FilmDistance << "\n";
+  os << indent << "Wavelength: " << this->Wavelength << " nm\n";
+  os << indent << "ReferenceTilt: " << this->ReferenceTilt << " fringes per world unit\n";
+  os << indent << "BackgroundDistance: " << this->BackgroundDistance << "\n";
+  os << indent << "BackgroundPattern: " << (this->BackgroundPattern == STRIPES ? "Stripes" : "Dots")
+     << "\n";
+  os << indent << "BackgroundPeriod: " << this->BackgroundPeriod
+     << (this->BackgroundPeriod > 0 ? "" : " (6 pixels)") << "\n";
+  os << indent << "Filter: "
+     << (this->Filter == GAUSSIAN ? "Gaussian" : (this->Filter == CONE ? "Cone" : "None")) << "\n";
+  os << indent << "FilterWidth: " << this->FilterWidth << " pixels\n";
+  os << indent << "RussianRoulette: " << (this->RussianRoulette ? "On" : "Off") << "\n";
   os << indent << "Jitter: " << (this->Jitter ? "On" : "Off") << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Backend: "

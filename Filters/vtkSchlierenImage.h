@@ -7,21 +7,62 @@
  * and traces a collimated beam through it with the schlieren engine (OpenCL, or the C++ build of
  * the same physics). The output is a 2D vtkImageData, the film: its spacing is the pixel size and
  * its origin the centre of pixel (0, 0), both in world units of the film plane (measured from the
- * volume's centre along the film's x = ViewDirection x ViewUp and y = ViewUp axes), with the point
- * arrays `intensity` (float, the active scalars) and `deflection` (float, 2 components: the mean
- * exit-direction change along film x and y, radians), and the field data `cutoff_scale` (the k
- * used), `backend` and `device` (strings), `photons`, `samples` and `failed_rays`.
+ * volume's centre along the film's x = ViewDirection x ViewUp and y = ViewUp axes).
+ *
+ * Point arrays of the output:
+ * - `intensity` (float, the active scalars): the image the cutoff forms;
+ * - `deflection` (float, 2 components): the mean exit-direction change along film x and y, radians;
+ * - `rgb` (float, 3 components in [0, 1]; ColorFilter only): hue from the direction of the
+ *   deflection, value k|e|;
+ * - `phase` (float, radians; Interferometry only): 2 pi / Wavelength times the optical path
+ *   excess against the index where the ray entered;
+ * - `bos_displacement` (float, 2 components, world units; BOS only): the apparent shift of the
+ *   background, about -Z eps for a background Z behind the object;
+ * - `error_estimate` (float, radians; EstimateError only): the step-doubling estimate of the
+ *   deflection error per pixel.
+ *
+ * Field data: `cutoff_scale` (the k used), `backend` and `device` (strings), `photons`,
+ * `samples`, `samples_per_ray`, `failed_rays`, `missed_rays`, `underresolved_rays` (rays whose
+ * steps jumped over a feature), `side_rays` (rays that left through a side of the box),
+ * `max_drift` (largest | |v| - n | at exit), `max_error` (EstimateError: the largest estimate),
+ * `integrator` (string: the integrator traced with) and `step_size` (voxels: the step traced with),
+ * `octree` (1 if the octree levels were used, else 0) and, for Integrator AUTO_INTEGRATOR,
+ * `auto_report` (string: what Auto chose and why), `expected_error` (radians: the chosen setting's
+ * error on the pilot rays), `auto_tolerance` (radians, as applied) and `auto_met` (1 if a
+ * candidate met it).
+ * What the user should know (fallbacks, failed or under-resolved rays, Auto that found no setting
+ * within its tolerance) is reported with vtkWarningMacro; Auto's choice is logged (vtkLog INFO).
  *
  * Settings and defaults:
  * - ViewDirection (0 0 -1): the beam's direction, world vector; ViewUp (0 1 0): film "up".
  * - Resolution (512 512): film pixels.
  * - Passes (4, at least 1): progressive passes, one jittered photon per pixel each.
- * - StepSize (0.5 voxels, in (0.01, 64]): the base integration step.
- * - Integrator (EULER): EULER or MIDPOINT.
- * - Cutoff (KNIFE_EDGE): KNIFE_EDGE (I = 0.5 - k e.a) or SHADOWGRAPH (photon density on a film
- *   FilmDistance world units behind the volume's box).
+ * - StepSize (0.5 voxels, in [0.01, 64]): the base integration step.
+ * - Integrator (EULER): EULER (the paper's), MIDPOINT, RK4, STRAIGHT (line of sight: grad n
+ *   integrated along the unbent ray) or AUTO_INTEGRATOR (the cheapest of those, and a step, that
+ *   meets Tolerance on a pilot of 16 x 16 rays; StepSize is then ignored).
+ * - Tolerance (radians, default 0 = 1 % of the largest deflection of the pilot rays): Auto's error
+ *   allowance on the deflection.
+ * - KeepInvariant (off): hold |v| = n after every step. EstimateError (off): trace each ray again
+ *   at twice the step and output `error_estimate`.
+ * - UseOctree (on): where the input has the point array `octree_level` (vtkRefractionOctree),
+ *   step across uniform blocks; the tolerance it was built for comes from the field data
+ *   `octree_tolerance`.
+ * - Cutoff (KNIFE_EDGE): KNIFE_EDGE (I = 0.5 - k e.a), SHADOWGRAPH (photon density on a film
+ *   FilmDistance world units behind the volume's box), CIRCULAR (I = 1 - k|e|),
+ *   COMPLEMENT_CIRCULAR (I = k|e|), COLOR_FILTER (`rgb`), INTERFEROMETRY (I = (1 + cos(phase -
+ *   reference)) / 2, `phase`) or BOS (a background pattern seen through the flow,
+ *   `bos_displacement`).
  * - KnifeAngle (0 degrees: knife normal along film x); CutoffScale (k, 0 = automatic: the largest
  *   deflection maps to full contrast).
+ * - Wavelength (632.8 nm) and ReferenceTilt (0 fringes per world unit along film x) for
+ *   INTERFEROMETRY; world units are taken as metres for the phase.
+ * - BackgroundDistance (1 world unit from the front of the volume's box), BackgroundPattern (DOTS or
+ *   STRIPES) and BackgroundPeriod (0 = 6 pixels) for BOS.
+ * - Filter (NO_FILTER, GAUSSIAN of standard deviation FilterWidth pixels, or CONE of radius
+ *   FilterWidth / sqrt(passes) pixels) and FilterWidth (1 pixel).
+ * - RussianRoulette (off): photon killing instead of energy weighting (needs a CutoffScale for the
+ *   knife and circular cutoffs): the same mean, more noise.
  * - Jitter (on: photons start at random points of their pixels; off: at the centres) and
  *   Seed (1) for the jitter; Backend (AUTO: OpenCL if a device works, else the CPU with a warning;
  *   OPENCL: OpenCL or an error; CPU).
@@ -30,9 +71,12 @@
  * (the global controller has N > 1 processes) each rank asks for its own piece; the pieces are
  * gathered on every rank, each rank traces the pixels p with p % N == rank, the film sums are
  * reduced to rank 0, and rank 0 outputs the whole image (the others an empty one). The image is
- * that of a single process.
+ * that of a single process. Integrator AUTO_INTEGRATOR is resolved once, on rank 0, and its
+ * choice broadcast, so that every rank traces with the same setting. The octree levels of the pieces stop at the
+ * pieces' borders: under MPI the levels of the gathered volume are recomputed from the field
+ * data `octree_tolerance` and `octree_max_level` (see vtkRefractionOctree).
  *
- * @sa vtkRefractiveIndex vtkRefractiveScene
+ * @sa vtkRefractiveIndex vtkRefractiveScene vtkRefractionOctree
  */
 #ifndef vtkSchlierenImage_h
 #define vtkSchlierenImage_h
@@ -51,14 +95,37 @@ public:
   enum IntegratorType
   {
     EULER = 0,
-    MIDPOINT = 1
+    MIDPOINT = 1,
+    RK4 = 2,
+    STRAIGHT = 3,
+    AUTO_INTEGRATOR = 4
   };
 
   /** Cutoffs; the values are those of schlieren::Cutoff. */
   enum CutoffType
   {
     KNIFE_EDGE = 0,
-    SHADOWGRAPH = 1
+    SHADOWGRAPH = 1,
+    CIRCULAR = 2,
+    COMPLEMENT_CIRCULAR = 3,
+    COLOR_FILTER = 4,
+    INTERFEROMETRY = 5,
+    BOS = 6
+  };
+
+  /** BOS background patterns (TraceSettings::BackgroundPattern). */
+  enum BackgroundPatternType
+  {
+    DOTS = 0,
+    STRIPES = 1
+  };
+
+  /** Film filters; the values are those of schlieren::FilmFilter. */
+  enum FilterType
+  {
+    NO_FILTER = 0,
+    GAUSSIAN = 1,
+    CONE = 2
   };
 
   /** Backends; the values are those of schlieren::Backend. */
@@ -113,17 +180,56 @@ public:
 
   ///@{
   /**
-   * The ray integrator (an IntegratorType). Default EULER.
+   * The ray integrator (an IntegratorType). Default EULER. AUTO_INTEGRATOR picks the cheapest
+   * integrator and step that meet Tolerance (StepSize is then ignored).
    */
-  vtkSetClampMacro(Integrator, int, EULER, MIDPOINT);
+  vtkSetClampMacro(Integrator, int, EULER, AUTO_INTEGRATOR);
   vtkGetMacro(Integrator, int);
+  ///@}
+
+  ///@{
+  /**
+   * Integrator AUTO_INTEGRATOR: the deflection error allowed, radians; 0 (the default) means 1 % of the
+   * largest deflection of the pilot rays. Clamped to [0, 1].
+   */
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Rescale v = n dx/ds to |v| = n after every step (the ray invariant). Default off.
+   */
+  vtkSetMacro(KeepInvariant, bool);
+  vtkGetMacro(KeepInvariant, bool);
+  vtkBooleanMacro(KeepInvariant, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Trace every ray a second time at twice the step and output the per-pixel difference
+   * (scaled by the integrator's order) as the point array `error_estimate`, radians. Default off.
+   */
+  vtkSetMacro(EstimateError, bool);
+  vtkGetMacro(EstimateError, bool);
+  vtkBooleanMacro(EstimateError, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Use the input's point array `octree_level` (vtkRefractionOctree), when there is one, to step
+   * across uniform blocks. Default on.
+   */
+  vtkSetMacro(UseOctree, bool);
+  vtkGetMacro(UseOctree, bool);
+  vtkBooleanMacro(UseOctree, bool);
   ///@}
 
   ///@{
   /**
    * The cutoff that forms the image (a CutoffType). Default KNIFE_EDGE.
    */
-  vtkSetClampMacro(Cutoff, int, KNIFE_EDGE, SHADOWGRAPH);
+  vtkSetClampMacro(Cutoff, int, KNIFE_EDGE, BOS);
   vtkGetMacro(Cutoff, int);
   ///@}
 
@@ -150,6 +256,79 @@ public:
    */
   vtkSetClampMacro(FilmDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(FilmDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * INTERFEROMETRY: the light's vacuum wavelength, nm (world units are taken as metres for the
+   * phase 2 pi / lambda * integral (n - n_entry) ds). Clamped to [100, 100000]. Default 632.8.
+   * The index itself is computed upstream (vtkRefractiveIndex has its own Wavelength).
+   */
+  vtkSetClampMacro(Wavelength, double, 100.0, 100000.0);
+  vtkGetMacro(Wavelength, double);
+  ///@}
+
+  ///@{
+  /**
+   * INTERFEROMETRY: the reference beam's tilt, fringes per world unit along film x (0: an
+   * infinite-fringe interferogram). Default 0.
+   */
+  vtkSetMacro(ReferenceTilt, double);
+  vtkGetMacro(ReferenceTilt, double);
+  ///@}
+
+  ///@{
+  /**
+   * BOS: distance from the front of the volume's box (where the beam enters) to the background,
+   * world units (>= 0). Default 1.
+   */
+  vtkSetClampMacro(BackgroundDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(BackgroundDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * BOS: the background (a BackgroundPatternType): DOTS (random dots, one per period cell,
+   * seeded) or STRIPES (a cosine along film x). Default DOTS.
+   */
+  vtkSetClampMacro(BackgroundPattern, int, DOTS, STRIPES);
+  vtkGetMacro(BackgroundPattern, int);
+  ///@}
+
+  ///@{
+  /**
+   * BOS: the dot spacing or stripe period, world units; 0 (the default) means 6 pixels.
+   */
+  vtkSetClampMacro(BackgroundPeriod, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(BackgroundPeriod, double);
+  ///@}
+
+  ///@{
+  /**
+   * The film filter (a FilterType). Default NO_FILTER.
+   */
+  vtkSetClampMacro(Filter, int, NO_FILTER, CONE);
+  vtkGetMacro(Filter, int);
+  ///@}
+
+  ///@{
+  /**
+   * The filter's width in pixels: the Gaussian's standard deviation, or the cone's radius at one
+   * pass (it shrinks as 1 / sqrt(passes), to at least 1 pixel). Clamped to [0.01, 64]. Default 1.
+   */
+  vtkSetClampMacro(FilterWidth, double, 0.01, 64.0);
+  vtkGetMacro(FilterWidth, double);
+  ///@}
+
+  ///@{
+  /**
+   * Photon killing (Russian roulette) instead of energy weighting: each photon passes the cutoff
+   * whole or not at all, with the probability of its weight. Same mean, more noise; the knife and
+   * circular cutoffs then need a CutoffScale. Default off.
+   */
+  vtkSetMacro(RussianRoulette, bool);
+  vtkGetMacro(RussianRoulette, bool);
+  vtkBooleanMacro(RussianRoulette, bool);
   ///@}
 
   ///@{
@@ -197,10 +376,22 @@ protected:
   int Passes = 4;
   double StepSize = 0.5;
   int Integrator = EULER;
+  double Tolerance = 0.0;
+  bool KeepInvariant = false;
+  bool EstimateError = false;
+  bool UseOctree = true;
   int Cutoff = KNIFE_EDGE;
   double KnifeAngle = 0.0;
   double CutoffScale = 0.0;
   double FilmDistance = 0.0;
+  double Wavelength = 632.8;
+  double ReferenceTilt = 0.0;
+  double BackgroundDistance = 1.0;
+  int BackgroundPattern = DOTS;
+  double BackgroundPeriod = 0.0;
+  int Filter = NO_FILTER;
+  double FilterWidth = 1.0;
+  bool RussianRoulette = false;
   bool Jitter = true;
   int Seed = 1;
   int Backend = AUTO;
