@@ -106,6 +106,13 @@ int vtkRefractiveScene::RequestData(
   vtkNew<vtkFloatArray> density;
   density->SetName("density");
   density->SetNumberOfTuples(count);
+  vtkNew<vtkFloatArray> mixture;
+  const bool plume = this->Scene == HELIUM_PLUME;
+  if (plume)
+  {
+    mixture->SetName("mixture_fraction");
+    mixture->SetNumberOfTuples(count);
+  }
 
   schlieren::SceneParameters p;
   p.Amplitude = this->Amplitude;
@@ -119,10 +126,11 @@ int vtkRefractiveScene::RequestData(
   p.GradientB = this->GradientB;
   p.Mach = this->Mach;
   p.Density = this->Density;
+  p.Time = this->Time;
   try
   {
     schlieren::FillScene(static_cast<schlieren::Scene>(this->Scene), p, dims, pieceOrigin, spacing,
-      nMinus1->GetPointer(0), density->GetPointer(0));
+      nMinus1->GetPointer(0), density->GetPointer(0), plume ? mixture->GetPointer(0) : nullptr);
   }
   catch (const schlieren::Error& e)
   {
@@ -133,6 +141,10 @@ int vtkRefractiveScene::RequestData(
 
   output->GetPointData()->SetScalars(nMinus1);
   output->GetPointData()->AddArray(density);
+  if (plume)
+  {
+    output->GetPointData()->AddArray(mixture);
+  }
   return 1;
 }
 
@@ -155,4 +167,5 @@ void vtkRefractiveScene::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GradientB: " << this->GradientB << "\n";
   os << indent << "Mach: " << this->Mach << "\n";
   os << indent << "Density: " << this->Density << " kg/m^3\n";
+  os << indent << "Time: " << this->Time << "\n";
 }

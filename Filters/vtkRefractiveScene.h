@@ -5,12 +5,15 @@
  *
  * vtkRefractiveScene is a source that fills a regular grid with the refractive index of an analytic
  * scene (schlieren::FillScene): a uniform medium, a weak Gaussian sphere, a Luneburg lens, a
- * linear gradient or a plane normal shock in air. These scenes have closed-form ray paths and
- * deflections, which makes them the known answers of the tests and a quick demo of the plugin.
+ * linear gradient, a plane normal shock in air, a helium jet rising into air or a spherical blast
+ * wave. The first five have closed-form ray paths and deflections, which makes them the known
+ * answers of the tests; the plume and the blast are physical scenes for demonstrations.
  *
  * The output is a vtkImageData with the point arrays `n_minus_1` (float, n - 1, the active scalars)
- * and `density` (float, kg/m^3: the density of air that has this index by Gladstone-Dale,
- * rho = (n - 1) / 2.256e-4 m^3/kg at 632.8 nm).
+ * and `density` (float, kg/m^3: the gas density the scene models: for the analytic index scenes,
+ * the density of air that has this index by Gladstone-Dale, rho = (n - 1) / 2.256e-4 m^3/kg at
+ * 632.8 nm; for the shock and the blast, the air's density; for the plume, the mixture's ideal-gas
+ * density), and for HELIUM_PLUME `mixture_fraction` (float: the helium mass fraction).
  *
  * The grid has Dimensions points (default 64 x 64 x 64) spread over Bounds (world units, default
  * [-1, 1] in each direction): spacing = (max - min) / (dimension - 1). The scene parameters are
@@ -22,6 +25,15 @@
  * normal along x, upstream density Density (x < Center_x) and downstream Density rho2/rho1,
  * rho2/rho1 = (g + 1) M^2 / ((g - 1) M^2 + 2) with g = 1.4 (2.667 at Mach 2), joined by
  * 0.5 (1 + tanh((x - Center_x) / Width)); n - 1 = 2.256e-4 m^3/kg rho.
+ *
+ * HELIUM_PLUME: a round jet rising along +y from a nozzle at y = Center_y - Radius into still air
+ * at 293.15 K and 101325 Pa; Amplitude is the helium mass fraction on the axis at the nozzle (0 to
+ * 1), Radius the nozzle's Gaussian half-width (world units, metres for a physical size); the jet
+ * widens and dilutes with height, with a puffing ripple, and n - 1 is the mass-weighted
+ * Gladstone-Dale mixture at the ideal-gas density. BLAST_WAVE: a spherical blast in air about
+ * Center, Sedov-Taylor radius Radius Time^(2/5), a density jump to 6 Density of thickness Width
+ * behind which the density falls as (r/R)^7.5; Time (default 1) in units of the time the shock
+ * takes to reach Radius.
  *
  * The source produces sub-extents: under MPI each rank fills only its own piece.
  *
@@ -50,20 +62,24 @@ public:
     GAUSSIAN_SPHERE = 1,
     LUNEBURG_LENS = 2,
     LINEAR_GRADIENT = 3,
-    NORMAL_SHOCK = 4
+    NORMAL_SHOCK = 4,
+    HELIUM_PLUME = 5,
+    BLAST_WAVE = 6
   };
 
   ///@{
   /**
    * The scene to fill (a SceneType). Default GAUSSIAN_SPHERE.
    */
-  vtkSetClampMacro(Scene, int, UNIFORM, NORMAL_SHOCK);
+  vtkSetClampMacro(Scene, int, UNIFORM, BLAST_WAVE);
   vtkGetMacro(Scene, int);
   void SetSceneToUniform() { this->SetScene(UNIFORM); }
   void SetSceneToGaussianSphere() { this->SetScene(GAUSSIAN_SPHERE); }
   void SetSceneToLuneburgLens() { this->SetScene(LUNEBURG_LENS); }
   void SetSceneToLinearGradient() { this->SetScene(LINEAR_GRADIENT); }
   void SetSceneToNormalShock() { this->SetScene(NORMAL_SHOCK); }
+  void SetSceneToHeliumPlume() { this->SetScene(HELIUM_PLUME); }
+  void SetSceneToBlastWave() { this->SetScene(BLAST_WAVE); }
   ///@}
 
   ///@{
@@ -85,8 +101,8 @@ public:
 
   ///@{
   /**
-   * n - 1 of the uniform scene, or at the centre of the Gaussian sphere (dimensionless).
-   * Default 1e-4.
+   * n - 1 of the uniform scene, or at the centre of the Gaussian sphere (dimensionless); for
+   * HELIUM_PLUME the helium mass fraction at the nozzle (0 to 1). Default 1e-4.
    */
   vtkSetClampMacro(Amplitude, double, -0.9, 10.0);
   vtkGetMacro(Amplitude, double);
@@ -94,8 +110,8 @@ public:
 
   ///@{
   /**
-   * The Gaussian sphere's 1/e radius, or the normal shock's tanh thickness, world units (> 0).
-   * Default 0.25.
+   * The Gaussian sphere's 1/e radius, or the tanh thickness of the normal shock and of the blast
+   * wave's front, world units (> 0). Default 0.25.
    */
   vtkSetClampMacro(Width, double, 1e-12, VTK_DOUBLE_MAX);
   vtkGetMacro(Width, double);
@@ -103,7 +119,8 @@ public:
 
   ///@{
   /**
-   * The Luneburg lens radius, world units (> 0). Default 1.
+   * The Luneburg lens radius, the helium plume's nozzle half-width, or the blast wave's radius at
+   * Time 1; world units (> 0). Default 1.
    */
   vtkSetClampMacro(Radius, double, 1e-12, VTK_DOUBLE_MAX);
   vtkGetMacro(Radius, double);
@@ -138,10 +155,20 @@ public:
 
   ///@{
   /**
-   * NORMAL_SHOCK: the upstream density, kg/m^3 (> 0; clamped to [1e-12, 1e6]). Default 1.2.
+   * NORMAL_SHOCK: the upstream density; BLAST_WAVE: the ambient density; kg/m^3 (> 0; clamped to
+   * [1e-12, 1e6]). Default 1.2.
    */
   vtkSetClampMacro(Density, double, 1e-12, 1e6);
   vtkGetMacro(Density, double);
+  ///@}
+
+  ///@{
+  /**
+   * BLAST_WAVE: the time, in units of the time the shock takes to reach Radius (> 0; clamped to
+   * [1e-6, 1e6]). Default 1.
+   */
+  vtkSetClampMacro(Time, double, 1e-6, 1e6);
+  vtkGetMacro(Time, double);
   ///@}
 
 protected:
@@ -167,6 +194,7 @@ protected:
   double GradientB = 0.01;
   double Mach = 2.0;
   double Density = 1.2;
+  double Time = 1.0;
 
 private:
   vtkRefractiveScene(const vtkRefractiveScene&) = delete;

@@ -226,7 +226,7 @@ print("     Luneburg lens: line of sight vs curved trace: deflections differ by 
       % (gap.max(), np.median(gap)))
 T.check(np.median(gap) > 0.1, "Luneburg lens: line of sight departs from the curved trace (median %.2f rad)" % np.median(gap))
 
-# ---------------------------------------------------------------- 3. A shock crossed in one step
+# ---------------------------------------------------------------- 3. The scenes; a shock crossed in one step
 # RefractiveScene NormalShock: Mach 2 in air of 1.2 kg/m^3, the tanh profile 2 voxels thick
 # (Width = 1 voxel), 96^3 over [-1, 1]^3; the beam at 40 degrees to the shock normal. Measured
 # (Midpoint): 782 of 2304 rays flagged and 76 % off Snell at 8-voxel steps; none flagged and 0.26 %
@@ -240,6 +240,32 @@ ratio = 2.4 * 4 / (0.4 * 4 + 2)  # (g + 1) M^2 / ((g - 1) M^2 + 2) = 2.6667
 T.close(rho[:, :, 0], 1.2, 1e-5, "NormalShock: upstream density 1.2 kg/m^3")
 T.close(rho[:, :, -1], 1.2 * ratio, 1e-5 * ratio, "NormalShock: downstream density 1.2 x 2.6667 (Mach 2)")
 T.close(n1[:, :, -1] / (K_AIR * 1.2 * ratio), 1.0, 1e-6, "NormalShock: n - 1 = K_air rho downstream")
+T.check(list(shock.Scene.Available) == ["Uniform", "GaussianSphere", "LuneburgLens", "LinearGradient",
+                                        "NormalShock", "HeliumPlume", "BlastWave"],
+        "RefractiveScene: Scene values 0..6 (%s)" % list(shock.Scene.Available))
+
+# The physical scenes' parameters reach the engine. HeliumPlume with Amplitude 1 (pure helium at
+# the nozzle): on the axis at the nozzle n - 1 = 3.2513e-5 (ORACLES, f = 1), far from the jet the
+# air's 2.7164e-4; the helium mass fraction is the point array mixture_fraction. BlastWave: the
+# density rho0 (1 + (6 (r/R)^7.5 - 1) (1 - tanh((r - R)/Width)) / 2), R = Radius Time^(2/5).
+plume = RefractiveScene(Scene="HeliumPlume", Dimensions=[33, 33, 33], Amplitude=1.0, Radius=0.25,
+                        Center=[0, -0.25, 0])
+data = sm.Fetch(plume)
+n1 = point_array(data, "n_minus_1", (33, 33, 33))
+f = point_array(data, "mixture_fraction", (33, 33, 33))
+T.check(f is not None, "HeliumPlume: point array mixture_fraction")
+T.close([f[16, 8, 16], n1[16, 8, 16] / 3.2513e-5], [1.0, 1.0], 1e-4, "HeliumPlume: pure helium at the nozzle, n - 1 = 3.2513e-5")
+T.close(n1[0, 0, 0] / 2.7164e-4, 1.0, 1e-4, "HeliumPlume: air's n - 1 = 2.7164e-4 away from the jet")
+blast = RefractiveScene(Scene="BlastWave", Dimensions=[65, 3, 3], Bounds=[-1, 1, -0.01, 0.01, -0.01, 0.01],
+                        Radius=0.5, Width=0.05, Density=1.2)
+for when in (1.0, 2.0):
+    blast.Time = when
+    rho = point_array(sm.Fetch(blast), "density", (3, 3, 65))[1, 1, :]
+    r = np.abs(np.linspace(-1, 1, 65))
+    R = 0.5 * when ** 0.4
+    exact = 1.2 * (1 + (6 * np.minimum(r / R, 1) ** 7.5 - 1) * 0.5 * (1 - np.tanh((r - R) / 0.05)))
+    T.close(rho / 1.2, exact / 1.2, 1e-5, "BlastWave at Time %g: density along x (R = %.4f)" % (when, R))
+
 al = math.radians(40)
 view = [math.sin(al), 0, -math.cos(al)]
 # Snell: the tangential part of v = n d is conserved; for rays that cross the shock inside the box
