@@ -432,8 +432,12 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   float n = 1.0f + W->s.n1;
   float invn = 1.0f / n;
   float ds = W->base;
-  /* v / n is the unit direction to first order (|v| = n): good enough to aim the step */
+  /* v / n is the unit direction to first order (|v| = n): good enough to aim the step. Line of
+   * sight steps along the unbent beam d0, so it aims along d0: aimed along v / n, a ray grazing a
+   * face that the gradient tilts it towards takes ever shorter steps and never leaves */
   sch_v3 dir = sch_scale(v, invn);
+  if (P->integrator == SCH_STRAIGHT)
+    dir = d0;
   if (P->useLevels)
     ds = sch_skip(levels, P, W->x, dir, W->base);
   /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on

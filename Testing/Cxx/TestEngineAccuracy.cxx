@@ -254,6 +254,15 @@ void TestTurnBackAndGrazing()
   CHECK((r[1].Flags & RaySide) == 0, "a central ray leaves through the back");
   CHECK((r[0].Flags & (RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm)) == 0,
     "the grazing ray still reaches the film");
+  // line of sight steps along the beam even where the gradient tilts v towards the face: a ray
+  // 1e-6 below the top face crosses in the central ray's number of steps (aimed along v / n, its
+  // steps shrank towards the face and it stopped at the step limit, 10 % of the way through)
+  s.Method = Integrator::Straight;
+  const std::vector<RayRecord> los = TraceRays(sv.V, s, { 0.0f, 0.999999f, 0.0f, 0.0f });
+  std::printf("line of sight, grazing ray at y = 0.999999: flags %u, %g steps (central ray %g)\n",
+    los[0].Flags, los[0].Steps, los[1].Steps);
+  CHECK(los[0].Flags == 0 && los[0].Steps == los[1].Steps,
+    "line of sight: a ray grazing a face crosses like any other");
 }
 
 // Line of sight (no bending) against the curved trace.
