@@ -198,7 +198,10 @@ public:
 
   ///@{
   /**
-   * Rescale v = n dx/ds to |v| = n after every step (the ray invariant). Default off.
+   * Rescale v = n dx/ds to |v| = n after every step (the ray invariant). Default off. It holds
+   * the invariant (field data max_drift) but does not make the deflection more accurate: on a
+   * linear medium Euler's deflection error grew from 4.4e-6 to 2.1e-4 rad with it (2-voxel steps);
+   * Midpoint and RK4 were unchanged.
    */
   vtkSetMacro(KeepInvariant, bool);
   vtkGetMacro(KeepInvariant, bool);
