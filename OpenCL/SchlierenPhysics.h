@@ -459,7 +459,9 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   {
     xn = sch_axpy(ds, d0, W->x);
     dw = sch_scale(W->s.g, ds);
-    ddev = sch_make(0.0f, 0.0f, 0.0f);
+    /* sampled along the unbent line, but the photon lands where the first-order (weak-field)
+     * deflection takes it, as with the curved schemes */
+    ddev = sch_scale(W->w, ds * invn);
     dopl = ds * (W->s.n1 - W->ne1);
   }
   else if (P->integrator == SCH_MIDPOINT)

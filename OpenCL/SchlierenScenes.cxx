@@ -15,20 +15,19 @@ ScenePointValues ScenePoint(Scene scene, const SceneParameters& p, double x, dou
   const double rx = x - p.Center[0], ry = y - p.Center[1], rz = z - p.Center[2];
   if (scene == Scene::HeliumPlume)
   {
-    // distance above the nozzle, and the jet's widening and decay
-    const double h = ry + p.Radius;
-    double f = 0;
-    if (h >= 0)
-    {
-      const double spread = 1.0 + h / (4.0 * p.Radius);
-      const double b = p.Radius * spread * (1.0 + 0.15 * std::sin(2.5 * h / p.Radius));
-      f = p.Amplitude / spread * std::exp(-(rx * rx + rz * rz) / (b * b));
-    }
-    else
-    {
-      const double b = p.Radius;
-      f = p.Amplitude * std::exp(-(rx * rx + rz * rz) / (b * b)) * std::exp(-h * h / (0.25 * b * b));
-    }
+    // height above the nozzle, which sits at Center - Width/2 (below it: the feed pipe)
+    const double rise = std::max(0.0, ry + 0.5 * p.Width);
+    const double r0 = p.Radius;
+    // a jet that spreads at 0.07 per unit height, with puffing bulges every 3.3 nozzle radii that
+    // grow as they rise
+    const double s2 = std::sin(2 * 3.14159265358979323846 * rise / (3.3 * r0));
+    const double width = (r0 + 0.07 * rise) * (1 + 0.25 * (rise / p.Width) * s2 * s2);
+    // mass fraction on the axis falls as the jet entrains air; the profile goes from a top hat at
+    // the nozzle to a Gaussian at Width
+    const double axis = p.Amplitude * std::min(1.0, std::pow(r0 / width, 1.6));
+    const double shape = 4.0 - 2.0 * std::min(1.0, rise / p.Width);
+    const double r = std::sqrt(rx * rx + rz * rz);
+    const double f = axis * std::exp(-std::pow(r / width, shape));
     const Gas he = Gas::Helium;
     const double T = 293.15, P = 101325.0;
     const double K = MixtureConstant(&he, &f, 1, Gas::Air);
@@ -101,9 +100,10 @@ double NormalShockPressureRatio(double m, double g)
 void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const double origin[3],
   const double spacing[3], float* nMinus1, float* density, float* mixtureFraction)
 {
-  if (scene == Scene::HeliumPlume && (!(p.Radius > 0) || !(p.Amplitude >= 0 && p.Amplitude <= 1)))
-    throw Error("HeliumPlume: Radius must be positive and Amplitude (the helium mass fraction at "
-                "the nozzle) between 0 and 1.");
+  if (scene == Scene::HeliumPlume &&
+    (!(p.Radius > 0) || !(p.Width > 0) || !(p.Amplitude >= 0 && p.Amplitude <= 1)))
+    throw Error("HeliumPlume: Radius (the nozzle's) and Width (the plume's height) must be positive "
+                "and Amplitude (the helium mass fraction at the nozzle) between 0 and 1.");
   if (scene == Scene::BlastWave && (!(p.Radius > 0) || !(p.Width > 0) || !(p.Density > 0)))
     throw Error("BlastWave: Radius, Width and Density must be positive.");
   if (scene == Scene::GaussianSphere && !(p.Width > 0))

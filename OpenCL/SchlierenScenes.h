@@ -26,11 +26,12 @@ enum class Scene
                       ///< density Density (x < Center[0]), downstream Density * rho2/rho1 for Mach
                       ///< (gamma = 1.4), a tanh profile of thickness Width; n - 1 = K_air rho
   HeliumPlume = 5,    ///< a round helium jet rising along +y into still air at 293.15 K, 1 atm (the
-                      ///< paper's combustion-like case): helium mass fraction Amplitude on the axis
-                      ///< at the nozzle (y = Center[1] - Radius), Gaussian across with half-width
-                      ///< Radius (1 + y'/ (4 Radius)), decaying as 1 / (1 + y' / (4 Radius)), with a
-                      ///< slow puffing ripple; n - 1 by the mass-weighted Gladstone-Dale mixture at
-                      ///< the ideal-gas density (SchlierenIndexModels)
+                      ///< paper's air/helium case): nozzle of radius Radius at y = Center[1] -
+                      ///< Width/2, helium mass fraction Amplitude there; the jet spreads at 0.07 per
+                      ///< unit height with puffing bulges every 3.3 nozzle radii, its axis fraction
+                      ///< falls as (Radius / width)^1.6 and its profile goes from a top hat to a
+                      ///< Gaussian over the height Width; n - 1 by the mass-weighted Gladstone-Dale
+                      ///< mixture at the ideal-gas density (SchlierenIndexModels)
   BlastWave = 6       ///< a spherical blast in air about Center: Sedov-Taylor radius
                       ///< R = Radius (Time)^(2/5), a strong-shock density jump (6 rho0 for
                       ///< gamma = 1.4) of thickness Width behind which the density falls as
