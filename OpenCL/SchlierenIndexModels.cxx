@@ -3,10 +3,13 @@
 
 #include "SchlierenEngine.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace schlieren
 {
@@ -60,7 +63,7 @@ std::string Lower(const std::string& s)
 std::string Num(double v)
 {
   char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.9g", v);
+  std::snprintf(buf, sizeof(buf), "%.7g", v); // the inputs are floats: 7 digits are all they hold
   return buf;
 }
 
@@ -615,6 +618,642 @@ void ScaleByReference(const float* in, std::size_t n, double reference, float* o
       "density, K for temperature, Pa for pressure.");
   for (std::size_t i = 0; i < n; ++i)
     out[i] = static_cast<float>(static_cast<double>(in[i]) * reference);
+}
+
+//------------------------------------------------------------------------------------------------
+// Whole fields
+//------------------------------------------------------------------------------------------------
+double GasChoice::GladstoneDale() const
+{
+  if (!this->Custom)
+    return GladstoneDaleConstant(this->Preset);
+  if (NotPositiveFinite(this->K))
+    throw Error("custom gas: the Gladstone-Dale constant " + Num(this->K) +
+      " m^3/kg is not positive. Type it in m^3/kg (1 cm^3/g = 1e-3 m^3/kg; air at 632.8 nm: "
+      "2.256e-4).");
+  return this->K;
+}
+
+double GasChoice::MolarMass() const
+{
+  if (!this->Custom)
+    return schlieren::MolarMass(this->Preset);
+  if (NotPositiveFinite(this->M))
+    throw Error("custom gas: the molar mass " + Num(this->M) +
+      " kg/mol is not positive. Type it in kg/mol (air: 0.0289641).");
+  return this->M;
+}
+
+std::string GasChoice::Label() const
+{
+  if (!this->Custom)
+    return GetGasProperties(this->Preset).Name;
+  return "custom gas (K = " + Num(this->K) + " m^3/kg, M = " + Num(this->M) + " kg/mol)";
+}
+
+void MixtureConstants(const float* const* Y, const GasChoice* species, std::size_t nSpecies,
+  std::size_t n, const GasChoice* balance, float* K, float* M, const std::string* names,
+  std::size_t* renormalised)
+{
+  if (!K)
+    throw Error("species mass fractions: the output array K is null; pass an array of n values.");
+  if (nSpecies && (!Y || !species))
+    throw Error("species mass fractions: the array or species list is null; pass nSpecies of each.");
+  if (!balance && nSpecies == 0)
+    throw Error("species mass fractions: no species and no balance gas. List at least one species "
+                "mass-fraction array, or choose a balance gas.");
+  std::vector<double> k(nSpecies), invM(nSpecies);
+  std::string list;
+  for (std::size_t s = 0; s < nSpecies; ++s)
+  {
+    const std::string label = names && !names[s].empty()
+      ? "'" + names[s] + "' (mass fraction of " + species[s].Label() + ")"
+      : "mass fraction of " + species[s].Label() + " (species " + std::to_string(s) + ")";
+    list += (s ? ", " : "") + (names && !names[s].empty() ? "'" + names[s] + "'" : species[s].Label());
+    if (!Y[s])
+      throw Error(label + ": the array is null; pass an array of n values.");
+    BadPoints b = Scan(Y[s], n, BadFraction);
+    if (b.Count)
+      ThrowBad(label, b, n, "are outside [0, 1] or not finite", FractionHint);
+    k[s] = species[s].GladstoneDale();
+    invM[s] = 1.0 / species[s].MolarMass();
+  }
+  const double kb = balance ? balance->GladstoneDale() : 0.0;
+  const double invMb = balance ? 1.0 / balance->MolarMass() : 0.0;
+
+  constexpr double SumTolerance = 1e-3; // without a balance gas: |sum - 1| allowed, renormalised
+  BadPoints above, away;
+  std::size_t renorm = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double sum = 0.0;
+    for (std::size_t s = 0; s < nSpecies; ++s)
+      sum += ClampFraction(Y[s][i]);
+    if (balance && sum > 1.0 + FractionTolerance)
+      above.Add(i, sum);
+    if (!balance && std::fabs(sum - 1.0) > SumTolerance)
+      away.Add(i, sum);
+  }
+  if (above.Count)
+    ThrowBad("mass fractions (" + list + ")", above, n, "have fractions that sum above 1",
+      "The listed species must not include the balance gas (" + balance->Label() +
+        ") and must sum to at most 1 at every point: renormalise them, or leave one species out "
+        "as the balance.",
+      "sum ");
+  if (away.Count)
+    ThrowBad("mass fractions (" + list + ")", away, n,
+      "have fractions that do not sum to 1 (within 1e-3)",
+      "Without a balance gas the listed species must make up the whole gas: list every species, "
+      "or choose a balance gas that takes the rest (1 - sum).",
+      "sum ");
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double sum = 0.0, kk = 0.0, im = 0.0;
+    for (std::size_t s = 0; s < nSpecies; ++s)
+    {
+      const double y = ClampFraction(Y[s][i]);
+      sum += y;
+      kk += y * k[s];
+      im += y * invM[s];
+    }
+    if (balance)
+    {
+      const double rest = sum >= 1.0 ? 0.0 : 1.0 - sum;
+      kk += rest * kb;
+      im += rest * invMb;
+    }
+    else
+    {
+      if (std::fabs(sum - 1.0) > FractionTolerance)
+        ++renorm;
+      kk /= sum;
+      im /= sum;
+    }
+    K[i] = static_cast<float>(kk);
+    if (M)
+      M[i] = static_cast<float>(1.0 / im);
+  }
+  if (renormalised)
+    *renormalised = renorm;
+}
+
+namespace
+{
+/** "array 'Temp' (temperature)" */
+std::string ArrayLabel(const NamedArray& a, const char* role)
+{
+  return "array '" + (a.Name.empty() ? std::string("(unnamed)") : a.Name) + "' (" + role + ")";
+}
+
+const char* ModelName(IndexModel m)
+{
+  switch (m)
+  {
+    case IndexModel::Passthrough:
+      return "Passthrough";
+    case IndexModel::GladstoneDale:
+      return "GladstoneDale";
+    case IndexModel::GladstoneDaleMixture:
+      return "GladstoneDaleMixture";
+    case IndexModel::IdealGas:
+      return "IdealGas";
+    case IndexModel::Ciddor:
+      return "Ciddor";
+  }
+  return "(unknown model)";
+}
+
+/**
+ * The valid points of `a` converted by `convert` (raw float -> SI double), the invalid ones set to
+ * `benign`. Throws if the array is missing or a valid point is NaN/Inf.
+ */
+template <typename Convert>
+std::vector<float> Prepare(const FieldArrays& f, const NamedArray& a, const char* role,
+  IndexModel model, Convert convert, float benign)
+{
+  if (!a.Data)
+    throw Error(std::string(ModelName(model)) + " needs a " + role +
+      " array, and none was given: choose one among the input's point arrays.");
+  const std::size_t n = f.Count;
+  BadPoints b;
+  for (std::size_t i = 0; i < n; ++i)
+    if ((!f.Valid || f.Valid[i]) && !std::isfinite(a.Data[i]))
+      b.Add(i, a.Data[i]);
+  if (b.Count)
+    ThrowBad(ArrayLabel(a, role), b, n, "are NaN or infinite",
+      "Fix the data upstream (or remove those points, e.g. with a Threshold filter): the "
+      "refractive index needs a finite value everywhere in the flow.");
+  std::vector<float> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = (!f.Valid || f.Valid[i]) ? static_cast<float>(convert(static_cast<double>(a.Data[i])))
+                                      : benign;
+  return out;
+}
+
+/** Throws for valid points where `bad` holds (after conversion to SI). */
+template <typename Bad>
+void CheckSI(const FieldArrays& f, const NamedArray& a, const char* role,
+  const std::vector<float>& si, Bad bad, const std::string& problem, const std::string& todo,
+  const std::string& unitLabel)
+{
+  BadPoints b;
+  for (std::size_t i = 0; i < f.Count; ++i)
+    if ((!f.Valid || f.Valid[i]) && bad(static_cast<double>(si[i])))
+      b.Add(i, si[i]);
+  if (b.Count)
+    ThrowBad(ArrayLabel(a, role), b, f.Count, problem, todo, unitLabel);
+}
+
+/** Runs `f`, prefixing the message of an Error with `prefix`. */
+template <typename F>
+void Prefixed(const std::string& prefix, F f)
+{
+  try
+  {
+    f();
+  }
+  catch (const Error& e)
+  {
+    throw Error(prefix + e.what());
+  }
+}
+} // namespace
+
+FieldReport ComputeFieldIndex(const FieldArrays& f, const FieldModel& m, float* nMinus1)
+{
+  if (!nMinus1 && f.Count)
+    throw Error("ComputeFieldIndex: the output array is null; pass an array of Count values.");
+  const std::size_t n = f.Count;
+  FieldReport report;
+  for (std::size_t i = 0; i < n; ++i)
+    report.ValidPoints += (!f.Valid || f.Valid[i]) ? 1 : 0;
+  const IndexModel model = m.Model;
+  auto isValid = [&f](std::size_t i) { return !f.Valid || f.Valid[i]; };
+
+  // Unit conversions to SI.
+  if (NotPositiveFinite(m.DensityReference) || NotPositiveFinite(m.TemperatureReference) ||
+    NotPositiveFinite(m.PressureReference))
+    throw Error("reference values: density " + Num(m.DensityReference) + ", temperature " +
+      Num(m.TemperatureReference) + ", pressure " + Num(m.PressureReference) +
+      "; each must be a positive number (1 for dimensional data; the free-stream value the "
+      "solver divided by for non-dimensional data).");
+  if (!std::isfinite(m.PressureOffset))
+    throw Error("pressure offset: " + Num(m.PressureOffset) + " is not a finite number.");
+  const double rhoRef = m.DensityReference, TRef = m.TemperatureReference,
+               pRef = m.PressureReference, pOffset = m.PressureOffset;
+  const TemperatureUnit TUnit = m.TemperatureUnits;
+  const PressureUnit pUnit = m.PressureUnits;
+  ToKelvin(0.0, TUnit); // validate the units
+  ToPascal(0.0, pUnit);
+  auto density = [&](const NamedArray& a) {
+    std::vector<float> rho = Prepare(
+      f, a, "density", model, [rhoRef](double v) { return rhoRef * v; }, 0.0f);
+    CheckSI(f, a, "density", rho, [](double v) { return v < 0.0; }, "are negative",
+      "Density must be >= 0 in kg/m^3 after scaling by DensityReference: check the array and "
+      "its scaling.",
+      "");
+    BadPoints zero;
+    for (std::size_t i = 0; i < n; ++i)
+      if (isValid(i) && rho[i] == 0.0f)
+        zero.Add(i, 0.0);
+    if (zero.Count)
+      report.Warnings.push_back(ArrayLabel(a, "density") + ": " + std::to_string(zero.Count) +
+        " of " + std::to_string(n) + " points are 0 (first at index " + std::to_string(zero.First) +
+        "), a vacuum where n - 1 = 0. If the flow has no vacuum there, check the array.");
+    return rho;
+  };
+  auto temperature = [&]() {
+    std::vector<float> T = Prepare(
+      f, f.Temperature, "temperature", model,
+      [TRef, TUnit](double v) { return ToKelvin(TRef * v, TUnit); }, 293.15f);
+    CheckSI(f, f.Temperature, "temperature", T, NotPositiveFinite,
+      "are at or below absolute zero (in K after the unit and reference)",
+      std::string(TemperatureHint) + " The filter's TemperatureUnit and TemperatureReference "
+                                     "set the conversion.",
+      "");
+    return T;
+  };
+  auto pressure = [&]() {
+    std::vector<float> p = Prepare(
+      f, f.Pressure, "pressure", model,
+      [pRef, pOffset, pUnit](double v) { return ToPascal(pRef * v + pOffset, pUnit); }, 101325.0f);
+    CheckSI(f, f.Pressure, "pressure", p, NotPositiveFinite,
+      "are not positive (in Pa after the unit, reference and offset)",
+      std::string(PressureHint) + " For a gauge pressure, set PressureOffset to the operating "
+                                  "pressure.",
+      "");
+    return p;
+  };
+  // Gladstone-Dale constant (and molar mass) per point from the composition.
+  auto composition = [&](std::vector<float>& K, std::vector<float>* M) {
+    K.assign(n, 0.0f);
+    if (M)
+      M->assign(n, 0.0f);
+    switch (m.Mixture)
+    {
+      case Composition::SingleGas:
+      {
+        const double k = m.SingleGas.GladstoneDale();
+        const double mm = m.SingleGas.MolarMass();
+        std::fill(K.begin(), K.end(), static_cast<float>(k));
+        if (M)
+          std::fill(M->begin(), M->end(), static_cast<float>(mm));
+        return;
+      }
+      case Composition::MixtureFraction:
+      {
+        std::vector<float> frac = Prepare(
+          f, f.MixtureFraction, "mixture fraction", model, [](double v) { return v; }, 0.0f);
+        Prefixed(ArrayLabel(f.MixtureFraction, "mixture fraction") + ", ", [&] {
+          MixtureFractionConstant(
+            frac.data(), n, m.Gas0, m.GasF, K.data(), M ? M->data() : nullptr);
+        });
+        return;
+      }
+      case Composition::Species:
+      {
+        const int ns = m.NumberOfSpecies;
+        if (ns < 0 || ns > MaxSpecies)
+          throw Error("number of species: " + std::to_string(ns) + " is outside 0-" +
+            std::to_string(MaxSpecies) + ".");
+        std::vector<std::vector<float>> Y(ns);
+        std::vector<const float*> ptr(ns);
+        std::vector<std::string> names(ns);
+        for (int s = 0; s < ns; ++s)
+        {
+          const std::string role = "mass fraction of " + m.Species[s].Label();
+          // Benign value at invalid points: the first species alone (sums to 1 with or without
+          // a balance gas).
+          Y[s] = Prepare(
+            f, f.Species[s], role.c_str(), model, [](double v) { return v; }, s == 0 ? 1.0f : 0.0f);
+          ptr[s] = Y[s].data();
+          names[s] = f.Species[s].Name.empty() ? "(unnamed)" : f.Species[s].Name;
+        }
+        std::size_t renormalised = 0;
+        MixtureConstants(ptr.data(), m.Species, static_cast<std::size_t>(ns), n,
+          m.HasBalance ? &m.Balance : nullptr, K.data(), M ? M->data() : nullptr, names.data(),
+          &renormalised);
+        if (renormalised)
+          report.Warnings.push_back("mass fractions: at " + std::to_string(renormalised) + " of " +
+            std::to_string(n) +
+            " points they sum to 1 only within 1e-3 and were renormalised (no balance gas).");
+        return;
+      }
+    }
+    throw Error("composition: " + std::to_string(static_cast<int>(m.Mixture)) +
+      " is not one of SingleGas (0), MixtureFraction (1), Species (2).");
+  };
+
+  switch (model)
+  {
+    case IndexModel::Passthrough:
+    {
+      const bool isN = m.IndexIsN;
+      std::vector<float> v = Prepare(
+        f, f.Index, isN ? "refractive index n" : "n - 1", model,
+        [isN](double x) { return isN ? x - 1.0 : x; }, 0.0f);
+      CheckSI(f, f.Index, isN ? "refractive index n" : "n - 1", v,
+        [](double x) { return x <= -1.0; }, "give n <= 0",
+        isN ? "The array should hold n (about 1.0003 in air); if it holds n - 1, turn "
+              "PassthroughHoldsN off."
+            : "The array should hold n - 1 (about 2.7e-4 in air); if it holds n itself, turn "
+              "PassthroughHoldsN on.",
+        "");
+      for (std::size_t i = 0; i < n; ++i)
+        if (isValid(i))
+          nMinus1[i] = v[i];
+      return report;
+    }
+    case IndexModel::GladstoneDale:
+    case IndexModel::GladstoneDaleMixture:
+    {
+      std::vector<float> rho = density(f.Density);
+      std::vector<float> K;
+      if (model == IndexModel::GladstoneDale)
+        K.assign(n, static_cast<float>(m.SingleGas.GladstoneDale()));
+      else
+        composition(K, nullptr);
+      for (std::size_t i = 0; i < n; ++i)
+        if (isValid(i))
+          nMinus1[i] = static_cast<float>(static_cast<double>(K[i]) * rho[i]);
+      return report;
+    }
+    case IndexModel::IdealGas:
+    {
+      std::vector<float> T = temperature();
+      std::vector<float> p = pressure();
+      std::vector<float> K, M;
+      composition(K, &M);
+      for (std::size_t i = 0; i < n; ++i)
+        if (isValid(i))
+        {
+          const double rho =
+            static_cast<double>(p[i]) * M[i] / (MolarGasConstant * static_cast<double>(T[i]));
+          nMinus1[i] = static_cast<float>(static_cast<double>(K[i]) * rho);
+        }
+      return report;
+    }
+    case IndexModel::Ciddor:
+    {
+      std::vector<float> T = temperature();
+      std::vector<float> p = pressure();
+      std::vector<float> h, c;
+      ScalarField humidity = ScalarField::Constant(m.Humidity);
+      ScalarField co2 = ScalarField::Constant(m.CO2);
+      const char* hRole =
+        m.HumidityKind == HumidityMeasure::Relative ? "relative humidity" : "water mole fraction";
+      if (f.Humidity.Data)
+      {
+        h = Prepare(f, f.Humidity, hRole, model, [](double v) { return v; }, 0.0f);
+        CheckSI(f, f.Humidity, hRole, h, [](double v) { return !(v >= 0.0 && v <= 1.0); },
+          "are outside [0, 1]", "Give the humidity as a fraction in [0, 1] (50 % is 0.5).", "");
+        humidity = ScalarField::PerPoint(h.data());
+      }
+      if (f.CO2.Data)
+      {
+        c = Prepare(f, f.CO2, "CO2", model, [](double v) { return v; }, 450.0f);
+        CheckSI(f, f.CO2, "CO2", c, [](double v) { return v < 0.0; }, "are negative",
+          "Give CO2 in umol/mol (ppm by amount; 450 is Ciddor's standard air).", "");
+        co2 = ScalarField::PerPoint(c.data());
+      }
+      std::vector<float> out(n);
+      Prefixed("Ciddor (temperature " + ArrayLabel(f.Temperature, "temperature") + ", pressure " +
+          ArrayLabel(f.Pressure, "pressure") + "): ",
+        [&] {
+          CiddorIndex(T.data(), p.data(), n, humidity, m.Wavelength, co2, out.data(),
+            m.HumidityKind);
+        });
+      for (std::size_t i = 0; i < n; ++i)
+        if (isValid(i))
+          nMinus1[i] = out[i];
+      return report;
+    }
+  }
+  throw Error("model: " + std::to_string(static_cast<int>(model)) +
+    " is not a model; use Passthrough (0), GladstoneDale (1), GladstoneDaleMixture (2), IdealGas "
+    "(3) or Ciddor (4).");
+}
+
+//------------------------------------------------------------------------------------------------
+void CollectDomainEdge(const int dims[3], const unsigned char* valid, const float* nMinus1,
+  const int owned[6], std::vector<float>& values)
+{
+  if (!valid || !nMinus1)
+    return;
+  int r[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  if (owned)
+    for (int a = 0; a < 3; ++a)
+    {
+      r[2 * a] = std::max(r[2 * a], owned[2 * a]);
+      r[2 * a + 1] = std::min(r[2 * a + 1], owned[2 * a + 1]);
+    }
+  const std::size_t sy = static_cast<std::size_t>(dims[0]);
+  const std::size_t sz = sy * static_cast<std::size_t>(dims[1]);
+  for (int k = r[4]; k <= r[5]; ++k)
+    for (int j = r[2]; j <= r[3]; ++j)
+      for (int i = r[0]; i <= r[1]; ++i)
+      {
+        const std::size_t id = i + j * sy + k * sz;
+        if (!valid[id])
+          continue;
+        const bool edge = (i > 0 && !valid[id - 1]) || (i + 1 < dims[0] && !valid[id + 1]) ||
+          (j > 0 && !valid[id - sy]) || (j + 1 < dims[1] && !valid[id + sy]) ||
+          (k > 0 && !valid[id - sz]) || (k + 1 < dims[2] && !valid[id + sz]);
+        if (edge)
+          values.push_back(nMinus1[id]);
+      }
+}
+
+double Median(std::vector<float>& values)
+{
+  if (values.empty())
+    return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  const double upper = values[mid];
+  if (values.size() % 2)
+    return upper;
+  const double lower = *std::max_element(values.begin(), values.begin() + mid);
+  return 0.5 * (lower + upper);
+}
+
+std::size_t FillInvalid(std::size_t n, const unsigned char* valid, double ambient, float* nMinus1)
+{
+  if (!valid)
+    return 0;
+  if (!std::isfinite(ambient) || ambient <= -1.0)
+    throw Error("ambient n - 1: " + Num(ambient) +
+      " is not usable outside the flow domain (it must be finite and above -1). Set the ambient "
+      "value to the free stream's n - 1 (air at 20 C, 1 atm: 2.7e-4).");
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!valid[i])
+    {
+      nMinus1[i] = static_cast<float>(ambient);
+      ++count;
+    }
+  return count;
+}
+
+std::size_t ExtendIntoInvalid(const int dims[3], const unsigned char* valid, float* nMinus1)
+{
+  if (!valid)
+    return 0;
+  const std::size_t sy = static_cast<std::size_t>(dims[0]);
+  const std::size_t sz = sy * static_cast<std::size_t>(dims[1]);
+  const std::size_t n = sz * static_cast<std::size_t>(dims[2]);
+  // 2: filled (valid, or an earlier layer), 1: in the current front, 0: not reached yet.
+  std::vector<unsigned char> state(n);
+  std::size_t nValid = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    state[i] = valid[i] ? 2 : 0;
+    nValid += valid[i] ? 1 : 0;
+  }
+  if (nValid == 0)
+    throw Error("no point of the grid lies in the flow domain: there is nothing to extend. Check "
+                "the sampling bounds and the input.");
+  auto neighbours = [&](std::size_t id, auto visit) {
+    const int i = static_cast<int>(id % sy);
+    const int j = static_cast<int>((id / sy) % dims[1]);
+    const int k = static_cast<int>(id / sz);
+    if (i > 0)
+      visit(id - 1);
+    if (i + 1 < dims[0])
+      visit(id + 1);
+    if (j > 0)
+      visit(id - sy);
+    if (j + 1 < dims[1])
+      visit(id + sy);
+    if (k > 0)
+      visit(id - sz);
+    if (k + 1 < dims[2])
+      visit(id + sz);
+  };
+  std::vector<std::size_t> front, next;
+  for (std::size_t id = 0; id < n; ++id)
+    if (state[id] == 0)
+    {
+      bool touches = false;
+      neighbours(id, [&](std::size_t o) { touches = touches || state[o] == 2; });
+      if (touches)
+      {
+        state[id] = 1;
+        front.push_back(id);
+      }
+    }
+  std::size_t filled = 0;
+  std::vector<float> values;
+  while (!front.empty())
+  {
+    // Values first (from the points filled before this layer), then mark the layer filled.
+    values.resize(front.size());
+    for (std::size_t f = 0; f < front.size(); ++f)
+    {
+      double sum = 0.0;
+      int count = 0;
+      neighbours(front[f], [&](std::size_t o) {
+        if (state[o] == 2)
+        {
+          sum += nMinus1[o];
+          ++count;
+        }
+      });
+      values[f] = static_cast<float>(sum / count);
+    }
+    for (std::size_t f = 0; f < front.size(); ++f)
+    {
+      nMinus1[front[f]] = values[f];
+      state[front[f]] = 2;
+    }
+    filled += front.size();
+    next.clear();
+    for (std::size_t id : front)
+      neighbours(id, [&](std::size_t o) {
+        if (state[o] == 0)
+        {
+          state[o] = 1;
+          next.push_back(o);
+        }
+      });
+    front.swap(next);
+  }
+
+  // Smooth the fill into a harmonic continuation: inside the void n - 1 solves Laplace's equation
+  // with the flow's values at its edge (the valid points are fixed) and, on the grid's faces, the
+  // values of the layer extension (so that a profile along a face, such as a boundary layer
+  // against a wall, is carried out unchanged). The layer extension alone leaves ridges where fronts
+  // from different parts of the edge meet (inside a body enclosed by flow); the harmonic fill has
+  // none. Successive over-relaxation, red-black order (deterministic).
+  auto onFace = [&](std::size_t id) {
+    const int i = static_cast<int>(id % sy);
+    const int j = static_cast<int>((id / sy) % dims[1]);
+    const int k = static_cast<int>(id / sz);
+    return (dims[0] > 1 && (i == 0 || i == dims[0] - 1)) ||
+      (dims[1] > 1 && (j == 0 || j == dims[1] - 1)) || (dims[2] > 1 && (k == 0 || k == dims[2] - 1));
+  };
+  std::vector<std::size_t> voids;
+  voids.reserve(filled);
+  float lo = std::numeric_limits<float>::max(), hi = -lo;
+  for (std::size_t id = 0; id < n; ++id)
+  {
+    if (!valid[id] && !onFace(id))
+      voids.push_back(id);
+    lo = std::min(lo, nMinus1[id]);
+    hi = std::max(hi, nMinus1[id]);
+  }
+  const int longest = std::max(dims[0], std::max(dims[1], dims[2]));
+  const double pi = 3.14159265358979323846;
+  const double omega = 2.0 / (1.0 + std::sin(pi / std::max(longest, 2)));
+  const double tolerance = 1e-5 * std::max(static_cast<double>(hi - lo), 1e-30);
+  const int maxSweeps = 4 * longest + 50;
+  for (int sweep = 0; sweep < maxSweeps; ++sweep)
+  {
+    double largest = 0.0;
+    for (int colour = 0; colour < 2; ++colour)
+      for (std::size_t id : voids)
+      {
+        const std::size_t i = id % sy, j = (id / sy) % dims[1], k = id / sz;
+        if (static_cast<int>((i + j + k) % 2) != colour)
+          continue;
+        // An interior point: all six neighbours exist.
+        const double sum = static_cast<double>(nMinus1[id - 1]) + nMinus1[id + 1] +
+          nMinus1[id - sy] + nMinus1[id + sy] + nMinus1[id - sz] + nMinus1[id + sz];
+        const double change = omega * (sum / 6.0 - nMinus1[id]);
+        nMinus1[id] = static_cast<float>(nMinus1[id] + change);
+        largest = std::max(largest, std::fabs(change));
+      }
+    if (largest < tolerance)
+      break;
+  }
+  return filled;
+}
+
+void AutomaticDimensions(const double bounds[6], int longest, int dims[3])
+{
+  if (longest < 2)
+    throw Error("sampling: " + std::to_string(longest) +
+      " points along the longest side is too few; use at least 2 (128 is the default).");
+  double size[3], largest = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    size[a] = bounds[2 * a + 1] - bounds[2 * a];
+    if (!std::isfinite(size[a]) || size[a] < 0.0)
+      throw Error("sampling: the input's bounds (" + Num(bounds[0]) + " " + Num(bounds[1]) + " " +
+        Num(bounds[2]) + " " + Num(bounds[3]) + " " + Num(bounds[4]) + " " + Num(bounds[5]) +
+        ") are empty or not finite; the input has no points to resample.");
+    largest = std::max(largest, size[a]);
+  }
+  if (!(largest > 0.0))
+    throw Error("sampling: the input's bounds have zero size (a single point); nothing to resample.");
+  const double h = largest / (longest - 1);
+  for (int a = 0; a < 3; ++a)
+  {
+    if (size[a] <= 1e-12 * largest)
+      dims[a] = 1;
+    else
+      dims[a] = std::max(2, static_cast<int>(std::lround(size[a] / h)) + 1);
+  }
 }
 
 } // namespace schlieren

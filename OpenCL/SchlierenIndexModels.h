@@ -30,6 +30,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace schlieren
 {
@@ -270,6 +271,197 @@ void ToPascal(const float* in, std::size_t n, PressureUnit unit, float* out);
  * Throws Error if the reference is not finite or not positive.
  */
 void ScaleByReference(const float* in, std::size_t n, double reference, float* out);
+
+//------------------------------------------------------------------------------------------------
+// Whole fields: what the RefractiveIndex filter hands over (named arrays, a model, units)
+//------------------------------------------------------------------------------------------------
+
+/** The model that turns CFD fields into n - 1 (the filter's `Model`). */
+enum class IndexModel : int
+{
+  Passthrough = 0,          ///< the array is n - 1 (or n, see FieldModel::IndexIsN)
+  GladstoneDale = 1,        ///< n - 1 = K rho, one gas
+  GladstoneDaleMixture = 2, ///< n - 1 = K(Y) rho, K weighted by mass fraction
+  IdealGas = 3,             ///< rho = p M / (R T), then Gladstone-Dale
+  Ciddor = 4                ///< moist air from T, p, humidity, CO2 and wavelength
+};
+
+/** What the gas is made of (GladstoneDaleMixture and IdealGas). */
+enum class Composition : int
+{
+  SingleGas = 0,       ///< one gas (FieldModel::SingleGas)
+  MixtureFraction = 1, ///< a mixture-fraction array: the mass fraction of GasF, the rest Gas0
+  Species = 2          ///< up to MaxSpecies mass-fraction arrays, plus an optional balance gas
+};
+
+/** The most species mass-fraction arrays a field can have. */
+constexpr int MaxSpecies = 4;
+
+/** A gas: a row of the table, or constants typed by the user (for a gas the table lacks). */
+struct GasChoice
+{
+  bool Custom = false;
+  Gas Preset = Gas::Air;
+  double K = 0.0; ///< Custom only: Gladstone-Dale constant, m^3/kg
+  double M = 0.0; ///< Custom only: molar mass, kg/mol
+
+  static GasChoice Table(Gas g)
+  {
+    GasChoice c;
+    c.Preset = g;
+    return c;
+  }
+  static GasChoice Typed(double k, double m)
+  {
+    GasChoice c;
+    c.Custom = true;
+    c.K = k;
+    c.M = m;
+    return c;
+  }
+  /** K, m^3/kg. Throws Error if a typed K is not positive and finite. */
+  double GladstoneDale() const;
+  /** M, kg/mol. Throws Error if a typed M is not positive and finite. */
+  double MolarMass() const;
+  /** "He", or "custom gas (K = ... m^3/kg, M = ... kg/mol)". */
+  std::string Label() const;
+};
+
+/**
+ * The model and its parameters. Units of the input arrays, to SI:
+ *   density  rho = DensityReference * value                       (kg/m^3)
+ *   T        = ToKelvin(TemperatureReference * value, TemperatureUnits)
+ *   p        = ToPascal(PressureReference * value + PressureOffset, PressureUnits)
+ * The references are 1 for dimensional data; for non-dimensional CFD output they are the
+ * free-stream (reference) values the solver divided by, in the unit chosen (PLOT3D: rho_inf for
+ * density, T_inf for temperature and rho_inf a_inf^2 = gamma p_inf for pressure). PressureOffset
+ * turns a gauge pressure into an absolute one (the solver's operating pressure, in PressureUnits).
+ */
+struct FieldModel
+{
+  IndexModel Model = IndexModel::Passthrough;
+  bool IndexIsN = false; ///< Passthrough: the array holds n (n - 1 = value - 1), not n - 1
+
+  GasChoice SingleGas = GasChoice::Table(Gas::Air); ///< GladstoneDale; IdealGas with SingleGas
+  Composition Mixture = Composition::MixtureFraction; ///< GladstoneDaleMixture, IdealGas
+  Gas Gas0 = Gas::Air;    ///< the gas at mixture fraction 0
+  Gas GasF = Gas::Helium; ///< the gas at mixture fraction 1
+  int NumberOfSpecies = 0;
+  GasChoice Species[MaxSpecies];
+  bool HasBalance = true; ///< false: the species must sum to 1 (within 1e-3; renormalised)
+  GasChoice Balance = GasChoice::Table(Gas::Air);
+
+  double DensityReference = 1.0;
+  double TemperatureReference = 1.0;
+  TemperatureUnit TemperatureUnits = TemperatureUnit::Kelvin;
+  double PressureReference = 1.0;
+  double PressureOffset = 0.0;
+  PressureUnit PressureUnits = PressureUnit::Pascal;
+
+  double Humidity = 0.0; ///< Ciddor, used where FieldArrays::Humidity has no array
+  HumidityMeasure HumidityKind = HumidityMeasure::Relative;
+  double CO2 = 450.0;        ///< Ciddor, umol/mol, used where FieldArrays::CO2 has no array
+  double Wavelength = 632.8; ///< Ciddor, nm
+};
+
+/** One input array, float, one value per point; its name is for messages. */
+struct NamedArray
+{
+  const float* Data = nullptr;
+  std::string Name;
+};
+
+/**
+ * The arrays of a field, each `Count` points long; only those the model needs must be set.
+ * Points with Valid[i] == 0 (outside the flow domain, blanked) are neither checked nor computed:
+ * their n - 1 is left as it was, for FillInvalid.
+ */
+struct FieldArrays
+{
+  std::size_t Count = 0;
+  NamedArray Index;       ///< Passthrough
+  NamedArray Density;     ///< GladstoneDale, GladstoneDaleMixture
+  NamedArray Temperature; ///< IdealGas, Ciddor
+  NamedArray Pressure;    ///< IdealGas, Ciddor
+  NamedArray MixtureFraction;
+  NamedArray Species[MaxSpecies];
+  NamedArray Humidity; ///< Ciddor, optional (else FieldModel::Humidity)
+  NamedArray CO2;      ///< Ciddor, optional (else FieldModel::CO2)
+  const unsigned char* Valid = nullptr;
+};
+
+/** What ComputeFieldIndex found besides errors. */
+struct FieldReport
+{
+  std::size_t ValidPoints = 0;
+  std::vector<std::string> Warnings; ///< e.g. points of zero density, renormalised mass fractions
+};
+
+/**
+ * n - 1 of a whole field by `model`: unit conversion, the model, and checks whose messages name
+ * the input array (its name and role), the count of bad points (of the valid ones), the first bad
+ * point and value, and what to do: a missing array the model needs; NaN/Inf; temperature or
+ * pressure <= 0; density < 0; mass fractions outside [0, 1] or summing above 1 (or, without a
+ * balance gas, away from 1 by more than 1e-3). Density 0 (vacuum) and renormalised mass fractions
+ * give warnings. Writes the valid points of `nMinus1` (Count floats). Throws Error.
+ */
+FieldReport ComputeFieldIndex(const FieldArrays& arrays, const FieldModel& model, float* nMinus1);
+
+/**
+ * Gladstone-Dale constant (m^3/kg) and molar mass (kg/mol) per point of a mixture given by
+ * species mass fractions (Y[s][i] for the gas species[s]) and an optional balance gas that takes
+ * 1 - sum Y (null: none; the species must then sum to 1 within 1e-3 and are renormalised).
+ * Fractions outside [0, 1] (beyond 1e-6) or summing above 1 + 1e-6 throw Error; `names[s]` names
+ * the arrays in messages (null: "mass fraction of <gas>"). `M` may be null. `renormalised`
+ * (optional) receives the number of points whose sum differed from 1 by more than 1e-6.
+ */
+void MixtureConstants(const float* const* Y, const GasChoice* species, std::size_t nSpecies,
+  std::size_t n, const GasChoice* balance, float* K, float* M, const std::string* names = nullptr,
+  std::size_t* renormalised = nullptr);
+
+//------------------------------------------------------------------------------------------------
+// Points outside the flow domain, and the sampling grid
+//------------------------------------------------------------------------------------------------
+
+/**
+ * Values of n - 1 at the edge of the flow domain: the valid points of a grid (`dims`, x fastest)
+ * that have an invalid neighbour along x, y or z. Only points inside `owned` (index ranges
+ * i0 i1 j0 j1 k0 k1 into the grid, inclusive; null: all) are collected, so that pieces that
+ * overlap can share the work exactly. Appends to `values`.
+ */
+void CollectDomainEdge(const int dims[3], const unsigned char* valid, const float* nMinus1,
+  const int owned[6], std::vector<float>& values);
+
+/** The median of `values` (reordered; the mean of the two middle ones if even); NaN if empty. */
+double Median(std::vector<float>& values);
+
+/**
+ * Sets n - 1 = ambient at every point with valid[i] == 0; returns how many. Throws Error if the
+ * ambient value is not finite or n would be <= 0. (The ambient is never 0 by default: a jump from
+ * the flow to vacuum at the domain's edge would draw a false shock there.)
+ */
+std::size_t FillInvalid(std::size_t n, const unsigned char* valid, double ambient, float* nMinus1);
+
+/**
+ * Fills every invalid point of a grid (`dims`, x fastest) with a smooth continuation of the flow.
+ * First the flow is carried outward layer by layer (each newly reached point the mean of its
+ * neighbours filled before it: a zero-gradient extension normal to the domain's edge). Then the
+ * inside of the void (off the grid's faces, which keep that extension) is made harmonic: n - 1
+ * solves Laplace's equation there with the flow's values at the void's edge (the valid points are
+ * not changed), by successive over-relaxation (red-black, to 1e-5 of the field's range). Along any
+ * ray the index then continues across the domain's edge without a jump, whatever the flow does
+ * there (a boundary layer, a shock leaving the domain), and a body enclosed by flow gets no ridge
+ * inside. Returns the number of points filled. Throws Error if no point is valid.
+ */
+std::size_t ExtendIntoInvalid(const int dims[3], const unsigned char* valid, float* nMinus1);
+
+/**
+ * Sampling dimensions for a box (`bounds`: xmin xmax ymin ymax zmin zmax): `longest` points along
+ * its longest side and about the same spacing along the others (rounded, at least 2 along a side
+ * of non-zero length, 1 along a flat one). Throws Error for empty or non-finite bounds, a box of
+ * zero size, or longest < 2.
+ */
+void AutomaticDimensions(const double bounds[6], int longest, int dims[3]);
 
 } // namespace schlieren
 

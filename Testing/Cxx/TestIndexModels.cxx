@@ -232,6 +232,348 @@ void TestErrors()
     },
     { "density", "1 of 4 points" });
 }
+
+// The whole-field entry point the RefractiveIndex filter calls: each model against the ORACLES
+// values above (through units, references, offsets and the validity mask), and its messages.
+void TestFields()
+{
+  // GladstoneDale with a non-dimensional density (PLOT3D style): rho = 1.2 kg/m^3 * value.
+  {
+    const float rhoND[3] = { 1.0f, 0.19f, 4.98f };
+    float out[3];
+    FieldArrays f;
+    f.Count = 3;
+    f.Density = { rhoND, "Density" };
+    FieldModel m;
+    m.Model = IndexModel::GladstoneDale;
+    m.DensityReference = 1.2;
+    ComputeFieldIndex(f, m, out);
+    for (int i = 0; i < 3; ++i)
+      CHECK_NEAR(out[i], 0.2256e-3 * 1.2 * rhoND[i], 1e-10, "GladstoneDale, scaled density");
+    m.SingleGas = GasChoice::Typed(0.5e-3, 0.01);
+    ComputeFieldIndex(f, m, out);
+    CHECK_NEAR(out[0], 0.5e-3 * 1.2, 1e-10, "GladstoneDale, typed K");
+  }
+
+  // Helium/air (ORACLES) through IdealGas: T in Celsius, p in kPa, by mixture fraction and by
+  // species (with and without a balance gas).
+  const float f3[3] = { 0.0f, 0.5f, 1.0f };
+  const float air3[3] = { 1.0f, 0.5f, 0.0f };
+  const float T3[3] = { 20.0f, 20.0f, 20.0f };
+  const float p3[3] = { 101.325f, 101.325f, 101.325f };
+  const double expected[3] = { 2.7164e-4, 6.1546e-5, 3.2513e-5 };
+  {
+    FieldArrays f;
+    f.Count = 3;
+    f.Temperature = { T3, "T" };
+    f.Pressure = { p3, "p" };
+    f.MixtureFraction = { f3, "f" };
+    f.Species[0] = { f3, "Y_He" };
+    f.Species[1] = { air3, "Y_air" };
+    FieldModel m;
+    m.Model = IndexModel::IdealGas;
+    m.TemperatureUnits = TemperatureUnit::Celsius;
+    m.PressureUnits = PressureUnit::Kilopascal;
+    m.Mixture = Composition::MixtureFraction;
+    float out[3];
+    ComputeFieldIndex(f, m, out);
+    for (int i = 0; i < 3; ++i)
+      CHECK_NEAR(out[i], expected[i], HalfUlp(expected[i], 5),
+        "IdealGas by mixture fraction, f = " + std::to_string(f3[i]));
+    m.Mixture = Composition::Species;
+    m.NumberOfSpecies = 1;
+    m.Species[0] = GasChoice::Table(Gas::Helium);
+    m.Balance = GasChoice::Table(Gas::Air);
+    ComputeFieldIndex(f, m, out);
+    for (int i = 0; i < 3; ++i)
+      CHECK_NEAR(out[i], expected[i], HalfUlp(expected[i], 5), "IdealGas by species + balance");
+    m.NumberOfSpecies = 2;
+    m.Species[1] = GasChoice::Typed(0.2256e-3, 28.9641e-3); // air, typed
+    m.HasBalance = false;
+    FieldReport r = ComputeFieldIndex(f, m, out);
+    for (int i = 0; i < 3; ++i)
+      CHECK_NEAR(out[i], expected[i], HalfUlp(expected[i], 5), "IdealGas by two species, no balance");
+    CHECK(r.Warnings.empty(), "no warning for species that sum to 1");
+
+    // GladstoneDaleMixture from the density the ideal gas gives at f = 0.5 (0.29238 kg/m^3).
+    const float rho[1] = { 0.29238f };
+    const float half[1] = { 0.5f };
+    FieldArrays g;
+    g.Count = 1;
+    g.Density = { rho, "rho" };
+    g.MixtureFraction = { half, "f" };
+    FieldModel gm;
+    gm.Model = IndexModel::GladstoneDaleMixture;
+    gm.Mixture = Composition::MixtureFraction;
+    float one[1];
+    ComputeFieldIndex(g, gm, one);
+    CHECK_NEAR(one[0], 6.1546e-5, HalfUlp(6.1546e-5, 5), "GladstoneDaleMixture at f = 0.5");
+  }
+
+  // Pressure units and a gauge pressure with an operating-pressure offset: 1 atm three ways.
+  {
+    const float T[1] = { 293.15f };
+    const float gauge[1] = { 0.0f }, atm[1] = { 1.0f }, bar[1] = { 1.01325f };
+    float a[1], b[1], c[1];
+    FieldArrays f;
+    f.Count = 1;
+    f.Temperature = { T, "T" };
+    FieldModel m;
+    m.Model = IndexModel::IdealGas;
+    m.Mixture = Composition::SingleGas;
+    f.Pressure = { gauge, "p_gauge" };
+    m.PressureUnits = PressureUnit::Kilopascal;
+    m.PressureOffset = 101.325;
+    ComputeFieldIndex(f, m, a);
+    f.Pressure = { atm, "p_atm" };
+    m.PressureUnits = PressureUnit::Atmosphere;
+    m.PressureOffset = 0.0;
+    ComputeFieldIndex(f, m, b);
+    f.Pressure = { bar, "p_bar" };
+    m.PressureUnits = PressureUnit::Bar;
+    ComputeFieldIndex(f, m, c);
+    CHECK_NEAR(a[0], 2.7164e-4, HalfUlp(2.7164e-4, 5), "air at 1 atm: gauge 0 kPa + 101.325 kPa");
+    CHECK_NEAR(b[0], a[0], 1e-11, "air at 1 atm: in atm");
+    CHECK_NEAR(c[0], a[0], 1e-11, "air at 1 atm: in bar");
+    // Non-dimensional T and p (T / 293.15 K, p / 101325 Pa).
+    const float one[1] = { 1.0f };
+    f.Temperature = { one, "T_nd" };
+    f.Pressure = { one, "p_nd" };
+    m.PressureUnits = PressureUnit::Pascal;
+    m.TemperatureReference = 293.15;
+    m.PressureReference = 101325.0;
+    ComputeFieldIndex(f, m, b);
+    CHECK_NEAR(b[0], a[0], 1e-11, "air at 1 atm from non-dimensional T and p");
+  }
+
+  // Ciddor through the field entry point: the 633 nm rows of ORACLES in C and kPa, humidity as
+  // an array; CO2 constant.
+  {
+    const float T[5] = { 20, 20, 50, -40, 50 };
+    const float p[5] = { 101.325f, 60, 100, 100, 120 };
+    const float h[5] = { 0, 0, 0, 0, 1 };
+    const double n[5] = { 1.000271800, 1.000160924, 1.000243285, 1.000337580, 1.000287924 };
+    FieldArrays f;
+    f.Count = 5;
+    f.Temperature = { T, "t_C" };
+    f.Pressure = { p, "p_kPa" };
+    f.Humidity = { h, "RH" };
+    FieldModel m;
+    m.Model = IndexModel::Ciddor;
+    m.TemperatureUnits = TemperatureUnit::Celsius;
+    m.PressureUnits = PressureUnit::Kilopascal;
+    m.Wavelength = 633.0;
+    float out[5];
+    ComputeFieldIndex(f, m, out);
+    for (int i = 0; i < 5; ++i)
+      CHECK_NEAR(1.0 + out[i], n[i], 1e-9, "Ciddor field, row " + std::to_string(i));
+  }
+
+  // Passthrough of n or n - 1; the validity mask: invalid points are skipped (even NaN there).
+  {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float n1[4] = { 1e-4f, 2e-4f, nan, 3e-4f };
+    const float nn[4] = { 1.0001f, 1.0002f, nan, 1.0003f };
+    const unsigned char valid[4] = { 1, 1, 0, 1 };
+    float out[4] = { 0, 0, -7.0f, 0 };
+    FieldArrays f;
+    f.Count = 4;
+    f.Index = { n1, "n_minus_1" };
+    f.Valid = valid;
+    FieldModel m;
+    FieldReport r = ComputeFieldIndex(f, m, out);
+    CHECK(r.ValidPoints == 3, "three valid points");
+    CHECK_NEAR(out[3], 3e-4, 1e-10, "Passthrough n - 1");
+    CHECK(out[2] == -7.0f, "an invalid point is left as it was");
+    f.Index = { nn, "n" };
+    m.IndexIsN = true;
+    ComputeFieldIndex(f, m, out);
+    CHECK_NEAR(out[1], 2e-4, 1e-7, "Passthrough n (float n keeps ~1e-7 of n - 1)");
+  }
+}
+
+void TestFieldErrors()
+{
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const float T[4] = { 300.0f, nan, 280.0f, inf };
+  const float Tc[4] = { 20.0f, -300.0f, 20.0f, 20.0f };
+  const float p[4] = { 1e5f, 1e5f, 1e5f, 1e5f };
+  const float zero[4] = { 1e5f, 0.0f, 1e5f, 1e5f };
+  float out[4];
+  FieldArrays f;
+  f.Count = 4;
+  FieldModel m;
+  m.Model = IndexModel::IdealGas;
+  m.Mixture = Composition::SingleGas;
+  f.Pressure = { p, "Pres" };
+  ExpectError("IdealGas without a temperature array",
+    [&] { ComputeFieldIndex(f, m, out); }, { "IdealGas", "temperature array" });
+  f.Temperature = { T, "Temp" };
+  ExpectError("NaN and Inf temperature", [&] { ComputeFieldIndex(f, m, out); },
+    { "'Temp'", "temperature", "2 of 4 points", "NaN or infinite", "index 1" });
+  f.Temperature = { Tc, "Temp" };
+  m.TemperatureUnits = TemperatureUnit::Celsius;
+  ExpectError("temperature below absolute zero after the unit",
+    [&] { ComputeFieldIndex(f, m, out); }, { "'Temp'", "1 of 4 points", "absolute zero", "-26.85" });
+  m.TemperatureUnits = TemperatureUnit::Kelvin;
+  f.Temperature = { p, "Temp" };
+  f.Pressure = { zero, "Pres" };
+  ExpectError("zero pressure", [&] { ComputeFieldIndex(f, m, out); },
+    { "'Pres'", "pressure", "1 of 4 points", "PressureOffset" });
+
+  // Density: negative is an error, zero a warning.
+  const float rho[4] = { 1.0f, -0.5f, 0.0f, 1.0f };
+  const float rho0[4] = { 1.0f, 0.0f, 0.0f, 1.0f };
+  FieldArrays g;
+  g.Count = 4;
+  g.Density = { rho, "Density" };
+  FieldModel gd;
+  gd.Model = IndexModel::GladstoneDale;
+  ExpectError("negative density", [&] { ComputeFieldIndex(g, gd, out); },
+    { "'Density'", "1 of 4 points", "negative" });
+  g.Density = { rho0, "Density" };
+  FieldReport r = ComputeFieldIndex(g, gd, out);
+  CHECK(r.Warnings.size() == 1 && r.Warnings[0].find("2 of 4 points are 0") != std::string::npos,
+    "zero density is a warning: " + (r.Warnings.empty() ? std::string("(none)") : r.Warnings[0]));
+
+  // Mass fractions: above 1 with a balance gas; not summing to 1 without one.
+  const float yH2[4] = { 0.9f, 0.8f, 0.7f, 0.5f };
+  const float yX[4] = { 0.1f, 0.3f, 0.2f, 0.5f };
+  FieldArrays s;
+  s.Count = 4;
+  s.Density = { rho, "rho" };
+  s.Density.Data = rho0;
+  s.Species[0] = { yH2, "H2" };
+  s.Species[1] = { yX, "AsH3" };
+  FieldModel sm;
+  sm.Model = IndexModel::GladstoneDaleMixture;
+  sm.Mixture = Composition::Species;
+  sm.NumberOfSpecies = 2;
+  sm.Species[0] = GasChoice::Table(Gas::Hydrogen);
+  sm.Species[1] = GasChoice::Typed(0.3e-3, 77.9454e-3);
+  ExpectError("species summing above 1", [&] { ComputeFieldIndex(s, sm, out); },
+    { "'H2'", "'AsH3'", "1 of 4 points", "sum 1.1", "balance gas (Air)" });
+  sm.HasBalance = false;
+  ExpectError("species not summing to 1 without a balance gas",
+    [&] { ComputeFieldIndex(s, sm, out); },
+    { "'H2'", "'AsH3'", "2 of 4 points", "do not sum to 1", "index 1" });
+  sm.NumberOfSpecies = 1;
+  ExpectError("a typed gas without a molar mass",
+    [&] {
+      FieldModel bad = sm;
+      bad.Model = IndexModel::IdealGas;
+      bad.Species[0] = GasChoice::Typed(0.3e-3, 0.0);
+      FieldArrays a = s;
+      a.Temperature = { p, "T" };
+      a.Pressure = { p, "p" };
+      ComputeFieldIndex(a, bad, out);
+    },
+    { "custom gas", "molar mass" });
+  ExpectError("a reference of 0", [&] {
+    FieldModel bad = gd;
+    bad.DensityReference = 0.0;
+    ComputeFieldIndex(g, bad, out);
+  }, { "reference", "positive" });
+}
+
+// The domain edge, its median and the fill; the automatic sampling dimensions.
+void TestDomainEdge()
+{
+  // A 6 x 5 x 4 grid, valid where i < 4; n - 1 = 1e-4 (i + 1).
+  const int dims[3] = { 6, 5, 4 };
+  const std::size_t N = 6 * 5 * 4;
+  std::vector<unsigned char> valid(N);
+  std::vector<float> n1(N);
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 6; ++i)
+      {
+        const std::size_t id = i + 6 * (j + 5 * k);
+        valid[id] = i < 4;
+        n1[id] = i < 4 ? 1e-4f * (i + 1) : 0.0f;
+      }
+  std::vector<float> edge;
+  CollectDomainEdge(dims, valid.data(), n1.data(), nullptr, edge);
+  CHECK(edge.size() == 20, "the edge is the plane i = 3: 20 points (got " +
+      std::to_string(edge.size()) + ")");
+  CHECK_NEAR(Median(edge), 4e-4, 1e-10, "median of the edge");
+  // Two overlapping pieces (k 0-2 and k 2-3) that own k 0-1 and k 2-3 find the same points.
+  std::vector<float> a, b;
+  const int ownA[6] = { 0, 5, 0, 4, 0, 1 }, ownB[6] = { 0, 5, 0, 4, 2, 3 };
+  CollectDomainEdge(dims, valid.data(), n1.data(), ownA, a);
+  CollectDomainEdge(dims, valid.data(), n1.data(), ownB, b);
+  CHECK(a.size() + b.size() == 20, "owned pieces split the edge exactly");
+  std::vector<float> even = { 1.0f, 4.0f, 2.0f, 3.0f };
+  CHECK_NEAR(Median(even), 2.5, 0.0, "median of an even count");
+  CHECK(FillInvalid(N, valid.data(), 4e-4, n1.data()) == 2 * 5 * 4, "40 points filled");
+  CHECK_NEAR(n1[5], 4e-4, 1e-10, "an invalid point gets the ambient value");
+  ExpectError("ambient NaN", [&] { FillInvalid(N, valid.data(), std::nan(""), n1.data()); },
+    { "ambient" });
+
+  // Extension: a field that varies along z (like a boundary layer) continues across the edge
+  // i = 3 unchanged along x, so a ray along z sees no jump there.
+  std::vector<float> ext(N);
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 6; ++i)
+      {
+        const std::size_t id = i + 6 * (j + 5 * k);
+        ext[id] = i < 4 ? 1e-4f * (1 + k) : 0.0f;
+      }
+  CHECK(ExtendIntoInvalid(dims, valid.data(), ext.data()) == 40, "40 points extended");
+  double worst = 0.0;
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 4; i < 6; ++i)
+        worst = std::max(worst,
+          std::fabs(double(ext[i + 6 * (j + 5 * k)]) - ext[3 + 6 * (j + 5 * k)]));
+  CHECK_NEAR(worst, 0.0, 1e-12, "the extension is the edge value, row by row");
+  // A body enclosed by flow (a ball of radius 5 in a 24^3 grid) in a linear field: the fill is the
+  // same linear field (harmonic), with no ridge where the fronts from its sides meet.
+  const int bd[3] = { 24, 24, 24 };
+  const std::size_t BN = 24 * 24 * 24;
+  std::vector<unsigned char> bv(BN);
+  std::vector<float> bf(BN), truth(BN);
+  for (int k = 0; k < 24; ++k)
+    for (int j = 0; j < 24; ++j)
+      for (int i = 0; i < 24; ++i)
+      {
+        const std::size_t id = i + 24 * (j + 24 * k);
+        truth[id] = 2.7e-4f + 1e-6f * i - 2e-6f * j + 0.5e-6f * k;
+        bv[id] = (i - 11.5) * (i - 11.5) + (j - 11.5) * (j - 11.5) + (k - 11.5) * (k - 11.5) > 25.0;
+        bf[id] = bv[id] ? truth[id] : 0.0f;
+      }
+  ExtendIntoInvalid(bd, bv.data(), bf.data());
+  double worstBall = 0.0;
+  for (std::size_t id = 0; id < BN; ++id)
+    worstBall = std::max(worstBall, std::fabs(double(bf[id]) - truth[id]));
+  std::printf("harmonic fill of a ball in a linear field: max error %.3g (field range 7e-5)\n",
+    worstBall);
+  CHECK(worstBall < 1e-9, "the fill inside an enclosed body continues a linear field");
+  std::vector<unsigned char> none(N, 0);
+  ExpectError("nothing valid to extend", [&] { ExtendIntoInvalid(dims, none.data(), ext.data()); },
+    { "no point" });
+
+  // The blunt fin's box: 128 points along x, the same spacing (within rounding) along y and z.
+  const double fin[6] = { -7.8157, 14.3622, 0.0, 8.32756, 0.0, 5.72425 };
+  int d[3];
+  AutomaticDimensions(fin, 128, d);
+  std::printf("blunt fin box -> %d x %d x %d\n", d[0], d[1], d[2]);
+  CHECK(d[0] == 128 && d[1] == 49 && d[2] == 34, "automatic dimensions of the blunt fin's box");
+  for (int a2 = 1; a2 < 3; ++a2)
+  {
+    const double h = (fin[2 * a2 + 1] - fin[2 * a2]) / (d[a2] - 1);
+    CHECK_NEAR(h / ((fin[1] - fin[0]) / 127.0), 1.0, 0.03, "spacing nearly isotropic");
+  }
+  const double flat[6] = { 0, 1, 0, 1, 2, 2 };
+  AutomaticDimensions(flat, 64, d);
+  CHECK(d[0] == 64 && d[1] == 64 && d[2] == 1, "a flat box keeps one layer");
+  ExpectError("empty bounds", [&] {
+    const double e[6] = { 1, -1, 1, -1, 1, -1 };
+    AutomaticDimensions(e, 128, d);
+  }, { "empty" });
+}
 } // namespace
 
 int main()
@@ -239,5 +581,8 @@ int main()
   TestCiddor();
   TestGladstoneDale();
   TestErrors();
+  TestFields();
+  TestFieldErrors();
+  TestDomainEdge();
   return schtest::Finish();
 }
