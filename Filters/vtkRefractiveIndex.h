@@ -1,36 +1,82 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkRefractiveIndex
- * @brief   refractive index n - 1 and its gradient from a field of an image
+ * @brief   refractive index n - 1 and its gradient from CFD fields, on an image grid
  *
- * vtkRefractiveIndex turns one point array of a vtkImageData into the refractive index that the
- * schlieren tracer needs, by a Model:
+ * vtkRefractiveIndex turns what a CFD code writes (density, or temperature and pressure, or
+ * species) into the refractive index that the schlieren tracer needs, by a Model (the physics is
+ * schlieren::ComputeFieldIndex, SchlierenIndexModels.h; units SI):
  *
- * - PASSTHROUGH (0): the array already is n - 1 (dimensionless);
- * - GLADSTONE_DALE (1): the array is the density rho (kg/m^3) and n - 1 = K rho, with K the
- *   GladstoneDaleConstant (m^3/kg, default 2.256e-4: air at 632.8 nm).
+ * - PASSTHROUGH (0): the input array is n - 1, or n itself with PassthroughHoldsN on;
+ * - GLADSTONE_DALE (1): the input array is the density rho; n - 1 = K rho, K of Gas (a row of the
+ *   table at 632.8 nm, or CUSTOM_GAS: GladstoneDaleConstant);
+ * - GLADSTONE_DALE_MIXTURE (2): the input array is the density; K = sum_i Y_i K_i by mass fraction,
+ *   from a mixture-fraction array between MixtureGas0 and MixtureGas1 (default air and helium, the
+ *   paper's eq. 2) or from up to 4 species mass-fraction arrays plus a BalanceGas
+ *   (MixtureComposition);
+ * - IDEAL_GAS (3): temperature and pressure arrays, rho = p M / (R T) with M (and K) of Gas, of a
+ *   mixture fraction or of the species (IdealGasComposition), then Gladstone-Dale;
+ * - CIDDOR (4): moist air from temperature and pressure, relative humidity (or water mole
+ *   fraction; constant or an array), CO2 (constant or an array, umol/mol) and Wavelength (nm,
+ *   300-1700), Ciddor (1996) in NIST's form.
  *
- * The array is chosen with SetInputArrayToProcess (index 0, point data; by default the active
- * scalars). Wavelength (nm, default 632.8) is kept for the wavelength-dependent models to come.
+ * Units: density = DensityReference x value (kg/m^3); temperature = TemperatureReference x value in
+ * TemperatureUnit; pressure = PressureReference x value + PressureOffset in PressureUnit. The
+ * references are 1 for dimensional data and the free-stream values for non-dimensional data
+ * (PLOT3D: rho_inf, T_inf and rho_inf a_inf^2 = gamma p_inf); PressureOffset makes a gauge
+ * pressure absolute.
  *
- * The output is the input with two more point arrays: `n_minus_1` (float, the active scalars) and
- * `grad_n` (float, 3 components, per world unit: central differences in world units, one-sided at
- * the borders, spacing-aware; schlieren::ComputeGradient). The input's other arrays are kept.
- * NaN/Inf or n <= 0 anywhere is an error (schlieren::ValidateIndex).
+ * Arrays are chosen with SetInputArrayToProcess (point data), by index: 0 the input array (n - 1
+ * or n for Passthrough, the density for the Gladstone-Dale models; default the active scalars),
+ * 1 temperature, 2 pressure, 3 mixture fraction, 4-7 the species 1-4, 8 humidity, 9 CO2. A model
+ * reads only the arrays it needs; a missing one is an error that lists the arrays present.
  *
- * Under MPI the filter asks its input for one more point on every side of the requested piece, so
- * that the central differences at the piece borders are those of the whole volume.
+ * Input: a vtkImageData is used on its own grid. Any other data set or composite data set
+ * (unstructured, curvilinear, multiblock such as PLOT3D's) is resampled onto an image grid with
+ * vtkCompositeDataProbeFilter: SamplingDimensions points (0 0 0, the default: AutomaticDimension
+ * points along the longest side of the bounds and the same spacing along the others) over
+ * SamplingBounds (with UseSamplingBounds) or the input's bounds. That grid is set when the
+ * pipeline information is updated (the filter then updates its input once to learn its bounds,
+ * unless both the dimensions and the bounds are given) and stays fixed across time steps.
  *
- * @warning Only vtkImageData inputs are accepted for now; resample other data sets onto an image
- * first (for example with ParaView's Resample To Image).
+ * Points outside the flow domain (where the probe found no cell, or an image's
+ * vtkValidPointMask is 0, or hidden points) get an ambient n - 1, never 0, since a jump to vacuum
+ * would draw a false shock at the domain's edge. AmbientMode EXTEND (default): the flow's n - 1 is
+ * carried outward from the domain's edge, layer by layer (schlieren::ExtendIntoInvalid: a
+ * zero-gradient extension, as at a CFD outflow boundary), so that no ray sees a jump where the
+ * domain ends, even where the flow varies along the edge (an inflow boundary layer, a shock
+ * leaving the domain); it needs no reference conditions and works for every model.
+ * DOMAIN_EDGE_MEDIAN: one value, the median n - 1 over the valid points next to an invalid one.
+ * AMBIENT_VALUE: AmbientValue as typed (e.g. K rho_inf). A constant leaves a jump wherever the
+ * edge's values differ from it: on the blunt fin, whose inflow boundary layer makes the edge median
+ * 0.7 rho_inf, it draws the grid's outer boundary as a false edge. The constant used is in the
+ * field data `ambient_n_minus_1`.
  *
- * @sa vtkRefractiveScene vtkSchlierenImage
+ * The output is always a vtkImageData with the point arrays `n_minus_1` (float, the active
+ * scalars) and `grad_n` (float, 3 components, per world unit: central differences, one-sided at
+ * the borders; schlieren::ComputeGradient), the input's (or the resampled) point arrays and, where
+ * points were invalid, `vtkValidPointMask`. Field data: `ambient_n_minus_1`,
+ * `valid_point_fraction`. NaN/Inf, temperature or pressure <= 0, negative density, mass fractions
+ * outside [0, 1] or not summing to 1, or n <= 0 anywhere in the flow is an error that names the
+ * array, the number of points and what to do; zero density is a warning.
+ *
+ * Under MPI an image input is computed piecewise (each rank asks its input for one more point on
+ * every side of its piece, so that the central differences at the piece borders are those of the
+ * whole volume). A resampled input is probed on every rank against its own piece; the arrays the
+ * model reads (and the mask) are summed over the ranks, and each rank keeps its piece of the grid.
+ *
+ * @warning Under MPI a resampled output carries only the arrays the model reads, not every input
+ * array. The grid of a resampled input ignores the input's direction and time-varying bounds.
+ *
+ * @sa vtkRefractiveScene vtkSchlierenImage vtkResampleToImage
  */
 #ifndef vtkRefractiveIndex_h
 #define vtkRefractiveIndex_h
 
 #include "SchlierenFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+
+#include <string> // for std::string
 
 class SCHLIERENFILTERS_EXPORT vtkRefractiveIndex : public vtkImageAlgorithm
 {
@@ -39,39 +85,278 @@ public:
   vtkTypeMacro(vtkRefractiveIndex, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /** How the input array becomes n - 1. */
+  /** How the input arrays become n - 1. */
   enum ModelType
   {
-    PASSTHROUGH = 0,   ///< the array is n - 1
-    GLADSTONE_DALE = 1 ///< the array is the density; n - 1 = K rho
+    PASSTHROUGH = 0,            ///< the array is n - 1 (or n)
+    GLADSTONE_DALE = 1,         ///< the array is the density; n - 1 = K rho
+    GLADSTONE_DALE_MIXTURE = 2, ///< the density, K by mass fraction
+    IDEAL_GAS = 3,              ///< temperature and pressure; rho = p M / (R T)
+    CIDDOR = 4                  ///< moist air from temperature, pressure, humidity, CO2
+  };
+
+  /** The input arrays, by their SetInputArrayToProcess index. */
+  enum InputArrayIndex
+  {
+    INPUT_ARRAY = 0, ///< n - 1 or n (Passthrough); density (Gladstone-Dale models)
+    TEMPERATURE_ARRAY = 1,
+    PRESSURE_ARRAY = 2,
+    MIXTURE_FRACTION_ARRAY = 3,
+    SPECIES_ARRAY = 4, ///< 4, 5, 6, 7: species 1-4
+    HUMIDITY_ARRAY = 8,
+    CO2_ARRAY = 9
+  };
+
+  /** Gases: the table of SchlierenIndexModels.h (632.8 nm), or typed constants. */
+  enum GasType
+  {
+    NO_GAS = -2,     ///< BalanceGas only: no balance, the species sum to 1
+    CUSTOM_GAS = -1, ///< the typed Gladstone-Dale constant and molar mass
+    AIR = 0,
+    HELIUM,
+    NITROGEN,
+    OXYGEN,
+    ARGON,
+    CARBON_DIOXIDE,
+    HYDROGEN,
+    WATER,
+    METHANE,
+    CARBON_MONOXIDE
+  };
+
+  /** What the gas is made of (GladstoneDaleMixture, IdealGas). */
+  enum CompositionType
+  {
+    SINGLE_GAS = 0,
+    MIXTURE_FRACTION = 1,
+    SPECIES = 2
+  };
+
+  enum TemperatureUnitType
+  {
+    KELVIN = 0,
+    CELSIUS = 1
+  };
+
+  enum PressureUnitType
+  {
+    PASCAL = 0,
+    KILOPASCAL = 1,
+    ATMOSPHERE = 2,
+    BAR = 3
+  };
+
+  enum HumidityMeasureType
+  {
+    RELATIVE_HUMIDITY = 0,
+    WATER_MOLE_FRACTION = 1
+  };
+
+  enum AmbientModeType
+  {
+    EXTEND = 0,             ///< the flow's n - 1 carried outward from the domain's edge
+    DOMAIN_EDGE_MEDIAN = 1, ///< one value: the median n - 1 of the valid points next to invalid ones
+    AMBIENT_VALUE = 2       ///< one value: AmbientValue
   };
 
   ///@{
-  /**
-   * The model (a ModelType). Default PASSTHROUGH.
-   */
-  vtkSetClampMacro(Model, int, PASSTHROUGH, GLADSTONE_DALE);
+  /** The model (a ModelType). Default PASSTHROUGH. */
+  vtkSetClampMacro(Model, int, PASSTHROUGH, CIDDOR);
   vtkGetMacro(Model, int);
   void SetModelToPassthrough() { this->SetModel(PASSTHROUGH); }
   void SetModelToGladstoneDale() { this->SetModel(GLADSTONE_DALE); }
+  void SetModelToGladstoneDaleMixture() { this->SetModel(GLADSTONE_DALE_MIXTURE); }
+  void SetModelToIdealGas() { this->SetModel(IDEAL_GAS); }
+  void SetModelToCiddor() { this->SetModel(CIDDOR); }
+  ///@}
+
+  ///@{
+  /** Passthrough: on, the input array holds n (n - 1 = value - 1); off (default), n - 1. */
+  vtkSetMacro(PassthroughHoldsN, bool);
+  vtkGetMacro(PassthroughHoldsN, bool);
+  vtkBooleanMacro(PassthroughHoldsN, bool);
   ///@}
 
   ///@{
   /**
-   * The Gladstone-Dale constant K, m^3/kg (1 cm^3/g = 1e-3 m^3/kg). Default 2.256e-4 (air at
-   * 632.8 nm). Clamped to [0, 1]; it must be positive (0 is reported as an error).
+   * The gas of GladstoneDale (and of IdealGas with SINGLE_GAS): a GasType from AIR to
+   * CARBON_MONOXIDE, or CUSTOM_GAS (the default) for GladstoneDaleConstant and MolarMass, whose
+   * defaults are air's.
+   */
+  vtkSetClampMacro(Gas, int, CUSTOM_GAS, CARBON_MONOXIDE);
+  vtkGetMacro(Gas, int);
+  ///@}
+
+  ///@{
+  /**
+   * The typed Gladstone-Dale constant K, m^3/kg (1 cm^3/g = 1e-3 m^3/kg), used with CUSTOM_GAS.
+   * Default 2.256e-4 (air at 632.8 nm). Clamped to [0, 1]; 0 is reported as an error.
    */
   vtkSetClampMacro(GladstoneDaleConstant, double, 0.0, 1.0);
   vtkGetMacro(GladstoneDaleConstant, double);
   ///@}
 
   ///@{
+  /** The typed molar mass, kg/mol, used with CUSTOM_GAS. Default 0.0289641 (air). */
+  vtkSetClampMacro(MolarMass, double, 0.0, 10.0);
+  vtkGetMacro(MolarMass, double);
+  ///@}
+
+  ///@{
+  /** GladstoneDaleMixture: MIXTURE_FRACTION (default) or SPECIES. */
+  vtkSetClampMacro(MixtureComposition, int, MIXTURE_FRACTION, SPECIES);
+  vtkGetMacro(MixtureComposition, int);
+  ///@}
+
+  ///@{
+  /** IdealGas: SINGLE_GAS (Gas; the default), MIXTURE_FRACTION or SPECIES. */
+  vtkSetClampMacro(IdealGasComposition, int, SINGLE_GAS, SPECIES);
+  vtkGetMacro(IdealGasComposition, int);
+  ///@}
+
+  ///@{
   /**
-   * The light's vacuum wavelength, nm. Default 632.8 (HeNe). Clamped to [100, 20000]. Not used by
-   * the current models; kept for the dispersive ones.
+   * The gases at mixture fraction 0 and 1 (GasType, table rows only). Defaults AIR and HELIUM: the
+   * paper's eq. 2, K = (1 - f) K_air + f K_He.
+   */
+  vtkSetClampMacro(MixtureGas0, int, AIR, CARBON_MONOXIDE);
+  vtkGetMacro(MixtureGas0, int);
+  vtkSetClampMacro(MixtureGas1, int, AIR, CARBON_MONOXIDE);
+  vtkGetMacro(MixtureGas1, int);
+  ///@}
+
+  ///@{
+  /** How many species mass-fraction arrays (indices 4 to 3 + NumberOfSpecies) are read: 0-4. Default 1. */
+  vtkSetClampMacro(NumberOfSpecies, int, 0, 4);
+  vtkGetMacro(NumberOfSpecies, int);
+  ///@}
+
+  ///@{
+  /**
+   * The gas of each species array (GasType, CUSTOM_GAS for the typed constants below). Default
+   * HYDROGEN, METHANE, HELIUM, CARBON_DIOXIDE.
+   */
+  vtkSetVector4Macro(SpeciesGases, int);
+  vtkGetVector4Macro(SpeciesGases, int);
+  ///@}
+
+  ///@{
+  /** Typed Gladstone-Dale constants (m^3/kg) and molar masses (kg/mol) of CUSTOM_GAS species. */
+  vtkSetVector4Macro(SpeciesGladstoneDale, double);
+  vtkGetVector4Macro(SpeciesGladstoneDale, double);
+  vtkSetVector4Macro(SpeciesMolarMass, double);
+  vtkGetVector4Macro(SpeciesMolarMass, double);
+  ///@}
+
+  ///@{
+  /**
+   * The gas that takes 1 - sum Y (GasType; CUSTOM_GAS: BalanceGladstoneDale and BalanceMolarMass;
+   * NO_GAS: none, the species must sum to 1 within 1e-3). Default AIR.
+   */
+  vtkSetClampMacro(BalanceGas, int, NO_GAS, CARBON_MONOXIDE);
+  vtkGetMacro(BalanceGas, int);
+  vtkSetMacro(BalanceGladstoneDale, double);
+  vtkGetMacro(BalanceGladstoneDale, double);
+  vtkSetMacro(BalanceMolarMass, double);
+  vtkGetMacro(BalanceMolarMass, double);
+  ///@}
+
+  ///@{
+  /** The unit of the temperature array (after TemperatureReference): KELVIN (default) or CELSIUS. */
+  vtkSetClampMacro(TemperatureUnit, int, KELVIN, CELSIUS);
+  vtkGetMacro(TemperatureUnit, int);
+  ///@}
+
+  ///@{
+  /** The unit of the pressure array: PASCAL (default), KILOPASCAL, ATMOSPHERE or BAR. */
+  vtkSetClampMacro(PressureUnit, int, PASCAL, BAR);
+  vtkGetMacro(PressureUnit, int);
+  ///@}
+
+  ///@{
+  /**
+   * Reference (free-stream) values that non-dimensional arrays are multiplied by: density in
+   * kg/m^3, temperature in TemperatureUnit, pressure in PressureUnit. Default 1 (dimensional
+   * data). Must be positive.
+   */
+  vtkSetMacro(DensityReference, double);
+  vtkGetMacro(DensityReference, double);
+  vtkSetMacro(TemperatureReference, double);
+  vtkGetMacro(TemperatureReference, double);
+  vtkSetMacro(PressureReference, double);
+  vtkGetMacro(PressureReference, double);
+  ///@}
+
+  ///@{
+  /** Added to the (scaled) pressure, in PressureUnit: the operating pressure of a gauge pressure. Default 0. */
+  vtkSetMacro(PressureOffset, double);
+  vtkGetMacro(PressureOffset, double);
+  ///@}
+
+  ///@{
+  /** Ciddor: the humidity where no array is read, a fraction in [0, 1]. Default 0 (dry air). */
+  vtkSetClampMacro(Humidity, double, 0.0, 1.0);
+  vtkGetMacro(Humidity, double);
+  /** Ciddor: read the humidity from the array of index 8. Default off. */
+  vtkSetMacro(HumidityFromArray, bool);
+  vtkGetMacro(HumidityFromArray, bool);
+  vtkBooleanMacro(HumidityFromArray, bool);
+  /** Ciddor: RELATIVE_HUMIDITY (default) or WATER_MOLE_FRACTION. */
+  vtkSetClampMacro(HumidityMeasure, int, RELATIVE_HUMIDITY, WATER_MOLE_FRACTION);
+  vtkGetMacro(HumidityMeasure, int);
+  ///@}
+
+  ///@{
+  /** Ciddor: CO2 in umol/mol where no array is read. Default 450 (Ciddor's standard air). */
+  vtkSetClampMacro(CO2, double, 0.0, 1e6);
+  vtkGetMacro(CO2, double);
+  /** Ciddor: read CO2 (umol/mol) from the array of index 9. Default off. */
+  vtkSetMacro(CO2FromArray, bool);
+  vtkGetMacro(CO2FromArray, bool);
+  vtkBooleanMacro(CO2FromArray, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The light's vacuum wavelength, nm. Default 632.8 (HeNe). Used by Ciddor (300-1700 nm); the
+   * Gladstone-Dale constants of the table are those at 632.8 nm.
    */
   vtkSetClampMacro(Wavelength, double, 100.0, 20000.0);
   vtkGetMacro(Wavelength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Resampling: grid points along each axis. 0 0 0 (the default): automatic, AutomaticDimension
+   * points along the longest side of the bounds, about the same spacing along the others. Not
+   * used for image inputs.
+   */
+  vtkSetVector3Macro(SamplingDimensions, int);
+  vtkGetVector3Macro(SamplingDimensions, int);
+  ///@}
+
+  ///@{
+  /** Resampling: points along the longest side when SamplingDimensions is automatic. Default 128. */
+  vtkSetClampMacro(AutomaticDimension, int, 2, 4096);
+  vtkGetMacro(AutomaticDimension, int);
+  ///@}
+
+  ///@{
+  /** Resampling: use SamplingBounds (world units) instead of the input's bounds. Default off. */
+  vtkSetMacro(UseSamplingBounds, bool);
+  vtkGetMacro(UseSamplingBounds, bool);
+  vtkBooleanMacro(UseSamplingBounds, bool);
+  vtkSetVector6Macro(SamplingBounds, double);
+  vtkGetVector6Macro(SamplingBounds, double);
+  ///@}
+
+  ///@{
+  /** n - 1 outside the flow domain: EXTEND (default), DOMAIN_EDGE_MEDIAN or AMBIENT_VALUE. */
+  vtkSetClampMacro(AmbientMode, int, EXTEND, AMBIENT_VALUE);
+  vtkGetMacro(AmbientMode, int);
+  /** The ambient n - 1 of AMBIENT_VALUE. Default 2.7164e-4 (air at 20 C and 1 atm, 632.8 nm). */
+  vtkSetMacro(AmbientValue, double);
+  vtkGetMacro(AmbientValue, double);
   ///@}
 
 protected:
@@ -87,12 +372,50 @@ protected:
     vtkInformationVector* outputVector) override;
 
   int Model = PASSTHROUGH;
+  bool PassthroughHoldsN = false;
+  int Gas = CUSTOM_GAS;
   double GladstoneDaleConstant = 2.256e-4;
+  double MolarMass = 0.0289641;
+  int MixtureComposition = MIXTURE_FRACTION;
+  int IdealGasComposition = SINGLE_GAS;
+  int MixtureGas0 = AIR;
+  int MixtureGas1 = HELIUM;
+  int NumberOfSpecies = 1;
+  int SpeciesGases[4] = { HYDROGEN, METHANE, HELIUM, CARBON_DIOXIDE };
+  double SpeciesGladstoneDale[4] = { 2.256e-4, 2.256e-4, 2.256e-4, 2.256e-4 };
+  double SpeciesMolarMass[4] = { 0.0289641, 0.0289641, 0.0289641, 0.0289641 };
+  int BalanceGas = AIR;
+  double BalanceGladstoneDale = 2.256e-4;
+  double BalanceMolarMass = 0.0289641;
+  int TemperatureUnit = KELVIN;
+  int PressureUnit = PASCAL;
+  double DensityReference = 1.0;
+  double TemperatureReference = 1.0;
+  double PressureReference = 1.0;
+  double PressureOffset = 0.0;
+  double Humidity = 0.0;
+  bool HumidityFromArray = false;
+  int HumidityMeasure = RELATIVE_HUMIDITY;
+  double CO2 = 450.0;
+  bool CO2FromArray = false;
   double Wavelength = 632.8;
+  int SamplingDimensions[3] = { 0, 0, 0 };
+  int AutomaticDimension = 128;
+  bool UseSamplingBounds = false;
+  double SamplingBounds[6] = { 0, 1, 0, 1, 0, 1 };
+  int AmbientMode = EXTEND;
+  double AmbientValue = 2.7164e-4;
 
 private:
   vtkRefractiveIndex(const vtkRefractiveIndex&) = delete;
   void operator=(const vtkRefractiveIndex&) = delete;
+
+  /** The resampling grid of a non-image input (RequestInformation); false after an error. */
+  bool SamplingGrid(vtkInformation* inInfo, int whole[6], double origin[3], double spacing[3]);
+  /** Updates the input once and returns its bounds (all ranks); false if it has no points. */
+  bool UpdatedInputBounds(vtkInformation* inInfo, double bounds[6]);
+  /** Why the last RequestInformation could not set up the resampling grid (for RequestData). */
+  std::string SamplingError;
 };
 
 #endif
