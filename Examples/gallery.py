@@ -10,15 +10,12 @@ circular), colour filter, shadowgraph, an infinite- and a finite-fringe interfer
 background-oriented schlieren (BOS) recording and its displacement field; plus gallery.png, a
 contact sheet with titles (if matplotlib imports), and gallery.txt, what each image took.
 
-The scene is built here, with numpy, in a ProgrammableSource (the way to bring a field of one's own):
-a round jet of pure helium rising from a nozzle of radius 3 mm into still air at 293.15 K and
-101325 Pa, in a 4 cm cube (world units are metres). Its helium mass fraction f falls and its width
-grows with height, with the bulges of the puffing instability growing as they rise; n - 1 is the
-Gladstone-Dale mixture of ORACLES.md, n - 1 = rho (f K_He + (1 - f) K_air), rho = p M / (R T),
-1/M = f / M_He + (1 - f) / M_air, K_air = 0.2256 and K_He = 0.1954 cm^3/g at 632.8 nm: from 2.72e-4
-in the air to 3.25e-5 in the helium at the nozzle. RefractionOctree lets the tracer cross the still
-air in long steps. (RefractiveScene has a HeliumPlume too; its puffs are strong from the nozzle up
-and make every image a stack of horizontal bands, so the gallery uses this gentler jet.)
+The scene is RefractiveScene's HeliumPlume: a round jet of pure helium rising from a nozzle of
+radius 3 mm into still air at 293.15 K and 101325 Pa, in a 4 cm cube (world units are metres). Its
+helium mass fraction falls and its width grows with height, with the bulges of the puffing
+instability growing as they rise; n - 1 is the Gladstone-Dale mixture of ORACLES.md at the
+ideal-gas density (the engine's index models), from 2.72e-4 in the air to 3.25e-5 in the helium
+at the nozzle. RefractionOctree lets the tracer cross the still air in long steps.
 """
 import argparse
 import math
@@ -27,58 +24,10 @@ import sys
 import time
 
 import numpy as np
-from paraview.simple import Delete, LoadPlugin, ProgrammableSource, servermanager
+from paraview.simple import Delete, LoadPlugin, servermanager
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGWriter
-
-# The plume: a numpy field on the grid, n - 1 by the Gladstone-Dale mixture law. Runs inside the
-# ProgrammableSource; {n}, {half} and {nozzle} are filled in below. The source declares its grid
-# (extent, spacing, origin) in RequestInformation, as every image source must for SchlierenImage
-# to place its film before the data exist.
-PLUME_INFORMATION = """
-from vtkmodules.vtkCommonDataModel import vtkDataObject
-n, half = {n}, {half}
-h = 2.0 * half / (n - 1)
-executive = self.GetExecutive()
-info = executive.GetOutputInformation(0)
-info.Set(executive.WHOLE_EXTENT(), 0, n - 1, 0, n - 1, 0, n - 1)
-info.Set(vtkDataObject.SPACING(), h, h, h)
-info.Set(vtkDataObject.ORIGIN(), -half, -half, -half)
-"""
-
-PLUME_DATA = """
-import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
-n, half, r0 = {n}, {half}, {nozzle}
-h = 2.0 * half / (n - 1)
-x = -half + h * np.arange(n)
-Z, Y, X = np.meshgrid(x, x, x, indexing="ij")
-rise = np.clip(Y + half, 0.0, None)           # height above the nozzle (the box's floor)
-# half-width: a jet that spreads at 0.07 per unit height, with puffing bulges every 3.3 nozzle
-# radii that grow as they rise
-width = (r0 + 0.07 * rise) * (1 + 0.25 * (rise / (2 * half)) * np.sin(2 * np.pi * rise / (3.3 * r0)) ** 2)
-axis = np.minimum(1.0, (r0 / width) ** 1.6)   # helium mass fraction on the axis
-shape = 4.0 - 2.0 * np.clip(rise / (2 * half), 0, 1)   # top-hat at the nozzle, Gaussian higher up
-r = np.sqrt(X ** 2 + Z ** 2)
-f = axis * np.exp(-(r / width) ** shape)
-# Gladstone-Dale mixture (ORACLES.md), 293.15 K and 101325 Pa
-K_air, K_he = 0.2256e-3, 0.1954e-3                 # m^3/kg
-M_air, M_he = 28.9641e-3, 4.002602e-3             # kg/mol
-M = 1.0 / (f / M_he + (1 - f) / M_air)
-rho = 101325.0 * M / (8.314462618 * 293.15)
-n1 = rho * (f * K_he + (1 - f) * K_air)
-out = self.GetOutput()
-out.SetDimensions(n, n, n)
-out.SetSpacing(h, h, h)
-out.SetOrigin(-half, -half, -half)
-for name, values in (("n_minus_1", n1), ("mixture_fraction", f), ("density", rho)):
-    a = numpy_to_vtk(np.ascontiguousarray(values.ravel()).astype(np.float32), deep=1)
-    a.SetName(name)
-    out.GetPointData().AddArray(a)
-out.GetPointData().SetActiveScalars("n_minus_1")
-"""
-
 
 def write_png(values, path):
     """Writes a (ny, nx) array in [0, 1] as grey, or (ny, nx, 3) as colour; row 0 at the bottom."""
@@ -131,9 +80,9 @@ def main():
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
     half, nozzle = 0.02, 0.003
-    plume = ProgrammableSource(OutputDataSetType="vtkImageData")
-    plume.ScriptRequestInformation = PLUME_INFORMATION.format(n=args.grid, half=half)
-    plume.Script = PLUME_DATA.format(n=args.grid, half=half, nozzle=nozzle)
+    plume = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[args.grid] * 3,
+                                  Bounds=[-half, half] * 3, Center=[0, 0, 0], Radius=nozzle,
+                                  Width=2 * half, Amplitude=1.0)
     octree = ns["RefractionOctree"](Input=plume)
 
     res = [args.resolution, args.resolution]
