@@ -63,8 +63,9 @@ def main():
         sys.exit(125)
 
     LoadPlugin(args.plugin, remote=False, ns=globals())
-    # The reader detects the format (binary, little-endian, single grid, 3D, single precision;
-    # the file has no IBlank array, whatever its name suggests).
+    # The reader detects the format: binary, big-endian, single grid, 3D, single precision, no
+    # IBlank array (the grid file is 12 + 3 x 4 x 40960 bytes), whatever ../shared/data/README.md
+    # says (little-endian, IBlanking on: both fail to read).
     reader = PLOT3DReader(FileName=xyz, QFileName=[q])
     index = RefractiveIndex(Input=reader, Model="GladstoneDale", Gas="Air",  # noqa: F821
                             DensityReference=1.2,  # rho_inf, kg/m^3: the density is rho / rho_inf
