@@ -10,6 +10,9 @@
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
+#include <vector>
+
 #include "SchlierenEngine.h"
 #include "SchlierenScenes.h"
 
@@ -69,6 +72,23 @@ int vtkRefractiveScene::RequestInformation(
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  // the blast wave is a time series: TimeSteps steps up to Time, which ParaView's animation plays
+  if (this->Scene == BLAST_WAVE && this->TimeSteps > 0)
+  {
+    std::vector<double> times(this->TimeSteps);
+    for (int i = 0; i < this->TimeSteps; ++i)
+    {
+      times[i] = this->Time * (i + 1) / this->TimeSteps;
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), this->TimeSteps);
+    const double range[2] = { times.front(), times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
+  else
+  {
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  }
   return 1;
 }
 
@@ -127,6 +147,13 @@ int vtkRefractiveScene::RequestData(
   p.Mach = this->Mach;
   p.Density = this->Density;
   p.Time = this->Time;
+  if (this->Scene == BLAST_WAVE && this->TimeSteps > 0 &&
+    outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    // the time the pipeline asks for (ParaView's animation time)
+    p.Time = std::max(1e-6, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), p.Time);
+  }
   try
   {
     schlieren::FillScene(static_cast<schlieren::Scene>(this->Scene), p, dims, pieceOrigin, spacing,
@@ -168,4 +195,5 @@ void vtkRefractiveScene::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Mach: " << this->Mach << "\n";
   os << indent << "Density: " << this->Density << " kg/m^3\n";
   os << indent << "Time: " << this->Time << "\n";
+  os << indent << "TimeSteps: " << this->TimeSteps << "\n";
 }

@@ -171,6 +171,16 @@ public:
   vtkGetMacro(Time, double);
   ///@}
 
+  ///@{
+  /**
+   * BlastWave only: the number of time steps the source offers, evenly spaced up to Time (so that
+   * ParaView's animation plays the blast growing); 0 makes it a single, static scene at Time.
+   * Default 10.
+   */
+  vtkSetClampMacro(TimeSteps, int, 0, 10000);
+  vtkGetMacro(TimeSteps, int);
+  ///@}
+
 protected:
   vtkRefractiveScene();
   ~vtkRefractiveScene() override;
@@ -195,6 +205,7 @@ protected:
   double Mach = 2.0;
   double Density = 1.2;
   double Time = 1.0;
+  int TimeSteps = 10;
 
 private:
   vtkRefractiveScene(const vtkRefractiveScene&) = delete;
