@@ -182,7 +182,11 @@ straight = SchlierenImage(Input=linear, Integrator="Straight", **lin_common)
 Ds = st.image_arrays(sm.Fetch(straight))[3]
 serr = np.abs(Ds[..., 1] - exact)[back].max()
 print("     linear medium: line of sight is %.3g rad off the exact image at the worst pixel" % serr)
-T.check(serr > 0.1, "linear medium: line of sight departs from the curved trace (%.3g rad > 0.1)" % serr)
+# the gradient b / (2n) hardly changes along a ray here, so the straight path samples nearly the
+# same gradient as the bent one: line of sight is within 1.5e-4 rad (measured) of the exact image.
+# (Before its photons landed where the first-order deflection takes them, they fell up to 6 pixels
+# low and the image was 0.23 rad off.)
+T.check(serr < 1e-3, "linear medium: line of sight is within 1e-3 rad of the exact image (%.3g rad)" % serr)
 Delete(straight)
 
 # 2d. The step-doubling estimate against the real error, and the ray invariant. Euler at 4 voxel on
@@ -215,7 +219,7 @@ for p in (auto, reference, euler, plain):
 
 # 2e. Where line of sight fails: the Luneburg lens n = sqrt(2 - r^2) brings every ray to the far
 # pole; line of sight does not bend them. Measured (48^2 film, |film position| < 0.7 R): the two
-# images' deflections differ by up to 0.56 rad, median 0.26 rad.
+# images' deflections differ by up to 0.62 rad, median 0.08 rad.
 lens = RefractiveScene(Scene="LuneburgLens", Dimensions=[64, 64, 64], Radius=1.0)
 lens_common = dict(Resolution=[48, 48], Passes=1, Jitter=0, ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1], Backend="CPU")
 Dm = st.image_arrays(sm.Fetch(SchlierenImage(Input=lens, Integrator="Midpoint", **lens_common)))[3]
@@ -224,7 +228,10 @@ inside = np.hypot(X, Y) < 0.7
 gap = np.sqrt(np.sum((Dm - Dl) ** 2, axis=-1))[inside]
 print("     Luneburg lens: line of sight vs curved trace: deflections differ by up to %.2f rad (median %.2f)"
       % (gap.max(), np.median(gap)))
-T.check(np.median(gap) > 0.1, "Luneburg lens: line of sight departs from the curved trace (median %.2f rad)" % np.median(gap))
+# measured: up to 0.62 rad, median 0.08 rad
+T.check(gap.max() > 0.3 and np.median(gap) > 0.04,
+        "Luneburg lens: line of sight departs from the curved trace (up to %.2f rad, median %.2f)"
+        % (gap.max(), np.median(gap)))
 
 # ---------------------------------------------------------------- 3. The scenes; a shock crossed in one step
 # RefractiveScene NormalShock: Mach 2 in air of 1.2 kg/m^3, the tanh profile 2 voxels thick
