@@ -14,6 +14,9 @@
 //    samples, image deflection within 2.6e-5 of max eps of the fixed-step image.
 //  - normal shock (M = 2, 2 voxels thick), beam at 40 deg: errors 76 %, 8 %, 4.5 % at 8, 4, 2 voxel
 //    steps (flagged), 0.4 % at 1 voxel (not flagged).
+//  - helium/air interface (2 voxels), beam at 40 deg, midpoint: 77 %, 8.2 % at 8, 4 voxel (flagged),
+//    0.4 %, 0.2 % at 1, 0.5 voxel (not flagged).
+#include "SchlierenIndexModels.h"
 #include "SchlierenOracles.h"
 
 #include <algorithm>
@@ -214,6 +217,63 @@ void TestShock()
 }
 
 // A strong gradient along a tilted beam turns rays back (a mirage); a weak one does not.
+// A steep helium/air interface: a plane where the helium mass fraction falls from 1 to 0 over
+// about two voxels (tanh), n - 1 from the mixture Gladstone-Dale at the ideal-gas density (the
+// engine's index models: 3.25e-5 in helium, 2.72e-4 in air). The beam crosses it at 40 degrees:
+// by Snell the tangential part of v = n d is conserved. Long steps are wrong and flagged.
+void TestHeliumInterface()
+{
+  const int n = 96;
+  const double h = 2.0 / (n - 1), delta = h;
+  schtest::SceneVolume sv(Scene::Uniform, SceneParameters(), n, 1.0);
+  auto mixture = [](double f) {
+    const Gas he = Gas::Helium;
+    const double M = MixtureMolarMass(&he, &f, 1, Gas::Air);
+    return MixtureConstant(&he, &f, 1, Gas::Air) * IdealGasDensity(101325.0, 293.15, M);
+  };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const double x = -1 + i * h;
+        sv.N1[(static_cast<std::size_t>(k) * n + j) * n + i] =
+          static_cast<float>(mixture(0.5 * (1 - std::tanh(x / delta))));
+      }
+  PackField(sv.V.Dimensions, sv.V.Spacing, sv.N1.data(), sv.Field.data());
+  const double n1 = 1 + mixture(1.0), n2 = 1 + mixture(0.0);
+  const double al = 40 * kPi / 180;
+  const double vz = -n1 * std::cos(al), vx = std::sqrt(n2 * n2 - vz * vz);
+  const double exact = (vx / n2) * std::cos(al) + (vz / n2) * std::sin(al);
+  std::vector<float> ab;
+  for (int i = -3; i <= 3; ++i)
+  {
+    ab.push_back(0.08f * i);
+    ab.push_back(0.1f * i);
+  }
+  for (double st : { 8.0, 4.0, 1.0, 0.5 })
+  {
+    TraceSettings s = Beam(std::sin(al), 0, -std::cos(al), 0, 1, 0);
+    s.Method = Integrator::Midpoint;
+    s.StepSize = st;
+    const std::vector<RayRecord> r = TraceRays(sv.V, s, ab);
+    double err = 0;
+    for (const RayRecord& x : r)
+      err = std::max(err, std::fabs(x.DeflX - exact) / std::fabs(exact));
+    const bool flagged = (AllFlags(r) & RayUnderresolved) != 0;
+    std::printf("helium/air interface (n - 1 %.3g | %.3g), Midpoint at %g voxel: %.1f %% off Snell, %s\n",
+      n1 - 1, n2 - 1, st, 100 * err, flagged ? "flagged" : "not flagged");
+    if (st >= 4)
+      CHECK(flagged, "a step longer than the interface is flagged");
+    else
+    {
+      CHECK(!flagged, "steps of a voxel or less are not flagged at the interface");
+      CHECK_NEAR(err, 0.0, 0.01, "steps of a voxel or less cross the interface within 1 % of Snell");
+    }
+    if (st >= 8)
+      CHECK(err > 0.1, "an 8-voxel step across a 2-voxel interface is more than 10 % wrong");
+  }
+}
+
 void TestTurnBackAndGrazing()
 {
   // n^2 = a + b y with a = 2.6, b = -2.5: a ray entering the bottom at 15 deg from the vertical has
@@ -406,6 +466,7 @@ int main()
   TestConvergence();
   TestOctree();
   TestShock();
+  TestHeliumInterface();
   TestTurnBackAndGrazing();
   TestStraightLine();
   TestErrorEstimate();
