@@ -116,14 +116,25 @@ void Insert(const int whole[6], const int ext[6], const float* values, std::vect
 }
 
 //------------------------------------------------------------------------------
+struct vtkSchlierenImage::vtkInternals
+{
+  schlieren::FilmSums Sums; // this rank's sums of the passes traced so far
+  std::string Key;          // the photons' settings and the input they were traced from
+};
+
+//------------------------------------------------------------------------------
 vtkSchlierenImage::vtkSchlierenImage()
+  : Internals(new vtkInternals)
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
 }
 
 //------------------------------------------------------------------------------
-vtkSchlierenImage::~vtkSchlierenImage() = default;
+vtkSchlierenImage::~vtkSchlierenImage()
+{
+  delete this->Internals;
+}
 
 //------------------------------------------------------------------------------
 int vtkSchlierenImage::FillInputPortInformation(int port, vtkInformation* info)
@@ -633,19 +644,52 @@ int vtkSchlierenImage::RequestData(
   }
   settings.RankIndex = rank;
   settings.RankCount = ranks;
+  // Progressive refinement: if only Passes grew since the last trace of the same input with the
+  // same photon settings, continue the cached sums with the new passes (the jitter sequence goes on
+  // where it stopped, so the image equals a trace of all passes at once).
+  std::ostringstream keyStream;
+  keyStream.precision(17);
+  keyStream << settings.PhotonKey() << " | " << input->GetMTime() << ' ' << volume.Dimensions[0]
+            << ' ' << volume.Dimensions[1] << ' ' << volume.Dimensions[2] << ' '
+            << volume.Origin[0] << ' ' << volume.Origin[1] << ' ' << volume.Origin[2] << ' '
+            << volume.Spacing[0] << ' ' << volume.Spacing[1] << ' ' << volume.Spacing[2] << ' '
+            << levels.size() << ' ' << volume.LevelTolerance;
+  const std::string key = keyStream.str();
+  vtkInternals& cache = *this->Internals;
+  int reuse = (key == cache.Key && cache.Sums.Passes > 0 && this->Passes >= cache.Sums.Passes) ? 1 : 0;
+  if (ranks > 1)
+  {
+    int all = 0;
+    controller->AllReduce(&reuse, &all, 1, vtkCommunicator::MIN_OP);
+    reuse = all;
+  }
+  int passesTraced = 0;
   try
   {
     const schlieren::FilmGeometry film = schlieren::MakeFilm(volume, settings);
-    sums.Resize(film.Size[0], film.Size[1]);
-    schlieren::Accumulate(volume, settings, sums, &backendUsed, &deviceName, &warnings,
-      [this](double progress) {
-        this->UpdateProgress(0.05 + 0.9 * progress);
-        return !this->GetAbortExecute();
-      });
+    if (!reuse)
+    {
+      cache.Sums.Resize(film.Size[0], film.Size[1]);
+    }
+    cache.Key.clear(); // valid again only once the passes below are all in
+    passesTraced = this->Passes - cache.Sums.Passes;
+    if (passesTraced > 0)
+    {
+      settings.Passes = passesTraced;
+      schlieren::Accumulate(volume, settings, cache.Sums, &backendUsed, &deviceName, &warnings,
+        [this](double progress) {
+          this->UpdateProgress(0.05 + 0.9 * progress);
+          return !this->GetAbortExecute();
+        });
+    }
+    settings.Passes = this->Passes;
+    cache.Key = key;
+    sums = cache.Sums;
     problem.clear();
   }
   catch (const schlieren::Error& e)
   {
+    cache.Sums.Resize(0, 0);
     problem = e.what();
   }
   if (!agree(problem))
@@ -753,6 +797,8 @@ int vtkSchlierenImage::RequestData(
   addString("backend", result.BackendUsed.empty() ? backendUsed : result.BackendUsed);
   addString("device", result.DeviceName.empty() ? deviceName : result.DeviceName);
   addNumber("photons", result.Photons);
+  addNumber("passes", sums.Passes);
+  addNumber("passes_traced", passesTraced);
   addNumber("samples", result.Samples);
   addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
   addNumber("failed_rays", result.FailedRays);

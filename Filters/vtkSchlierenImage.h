@@ -400,6 +400,11 @@ protected:
   int Backend = AUTO;
 
 private:
+  // progressive refinement: this rank's film sums of the passes traced so far and what they were
+  // traced from; raising Passes traces only the new passes
+  struct vtkInternals;
+  vtkInternals* Internals;
+
   vtkSchlierenImage(const vtkSchlierenImage&) = delete;
   void operator=(const vtkSchlierenImage&) = delete;
 };

@@ -1147,6 +1147,22 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   return r;
 }
 
+std::string TraceSettings::PhotonKey() const
+{
+  std::ostringstream k;
+  k.precision(17);
+  k << ViewDirection[0] << ' ' << ViewDirection[1] << ' ' << ViewDirection[2] << ' ' << ViewUp[0]
+    << ' ' << ViewUp[1] << ' ' << ViewUp[2] << ' ' << Resolution[0] << ' ' << Resolution[1] << ' '
+    << StepSize << ' ' << static_cast<int>(Method) << ' ' << KeepInvariant << ' ' << EstimateError
+    << ' ' << UseOctree << ' ' << Tolerance << ' ' << AutoMeasuredError << ' '
+    << static_cast<int>(Mode) << ' ' << KnifeAngle << ' ' << CutoffScale << ' ' << FilmDistance
+    << ' ' << Wavelength << ' ' << ReferenceTilt << ' ' << BackgroundDistance << ' '
+    << BackgroundPattern << ' ' << BackgroundPeriod << ' ' << RussianRoulette << ' ' << Jitter
+    << ' ' << Seed << ' ' << MaxSteps << ' ' << static_cast<int>(Device) << ' ' << RaysPerWorkItem
+    << ' ' << RankIndex << ' ' << RankCount;
+  return k.str();
+}
+
 const char* IntegratorName(Integrator m)
 {
   switch (m)

@@ -152,6 +152,12 @@ struct TraceSettings
   int RaysPerWorkItem = 4;   ///< OpenCL: rays traced by each work-item
   int RankIndex = 0;         ///< trace only pixels p with p % RankCount == RankIndex (MPI split)
   int RankCount = 1;
+
+  /** Every setting that changes which photons are traced or how they land and weigh: all but
+   * Passes and the film filter (applied in Finalize). Equal keys, same volume: FilmSums of the
+   * first passes can be continued with more (progressive refinement). Keep it in step with the
+   * fields above. */
+  std::string PhotonKey() const;
 };
 
 /** The film's place in the world. */
