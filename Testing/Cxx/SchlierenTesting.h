@@ -88,6 +88,32 @@ inline bool HaveOpenCL()
 
 #define CHECK(cond, msg)                                                                           \
   schtest::Report((cond), __FILE__, __LINE__, std::string(#cond) + ": " + (msg))
+
+namespace schtest
+{
+/** Runs f; passes if it throws schlieren::Error whose message contains every one of `needles`. */
+template <typename F>
+void ExpectError(const char* what, F f, std::vector<std::string> needles)
+{
+  std::string msg;
+  bool threw = false;
+  try
+  {
+    f();
+  }
+  catch (const schlieren::Error& e)
+  {
+    threw = true;
+    msg = e.what();
+  }
+  bool found = threw;
+  for (const std::string& n : needles)
+    found = found && msg.find(n) != std::string::npos;
+  std::printf("%s -> %s\n", what, threw ? msg.substr(0, 300).c_str() : "(no error)");
+  CHECK(found, std::string(what) + ": expected an error mentioning the cause, got: " + msg);
+}
+} // namespace schtest
+
 #define CHECK_NEAR(a, b, tol, msg)                                                                 \
   do                                                                                               \
   {                                                                                                \

@@ -9,31 +9,10 @@
 #include <limits>
 
 using namespace schlieren;
+using schtest::ExpectError;
 
 namespace
 {
-// Runs f; passes if it throws schlieren::Error whose message contains every one of `needles`.
-template <typename F>
-void ExpectError(const char* what, F f, std::vector<std::string> needles)
-{
-  std::string msg;
-  bool threw = false;
-  try
-  {
-    f();
-  }
-  catch (const Error& e)
-  {
-    threw = true;
-    msg = e.what();
-  }
-  bool found = threw;
-  for (const std::string& n : needles)
-    found = found && msg.find(n) != std::string::npos;
-  std::printf("%s -> %s\n", what, threw ? msg.substr(0, 300).c_str() : "(no error)");
-  CHECK(found, std::string(what) + ": expected an error mentioning the cause, got: " + msg);
-}
-
 // The tolerance to a number given to `digits` significant figures: half a unit in the last place.
 double HalfUlp(double v, int digits)
 {
