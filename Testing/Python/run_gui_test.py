@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Runs test_gui.py in the ParaView GUI under Xvfb and turns its outcome into an exit status.
+"""Runs test_gui.py (or --script NAME) in the ParaView GUI under Xvfb and turns its outcome into an exit status.
 
 Run with Debian's Python: /usr/bin/python3 run_gui_test.py --paraview /usr/bin/paraview
     --plugin <Schlieren.so> --result <file> [--xvfb-run /usr/bin/xvfb-run]
@@ -19,13 +19,16 @@ parser.add_argument("--plugin", required=True)
 parser.add_argument("--result", required=True)
 parser.add_argument("--xvfb-run", default="xvfb-run")
 parser.add_argument("--timeout", type=float, default=120)
+parser.add_argument("--script", default="test_gui.py", help="the GUI script, in this folder")
 args = parser.parse_args()
 
 if os.path.exists(args.result):
     os.remove(args.result)
 env = dict(os.environ, SCHLIEREN_PLUGIN=args.plugin, SCHLIEREN_GUI_RESULT=args.result)
+# the GUI's script has no __file__: tell it where the shared CFD data is
+env.setdefault("SCHLIEREN_DATA", os.path.join(here, "..", "..", "..", "shared", "data"))
 command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.paraview, "--dr",
-           "--script=" + os.path.join(here, "test_gui.py"), "--exit"]
+           "--script=" + os.path.join(here, args.script), "--exit"]
 print(" ".join(command))
 sys.stdout.flush()
 try:
@@ -42,4 +45,4 @@ if rc != 0:
 if not text.rstrip().endswith("PASS"):
     print("FAIL: the GUI script did not report PASS (result file %s)" % args.result)
     sys.exit(1)
-print("test_gui: passed")
+print("%s: passed" % args.script)

@@ -1,0 +1,108 @@
+"""Follow a render view's camera with a SchlierenImage: rotate the volume, the schlieren image
+re-traces along the new line of sight, coarse while the camera moves, refined pass after pass when
+it stops (the paper's section 7).
+
+Embedded in the Schlieren plugin: after LoadPlugin, in pvpython, pvbatch or the GUI's Python shell,
+
+    import schlieren_view
+    follower = schlieren_view.follow_camera(view, image, target_passes=32)
+
+`view` is a render view showing the volume (the camera the user turns), `image` a SchlierenImage.
+Every change of the camera sets the image's ViewDirection and ViewUp from it and drops it to
+`interactive_passes` passes (a blurry image at once); `refine()` then adds passes up to
+`target_passes`; the filter traces only the passes it does not have yet (progressive refinement),
+and a camera change in between starts over. Where an event loop runs (the GUI), a repeating timer
+of the view's interactor calls `refine()` while the camera rests; in a script, call it yourself.
+
+Why this route (and not a representation that traces at render time): it is a client-side driver
+of an ordinary filter, so the same image, properties and arrays serve the GUI, pvpython, pvbatch
+and pvserver (the filter runs where the data is; only the two camera vectors travel), and the
+refinement reuses the filter's own cache. Its limit: on a remote server each step is a round trip
+of the image, and the GUI is driven by the view's interactor timer rather than by ParaView's
+render-time LOD machinery.
+"""
+import math
+
+
+def _unit(v):
+    n = math.sqrt(sum(c * c for c in v))
+    return [c / n for c in v] if n > 0 else list(v)
+
+
+class CameraFollower:
+    """Keeps a SchlierenImage's line of sight on a render view's camera (see the module's text)."""
+
+    def __init__(self, view, image, interactive_passes=1, target_passes=None, step=None):
+        self.view = view
+        self.image = image
+        self.interactive_passes = max(1, int(interactive_passes))
+        self.target_passes = int(target_passes) if target_passes else max(1, int(image.Passes))
+        self.step = int(step) if step else max(1, self.target_passes // 4)
+        self.camera = view.GetActiveCamera()
+        self.moved = 0  # camera changes seen
+        self._tags = [self.camera.AddObserver("ModifiedEvent", self._on_camera)]
+        self._timer = None
+        self.sync()
+
+    # the camera's line of sight, as the filter's properties
+    def camera_vectors(self):
+        pos, focal = self.camera.GetPosition(), self.camera.GetFocalPoint()
+        direction = _unit([f - p for f, p in zip(focal, pos)])
+        return direction, list(self.camera.GetViewUp())
+
+    def sync(self):
+        """Sets ViewDirection/ViewUp from the camera and drops to the interactive passes."""
+        direction, up = self.camera_vectors()
+        self.image.ViewDirection = direction
+        self.image.ViewUp = up
+        self.image.Passes = self.interactive_passes
+
+    def _on_camera(self, caller, event):
+        direction, up = self.camera_vectors()
+        current = list(self.image.ViewDirection), list(self.image.ViewUp)
+        if all(abs(a - b) < 1e-12 for a, b in zip(current[0] + current[1], direction + up)):
+            return  # a camera change that is not a rotation (zoom, pan): the image stays
+        self.moved += 1
+        self.sync()  # a new interaction cancels the refinement in progress
+
+    def refine(self):
+        """Adds up to `step` passes (towards the target) and updates the image; returns True while
+        more are to come."""
+        passes = int(self.image.Passes)
+        if passes >= self.target_passes:
+            return False
+        self.image.Passes = min(self.target_passes, passes + self.step)
+        self.image.UpdatePipeline()
+        return int(self.image.Passes) < self.target_passes
+
+    def start_timer(self, interval_ms=200):
+        """Where the view's interactor runs an event loop (the GUI): refine while the camera rests."""
+        interactor = self.view.GetRenderWindow().GetInteractor()
+        if interactor is None:
+            return False
+        self._timer = interactor.CreateRepeatingTimer(interval_ms)
+
+        def on_timer(caller, event):
+            if self.refine():
+                self.view.StillRender()
+
+        self._tags.append(interactor.AddObserver("TimerEvent", on_timer))
+        return True
+
+    def stop(self):
+        """Stops following the camera."""
+        self.camera.RemoveObserver(self._tags[0])
+        if self._timer is not None:
+            interactor = self.view.GetRenderWindow().GetInteractor()
+            interactor.DestroyTimer(self._timer)
+            for tag in self._tags[1:]:
+                interactor.RemoveObserver(tag)
+        self._tags = []
+
+
+def follow_camera(view, image, interactive_passes=1, target_passes=None, step=None, timer=True):
+    """Makes `image` follow `view`'s camera; returns the CameraFollower (keep a reference)."""
+    follower = CameraFollower(view, image, interactive_passes, target_passes, step)
+    if timer:
+        follower.start_timer()
+    return follower
