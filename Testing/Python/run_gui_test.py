@@ -27,6 +27,7 @@ if os.path.exists(args.result):
 env = dict(os.environ, SCHLIEREN_PLUGIN=args.plugin, SCHLIEREN_GUI_RESULT=args.result)
 # the GUI's script has no __file__: tell it where the shared CFD data is
 env.setdefault("SCHLIEREN_DATA", os.path.join(here, "..", "..", "..", "shared", "data"))
+env.setdefault("SCHLIEREN_GUI_BASELINE", os.path.join(here, "..", "Baselines", "gui_follow_bluntfin.png"))
 command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.paraview, "--dr",
            "--script=" + os.path.join(here, args.script), "--exit"]
 print(" ".join(command))

@@ -98,6 +98,34 @@ try:
           "refinement reaches the target: the 8-pass image, bit for bit")
     check(all(b <= a + 1e-12 for a, b in zip(errors, errors[1:])), "the error falls pass after pass")
 
+    # the refined image against a baseline PNG someone looked at (the blunt fin only): 8-bit grey,
+    # I in [0, 1]; a missing baseline fails and leaves the candidate beside the result file
+    if "blunt fin" in lines[0]:
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+
+        I8 = np.clip(255 * I + 0.5, 0, 255).astype(np.uint8)
+        baseline = os.environ.get("SCHLIEREN_GUI_BASELINE", "")
+        if os.path.exists(baseline):
+            reader = vtkPNGReader()
+            reader.SetFileName(baseline)
+            reader.Update()
+            B = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars()).reshape(-1)
+            diff = np.abs(B.astype(int) - I8.astype(int))
+            check(B.size == I8.size and diff.mean() < 1.0 and np.mean(diff > 8) < 0.01,
+                  "the followed image matches the baseline %s (mean |difference| %.2f grey levels)"
+                  % (os.path.basename(baseline), diff.mean()))
+        else:
+            candidate = vtkImageData()
+            candidate.SetDimensions(96, 96, 1)
+            candidate.GetPointData().SetScalars(numpy_to_vtk(I8, deep=1))
+            writer = vtkPNGWriter()
+            writer.SetInputData(candidate)
+            writer.SetFileName(result_path + ".candidate.png")
+            writer.Write()
+            check(False, "no baseline %r: the candidate is %s.candidate.png" % (baseline, result_path))
+
     # a new interaction cancels the refinement in progress
     image.Passes = 5
     camera.Azimuth(-10)
