@@ -11,24 +11,7 @@ image arrays (no display needed).
 import argparse
 import os
 
-import numpy as np
 from paraview.simple import LoadPlugin, servermanager
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkIOImage import vtkPNGWriter
-
-
-def write_png(values, path):
-    values = np.clip(values, 0.0, 1.0)
-    ny, nx = values.shape
-    image = vtkImageData()
-    image.SetDimensions(nx, ny, 1)
-    a = numpy_to_vtk((255 * values + 0.5).astype(np.uint8).ravel(), deep=1)
-    image.GetPointData().SetScalars(a)
-    w = vtkPNGWriter()
-    w.SetInputData(image)
-    w.SetFileName(path)
-    w.Write()
 
 
 def main():
@@ -41,6 +24,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
+    import schlieren_view  # embedded in the plugin: film_array, write_png
     scene = ns["RefractiveScene"](Scene="BlastWave", Dimensions=[96, 96, 96], Bounds=[-1, 1] * 3,
                                   Radius=0.7, Width=0.015, Time=1.0, TimeSteps=args.steps)
     scene.UpdatePipelineInformation()
@@ -50,10 +34,9 @@ def main():
     for i, t in enumerate(scene.TimestepValues):
         image.UpdatePipeline(t)
         data = servermanager.Fetch(image)
-        nx, ny, _ = data.GetDimensions()
-        I = vtk_to_numpy(data.GetPointData().GetArray("intensity")).reshape(ny, nx)
+        I = schlieren_view.film_array(data, "intensity")
         path = os.path.join(args.output, "blast_%03d.png" % i)
-        write_png(0.5 * I, path)  # undisturbed light (1) as mid grey
+        schlieren_view.write_png(0.5 * I, path)  # undisturbed light (1) as mid grey
         print("t = %.3f: %s (intensity %.2f..%.2f)" % (t, path, I.min(), I.max()))
 
 

@@ -13,8 +13,6 @@ import os
 import sys
 
 from paraview.simple import LoadPlugin, servermanager
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkImagingCore import vtkImageShiftScale
 
 
 def main():
@@ -43,18 +41,9 @@ def main():
     device = fd.GetAbstractArray("device")
     k = fd.GetArray("cutoff_scale")
 
-    # intensity in [0, 1] -> 8-bit grey
-    out.GetPointData().SetActiveScalars("intensity")
-    to8 = vtkImageShiftScale()
-    to8.SetInputData(out)
-    to8.SetScale(255.0)
-    to8.SetOutputScalarTypeToUnsignedChar()
-    to8.ClampOverflowOn()
-    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-    writer = vtkPNGWriter()
-    writer.SetInputConnection(to8.GetOutputPort())
-    writer.SetFileName(args.output)
-    writer.Write()
+    import schlieren_view  # embedded in the plugin
+
+    schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), args.output)
     rng = out.GetPointData().GetArray("intensity").GetRange()
     print("wrote %s: %dx%d knife-edge schlieren of a Gaussian sphere, intensity %.3f..%.3f, k = %.4g, "
           "traced on %s (%s)" % (os.path.abspath(args.output), args.resolution, args.resolution,

@@ -25,26 +25,7 @@ import time
 
 import numpy as np
 from paraview.simple import Delete, LoadPlugin, servermanager
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkIOImage import vtkPNGWriter
-
-def write_png(values, path):
-    """Writes a (ny, nx) array in [0, 1] as grey, or (ny, nx, 3) as colour; row 0 at the bottom."""
-    values = np.clip(np.asarray(values, dtype=float), 0.0, 1.0)
-    ny, nx = values.shape[:2]
-    comps = 1 if values.ndim == 2 else values.shape[2]
-    data = (255.0 * values + 0.5).astype(np.uint8).reshape(ny * nx, comps)
-    image = vtkImageData()
-    image.SetDimensions(nx, ny, 1)
-    array = numpy_to_vtk(data, deep=1)
-    array.SetName("png")
-    image.GetPointData().SetScalars(array)
-    writer = vtkPNGWriter()
-    writer.SetInputData(image)
-    writer.SetFileName(path)
-    writer.Write()
-
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 def fetch(proxy):
     """The image's point arrays as (ny, nx[, c]) numpy arrays, and its field data as a dict."""
@@ -79,6 +60,7 @@ def main():
 
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
+    from schlieren_view import write_png  # embedded in the plugin
     half, nozzle = 0.02, 0.003
     plume = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[args.grid] * 3,
                                   Bounds=[-half, half] * 3, Center=[0, 0, 0], Radius=nozzle,

@@ -26,26 +26,9 @@ import os
 import sys
 
 from paraview.simple import ExodusIIReader, LoadPlugin, servermanager
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkImagingCore import vtkImageShiftScale
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_DATA = os.environ.get("SCHLIEREN_DATA") or os.path.join(HERE, "..", "..", "shared", "data")
-
-
-def write_png(image, path):
-    """The film's intensity in [0, 1] as an 8-bit grey PNG."""
-    image.GetPointData().SetActiveScalars("intensity")
-    to8 = vtkImageShiftScale()
-    to8.SetInputData(image)
-    to8.SetScale(255.0)
-    to8.SetOutputScalarTypeToUnsignedChar()
-    to8.ClampOverflowOn()
-    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    writer = vtkPNGWriter()
-    writer.SetInputConnection(to8.GetOutputPort())
-    writer.SetFileName(path)
-    writer.Write()
 
 
 def main():
@@ -80,7 +63,9 @@ def main():
     out = servermanager.Fetch(image)
     if out is None or out.GetPointData().GetArray("intensity") is None:
         sys.exit("reactor: the trace produced no image (see the errors above)")
-    write_png(out, args.output)
+    import schlieren_view  # embedded in the plugin
+
+    schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), args.output)
     grid = servermanager.Fetch(index)
     fd = out.GetFieldData()
     k = fd.GetArray("cutoff_scale")

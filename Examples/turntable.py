@@ -11,23 +11,7 @@ import argparse
 import math
 import os
 
-import numpy as np
 from paraview.simple import LoadPlugin, servermanager
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkIOImage import vtkPNGWriter
-
-
-def write_png(values, path):
-    values = np.clip(values, 0.0, 1.0)
-    ny, nx = values.shape
-    image = vtkImageData()
-    image.SetDimensions(nx, ny, 1)
-    image.GetPointData().SetScalars(numpy_to_vtk((255 * values + 0.5).astype(np.uint8).ravel(), deep=1))
-    w = vtkPNGWriter()
-    w.SetInputData(image)
-    w.SetFileName(path)
-    w.Write()
 
 
 def main():
@@ -40,6 +24,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
+    import schlieren_view  # embedded in the plugin: film_array, write_png
     jet = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[96] * 3, Bounds=[-0.02, 0.02] * 3,
                                 Radius=0.003, Width=0.04, Amplitude=1.0)
     image = ns["SchlierenImage"](Input=ns["RefractionOctree"](Input=jet), Cutoff="KnifeEdge",
@@ -49,10 +34,9 @@ def main():
         a = 2 * math.pi * i / args.frames
         image.ViewDirection = [math.sin(a), 0.0, -math.cos(a)]
         data = servermanager.Fetch(image)
-        nx, ny, _ = data.GetDimensions()
-        I = vtk_to_numpy(data.GetPointData().GetArray("intensity")).reshape(ny, nx)
+        I = schlieren_view.film_array(data, "intensity")
         path = os.path.join(args.output, "turntable_%03d.png" % i)
-        write_png(I, path)
+        schlieren_view.write_png(I, path)
         print("%5.1f deg: %s (intensity %.2f..%.2f)" % (math.degrees(a), path, I.min(), I.max()))
 
 

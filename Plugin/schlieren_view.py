@@ -106,3 +106,40 @@ def follow_camera(view, image, interactive_passes=1, target_passes=None, step=No
     if timer:
         follower.start_timer()
     return follower
+
+
+def film_array(data, name="intensity"):
+    """A SchlierenImage output's point array as a numpy array of shape (ny, nx) or (ny, nx, c)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    nx, ny, _ = data.GetDimensions()
+    a = data.GetPointData().GetArray(name)
+    if a is None:
+        raise KeyError("the image has no point array %r" % name)
+    c = a.GetNumberOfComponents()
+    return vtk_to_numpy(a).reshape((ny, nx) + ((c,) if c > 1 else ()))
+
+
+def write_png(values, path):
+    """Writes a (ny, nx) array in [0, 1] as 8-bit grey, or (ny, nx, 3) as colour, row 0 at the
+    bottom (as the film's); values outside [0, 1] are clipped."""
+    import os
+
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+
+    values = np.clip(np.asarray(values, dtype=float), 0.0, 1.0)
+    ny, nx = values.shape[:2]
+    comps = 1 if values.ndim == 2 else values.shape[2]
+    image = vtkImageData()
+    image.SetDimensions(nx, ny, 1)
+    image.GetPointData().SetScalars(
+        numpy_to_vtk((255.0 * values + 0.5).astype(np.uint8).reshape(ny * nx, comps), deep=1))
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    writer = vtkPNGWriter()
+    writer.SetInputData(image)
+    writer.SetFileName(path)
+    writer.Write()
