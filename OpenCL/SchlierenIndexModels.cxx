@@ -379,52 +379,14 @@ void MixtureFractionConstant(const float* f, std::size_t n, Gas gas0, Gas gasF, 
 void SpeciesConstant(const float* const* Y, const Gas* species, std::size_t nSpecies,
   std::size_t n, Gas balance, float* K, float* M)
 {
-  if (!K)
-    throw Error("species mass fractions: the output array K is null; pass an array of n values.");
-  if (nSpecies && (!Y || !species))
+  // the table's gases are a case of MixtureConstants (typed gases, optional balance)
+  if (nSpecies && !species)
     throw Error("species mass fractions: the array or species list is null; pass nSpecies of each.");
-  const GasProperties& gb = GetGasProperties(balance);
+  std::vector<GasChoice> choices;
   for (std::size_t s = 0; s < nSpecies; ++s)
-  {
-    if (!Y[s])
-      throw Error(SpeciesLabel(species, s) + ": the array is null; pass an array of n values.");
-    BadPoints b = Scan(Y[s], n, BadFraction);
-    if (b.Count)
-      ThrowBad(SpeciesLabel(species, s), b, n, "are outside [0, 1] or not finite", FractionHint);
-  }
-  BadPoints sums;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    double sum = 0.0;
-    for (std::size_t s = 0; s < nSpecies; ++s)
-      sum += ClampFraction(Y[s][i]);
-    if (sum > 1.0 + FractionTolerance)
-      sums.Add(i, sum);
-  }
-  if (sums.Count)
-    ThrowBad("mass fractions", sums, n, "have fractions that sum above 1",
-      std::string("The listed species must not include the balance gas (") + gb.Name +
-        ") and must sum to at most 1 at every point: renormalise them, or leave one species out "
-        "as the balance.",
-      "sum ");
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    double sum = 0.0, k = 0.0, invM = 0.0;
-    for (std::size_t s = 0; s < nSpecies; ++s)
-    {
-      const double y = ClampFraction(Y[s][i]);
-      const GasProperties& g = GetGasProperties(species[s]);
-      sum += y;
-      k += y * g.GladstoneDale;
-      invM += y / g.MolarMass;
-    }
-    const double rest = sum >= 1.0 ? 0.0 : 1.0 - sum;
-    k += rest * gb.GladstoneDale;
-    invM += rest / gb.MolarMass;
-    K[i] = static_cast<float>(k);
-    if (M)
-      M[i] = static_cast<float>(1.0 / invM);
-  }
+    choices.push_back(GasChoice::Table(species[s]));
+  const GasChoice rest = GasChoice::Table(balance);
+  MixtureConstants(Y, choices.data(), nSpecies, n, &rest, K, M);
 }
 
 //------------------------------------------------------------------------------------------------
