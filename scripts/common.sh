@@ -15,7 +15,7 @@ SCHLIEREN_BUILD_PACKAGES=(
   libdouble-conversion-dev liblz4-dev libutfcpp-dev
 )
 # Only the tests need these: an X server for rendering tests.
-SCHLIEREN_TEST_PACKAGES=(xvfb xauth)
+SCHLIEREN_TEST_PACKAGES=(xvfb)
 
 schlieren_install() {
   local missing=()

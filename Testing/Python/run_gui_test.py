@@ -2,7 +2,7 @@
 """Runs test_gui.py (or --script NAME) in the ParaView GUI under Xvfb and turns its outcome into an exit status.
 
 Run with Debian's Python: /usr/bin/python3 run_gui_test.py --paraview /usr/bin/paraview
-    --plugin <Schlieren.so> --result <file> [--xvfb-run /usr/bin/xvfb-run]
+    --plugin <Schlieren.so> --result <file> [--with-xvfb ../with_xvfb.sh]
 
 Passes only if paraview exits 0 and the script wrote "PASS" to the result file (a script that did
 not run at all cannot pass).
@@ -17,7 +17,8 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--paraview", required=True)
 parser.add_argument("--plugin", required=True)
 parser.add_argument("--result", required=True)
-parser.add_argument("--xvfb-run", default="xvfb-run")
+parser.add_argument("--with-xvfb", default=os.path.join(here, "..", "with_xvfb.sh"),
+                    help="runs its arguments under a private Xvfb")
 parser.add_argument("--timeout", type=float, default=120)
 parser.add_argument("--script", default="test_gui.py", help="the GUI script, in this folder")
 args = parser.parse_args()
@@ -28,13 +29,16 @@ env = dict(os.environ, SCHLIEREN_PLUGIN=args.plugin, SCHLIEREN_GUI_RESULT=args.r
 # the GUI's script has no __file__: tell it where the shared CFD data is
 env.setdefault("SCHLIEREN_DATA", os.path.join(here, "..", "..", "..", "shared", "data"))
 env.setdefault("SCHLIEREN_GUI_BASELINE", os.path.join(here, "..", "Baselines", "gui_follow_bluntfin.png"))
-command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.paraview, "--dr",
+command = [args.with_xvfb, args.paraview, "--dr",
            "--script=" + os.path.join(here, args.script), "--exit"]
 print(" ".join(command))
 sys.stdout.flush()
+process = subprocess.Popen(command, env=env)
 try:
-    rc = subprocess.call(command, env=env, timeout=args.timeout)
+    rc = process.wait(timeout=args.timeout)
 except subprocess.TimeoutExpired:
+    process.terminate()  # the wrapper stops paraview and its Xvfb
+    process.wait()
     print("FAIL: the GUI did not exit within %g s" % args.timeout)
     sys.exit(1)
 

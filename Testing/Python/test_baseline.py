@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The knife-edge image of the Gaussian sphere, rendered, against a baseline PNG.
 
-Run (needs an X server): xvfb-run -a -s "-screen 0 1280x1024x24" pvpython test_baseline.py
+Run (needs an X server): Testing/with_xvfb.sh pvpython test_baseline.py
     --plugin <Schlieren.so> -V Testing/Baselines/knife_edge_gaussian.png -T <temp dir>
 
 The image is drawn with a grey colour map fixed to [0, 1], the view looking at the film straight on
