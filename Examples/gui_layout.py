@@ -2,7 +2,7 @@
 its knife-edge schlieren image side by side, saved from the GUI's own layout.
 
     SCHLIEREN_PLUGIN=build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so SCHLIEREN_DATA=../shared/data \
-    SCHLIEREN_SCREENSHOT=docs/gui_layout.png xvfb-run -a paraview --dr --script=Examples/gui_layout.py
+    SCHLIEREN_SCREENSHOT=docs/gui_layout.png Testing/with_xvfb.sh paraview --dr --script=Examples/gui_layout.py
 """
 import os
 
