@@ -32,6 +32,10 @@ typedef uchar sch_uchar;
 #define sch_fmin fmin
 #define sch_atan2 atan2
 #define sch_exp exp
+/* the 4 floats of one grid point (n - 1, grad n) as one vector: loaded and blended at once */
+typedef float4 sch_f4;
+#define sch_f4_load(p) vload4(0, (p))
+#define sch_f4_lerp(a, b, t) ((a) + (t) * ((b) - (a)))
 #else
 #include <math.h>
 #include <stdint.h>
@@ -48,6 +52,28 @@ typedef unsigned char sch_uchar;
 #define sch_fmin fminf
 #define sch_atan2 atan2f
 #define sch_exp expf
+typedef struct
+{
+  float x, y, z, w;
+} sch_f4;
+static inline sch_f4 sch_f4_load(const float* p)
+{
+  sch_f4 r;
+  r.x = p[0];
+  r.y = p[1];
+  r.z = p[2];
+  r.w = p[3];
+  return r;
+}
+static inline sch_f4 sch_f4_lerp(sch_f4 a, sch_f4 b, float t)
+{
+  sch_f4 r;
+  r.x = a.x + t * (b.x - a.x);
+  r.y = a.y + t * (b.y - a.y);
+  r.z = a.z + t * (b.z - a.z);
+  r.w = a.w + t * (b.w - a.w);
+  return r;
+}
 #endif
 
 /* Number of floats per output ray record. */
@@ -199,32 +225,18 @@ SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_para
   long sy = (long)P->nx * 4;
   long sz = (long)P->nx * (long)P->ny * 4;
   SCH_GLOBAL const float* c000 = field + ((long)k * P->ny + j) * sy + (long)i * 4;
-  /* the eight corners */
-  SCH_GLOBAL const float* c100 = c000 + 4;
-  SCH_GLOBAL const float* c010 = c000 + sy;
-  SCH_GLOBAL const float* c110 = c010 + 4;
   SCH_GLOBAL const float* c001 = c000 + sz;
-  SCH_GLOBAL const float* c101 = c001 + 4;
-  SCH_GLOBAL const float* c011 = c001 + sy;
-  SCH_GLOBAL const float* c111 = c011 + 4;
-  float w000 = (1.0f - tx) * (1.0f - ty) * (1.0f - tz);
-  float w100 = tx * (1.0f - ty) * (1.0f - tz);
-  float w010 = (1.0f - tx) * ty * (1.0f - tz);
-  float w110 = tx * ty * (1.0f - tz);
-  float w001 = (1.0f - tx) * (1.0f - ty) * tz;
-  float w101 = tx * (1.0f - ty) * tz;
-  float w011 = (1.0f - tx) * ty * tz;
-  float w111 = tx * ty * tz;
-  float r[4];
-  int c;
-  for (c = 0; c < 4; ++c)
-  {
-    r[c] = w000 * c000[c] + w100 * c100[c] + w010 * c010[c] + w110 * c110[c] + w001 * c001[c] +
-      w101 * c101[c] + w011 * c011[c] + w111 * c111[c];
-  }
+  /* seven lerps of the four channels at once: along x on the four edges, then y, then z */
+  sch_f4 e00 = sch_f4_lerp(sch_f4_load(c000), sch_f4_load(c000 + 4), tx);
+  sch_f4 e10 = sch_f4_lerp(sch_f4_load(c000 + sy), sch_f4_load(c000 + sy + 4), tx);
+  sch_f4 e01 = sch_f4_lerp(sch_f4_load(c001), sch_f4_load(c001 + 4), tx);
+  sch_f4 e11 = sch_f4_lerp(sch_f4_load(c001 + sy), sch_f4_load(c001 + sy + 4), tx);
+  sch_f4 f0 = sch_f4_lerp(e00, e10, ty);
+  sch_f4 f1 = sch_f4_lerp(e01, e11, ty);
+  sch_f4 r = sch_f4_lerp(f0, f1, tz);
   sch_sample s;
-  s.n1 = r[0];
-  s.g = sch_make(r[1], r[2], r[3]);
+  s.n1 = r.x;
+  s.g = sch_make(r.y, r.z, r.w);
   return s;
 }
 
