@@ -674,11 +674,24 @@ std::size_t RaysForRank(const sch_params& P)
   return (pixels - P.rayOffset + P.rayStride - 1) / P.rayStride;
 }
 
+// Threads of the CPU backend: SCHLIEREN_CPU_THREADS when set (for instance 1 per MPI rank, or to
+// measure scaling), else every hardware thread.
+unsigned CpuThreads()
+{
+  if (const char* env = std::getenv("SCHLIEREN_CPU_THREADS"))
+  {
+    const int n = std::atoi(env);
+    if (n > 0)
+      return static_cast<unsigned>(n);
+  }
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
 // The CPU backend: the C++ build of SchlierenPhysics.h on std::thread.
 void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_params& P,
   std::size_t first, std::size_t count, float* out)
 {
-  const unsigned nt = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned nt = CpuThreads();
   std::atomic<std::size_t> next(0);
   const std::size_t block = 256;
   auto worker = [&]() {
@@ -814,7 +827,7 @@ std::unique_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSetti
   if (s.Device == Backend::CPU)
   {
     used = "CPU";
-    device = "CPU (" + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+    device = "CPU (" + std::to_string(CpuThreads()) + " threads)";
     return nullptr;
   }
   try
@@ -829,7 +842,7 @@ std::unique_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSetti
     if (s.Device == Backend::OpenCL)
       throw;
     used = "CPU";
-    device = "CPU (" + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+    device = "CPU (" + std::to_string(CpuThreads()) + " threads)";
     warnings += std::string("OpenCL is not usable, tracing on the CPU instead: ") + e.what() + "\n";
     return nullptr;
   }

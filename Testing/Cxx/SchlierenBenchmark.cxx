@@ -1,9 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Benchmark (not a test): photons/s, samples/s and ms per pass of each backend side by side, on a
-// Gaussian sphere (default 256^3, 512^2 film), with the error of the traced deflection against the
-// closed form so that no speed is quoted without the accuracy it was bought at.
+// Benchmark (not a test): photons/s, samples/s and ms per pass of each backend side by side, with
+// the error of the traced deflection against a known answer, so that no speed is quoted without
+// the accuracy it was bought at. Three cases (issue 7):
+//   gaussian  the 256^3 Gaussian sphere; error against the closed form
+//   plume     a 480 x 720 x 100 helium jet (combustion-like: a sharp, strongly refracting
+//             interface); error against RK4 at 1/8 voxel on the same grid
+//   bluntfin  the NASA blunt fin resampled to 256^3 (--raw, written by
+//             Testing/Benchmarks/bluntfin_volume.py); error against RK4 at 1/8 voxel
+// Rows per case and backend: fixed Euler steps, the same with the octree, and Auto (tolerance 1 %
+// of the largest deflection) with the octree; the CPU path once more on one thread, so that each
+// run shows how its second core scaled.
 //
-//   SchlierenBenchmark [--size N] [--film N] [--passes N] [--step voxels] [--backends CPU,OpenCL]
+//   SchlierenBenchmark [--cases gaussian,plume,bluntfin] [--size N] [--film N] [--passes N]
+//     [--step voxels] [--backends OpenCL,CPU] [--rays-per-item N] [--raw bluntfin_256 (no suffix)]
 #include "SchlierenEngine.h"
 #include "SchlierenScenes.h"
 
@@ -11,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -20,7 +30,16 @@
 
 using namespace schlieren;
 
-static std::string CpuName()
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string CpuName()
 {
   std::ifstream f("/proc/cpuinfo");
   std::string line;
@@ -30,12 +49,234 @@ static std::string CpuName()
   return "unknown CPU";
 }
 
+// One benchmark case: a volume, its octree, the probe rays and their known deflections.
+struct Case
+{
+  std::string Name, Reference;
+  Volume V;
+  std::vector<float> N1, Field;
+  std::vector<unsigned char> Levels;
+  double OctreeTolerance = 0, Skippable = 0, LevelMs = 0, PackMs = 0;
+  std::vector<float> Probe;          // film coordinates (a, b) of the probe rays
+  std::vector<double> RefX, RefY;    // their known deflections
+  double RefMax = 0;                 // the largest known deflection
+};
+
+void SetUp(Case& c)
+{
+  const auto t0 = Clock::now();
+  c.Field.resize(4 * c.N1.size());
+  PackField(c.V.Dimensions, c.V.Spacing, c.N1.data(), c.Field.data());
+  c.PackMs = Since(t0) * 1e3;
+  c.V.Field = c.Field.data();
+  const auto mm = std::minmax_element(c.N1.begin(), c.N1.end());
+  c.OctreeTolerance = 1e-4 * (*mm.second - *mm.first);
+  c.Levels.resize(c.N1.size());
+  const auto t1 = Clock::now();
+  c.Skippable = ComputeOctreeLevels(c.V.Dimensions, c.N1.data(), c.OctreeTolerance, c.Levels.data());
+  c.LevelMs = Since(t1) * 1e3;
+  // 25 x 25 probe rays over the middle 60 % of the film (the volume's projection along -z)
+  double b[6];
+  c.V.GetBounds(b);
+  const double hx = 0.5 * (b[1] - b[0]), hy = 0.5 * (b[3] - b[2]);
+  for (int j = -12; j <= 12; ++j)
+    for (int i = -12; i <= 12; ++i)
+    {
+      c.Probe.push_back(static_cast<float>(0.05 * i * hx));
+      c.Probe.push_back(static_cast<float>(0.05 * j * hy));
+    }
+}
+
+// The reference of a case without a closed form: RK4 at 1/8 voxel on the CPU, same grid.
+void ReferenceByRK4(Case& c)
+{
+  TraceSettings s;
+  s.Device = Backend::CPU;
+  s.Method = Integrator::RK4;
+  s.StepSize = 0.125;
+  const std::vector<RayRecord> rec = TraceRays(c.V, s, c.Probe);
+  for (const RayRecord& r : rec)
+  {
+    c.RefX.push_back(r.DeflX);
+    c.RefY.push_back(r.DeflY);
+    c.RefMax = std::max(c.RefMax, std::hypot(double(r.DeflX), double(r.DeflY)));
+  }
+  c.Reference = "RK4 at 1/8 voxel, same grid";
+}
+
+bool Gaussian(Case& c, int size)
+{
+  const double A = 1e-4, w = 0.25;
+  SceneParameters p;
+  p.Amplitude = A;
+  p.Width = w;
+  for (int a = 0; a < 3; ++a)
+  {
+    c.V.Dimensions[a] = size;
+    c.V.Origin[a] = -1;
+    c.V.Spacing[a] = 2.0 / (size - 1);
+  }
+  c.N1.resize(c.V.NumberOfPoints());
+  FillScene(Scene::GaussianSphere, p, c.V.Dimensions, c.V.Origin, c.V.Spacing, c.N1.data(), nullptr);
+  c.Name = "Gaussian sphere A = 1e-4, s = 0.25, " + std::to_string(size) + "^3";
+  SetUp(c);
+  for (std::size_t k = 0; k < c.Probe.size() / 2; ++k)
+  {
+    const double a = c.Probe[2 * k], b = c.Probe[2 * k + 1];
+    const double f = -(2 * std::sqrt(M_PI) * A / w) * std::exp(-(a * a + b * b) / (w * w));
+    c.RefX.push_back(f * a);
+    c.RefY.push_back(f * b);
+  }
+  c.RefMax = std::sqrt(2 * M_PI) * A * std::exp(-0.5); // the largest |eps|, at rho = s / sqrt(2)
+  c.Reference = "closed form eps = -(2 sqrt(pi) A / s) (x, y) exp(-rho^2 / s^2)";
+  return true;
+}
+
+bool Plume(Case& c)
+{
+  // 480 x 720 x 100 points, 0.1 mm apart: a 3 mm helium nozzle at the bottom, the jet rising 72 mm
+  const int dims[3] = { 480, 720, 100 };
+  const double h = 1e-4;
+  for (int a = 0; a < 3; ++a)
+  {
+    c.V.Dimensions[a] = dims[a];
+    c.V.Spacing[a] = h;
+    c.V.Origin[a] = -0.5 * (dims[a] - 1) * h;
+  }
+  SceneParameters p;
+  p.Amplitude = 1.0; // pure helium at the nozzle
+  p.Radius = 0.003;
+  p.Width = (dims[1] - 1) * h;
+  c.N1.resize(c.V.NumberOfPoints());
+  FillScene(Scene::HeliumPlume, p, c.V.Dimensions, c.V.Origin, c.V.Spacing, c.N1.data(), nullptr);
+  c.Name = "helium plume 480 x 720 x 100 (nozzle 3 mm, 0.1 mm spacing)";
+  SetUp(c);
+  ReferenceByRK4(c);
+  return true;
+}
+
+bool BluntFin(Case& c, const std::string& raw)
+{
+  std::ifstream hdr(raw + ".txt");
+  std::ifstream data(raw + ".raw", std::ios::binary);
+  if (!hdr || !data)
+  {
+    std::printf("bluntfin: SKIP, no %s.raw/.txt (scripts/benchmark.sh writes them with "
+                "Testing/Benchmarks/bluntfin_volume.py when ../shared/data has the blunt fin)\n\n",
+      raw.c_str());
+    return false;
+  }
+  std::string key;
+  hdr >> key >> c.V.Dimensions[0] >> c.V.Dimensions[1] >> c.V.Dimensions[2];
+  hdr >> key >> c.V.Origin[0] >> c.V.Origin[1] >> c.V.Origin[2];
+  hdr >> key >> c.V.Spacing[0] >> c.V.Spacing[1] >> c.V.Spacing[2];
+  c.N1.resize(c.V.NumberOfPoints());
+  data.read(reinterpret_cast<char*>(c.N1.data()), static_cast<std::streamsize>(c.N1.size() * sizeof(float)));
+  if (!hdr || data.gcount() != static_cast<std::streamsize>(c.N1.size() * sizeof(float)))
+  {
+    std::printf("bluntfin: SKIP, %s.raw/.txt do not match\n\n", raw.c_str());
+    return false;
+  }
+  c.Name = "NASA blunt fin (Mach 2.95) resampled to " + std::to_string(c.V.Dimensions[0]) + " x " +
+    std::to_string(c.V.Dimensions[1]) + " x " + std::to_string(c.V.Dimensions[2]);
+  SetUp(c);
+  ReferenceByRK4(c);
+  return true;
+}
+
+void Run(Case& c, const std::string& backends, int film, int passes, double step, int rpi)
+{
+  std::printf("## %s\n\n", c.Name.c_str());
+  std::printf("error: the largest over 625 probe rays of |deflection - reference|, as a fraction of the "
+              "largest reference deflection (%.3g rad); reference: %s\n\n",
+    c.RefMax, c.Reference.c_str());
+  std::printf("| backend, setting | photons/s | samples/s | ms/pass | samples/ray | error | first-trace ms |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  struct Row
+  {
+    const char* Name;
+    Integrator Method;
+    bool Octree;
+    bool OneThread;
+  };
+  const Row rows[] = { { "Euler", Integrator::Euler, false, false },
+    { "Euler + octree", Integrator::Euler, true, false },
+    { "Auto (1 % of max eps) + octree", Integrator::Auto, true, false },
+    { "Euler, 1 thread", Integrator::Euler, false, true } };
+  std::stringstream ss(backends);
+  std::string name;
+  while (std::getline(ss, name, ','))
+  {
+    for (const Row& row : rows)
+    {
+      const Backend device = ParseBackend(name);
+      if (row.OneThread && device != Backend::CPU)
+        continue;
+      TraceSettings s;
+      s.Device = device;
+      s.Resolution[0] = s.Resolution[1] = film;
+      s.StepSize = step;
+      s.Passes = 1;
+      s.CutoffScale = 1000;
+      s.Method = row.Method;
+      s.Tolerance = 0.01 * c.RefMax;
+      if (rpi > 0)
+        s.RaysPerWorkItem = rpi;
+      Volume vv = c.V;
+      if (row.Octree)
+      {
+        vv.Levels = c.Levels.data();
+        vv.LevelTolerance = c.OctreeTolerance;
+      }
+      if (row.OneThread)
+        setenv("SCHLIEREN_CPU_THREADS", "1", 1);
+      try
+      {
+        // Auto chooses once (its pilot is not part of the pass time)
+        s = ResolveAuto(vv, s);
+        // first trace: includes the program build (cached after) and the upload
+        const auto t0 = Clock::now();
+        TraceResult warm = Trace(vv, s);
+        const double first = Since(t0);
+        (void)warm;
+        s.Passes = passes;
+        TraceResult r = Trace(vv, s);
+        const std::vector<RayRecord> rec = TraceRays(vv, s, c.Probe);
+        double err = 0;
+        for (std::size_t k = 0; k < rec.size(); ++k)
+          err = std::max(err, std::hypot(rec[k].DeflX - c.RefX[k], rec[k].DeflY - c.RefY[k]));
+        std::string label = std::string(r.BackendUsed) + ", " + row.Name;
+        if (row.Method == Integrator::Auto)
+        {
+          char chosen[64];
+          std::snprintf(chosen, sizeof(chosen), " -> %s %.3g vox", IntegratorName(s.Method), s.StepSize);
+          label += chosen;
+        }
+        std::printf("| %s | %.3g M | %.3g M | %.1f | %.1f | %.3g | %.0f |\n", label.c_str(),
+          r.Photons / r.Seconds / 1e6, r.Samples / r.Seconds / 1e6, r.Seconds / passes * 1e3,
+          r.Samples / r.Photons, err / c.RefMax, first * 1e3);
+      }
+      catch (const Error& e)
+      {
+        std::printf("| %s, %s | failed: %s | | | | | |\n", name.c_str(), row.Name, e.what());
+      }
+      if (row.OneThread)
+        unsetenv("SCHLIEREN_CPU_THREADS");
+      std::fflush(stdout);
+    }
+  }
+  std::printf("\nn - 1 packed with its gradient in %.0f ms; octree: tolerance %.3g (1e-4 of the index "
+              "range), %.1f %% of cells skippable, built in %.0f ms\n\n",
+    c.PackMs, c.OctreeTolerance, 100 * c.Skippable, c.LevelMs);
+}
+
+} // namespace
+
 int main(int argc, char** argv)
 {
-  int size = 256, film = 512, passes = 3;
+  int size = 256, film = 512, passes = 3, rpi = 0;
   double step = 0.5;
-  int rpi = 0;
-  std::string backends = "CPU,OpenCL";
+  std::string backends = "OpenCL,CPU", cases = "gaussian,plume,bluntfin", raw = "bluntfin_256";
   for (int i = 1; i + 1 < argc; i += 2)
   {
     if (!std::strcmp(argv[i], "--size"))
@@ -50,116 +291,39 @@ int main(int argc, char** argv)
       backends = argv[i + 1];
     else if (!std::strcmp(argv[i], "--rays-per-item"))
       rpi = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--cases"))
+      cases = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--raw"))
+      raw = argv[i + 1];
   }
-  const double A = 1e-4, w = 0.25;
-  SceneParameters p;
-  p.Amplitude = A;
-  p.Width = w;
-  Volume v;
-  for (int a = 0; a < 3; ++a)
-  {
-    v.Dimensions[a] = size;
-    v.Origin[a] = -1;
-    v.Spacing[a] = 2.0 / (size - 1);
-  }
-  std::vector<float> n1(v.NumberOfPoints()), field(4 * n1.size());
-  FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
-  const auto tp0 = std::chrono::steady_clock::now();
-  PackField(v.Dimensions, v.Spacing, n1.data(), field.data());
-  const double packSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tp0).count();
-  v.Field = field.data();
-
   DeviceInfo dev = QueryOpenCLDevice();
-  std::printf("Schlieren benchmark: Gaussian sphere A=%g s=%g on %d^3, film %d^2, %d passes, Euler "
-              "step %.2f voxel\n",
-    A, w, size, film, passes, step);
-  std::printf("machine: %s, %u hardware threads; OpenCL device: %s\n", CpuName().c_str(),
-    std::thread::hardware_concurrency(), dev.Available ? (dev.Name + " (" + dev.Platform + ")").c_str() : dev.Reason.c_str());
-  std::printf("gradient precomputation (PackField): %.0f ms\n\n", packSeconds * 1e3);
-  std::printf("| backend, setting | photons/s | samples/s | ms/pass | samples/ray | max deflection error (of max eps) | first-trace ms |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
-  const double emax = std::sqrt(2 * M_PI) * A * std::exp(-0.5);
-  // the octree for the "octree" rows: tolerance 1e-4 A (the accuracy test holds this to 1e-4 of
-  // max eps against fixed steps)
-  std::vector<unsigned char> levels(v.NumberOfPoints());
-  const double octreeTol = 1e-4 * A;
-  const auto tl0 = std::chrono::steady_clock::now();
-  const double skippable = ComputeOctreeLevels(v.Dimensions, n1.data(), octreeTol, levels.data());
-  const double levelMs = std::chrono::duration<double>(std::chrono::steady_clock::now() - tl0).count() * 1e3;
-  std::vector<float> ab;
-  for (int j = -12; j <= 12; ++j)
-    for (int i = -12; i <= 12; ++i)
-    {
-      ab.push_back(static_cast<float>(0.05 * i));
-      ab.push_back(static_cast<float>(0.05 * j));
-    }
-  struct Row
-  {
-    const char* Name;
-    Integrator Method;
-    bool Octree;
-  };
-  const Row rows[] = { { "Euler", Integrator::Euler, false }, { "Euler + octree", Integrator::Euler, true },
-    { "Auto (1 % of max eps) + octree", Integrator::Auto, true } };
-  std::stringstream ss(backends);
+  std::printf("# Schlieren benchmark: film %d^2, %d passes, Euler step %.2f voxel\n\n", film, passes, step);
+  std::printf("machine: %s, %u hardware threads; OpenCL device: %s\n\n", CpuName().c_str(),
+    std::thread::hardware_concurrency(),
+    dev.Available ? (dev.Name + " (" + dev.Platform + ")").c_str() : dev.Reason.c_str());
+  std::stringstream ss(cases);
   std::string name;
   while (std::getline(ss, name, ','))
   {
-    for (const Row& row : rows)
+    Case c;
+    bool ok = false;
+    try
     {
-      TraceSettings s;
-      s.Device = ParseBackend(name);
-      s.Resolution[0] = s.Resolution[1] = film;
-      s.StepSize = step;
-      s.Passes = 1;
-      s.CutoffScale = 1000;
-      s.Method = row.Method;
-      s.Tolerance = 0.01 * std::sqrt(2 * M_PI) * A * std::exp(-0.5);
-      if (rpi > 0)
-        s.RaysPerWorkItem = rpi;
-      Volume vv = v;
-      if (row.Octree)
-      {
-        vv.Levels = levels.data();
-        vv.LevelTolerance = octreeTol;
-      }
-      try
-      {
-        // Auto chooses once (its pilot is not part of the pass time)
-        AutoChoice choice;
-        s = ResolveAuto(vv, s, &choice);
-        // first trace: includes the program build (cached after) and the upload
-        const auto t0 = std::chrono::steady_clock::now();
-        TraceResult warm = Trace(vv, s);
-        const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        s.Passes = passes;
-        TraceResult r = Trace(vv, s);
-        // accuracy: 25 x 25 rays through the sphere on this backend and setting, against the closed form
-        std::vector<RayRecord> rec = TraceRays(vv, s, ab);
-        double err = 0;
-        for (std::size_t k = 0; k < rec.size(); ++k)
-        {
-          const double a = ab[2 * k], b = ab[2 * k + 1];
-          const double f = -(2 * std::sqrt(M_PI) * A / w) * std::exp(-(a * a + b * b) / (w * w));
-          err = std::max(err, std::hypot(rec[k].DeflX - f * a, rec[k].DeflY - f * b));
-        }
-        std::string label = std::string(r.BackendUsed) + ", " + row.Name;
-        if (row.Method == Integrator::Auto)
-          label += std::string(" -> ") + IntegratorName(s.Method) + " " + std::to_string(s.StepSize).substr(0, 4) + " vox";
-        std::printf("| %s | %.3g M | %.3g M | %.1f | %.1f | %.3g | %.0f |\n", label.c_str(),
-          r.Photons / r.Seconds / 1e6, r.Samples / r.Seconds / 1e6, r.Seconds / passes * 1e3,
-          r.Samples / r.Photons, err / emax, first * 1e3);
-        (void)warm;
-      }
-      catch (const Error& e)
-      {
-        std::printf("| %s, %s | failed: %s | | | | | |\n", name.c_str(), row.Name, e.what());
-      }
+      if (name == "gaussian")
+        ok = Gaussian(c, size);
+      else if (name == "plume")
+        ok = Plume(c);
+      else if (name == "bluntfin")
+        ok = BluntFin(c, raw);
+      else
+        std::printf("unknown case '%s' (gaussian, plume, bluntfin)\n", name.c_str());
     }
+    catch (const Error& e)
+    {
+      std::printf("%s: could not set up: %s\n", name.c_str(), e.what());
+    }
+    if (ok)
+      Run(c, backends, film, passes, step, rpi);
   }
-  std::printf("\noctree: tolerance %.3g (1e-4 A), %.1f %% of cells skippable, built in %.0f ms\n",
-    octreeTol, 100 * skippable, levelMs);
-  std::printf("\n(deflection error: the largest over 625 rays at |x|, |y| <= 0.6, traced on the same "
-              "backend and step, against eps = -(2 sqrt(pi) A / s) (x, y) exp(-rho^2 / s^2))\n");
   return 0;
 }
