@@ -695,6 +695,10 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
   std::atomic<std::size_t> next(0);
   const std::size_t block = 256;
   auto worker = [&]() {
+    // each thread reads its own copy of the parameters: the caller's sits on the main thread's
+    // stack, next to what that thread writes every step, and the other thread's reads of it
+    // missed the cache on every step (false sharing: 2 threads ran no faster than 1)
+    const sch_params Pw = P;
     for (;;)
     {
       const std::size_t b0 = next.fetch_add(block);
@@ -703,9 +707,9 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
       const std::size_t b1 = std::min(count, b0 + block);
       for (std::size_t k = b0; k < b1; k += SCH_PACKET)
       {
-        const int pix = static_cast<int>(P.rayOffset + (first + k) * P.rayStride);
+        const int pix = static_cast<int>(Pw.rayOffset + (first + k) * Pw.rayStride);
         const int n = static_cast<int>(std::min<std::size_t>(SCH_PACKET, b1 - k));
-        sch_trace_packet(field, levels, &P, pix, P.rayStride, n, out + k * SCH_RECORD);
+        sch_trace_packet(field, levels, &Pw, pix, Pw.rayStride, n, out + k * SCH_RECORD);
       }
     }
   };
