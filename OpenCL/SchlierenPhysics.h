@@ -323,47 +323,46 @@ SCH_FN float sch_invariant_gap(float ne1, float n1, sch_v3 d0, sch_v3 w)
 /* The step allowed at x: the base step, or the distance to the far side of the octree block that
  * holds x when that is longer (paper section 4.2; the block is uniform within the tolerance, with a
  * one-voxel halo, so the ray may cross it in one straight step). */
+/* Along one axis: the distance (in steps of the direction's component dI, cells per unit length)
+ * from the grid coordinate f in cell c to the face of its block of B cells that the ray heads for. */
+SCH_FN float sch_block_exit(float f, int c, float B, float dI)
+{
+  float lo = sch_floor((float)c / B) * B;
+  if (dI > 1e-20f)
+    return (lo + B - f) / dI;
+  if (dI < -1e-20f)
+    return (f - lo) / -dI;
+  return 1e30f;
+}
+
 SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   sch_v3 x,
   sch_v3 dir,
   float base)
 {
-  float f[3], is[3], dI[3];
-  int n[3], c[3], a;
-  f[0] = (x.x - P->ox) * P->isx;
-  f[1] = (x.y - P->oy) * P->isy;
-  f[2] = (x.z - P->oz) * P->isz;
-  n[0] = P->nx;
-  n[1] = P->ny;
-  n[2] = P->nz;
-  is[0] = P->isx;
-  is[1] = P->isy;
-  is[2] = P->isz;
-  dI[0] = dir.x * is[0];
-  dI[1] = dir.y * is[1];
-  dI[2] = dir.z * is[2];
-  for (a = 0; a < 3; ++a)
-  {
-    f[a] = f[a] < 0.0f ? 0.0f : (f[a] > (float)(n[a] - 1) ? (float)(n[a] - 1) : f[a]);
-    c[a] = (int)f[a];
-    if (c[a] > n[a] - 2)
-      c[a] = n[a] - 2;
-  }
-  int lvl = (int)levels[((long)c[2] * n[1] + c[1]) * n[0] + c[0]];
+  /* per axis, without arrays: PoCL kept small indexed arrays in memory, and this runs every step */
+  float fx = (x.x - P->ox) * P->isx;
+  float fy = (x.y - P->oy) * P->isy;
+  float fz = (x.z - P->oz) * P->isz;
+  fx = fx < 0.0f ? 0.0f : (fx > (float)(P->nx - 1) ? (float)(P->nx - 1) : fx);
+  fy = fy < 0.0f ? 0.0f : (fy > (float)(P->ny - 1) ? (float)(P->ny - 1) : fy);
+  fz = fz < 0.0f ? 0.0f : (fz > (float)(P->nz - 1) ? (float)(P->nz - 1) : fz);
+  int i = (int)fx;
+  int j = (int)fy;
+  int k = (int)fz;
+  if (i > P->nx - 2)
+    i = P->nx - 2;
+  if (j > P->ny - 2)
+    j = P->ny - 2;
+  if (k > P->nz - 2)
+    k = P->nz - 2;
+  int lvl = (int)levels[((long)k * P->ny + j) * P->nx + i];
   if (lvl == 0)
     return base;
   float B = (float)(1 << lvl);
-  float t = 1e30f;
-  for (a = 0; a < 3; ++a)
-  {
-    float lo = sch_floor((float)c[a] / B) * B;
-    float hi = lo + B;
-    if (dI[a] > 1e-20f)
-      t = sch_fmin(t, (hi - f[a]) / dI[a]);
-    else if (dI[a] < -1e-20f)
-      t = sch_fmin(t, (f[a] - lo) / -dI[a]);
-  }
+  float t = sch_fmin(sch_fmin(sch_block_exit(fx, i, B, dir.x * P->isx), sch_block_exit(fy, j, B, dir.y * P->isy)),
+    sch_block_exit(fz, k, B, dir.z * P->isz));
   /* a hair past the block face, so that the next lookup sees the next block */
   t += 0.01f * base;
   return t > base ? t : base;
