@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
@@ -441,14 +443,59 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
 // A step that leaves more than 1 % of the field's index range unexplained by the gradient (or more
 // than the octree tolerance) has jumped over structure. Reads the whole field: call it once the
 // backend has accepted the volume.
+// What identifies a stamped volume's contents (Volume::Stamp).
+struct VolumeIdentity
+{
+  const float* Field = nullptr;
+  const unsigned char* Levels = nullptr;
+  int Dimensions[3] = { 0, 0, 0 };
+  std::uint64_t Stamp = 0;
+
+  explicit VolumeIdentity(const Volume& v)
+    : Field(v.Field)
+    , Levels(v.Levels)
+    , Stamp(v.Stamp)
+  {
+    std::copy(v.Dimensions, v.Dimensions + 3, Dimensions);
+  }
+  VolumeIdentity() = default;
+  bool operator==(const VolumeIdentity& o) const
+  {
+    return Stamp != 0 && Stamp == o.Stamp && Field == o.Field && Levels == o.Levels &&
+      std::equal(Dimensions, Dimensions + 3, o.Dimensions);
+  }
+};
+
+static std::mutex KeptMutex;
+
 static void SetFeatureTolerance(sch_params& P, const Volume& volume)
 {
+  // the index range of the last stamped volume (a pass over the whole field: ~40 ms at 256^3)
+  static VolumeIdentity rangeOf;
+  static float rangeLo = 0, rangeHi = 0;
   float lo = volume.Field[0], hi = volume.Field[0];
+  bool known = false;
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    if (rangeOf == VolumeIdentity(volume))
+    {
+      lo = rangeLo;
+      hi = rangeHi;
+      known = true;
+    }
+  }
   const std::size_t n = volume.NumberOfPoints();
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; !known && i < n; ++i)
   {
     lo = std::min(lo, volume.Field[4 * i]);
     hi = std::max(hi, volume.Field[4 * i]);
+  }
+  if (!known && volume.Stamp != 0)
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    rangeOf = VolumeIdentity(volume);
+    rangeLo = lo;
+    rangeHi = hi;
   }
   P.featureTol = static_cast<float>(std::max(volume.LevelTolerance, 0.01 * (double(hi) - lo)));
   if (!(P.featureTol > 0))
@@ -758,8 +805,19 @@ public:
       volume.Levels ? volume.NumberOfPoints() : 1,
       const_cast<unsigned char*>(volume.Levels ? volume.Levels : &none), &err);
     ocl::Check(err, "clCreateBuffer(levels)");
-    Chunk = chunk;
-    Out = clCreateBuffer(RT.Context, CL_MEM_WRITE_ONLY, std::max<std::size_t>(1, chunk) * SCH_RECORD * sizeof(float), nullptr, &err);
+    EnsureOut(chunk);
+  }
+  // the records buffer holds at least `chunk` rays
+  void EnsureOut(std::size_t chunk)
+  {
+    if (Out && chunk <= Chunk)
+      return;
+    if (Out)
+      clReleaseMemObject(Out);
+    Out = nullptr;
+    cl_int err = CL_SUCCESS;
+    Chunk = std::max<std::size_t>(1, chunk);
+    Out = clCreateBuffer(RT.Context, CL_MEM_WRITE_ONLY, Chunk * SCH_RECORD * sizeof(float), nullptr, &err);
     ocl::Check(err, "clCreateBuffer(records)");
   }
   ~OpenCLTracer()
@@ -825,7 +883,50 @@ public:
 };
 
 // Chooses the backend; returns the OpenCL tracer or null for the CPU.
-std::unique_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSettings& s,
+// The device copy of the last stamped volume, kept for the next call (an interactive view traces
+// the same volume again and again: at 256^3 the upload is ~0.2 s on PoCL). Allocated once and
+// never destroyed at exit, where the OpenCL runtime may already be gone.
+struct KeptTracer
+{
+  VolumeIdentity Identity;
+  int RaysPerItem = 0;
+  std::shared_ptr<OpenCLTracer> Tracer;
+};
+KeptTracer& Kept()
+{
+  static KeptTracer* kept = new KeptTracer;
+  return *kept;
+}
+
+std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t chunk, int raysPerItem)
+{
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    KeptTracer& k = Kept();
+    // in use by another call (use_count > 1): that call keeps it; this one makes its own
+    if (k.Tracer && k.Identity == VolumeIdentity(volume) && k.RaysPerItem == raysPerItem &&
+      k.Tracer.use_count() == 1)
+    {
+      std::shared_ptr<OpenCLTracer> t = k.Tracer;
+      t->EnsureOut(chunk);
+      return t;
+    }
+    // one volume on the device at a time: the old copy goes before the new one is made
+    k.Tracer.reset();
+    k.Identity = VolumeIdentity();
+  }
+  auto t = std::make_shared<OpenCLTracer>(volume, chunk, raysPerItem);
+  if (volume.Stamp != 0)
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    Kept().Identity = VolumeIdentity(volume);
+    Kept().RaysPerItem = raysPerItem;
+    Kept().Tracer = t;
+  }
+  return t;
+}
+
+std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSettings& s,
   std::size_t chunk, std::string& used, std::string& device, std::string& warnings)
 {
   if (s.Device == Backend::CPU)
@@ -836,7 +937,7 @@ std::unique_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSetti
   }
   try
   {
-    auto t = std::make_unique<OpenCLTracer>(volume, chunk, s.RaysPerWorkItem);
+    auto t = AcquireTracer(volume, chunk, s.RaysPerWorkItem);
     used = "OpenCL";
     device = t->RT.DeviceName;
     return t;
@@ -897,7 +998,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     chunk *= 2;
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
-  std::unique_ptr<OpenCLTracer> cl = OpenBackend(volume, s, chunk, used, device, warn);
+  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, chunk, used, device, warn);
   SetFeatureTolerance(P, volume);
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
@@ -1325,6 +1426,19 @@ std::vector<float> PilotRays(const Volume& volume, const TraceSettings& s)
   return ab;
 }
 
+std::uint64_t NewVolumeStamp()
+{
+  static std::atomic<std::uint64_t> next(1);
+  return next.fetch_add(1);
+}
+
+void ReleaseKeptVolume()
+{
+  std::lock_guard<std::mutex> lock(KeptMutex);
+  Kept().Tracer.reset();
+  Kept().Identity = VolumeIdentity();
+}
+
 TraceResult Trace(const Volume& volume, const TraceSettings& requested, const ProgressFunction& progress)
 {
   FilmSums sums;
@@ -1356,7 +1470,7 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const std::size_t count = ab.size() / 2;
   std::vector<RayRecord> out(count);
   std::string used, device, warn;
-  std::unique_ptr<OpenCLTracer> cl = OpenBackend(volume, s, std::max<std::size_t>(count, 1), used, device, warn);
+  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, std::max<std::size_t>(count, 1), used, device, warn);
   SetFeatureTolerance(P, volume);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)

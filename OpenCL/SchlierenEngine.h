@@ -44,6 +44,13 @@ struct Volume
   const unsigned char* Levels = nullptr;
   /** The index tolerance the levels were built for (for the step-quality checks). */
   double LevelTolerance = 0.0;
+  /**
+   * The caller's version of Field and Levels. Equal non-zero stamps with the same pointers and
+   * dimensions promise unchanged contents: the engine then keeps what it derived from them (the
+   * OpenCL device's copy, the index range) from one call to the next, so that a new camera or
+   * a few more passes do not upload the volume again. 0 (the default): nothing is kept.
+   */
+  std::uint64_t Stamp = 0;
 
   std::size_t NumberOfPoints() const
   {
@@ -52,6 +59,12 @@ struct Volume
   /** The point bounds: xmin, xmax, ymin, ymax, zmin, zmax. */
   void GetBounds(double bounds[6]) const;
 };
+
+/** A stamp no other volume of this process has had (for Volume::Stamp). */
+std::uint64_t NewVolumeStamp();
+
+/** Frees what the engine keeps between calls (the device copy of the last stamped volume). */
+void ReleaseKeptVolume();
 
 /**
  * Packs n-1 and its gradient (central differences in world units, one-sided at the borders) into
