@@ -120,6 +120,12 @@ struct vtkSchlierenImage::vtkInternals
 {
   schlieren::FilmSums Sums; // this rank's sums of the passes traced so far
   std::string Key;          // the photons' settings and the input they were traced from
+  // the whole volume of the last trace (n - 1 and gradient, octree levels) and the input it came
+  // from: kept while only the view, optics or passes change
+  std::string VolumeKey;
+  std::vector<float> Packed;
+  std::vector<unsigned char> Levels;
+  schlieren::Volume Volume;
 };
 
 //------------------------------------------------------------------------------
@@ -133,6 +139,11 @@ vtkSchlierenImage::vtkSchlierenImage()
 //------------------------------------------------------------------------------
 vtkSchlierenImage::~vtkSchlierenImage()
 {
+  // the engine's device copy may be this filter's volume: free it with the filter
+  if (this->Internals->Volume.Stamp != 0)
+  {
+    schlieren::ReleaseKeptVolume();
+  }
   delete this->Internals;
 }
 
@@ -457,187 +468,240 @@ int vtkSchlierenImage::RequestData(
     return ok == 1;
   };
 
-  // 1. This rank's piece of n - 1 (and of the octree levels, where asked for and present).
-  std::string problem;
-  int ext[6] = { 0, -1, 0, -1, 0, -1 };
-  std::vector<float> values;
-  std::vector<unsigned char> pieceLevels;
-  OctreeInfo octree;
-  if (!input || !output)
+  // 0. The packed volume of the last trace, if the input has not changed since (a new camera,
+  // other optics, more passes): steps 1-3 below are skipped, and the engine keeps its device copy
+  // of the volume (Volume::Stamp), so that an interactive view re-traces without re-uploading.
+  vtkInternals& cache = *this->Internals;
+  std::string volumeKey;
+  if (input && output)
   {
-    problem = NotAnImage(vtkDataObject::GetData(inInfo));
-  }
-  else if (!input->GetDirectionMatrix()->IsIdentity())
-  {
-    problem = "SchlierenImage traces axis-aligned images only; this one has a direction matrix. "
-              "Resample it onto an axis-aligned image first.";
-  }
-  else if (this->Passes < 1)
-  {
-    std::ostringstream msg;
-    msg << "Passes is " << this->Passes << "; it must be at least 1 (one photon per pixel per pass).";
-    problem = msg.str();
-  }
-  else if (input->GetNumberOfPoints() > 0)
-  {
-    vtkDataArray* array = input->GetPointData()->GetArray(IndexArrayName);
-    if (!array)
+    int pieceExtent[6], wholeExtent[6];
+    input->GetExtent(pieceExtent);
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+    std::ostringstream vk;
+    vk << input->GetMTime() << " " << this->UseOctree << " " << ranks;
+    for (int a = 0; a < 6; ++a)
     {
-      problem = std::string("SchlierenImage needs the point array 'n_minus_1' (n - 1); the input "
-                            "has the point arrays: ") +
-        PointArrayNames(input) + ". Apply RefractiveIndex first.";
+      vk << " " << pieceExtent[a] << " " << wholeExtent[a];
     }
-    else if (array->GetNumberOfComponents() != 1)
+    volumeKey = vk.str();
+  }
+  int reuseVolume =
+    (!volumeKey.empty() && volumeKey == cache.VolumeKey && this->Passes >= 1) ? 1 : 0;
+  if (ranks > 1)
+  {
+    int all = 0;
+    controller->AllReduce(&reuseVolume, &all, 1, vtkCommunicator::MIN_OP);
+    reuseVolume = all;
+  }
+  std::string problem;
+  schlieren::Volume volume;
+  std::vector<float> packed;
+  std::vector<unsigned char> levels;
+  // steps 1-3: the volume from the input; 0 when it failed (reported, agreed by all ranks)
+  auto buildVolume = [&]() -> int {
+    // 1. This rank's piece of n - 1 (and of the octree levels, where asked for and present).
+    int ext[6] = { 0, -1, 0, -1, 0, -1 };
+    std::vector<float> values;
+    std::vector<unsigned char> pieceLevels;
+    OctreeInfo octree;
+    if (!input || !output)
     {
-      problem = "The point array 'n_minus_1' must have one component.";
+      problem = NotAnImage(vtkDataObject::GetData(inInfo));
+    }
+    else if (!input->GetDirectionMatrix()->IsIdentity())
+    {
+      problem = "SchlierenImage traces axis-aligned images only; this one has a direction matrix. "
+                "Resample it onto an axis-aligned image first.";
+    }
+    else if (this->Passes < 1)
+    {
+      std::ostringstream msg;
+      msg << "Passes is " << this->Passes << "; it must be at least 1 (one photon per pixel per pass).";
+      problem = msg.str();
+    }
+    else if (input->GetNumberOfPoints() > 0)
+    {
+      vtkDataArray* array = input->GetPointData()->GetArray(IndexArrayName);
+      if (!array)
+      {
+        problem = std::string("SchlierenImage needs the point array 'n_minus_1' (n - 1); the input "
+                              "has the point arrays: ") +
+          PointArrayNames(input) + ". Apply RefractiveIndex first.";
+      }
+      else if (array->GetNumberOfComponents() != 1)
+      {
+        problem = "The point array 'n_minus_1' must have one component.";
+      }
+      else
+      {
+        input->GetExtent(ext);
+        const vtkIdType count = array->GetNumberOfTuples();
+        values.resize(static_cast<std::size_t>(count));
+        for (vtkIdType i = 0; i < count; ++i)
+        {
+          values[i] = static_cast<float>(array->GetComponent(i, 0));
+        }
+        if (this->UseOctree)
+        {
+          octree = ReadOctree(input, pieceLevels);
+        }
+      }
+    }
+    else if (ranks == 1)
+    {
+      problem = "SchlierenImage: the input image is empty.";
+    }
+    if (!agree(problem))
+    {
+      return 0;
+    }
+
+    // 2. The whole volume on every rank.
+    volume = WholeVolume(inInfo);
+    int whole[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    const std::size_t total = volume.NumberOfPoints();
+    std::vector<float> field;
+    const bool wholePiece = ranks == 1 && std::equal(ext, ext + 6, whole);
+    if (wholePiece)
+    {
+      field.swap(values);
     }
     else
     {
-      input->GetExtent(ext);
-      const vtkIdType count = array->GetNumberOfTuples();
-      values.resize(static_cast<std::size_t>(count));
-      for (vtkIdType i = 0; i < count; ++i)
+      field.assign(total, 0.0f);
+      std::vector<unsigned char> covered(total, 0);
+      if (ranks == 1)
       {
-        values[i] = static_cast<float>(array->GetComponent(i, 0));
+        Insert(whole, ext, values.data(), field, covered);
       }
-      if (this->UseOctree)
+      else
       {
-        octree = ReadOctree(input, pieceLevels);
+        std::vector<int> extents(6 * static_cast<std::size_t>(ranks));
+        controller->AllGather(ext, extents.data(), 6);
+        std::vector<vtkIdType> counts(ranks), offsets(ranks);
+        vtkIdType sum = 0;
+        for (int r = 0; r < ranks; ++r)
+        {
+          counts[r] = ExtentPoints(&extents[6 * r]);
+          offsets[r] = sum;
+          sum += counts[r];
+        }
+        std::vector<float> all(static_cast<std::size_t>(std::max<vtkIdType>(sum, 1)));
+        controller->AllGatherV(values.data(), all.data(), static_cast<vtkIdType>(values.size()),
+          counts.data(), offsets.data());
+        for (int r = 0; r < ranks; ++r)
+        {
+          Insert(whole, &extents[6 * r], all.data() + offsets[r], field, covered);
+        }
+      }
+      // The same answer on every rank: no agreement needed.
+      if (std::find(covered.begin(), covered.end(), 0) != covered.end())
+      {
+        vtkErrorMacro("The input pieces do not cover the input's whole extent; the tracer needs "
+                      "the whole volume.");
+        return 0;
       }
     }
-  }
-  else if (ranks == 1)
-  {
-    problem = "SchlierenImage: the input image is empty.";
-  }
-  if (!agree(problem))
-  {
-    return 0;
-  }
+    std::vector<float>().swap(values);
 
-  // 2. The whole volume on every rank.
-  schlieren::Volume volume = WholeVolume(inInfo);
-  int whole[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  const std::size_t total = volume.NumberOfPoints();
-  std::vector<float> field;
-  const bool wholePiece = ranks == 1 && std::equal(ext, ext + 6, whole);
-  if (wholePiece)
+    // 2b. The octree levels of the whole volume. One process with the whole volume: the input's
+    // `octree_level` as it is. Otherwise (MPI pieces, whose levels stop at the piece borders): the
+    // levels of the gathered volume, recomputed at the tolerance the octree filter used.
+    if (ranks > 1)
+    {
+      // every rank the same: the octree if any piece has one, the smallest tolerance, the highest level
+      double local[3] = { octree.Present ? 1.0 : 0.0,
+        octree.Present && octree.HasTolerance ? -octree.Tolerance : -VTK_DOUBLE_MAX,
+        octree.Present ? double(octree.MaxLevel) : -1.0 };
+      double global[3];
+      controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
+      octree.Present = global[0] > 0;
+      octree.HasTolerance = global[1] > -VTK_DOUBLE_MAX;
+      octree.Tolerance = octree.HasTolerance ? -global[1] : 0.0;
+      octree.MaxLevel = static_cast<int>(global[2]);
+    }
+    std::string octreeNote;
+    if (this->UseOctree && octree.Present)
+    {
+      if (wholePiece && pieceLevels.size() == total)
+      {
+        levels.swap(pieceLevels);
+      }
+      else if (octree.HasTolerance && volume.Dimensions[0] >= 2 && volume.Dimensions[1] >= 2 &&
+        volume.Dimensions[2] >= 2)
+      {
+        levels.resize(total);
+        // ValidateIndex runs in PackField below; ComputeOctreeLevels itself only reads values
+        schlieren::ComputeOctreeLevels(
+          volume.Dimensions, field.data(), octree.Tolerance, levels.data(), octree.MaxLevel);
+      }
+      else
+      {
+        octreeNote = "The input has the point array 'octree_level' but not the field data "
+                     "'octree_tolerance' it was built for, and the levels of its pieces cannot be "
+                     "joined: tracing without the octree. Apply RefractionOctree right before "
+                     "SchlierenImage.";
+      }
+    }
+    if (!octreeNote.empty() && rank == 0)
+    {
+      vtkWarningMacro(<< octreeNote);
+    }
+    this->UpdateProgress(0.05);
+
+    // 3. n - 1 and its gradient, packed; Auto resolved (on rank 0, broadcast); then this rank's
+    // share of the photons.
+    try
+    {
+      packed.resize(4 * total);
+      schlieren::PackField(volume.Dimensions, volume.Spacing, field.data(), packed.data());
+      std::vector<float>().swap(field);
+      volume.Field = packed.data();
+      if (!levels.empty())
+      {
+        volume.Levels = levels.data();
+        volume.LevelTolerance = octree.HasTolerance ? octree.Tolerance : 0.0;
+      }
+      problem.clear();
+    }
+    catch (const schlieren::Error& e)
+    {
+      problem = e.what();
+    }
+    if (!agree(problem))
+    {
+      return 0;
+    }
+    return 1;
+  };
+  if (reuseVolume)
   {
-    field.swap(values);
+    volume = cache.Volume;
+    this->UpdateProgress(0.05);
   }
   else
   {
-    field.assign(total, 0.0f);
-    std::vector<unsigned char> covered(total, 0);
-    if (ranks == 1)
+    cache.VolumeKey.clear();
+    cache.Packed.clear();
+    cache.Levels.clear();
+    if (!buildVolume())
     {
-      Insert(whole, ext, values.data(), field, covered);
-    }
-    else
-    {
-      std::vector<int> extents(6 * static_cast<std::size_t>(ranks));
-      controller->AllGather(ext, extents.data(), 6);
-      std::vector<vtkIdType> counts(ranks), offsets(ranks);
-      vtkIdType sum = 0;
-      for (int r = 0; r < ranks; ++r)
-      {
-        counts[r] = ExtentPoints(&extents[6 * r]);
-        offsets[r] = sum;
-        sum += counts[r];
-      }
-      std::vector<float> all(static_cast<std::size_t>(std::max<vtkIdType>(sum, 1)));
-      controller->AllGatherV(values.data(), all.data(), static_cast<vtkIdType>(values.size()),
-        counts.data(), offsets.data());
-      for (int r = 0; r < ranks; ++r)
-      {
-        Insert(whole, &extents[6 * r], all.data() + offsets[r], field, covered);
-      }
-    }
-    // The same answer on every rank: no agreement needed.
-    if (std::find(covered.begin(), covered.end(), 0) != covered.end())
-    {
-      vtkErrorMacro("The input pieces do not cover the input's whole extent; the tracer needs "
-                    "the whole volume.");
       return 0;
     }
+    cache.Packed.swap(packed);
+    cache.Levels.swap(levels);
+    volume.Field = cache.Packed.data();
+    volume.Levels = cache.Levels.empty() ? nullptr : cache.Levels.data();
+    volume.Stamp = schlieren::NewVolumeStamp();
+    cache.Volume = volume;
+    cache.VolumeKey = volumeKey;
   }
-  std::vector<float>().swap(values);
-
-  // 2b. The octree levels of the whole volume. One process with the whole volume: the input's
-  // `octree_level` as it is. Otherwise (MPI pieces, whose levels stop at the piece borders): the
-  // levels of the gathered volume, recomputed at the tolerance the octree filter used.
-  if (ranks > 1)
-  {
-    // every rank the same: the octree if any piece has one, the smallest tolerance, the highest level
-    double local[3] = { octree.Present ? 1.0 : 0.0,
-      octree.Present && octree.HasTolerance ? -octree.Tolerance : -VTK_DOUBLE_MAX,
-      octree.Present ? double(octree.MaxLevel) : -1.0 };
-    double global[3];
-    controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
-    octree.Present = global[0] > 0;
-    octree.HasTolerance = global[1] > -VTK_DOUBLE_MAX;
-    octree.Tolerance = octree.HasTolerance ? -global[1] : 0.0;
-    octree.MaxLevel = static_cast<int>(global[2]);
-  }
-  std::vector<unsigned char> levels;
-  std::string octreeNote;
-  if (this->UseOctree && octree.Present)
-  {
-    if (wholePiece && pieceLevels.size() == total)
-    {
-      levels.swap(pieceLevels);
-    }
-    else if (octree.HasTolerance && volume.Dimensions[0] >= 2 && volume.Dimensions[1] >= 2 &&
-      volume.Dimensions[2] >= 2)
-    {
-      levels.resize(total);
-      // ValidateIndex runs in PackField below; ComputeOctreeLevels itself only reads values
-      schlieren::ComputeOctreeLevels(
-        volume.Dimensions, field.data(), octree.Tolerance, levels.data(), octree.MaxLevel);
-    }
-    else
-    {
-      octreeNote = "The input has the point array 'octree_level' but not the field data "
-                   "'octree_tolerance' it was built for, and the levels of its pieces cannot be "
-                   "joined: tracing without the octree. Apply RefractionOctree right before "
-                   "SchlierenImage.";
-    }
-  }
-  if (!octreeNote.empty() && rank == 0)
-  {
-    vtkWarningMacro(<< octreeNote);
-  }
-  this->UpdateProgress(0.05);
-
-  // 3. n - 1 and its gradient, packed; Auto resolved (on rank 0, broadcast); then this rank's
-  // share of the photons.
   schlieren::TraceSettings settings = SettingsOf(this);
   schlieren::AutoChoice choice;
-  std::vector<float> packed;
   schlieren::FilmSums sums;
   std::string backendUsed, deviceName, warnings;
-  try
-  {
-    packed.resize(4 * total);
-    schlieren::PackField(volume.Dimensions, volume.Spacing, field.data(), packed.data());
-    std::vector<float>().swap(field);
-    volume.Field = packed.data();
-    if (!levels.empty())
-    {
-      volume.Levels = levels.data();
-      volume.LevelTolerance = octree.HasTolerance ? octree.Tolerance : 0.0;
-    }
-    problem.clear();
-  }
-  catch (const schlieren::Error& e)
-  {
-    problem = e.what();
-  }
-  if (!agree(problem))
-  {
-    return 0;
-  }
   if (!ResolveIntegrator(this, volume, settings, choice, controller, ranks, rank))
   {
     return 0;
@@ -653,9 +717,8 @@ int vtkSchlierenImage::RequestData(
             << ' ' << volume.Dimensions[1] << ' ' << volume.Dimensions[2] << ' '
             << volume.Origin[0] << ' ' << volume.Origin[1] << ' ' << volume.Origin[2] << ' '
             << volume.Spacing[0] << ' ' << volume.Spacing[1] << ' ' << volume.Spacing[2] << ' '
-            << levels.size() << ' ' << volume.LevelTolerance;
+            << (volume.Levels ? 1 : 0) << ' ' << volume.LevelTolerance;
   const std::string key = keyStream.str();
-  vtkInternals& cache = *this->Internals;
   int reuse = (key == cache.Key && cache.Sums.Passes > 0 && this->Passes >= cache.Sums.Passes) ? 1 : 0;
   if (ranks > 1)
   {
