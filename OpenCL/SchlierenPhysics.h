@@ -76,6 +76,15 @@ static inline sch_f4 sch_f4_lerp(sch_f4 a, sch_f4 b, float t)
 }
 #endif
 
+#ifdef SCH_FIXED_INTEGRATOR
+#define SCH_INTEGRATOR(P) (SCH_FIXED_INTEGRATOR)
+#define SCH_USE_LEVELS(P) (SCH_FIXED_LEVELS)
+#define SCH_KEEP(P) (SCH_FIXED_KEEP)
+#else
+#define SCH_INTEGRATOR(P) ((P)->integrator)
+#define SCH_USE_LEVELS(P) ((P)->useLevels)
+#define SCH_KEEP(P) ((P)->keepInvariant)
+#endif
 /* Number of floats per output ray record. */
 #define SCH_RECORD 12
 /* Record layout. */
@@ -447,9 +456,9 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
    * sight steps along the unbent beam d0, so it aims along d0: aimed along v / n, a ray grazing a
    * face that the gradient tilts it towards takes ever shorter steps and never leaves */
   sch_v3 dir = sch_scale(v, invn);
-  if (P->integrator == SCH_STRAIGHT)
+  if (SCH_INTEGRATOR(P) == SCH_STRAIGHT)
     dir = d0;
-  if (P->useLevels)
+  if (SCH_USE_LEVELS(P))
     ds = sch_skip(levels, P, W->x, dir, W->base);
   /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
    * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
@@ -466,7 +475,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
    * displacement keeps its digits next to coordinates of order one */
   sch_v3 xn, dw, ddev;
   float dopl;
-  if (P->integrator == SCH_STRAIGHT)
+  if (SCH_INTEGRATOR(P) == SCH_STRAIGHT)
   {
     xn = sch_axpy(ds, d0, W->x);
     dw = sch_scale(W->s.g, ds);
@@ -475,7 +484,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
     ddev = sch_scale(W->w, ds * invn);
     dopl = ds * (W->s.n1 - W->ne1);
   }
-  else if (P->integrator == SCH_MIDPOINT)
+  else if (SCH_INTEGRATOR(P) == SCH_MIDPOINT)
   {
     /* half step with the slope at x, full step with the slope at the midpoint */
     sch_v3 xm = sch_axpy(0.5f * ds * invn, v, W->x);
@@ -487,7 +496,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
     ddev = sch_scale(sch_axpy(0.5f * ds, W->s.g, W->w), ds / (1.0f + sm.n1));
     dopl = ds * (sm.n1 - W->ne1);
   }
-  else if (P->integrator == SCH_RK4)
+  else if (SCH_INTEGRATOR(P) == SCH_RK4)
   {
     /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
     sch_v3 k1x = sch_scale(v, invn);
@@ -540,7 +549,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   /* a step longer than a feature: over a step of more than one cell, the index changed in a way
    * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
    * cannot jump over anything: trilinear data has no structure finer than a cell. */
-  if (P->integrator != SCH_STRAIGHT && (ds > P->cellStep || P->useLevels))
+  if (SCH_INTEGRATOR(P) != SCH_STRAIGHT && (ds > P->cellStep || SCH_USE_LEVELS(P)))
   {
     float act = sn.n1 - W->s.n1;
     float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(W->s.g, sn.g), dx));
@@ -554,7 +563,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
         W->flags |= SCH_RAY_UNDERRESOLVED;
     }
   }
-  if (P->keepInvariant)
+  if (SCH_KEEP(P))
   {
     /* rescale v to |v| = n(x); written so that no term near 1 is subtracted */
     float gap = sch_invariant_gap(W->ne1, sn.n1, d0, W->w);
