@@ -207,6 +207,9 @@ std::unique_ptr<Runtime> CreateRuntime()
   clGetDeviceInfo(pick->D, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof(v), &v, nullptr);
   rt->GlobalMemory = v;
   clGetDeviceInfo(pick->D, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof(rt->MaxWorkGroup), &rt->MaxWorkGroup, nullptr);
+  cl_device_type type = 0;
+  clGetDeviceInfo(pick->D, CL_DEVICE_TYPE, sizeof(type), &type, nullptr);
+  rt->IsCPU = (type & CL_DEVICE_TYPE_CPU) != 0;
   cl_context_properties props[] = { CL_CONTEXT_PLATFORM,
     reinterpret_cast<cl_context_properties>(pick->P), 0 };
   cl_int err = CL_SUCCESS;

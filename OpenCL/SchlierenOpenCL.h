@@ -39,6 +39,7 @@ struct Runtime
   std::string DeviceName, PlatformName, Version;
   std::uint64_t MaxAlloc = 0, GlobalMemory = 0;
   std::size_t MaxWorkGroup = 1;
+  bool IsCPU = false; ///< CL_DEVICE_TYPE_CPU (PoCL here): lock-step rays vectorise there
 };
 
 /** The runtime, created on first use; throws schlieren::Error if no device can be used. */

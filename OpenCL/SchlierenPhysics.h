@@ -19,7 +19,13 @@
 #define SCHLIEREN_PHYSICS_H
 
 #ifdef __OPENCL_VERSION__
+/* always inlined (PoCL left sch_sample_field and the step as calls: "too costly to inline");
+ * -DSCH_NO_FORCE_INLINE leaves it to the compiler */
+#ifdef SCH_NO_FORCE_INLINE
 #define SCH_FN static inline
+#else
+#define SCH_FN static inline __attribute__((always_inline))
+#endif
 #define SCH_GLOBAL __global
 typedef uint sch_uint;
 typedef uchar sch_uchar;

@@ -28,6 +28,58 @@ __kernel void sch_trace_rays(__global const float* field, __global const uchar* 
     out[(long)base * SCH_RECORD + c] = rec[c];
 }
 
+/* The same rays, one per work-item, advanced in lock step: every work-item of a group takes its
+ * step, then the group meets at a barrier, until none of its rays is still marching. On CPU
+ * devices PoCL then runs each step as a loop over the group's work-items, whose memory reads are
+ * independent and overlap; without the barrier it runs one work-item's whole march after another.
+ * A probe with a bare Euler step measured 230 against 52 M samples/s on PoCL; with this step
+ * (not vectorised: its branches are not selects) ~100 against ~85 M with packets of 4 rays.
+ * The arithmetic per ray is sch_trace's: the records are identical. */
+__kernel void sch_trace_lockstep(__global const float* field, __global const uchar* levels,
+  const sch_params P, const int first, const int count, __global float* out)
+{
+  __local int anyLive;
+  const int k = (int)get_global_id(0);
+  const int valid = k < count;
+  float a = 0.0f, b = 0.0f, s1 = 0.0f;
+  sch_v3 o, entry;
+  sch_walk W;
+  int hit = 0;
+  if (valid)
+  {
+    sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
+    hit = sch_entry(&P, a, b, &o, &entry, &s1);
+    if (hit)
+      sch_walk_begin(field, &P, entry, P.step, &W);
+  }
+  int live = hit;
+  for (;;)
+  {
+    if (live)
+      live = sch_walk_step(field, levels, &P, &W);
+    if (get_local_id(0) == 0)
+      anyLive = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (live)
+      anyLive = 1;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (!anyLive)
+      break;
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (!valid)
+    return;
+  sch_ray R;
+  if (hit)
+    sch_walk_end(field, &P, &W, &R);
+  else
+    sch_missed(o, &R);
+  float rec[SCH_RECORD];
+  sch_record(field, levels, &P, a, b, o, entry, s1, &R, rec);
+  for (int c = 0; c < SCH_RECORD; ++c)
+    out[(long)k * SCH_RECORD + c] = rec[c];
+}
+
 /* Trace rays from explicit film coordinates (ab[2k], ab[2k+1]): used by tests and probes. */
 __kernel void sch_trace_points(__global const float* field, __global const uchar* levels,
   const sch_params P, __global const float* ab, const int count, __global float* out)
