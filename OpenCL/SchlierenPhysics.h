@@ -215,25 +215,25 @@ typedef struct
   sch_v3 g; /* grad n */
 } sch_sample;
 
+/* Grid coordinate of x along one axis, clamped to the grid, and the cell it falls in (the last cell
+ * at the far border): what the sampler and the octree lookup both need. */
+SCH_FN float sch_grid_coord(float x, float o, float is, int n, int* c)
+{
+  float f = (x - o) * is;
+  f = f < 0.0f ? 0.0f : (f > (float)(n - 1) ? (float)(n - 1) : f);
+  int i = (int)f;
+  *c = i > n - 2 ? n - 2 : i;
+  return f;
+}
+
 /* Trilinear interpolation of the packed field at p (relative to the centre); outside the grid the
  * nearest border value is used. */
 SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p)
 {
-  float fx = (p.x - P->ox) * P->isx;
-  float fy = (p.y - P->oy) * P->isy;
-  float fz = (p.z - P->oz) * P->isz;
-  fx = fx < 0.0f ? 0.0f : (fx > (float)(P->nx - 1) ? (float)(P->nx - 1) : fx);
-  fy = fy < 0.0f ? 0.0f : (fy > (float)(P->ny - 1) ? (float)(P->ny - 1) : fy);
-  fz = fz < 0.0f ? 0.0f : (fz > (float)(P->nz - 1) ? (float)(P->nz - 1) : fz);
-  int i = (int)fx;
-  int j = (int)fy;
-  int k = (int)fz;
-  if (i > P->nx - 2)
-    i = P->nx - 2;
-  if (j > P->ny - 2)
-    j = P->ny - 2;
-  if (k > P->nz - 2)
-    k = P->nz - 2;
+  int i, j, k;
+  float fx = sch_grid_coord(p.x, P->ox, P->isx, P->nx, &i);
+  float fy = sch_grid_coord(p.y, P->oy, P->isy, P->ny, &j);
+  float fz = sch_grid_coord(p.z, P->oz, P->isz, P->nz, &k);
   float tx = fx - (float)i;
   float ty = fy - (float)j;
   float tz = fz - (float)k;
@@ -357,21 +357,10 @@ SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels,
   float base)
 {
   /* per axis, without arrays: PoCL kept small indexed arrays in memory, and this runs every step */
-  float fx = (x.x - P->ox) * P->isx;
-  float fy = (x.y - P->oy) * P->isy;
-  float fz = (x.z - P->oz) * P->isz;
-  fx = fx < 0.0f ? 0.0f : (fx > (float)(P->nx - 1) ? (float)(P->nx - 1) : fx);
-  fy = fy < 0.0f ? 0.0f : (fy > (float)(P->ny - 1) ? (float)(P->ny - 1) : fy);
-  fz = fz < 0.0f ? 0.0f : (fz > (float)(P->nz - 1) ? (float)(P->nz - 1) : fz);
-  int i = (int)fx;
-  int j = (int)fy;
-  int k = (int)fz;
-  if (i > P->nx - 2)
-    i = P->nx - 2;
-  if (j > P->ny - 2)
-    j = P->ny - 2;
-  if (k > P->nz - 2)
-    k = P->nz - 2;
+  int i, j, k;
+  float fx = sch_grid_coord(x.x, P->ox, P->isx, P->nx, &i);
+  float fy = sch_grid_coord(x.y, P->oy, P->isy, P->ny, &j);
+  float fz = sch_grid_coord(x.z, P->oz, P->isz, P->nz, &k);
   int lvl = (int)levels[((long)k * P->ny + j) * P->nx + i];
   if (lvl == 0)
     return base;
