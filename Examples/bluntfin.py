@@ -29,6 +29,26 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_DATA = os.environ.get("SCHLIEREN_DATA") or os.path.join(HERE, "..", "..", "shared", "data")
 
 
+def blunt_fin_index(ns, data, **resampling):
+    """PLOT3DReader -> RefractiveIndex for the blunt fin in folder `data`, with the plugin's proxies
+    from namespace `ns` (the one LoadPlugin filled); `resampling` adds RefractiveIndex properties
+    (AutomaticDimension or SamplingDimensions). None when the files are not there."""
+    xyz = os.path.join(data, "bluntfinxyz.bin")
+    q = os.path.join(data, "bluntfinq.bin")
+    if not (os.path.exists(xyz) and os.path.exists(q)):
+        return None
+    # The reader detects the format: binary, big-endian, single grid, 3D, single precision, no
+    # IBlank array (the grid file is 12 + 3 x 4 x 40960 bytes), whatever ../shared/data/README.md
+    # says (little-endian, IBlanking on: both fail to read).
+    reader = PLOT3DReader(FileName=xyz, QFileName=[q])
+    index = ns["RefractiveIndex"](Input=reader, Model="GladstoneDale", Gas="Air",
+                                  DensityReference=1.2,  # rho_inf, kg/m^3: the density is rho / rho_inf
+                                  UseSamplingBounds=1, SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7],
+                                  AmbientMode="Extend", **resampling)
+    index.InputArray = ["POINTS", "Density"]
+    return index
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--plugin", required=True, help="path to Schlieren.so")
@@ -39,22 +59,11 @@ def main():
     ap.add_argument("--passes", type=int, default=8)
     args = ap.parse_args()
 
-    xyz = os.path.join(args.data, "bluntfinxyz.bin")
-    q = os.path.join(args.data, "bluntfinq.bin")
-    if not (os.path.exists(xyz) and os.path.exists(q)):
+    LoadPlugin(args.plugin, remote=False, ns=globals())
+    index = blunt_fin_index(globals(), args.data, AutomaticDimension=160)
+    if index is None:
         print("bluntfin: SKIP, no data in %s (pass --data or set SCHLIEREN_DATA)" % os.path.abspath(args.data))
         sys.exit(125)
-
-    LoadPlugin(args.plugin, remote=False, ns=globals())
-    # The reader detects the format: binary, big-endian, single grid, 3D, single precision, no
-    # IBlank array (the grid file is 12 + 3 x 4 x 40960 bytes), whatever ../shared/data/README.md
-    # says (little-endian, IBlanking on: both fail to read).
-    reader = PLOT3DReader(FileName=xyz, QFileName=[q])
-    index = RefractiveIndex(Input=reader, Model="GladstoneDale", Gas="Air",  # noqa: F821
-                            DensityReference=1.2,  # rho_inf, kg/m^3: the density is rho / rho_inf
-                            UseSamplingBounds=1, SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7],
-                            AutomaticDimension=160, AmbientMode="Extend")
-    index.InputArray = ["POINTS", "Density"]
     if args.view == "top":
         # k = 40 per radian saturates the nose (|e| up to 0.04) to show the weaker shock further out.
         view = dict(ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0], Resolution=[800, 400], KnifeAngle=0.0,

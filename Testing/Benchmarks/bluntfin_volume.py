@@ -5,7 +5,7 @@ SchlierenBenchmark --raw: the real-data case of the speed benchmark (issue 7).
     pvpython bluntfin_volume.py --plugin Schlieren.so --output DIR [--size 256] [--data DIR]
 
 Writes DIR/bluntfin_<N>.raw (float32 n - 1, x fastest, little-endian) and DIR/bluntfin_<N>.txt
-("dims nx ny nz", "origin x y z", "spacing x y z"). The chain is the one of Examples/bluntfin.py:
+("dims nx ny nz", "origin x y z", "spacing x y z"). The chain is Examples/bluntfin.py's (blunt_fin_index):
 PLOT3DReader -> RefractiveIndex (Gladstone-Dale, air, density x 1.2 kg/m^3, Extend ambient).
 Exit status 125 (and a SKIP line) when the data is absent.
 """
@@ -13,9 +13,11 @@ import argparse
 import os
 import sys
 
-from paraview.simple import LoadPlugin, PLOT3DReader, servermanager
+from paraview.simple import LoadPlugin, servermanager
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "Examples"))
+from bluntfin import blunt_fin_index  # noqa: E402  (the example's chain: one recipe for both)
 DEFAULT_DATA = os.environ.get("SCHLIEREN_DATA") or os.path.join(HERE, "..", "..", "..", "shared", "data")
 
 ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -37,11 +39,7 @@ if os.path.exists(base + ".raw") and os.path.exists(base + ".txt"):
     sys.exit(0)
 
 LoadPlugin(args.plugin, remote=False, ns=globals())
-reader = PLOT3DReader(FileName=xyz, QFileName=[q])
-index = RefractiveIndex(Input=reader, Model="GladstoneDale", Gas="Air", DensityReference=1.2,  # noqa: F821
-                        UseSamplingBounds=1, SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7],
-                        SamplingDimensions=[args.size] * 3, AmbientMode="Extend")
-index.InputArray = ["POINTS", "Density"]
+index = blunt_fin_index(globals(), args.data, SamplingDimensions=[args.size] * 3)
 index.UpdatePipeline()
 grid = servermanager.Fetch(index)
 n1 = grid.GetPointData().GetArray("n_minus_1")

@@ -14,6 +14,7 @@
 //   SchlierenBenchmark [--cases gaussian,plume,bluntfin] [--size N] [--film N] [--passes N]
 //     [--step voxels] [--backends OpenCL,CPU] [--rays-per-item N] [--raw bluntfin_256 (no suffix)]
 #include "SchlierenEngine.h"
+#include "SchlierenOracles.h"
 #include "SchlierenScenes.h"
 
 #include <algorithm>
@@ -125,12 +126,12 @@ bool Gaussian(Case& c, int size)
   SetUp(c);
   for (std::size_t k = 0; k < c.Probe.size() / 2; ++k)
   {
-    const double a = c.Probe[2 * k], b = c.Probe[2 * k + 1];
-    const double f = -(2 * std::sqrt(M_PI) * A / w) * std::exp(-(a * a + b * b) / (w * w));
-    c.RefX.push_back(f * a);
-    c.RefY.push_back(f * b);
+    double e[2];
+    schtest::GaussianDeflection(A, w, c.Probe[2 * k], c.Probe[2 * k + 1], e);
+    c.RefX.push_back(e[0]);
+    c.RefY.push_back(e[1]);
   }
-  c.RefMax = std::sqrt(2 * M_PI) * A * std::exp(-0.5); // the largest |eps|, at rho = s / sqrt(2)
+  c.RefMax = schtest::GaussianMaxDeflection(A);
   c.Reference = "closed form eps = -(2 sqrt(pi) A / s) (x, y) exp(-rho^2 / s^2)";
   return true;
 }

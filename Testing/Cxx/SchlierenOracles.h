@@ -17,6 +17,21 @@ namespace schtest
 {
 constexpr double kPi = 3.14159265358979323846;
 
+/** ORACLES, weak Gaussian sphere n = 1 + A exp(-r^2/s^2) seen along an axis: the deflection at film
+ * point (a, b) from the centre, eps = -(2 sqrt(pi) A / s) (a, b) exp(-rho^2 / s^2). */
+inline void GaussianDeflection(double A, double s, double a, double b, double e[2])
+{
+  const double f = -(2 * std::sqrt(kPi) * A / s) * std::exp(-(a * a + b * b) / (s * s));
+  e[0] = f * a;
+  e[1] = f * b;
+}
+
+/** Its largest magnitude, sqrt(2 pi) A e^(-1/2) (at rho = s / sqrt(2); ORACLES: 1.5203 A). */
+inline double GaussianMaxDeflection(double A)
+{
+  return std::sqrt(2 * kPi) * A * std::exp(-0.5);
+}
+
 inline schlieren::TraceSettings Beam(double dx, double dy, double dz, double ux, double uy, double uz)
 {
   schlieren::TraceSettings s;
@@ -62,13 +77,13 @@ inline OracleCase GaussianCase(int n)
     double e = 0;
     for (std::size_t k = 0; k < r.size(); ++k)
     {
-      const double a = ab[2 * k], b = ab[2 * k + 1];
-      const double f = -(2 * std::sqrt(kPi) * 1e-4 / 0.25) * std::exp(-(a * a + b * b) / 0.0625);
-      e = std::max(e, std::hypot(r[k].DeflX - f * a, r[k].DeflY - f * b));
+      double g[2];
+      GaussianDeflection(1e-4, 0.25, ab[2 * k], ab[2 * k + 1], g);
+      e = std::max(e, std::hypot(r[k].DeflX - g[0], r[k].DeflY - g[1]));
     }
     return e;
   };
-  c.Magnitude = std::sqrt(2 * kPi) * 1e-4 * std::exp(-0.5); // ORACLES: 1.5203 A
+  c.Magnitude = GaussianMaxDeflection(1e-4);
   c.Tolerance = 0.03 * c.Magnitude; // 3 % of max eps: above the grid's own error
   return c;
 }
