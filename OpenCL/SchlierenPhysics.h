@@ -209,11 +209,17 @@ SCH_FN float sch_unit(sch_uint h)
 
 /* ---------------------------------------------------------------- sampling */
 
+/* four flat floats (a nested sch_v3 made PoCL copy samples through the stack) */
 typedef struct
 {
-  float n1; /* n - 1 */
-  sch_v3 g; /* grad n */
+  float n1;         /* n - 1 */
+  float gx, gy, gz; /* grad n */
 } sch_sample;
+
+SCH_FN sch_v3 sch_grad(sch_sample s)
+{
+  return sch_make(s.gx, s.gy, s.gz);
+}
 
 /* Grid coordinate of x along one axis, clamped to the grid, and the cell it falls in (the last cell
  * at the far border): what the sampler and the octree lookup both need. */
@@ -251,7 +257,9 @@ SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_para
   sch_f4 r = sch_f4_lerp(f0, f1, tz);
   sch_sample s;
   s.n1 = r.x;
-  s.g = sch_make(r.y, r.z, r.w);
+  s.gx = r.y;
+  s.gy = r.z;
+  s.gz = r.w;
   return s;
 }
 
@@ -458,6 +466,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
    * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
    * end point is outside pays for the exact distance. */
+  int whole = 1; /* the straight end point is inside: not the last step */
   if (!sch_inside(P, sch_axpy(ds, dir, W->x)))
   {
     float tex = sch_exit_distance(P, W->x, dir);
@@ -465,6 +474,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
       return 0;
     tex += 1e-4f * W->base;
     ds = ds < tex ? ds : tex;
+    whole = 0;
   }
   /* ddev: the step's part across the beam, w / n, summed apart from x so that the sideways
    * displacement keeps its digits next to coordinates of order one */
@@ -473,7 +483,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   if (SCH_INTEGRATOR(P) == SCH_STRAIGHT)
   {
     xn = sch_axpy(ds, d0, W->x);
-    dw = sch_scale(W->s.g, ds);
+    dw = sch_scale(sch_grad(W->s), ds);
     /* sampled along the unbent line, but the photon lands where the first-order (weak-field)
      * deflection takes it, as with the curved schemes */
     ddev = sch_scale(W->w, ds * invn);
@@ -483,12 +493,12 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   {
     /* half step with the slope at x, full step with the slope at the midpoint */
     sch_v3 xm = sch_axpy(0.5f * ds * invn, v, W->x);
-    sch_v3 vm = sch_axpy(0.5f * ds, W->s.g, v);
+    sch_v3 vm = sch_axpy(0.5f * ds, sch_grad(W->s), v);
     sch_sample sm = sch_sample_field(field, P, xm);
     W->samples += 1.0f;
     xn = sch_axpy(ds / (1.0f + sm.n1), vm, W->x);
-    dw = sch_scale(sm.g, ds);
-    ddev = sch_scale(sch_axpy(0.5f * ds, W->s.g, W->w), ds / (1.0f + sm.n1));
+    dw = sch_scale(sch_grad(sm), ds);
+    ddev = sch_scale(sch_axpy(0.5f * ds, sch_grad(W->s), W->w), ds / (1.0f + sm.n1));
     dopl = ds * (sm.n1 - W->ne1);
   }
   else if (SCH_INTEGRATOR(P) == SCH_RK4)
@@ -496,32 +506,34 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
     /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
     sch_v3 k1x = sch_scale(v, invn);
     sch_sample sa = sch_sample_field(field, P, sch_axpy(0.5f * ds, k1x, W->x));
-    sch_v3 v2 = sch_axpy(0.5f * ds, W->s.g, v);
+    sch_v3 v2 = sch_axpy(0.5f * ds, sch_grad(W->s), v);
     sch_v3 k2x = sch_scale(v2, 1.0f / (1.0f + sa.n1));
     sch_sample sb = sch_sample_field(field, P, sch_axpy(0.5f * ds, k2x, W->x));
-    sch_v3 v3 = sch_axpy(0.5f * ds, sa.g, v);
+    sch_v3 v3 = sch_axpy(0.5f * ds, sch_grad(sa), v);
     sch_v3 k3x = sch_scale(v3, 1.0f / (1.0f + sb.n1));
     sch_sample sc = sch_sample_field(field, P, sch_axpy(ds, k3x, W->x));
-    sch_v3 v4 = sch_axpy(ds, sb.g, v);
+    sch_v3 v4 = sch_axpy(ds, sch_grad(sb), v);
     sch_v3 k4x = sch_scale(v4, 1.0f / (1.0f + sc.n1));
     W->samples += 3.0f;
     sch_v3 kx = sch_add(sch_add(k1x, k4x), sch_scale(sch_add(k2x, k3x), 2.0f));
-    sch_v3 kw = sch_add(sch_add(W->s.g, sc.g), sch_scale(sch_add(sa.g, sb.g), 2.0f));
+    sch_v3 kw = sch_add(
+      sch_add(sch_grad(W->s), sch_grad(sc)), sch_scale(sch_add(sch_grad(sa), sch_grad(sb)), 2.0f));
     xn = sch_axpy(ds / 6.0f, kx, W->x);
     dw = sch_scale(kw, ds / 6.0f);
     /* the same stages with v_i = ne d0 + w_i: only the w_i / n_i parts */
     sch_v3 d1 = sch_scale(W->w, invn);
-    sch_v3 d2 = sch_scale(sch_axpy(0.5f * ds, W->s.g, W->w), 1.0f / (1.0f + sa.n1));
-    sch_v3 d3 = sch_scale(sch_axpy(0.5f * ds, sa.g, W->w), 1.0f / (1.0f + sb.n1));
-    sch_v3 d4 = sch_scale(sch_axpy(ds, sb.g, W->w), 1.0f / (1.0f + sc.n1));
+    sch_v3 d2 = sch_scale(sch_axpy(0.5f * ds, sch_grad(W->s), W->w), 1.0f / (1.0f + sa.n1));
+    sch_v3 d3 = sch_scale(sch_axpy(0.5f * ds, sch_grad(sa), W->w), 1.0f / (1.0f + sb.n1));
+    sch_v3 d4 = sch_scale(sch_axpy(ds, sch_grad(sb), W->w), 1.0f / (1.0f + sc.n1));
     ddev = sch_scale(sch_add(sch_add(d1, d4), sch_scale(sch_add(d2, d3), 2.0f)), ds / 6.0f);
     dopl = ds / 6.0f * (W->s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1) - 6.0f * W->ne1);
   }
   else
   {
-    /* the paper's explicit Euler: x += ds v / n, v += ds grad n */
-    xn = sch_axpy(ds * invn, v, W->x);
-    dw = sch_scale(W->s.g, ds);
+    /* the paper's explicit Euler: x += ds v / n, v += ds grad n (v / n is dir: the end point is
+     * the one checked above) */
+    xn = sch_axpy(ds, dir, W->x);
+    dw = sch_scale(sch_grad(W->s), ds);
     ddev = sch_scale(W->w, ds * invn);
     dopl = ds * (W->s.n1 - W->ne1);
   }
@@ -537,7 +549,10 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
     W->flags |= SCH_RAY_TURNED;
     return 0;
   }
-  if (!sch_inside(P, W->x))
+  /* Euler and line of sight end where the check above aimed: a whole step inside, a cut one a
+   * hair outside. The other schemes bend away from that line and look again. */
+  if (SCH_INTEGRATOR(P) == SCH_EULER || SCH_INTEGRATOR(P) == SCH_STRAIGHT ? !whole
+                                                                          : !sch_inside(P, W->x))
     return 0;
   sch_sample sn = sch_sample_field(field, P, W->x);
   W->samples += 1.0f;
@@ -547,7 +562,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   if (SCH_INTEGRATOR(P) != SCH_STRAIGHT && (ds > P->cellStep || SCH_USE_LEVELS(P)))
   {
     float act = sn.n1 - W->s.n1;
-    float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(W->s.g, sn.g), dx));
+    float mis = sch_fabs(act - 0.5f * sch_dot(sch_add(sch_grad(W->s), sch_grad(sn)), dx));
     float cells = sch_fabs(dx.x) * P->isx;
     cells = sch_fabs(dx.y) * P->isy > cells ? sch_fabs(dx.y) * P->isy : cells;
     cells = sch_fabs(dx.z) * P->isz > cells ? sch_fabs(dx.z) * P->isz : cells;

@@ -39,7 +39,6 @@ __kernel void sch_trace_rays(__global const float* field, __global const uchar* 
 __kernel void sch_trace_lockstep(__global const float* field, __global const uchar* levels,
   const sch_params P, const int first, const int count, __global float* out)
 {
-  __local int anyLive;
   const int k = (int)get_global_id(0);
   const int valid = k < count;
   float a = 0.0f, b = 0.0f, s1 = 0.0f;
@@ -54,19 +53,24 @@ __kernel void sch_trace_lockstep(__global const float* field, __global const uch
       sch_walk_begin(field, &P, entry, P.step, &W);
   }
   int live = hit;
-  for (;;)
+  /* one barrier per step: a flag per step, in three slots so that resetting the slot of step
+   * t + 1 before the barrier of step t cannot race with reads of the slot of step t - 1, which all
+   * happened before the barrier of step t - 1 */
+  __local int anyLive[3];
+  if (get_local_id(0) == 0)
+    anyLive[0] = anyLive[1] = anyLive[2] = 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int t = 0;; t = t == 2 ? 0 : t + 1)
   {
     if (live)
       live = sch_walk_step(field, levels, &P, &W);
-    if (get_local_id(0) == 0)
-      anyLive = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
     if (live)
-      anyLive = 1;
+      anyLive[t] = 1;
+    if (get_local_id(0) == 0)
+      anyLive[t == 2 ? 0 : t + 1] = 0;
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (!anyLive)
+    if (!anyLive[t])
       break;
-    barrier(CLK_LOCAL_MEM_FENCE);
   }
   if (!valid)
     return;

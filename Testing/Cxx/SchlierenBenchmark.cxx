@@ -188,7 +188,8 @@ bool BluntFin(Case& c, const std::string& raw)
   return true;
 }
 
-void Run(Case& c, const std::string& backends, int film, int passes, double step, int rpi)
+void Run(Case& c, const std::string& backends, const std::string& only, int film, int passes,
+  double step, int rpi)
 {
   std::printf("## %s\n\n", c.Name.c_str());
   std::printf("error: the largest over 625 probe rays of |deflection - reference|, as a fraction of the "
@@ -198,15 +199,16 @@ void Run(Case& c, const std::string& backends, int film, int passes, double step
   std::printf("|---|---|---|---|---|---|---|\n");
   struct Row
   {
+    const char* Key;
     const char* Name;
     Integrator Method;
     bool Octree;
     bool OneThread;
   };
-  const Row rows[] = { { "Euler", Integrator::Euler, false, false },
-    { "Euler + octree", Integrator::Euler, true, false },
-    { "Auto (1 % of max eps) + octree", Integrator::Auto, true, false },
-    { "Euler, 1 thread", Integrator::Euler, false, true } };
+  const Row rows[] = { { "euler", "Euler", Integrator::Euler, false, false },
+    { "octree", "Euler + octree", Integrator::Euler, true, false },
+    { "auto", "Auto (1 % of max eps) + octree", Integrator::Auto, true, false },
+    { "onethread", "Euler, 1 thread", Integrator::Euler, false, true } };
   std::stringstream ss(backends);
   std::string name;
   while (std::getline(ss, name, ','))
@@ -215,6 +217,8 @@ void Run(Case& c, const std::string& backends, int film, int passes, double step
     {
       const Backend device = ParseBackend(name);
       if (row.OneThread && device != Backend::CPU)
+        continue;
+      if (!only.empty() && ("," + only + ",").find(std::string(",") + row.Key + ",") == std::string::npos)
         continue;
       TraceSettings s;
       s.Device = device;
@@ -281,6 +285,7 @@ int main(int argc, char** argv)
   int size = 256, film = 512, passes = 3, rpi = 0;
   double step = 0.5;
   std::string backends = "OpenCL,CPU", cases = "gaussian,plume,bluntfin", raw = "bluntfin_256";
+  std::string rows; // empty: all rows (euler,octree,auto,onethread)
   for (int i = 1; i + 1 < argc; i += 2)
   {
     if (!std::strcmp(argv[i], "--size"))
@@ -299,6 +304,8 @@ int main(int argc, char** argv)
       cases = argv[i + 1];
     else if (!std::strcmp(argv[i], "--raw"))
       raw = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--rows"))
+      rows = argv[i + 1];
   }
   DeviceInfo dev = QueryOpenCLDevice();
   std::printf("# Schlieren benchmark: film %d^2, %d passes, Euler step %.2f voxel\n\n", film, passes, step);
@@ -327,7 +334,7 @@ int main(int argc, char** argv)
       std::printf("%s: could not set up: %s\n", name.c_str(), e.what());
     }
     if (ok)
-      Run(c, backends, film, passes, step, rpi);
+      Run(c, backends, rows, film, passes, step, rpi);
   }
   return 0;
 }
