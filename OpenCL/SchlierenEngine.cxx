@@ -442,6 +442,9 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.featureTol = 0.0f; // see SetFeatureTolerance
   // steps no longer than the smallest spacing cannot jump over a cell: no need to check them
   P.cellStep = static_cast<float>(MinSpacing(volume));
+  P.gxMax = std::nextafter(static_cast<float>(P.nx - 1), 0.0f);
+  P.gyMax = std::nextafter(static_cast<float>(P.ny - 1), 0.0f);
+  P.gzMax = std::nextafter(static_cast<float>(P.nz - 1), 0.0f);
   return P;
 }
 

@@ -162,6 +162,7 @@ typedef struct
   int estimate;             /* 1: trace again at twice the base step and store the difference */
   float featureTol;         /* index change a step may leave unexplained before it is flagged */
   float cellStep;           /* the longest step that moves at most one cell along every axis */
+  float gxMax, gyMax, gzMax; /* the largest grid coordinate sampled: the float below n - 1 */
 } sch_params;
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
@@ -221,14 +222,15 @@ SCH_FN sch_v3 sch_grad(sch_sample s)
   return sch_make(s.gx, s.gy, s.gz);
 }
 
-/* Grid coordinate of x along one axis, clamped to the grid, and the cell it falls in (the last cell
- * at the far border): what the sampler and the octree lookup both need. */
-SCH_FN float sch_grid_coord(float x, float o, float is, int n, int* c)
+/* Grid coordinate of x along one axis, clamped to [0, fmax], and the cell it falls in: what the
+ * sampler and the octree lookup both need. fmax is the largest float below n - 1 (sch_params), so
+ * the cell is at most n - 2 without a test of its own; on the far face itself the interpolation
+ * weight is 1 - 2^-24 (relative) instead of 1. */
+SCH_FN float sch_grid_coord(float x, float o, float is, float fmax, int* c)
 {
   float f = (x - o) * is;
-  f = f < 0.0f ? 0.0f : (f > (float)(n - 1) ? (float)(n - 1) : f);
-  int i = (int)f;
-  *c = i > n - 2 ? n - 2 : i;
+  f = f < 0.0f ? 0.0f : (f > fmax ? fmax : f);
+  *c = (int)f;
   return f;
 }
 
@@ -237,9 +239,9 @@ SCH_FN float sch_grid_coord(float x, float o, float is, int n, int* c)
 SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p)
 {
   int i, j, k;
-  float fx = sch_grid_coord(p.x, P->ox, P->isx, P->nx, &i);
-  float fy = sch_grid_coord(p.y, P->oy, P->isy, P->ny, &j);
-  float fz = sch_grid_coord(p.z, P->oz, P->isz, P->nz, &k);
+  float fx = sch_grid_coord(p.x, P->ox, P->isx, P->gxMax, &i);
+  float fy = sch_grid_coord(p.y, P->oy, P->isy, P->gyMax, &j);
+  float fz = sch_grid_coord(p.z, P->oz, P->isz, P->gzMax, &k);
   float tx = fx - (float)i;
   float ty = fy - (float)j;
   float tz = fz - (float)k;
@@ -366,9 +368,9 @@ SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels,
 {
   /* per axis, without arrays: PoCL kept small indexed arrays in memory, and this runs every step */
   int i, j, k;
-  float fx = sch_grid_coord(x.x, P->ox, P->isx, P->nx, &i);
-  float fy = sch_grid_coord(x.y, P->oy, P->isy, P->ny, &j);
-  float fz = sch_grid_coord(x.z, P->oz, P->isz, P->nz, &k);
+  float fx = sch_grid_coord(x.x, P->ox, P->isx, P->gxMax, &i);
+  float fy = sch_grid_coord(x.y, P->oy, P->isy, P->gyMax, &j);
+  float fz = sch_grid_coord(x.z, P->oz, P->isz, P->gzMax, &k);
   int lvl = (int)levels[((long)k * P->ny + j) * P->nx + i];
   if (lvl == 0)
     return base;
@@ -554,8 +556,8 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   if (SCH_INTEGRATOR(P) == SCH_EULER || SCH_INTEGRATOR(P) == SCH_STRAIGHT ? !whole
                                                                           : !sch_inside(P, W->x))
     return 0;
+  /* the sample at the end of a step is counted by it (sch_walk_end), W->samples counts the others */
   sch_sample sn = sch_sample_field(field, P, W->x);
-  W->samples += 1.0f;
   /* a step longer than a feature: over a step of more than one cell, the index changed in a way
    * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
    * cannot jump over anything: trilinear data has no structure finer than a cell. */
@@ -609,7 +611,7 @@ SCH_FN void sch_walk_end(SCH_GLOBAL const float* field,
   R->n1 = W->s.n1;
   R->opl = W->opl;
   R->path = W->path;
-  R->samples = W->samples;
+  R->samples = W->samples + (float)W->it;
   R->steps = (float)W->it;
   R->mismatch = W->mismatch;
   R->flags = W->flags;
