@@ -827,68 +827,62 @@ public:
     if (Levels)
       clReleaseMemObject(Levels);
     for (auto& k : Kernels)
-    {
-      clReleaseKernel(k.second.Rays);
-      clReleaseKernel(k.second.Points);
-      clReleaseKernel(k.second.Lockstep);
-    }
+      clReleaseKernel(k.second);
   }
   OpenCLTracer(const OpenCLTracer&) = delete;
   OpenCLTracer& operator=(const OpenCLTracer&) = delete;
 
   // The kernels for P's integrator, octree use and invariant rescaling: built with them as
   // constants (-DSCH_FIXED_*), so that the step has no branches on them (+10-28 % on PoCL, Euler,
-  // 192^3). Built on first use and kept; SCHLIEREN_CL_SPECIALISE=0 builds one generic program.
-  struct KernelPair
+  // 192^3). Two programs per setting: the per-item one (sch_trace_rays, sch_trace_points) and the
+  // lock-step one (sch_trace_lockstep, -DSCH_LOCKSTEP_GROUP: its walks in local memory). Each is
+  // built on first use and kept; SCHLIEREN_CL_SPECIALISE=0 builds one generic program of each.
+  enum class Entry
   {
-    cl_kernel Rays = nullptr, Points = nullptr, Lockstep = nullptr;
+    Rays,
+    Points,
+    Lockstep
   };
-  const KernelPair& KernelsFor(const sch_params& P)
+  cl_kernel KernelFor(const sch_params& P, Entry entry)
   {
     const char* spec = std::getenv("SCHLIEREN_CL_SPECIALISE");
     const bool specialise = !(spec && std::string(spec) == "0");
-    const bool lockstep = UseLockstep(P);
-    const int key = (specialise ? 1 + P.integrator * 4 + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0) : 0) +
-      (lockstep ? 64 : 0);
+    const int setting = specialise ? 1 + P.integrator * 4 + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0) : 0;
+    const int key = setting * 3 + static_cast<int>(entry);
     auto it = Kernels.find(key);
     if (it != Kernels.end())
       return it->second;
     std::ostringstream opts;
-    opts << "-DSCH_RAYS_PER_ITEM=" << RaysPerItem << " -cl-std=CL1.2";
+    opts << "-cl-std=CL1.2";
+    if (entry == Entry::Lockstep)
+      opts << " -DSCH_LOCKSTEP_GROUP=" << LockstepGroup;
+    else
+      opts << " -DSCH_RAYS_PER_ITEM=" << RaysPerItem;
     if (specialise)
       opts << " -DSCH_FIXED_INTEGRATOR=" << P.integrator << " -DSCH_FIXED_LEVELS=" << (P.useLevels ? 1 : 0)
            << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0);
-    // measured on PoCL (256^3, two runs each): the lock-step kernel is fastest when the compiler
-    // chooses what to inline (Euler ~100 M samples/s against ~85 M forced), the per-item kernel
-    // when everything is inlined (line of sight + octree 2.6 M photons/s against 2.0 M)
-    if (lockstep)
-      opts << " -DSCH_NO_FORCE_INLINE";
     // extra OpenCL build options, for experiments (e.g. -cl-mad-enable)
     if (const char* extra = std::getenv("SCHLIEREN_CL_OPTIONS"))
       opts << " " << extra;
     cl_program prog = ocl::GetProgram("SchlierenTrace.cl", EmbeddedKernelSource(), opts.str());
+    const char* name = entry == Entry::Rays ? "sch_trace_rays"
+      : entry == Entry::Points              ? "sch_trace_points"
+                                            : "sch_trace_lockstep";
     cl_int err = CL_SUCCESS;
-    KernelPair k;
-    k.Rays = clCreateKernel(prog, "sch_trace_rays", &err);
-    ocl::Check(err, "clCreateKernel(sch_trace_rays)");
-    k.Points = clCreateKernel(prog, "sch_trace_points", &err);
-    if (err != CL_SUCCESS)
-      clReleaseKernel(k.Rays);
-    ocl::Check(err, "clCreateKernel(sch_trace_points)");
-    k.Lockstep = clCreateKernel(prog, "sch_trace_lockstep", &err);
-    if (err != CL_SUCCESS)
-    {
-      clReleaseKernel(k.Rays);
-      clReleaseKernel(k.Points);
-    }
-    ocl::Check(err, "clCreateKernel(sch_trace_lockstep)");
+    cl_kernel k = clCreateKernel(prog, name, &err);
+    ocl::Check(err, (std::string("clCreateKernel(") + name + ")").c_str());
     return Kernels[key] = k;
+  }
+  // The kernel that Trace (points false) or TracePoints (true) runs for P.
+  cl_kernel KernelFor(const sch_params& P, bool points)
+  {
+    return KernelFor(P, points ? Entry::Points : UseLockstep(P) ? Entry::Lockstep : Entry::Rays);
   }
 
   void Trace(const sch_params& P, std::size_t first, std::size_t count, float* out)
   {
     const bool lockstep = UseLockstep(P);
-    cl_kernel Kernel = lockstep ? KernelsFor(P).Lockstep : KernelsFor(P).Rays;
+    cl_kernel Kernel = KernelFor(P, false);
     const int f = static_cast<int>(first), c = static_cast<int>(count);
     ocl::Check(clSetKernelArg(Kernel, 0, sizeof(cl_mem), &Field), "clSetKernelArg(field)");
     ocl::Check(clSetKernelArg(Kernel, 1, sizeof(cl_mem), &Levels), "clSetKernelArg(levels)");
@@ -917,7 +911,7 @@ public:
 
   void TracePoints(const sch_params& P, const float* ab, std::size_t count, float* out)
   {
-    cl_kernel PointsKernel = KernelsFor(P).Points;
+    cl_kernel PointsKernel = KernelFor(P, true);
     cl_int err = CL_SUCCESS;
     cl_mem abBuf = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
       std::max<std::size_t>(1, count) * 2 * sizeof(float), const_cast<float*>(ab), &err);
@@ -940,10 +934,13 @@ public:
 
   // Lock-step rays (sch_trace_lockstep) for the curved integrators on CPU devices: PoCL then runs
   // each step over the whole group of rays, whose memory reads overlap; line of sight (short
-  // rays, few steps) and other devices take the per-item kernel. SCHLIEREN_CL_LOCKSTEP=0/1
-  // overrides (for measurements).
+  // rays, few steps) and other devices take the per-item kernel, and so does the step-doubling
+  // estimate (the lock-step program has no private walks to march the second ray with).
+  // SCHLIEREN_CL_LOCKSTEP=0/1 overrides (for measurements).
   bool UseLockstep(const sch_params& P) const
   {
+    if (P.estimate)
+      return false;
     if (const char* e = std::getenv("SCHLIEREN_CL_LOCKSTEP"))
       return std::string(e) != "0";
     return RT.IsCPU && P.integrator != SCH_STRAIGHT;
@@ -953,7 +950,7 @@ public:
   ocl::Runtime& RT;
   int RaysPerItem;
   std::size_t Chunk = 0;
-  std::map<int, KernelPair> Kernels;
+  std::map<int, cl_kernel> Kernels;
   cl_mem Field = nullptr, Levels = nullptr, Out = nullptr;
 };
 
@@ -1001,8 +998,11 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t ch
   return t;
 }
 
+// The OpenCL tracer for this trace, or null for the CPU (asked for, or OpenCL unusable under Auto,
+// with a warning). points: the caller traces explicit film points (TracePoints) rather than passes
+// (Trace); the kernel it will run is built here, so that a build failure falls back too.
 std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSettings& s,
-  const sch_params& P, std::size_t chunk, std::string& used, std::string& device,
+  const sch_params& P, std::size_t chunk, bool points, std::string& used, std::string& device,
   std::string& warnings)
 {
   if (s.Device == Backend::CPU)
@@ -1014,7 +1014,7 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSetti
   try
   {
     auto t = AcquireTracer(volume, chunk, s.RaysPerWorkItem);
-    t->KernelsFor(P); // built here, so that a build failure falls back like a missing device
+    t->KernelFor(P, points); // built here, so that a build failure falls back like a missing device
     used = "OpenCL";
     device = t->RT.DeviceName;
     return t;
@@ -1075,7 +1075,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     chunk *= 2;
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
-  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, P, chunk, used, device, warn);
+  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, P, chunk, false, used, device, warn);
   SetFeatureTolerance(P, volume);
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
@@ -1547,7 +1547,7 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const std::size_t count = ab.size() / 2;
   std::vector<RayRecord> out(count);
   std::string used, device, warn;
-  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, P, std::max<std::size_t>(count, 1), used, device, warn);
+  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
   SetFeatureTolerance(P, volume);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)

@@ -18,14 +18,17 @@
 #ifndef SCHLIEREN_PHYSICS_H
 #define SCHLIEREN_PHYSICS_H
 
-#ifdef __OPENCL_VERSION__
-/* always inlined (PoCL left sch_sample_field and the step as calls: "too costly to inline");
- * -DSCH_NO_FORCE_INLINE leaves it to the compiler */
-#ifdef SCH_NO_FORCE_INLINE
-#define SCH_FN static inline
-#else
-#define SCH_FN static inline __attribute__((always_inline))
+/* The address space of a ray's walk state (sch_walk): private, or __local where the lock-step
+ * kernel keeps a group's walks in local memory and steps them in place (SchlierenTrace.cl; that
+ * program then has no private walks: no sch_march, hence no step-doubling estimate). */
+#ifndef SCH_WALK_AS
+#define SCH_WALK_AS
+#define SCH_PRIVATE_WALKS 1
 #endif
+
+#ifdef __OPENCL_VERSION__
+/* always inlined (PoCL left sch_sample_field and the step as calls: "too costly to inline") */
+#define SCH_FN static inline __attribute__((always_inline))
 #define SCH_GLOBAL __global
 typedef uint sch_uint;
 typedef uchar sch_uchar;
@@ -222,14 +225,14 @@ SCH_FN sch_v3 sch_grad(sch_sample s)
   return sch_make(s.gx, s.gy, s.gz);
 }
 
-/* Grid coordinate of x along one axis, clamped to [0, fmax], and the cell it falls in: what the
- * sampler and the octree lookup both need. fmax is the largest float below n - 1 (sch_params), so
+/* Grid coordinate of x along one axis, clamped to [0, hi], and the cell it falls in: what the
+ * sampler and the octree lookup both need. hi is the largest float below n - 1 (sch_params), so
  * the cell is at most n - 2 without a test of its own; on the far face itself the interpolation
  * weight is 1 - 2^-24 (relative) instead of 1. */
-SCH_FN float sch_grid_coord(float x, float o, float is, float fmax, int* c)
+SCH_FN float sch_grid_coord(float x, float o, float is, float hi, int* c)
 {
   float f = (x - o) * is;
-  f = f < 0.0f ? 0.0f : (f > fmax ? fmax : f);
+  f = f < 0.0f ? 0.0f : (f > hi ? hi : f);
   *c = (int)f;
   return f;
 }
@@ -428,7 +431,7 @@ SCH_FN void sch_walk_begin(SCH_GLOBAL const float* field,
   const sch_params* P,
   sch_v3 x,
   float base,
-  sch_walk* W)
+  SCH_WALK_AS sch_walk* W)
 {
   W->x = x;
   W->w = sch_make(0.0f, 0.0f, 0.0f);
@@ -448,7 +451,7 @@ SCH_FN void sch_walk_begin(SCH_GLOBAL const float* field,
 SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
-  sch_walk* W)
+  SCH_WALK_AS sch_walk* W)
 {
   if (W->it >= P->maxSteps)
     return 0;
@@ -591,7 +594,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
 /* After the last step: the final flags and the record of the march. */
 SCH_FN void sch_walk_end(SCH_GLOBAL const float* field,
   const sch_params* P,
-  sch_walk* W,
+  SCH_WALK_AS sch_walk* W,
   sch_ray* R)
 {
   if (!(sch_isfinite(W->x.x) && sch_isfinite(W->x.y) && sch_isfinite(W->x.z) &&
@@ -617,6 +620,7 @@ SCH_FN void sch_walk_end(SCH_GLOBAL const float* field,
   R->flags = W->flags;
 }
 
+#ifdef SCH_PRIVATE_WALKS
 /* March from x (on the box) with base step `base` until the ray leaves the box. */
 SCH_FN void sch_march(SCH_GLOBAL const float* field,
   SCH_GLOBAL const sch_uchar* levels,
@@ -631,6 +635,8 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field,
     ;
   sch_walk_end(field, P, &W, R);
 }
+
+#endif
 
 /* Deflection of a marched ray on the film axes: (w . r, w . t) / |v|. */
 SCH_FN void sch_deflection(const sch_params* P, const sch_ray* R, float* ex, float* ey)
@@ -694,6 +700,7 @@ SCH_FN void sch_record(SCH_GLOBAL const float* field,
     if (!(R.flags & SCH_RAY_LOST) &&
       sch_dot(sch_axpy(-s1, d0, sch_axpy(-1.0f, o, R.x)), d0) < -P->step)
       R.flags |= SCH_RAY_SIDE;
+#ifdef SCH_PRIVATE_WALKS
     if (P->estimate)
     {
       /* step doubling: the difference to a trace at twice the step, scaled by the scheme's order */
@@ -707,6 +714,7 @@ SCH_FN void sch_record(SCH_GLOBAL const float* field,
       err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
       R.samples += R2.samples;
     }
+#endif
   }
   float ex, ey;
   sch_deflection(P, &R, &ex, &ey);
@@ -740,6 +748,7 @@ SCH_FN void sch_record(SCH_GLOBAL const float* field,
   rec[SCH_REC_STEPS] = R.steps;
 }
 
+#ifdef SCH_PRIVATE_WALKS
 /* Trace one ray that starts on the emission plane at film coordinates (a, b) and write its record. */
 SCH_FN void sch_trace(SCH_GLOBAL const float* field,
   SCH_GLOBAL const sch_uchar* levels,
@@ -816,6 +825,7 @@ SCH_FN void sch_trace_packet(SCH_GLOBAL const float* field,
     sch_record(field, levels, P, A[r], B[r], O[r], E[r], S1[r], &R, rec + r * SCH_RECORD);
   }
 }
+#endif
 
 /* ---------------------------------------------------------------- cutoffs */
 

@@ -3,13 +3,20 @@
  * embeds in front of this text (the #include below is replaced at build time), so this file only
  * maps work-items to rays.
  *
- * Build options: -DSCH_RAYS_PER_ITEM=N (rays advanced in turn by each work-item).
+ * Build options: -DSCH_RAYS_PER_ITEM=N (rays advanced in turn by each work-item);
+ * -DSCH_LOCKSTEP_GROUP=G builds the lock-step program instead (sch_trace_lockstep only, work-groups
+ * of exactly G items, the walks in local memory).
  */
 #ifndef SCH_RAYS_PER_ITEM
 #define SCH_RAYS_PER_ITEM 1
 #endif
 #define SCH_PACKET SCH_RAYS_PER_ITEM
+#ifdef SCH_LOCKSTEP_GROUP
+#define SCH_WALK_AS __local
+#endif
 #include "SchlierenPhysics.h"
+
+#ifndef SCH_LOCKSTEP_GROUP
 
 /* Trace rays k = first .. first + count - 1 of a pass; ray k goes through pixel
  * P.rayOffset + k * P.rayStride and writes SCH_RECORD floats at out[(k - first) * SCH_RECORD].
@@ -28,63 +35,6 @@ __kernel void sch_trace_rays(__global const float* field, __global const uchar* 
     out[(long)base * SCH_RECORD + c] = rec[c];
 }
 
-/* The same rays, one per work-item, advanced in lock step: every work-item of a group takes its
- * step, then the group meets at a barrier, until none of its rays is still marching. On CPU
- * devices PoCL then runs each step as a loop over the group's work-items, whose memory reads are
- * independent and overlap; without the barrier it runs one work-item's whole march after another.
- * A probe with a bare Euler step measured 230 against 52 M samples/s on PoCL; with this step
- * ~100 against ~85 M with packets of 4 rays. Neither is vectorised (PoCL's remarks: struct and
- * vector values, branches that are not selects): the gain is the overlapped reads.
- * The arithmetic per ray is sch_trace's: the records are identical. */
-__kernel void sch_trace_lockstep(__global const float* field, __global const uchar* levels,
-  const sch_params P, const int first, const int count, __global float* out)
-{
-  const int k = (int)get_global_id(0);
-  const int valid = k < count;
-  float a = 0.0f, b = 0.0f, s1 = 0.0f;
-  sch_v3 o, entry;
-  sch_walk W;
-  int hit = 0;
-  if (valid)
-  {
-    sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
-    hit = sch_entry(&P, a, b, &o, &entry, &s1);
-    if (hit)
-      sch_walk_begin(field, &P, entry, P.step, &W);
-  }
-  int live = hit;
-  /* one barrier per step: a flag per step, in three slots so that resetting the slot of step
-   * t + 1 before the barrier of step t cannot race with reads of the slot of step t - 1, which all
-   * happened before the barrier of step t - 1 */
-  __local int anyLive[3];
-  if (get_local_id(0) == 0)
-    anyLive[0] = anyLive[1] = anyLive[2] = 0;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int t = 0;; t = t == 2 ? 0 : t + 1)
-  {
-    if (live)
-      live = sch_walk_step(field, levels, &P, &W);
-    if (live)
-      anyLive[t] = 1;
-    if (get_local_id(0) == 0)
-      anyLive[t == 2 ? 0 : t + 1] = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (!anyLive[t])
-      break;
-  }
-  if (!valid)
-    return;
-  sch_ray R;
-  if (hit)
-    sch_walk_end(field, &P, &W, &R);
-  else
-    sch_missed(o, &R);
-  float rec[SCH_RECORD];
-  sch_record(field, levels, &P, a, b, o, entry, s1, &R, rec);
-  for (int c = 0; c < SCH_RECORD; ++c)
-    out[(long)k * SCH_RECORD + c] = rec[c];
-}
-
 /* Trace rays from explicit film coordinates (ab[2k], ab[2k+1]): used by tests and probes. */
 __kernel void sch_trace_points(__global const float* field, __global const uchar* levels,
   const sch_params P, __global const float* ab, const int count, __global float* out)
@@ -97,3 +47,68 @@ __kernel void sch_trace_points(__global const float* field, __global const uchar
   for (int c = 0; c < SCH_RECORD; ++c)
     out[(long)k * SCH_RECORD + c] = rec[c];
 }
+
+#else
+
+/* The same rays, one per work-item, advanced in lock step: every work-item of a group takes its
+ * step, then the group meets at a barrier, until none of its rays is still marching. On CPU
+ * devices PoCL then runs each step as a loop over the group's work-items, whose memory reads are
+ * independent and overlap; without the barrier it runs one work-item's whole march after another.
+ * The walks live in local memory and are stepped in place: kept in private variables, PoCL copies
+ * every field of every walk between context arrays at each barrier; called as a function, each
+ * step pays a call and reloads the parameters (PoCL, 256^3 Gaussian, Euler: 147-150 against
+ * 136-137 M samples/s). Not vectorised (PoCL's remarks: vector values, branches that are not
+ * selects; a probe that was, with 4-wide gathers, ran slower): the gain is the overlapped reads.
+ * The arithmetic per ray is sch_trace's: the records are identical. The host launches groups of
+ * exactly SCH_LOCKSTEP_GROUP items and never asks this program for the step-doubling estimate. */
+__kernel void sch_trace_lockstep(__global const float* field, __global const uchar* levels,
+  const sch_params P, const int first, const int count, __global float* out)
+{
+  const int k = (int)get_global_id(0);
+  const int valid = k < count;
+  float a = 0.0f, b = 0.0f, s1 = 0.0f;
+  sch_v3 o, entry;
+  __local sch_walk walks[SCH_LOCKSTEP_GROUP];
+  __local sch_walk* W = &walks[get_local_id(0)];
+  int hit = 0;
+  if (valid)
+  {
+    sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
+    hit = sch_entry(&P, a, b, &o, &entry, &s1);
+    if (hit)
+      sch_walk_begin(field, &P, entry, P.step, W);
+  }
+  int live = hit;
+  /* one barrier per step: a flag per step, in three slots so that resetting the slot of step
+   * t + 1 before the barrier of step t cannot race with reads of the slot of step t - 1, which all
+   * happened before the barrier of step t - 1 */
+  __local int anyLive[3];
+  if (get_local_id(0) == 0)
+    anyLive[0] = anyLive[1] = anyLive[2] = 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int t = 0;; t = t == 2 ? 0 : t + 1)
+  {
+    if (live)
+      live = sch_walk_step(field, levels, &P, W);
+    if (live)
+      anyLive[t] = 1;
+    if (get_local_id(0) == 0)
+      anyLive[t == 2 ? 0 : t + 1] = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (!anyLive[t])
+      break;
+  }
+  if (!valid)
+    return;
+  sch_ray R;
+  if (hit)
+    sch_walk_end(field, &P, W, &R);
+  else
+    sch_missed(o, &R);
+  float rec[SCH_RECORD];
+  sch_record(field, levels, &P, a, b, o, entry, s1, &R, rec);
+  for (int c = 0; c < SCH_RECORD; ++c)
+    out[(long)k * SCH_RECORD + c] = rec[c];
+}
+
+#endif
