@@ -398,9 +398,6 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.nz = volume.Dimensions[2];
   double b[6];
   volume.GetBounds(b);
-  P.ox = static_cast<float>(volume.Origin[0] - f.Center[0]);
-  P.oy = static_cast<float>(volume.Origin[1] - f.Center[1]);
-  P.oz = static_cast<float>(volume.Origin[2] - f.Center[2]);
   P.isx = static_cast<float>(1.0 / volume.Spacing[0]);
   P.isy = static_cast<float>(1.0 / volume.Spacing[1]);
   P.isz = static_cast<float>(1.0 / volume.Spacing[2]);
@@ -445,6 +442,13 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.gxMax = std::nextafter(static_cast<float>(P.nx - 1), 0.0f);
   P.gyMax = std::nextafter(static_cast<float>(P.ny - 1), 0.0f);
   P.gzMax = std::nextafter(static_cast<float>(P.nz - 1), 0.0f);
+  P.gx0 = static_cast<float>(-(volume.Origin[0] - f.Center[0]) / volume.Spacing[0]);
+  P.gy0 = static_cast<float>(-(volume.Origin[1] - f.Center[1]) / volume.Spacing[1]);
+  P.gz0 = static_cast<float>(-(volume.Origin[2] - f.Center[2]) / volume.Spacing[2]);
+  if (4.0 * P.nx * P.ny > 2147483647.0)
+    throw Error("A slice of the volume has more than 2^29 points: not supported.");
+  P.rowFloats = 4 * P.nx;
+  P.sliceFloats = 4 * P.nx * P.ny;
   return P;
 }
 

@@ -143,7 +143,6 @@ typedef struct
 {
   int nx, ny, nz;       /* grid points */
   int maxSteps;         /* per ray */
-  float ox, oy, oz;     /* position of point (0,0,0), relative to the centre */
   float isx, isy, isz;  /* 1 / spacing */
   float hx, hy, hz;     /* half extent of the box of grid points (box is [-h, h]) */
   float dx, dy, dz;     /* beam direction d0 (unit) */
@@ -166,6 +165,8 @@ typedef struct
   float featureTol;         /* index change a step may leave unexplained before it is flagged */
   float cellStep;           /* the longest step that moves at most one cell along every axis */
   float gxMax, gyMax, gzMax; /* the largest grid coordinate sampled: the float below n - 1 */
+  float gx0, gy0, gz0;       /* grid coordinate of the centre: -(origin - centre) / spacing */
+  int rowFloats, sliceFloats; /* floats from one grid row, and slice, to the next: 4 nx, 4 nx ny */
 } sch_params;
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
@@ -225,14 +226,16 @@ SCH_FN sch_v3 sch_grad(sch_sample s)
   return sch_make(s.gx, s.gy, s.gz);
 }
 
-/* Grid coordinate of x along one axis, clamped to [0, hi], and the cell it falls in: what the
- * sampler and the octree lookup both need. hi is the largest float below n - 1 (sch_params), so
- * the cell is at most n - 2 without a test of its own; on the far face itself the interpolation
- * weight is 1 - 2^-24 (relative) instead of 1. */
-SCH_FN float sch_grid_coord(float x, float o, float is, float hi, int* c)
+/* Grid coordinate of x along one axis (x / spacing + g0, g0 = -origin / spacing), clamped to
+ * [0, hi], and the cell it falls in: what the sampler and the octree lookup both need. hi is the
+ * largest float below n - 1 (sch_params), so the cell is at most n - 2 without a test of its own;
+ * on the far face itself the interpolation weight is 1 - 2^-24 (relative) instead of 1. The clamp
+ * is written in the operand order of the min and max instructions (a NaN ends at hi). */
+SCH_FN float sch_grid_coord(float x, float is, float g0, float hi, int* c)
 {
-  float f = (x - o) * is;
-  f = f < 0.0f ? 0.0f : (f > hi ? hi : f);
+  float f = x * is + g0;
+  f = f < hi ? f : hi;
+  f = f > 0.0f ? f : 0.0f;
   *c = (int)f;
   return f;
 }
@@ -242,15 +245,14 @@ SCH_FN float sch_grid_coord(float x, float o, float is, float hi, int* c)
 SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p)
 {
   int i, j, k;
-  float fx = sch_grid_coord(p.x, P->ox, P->isx, P->gxMax, &i);
-  float fy = sch_grid_coord(p.y, P->oy, P->isy, P->gyMax, &j);
-  float fz = sch_grid_coord(p.z, P->oz, P->isz, P->gzMax, &k);
+  float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
+  float fy = sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
+  float fz = sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
   float tx = fx - (float)i;
   float ty = fy - (float)j;
   float tz = fz - (float)k;
-  long sy = (long)P->nx * 4;
-  long sz = (long)P->nx * (long)P->ny * 4;
-  SCH_GLOBAL const float* c000 = field + ((long)k * P->ny + j) * sy + (long)i * 4;
+  const long sy = P->rowFloats, sz = P->sliceFloats;
+  SCH_GLOBAL const float* c000 = field + (long)k * sz + (long)j * sy + (long)i * 4;
   SCH_GLOBAL const float* c001 = c000 + sz;
   /* seven lerps of the four channels at once: along x on the four edges, then y, then z */
   sch_f4 e00 = sch_f4_lerp(sch_f4_load(c000), sch_f4_load(c000 + 4), tx);
@@ -371,9 +373,9 @@ SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels,
 {
   /* per axis, without arrays: PoCL kept small indexed arrays in memory, and this runs every step */
   int i, j, k;
-  float fx = sch_grid_coord(x.x, P->ox, P->isx, P->gxMax, &i);
-  float fy = sch_grid_coord(x.y, P->oy, P->isy, P->gyMax, &j);
-  float fz = sch_grid_coord(x.z, P->oz, P->isz, P->gzMax, &k);
+  float fx = sch_grid_coord(x.x, P->isx, P->gx0, P->gxMax, &i);
+  float fy = sch_grid_coord(x.y, P->isy, P->gy0, P->gyMax, &j);
+  float fz = sch_grid_coord(x.z, P->isz, P->gz0, P->gzMax, &k);
   int lvl = (int)levels[((long)k * P->ny + j) * P->nx + i];
   if (lvl == 0)
     return base;
@@ -548,12 +550,9 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   W->w = sch_add(W->w, dw);
   W->opl += dopl;
   W->path += ds;
-  /* a NaN fails every comparison: it leaves the loop through sch_inside and is caught below */
-  if (W->ne + sch_dot(d0, W->w) <= 0.0f)
-  {
-    W->flags |= SCH_RAY_TURNED;
-    return 0;
-  }
+  /* a NaN fails every comparison: it leaves the loop through the exit test below and is caught
+   * in sch_walk_end, as is a ray that turned back against the beam (it marches back out through
+   * the front or a side: a test here cost 7 % of the step on PoCL) */
   /* Euler and line of sight end where the check above aimed: a whole step inside, a cut one a
    * hair outside. The other schemes bend away from that line and look again. */
   if (SCH_INTEGRATOR(P) == SCH_EULER || SCH_INTEGRATOR(P) == SCH_STRAIGHT ? !whole
@@ -602,10 +601,13 @@ SCH_FN void sch_walk_end(SCH_GLOBAL const float* field,
     W->flags |= SCH_RAY_NONFINITE;
   if (W->it >= P->maxSteps)
     W->flags |= SCH_RAY_MAXSTEPS;
-  else if (!(W->flags & (SCH_RAY_NONFINITE | SCH_RAY_TURNED)))
+  else if (!(W->flags & SCH_RAY_NONFINITE))
   {
-    /* the index where the ray left, for the invariant |v| = n */
-    W->s = sch_sample_field(field, P, W->x);
+    /* heading back against the beam where it left (a mirage): it never reaches the film */
+    if (W->ne + sch_dot(sch_make(P->dx, P->dy, P->dz), W->w) <= 0.0f)
+      W->flags |= SCH_RAY_TURNED;
+    else
+      W->s = sch_sample_field(field, P, W->x); /* the index where it left, for |v| = n */
   }
   R->x = W->x;
   R->dev = W->dev;
