@@ -558,8 +558,8 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
    * the front or a side: a test here cost 7 % of the step on PoCL) */
   /* Euler and line of sight end where the check above aimed: a whole step inside, a cut one a
    * hair outside. The other schemes bend away from that line and look again. */
-  if (SCH_INTEGRATOR(P) == SCH_EULER || SCH_INTEGRATOR(P) == SCH_STRAIGHT ? !whole
-                                                                          : !sch_inside(P, W->x))
+  const int aimed = (SCH_INTEGRATOR(P) == SCH_EULER) | (SCH_INTEGRATOR(P) == SCH_STRAIGHT);
+  if (aimed ? !whole : !sch_inside(P, W->x))
     return 0;
   /* the sample at the end of a step is counted by it (sch_walk_end), W->samples counts the others */
   sch_sample sn = sch_sample_field(field, P, W->x);
