@@ -936,18 +936,18 @@ public:
     ocl::Check(st, "sch_trace_points");
   }
 
-  // Lock-step rays (sch_trace_lockstep) for the curved integrators on CPU devices: PoCL then runs
-  // each step over the whole group of rays, whose memory reads overlap; line of sight (short
-  // rays, few steps) and other devices take the per-item kernel, and so does the step-doubling
-  // estimate (the lock-step program has no private walks to march the second ray with).
-  // SCHLIEREN_CL_LOCKSTEP=0/1 overrides (for measurements).
+  // Lock-step rays (sch_trace_lockstep) on CPU devices: PoCL then runs each step over the whole
+  // group of rays, whose memory reads overlap (line of sight + octree too, since session 3:
+  // 2.7-3.2 -> 4.3 M photons/s on the plume). Other devices take the per-item kernel, and so does
+  // the step-doubling estimate (the lock-step program has no private walks to march the second
+  // ray with). SCHLIEREN_CL_LOCKSTEP=0/1 overrides (for measurements).
   bool UseLockstep(const sch_params& P) const
   {
     if (P.estimate)
       return false;
     if (const char* e = std::getenv("SCHLIEREN_CL_LOCKSTEP"))
       return std::string(e) != "0";
-    return RT.IsCPU && P.integrator != SCH_STRAIGHT;
+    return RT.IsCPU;
   }
   static constexpr std::size_t LockstepGroup = 64;
 
