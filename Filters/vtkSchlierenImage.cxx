@@ -273,8 +273,8 @@ vtkSmartPointer<vtkFloatArray> FloatArray(const char* name, const std::vector<fl
 }
 
 /**
- * Resolves Integrator Auto (settings.Method) into the integrator and step it chooses; other
- * integrators come back unchanged. Rank 0 resolves (its pilot traces the same rays as every other
+ * Resolves Integrator Auto (settings.Method) into the integrator and step it chooses, and whether
+ * the octree pays for it (settings.UseOctree); other integrators come back unchanged. Rank 0 resolves (its pilot traces the same rays as every other
  * rank would; doing it once and broadcasting the choice makes every rank trace with the same
  * setting even if their backends were to round differently) and every rank adopts its choice.
  * Collective under MPI. Returns false (with an error reported) if Auto failed.
@@ -292,8 +292,8 @@ bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
   }
   std::string error;
   // ok, method, step, measured error, expected error, landing error, samples per ray,
-  // tolerance, met
-  std::vector<double> numbers(9, 0.0);
+  // tolerance, met, octree
+  std::vector<double> numbers(10, 0.0);
   if (rank == 0)
   {
     try
@@ -304,12 +304,13 @@ bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
       const schlieren::TraceSettings chosen = schlieren::ResolveAuto(volume, pilot, &choice);
       numbers = { 1.0, double(static_cast<int>(chosen.Method)), chosen.StepSize,
         chosen.AutoMeasuredError, choice.ExpectedError, choice.ExpectedLandingError,
-        choice.SamplesPerRay, choice.Tolerance, choice.Met ? 1.0 : 0.0 };
+        choice.SamplesPerRay, choice.Tolerance, choice.Met ? 1.0 : 0.0,
+        chosen.UseOctree ? 1.0 : 0.0 };
     }
     catch (const schlieren::Error& e)
     {
       error = e.what();
-      numbers.assign(9, 0.0);
+      numbers.assign(10, 0.0);
     }
   }
   std::string text = error.empty() ? choice.Report : error;
@@ -338,6 +339,7 @@ bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
   settings.Method = static_cast<schlieren::Integrator>(static_cast<int>(numbers[1]));
   settings.StepSize = numbers[2];
   settings.AutoMeasuredError = numbers[3];
+  settings.UseOctree = numbers[9] == 1.0;
   choice.Method = settings.Method;
   choice.StepSize = settings.StepSize;
   choice.ExpectedError = numbers[4];
@@ -345,6 +347,7 @@ bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
   choice.SamplesPerRay = numbers[6];
   choice.Tolerance = numbers[7];
   choice.Met = numbers[8] == 1.0;
+  choice.UseOctree = settings.UseOctree;
   choice.Report = text;
   if (rank == 0)
   {
@@ -872,8 +875,10 @@ int vtkSchlierenImage::RequestData(
   addNumber("max_error", result.MaxError);
   addString("integrator", schlieren::IntegratorName(settings.Method));
   addNumber("step_size", settings.StepSize);
-  addNumber("octree", volume.Levels ? 1.0 : 0.0);
-  if (volume.Levels)
+  // Auto may have found that the octree does not pay (settings.UseOctree off)
+  const bool octreeUsed = volume.Levels && settings.UseOctree;
+  addNumber("octree", octreeUsed ? 1.0 : 0.0);
+  if (octreeUsed)
   {
     addNumber("octree_tolerance", volume.LevelTolerance);
   }

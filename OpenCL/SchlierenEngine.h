@@ -236,6 +236,8 @@ struct AutoChoice
   double ExpectedLandingError = 0; ///< film pixels
   double SamplesPerRay = 0;
   bool Met = false;             ///< false: no candidate met the tolerance; the most accurate is used
+  bool UseOctree = false;       ///< the octree pays for the choice (asked for, and skips >= 10 %)
+  double OctreeSaving = 0;      ///< fraction of the pilot's samples the octree skips
   std::string Report;           ///< one line for the user
 };
 
@@ -265,6 +267,8 @@ struct TraceResult
  * no octree) on the same grid, and returns the settings of the cheapest candidate (fewest samples)
  * whose deflection error is within the tolerance and whose landing error is within half a pixel.
  * The reference shares the grid, so this measures integration error, not the grid's own.
+ * With UseOctree and volume.Levels, the octree is kept only if it skips at least 10 % of the
+ * chosen setting's pilot samples (a skipping step costs more than a plain one).
  * Settings whose Method is not Auto come back unchanged.
  */
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr);

@@ -257,7 +257,8 @@ void Run(Case& c, const std::string& backends, const std::string& only, int film
         if (row.Method == Integrator::Auto)
         {
           char chosen[64];
-          std::snprintf(chosen, sizeof(chosen), " -> %s %.3g vox", IntegratorName(s.Method), s.StepSize);
+          std::snprintf(chosen, sizeof(chosen), " -> %s %.3g vox%s", IntegratorName(s.Method),
+            s.StepSize, s.UseOctree ? "" : ", octree off");
           label += chosen;
         }
         std::printf("| %s | %.3g M | %.3g M | %.1f | %.1f | %.3g | %.0f |\n", label.c_str(),

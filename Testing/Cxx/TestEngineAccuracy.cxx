@@ -177,6 +177,32 @@ void TestOctree()
     noise[i] = 1e-4f * static_cast<float>(i % 2);
   CHECK(ComputeOctreeLevels(sv.V.Dimensions, noise.data(), 1e-6, levels.data()) == 0.0,
     "a field that alternates by more than the tolerance has no skippable block");
+  // Auto keeps the octree where it skips most of the samples (the small sphere) and drops it where
+  // it skips none (a linear gradient: no uniform block), saying so
+  ComputeOctreeLevels(sv.V.Dimensions, sv.N1.data(), tol, levels.data());
+  s.Method = Integrator::Auto;
+  AutoChoice sphere;
+  const TraceSettings kept = ResolveAuto(v, s, &sphere);
+  std::printf("Auto on the small sphere: %s\n", sphere.Report.c_str());
+  CHECK(kept.UseOctree && sphere.OctreeSaving > 0.5,
+    "Auto keeps the octree where it skips more than half of the samples");
+  SceneParameters lp;
+  lp.GradientA = 1.0;
+  lp.GradientB = 0.2;
+  schtest::SceneVolume lin(Scene::LinearGradient, lp, 64, 1.0);
+  std::vector<unsigned char> linLevels(lin.V.NumberOfPoints());
+  const auto mm = std::minmax_element(lin.N1.begin(), lin.N1.end());
+  const double linTol = 1e-4 * (*mm.second - *mm.first);
+  CHECK(ComputeOctreeLevels(lin.V.Dimensions, lin.N1.data(), linTol, linLevels.data()) == 0.0,
+    "a linear gradient has no skippable block");
+  Volume lv = lin.V;
+  lv.Levels = linLevels.data();
+  lv.LevelTolerance = linTol;
+  AutoChoice gradient;
+  const TraceSettings dropped = ResolveAuto(lv, s, &gradient);
+  std::printf("Auto on the linear gradient: %s\n", gradient.Report.c_str());
+  CHECK(!dropped.UseOctree && gradient.Report.find("octree off") != std::string::npos,
+    "Auto drops the octree where it skips nothing, and says so");
 }
 
 // Snell across a plane normal shock (two voxels thick) on 128^3: the tangential part of v = n d is
