@@ -3,10 +3,11 @@
 #include "SchlierenOpenCL.h"
 
 // The physics, compiled as C++ for the CPU backend and for the host-side film. The CPU path
-// advances 16 rays in turn per packet (sch_trace_packet): against 4, two runs each in one session
-// (256^3 Gaussian, 512^2 film), Euler 75.8/70.8 -> 83.2/81.2 M samples/s, Auto 2.57/2.56 ->
-// 2.72/2.78 M photons/s; more rays' memory reads in flight.
-#define SCH_PACKET 16
+// advances 64 rays in turn per packet (sch_trace_packet): more rays' steps in flight. 4 -> 16
+// (session 2, 256^3 Gaussian, 512^2 film): Euler 75.8/70.8 -> 83.2/81.2 M samples/s; 16 -> 64
+// (session 3, two runs): Gaussian Euler 111 -> 118/120 M, blunt fin Auto (midpoint) 1.40 ->
+// 1.75/1.79 M photons/s; 32 was in between.
+#define SCH_PACKET 64
 #include "SchlierenPhysics.h"
 
 #include <algorithm>
