@@ -241,8 +241,9 @@ SCH_FN float sch_grid_coord(float x, float is, float g0, float hi, int* c)
 }
 
 /* Trilinear interpolation of the packed field at p (relative to the centre); outside the grid the
- * nearest border value is used. */
-SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p)
+ * nearest border value is used. *cell: the point index of the cell's first corner. */
+SCH_FN sch_sample sch_sample_cell(
+  SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p, long* cell)
 {
   int i, j, k;
   float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
@@ -267,7 +268,14 @@ SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_para
   s.gx = r.y;
   s.gy = r.z;
   s.gz = r.w;
+  *cell = ((long)k * P->ny + j) * P->nx + i;
   return s;
+}
+
+SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p)
+{
+  long cell;
+  return sch_sample_cell(field, P, p, &cell);
 }
 
 /* ---------------------------------------------------------------- geometry */
@@ -354,10 +362,12 @@ SCH_FN float sch_invariant_gap(float ne1, float n1, sch_v3 d0, sch_v3 w)
  * holds x when that is longer (paper section 4.2; the block is uniform within the tolerance, with a
  * one-voxel halo, so the ray may cross it in one straight step). */
 /* Along one axis: the distance (in steps of the direction's component dI, cells per unit length)
- * from the grid coordinate f in cell c to the face of its block of B cells that the ray heads for. */
-SCH_FN float sch_block_exit(float f, int c, float B, float dI)
+ * from the grid coordinate f in cell c to the face of its block of B = 2^lvl cells that the ray
+ * heads for. The block starts at cell (c >> lvl) << lvl (integers: floor() is a library call in
+ * PoCL). */
+SCH_FN float sch_block_exit(float f, int c, int lvl, float B, float dI)
 {
-  float lo = sch_floor((float)c / B) * B;
+  float lo = (float)((c >> lvl) << lvl);
   if (dI > 1e-20f)
     return (lo + B - f) / dI;
   if (dI < -1e-20f)
@@ -365,23 +375,24 @@ SCH_FN float sch_block_exit(float f, int c, float B, float dI)
   return 1e30f;
 }
 
-SCH_FN float sch_skip(SCH_GLOBAL const sch_uchar* levels,
-  const sch_params* P,
-  sch_v3 x,
-  sch_v3 dir,
-  float base)
+/* The step from x along dir: across the rest of x's block when its level lvl (looked up with the
+ * sample at x) is above 0, else the base step. */
+SCH_FN float sch_skip(const sch_params* P, sch_v3 x, sch_v3 dir, float base, int lvl)
 {
+  if (lvl == 0)
+    return base;
   /* per axis, without arrays: PoCL kept small indexed arrays in memory, and this runs every step */
   int i, j, k;
   float fx = sch_grid_coord(x.x, P->isx, P->gx0, P->gxMax, &i);
   float fy = sch_grid_coord(x.y, P->isy, P->gy0, P->gyMax, &j);
   float fz = sch_grid_coord(x.z, P->isz, P->gz0, P->gzMax, &k);
-  int lvl = (int)levels[((long)k * P->ny + j) * P->nx + i];
-  if (lvl == 0)
-    return base;
   float B = (float)(1 << lvl);
-  float t = sch_fmin(sch_fmin(sch_block_exit(fx, i, B, dir.x * P->isx), sch_block_exit(fy, j, B, dir.y * P->isy)),
-    sch_block_exit(fz, k, B, dir.z * P->isz));
+  /* the nearest face (min by comparison: OpenCL's fmin, with its NaN rules, cost more) */
+  float t = sch_block_exit(fx, i, lvl, B, dir.x * P->isx);
+  float ty = sch_block_exit(fy, j, lvl, B, dir.y * P->isy);
+  float tz = sch_block_exit(fz, k, lvl, B, dir.z * P->isz);
+  t = ty < t ? ty : t;
+  t = tz < t ? tz : t;
   /* a hair past the block face, so that the next lookup sees the next block */
   t += 0.01f * base;
   return t > base ? t : base;
@@ -425,12 +436,14 @@ typedef struct
   sch_sample s;
   float ne1, ne, base;
   float invn; /* 1 / n at x */
+  int level;  /* octree level of x's cell (with levels) */
   float samples, opl, path, mismatch;
   sch_uint flags;
   int it;
 } sch_walk;
 
 SCH_FN void sch_walk_begin(SCH_GLOBAL const float* field,
+  SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   sch_v3 x,
   float base,
@@ -445,7 +458,9 @@ SCH_FN void sch_walk_begin(SCH_GLOBAL const float* field,
   W->base = base;
   W->it = 0;
   /* the index where the ray enters is the background the deflection is measured against */
-  W->s = sch_sample_field(field, P, x);
+  long cell;
+  W->s = sch_sample_cell(field, P, x, &cell);
+  W->level = SCH_USE_LEVELS(P) ? (int)levels[cell] : 0;
   W->ne1 = W->s.n1;
   W->ne = 1.0f + W->ne1;
   W->invn = 1.0f / W->ne;
@@ -472,7 +487,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   if (SCH_INTEGRATOR(P) == SCH_STRAIGHT)
     dir = d0;
   if (SCH_USE_LEVELS(P))
-    ds = sch_skip(levels, P, W->x, dir, W->base);
+    ds = sch_skip(P, W->x, dir, W->base, W->level);
   /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
    * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
    * end point is outside pays for the exact distance. */
@@ -562,7 +577,10 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
   if (aimed ? !whole : !sch_inside(P, W->x))
     return 0;
   /* the sample at the end of a step is counted by it (sch_walk_end), W->samples counts the others */
-  sch_sample sn = sch_sample_field(field, P, W->x);
+  long cell;
+  sch_sample sn = sch_sample_cell(field, P, W->x, &cell);
+  if (SCH_USE_LEVELS(P))
+    W->level = (int)levels[cell];
   /* a step longer than a feature: over a step of more than one cell, the index changed in a way
    * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
    * cannot jump over anything: trilinear data has no structure finer than a cell. */
@@ -636,7 +654,7 @@ SCH_FN void sch_march(SCH_GLOBAL const float* field,
   sch_ray* R)
 {
   sch_walk W;
-  sch_walk_begin(field, P, x, base, &W);
+  sch_walk_begin(field, levels, P, x, base, &W);
   while (sch_walk_step(field, levels, P, &W))
     ;
   sch_walk_end(field, P, &W, R);
@@ -805,7 +823,7 @@ SCH_FN void sch_trace_packet(SCH_GLOBAL const float* field,
       hit[r] = sch_entry(P, A[r], B[r], &O[r], &E[r], &S1[r]);
       if (hit[r])
       {
-        sch_walk_begin(field, P, E[r], P->step, &W[r]);
+        sch_walk_begin(field, levels, P, E[r], P->step, &W[r]);
         live[r] = 1;
         any = 1;
       }

@@ -76,7 +76,7 @@ __kernel void sch_trace_lockstep(__global const float* field, __global const uch
     sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
     hit = sch_entry(&P, a, b, &o, &entry, &s1);
     if (hit)
-      sch_walk_begin(field, &P, entry, P.step, W);
+      sch_walk_begin(field, levels, &P, entry, P.step, W);
   }
   int live = hit;
   /* one barrier per step: a flag per step, in three slots so that resetting the slot of step
