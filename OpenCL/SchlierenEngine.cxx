@@ -789,19 +789,41 @@ public:
     : RT(ocl::GetRuntime())
     , RaysPerItem(std::max(1, raysPerItem))
   {
-    const std::size_t bytes = volume.NumberOfPoints() * 4 * sizeof(float);
-    if (bytes > RT.MaxAlloc)
+    // over one buffer's limit, the field goes in slabs along z, up to MaxSlabs buffers: slab q
+    // holds planes q K .. q K + K (K cells; the shared plane keeps every cell in one slab)
+    const std::uint64_t maxAlloc = MaxAllocation();
+    const std::uint64_t planeFloats = std::uint64_t(volume.Dimensions[0]) * volume.Dimensions[1] * 4;
+    const std::uint64_t bytes = volume.NumberOfPoints() * 4 * sizeof(float);
+    const int nz = volume.Dimensions[2];
+    SlabCells = nz - 1;
+    Slabs = 1;
+    std::uint64_t total = bytes;
+    if (bytes > maxAlloc)
+    {
+      const std::int64_t cells = std::int64_t(maxAlloc / (planeFloats * sizeof(float))) - 1;
+      Slabs = cells >= 1 ? static_cast<int>((nz - 1 + cells - 1) / cells) : MaxSlabs + 1;
+      SlabCells = static_cast<int>(std::max<std::int64_t>(cells, 1));
+      total = bytes + std::uint64_t(Slabs - 1) * planeFloats * sizeof(float);
+    }
+    const std::uint64_t levelBytes = volume.Levels ? volume.NumberOfPoints() : 1;
+    if (Slabs > MaxSlabs || total + levelBytes > RT.GlobalMemory)
     {
       std::ostringstream msg;
-      msg << "The volume needs " << bytes / (1 << 20) << " MiB on the OpenCL device '"
-          << RT.DeviceName << "', which allows " << RT.MaxAlloc / (1 << 20)
-          << " MiB per buffer. Resample the data to fewer points, or choose Backend CPU.";
+      msg << "The volume needs " << total / (1 << 20) << " MiB on the OpenCL device '"
+          << RT.DeviceName << "', which allows " << maxAlloc / (1 << 20) << " MiB per buffer (split "
+          << "in at most " << MaxSlabs << " buffers) and " << RT.GlobalMemory / (1 << 20)
+          << " MiB in all. Resample the data to fewer points, or choose Backend CPU.";
       throw Error(msg.str());
     }
     cl_int err = CL_SUCCESS;
-    Field = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes,
-      const_cast<float*>(volume.Field), &err);
-    ocl::Check(err, "clCreateBuffer(field)");
+    for (int q = 0; q < Slabs; ++q)
+    {
+      const std::uint64_t first = std::uint64_t(q) * SlabCells;
+      const std::uint64_t planes = std::min<std::uint64_t>(SlabCells, nz - 1 - first) + 1;
+      Fields[q] = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+        planes * planeFloats * sizeof(float), const_cast<float*>(volume.Field + first * planeFloats), &err);
+      ocl::Check(err, "clCreateBuffer(field)");
+    }
     // the octree levels, or one byte that no kernel reads when there are none
     static unsigned char none = 0;
     Levels = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
@@ -827,8 +849,9 @@ public:
   {
     if (Out)
       clReleaseMemObject(Out);
-    if (Field)
-      clReleaseMemObject(Field);
+    for (cl_mem f : Fields)
+      if (f)
+        clReleaseMemObject(f);
     if (Levels)
       clReleaseMemObject(Levels);
     for (auto& k : Kernels)
@@ -863,6 +886,8 @@ public:
       opts << " -DSCH_LOCKSTEP_GROUP=" << LockstepGroup;
     else
       opts << " -DSCH_RAYS_PER_ITEM=" << RaysPerItem;
+    if (Slabs > 1)
+      opts << " -DSCH_SLABS=" << Slabs;
     if (specialise)
       opts << " -DSCH_FIXED_INTEGRATOR=" << P.integrator << " -DSCH_FIXED_LEVELS=" << (P.useLevels ? 1 : 0)
            << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0);
@@ -889,12 +914,12 @@ public:
     const bool lockstep = UseLockstep(P);
     cl_kernel Kernel = KernelFor(P, false);
     const int f = static_cast<int>(first), c = static_cast<int>(count);
-    ocl::Check(clSetKernelArg(Kernel, 0, sizeof(cl_mem), &Field), "clSetKernelArg(field)");
-    ocl::Check(clSetKernelArg(Kernel, 1, sizeof(cl_mem), &Levels), "clSetKernelArg(levels)");
-    ocl::Check(clSetKernelArg(Kernel, 2, sizeof(sch_params), &P), "clSetKernelArg(params)");
-    ocl::Check(clSetKernelArg(Kernel, 3, sizeof(int), &f), "clSetKernelArg(first)");
-    ocl::Check(clSetKernelArg(Kernel, 4, sizeof(int), &c), "clSetKernelArg(count)");
-    ocl::Check(clSetKernelArg(Kernel, 5, sizeof(cl_mem), &Out), "clSetKernelArg(out)");
+    const sch_params Q = WithSlabs(P);
+    SetFieldArgs(Kernel);
+    ocl::Check(clSetKernelArg(Kernel, 5, sizeof(sch_params), &Q), "clSetKernelArg(params)");
+    ocl::Check(clSetKernelArg(Kernel, 6, sizeof(int), &f), "clSetKernelArg(first)");
+    ocl::Check(clSetKernelArg(Kernel, 7, sizeof(int), &c), "clSetKernelArg(count)");
+    ocl::Check(clSetKernelArg(Kernel, 8, sizeof(cl_mem), &Out), "clSetKernelArg(out)");
     if (lockstep)
     {
       // a ray per work-item, groups of LockstepGroup (the global size rounded up to them)
@@ -922,12 +947,12 @@ public:
       std::max<std::size_t>(1, count) * 2 * sizeof(float), const_cast<float*>(ab), &err);
     ocl::Check(err, "clCreateBuffer(points)");
     const int c = static_cast<int>(count);
-    clSetKernelArg(PointsKernel, 0, sizeof(cl_mem), &Field);
-    clSetKernelArg(PointsKernel, 1, sizeof(cl_mem), &Levels);
-    clSetKernelArg(PointsKernel, 2, sizeof(sch_params), &P);
-    clSetKernelArg(PointsKernel, 3, sizeof(cl_mem), &abBuf);
-    clSetKernelArg(PointsKernel, 4, sizeof(int), &c);
-    clSetKernelArg(PointsKernel, 5, sizeof(cl_mem), &Out);
+    const sch_params Q = WithSlabs(P);
+    SetFieldArgs(PointsKernel);
+    clSetKernelArg(PointsKernel, 5, sizeof(sch_params), &Q);
+    clSetKernelArg(PointsKernel, 6, sizeof(cl_mem), &abBuf);
+    clSetKernelArg(PointsKernel, 7, sizeof(int), &c);
+    clSetKernelArg(PointsKernel, 8, sizeof(cl_mem), &Out);
     const std::size_t global = count;
     cl_int st = clEnqueueNDRangeKernel(RT.Queue, PointsKernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
     if (st == CL_SUCCESS)
@@ -935,6 +960,30 @@ public:
         nullptr, nullptr);
     clReleaseMemObject(abBuf);
     ocl::Check(st, "sch_trace_points");
+  }
+
+  // Arguments 0-4 of every kernel: the field's buffers (the first bound again where there are
+  // fewer than four slabs; those are not read) and the octree levels.
+  void SetFieldArgs(cl_kernel k)
+  {
+    for (int q = 0; q < MaxSlabs; ++q)
+      ocl::Check(clSetKernelArg(k, q, sizeof(cl_mem), &Fields[q < Slabs ? q : 0]), "clSetKernelArg(field)");
+    ocl::Check(clSetKernelArg(k, 4, sizeof(cl_mem), &Levels), "clSetKernelArg(levels)");
+  }
+  sch_params WithSlabs(const sch_params& P) const
+  {
+    sch_params Q = P;
+    Q.slabCells = SlabCells;
+    return Q;
+  }
+  // The device's largest buffer, or less where SCHLIEREN_CL_MAX_ALLOC (bytes) says so: the split
+  // into slabs is tested on small volumes that way.
+  std::uint64_t MaxAllocation() const
+  {
+    std::uint64_t m = RT.MaxAlloc;
+    if (const char* e = std::getenv("SCHLIEREN_CL_MAX_ALLOC"))
+      m = std::min<std::uint64_t>(m, std::strtoull(e, nullptr, 10));
+    return m;
   }
 
   // Lock-step rays (sch_trace_lockstep) on CPU devices: PoCL then runs each step over the whole
@@ -956,7 +1005,11 @@ public:
   int RaysPerItem;
   std::size_t Chunk = 0;
   std::map<int, cl_kernel> Kernels;
-  cl_mem Field = nullptr, Levels = nullptr, Out = nullptr;
+  // the field: one buffer, or Slabs buffers of SlabCells cells along z (see the constructor)
+  static constexpr int MaxSlabs = 4;
+  cl_mem Fields[MaxSlabs] = { nullptr, nullptr, nullptr, nullptr };
+  int Slabs = 1, SlabCells = 0;
+  cl_mem Levels = nullptr, Out = nullptr;
 };
 
 // Chooses the backend; returns the OpenCL tracer or null for the CPU.
@@ -1022,6 +1075,8 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSetti
     t->KernelFor(P, points); // built here, so that a build failure falls back like a missing device
     used = "OpenCL";
     device = t->RT.DeviceName;
+    if (t->Slabs > 1)
+      device += " (the field split in " + std::to_string(t->Slabs) + " buffers)";
     return t;
   }
   catch (const Error& e)

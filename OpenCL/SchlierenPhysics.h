@@ -167,6 +167,7 @@ typedef struct
   float gxMax, gyMax, gzMax; /* the largest grid coordinate sampled: the float below n - 1 */
   float gx0, gy0, gz0;       /* grid coordinate of the centre: -(origin - centre) / spacing */
   int rowFloats, sliceFloats; /* floats from one grid row, and slice, to the next: 4 nx, 4 nx ny */
+  int slabCells;              /* cells along z per slab (SCH_SLABS builds only) */
 } sch_params;
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
@@ -214,6 +215,19 @@ SCH_FN float sch_unit(sch_uint h)
 
 /* ---------------------------------------------------------------- sampling */
 
+/* The packed field: one buffer, or (OpenCL, -DSCH_SLABS=S for S = 2..4) S buffers of slabs along
+ * z, for volumes over one buffer's size limit: slab q holds grid planes q K .. q K + K (K =
+ * P->slabCells; one plane shared with the next slab, so that every cell lies in one slab). */
+#ifdef SCH_SLABS
+typedef struct
+{
+  SCH_GLOBAL const float* slab[SCH_SLABS];
+} sch_field;
+#define SCH_FIELD sch_field
+#else
+#define SCH_FIELD SCH_GLOBAL const float*
+#endif
+
 /* four flat floats (a nested sch_v3 made PoCL copy samples through the stack) */
 typedef struct
 {
@@ -243,7 +257,7 @@ SCH_FN float sch_grid_coord(float x, float is, float g0, float hi, int* c)
 /* Trilinear interpolation of the packed field at p (relative to the centre); outside the grid the
  * nearest border value is used. *cell: the point index of the cell's first corner. */
 SCH_FN sch_sample sch_sample_cell(
-  SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p, long* cell)
+  SCH_FIELD field, const sch_params* P, sch_v3 p, long* cell)
 {
   int i, j, k;
   float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
@@ -253,7 +267,22 @@ SCH_FN sch_sample sch_sample_cell(
   float ty = fy - (float)j;
   float tz = fz - (float)k;
   const long sy = P->rowFloats, sz = P->sliceFloats;
-  SCH_GLOBAL const float* c000 = field + (long)k * sz + (long)j * sy + (long)i * 4;
+  *cell = ((long)k * P->ny + j) * P->nx + i;
+#ifdef SCH_SLABS
+  /* the slab of cell k, by comparisons (no indexed array), and k within it */
+  const int q = k / P->slabCells;
+  SCH_GLOBAL const float* base = q == 1 ? field.slab[1] : field.slab[0];
+#if SCH_SLABS > 2
+  base = q == 2 ? field.slab[2] : base;
+#endif
+#if SCH_SLABS > 3
+  base = q == 3 ? field.slab[3] : base;
+#endif
+  k -= q * P->slabCells;
+#else
+  SCH_GLOBAL const float* base = field;
+#endif
+  SCH_GLOBAL const float* c000 = base + (long)k * sz + (long)j * sy + (long)i * 4;
   SCH_GLOBAL const float* c001 = c000 + sz;
   /* seven lerps of the four channels at once: along x on the four edges, then y, then z */
   sch_f4 e00 = sch_f4_lerp(sch_f4_load(c000), sch_f4_load(c000 + 4), tx);
@@ -268,11 +297,10 @@ SCH_FN sch_sample sch_sample_cell(
   s.gx = r.y;
   s.gy = r.z;
   s.gz = r.w;
-  *cell = ((long)k * P->ny + j) * P->nx + i;
   return s;
 }
 
-SCH_FN sch_sample sch_sample_field(SCH_GLOBAL const float* field, const sch_params* P, sch_v3 p)
+SCH_FN sch_sample sch_sample_field(SCH_FIELD field, const sch_params* P, sch_v3 p)
 {
   long cell;
   return sch_sample_cell(field, P, p, &cell);
@@ -442,7 +470,7 @@ typedef struct
   int it;
 } sch_walk;
 
-SCH_FN void sch_walk_begin(SCH_GLOBAL const float* field,
+SCH_FN void sch_walk_begin(SCH_FIELD field,
   SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   sch_v3 x,
@@ -467,7 +495,7 @@ SCH_FN void sch_walk_begin(SCH_GLOBAL const float* field,
 }
 
 /* One step; returns 0 when the ray has left the box or failed. */
-SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
+SCH_FN int sch_walk_step(SCH_FIELD field,
   SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   SCH_WALK_AS sch_walk* W)
@@ -613,7 +641,7 @@ SCH_FN int sch_walk_step(SCH_GLOBAL const float* field,
 }
 
 /* After the last step: the final flags and the record of the march. */
-SCH_FN void sch_walk_end(SCH_GLOBAL const float* field,
+SCH_FN void sch_walk_end(SCH_FIELD field,
   const sch_params* P,
   SCH_WALK_AS sch_walk* W,
   sch_ray* R)
@@ -646,7 +674,7 @@ SCH_FN void sch_walk_end(SCH_GLOBAL const float* field,
 
 #ifdef SCH_PRIVATE_WALKS
 /* March from x (on the box) with base step `base` until the ray leaves the box. */
-SCH_FN void sch_march(SCH_GLOBAL const float* field,
+SCH_FN void sch_march(SCH_FIELD field,
   SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   sch_v3 x,
@@ -702,7 +730,7 @@ SCH_FN void sch_missed(sch_v3 o, sch_ray* R)
 
 /* The record of a marched (or missed) ray: side exits, the step-doubling estimate, deflection,
  * and the flight to the film. */
-SCH_FN void sch_record(SCH_GLOBAL const float* field,
+SCH_FN void sch_record(SCH_FIELD field,
   SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   float a,
@@ -774,7 +802,7 @@ SCH_FN void sch_record(SCH_GLOBAL const float* field,
 
 #ifdef SCH_PRIVATE_WALKS
 /* Trace one ray that starts on the emission plane at film coordinates (a, b) and write its record. */
-SCH_FN void sch_trace(SCH_GLOBAL const float* field,
+SCH_FN void sch_trace(SCH_FIELD field,
   SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   float a,
@@ -799,7 +827,7 @@ SCH_FN void sch_trace(SCH_GLOBAL const float* field,
  * advancing them in turn one step at a time: each ray's steps depend on each other, the rays do
  * not, so the memory reads of several rays are in flight together. The same arithmetic per ray
  * as sch_trace: the records are identical. */
-SCH_FN void sch_trace_packet(SCH_GLOBAL const float* field,
+SCH_FN void sch_trace_packet(SCH_FIELD field,
   SCH_GLOBAL const sch_uchar* levels,
   const sch_params* P,
   int pix0,

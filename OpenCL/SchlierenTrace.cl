@@ -16,15 +16,40 @@
 #endif
 #include "SchlierenPhysics.h"
 
+/* Every kernel takes four field buffers: the slabs of a volume split along z (-DSCH_SLABS=S), or
+ * the whole volume in the first and the same buffer bound to the other three, unread. */
+#define SCH_FIELD_ARGS                                                                              \
+  __global const float *field0, __global const float *field1, __global const float *field2,        \
+    __global const float *field3
+static inline SCH_FIELD sch_field_of(__global const float* f0, __global const float* f1,
+  __global const float* f2, __global const float* f3)
+{
+#ifdef SCH_SLABS
+  sch_field F;
+  F.slab[0] = f0;
+  F.slab[1] = f1;
+#if SCH_SLABS > 2
+  F.slab[2] = f2;
+#endif
+#if SCH_SLABS > 3
+  F.slab[3] = f3;
+#endif
+  return F;
+#else
+  return f0;
+#endif
+}
+
 #ifndef SCH_LOCKSTEP_GROUP
 
 /* Trace rays k = first .. first + count - 1 of a pass; ray k goes through pixel
  * P.rayOffset + k * P.rayStride and writes SCH_RECORD floats at out[(k - first) * SCH_RECORD].
  * Each work-item takes SCH_RAYS_PER_ITEM consecutive rays and advances them in turn
  * (sch_trace_packet, built with SCH_PACKET = SCH_RAYS_PER_ITEM). */
-__kernel void sch_trace_rays(__global const float* field, __global const uchar* levels,
+__kernel void sch_trace_rays(SCH_FIELD_ARGS, __global const uchar* levels,
   const sch_params P, const int first, const int count, __global float* out)
 {
+  SCH_FIELD field = sch_field_of(field0, field1, field2, field3);
   int base = (int)get_global_id(0) * SCH_RAYS_PER_ITEM;
   if (base >= count)
     return;
@@ -36,9 +61,10 @@ __kernel void sch_trace_rays(__global const float* field, __global const uchar* 
 }
 
 /* Trace rays from explicit film coordinates (ab[2k], ab[2k+1]): used by tests and probes. */
-__kernel void sch_trace_points(__global const float* field, __global const uchar* levels,
+__kernel void sch_trace_points(SCH_FIELD_ARGS, __global const uchar* levels,
   const sch_params P, __global const float* ab, const int count, __global float* out)
 {
+  SCH_FIELD field = sch_field_of(field0, field1, field2, field3);
   int k = (int)get_global_id(0);
   if (k >= count)
     return;
@@ -61,9 +87,10 @@ __kernel void sch_trace_points(__global const float* field, __global const uchar
  * selects; a probe that was, with 4-wide gathers, ran slower): the gain is the overlapped reads.
  * The arithmetic per ray is sch_trace's: the records are identical. The host launches groups of
  * exactly SCH_LOCKSTEP_GROUP items and never asks this program for the step-doubling estimate. */
-__kernel void sch_trace_lockstep(__global const float* field, __global const uchar* levels,
+__kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
   const sch_params P, const int first, const int count, __global float* out)
 {
+  SCH_FIELD field = sch_field_of(field0, field1, field2, field3);
   const int k = (int)get_global_id(0);
   const int valid = k < count;
   float a = 0.0f, b = 0.0f, s1 = 0.0f;
