@@ -240,7 +240,7 @@ SCH_FN sch_v3 sch_grad(sch_sample s)
   return sch_make(s.gx, s.gy, s.gz);
 }
 
-/* Grid coordinate of x along one axis (x / spacing + g0, g0 = -origin / spacing), clamped to
+/* Grid coordinate of x along one axis (x / spacing + g0, g0: that of the centre), clamped to
  * [0, hi], and the cell it falls in: what the sampler and the octree lookup both need. hi is the
  * largest float below n - 1 (sch_params), so the cell is at most n - 2 without a test of its own;
  * on the far face itself the interpolation weight is 1 - 2^-24 (relative) instead of 1. The clamp
@@ -415,7 +415,7 @@ SCH_FN float sch_skip(const sch_params* P, sch_v3 x, sch_v3 dir, float base, int
   float fy = sch_grid_coord(x.y, P->isy, P->gy0, P->gyMax, &j);
   float fz = sch_grid_coord(x.z, P->isz, P->gz0, P->gzMax, &k);
   float B = (float)(1 << lvl);
-  /* the nearest face (min by comparison: OpenCL's fmin, with its NaN rules, cost more) */
+  /* the nearest face, by comparison (fmin's NaN rules made the grid clamp slower on PoCL) */
   float t = sch_block_exit(fx, i, lvl, B, dir.x * P->isx);
   float ty = sch_block_exit(fy, j, lvl, B, dir.y * P->isy);
   float tz = sch_block_exit(fz, k, lvl, B, dir.z * P->isz);
