@@ -787,7 +787,7 @@ class OpenCLTracer
 public:
   OpenCLTracer(const Volume& volume, std::size_t chunk, int raysPerItem)
     : RT(ocl::GetRuntime())
-    , RaysPerItem(std::max(1, raysPerItem))
+    , RaysPerItem(raysPerItem > 0 ? raysPerItem : (RT.IsCPU ? 4 : 1))
   {
     // over one buffer's limit, the field goes in slabs along z, up to MaxSlabs buffers: slab q
     // holds planes q K .. q K + K (K cells; the shared plane keeps every cell in one slab)

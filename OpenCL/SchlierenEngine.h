@@ -162,7 +162,9 @@ struct TraceSettings
   std::uint32_t Seed = 1;
   int MaxSteps = 0;          ///< per ray; 0: 8 times the box diagonal over the step
   Backend Device = Backend::Auto;
-  int RaysPerWorkItem = 4;   ///< OpenCL: rays traced by each work-item
+  /// OpenCL per-item kernel: rays each work-item advances in turn; 0: 4 on CPU devices, 1 on
+  /// others (GPUs: a ray per work-item). CPU devices trace passes in lock step, which ignores it.
+  int RaysPerWorkItem = 0;
   int RankIndex = 0;         ///< trace only pixels p with p % RankCount == RankIndex (MPI split)
   int RankCount = 1;
 
