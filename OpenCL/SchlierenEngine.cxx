@@ -815,22 +815,32 @@ public:
           << " MiB in all. Resample the data to fewer points, or choose Backend CPU.";
       throw Error(msg.str());
     }
-    cl_int err = CL_SUCCESS;
-    for (int q = 0; q < Slabs; ++q)
+    try
     {
-      const std::uint64_t first = std::uint64_t(q) * SlabCells;
-      const std::uint64_t planes = std::min<std::uint64_t>(SlabCells, nz - 1 - first) + 1;
-      Fields[q] = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-        planes * planeFloats * sizeof(float), const_cast<float*>(volume.Field + first * planeFloats), &err);
-      ocl::Check(err, "clCreateBuffer(field)");
+      cl_int err = CL_SUCCESS;
+      for (int q = 0; q < Slabs; ++q)
+      {
+        const std::uint64_t first = std::uint64_t(q) * SlabCells;
+        const std::uint64_t planes = std::min<std::uint64_t>(SlabCells, nz - 1 - first) + 1;
+        Fields[q] = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+          planes * planeFloats * sizeof(float), const_cast<float*>(volume.Field + first * planeFloats),
+          &err);
+        ocl::Check(err, "clCreateBuffer(field)");
+      }
+      // the octree levels, or one byte that no kernel reads when there are none
+      static unsigned char none = 0;
+      Levels = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+        volume.Levels ? volume.NumberOfPoints() : 1,
+        const_cast<unsigned char*>(volume.Levels ? volume.Levels : &none), &err);
+      ocl::Check(err, "clCreateBuffer(levels)");
+      EnsureOut(chunk);
     }
-    // the octree levels, or one byte that no kernel reads when there are none
-    static unsigned char none = 0;
-    Levels = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      volume.Levels ? volume.NumberOfPoints() : 1,
-      const_cast<unsigned char*>(volume.Levels ? volume.Levels : &none), &err);
-    ocl::Check(err, "clCreateBuffer(levels)");
-    EnsureOut(chunk);
+    catch (...)
+    {
+      // a failed allocation leaves nothing behind on the device (no destructor runs here)
+      Release();
+      throw;
+    }
   }
   // the records buffer holds at least `chunk` rays
   void EnsureOut(std::size_t chunk)
@@ -845,17 +855,22 @@ public:
     Out = clCreateBuffer(RT.Context, CL_MEM_WRITE_ONLY, Chunk * SCH_RECORD * sizeof(float), nullptr, &err);
     ocl::Check(err, "clCreateBuffer(records)");
   }
-  ~OpenCLTracer()
+  ~OpenCLTracer() { Release(); }
+  void Release()
   {
     if (Out)
       clReleaseMemObject(Out);
-    for (cl_mem f : Fields)
+    for (cl_mem& f : Fields)
       if (f)
         clReleaseMemObject(f);
     if (Levels)
       clReleaseMemObject(Levels);
     for (auto& k : Kernels)
       clReleaseKernel(k.second);
+    Out = Levels = nullptr;
+    for (cl_mem& f : Fields)
+      f = nullptr;
+    Kernels.clear();
   }
   OpenCLTracer(const OpenCLTracer&) = delete;
   OpenCLTracer& operator=(const OpenCLTracer&) = delete;
