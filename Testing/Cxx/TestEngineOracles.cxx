@@ -338,7 +338,46 @@ void TestPhysicalScenes()
   CHECK_NEAR(ScenePoint(Scene::BlastWave, b, 1.99, 0, 0).Density / 1.2, 6.0 * std::pow(1.99 / 2.0, 7.5), 1e-6,
     "blast wave: Sedov-Taylor radius R = Radius t^(2/5)");
 }
-} // namespace
+// A small Gaussian sphere (48^3) and its octree levels: for comparing kernels and buffer layouts,
+// not against the closed form.
+struct SmallSphere
+{
+  SceneParameters P = Params();
+  schtest::SceneVolume SV{ Scene::GaussianSphere, P, 48, 1.0 };
+  double Tol = 1e-4 * P.Amplitude;
+  std::vector<unsigned char> Levels = MakeLevels();
+  static SceneParameters Params()
+  {
+    SceneParameters p;
+    p.Amplitude = 1e-4;
+    p.Width = 0.25;
+    return p;
+  }
+  std::vector<unsigned char> MakeLevels() const
+  {
+    std::vector<unsigned char> l(SV.V.NumberOfPoints());
+    ComputeOctreeLevels(SV.V.Dimensions, SV.N1.data(), Tol, l.data());
+    return l;
+  }
+  Volume With(bool octree) const
+  {
+    Volume v = SV.V;
+    if (octree)
+    {
+      v.Levels = Levels.data();
+      v.LevelTolerance = Tol;
+    }
+    return v;
+  }
+};
+
+double LargestDifference(const std::vector<float>& a, const std::vector<float>& b)
+{
+  double d = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+    d = std::max(d, double(std::fabs(a[i] - b[i])));
+  return d;
+}
 
 // The lock-step kernel (CPU devices) and the per-item kernel (GPUs, and the step-doubling estimate)
 // run the same physics: the same photons land in the same places, for every integrator, with and
@@ -351,22 +390,11 @@ void TestKernelsAgree(bool haveCL)
     std::printf("no OpenCL device: lock-step and per-item kernels not compared\n");
     return;
   }
-  SceneParameters p;
-  p.Amplitude = 1e-4;
-  p.Width = 0.25;
-  schtest::SceneVolume sv(Scene::GaussianSphere, p, 48, 1.0);
-  std::vector<unsigned char> levels(sv.V.NumberOfPoints());
-  const double tol = 1e-4 * p.Amplitude;
-  ComputeOctreeLevels(sv.V.Dimensions, sv.N1.data(), tol, levels.data());
+  const SmallSphere sphere;
   for (bool octree : { false, true })
     for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
     {
-      Volume v = sv.V;
-      if (octree)
-      {
-        v.Levels = levels.data();
-        v.LevelTolerance = tol;
-      }
+      const Volume v = sphere.With(octree);
       TraceSettings s;
       s.Device = Backend::OpenCL;
       s.Method = m;
@@ -385,9 +413,7 @@ void TestKernelsAgree(bool haveCL)
         samples[lock] = r.Samples;
       }
       unsetenv("SCHLIEREN_CL_LOCKSTEP");
-      double diff = 0;
-      for (std::size_t i = 0; i < out[0].size(); ++i)
-        diff = std::max(diff, double(std::fabs(out[0][i] - out[1][i])));
+      const double diff = LargestDifference(out[0], out[1]);
       std::printf("%s%s: lock-step against per-item kernel, largest deflection difference %.3g rad, "
                   "samples %.0f and %.0f\n",
         IntegratorName(m), octree ? " + octree" : "", diff, samples[1], samples[0]);
@@ -407,24 +433,13 @@ void TestSlabs(bool haveCL)
     std::printf("no OpenCL device: the split into slabs not tested\n");
     return;
   }
-  SceneParameters p;
-  p.Amplitude = 1e-4;
-  p.Width = 0.25;
-  schtest::SceneVolume sv(Scene::GaussianSphere, p, 48, 1.0);
-  std::vector<unsigned char> levels(sv.V.NumberOfPoints());
-  const double tol = 1e-4 * p.Amplitude;
-  ComputeOctreeLevels(sv.V.Dimensions, sv.N1.data(), tol, levels.data());
+  const SmallSphere sphere;
   const std::string planes20 = std::to_string(20 * 48 * 48 * 16);
   for (bool octree : { false, true })
     for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::RK4 })
       for (const char* lock : { "0", "1" })
       {
-        Volume v = sv.V;
-        if (octree)
-        {
-          v.Levels = levels.data();
-          v.LevelTolerance = tol;
-        }
+        const Volume v = sphere.With(octree);
         TraceSettings s;
         s.Device = Backend::OpenCL;
         s.Method = m;
@@ -438,9 +453,7 @@ void TestSlabs(bool haveCL)
         const TraceResult split = Trace(v, s);
         unsetenv("SCHLIEREN_CL_MAX_ALLOC");
         unsetenv("SCHLIEREN_CL_LOCKSTEP");
-        double diff = 0;
-        for (std::size_t i = 0; i < whole.Deflection.size(); ++i)
-          diff = std::max(diff, double(std::fabs(whole.Deflection[i] - split.Deflection[i])));
+        const double diff = LargestDifference(whole.Deflection, split.Deflection);
         const std::string name = std::string(IntegratorName(m)) + (octree ? " + octree" : "") +
           (lock[0] == '1' ? ", lock-step" : ", per item");
         std::printf("%s: 3 slabs against one buffer, largest deflection difference %.3g rad\n",
@@ -457,9 +470,9 @@ void TestSlabs(bool haveCL)
     ab.insert(ab.end(), { 0.08f * i, 0.05f * i });
   TraceSettings s;
   s.Device = Backend::OpenCL;
-  const std::vector<RayRecord> a = TraceRays(sv.V, s, ab);
+  const std::vector<RayRecord> a = TraceRays(sphere.SV.V, s, ab);
   setenv("SCHLIEREN_CL_MAX_ALLOC", planes20.c_str(), 1);
-  const std::vector<RayRecord> b = TraceRays(sv.V, s, ab);
+  const std::vector<RayRecord> b = TraceRays(sphere.SV.V, s, ab);
   double d = 0;
   for (std::size_t k = 0; k < a.size(); ++k)
     d = std::max(d, double(std::fabs(a[k].DeflX - b[k].DeflX) + std::fabs(a[k].DeflY - b[k].DeflY)));
@@ -469,7 +482,7 @@ void TestSlabs(bool haveCL)
   std::string what;
   try
   {
-    Trace(sv.V, s);
+    Trace(sphere.SV.V, s);
   }
   catch (const Error& e)
   {
@@ -480,6 +493,8 @@ void TestSlabs(bool haveCL)
   CHECK(what.find("MiB per buffer") != std::string::npos && what.find("Backend CPU") != std::string::npos,
     "a volume over four buffers is refused with the limit and the way around it");
 }
+
+} // namespace
 
 int main()
 {
