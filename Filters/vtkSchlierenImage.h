@@ -91,6 +91,15 @@ public:
   vtkTypeMacro(vtkSchlierenImage, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /** Reconstructions of the field between grid points; the values are those of
+   * schlieren::Reconstruction. */
+  enum ReconstructionType
+  {
+    TRILINEAR = 0,
+    CUBIC = 1,
+    AUTO_RECONSTRUCTION = 2
+  };
+
   /** Integrators; the values are those of schlieren::Integrator. */
   enum IntegratorType
   {
@@ -185,6 +194,20 @@ public:
    */
   vtkSetClampMacro(Integrator, int, EULER, AUTO_INTEGRATOR);
   vtkGetMacro(Integrator, int);
+  ///@}
+
+  ///@{
+  /**
+   * How n - 1 and grad n are reconstructed between grid points (a ReconstructionType). Default
+   * TRILINEAR: central differences and trilinear interpolation (second order in the spacing).
+   * CUBIC: fourth-order differences and tricubic interpolation where the data is smooth, the
+   * trilinear scheme beside jumps (shocks, interfaces), so that nothing overshoots there; steps of
+   * StepSize only through smooth data, at most a voxel from cells near a jump. AUTO_RECONSTRUCTION:
+   * CUBIC where the trilinear scheme's error, estimated on Auto's pilot rays, would exceed half the
+   * tolerance, or where it is cheaper at the tolerance (with Integrator AUTO_INTEGRATOR).
+   */
+  vtkSetClampMacro(Reconstruction, int, TRILINEAR, AUTO_RECONSTRUCTION);
+  vtkGetMacro(Reconstruction, int);
   ///@}
 
   ///@{
@@ -379,6 +402,7 @@ protected:
   int Passes = 4;
   double StepSize = 0.5;
   int Integrator = EULER;
+  int Reconstruction = TRILINEAR;
   double Tolerance = 0.0;
   bool KeepInvariant = false;
   bool EstimateError = false;
