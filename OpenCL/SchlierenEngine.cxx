@@ -190,7 +190,9 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
   // 1. the smooth points: two or more points from every border, and along every axis a fourth
   // difference small against the range of the five points (a jump or a kink makes it of the
   // order of the range; smooth data makes it O(h^2) smaller)
-  std::vector<unsigned char> point(n, 0);
+  // (near a border the five points are the five nearest inside: jumpFree, what the step length
+  // needs; point adds the two points of margin that the fourth-order stencils need)
+  std::vector<unsigned char> point(n, 0), jumpFree(n, 0);
   ParallelSlices(dims[2], [&](int k0, int k1) {
     for (int k = k0; k < k1; ++k)
       for (int j = 0; j < dims[1]; ++j)
@@ -198,22 +200,26 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
         {
           const int ijk[3] = { i, j, k };
           const std::size_t idx = i + j * strides[1] + k * strides[2];
-          bool ok = true;
+          bool ok = true, inner = true;
           for (int a = 0; a < 3 && ok; ++a)
           {
-            if (ijk[a] < 2 || ijk[a] > dims[a] - 3)
+            if (dims[a] < 5)
             {
               ok = false;
               break;
             }
+            inner = inner && ijk[a] >= 2 && ijk[a] <= dims[a] - 3;
+            const int c = std::min(std::max(ijk[a], 2), dims[a] - 3);
             const std::size_t s = strides[a];
-            const double f[5] = { n1[idx - 2 * s], n1[idx - s], n1[idx], n1[idx + s], n1[idx + 2 * s] };
+            const std::size_t m = idx + (static_cast<std::ptrdiff_t>(c) - ijk[a]) * static_cast<std::ptrdiff_t>(s);
+            const double f[5] = { n1[m - 2 * s], n1[m - s], n1[m], n1[m + s], n1[m + 2 * s] };
             const double lo = std::min({ f[0], f[1], f[2], f[3], f[4] });
             const double hi = std::max({ f[0], f[1], f[2], f[3], f[4] });
             const double d4 = f[0] - 4 * f[1] + 6 * f[2] - 4 * f[3] + f[4];
             ok = std::fabs(d4) <= threshold * (hi - lo + floor);
           }
-          point[idx] = ok ? 1 : 0;
+          jumpFree[idx] = ok ? 1 : 0;
+          point[idx] = ok && inner ? 1 : 0;
         }
   });
   // 2. n - 1 and the gradient: along each axis, fourth order where the five points of the
@@ -248,31 +254,75 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
   // least src(i + d) over the offsets d; beyond the grid, 0 (cells) or the border's value (levels)
   auto minPass = [&](const std::vector<unsigned char>& src, std::vector<unsigned char>& dst, int a,
                    std::initializer_list<int> offsets, bool clamp) {
-    const std::ptrdiff_t s = static_cast<std::ptrdiff_t>(strides[a]);
-    ParallelSlices(dims[2], [&, a, s, clamp](int k0, int k1) {
+    ParallelSlices(dims[2], [&, a, clamp](int k0, int k1) {
       for (int k = k0; k < k1; ++k)
         for (int j = 0; j < dims[1]; ++j)
-          for (int i = 0; i < dims[0]; ++i)
+        {
+          unsigned char* out = &dst[j * strides[1] + k * strides[2]];
+          if (a == 0)
           {
-            const int ijk[3] = { i, j, k };
-            const std::size_t idx = i + j * strides[1] + k * strides[2];
-            unsigned char m = 1;
+            const unsigned char* in = &src[j * strides[1] + k * strides[2]];
+            int dlo = 0, dhi = 0;
             for (int d : offsets)
             {
-              int c = ijk[a] + d;
-              if (c < 0 || c > dims[a] - 1)
-              {
-                if (!clamp)
-                {
-                  m = 0;
-                  break;
-                }
-                c = c < 0 ? 0 : dims[a] - 1;
-              }
-              m = std::min(m, src[idx + (c - ijk[a]) * s]);
+              dlo = std::min(dlo, d);
+              dhi = std::max(dhi, d);
             }
-            dst[idx] = m;
+            // inside the row no offset reaches past it: one sweep per offset (vectorised)
+            const int i0 = std::max(0, -dlo), i1 = dims[0] - std::max(0, dhi);
+            if (i1 > i0)
+            {
+              std::fill(out + i0, out + i1, static_cast<unsigned char>(1));
+              for (int d : offsets)
+              {
+                unsigned char* __restrict o = out + i0;
+                const unsigned char* __restrict q = in + i0 + d;
+                for (int i = 0; i < i1 - i0; ++i)
+                  o[i] = std::min(o[i], q[i]);
+              }
+            }
+            for (int i = 0; i < dims[0]; ++i)
+            {
+              if (i >= -dlo && i < dims[0] - dhi)
+                continue;
+              unsigned char m = 1;
+              for (int d : offsets)
+              {
+                int c = i + d;
+                if (c < 0 || c > dims[0] - 1)
+                {
+                  if (!clamp)
+                  {
+                    m = 0;
+                    break;
+                  }
+                  c = c < 0 ? 0 : dims[0] - 1;
+                }
+                m = std::min(m, in[c]);
+              }
+              out[i] = m;
+            }
+            continue;
           }
+          std::fill(out, out + dims[0], static_cast<unsigned char>(1));
+          for (int d : offsets)
+          {
+            int c = (a == 1 ? j : k) + d;
+            if (c < 0 || c > dims[a] - 1)
+            {
+              if (!clamp)
+              {
+                std::fill(out, out + dims[0], static_cast<unsigned char>(0));
+                break;
+              }
+              c = c < 0 ? 0 : dims[a] - 1;
+            }
+            const unsigned char* __restrict in = &src[(a == 1 ? c : j) * strides[1] + (a == 2 ? c : k) * strides[2]];
+            unsigned char* __restrict o = out;
+            for (int i = 0; i < dims[0]; ++i)
+              o[i] = std::min(o[i], in[i]);
+          }
+        }
     });
   };
   // cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are, along every axis
@@ -283,9 +333,17 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
     cell.swap(next);
   }
   std::vector<unsigned char>().swap(point);
-  // level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is smooth. A
+  // level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is free of jumps
+  // (its points c - 1 .. c + 2 inside the grid are jumpFree; beyond the grid no step goes). A
   // cube erosion of radius 1 (offsets -1, 0, 1), then radius r -> 2 r by offsets -r, r.
-  std::vector<unsigned char> ero = cell, level(n, 0);
+  std::vector<unsigned char> ero = jumpFree;
+  for (int a = 0; a < 3; ++a)
+  {
+    minPass(ero, next, a, { -1, 0, 1, 2 }, true);
+    ero.swap(next);
+  }
+  std::vector<unsigned char>().swap(jumpFree);
+  std::vector<unsigned char> level(n, 0);
   for (int a = 0; a < 3; ++a)
   {
     minPass(ero, next, a, { -1, 0, 1 }, true);
@@ -298,13 +356,18 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
       minPass(ero, next, a, { -r, r }, true);
       ero.swap(next);
     }
-    bool any = false;
-    for (std::size_t i = 0; i < n; ++i)
-      if (ero[i])
-      {
-        level[i] = static_cast<unsigned char>(q);
+    std::atomic<bool> any(false);
+    ParallelSlices(dims[2], [&, q](int k0, int k1) {
+      bool found = false;
+      for (std::size_t i = k0 * strides[2]; i < k1 * strides[2]; ++i)
+        if (ero[i])
+        {
+          level[i] = static_cast<unsigned char>(q);
+          found = true;
+        }
+      if (found)
         any = true;
-      }
+    });
     if (!any)
       break;
   }
@@ -1809,8 +1872,14 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   bool found = false;
   double bestCost = 1e300, bestErr = 1e300;
   AutoChoice fallback;
+  // each integrator's steps come longest first: once one meets the tolerance, the shorter ones of
+  // that integrator and reconstruction only cost more
+  std::map<int, bool> met;
   for (const Candidate& cand : candidates)
   {
+    const int group = static_cast<int>(cand.Rc) * 8 + static_cast<int>(cand.M);
+    if (met[group])
+      continue;
     TraceSettings t = in;
     t.Method = cand.M;
     t.StepSize = cand.Step;
@@ -1839,6 +1908,8 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
     if (lost)
       continue;
     const double cost = samples * (cand.Rc == Reconstruction::Cubic ? CubicSampleCost : 1.0);
+    if (err + base <= tol && land <= 0.5)
+      met[group] = true;
     if (err + base <= tol && land <= 0.5 && cost < bestCost)
     {
       found = true;
