@@ -26,7 +26,9 @@
  * steps jumped over a feature), `side_rays` (rays that left through a side of the box),
  * `max_drift` (largest | |v| - n | at exit), `max_error` (EstimateError: the largest estimate),
  * `integrator` (string: the integrator traced with) and `step_size` (voxels: the step traced with),
- * `octree` (1 if the octree levels were used, else 0) and, for Integrator AUTO_INTEGRATOR,
+ * `reconstruction` (string: Trilinear or Cubic, as traced),
+ * `octree` (1 if the octree levels were used, else 0) and, for Integrator AUTO_INTEGRATOR (or
+ * Reconstruction AUTO_RECONSTRUCTION),
  * `auto_report` (string: what Auto chose and why), `expected_error` (radians: the chosen setting's
  * error on the pilot rays), `auto_tolerance` (radians, as applied) and `auto_met` (1 if a
  * candidate met it).
@@ -41,6 +43,11 @@
  * - Integrator (EULER): EULER (the paper's), MIDPOINT, RK4, STRAIGHT (line of sight: grad n
  *   integrated along the unbent ray) or AUTO_INTEGRATOR (the cheapest of those, and a step, that
  *   meets Tolerance on a pilot of 16 x 16 rays; StepSize is then ignored).
+ * - Reconstruction (TRILINEAR): TRILINEAR (central differences, trilinear: second order), CUBIC
+ *   (fourth-order differences and tricubic sampling where the data is smooth, the trilinear scheme
+ *   beside jumps; StepSize only through smooth data, a voxel at most from cells near a jump) or
+ *   AUTO_RECONSTRUCTION (CUBIC where the trilinear scheme's error, estimated on the pilot rays,
+ *   exceeds half the Tolerance, or where it is cheaper at it).
  * - Tolerance (radians, default 0 = 1 % of the largest deflection of the pilot rays): Auto's error
  *   allowance on the deflection.
  * - KeepInvariant (off): hold |v| = n after every step. EstimateError (off): trace each ray again

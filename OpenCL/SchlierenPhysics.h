@@ -344,24 +344,34 @@ SCH_FN sch_sample sch_sample_field(SCH_FIELD field, const sch_params* P, sch_v3 
 }
 
 /* The weights of 4-point Lagrange interpolation at t in [0, 1] between the second and third of
- * the points -1, 0, 1, 2: exact for cubics, so the interpolation error is O(h^4). */
-SCH_FN void sch_cubic_weights(float t, float* w)
-{
-  const float tp = t + 1.0f, tm = t - 1.0f, t2 = t - 2.0f;
-  w[0] = -t * tm * t2 * (1.0f / 6.0f);
-  w[1] = tp * tm * t2 * 0.5f;
-  w[2] = -tp * t * t2 * 0.5f;
-  w[3] = tp * t * tm * (1.0f / 6.0f);
-}
+ * the points -1, 0, 1, 2: exact for cubics, so the interpolation error is O(h^4). Scalars, not an
+ * array: PoCL kept small indexed arrays in memory. */
+#define SCH_CUBIC_WEIGHTS(t, w0, w1, w2, w3)                                                       \
+  const float w0 = -(t) * ((t) - 1.0f) * ((t) - 2.0f) * (1.0f / 6.0f);                               \
+  const float w1 = ((t) + 1.0f) * ((t) - 1.0f) * ((t) - 2.0f) * 0.5f;                                \
+  const float w2 = -((t) + 1.0f) * (t) * ((t) - 2.0f) * 0.5f;                                        \
+  const float w3 = ((t) + 1.0f) * (t) * ((t) - 1.0f) * (1.0f / 6.0f)
 
 /* One row of 4 points (x - 1 .. x + 2) blended along x. */
-SCH_FN sch_f4 sch_cubic_row(SCH_GLOBAL const float* row, const float* wx)
+SCH_FN sch_f4 sch_cubic_row(SCH_GLOBAL const float* row, float w0, float w1, float w2, float w3)
 {
   sch_f4 r = sch_f4_zero();
-  r = sch_f4_madd(r, wx[0], sch_f4_load(row));
-  r = sch_f4_madd(r, wx[1], sch_f4_load(row + 4));
-  r = sch_f4_madd(r, wx[2], sch_f4_load(row + 8));
-  r = sch_f4_madd(r, wx[3], sch_f4_load(row + 12));
+  r = sch_f4_madd(r, w0, sch_f4_load(row));
+  r = sch_f4_madd(r, w1, sch_f4_load(row + 4));
+  r = sch_f4_madd(r, w2, sch_f4_load(row + 8));
+  r = sch_f4_madd(r, w3, sch_f4_load(row + 12));
+  return r;
+}
+
+/* One plane of 4 x 4 points blended along x, then y. */
+SCH_FN sch_f4 sch_cubic_plane(SCH_GLOBAL const float* p, long sy, float x0, float x1, float x2,
+  float x3, float y0, float y1, float y2, float y3)
+{
+  sch_f4 r = sch_f4_zero();
+  r = sch_f4_madd(r, y0, sch_cubic_row(p, x0, x1, x2, x3));
+  r = sch_f4_madd(r, y1, sch_cubic_row(p + sy, x0, x1, x2, x3));
+  r = sch_f4_madd(r, y2, sch_cubic_row(p + 2 * sy, x0, x1, x2, x3));
+  r = sch_f4_madd(r, y3, sch_cubic_row(p + 3 * sy, x0, x1, x2, x3));
   return r;
 }
 
@@ -372,21 +382,17 @@ SCH_FN sch_f4 sch_cubic_row(SCH_GLOBAL const float* row, const float* wx)
 SCH_FN sch_sample sch_sample_cubic_at(SCH_GLOBAL const float* base, const sch_params* P, int i,
   int j, int k, float fx, float fy, float fz)
 {
-  float wx[4], wy[4], wz[4];
-  sch_cubic_weights(fx - (float)i, wx);
-  sch_cubic_weights(fy - (float)j, wy);
-  sch_cubic_weights(fz - (float)k, wz);
+  const float tx = fx - (float)i, ty = fy - (float)j, tz = fz - (float)k;
+  SCH_CUBIC_WEIGHTS(tx, x0, x1, x2, x3);
+  SCH_CUBIC_WEIGHTS(ty, y0, y1, y2, y3);
+  SCH_CUBIC_WEIGHTS(tz, z0, z1, z2, z3);
   const long sy = P->rowFloats, sz = P->sliceFloats;
   SCH_GLOBAL const float* c = base + (long)(k - 1) * sz + (long)(j - 1) * sy + (long)(i - 1) * 4;
   sch_f4 r = sch_f4_zero();
-  int b, a;
-  for (b = 0; b < 4; ++b)
-  {
-    sch_f4 plane = sch_f4_zero();
-    for (a = 0; a < 4; ++a)
-      plane = sch_f4_madd(plane, wy[a], sch_cubic_row(c + (long)b * sz + (long)a * sy, wx));
-    r = sch_f4_madd(r, wz[b], plane);
-  }
+  r = sch_f4_madd(r, z0, sch_cubic_plane(c, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z1, sch_cubic_plane(c + sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z2, sch_cubic_plane(c + 2 * sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z3, sch_cubic_plane(c + 3 * sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
   sch_sample s;
   s.n1 = r.x;
   s.gx = r.y;
