@@ -193,7 +193,16 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
   // (near a border the five points are the five nearest inside: jumpFree, what the step length
   // needs; point adds the two points of margin that the fourth-order stencils need)
   std::vector<unsigned char> point(n, 0), jumpFree(n, 0);
-  ParallelSlices(dims[2], [&](int k0, int k1) {
+  // the loops read the grid's sizes from locals (captured by value): byte and float stores could
+  // alias captured references, which the compiler must then reload at every point
+  const int G[3] = { dims[0], dims[1], dims[2] };
+  const std::size_t St[3] = { strides[0], strides[1], strides[2] };
+  const double H[3] = { spacing[0], spacing[1], spacing[2] };
+  unsigned char* const PT = point.data();
+  unsigned char* const JF = jumpFree.data();
+  ParallelSlices(dims[2], [=](int k0, int k1) {
+    const int dims[3] = { G[0], G[1], G[2] };
+    const std::size_t strides[3] = { St[0], St[1], St[2] };
     for (int k = k0; k < k1; ++k)
       for (int j = 0; j < dims[1]; ++j)
         for (int i = 0; i < dims[0]; ++i)
@@ -218,14 +227,18 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
             const double d4 = f[0] - 4 * f[1] + 6 * f[2] - 4 * f[3] + f[4];
             ok = std::fabs(d4) <= threshold * (hi - lo + floor);
           }
-          jumpFree[idx] = ok ? 1 : 0;
-          point[idx] = ok && inner ? 1 : 0;
+          JF[idx] = ok ? 1 : 0;
+          PT[idx] = ok && inner ? 1 : 0;
         }
   });
   // 2. n - 1 and the gradient: along each axis, fourth order where the five points of the
   // difference are all smooth (a point beside a jump may pass the test on its own), PackField's
   // second order elsewhere
-  ParallelSlices(dims[2], [&](int k0, int k1) {
+  ParallelSlices(dims[2], [=](int k0, int k1) {
+    const int dims[3] = { G[0], G[1], G[2] };
+    const std::size_t strides[3] = { St[0], St[1], St[2] };
+    const double spacing[3] = { H[0], H[1], H[2] };
+    const unsigned char* const point = PT;
     for (int k = k0; k < k1; ++k)
       for (int j = 0; j < dims[1]; ++j)
         for (int i = 0; i < dims[0]; ++i)
@@ -254,49 +267,55 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
   // least src(i + d) over the offsets d; beyond the grid, 0 (cells) or the border's value (levels)
   auto minPass = [&](const std::vector<unsigned char>& src, std::vector<unsigned char>& dst, int a,
                    std::initializer_list<int> offsets, bool clamp) {
-    ParallelSlices(dims[2], [&, a, clamp](int k0, int k1) {
+    // everything the loops read in locals: byte stores may alias any captured value, which kept
+    // the compiler from vectorising (and reloaded the bounds every iteration)
+    int off[4] = { 0, 0, 0, 0 }, no = 0, dlo = 0, dhi = 0;
+    for (int d : offsets)
+    {
+      off[no++] = d;
+      dlo = std::min(dlo, d);
+      dhi = std::max(dhi, d);
+    }
+    const int nx = dims[0], ny = dims[1], na = dims[a];
+    const std::size_t sy = strides[1], sz = strides[2];
+    const unsigned char* const S = src.data();
+    unsigned char* const D = dst.data();
+    ParallelSlices(dims[2], [=](int k0, int k1) {
       for (int k = k0; k < k1; ++k)
-        for (int j = 0; j < dims[1]; ++j)
+        for (int j = 0; j < ny; ++j)
         {
-          unsigned char* out = &dst[j * strides[1] + k * strides[2]];
+          unsigned char* __restrict out = D + j * sy + k * sz;
           if (a == 0)
           {
-            const unsigned char* in = &src[j * strides[1] + k * strides[2]];
-            int dlo = 0, dhi = 0;
-            for (int d : offsets)
-            {
-              dlo = std::min(dlo, d);
-              dhi = std::max(dhi, d);
-            }
+            const unsigned char* __restrict in = S + j * sy + k * sz;
             // inside the row no offset reaches past it: one sweep per offset (vectorised)
-            const int i0 = std::max(0, -dlo), i1 = dims[0] - std::max(0, dhi);
+            const int i0 = std::max(0, -dlo), i1 = nx - std::max(0, dhi);
             if (i1 > i0)
             {
               std::fill(out + i0, out + i1, static_cast<unsigned char>(1));
-              for (int d : offsets)
+              for (int o = 0; o < no; ++o)
               {
-                unsigned char* __restrict o = out + i0;
-                const unsigned char* __restrict q = in + i0 + d;
-                for (int i = 0; i < i1 - i0; ++i)
-                  o[i] = std::min(o[i], q[i]);
+                const int d = off[o];
+                for (int i = i0; i < i1; ++i)
+                  out[i] = std::min(out[i], in[i + d]);
               }
             }
-            for (int i = 0; i < dims[0]; ++i)
+            for (int i = 0; i < nx; ++i)
             {
-              if (i >= -dlo && i < dims[0] - dhi)
+              if (i >= i0 && i < i1)
                 continue;
               unsigned char m = 1;
-              for (int d : offsets)
+              for (int o = 0; o < no; ++o)
               {
-                int c = i + d;
-                if (c < 0 || c > dims[0] - 1)
+                int c = i + off[o];
+                if (c < 0 || c > nx - 1)
                 {
                   if (!clamp)
                   {
                     m = 0;
                     break;
                   }
-                  c = c < 0 ? 0 : dims[0] - 1;
+                  c = c < 0 ? 0 : nx - 1;
                 }
                 m = std::min(m, in[c]);
               }
@@ -304,23 +323,22 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
             }
             continue;
           }
-          std::fill(out, out + dims[0], static_cast<unsigned char>(1));
-          for (int d : offsets)
+          std::fill(out, out + nx, static_cast<unsigned char>(1));
+          for (int o = 0; o < no; ++o)
           {
-            int c = (a == 1 ? j : k) + d;
-            if (c < 0 || c > dims[a] - 1)
+            int c = (a == 1 ? j : k) + off[o];
+            if (c < 0 || c > na - 1)
             {
               if (!clamp)
               {
-                std::fill(out, out + dims[0], static_cast<unsigned char>(0));
+                std::fill(out, out + nx, static_cast<unsigned char>(0));
                 break;
               }
-              c = c < 0 ? 0 : dims[a] - 1;
+              c = c < 0 ? 0 : na - 1;
             }
-            const unsigned char* __restrict in = &src[(a == 1 ? c : j) * strides[1] + (a == 2 ? c : k) * strides[2]];
-            unsigned char* __restrict o = out;
-            for (int i = 0; i < dims[0]; ++i)
-              o[i] = std::min(o[i], in[i]);
+            const unsigned char* __restrict in = S + (a == 1 ? c : j) * sy + (a == 2 ? c : k) * sz;
+            for (int i = 0; i < nx; ++i)
+              out[i] = std::min(out[i], in[i]);
           }
         }
     });
