@@ -876,7 +876,11 @@ int vtkRefractiveIndex::RequestData(
   // are refused; cell arrays become point arrays.
   std::vector<std::string> notes;
   vtkSmartPointer<vtkDataObject> pointInput; // the input with cell arrays made point arrays
+  int outWhole[6];
+  outInfo->Get(SDDP::WHOLE_EXTENT(), outWhole);
+  if (!resampled || (!IsEmpty(outWhole) && outInfo->Has(vtkDataObject::ORIGIN())))
   {
+    // (without a resampling grid, RequestInformation's error is repeated below instead)
     std::string problem = this->FlatInputError(inputObject);
     if (problem.empty())
     {
