@@ -405,9 +405,16 @@ std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector
       }
     });
   }
-  fill(TEMPERATURE_ARRAY, Kind::Temperature, "TemperatureArray");
-  fill(PRESSURE_ARRAY, Kind::Pressure, "PressureArray");
-  fill(MIXTURE_FRACTION_ARRAY, Kind::MixtureFraction, "MixtureFractionArray");
+  if (model == IDEAL_GAS || model == CIDDOR)
+  {
+    fill(TEMPERATURE_ARRAY, Kind::Temperature, "TemperatureArray");
+    fill(PRESSURE_ARRAY, Kind::Pressure, "PressureArray");
+  }
+  if ((model == GLADSTONE_DALE_MIXTURE && this->MixtureComposition == MIXTURE_FRACTION) ||
+    (model == IDEAL_GAS && this->IdealGasComposition == MIXTURE_FRACTION))
+  {
+    fill(MIXTURE_FRACTION_ARRAY, Kind::MixtureFraction, "MixtureFractionArray");
+  }
   if (this->Model == AUTOMATIC && model == IDEAL_GAS)
   {
     notes.back() += " Temperature '" + arrays[TEMPERATURE_ARRAY] + "', pressure '" +
