@@ -135,7 +135,35 @@ planar2 = RefractiveIndex(Input=thick, Symmetry="Planar", Span=L)
 vol2, _ = fetch(planar2)
 T.check(list(vol2.GetDimensions()) == [nx, ny, 3], "Planar, one cell thick: the same grid")
 T.close(ct.grid_arrays(vol2, "n_minus_1")[0], n1, 1e-12, "Planar, one cell thick: the same n - 1 (its mid-plane)")
-for p in (knife, fringes, planar2):
+# The same 2D field on triangles in the plane z = 0.3 (a vtkPolyData, as a 2D solver writes it):
+# resampled in the plane (AutomaticDimension 97 along x gives the image's spacing, so the grid's
+# points sit on the mesh's nodes, moved by the 1e-6 pull-in of the box): n - 1 equals the nodes'
+# values to 1e-4 of A (a grid off the nodes would see the triangles' linear interpolation, up to
+# (h/s)^2/4 = 0.17 % of A).
+from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkPlaneSource
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+
+tplane = vtkPlaneSource()
+tplane.SetOrigin(ox, oy, 0.3)
+tplane.SetPoint1(ox + (nx - 1) * H, oy, 0.3)
+tplane.SetPoint2(ox, oy + (ny - 1) * H, 0.3)
+tplane.SetResolution(nx - 1, ny - 1)
+tri = vtkTriangleFilter()
+tri.SetInputConnection(tplane.GetOutputPort())
+tri.Update()
+tris = tri.GetOutput()
+tp = vtk_to_numpy(tris.GetPoints().GetData())
+tv = numpy_to_vtk(A * np.exp(-((tp[:, 0] - CA) ** 2 + (tp[:, 1] - CB) ** 2) / S ** 2), deep=1)
+tv.SetName("n_minus_1")
+tris.GetPointData().AddArray(tv)
+planar3 = RefractiveIndex(Input=ct.producer(globals(), tris), Symmetry="Planar", Span=L, AutomaticDimension=nx)
+vol3, _ = fetch(planar3)
+T.check(list(vol3.GetDimensions()) == [nx, ny, 3], "Planar on triangles: %s points (%d along x)" % (vol3.GetDimensions(), nx))
+n3 = ct.grid_arrays(vol3, "n_minus_1")[0]
+T.close(n3 / A, np.repeat(field[np.newaxis], 3, axis=0) / A, 1e-4,
+        "Planar on triangles: n - 1 = the 2D field at the nodes, uniform across (of A)")
+for p in (knife, fringes, planar2, planar3):
     Delete(p)
 
 # --- 2. Axisymmetric ----------------------------------------------------------------------------
