@@ -907,7 +907,10 @@ int vtkRefractiveIndex::RequestData(
     }
     for (const std::string& note : notes)
     {
-      vtkOutputWindowDisplayText((note + "\n").c_str());
+      if (rank == 0) // the same on every rank: said once
+      {
+        vtkOutputWindowDisplayText((note + "\n").c_str());
+      }
     }
     if (pointInput != inputObject)
     {

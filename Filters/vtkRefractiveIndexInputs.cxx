@@ -11,12 +11,14 @@
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
+#include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -82,6 +84,77 @@ std::vector<std::string> ArrayNames(vtkDataObject* data)
     });
   }
   return names;
+}
+
+/** The controller when there is more than one process, else null. */
+vtkMultiProcessController* Parallel()
+{
+  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
+  return c && c->GetNumberOfProcesses() > 1 ? c : nullptr;
+}
+
+/** Every rank's `names`, in rank order, each name once (the local list on one process). */
+std::vector<std::string> GatherNames(const std::vector<std::string>& names)
+{
+  vtkMultiProcessController* c = Parallel();
+  if (!c)
+  {
+    return names;
+  }
+  std::string mine;
+  for (const std::string& n : names)
+  {
+    mine += n + '\n';
+  }
+  const int ranks = c->GetNumberOfProcesses();
+  vtkIdType length = static_cast<vtkIdType>(mine.size());
+  std::vector<vtkIdType> lengths(ranks), offsets(ranks, 0);
+  c->AllGather(&length, lengths.data(), 1);
+  for (int r = 1; r < ranks; ++r)
+  {
+    offsets[r] = offsets[r - 1] + lengths[r - 1];
+  }
+  std::vector<char> all(static_cast<std::size_t>(offsets[ranks - 1] + lengths[ranks - 1]) + 1, '\0');
+  c->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+  std::vector<std::string> global;
+  std::string current;
+  for (std::size_t i = 0; i + 1 < all.size(); ++i)
+  {
+    if (all[i] == '\n')
+    {
+      if (std::find(global.begin(), global.end(), current) == global.end())
+      {
+        global.push_back(current);
+      }
+      current.clear();
+    }
+    else
+    {
+      current += all[i];
+    }
+  }
+  return global;
+}
+
+/**
+ * ArrayNames over every rank's piece, in rank order, so that every rank makes the same choices and
+ * the same errors (a rank's piece may be empty).
+ */
+std::vector<std::string> GlobalArrayNames(vtkDataObject* data)
+{
+  return GatherNames(ArrayNames(data));
+}
+
+/** The largest of `value` over the ranks (itself on one process). */
+int GlobalMax(int value)
+{
+  vtkMultiProcessController* c = Parallel();
+  int global = value;
+  if (c)
+  {
+    c->AllReduce(&value, &global, 1, vtkCommunicator::MAX_OP);
+  }
+  return global;
 }
 
 std::string List(const std::vector<std::string>& names)
@@ -247,7 +320,7 @@ std::string vtkRefractiveIndex::GetArrayInUse(int idx) const
 //------------------------------------------------------------------------------
 std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector<std::string>& notes)
 {
-  const std::vector<std::string> present = ArrayNames(input);
+  const std::vector<std::string> present = GlobalArrayNames(input);
   this->ResolvedArrays.assign(CO2_ARRAY + 1, std::string());
   for (int idx = 0; idx <= CO2_ARRAY; ++idx)
   {
@@ -404,6 +477,18 @@ std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector
         arrays[INPUT_ARRAY] = a->GetName();
       }
     });
+    // the same on every rank: the first rank's that has one
+    const std::vector<std::string> candidates =
+      GatherNames(std::vector<std::string>{ arrays[INPUT_ARRAY] });
+    arrays[INPUT_ARRAY].clear();
+    for (const std::string& c : candidates)
+    {
+      if (!c.empty())
+      {
+        arrays[INPUT_ARRAY] = c;
+        break;
+      }
+    }
   }
   if (model == IDEAL_GAS || model == CIDDOR)
   {
@@ -452,15 +537,19 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(vtkDataObject* in
         }
       }
     });
+    integral = GlobalMax(integral ? 1 : 0) != 0;
+    inPoints = GlobalMax(inPoints ? 1 : 0) != 0;
+    inCells = GlobalMax(inCells ? 1 : 0) != 0;
     if (integral || ((inPoints || inCells) && IsIdName(name)))
     {
       std::ostringstream m;
       m << "The array '" << name << "' is "
-        << (integral ? "of an integer type (" + type + ")" : std::string("named as an id"))
+        << (integral ? "of an integer type" + (type.empty() ? std::string() : " (" + type + ")")
+                     : std::string("named as an id"))
         << ": ids and index arrays (ObjectId, GlobalElementId, vtkOriginalCellIds, ...) are not "
            "a density, temperature, pressure or index field. Choose the field itself (Model "
            "and its arrays); arrays present: "
-        << List(ArrayNames(input)) << ".";
+        << List(GlobalArrayNames(input)) << ".";
       error = m.str();
       return nullptr;
     }
@@ -531,8 +620,26 @@ std::string vtkRefractiveIndex::FlatInputError(vtkDataObject* input)
     }
     return std::string();
   }
-  double b[6];
-  if (!BoundsOf(input, b))
+  double b[6] = { 0, -1, 0, -1, 0, -1 };
+  const bool have = BoundsOf(input, b);
+  if (vtkMultiProcessController* c = Parallel())
+  {
+    // every rank decides on the whole input's bounds (a piece may be empty)
+    double lo[3], hi[3], glo[3], ghi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = have ? -b[2 * a] : -VTK_DOUBLE_MAX;
+      hi[a] = have ? b[2 * a + 1] : -VTK_DOUBLE_MAX;
+    }
+    c->AllReduce(lo, glo, 3, vtkCommunicator::MAX_OP);
+    c->AllReduce(hi, ghi, 3, vtkCommunicator::MAX_OP);
+    for (int a = 0; a < 3; ++a)
+    {
+      b[2 * a] = -glo[a];
+      b[2 * a + 1] = ghi[a];
+    }
+  }
+  if (!(b[0] <= b[1]))
   {
     return std::string();
   }
