@@ -416,6 +416,14 @@ int vtkRefractiveIndex::RequestInformation(
   }
   else if (vtkImageData::SafeDownCast(input))
   {
+    // A 2D image without Symmetry: said here, so that nothing downstream adds its own message.
+    const std::string flat = this->FlatInputError(input);
+    if (!flat.empty())
+    {
+      outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+      vtkErrorMacro(<< flat);
+      return 0;
+    }
     if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
     {
       return 0;
@@ -430,6 +438,14 @@ int vtkRefractiveIndex::RequestInformation(
     if (!this->SamplingGrid(inInfo, whole, origin, spacing))
     {
       outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+      return 0;
+    }
+    const std::string flat = this->FlatInputError(vtkDataObject::GetData(inInfo));
+    if (!flat.empty())
+    {
+      this->SamplingError = flat; // repeated by RequestData
+      outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+      vtkErrorMacro(<< flat);
       return 0;
     }
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);

@@ -239,4 +239,16 @@ expect_error(lambda: RefractiveIndex(Input=source, Symmetry="Axisymmetric", Symm
 expect_error(lambda: RefractiveIndex(Input=flat), "a 2D image with Symmetry None", "2D", "Symmetry", "Planar")
 expect_error(lambda: RefractiveIndex(Input=source), "a 2D polydata with Symmetry None", "Symmetry", "Planar")
 
+# The chain on a 2D image: RefractiveIndex names Symmetry; SchlierenImage says only that its input is
+# empty because of the error upstream (not a second, misleading reason about the grid or n).
+with st.CapturedOutput() as out:
+    chain_index = RefractiveIndex(Input=flat)
+    chain = SchlierenImage(Input=chain_index, Resolution=[16, 16], Passes=1)
+    chain.UpdatePipeline()
+text = out.text
+T.check("Symmetry" in text and "n <= 0" not in text and "tracing needs" not in text
+        and ("volume is empty" in text or "vtkSchlierenImage" not in text),
+        "a 2D image into RefractiveIndex into SchlierenImage: the cause once (Symmetry), no misleading "
+        "second message")
+
 T.finish()
