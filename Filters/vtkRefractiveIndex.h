@@ -525,10 +525,11 @@ private:
   bool ResolvedHoldsN = false;
   std::vector<std::string> ResolvedArrays;
   // The symmetric grid's geometry (SymmetricGrid): the axis normal to the input's plane, that
-  // plane's coordinate, the half plane of the radius (+1 or -1).
+  // plane's coordinate, the half plane of the radius (+1 or -1), the input's largest radius.
   int PlaneAxis = 2;
   double PlaneCoordinate = 0.0;
   double RadialSign = 1.0;
+  double RadialExtent = 0.0; // the input's largest r
 };
 
 #endif

@@ -823,6 +823,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
     const double rmax = b[2 * radial + 1], rmin = b[2 * radial];
     this->RadialSign = rmax >= -rmin ? 1.0 : -1.0;
     const double R = this->RadialSign > 0 ? rmax : -rmin;
+    this->RadialExtent = R;
     if (!(R > 0))
     {
       std::ostringstream m;
@@ -930,6 +931,7 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     const int axial = this->SymmetryAxis;
     const int radial = 3 - axial - thin;
     const double hmin = std::min(h[radial], h[thin]);
+    const double outer = this->RadialExtent * (1.0 - 1e-6); // a hair inside the outermost cells
     std::map<long long, int> index; // quantised r -> distinct radius
     std::vector<double> radii;
     std::vector<int> radiusOf(static_cast<std::size_t>(dims[radial]) * dims[thin]);
@@ -939,7 +941,10 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
       {
         const double dr = o[radial] + ir * h[radial];
         const double dt = o[thin] + it * h[thin] - this->PlaneCoordinate;
-        const double r = std::sqrt(dr * dr + dt * dt);
+        // Beyond the input's largest radius (the box's corners) the field is carried outward
+        // at its value there (zero gradient in r, as at a CFD outflow boundary), rather than
+        // left to AmbientMode: no void to fill where the revolution, not the flow, ends.
+        const double r = std::min(std::sqrt(dr * dr + dt * dt), outer);
         const long long key = std::llround(r / (1e-9 * hmin));
         auto found = index.find(key);
         int u;
