@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkRefractionOctree.h"
+#include "SchlierenGuard.h"
+
+#include <sstream>
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -47,7 +50,14 @@ int vtkRefractionOctree::RequestData(
   std::string problem;
   std::vector<float> n1;
   int dims[3] = { 0, 0, 0 };
-  if (!input || !output)
+  if (!(this->Tolerance >= 0.0 && this->Tolerance <= 1.0))
+  {
+    std::ostringstream msg;
+    msg << "Tolerance is " << this->Tolerance
+        << ": it must be in [0, 1] (a spread of n - 1, index units; 0: automatic).";
+    problem = msg.str();
+  }
+  else if (!input || !output)
   {
     problem = "RefractionOctree needs a vtkImageData input with the point array 'n_minus_1'. "
               "Resample the data onto an image and apply RefractiveIndex first.";
@@ -164,4 +174,12 @@ void vtkRefractionOctree::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Tolerance: " << this->Tolerance
      << (this->Tolerance > 0 ? "" : " (automatic: a fraction of the range of n - 1)") << "\n";
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkRefractionOctree::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return SchlierenGuarded(this,
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); });
 }

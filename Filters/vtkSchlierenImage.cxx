@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSchlierenImage.h"
+#include "SchlierenGuard.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -20,6 +21,7 @@
 #include "vtkStringArray.h"
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -123,7 +125,7 @@ struct vtkSchlierenImage::vtkInternals
   // the whole volume of the last trace (n - 1 and gradient, octree levels) and the input it came
   // from: kept while only the view, optics or passes change
   std::string VolumeKey;
-  std::vector<float> Packed;
+  schlieren::AlignedFloats Packed; // page-aligned: a CPU OpenCL device traces it in place
   std::vector<unsigned char> Levels;
   schlieren::Volume Volume;
 };
@@ -499,7 +501,7 @@ int vtkSchlierenImage::RequestData(
   }
   std::string problem;
   schlieren::Volume volume;
-  std::vector<float> packed;
+  schlieren::AlignedFloats packed;
   std::vector<unsigned char> levels;
   // steps 1-3: the volume from the input; 0 when it failed (reported, agreed by all ranks)
   auto buildVolume = [&]() -> int {
@@ -658,6 +660,13 @@ int vtkSchlierenImage::RequestData(
     // share of the photons.
     try
     {
+      std::ostringstream what;
+      what << "Tracing the " << volume.Dimensions[0] << " x " << volume.Dimensions[1] << " x "
+           << volume.Dimensions[2] << " volume";
+      schlieren::CheckHostMemory(double(total) * (schlieren::VolumeBytesPerPoint() - 4.0),
+        what.str(),
+        "Resample the data to fewer points (RefractiveIndex SamplingDimensions or "
+        "AutomaticDimension), or trace a subset (ExtractSubset).");
       packed.resize(4 * total);
       schlieren::PackField(volume.Dimensions, volume.Spacing, field.data(), packed.data());
       std::vector<float>().swap(field);
@@ -860,6 +869,8 @@ int vtkSchlierenImage::RequestData(
     fd->AddArray(a);
   };
   addNumber("cutoff_scale", result.CutoffScaleUsed);
+  // what the user was warned of (empty: nothing), for scripts that check an image is usable
+  addString("warnings", warnings + (result.Warnings != warnings ? result.Warnings : std::string()));
   addString("backend", result.BackendUsed.empty() ? backendUsed : result.BackendUsed);
   addString("device", result.DeviceName.empty() ? deviceName : result.DeviceName);
   addNumber("photons", result.Photons);
@@ -932,4 +943,12 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Backend: "
      << (this->Backend == OPENCL ? "OpenCL" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkSchlierenImage::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return SchlierenGuarded(this,
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); });
 }
