@@ -1171,22 +1171,13 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   const ProgressFunction& progress)
 {
   CheckVolume(volume);
-  if (s.Passes < 1 || s.Passes > 1000000)
-  {
-    std::ostringstream msg;
-    msg << "Passes is " << s.Passes << ": it must be at least 1 (and at most 1000000).";
-    throw Error(msg.str());
-  }
+  CheckSettings(s);
   if (s.Method == Integrator::Auto)
     throw Error("Accumulate: resolve Integrator Auto first (ResolveAuto).");
   if (s.RussianRoulette && !(s.CutoffScale > 0) &&
     (s.Mode == Cutoff::KnifeEdge || s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular))
     throw Error("Photon killing (RussianRoulette) needs a fixed CutoffScale: the automatic scale is "
                 "known only after the trace.");
-  if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))
-    throw Error("Wavelength must be between 100 and 100000 nm.");
-  if (s.Mode == Cutoff::BOS && !(s.BackgroundDistance >= 0 && std::isfinite(s.BackgroundDistance)))
-    throw Error("BackgroundDistance must be a finite distance >= 0.");
   const FilmGeometry film = MakeFilm(volume, s);
   sch_params P = MakeParams(volume, s, film);
   if (sums.Size[0] != film.Size[0] || sums.Size[1] != film.Size[1] || sums.Count.empty())
