@@ -530,9 +530,12 @@ namespace
 std::string ChosenName(vtkRefractiveIndex* self, int idx)
 {
   vtkInformation* info = self->GetInputArrayInformation(idx);
-  return info && info->Has(vtkDataObject::FIELD_NAME()) && info->Get(vtkDataObject::FIELD_NAME())
+  std::string name = info && info->Has(vtkDataObject::FIELD_NAME()) && info->Get(vtkDataObject::FIELD_NAME())
     ? std::string(info->Get(vtkDataObject::FIELD_NAME()))
     : std::string();
+  // an array property the user never set keeps its XML default, the index itself ("1" for the
+  // temperature): that is no choice, not an array named "1"
+  return name == std::to_string(idx) ? std::string() : name;
 }
 
 /** The array chosen for input-array index `idx` among the point arrays of `data`, or null. */
@@ -750,8 +753,16 @@ std::string GatherFields(vtkRefractiveIndex* self, vtkImageData* grid, const std
       }
       else
       {
-        m << "('" << name << "', " << role.Property
-          << ") but the input has no point array of that name.";
+        m << "('" << name << "', " << role.Property << ") but ";
+        if (grid->GetCellData()->GetArray(name.c_str()))
+        {
+          m << "'" << name << "' is a cell array, and the model reads point arrays: convert it "
+            << "first (Cell Data to Point Data).";
+        }
+        else
+        {
+          m << "the input has no point array of that name.";
+        }
       }
       m << " Point arrays present: " << PointArrayNames(grid) << ".";
       return m.str();

@@ -880,6 +880,12 @@ int vtkSchlierenImage::RequestData(
   addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
   addNumber("failed_rays", result.FailedRays);
   addNumber("missed_rays", result.MissedRays);
+  double landed = 0; // photons that reached the film (0: a blank image, which the warnings explain)
+  for (double c : sums.Count)
+  {
+    landed += c;
+  }
+  addNumber("landed_photons", landed);
   addNumber("underresolved_rays", result.UnderresolvedRays);
   addNumber("side_rays", result.SideRays);
   addNumber("max_drift", result.MaxDrift);
