@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -682,6 +683,11 @@ int vtkSchlierenImage::RequestData(
     {
       problem = e.what();
     }
+    catch (const std::bad_alloc&)
+    {
+      problem = "Out of memory while packing the volume (std::bad_alloc): resample it to fewer "
+                "points.";
+    }
     if (!agree(problem))
     {
       return 0;
@@ -744,6 +750,8 @@ int vtkSchlierenImage::RequestData(
     const schlieren::FilmGeometry film = schlieren::MakeFilm(volume, settings);
     if (!reuse)
     {
+      cache.Sums.Resize(0, 0); // the old film goes before the new one is checked and made
+      schlieren::CheckFilmMemory(film.Size);
       cache.Sums.Resize(film.Size[0], film.Size[1]);
     }
     cache.Key.clear(); // valid again only once the passes below are all in
@@ -766,6 +774,13 @@ int vtkSchlierenImage::RequestData(
   {
     cache.Sums.Resize(0, 0);
     problem = e.what();
+  }
+  catch (const std::bad_alloc&)
+  {
+    // here, not in ProcessRequest's guard: under MPI the other ranks wait in agree() below
+    cache.Sums.Resize(0, 0);
+    problem = "Out of memory while tracing (std::bad_alloc): lower Resolution or resample the "
+              "volume to fewer points.";
   }
   if (!agree(problem))
   {

@@ -1154,16 +1154,6 @@ void CheckVolume(const Volume& v)
   if (!v.Field)
     throw Error("The volume has no field data.");
 }
-
-// The film's sums and images, checked against the machine's memory before they are made.
-void CheckFilmMemory(const int size[2])
-{
-  std::ostringstream what;
-  what << "A film of " << size[0] << " x " << size[1] << " pixels";
-  CheckHostMemory(double(size[0]) * size[1] * FilmBytesPerPixel(), what.str(),
-    "Lower Resolution (the film costs about " + std::to_string(int(FilmBytesPerPixel())) +
-      " bytes per pixel).");
-}
 } // namespace
 
 void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
@@ -1256,7 +1246,7 @@ static std::string PhotonWarnings(const Volume& volume, const FilmGeometry& film
   }
   else if (!(landed > 0))
     msg << "No photon reached the film: all " << kept << " photons that left the volume landed "
-        << "off it (the film is " << film.Size[0] * film.PixelSize << " world units wide and "
+        << "off the film (it is " << film.Size[0] * film.PixelSize << " world units wide and "
         << "images the plane " << film.FilmPlane << " from the volume's centre). The image is "
         << "blank: lower FilmDistance (or CutoffScale) so that the deflected light stays on the "
         << "film.\n";

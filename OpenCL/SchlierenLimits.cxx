@@ -127,6 +127,15 @@ double FilmBytesPerPixel()
   return 3 * 96.0 + 8.0 + 2 * 40.0;
 }
 
+void CheckFilmMemory(const int size[2])
+{
+  std::ostringstream what;
+  what << "A film of " << size[0] << " x " << size[1] << " pixels";
+  CheckHostMemory(double(size[0]) * size[1] * FilmBytesPerPixel(), what.str(),
+    "Lower Resolution (the film costs about " + std::to_string(int(FilmBytesPerPixel())) +
+      " bytes per pixel).");
+}
+
 double VolumeBytesPerPoint()
 {
   // the packed field (n - 1 and grad n as 4 floats), the octree levels, the filter's copy of n - 1

@@ -49,6 +49,9 @@ void CheckHostMemory(double bytes, const std::string& what, const std::string& h
  * filtered copy, the image arrays and the caller's copy of them). */
 double FilmBytesPerPixel();
 
+/** Throws Error if a film of size[0] x size[1] pixels (FilmBytesPerPixel each) does not fit. */
+void CheckFilmMemory(const int size[2]);
+
 /** Bytes per grid point that tracing holds on the host besides the caller's n - 1: the packed
  * field (4 floats), the octree levels and the index copy the filter makes. */
 double VolumeBytesPerPoint();
