@@ -1550,6 +1550,18 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   ref.UseOctree = false;
   ref.EstimateError = false;
   const auto t0 = std::chrono::steady_clock::now();
+  // the reference's step (and the candidates') is Auto's, not the user's StepSize: say so when
+  // the volume cannot be traced at it
+  try
+  {
+    CheckPrecision(volume, ref);
+  }
+  catch (const Error& e)
+  {
+    throw Error(std::string("Integrator Auto measures its candidates against RK4 at 0.125 voxel, "
+                            "which this volume does not allow: ") + e.what() +
+      " Or choose a fixed Integrator and StepSize.");
+  }
   const std::vector<RayRecord> R = TraceRays(volume, ref, ab);
   double emax = 0;
   for (const RayRecord& r : R)
