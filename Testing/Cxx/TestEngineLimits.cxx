@@ -240,6 +240,44 @@ int main()
       "photons landing off the film are reported");
   }
 
+  // 5b. Abort within a fraction of a second when every ray is long: 3^3 points spaced
+  // (5e4, 1, 1), seen along x: 2e5 steps a ray, 8e8 samples for the 64^2 film. Progress (and
+  // abort) comes between chunks, which are sized by the rays' length (64 rays here, 1.3e7
+  // samples), not a fixed 4096 rays (the whole film: one report at the end, seconds later).
+  {
+    std::vector<float> n1(27, 1e-4f), f(4 * 27);
+    Volume v;
+    for (int a = 0; a < 3; ++a)
+      v.Dimensions[a] = 3;
+    v.Spacing[0] = 5e4;
+    PackField(v.Dimensions, v.Spacing, n1.data(), f.data());
+    v.Field = f.data();
+    TraceSettings s = Small(Backend::CPU);
+    s.Resolution[0] = s.Resolution[1] = 64;
+    s.ViewDirection[0] = 1;
+    s.ViewDirection[1] = 0;
+    s.ViewDirection[2] = 0;
+    s.ViewUp[0] = 0;
+    s.ViewUp[1] = 0;
+    s.ViewUp[2] = 1;
+    int calls = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    double first = -1;
+    ExpectError("abort a trace of long rays", [&] {
+      Trace(v, s, [&](double) {
+        if (first < 0)
+          first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return ++calls < 2;
+      });
+    }, { "aborted" });
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("long rays: first progress report after %.3f s, aborted after %.3f s\n", first, sec);
+    // the abort comes one chunk after the first report (the machine's speed cancels out); with
+    // the whole film in one chunk there is no second report and no abort at all
+    CHECK(sec < 3 * first + 0.5, "the trace of long rays stops one chunk after the request (" +
+        std::to_string(sec) + " s, first report " + std::to_string(first) + " s)");
+  }
+
   // 6. A CPU OpenCL device traces a page-aligned field in place: the same records as a copy.
   if (haveCL)
   {
