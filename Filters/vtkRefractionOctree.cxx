@@ -18,6 +18,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,6 +74,21 @@ int vtkRefractionOctree::RequestData(
     else
     {
       input->GetDimensions(dims);
+      try
+      {
+        // the float copy of n - 1, the levels, and the min/max scratch of the first level
+        std::ostringstream what;
+        what << "RefractionOctree on " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points";
+        schlieren::CheckHostMemory(double(array->GetNumberOfTuples()) * (4.0 + 1.0 + 4.0), what.str(),
+          "Resample the volume to fewer points (RefractiveIndex SamplingDimensions).");
+      }
+      catch (const schlieren::Error& e)
+      {
+        problem = e.what();
+      }
+    }
+    if (problem.empty() && array && array->GetNumberOfComponents() == 1)
+    {
       n1.resize(static_cast<std::size_t>(array->GetNumberOfTuples()));
       for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
       {
