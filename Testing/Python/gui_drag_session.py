@@ -114,6 +114,12 @@ try:
             state["cmd"] += 1
             if words[0] == "sizes":
                 iv = state["image_view"]
+                if not state.get("reset"):
+                    # the 3D view is half as wide after the split: the whole volume in it again
+                    # (a zoom: the image's line of sight stays)
+                    state["reset"] = True
+                    ResetCamera(view)
+                    Render(view)
                 write_json("sizes.json", {"view3d": list(view.ViewSize),
                                           "image_view": list(iv.ViewSize) if iv else None,
                                           "image_view_mode": str(iv.InteractionMode).strip("'") if iv else None,
