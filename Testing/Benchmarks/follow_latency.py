@@ -10,7 +10,8 @@ GUI's follower does on a camera change), then
             chunks (about 0.25 s of passes each, sized from the last measured pass time),
 each the median of --moves camera moves. Cases: the NASA blunt fin (../shared/data or
 $SCHLIEREN_DATA, resampled to 128 voxels along its longest side; skipped where absent) and a 256^3
-Gaussian sphere, both on a 512^2 film, Euler at 0.5 voxel with the octree off. Prints a table.
+Gaussian sphere, both on a 512^2 film, Euler at --step voxels (1) with the octree off. Prints a
+table.
 The GUI adds its renders (a few ms for a 512^2 image) and the 300 ms it waits for the camera to rest
 before refining; python.gui_drag measures those in the real GUI.
 """
@@ -24,8 +25,9 @@ import numpy as np
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--plugin", required=True)
-parser.add_argument("--moves", type=int, default=3)
-parser.add_argument("--target", type=int, default=16)
+parser.add_argument("--moves", type=int, default=2)
+parser.add_argument("--target", type=int, default=8)
+parser.add_argument("--step", type=float, default=1.0, help="Euler step, voxels")
 parser.add_argument("--chunk-seconds", type=float, default=0.25)
 args = parser.parse_args()
 
@@ -63,7 +65,7 @@ def camera(k):
 rows = []
 for name, volume in cases:
     for backend in ("OpenCL", "CPU"):
-        image = SchlierenImage(Input=volume, Resolution=[512, 512], Passes=1, Integrator="Euler", StepSize=0.5,
+        image = SchlierenImage(Input=volume, Resolution=[512, 512], Passes=1, Integrator="Euler", StepSize=args.step,
                                UseOctree=0, Cutoff="KnifeEdge", Backend=backend)
         image.UpdatePipeline()  # the volume packed and uploaded once, as in the GUI after Apply
         firsts, converged, chunks = [], [], []
@@ -94,8 +96,8 @@ for name, volume in cases:
         sys.stdout.flush()
 
 print()
-print("| case (512^2 film, Euler 0.5 voxel) | backend | camera change -> first image (1 pass) | "
-      "-> converged (%d passes) | refinement chunks |" % args.target)
+print("| case (512^2 film, Euler %g voxel) | backend | camera change -> first image (1 pass) | "
+      "-> converged (%d passes) | refinement chunks |" % (args.step, args.target))
 print("|---|---|---|---|---|")
 for name, backend, first, conv, n in rows:
     print("| %s | %s | %.3f s | %.2f s | %d |" % (name, "OpenCL (PoCL)" if backend == "OpenCL" else backend,
