@@ -88,9 +88,16 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
     proxy->GetProperty("Passes"), vtkCommand::ModifiedEvent, this, SLOT(onPassesModified()));
   pqCoreUtilities::connect(proxy->GetProperty("FollowCamera"), vtkCommand::ModifiedEvent, this,
     SLOT(onFollowModified()));
+  pqCoreUtilities::connect(proxy->GetProperty("Resolution"), vtkCommand::ModifiedEvent, this,
+    SLOT(onResolutionModified()));
+  vtkSMPropertyHelper(proxy, "Resolution").Get(this->FullResolution, 2);
   this->RestTimer.setSingleShot(true);
   QObject::connect(&this->RestTimer, &QTimer::timeout, this, [this]() {
-    if (this->following() && !this->Stopped && this->passes() < this->Target)
+    if (this->following() && !this->Stopped && this->Coarse)
+    {
+      this->restoreResolution(); // the refinement is on the full film
+    }
+    if (this->following() && !this->Stopped && this->LastPasses < this->Target)
     {
       this->RefineTimer.start();
       Q_EMIT this->stateChanged();
@@ -143,11 +150,13 @@ void pqSchlierenFollower::log(const char* event) const
   double d[3], u[3];
   vtkSMPropertyHelper(p, "ViewDirection").Get(d, 3);
   vtkSMPropertyHelper(p, "ViewUp").Get(u, 3);
+  int r[2];
+  vtkSMPropertyHelper(p, "Resolution").Get(r, 2);
   std::fprintf(stderr,
-    "schlieren-gui %.6f %s %s passes=%d target=%d seconds_per_pass=%.4f dir=%.17g,%.17g,%.17g "
-    "up=%.17g,%.17g,%.17g\n",
+    "schlieren-gui %.6f %s %s passes=%d target=%d resolution=%dx%d seconds_per_pass=%.4f "
+    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g\n",
     QDateTime::currentMSecsSinceEpoch() / 1000.0, event,
-    this->Image->getSMName().toLocal8Bit().constData(), this->passes(), this->Target,
+    this->Image->getSMName().toLocal8Bit().constData(), this->passes(), this->Target, r[0], r[1],
     this->SecondsPerPass, d[0], d[1], d[2], u[0], u[1], u[2]);
   std::fflush(stderr);
 }
@@ -418,6 +427,25 @@ void pqSchlierenFollower::onCameraModified()
   vtkSMPropertyHelper(proxy, "ViewUp").Set(up, 3);
   this->setPasses(
     std::min(this->Target, std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt())));
+  const double scale = vtkSMPropertyHelper(proxy, "InteractiveScale").GetAsDouble();
+  if (scale > 0 && scale < 1)
+  {
+    // a coarser film while the view turns: fewer rays per pass
+    int coarse[2];
+    for (int i = 0; i < 2; ++i)
+    {
+      coarse[i] = std::max(8, static_cast<int>(std::lround(this->FullResolution[i] * scale)));
+    }
+    if (!this->Coarse && this->SecondsPerPass > 0)
+    {
+      this->SecondsPerPass *= double(coarse[0]) * coarse[1] /
+        (double(this->FullResolution[0]) * this->FullResolution[1]);
+    }
+    this->Guard = true;
+    vtkSMPropertyHelper(proxy, "Resolution").Set(coarse, 2);
+    this->Guard = false;
+    this->Coarse = true;
+  }
   proxy->UpdateVTKObjects();
   if (cancelled)
   {
@@ -494,7 +522,7 @@ void pqSchlierenFollower::refineStep()
   {
     return; // the next tick
   }
-  const int now = this->passes();
+  const int now = this->LastPasses; // the passes of the image shown (0: none on this film yet)
   if (now >= this->Target)
   {
     this->RefineTimer.stop();
@@ -567,9 +595,50 @@ void pqSchlierenFollower::onFollowModified()
   {
     this->RefineTimer.stop();
     this->RestTimer.stop();
+    if (this->Coarse)
+    {
+      this->restoreResolution();
+    }
     this->log("unfollow");
   }
   Q_EMIT this->stateChanged();
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::restoreResolution()
+{
+  if (!this->Coarse || !this->Image)
+  {
+    return;
+  }
+  vtkSMProxy* proxy = this->Image->getProxy();
+  int coarse[2];
+  vtkSMPropertyHelper(proxy, "Resolution").Get(coarse, 2);
+  this->Guard = true;
+  vtkSMPropertyHelper(proxy, "Resolution").Set(this->FullResolution, 2);
+  this->Guard = false;
+  this->Coarse = false;
+  // the full film traces every pass again, with more rays per pass
+  if (this->SecondsPerPass > 0)
+  {
+    this->SecondsPerPass *= double(this->FullResolution[0]) * this->FullResolution[1] /
+      std::max(1.0, double(coarse[0]) * coarse[1]);
+  }
+  this->LastPasses = 0;
+  this->setPasses(
+    std::min(this->Target, std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt())));
+  proxy->UpdateVTKObjects();
+  this->LastPasses = 0;
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onResolutionModified()
+{
+  if (!this->Guard && this->Image)
+  {
+    vtkSMPropertyHelper(this->Image->getProxy(), "Resolution").Get(this->FullResolution, 2);
+    this->Coarse = false;
+  }
 }
 
 //------------------------------------------------------------------------------

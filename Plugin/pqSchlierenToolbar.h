@@ -67,6 +67,7 @@ private Q_SLOTS:
   void onCameraModified();
   void onPassesModified();
   void onFollowModified();
+  void onResolutionModified();
   void retrace();
   void refineStep();
   void fitImageView();
@@ -75,6 +76,7 @@ private:
   void watchCamera(pqRenderView* view);
   void openWhenIdle(QPointer<pqDataRepresentation> added, int tries);
   void setPasses(int passes);
+  void restoreResolution();
   int passes() const;
   void update(const char* what);
 
@@ -90,6 +92,8 @@ private:
   bool Busy = false; // inside our own pipeline update
   double SecondsPerPass = 0; // measured on the last update
   int LastPasses = 0;        // the passes of the image shown
+  int FullResolution[2] = { 512, 512 }; // the film the user asked for
+  bool Coarse = false;       // the film is InteractiveScale of it (the view is turning)
   double FilmBounds[4] = { 0, 0, 0, 0 };
   QTimer RestTimer;   // the camera rested: start refining
   QTimer RefineTimer; // one chunk of passes per tick

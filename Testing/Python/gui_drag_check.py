@@ -46,7 +46,7 @@ def check(condition, message):
 
 
 settings = json.load(open(os.path.join(args.work, "settings.json")))["image"]
-for gui_only in ("InteractivePasses", "FollowCamera"):
+for gui_only in ("InteractivePasses", "InteractiveScale", "FollowCamera"):
     settings.pop(gui_only)
 volume, scene = gui_drag_scene.volume(types.SimpleNamespace(**globals()), os.environ.get("SCHLIEREN_DATA", ""))
 check(scene == args.scene, "pvpython builds the same scene as the GUI (%s)" % scene)

@@ -129,7 +129,8 @@ try:
                                           "follow": int(image.FollowCamera)})
             elif words[0] == "dump":
                 got = current()
-                steps = state["steps"]
+                # the images of this film (the coarse ones while the view turned are smaller)
+                steps = [s for s in state["steps"] if s[4].shape == got[0].shape]
                 np.savez(os.path.join(work, words[1] + ".npz"), intensity=got[0], passes=got[1],
                          direction=np.array(image.ViewDirection), up=np.array(image.ViewUp),
                          renders=state["renders"], follow=int(image.FollowCamera),

@@ -84,7 +84,7 @@ if not os.environ.get("DISPLAY"):
 data = os.environ.get("SCHLIEREN_DATA", os.path.join(here, "..", "..", "..", "shared", "data"))
 TARGET = 96
 settings = {"image": dict(Resolution=[160, 160], Passes=TARGET, Cutoff="KnifeEdge", CutoffScale=250.0,
-                          Backend="CPU", Seed=4, InteractivePasses=1, FollowCamera=0)}
+                          Backend="CPU", Seed=4, InteractivePasses=1, InteractiveScale=0.5, FollowCamera=0)}
 with open(os.path.join(args.work, "settings.json"), "w") as f:
     json.dump(settings, f)
 
@@ -286,7 +286,9 @@ drag(box3d, 80, 16)
 t_release = time.time()
 moved = events_since(t_drag, "retrace")
 check(len(moved) >= 1, "the drag re-traced the image (%d coarse traces during the drag)" % len(moved))
-check(all(int(e[2]["passes"]) == 1 for e in moved), "while the mouse moved, 1 pass each")
+check(all(int(e[2]["passes"]) == 1 and e[2]["resolution"] == "80x80" for e in moved),
+      "while the mouse moved, 1 pass each on a half-resolution film (InteractiveScale 0.5: %s)"
+      % sorted(set(e[2]["resolution"] for e in moved)))
 converged = wait_for("the refinement to %d passes after the drag" % TARGET,
                      lambda: [e for e in events_since(t_release, "converged") if int(e[2]["passes"]) == TARGET],
                      240)
@@ -294,7 +296,8 @@ refines = events_since(t_release, "refine")
 say("refinement after the drag: %d chunks, passes %s, first %.2f s after the release, converged %.2f s after"
     % (len(refines), [int(e[2]["passes"]) for e in refines], refines[0][0] - t_release if refines else -1,
        converged[0][0] - t_release))
-check(len(refines) >= 2, "the refinement came in chunks (%d)" % len(refines))
+check(len(refines) >= 2 and all(e[2]["resolution"] == "160x160" for e in refines),
+      "the refinement came in chunks (%d), on the full 160 x 160 film" % len(refines))
 time.sleep(1.0)
 after = dump("after_drag")
 shot_drag = screenshot("gui_after_drag")
