@@ -83,6 +83,14 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
   QObject::connect(image,
     SIGNAL(representationAdded(pqPipelineSource*, pqDataRepresentation*, int)), this,
     SLOT(onRepresentationAdded(pqPipelineSource*, pqDataRepresentation*, int)));
+  // an update made elsewhere (Apply, a script): the image shown has the passes asked for
+  QObject::connect(image, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
+    [this](pqPipelineSource*) {
+    if (!this->Busy)
+    {
+      this->LastPasses = this->passes();
+    }
+  });
   vtkSMProxy* proxy = image->getProxy();
   pqCoreUtilities::connect(
     proxy->GetProperty("Passes"), vtkCommand::ModifiedEvent, this, SLOT(onPassesModified()));
@@ -422,6 +430,7 @@ void pqSchlierenFollower::onCameraModified()
   // a new view: back to the interactive passes (cancels the refinement in progress)
   const bool cancelled = this->RefineTimer.isActive();
   this->RefineTimer.stop();
+  this->LastChunk = 1;
   this->Stopped = false;
   vtkSMPropertyHelper(proxy, "ViewDirection").Set(direction, 3);
   vtkSMPropertyHelper(proxy, "ViewUp").Set(up, 3);
@@ -530,9 +539,13 @@ void pqSchlierenFollower::refineStep()
     Q_EMIT this->stateChanged();
     return;
   }
-  const int chunk = this->SecondsPerPass > 0
+  // sized from the last measured pass time, growing at most twofold from chunk to chunk (one
+  // short measurement must not buy a long chunk that Stop would wait for)
+  int chunk = this->SecondsPerPass > 0
     ? std::max(1, static_cast<int>(ChunkSeconds / this->SecondsPerPass))
     : 1;
+  chunk = std::min(chunk, 2 * this->LastChunk);
+  this->LastChunk = chunk;
   this->setPasses(std::min(this->Target, now + chunk));
   this->Image->getProxy()->UpdateVTKObjects();
   this->update("refine");

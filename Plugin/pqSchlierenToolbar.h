@@ -92,6 +92,7 @@ private:
   bool Busy = false; // inside our own pipeline update
   double SecondsPerPass = 0; // measured on the last update
   int LastPasses = 0;        // the passes of the image shown
+  int LastChunk = 1;         // passes added by the last refinement chunk
   int FullResolution[2] = { 512, 512 }; // the film the user asked for
   bool Coarse = false;       // the film is InteractiveScale of it (the view is turning)
   double FilmBounds[4] = { 0, 0, 0, 0 };

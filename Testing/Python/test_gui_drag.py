@@ -270,6 +270,9 @@ wait_for("Follow Camera (Ctrl+Alt+F)", lambda: events_since(t, "follow"), 30)
 send("sizes")
 os.remove(os.path.join(args.work, "sizes.json"))
 check(read_json("sizes.json")["follow"] == 1, "the toolbar toggle set the image's FollowCamera property")
+time.sleep(1.0)
+check(not [e for e in events_since(t) if e[1] in ("retrace", "refine")],
+      "turning Follow Camera on kept the image it had (no trace before the camera moves)")
 
 # where the two views are on the screen
 boxes = view_boxes(shot_apply)
