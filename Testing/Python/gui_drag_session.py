@@ -10,6 +10,7 @@ $SCHLIEREN_GUI_WORK: a repeating timer of the 3D view's interactor (it runs in t
 loop, between the plugin's refinement chunks) records every image the GUI shows (its passes and
 intensity) and executes the driver's commands (cmd-<n>.txt: `sizes`, `dump <name>`, `quit`).
 Nothing here moves the camera or updates the image: the plugin's toolbar does that.
+Connected to a pvserver (test_gui_drag.py --pvserver), the images are fetched from the server.
 """
 import json
 import os
@@ -35,6 +36,7 @@ def write_json(name, value):
 try:
     import numpy as np
     from paraview.simple import *  # noqa: F401,F403
+    from paraview import servermanager
     from vtkmodules.util.numpy_support import vtk_to_numpy
 
     if "SchlierenImage" not in globals():
@@ -80,13 +82,36 @@ try:
 
     state = {"last": None, "steps": [], "renders": 0, "image_view": None, "cmd": 0}
 
-    def current():
-        out = image.GetClientSideObject().GetOutputDataObject(0)
+    remote = servermanager.ActiveConnection.IsRemote()
+    fetched = {"key": None, "got": None}
+
+    def read(out):
         a = out.GetPointData().GetArray("intensity") if out is not None else None
         if a is None or out.GetNumberOfPoints() == 0:
             return None
         nx, ny, _ = out.GetDimensions()
         return vtk_to_numpy(a).reshape(ny, nx).copy(), int(out.GetFieldData().GetArray("passes").GetValue(0))
+
+    def current():
+        """The image the GUI shows: its intensity and passes."""
+        if not remote:
+            return read(image.GetClientSideObject().GetOutputDataObject(0))
+        # client/server: the data lives on the server. The data information (gathered after
+        # each update of the plugin's) says which image is there; it is fetched once per image,
+        # and only when it is the image of the proxy's present settings: a Fetch of a proxy
+        # changed since its last update would run the trace itself, out of the plugin's hands.
+        info = image.GetDataInformation()
+        passes = image.FieldData["passes"] if "passes" in image.FieldData.keys() else None
+        if passes is None or info.GetNumberOfPoints() == 0:
+            return fetched["got"]
+        e = info.GetExtent()
+        key = (int(passes.GetRange()[0]), e[1] - e[0] + 1, e[3] - e[2] + 1)
+        if key[0] != int(image.Passes) or list(key[1:]) != list(image.Resolution):
+            return fetched["got"]
+        key = key + (tuple(image.ViewDirection), tuple(image.ViewUp), info.GetMTime())
+        if key != fetched["key"]:
+            fetched["key"], fetched["got"] = key, read(servermanager.Fetch(image))
+        return fetched["got"]
 
     def on_render(caller, event):
         state["renders"] += 1
@@ -150,7 +175,7 @@ try:
     interactor = view.GetRenderWindow().GetInteractor()
     interactor.CreateRepeatingTimer(50)
     poll_tag = interactor.AddObserver("TimerEvent", poll)
-    write_json("ready.json", {"scene": scene, "view3d": list(view.ViewSize)})
+    write_json("ready.json", {"scene": scene, "view3d": list(view.ViewSize), "remote": bool(remote)})
 except BaseException:
     note("FAIL " + traceback.format_exc())
     sys.stderr.write(traceback.format_exc())

@@ -24,11 +24,21 @@ session's records and screenshots (`import -window root`):
   6. the image at the starting camera matches a baseline PNG (the blunt fin).
 The built-in sphere stands in where ../shared/data is absent (the baseline check is then skipped,
 with a note). Exit status 0 on success; every failure says what did not happen.
+
+With --pvserver <pvserver> the same session runs in client/server mode: a `pvserver` on a free
+localhost port (the plugin on its PV_PLUGIN_PATH too) runs the pipeline and the traces, and the GUI
+connects to it with --server-url=cs://localhost:<port>; the session then fetches the images from
+the server. The server is ended on every exit path (it also dies with this driver: PDEATHSIG).
 """
 import argparse
+import atexit
+import ctypes
 import json
 import os
+import random
 import re
+import signal
+import socket
 import shutil
 import subprocess
 import sys
@@ -43,6 +53,8 @@ parser.add_argument("--plugin", required=True)
 parser.add_argument("--work", required=True, help="a folder for the session's files (emptied)")
 parser.add_argument("--baseline", default=os.path.join(here, "..", "Baselines", "gui_drag_bluntfin.png"))
 parser.add_argument("--screenshots", default=None, help="also copy the screenshots here")
+parser.add_argument("--pvserver", default=None,
+                    help="client/server mode: run the pipeline on this pvserver (a free localhost port)")
 args = parser.parse_args()
 
 T0 = time.time()
@@ -92,10 +104,78 @@ env = dict(os.environ, PV_PLUGIN_PATH=os.path.dirname(os.path.abspath(args.plugi
            SCHLIEREN_GUI_TRACE="1", SCHLIEREN_GUI_WORK=args.work, SCHLIEREN_DATA=data,
            SCHLIEREN_GUI_HERE=here)
 env.pop("SCHLIEREN_PLUGIN", None)  # the session must not load the plugin itself
+
+
+def die_with_parent():
+    """Runs in the child before exec: SIGKILL it when this driver dies, however it dies."""
+    ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+
+
+server = None
+
+
+def stop_server():
+    if server is not None and server.poll() is None:
+        server.terminate()
+        try:
+            server.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            server.kill()
+            server.wait()
+
+
+def start_server():
+    """A pvserver on a free localhost port (tried until one binds); returns its port."""
+    global server
+    for attempt in range(8):
+        port = random.randint(20000, 40000)
+        with socket.socket() as probe:
+            try:
+                probe.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+        log = open(os.path.join(args.work, "pvserver-%d.log" % attempt), "w")
+        server = subprocess.Popen([args.pvserver, "--server-port=%d" % port, "--hostname=localhost"], env=env,
+                                  stdout=log, stderr=subprocess.STDOUT, preexec_fn=die_with_parent)
+        end = time.time() + 60
+        while time.time() < end and server.poll() is None:
+            if "Accepting connection" in open(log.name).read():
+                say("pvserver (pid %d) listens on localhost:%d" % (server.pid, port))
+                return port
+            time.sleep(0.1)
+        say("pvserver on port %d did not start: %s" % (port, open(log.name).read().strip()[-300:]))
+        stop_server()
+    print("FAIL: no pvserver could be started (%s)" % args.pvserver)
+    sys.exit(1)
+
+
 command = [args.paraview, "--dr", "--script=" + os.path.join(here, "gui_drag_session.py")]
+if args.pvserver:
+    command.insert(1, "--server-url=cs://localhost:%d" % start_server())
 say(" ".join(command))
 process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                           universal_newlines=True, bufsize=1)
+                           universal_newlines=True, bufsize=1, preexec_fn=die_with_parent)
+
+
+def on_term(signum, frame):
+    # ctest's timeout or with_xvfb.sh's cleanup: end the GUI and the server before going
+    for p in (process, server):
+        if p is not None and p.poll() is None:
+            p.kill()
+    sys.exit(1)
+
+
+def kill_children():
+    # an exception anywhere in the driver: no GUI or server left behind
+    for p in (process, server):
+        if p is not None and p.poll() is None:
+            p.kill()
+            p.wait()
+
+
+atexit.register(kill_children)
+signal.signal(signal.SIGTERM, on_term)
+signal.signal(signal.SIGINT, on_term)
 events = []  # (time, event, fields) from the plugin's SCHLIEREN_GUI_TRACE lines
 stderr_tail = []
 lock = threading.Lock()
@@ -125,6 +205,7 @@ def finish():
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
+    stop_server()
     log = os.path.join(args.work, "session.log")
     if os.path.exists(log):
         print("--- session log\n" + open(log).read().rstrip())
@@ -228,6 +309,8 @@ def drag(box, dx, steps, pause=0.04):
 # -- the GUI comes up with the pipeline built
 ready = read_json("ready.json", timeout=120)
 say("the session is ready (%s); paraview's 3D view %s" % (ready["scene"], ready["view3d"]))
+check(ready.get("remote", False) == bool(args.pvserver),
+      "the GUI runs %s (session remote: %s)" % ("on the pvserver" if args.pvserver else "builtin", ready.get("remote")))
 if ready["scene"] != "bluntfin":
     say("SKIP note: no blunt-fin data in %s: the built-in off-centre sphere instead, no baseline check"
         % os.path.abspath(data))
