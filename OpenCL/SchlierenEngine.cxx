@@ -421,7 +421,9 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.pixel = static_cast<float>(f.PixelSize);
   P.filmNx = f.Size[0];
   P.filmNy = f.Size[1];
-  const double step = s.StepSize * MinSpacing(volume);
+  // with a body, no step longer than a cell: a longer one could pass over a body one point thick
+  const double step = volume.Solid ? std::min(s.StepSize, 1.0) * MinSpacing(volume)
+                                   : s.StepSize * MinSpacing(volume);
   P.step = static_cast<float>(step);
   const double diag = 2 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy + double(P.hz) * P.hz);
   double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / step + 16;
@@ -435,6 +437,7 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.rayOffset = s.RankIndex;
   P.rayStride = s.RankCount;
   P.useLevels = (s.UseOctree && volume.Levels) ? 1 : 0;
+  P.useSolid = volume.Solid ? 1 : 0;
   P.keepInvariant = s.KeepInvariant ? 1 : 0;
   P.estimate = s.EstimateError ? 1 : 0;
   P.featureTol = 0.0f; // see SetFeatureTolerance
@@ -461,12 +464,14 @@ struct VolumeIdentity
 {
   const float* Field = nullptr;
   const unsigned char* Levels = nullptr;
+  const unsigned char* Solid = nullptr;
   int Dimensions[3] = { 0, 0, 0 };
   std::uint64_t Stamp = 0;
 
   explicit VolumeIdentity(const Volume& v)
     : Field(v.Field)
     , Levels(v.Levels)
+    , Solid(v.Solid)
     , Stamp(v.Stamp)
   {
     std::copy(v.Dimensions, v.Dimensions + 3, Dimensions);
@@ -475,7 +480,7 @@ struct VolumeIdentity
   bool operator==(const VolumeIdentity& o) const
   {
     return Stamp != 0 && Stamp == o.Stamp && Field == o.Field && Levels == o.Levels &&
-      std::equal(Dimensions, Dimensions + 3, o.Dimensions);
+      Solid == o.Solid && std::equal(Dimensions, Dimensions + 3, o.Dimensions);
   }
 };
 
@@ -515,17 +520,104 @@ static void SetFeatureTolerance(sch_params& P, const Volume& volume)
     P.featureTol = 1e-30f;
 }
 
+// The byte per grid point that the kernels read (SCH_LEVEL_MASK, SCH_SOLID_BIT): the volume's
+// levels as they are without a body; with one, the solid bit and the levels lowered until no
+// block (with its one-point halo) holds a solid point, so that no skip crosses a body.
+static std::vector<unsigned char> MakeCellBytes(const Volume& v)
+{
+  const std::size_t N = v.NumberOfPoints();
+  const int nx = v.Dimensions[0], ny = v.Dimensions[1], nz = v.Dimensions[2];
+  std::vector<unsigned char> bytes(N, 0);
+  bool anyLevel = false;
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    const unsigned char lvl = v.Levels ? static_cast<unsigned char>(v.Levels[i] & SCH_LEVEL_MASK) : 0;
+    bytes[i] = static_cast<unsigned char>(lvl | (v.Solid[i] ? SCH_SOLID_BIT : 0));
+    anyLevel = anyLevel || lvl > 0;
+  }
+  if (!anyLevel)
+    return bytes;
+  // solid points in any box of points by a summed-volume table
+  const std::size_t sx = 1, sy = nx + 1, sz = static_cast<std::size_t>(nx + 1) * (ny + 1);
+  std::vector<std::uint32_t> S(sz * (nz + 1), 0);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        const std::size_t o = (k + 1) * sz + (j + 1) * sy + (i + 1) * sx;
+        const std::uint32_t here = v.Solid[(static_cast<std::size_t>(k) * ny + j) * nx + i] ? 1u : 0u;
+        S[o] = here + S[o - sx] + S[o - sy] + S[o - sz] - S[o - sx - sy] - S[o - sx - sz] -
+          S[o - sy - sz] + S[o - sx - sy - sz];
+      }
+  auto solidIn = [&](const int lo[3], const int hi[3]) {
+    // points lo..hi inclusive
+    const std::size_t i0 = lo[0], i1 = hi[0] + 1, j0 = lo[1], j1 = hi[1] + 1, k0 = lo[2], k1 = hi[2] + 1;
+    const std::int64_t c = std::int64_t(S[k1 * sz + j1 * sy + i1]) - S[k1 * sz + j1 * sy + i0] -
+      S[k1 * sz + j0 * sy + i1] - S[k0 * sz + j1 * sy + i1] + S[k1 * sz + j0 * sy + i0] +
+      S[k0 * sz + j1 * sy + i0] + S[k0 * sz + j0 * sy + i1] - S[k0 * sz + j0 * sy + i0];
+    return c > 0;
+  };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        unsigned char& b = bytes[(static_cast<std::size_t>(k) * ny + j) * nx + i];
+        int L = b & SCH_LEVEL_MASK;
+        const int c[3] = { i, j, k };
+        while (L > 0)
+        {
+          // the points the block's cells touch, grown by one (as ComputeOctreeLevels)
+          int lo[3], hi[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            const int b0 = (c[a] >> L) << L;
+            lo[a] = std::max(0, b0 - 1);
+            hi[a] = std::min(v.Dimensions[a] - 1, b0 + (1 << L) + 1);
+          }
+          if (!solidIn(lo, hi))
+            break;
+          --L;
+        }
+        b = static_cast<unsigned char>((b & SCH_SOLID_BIT) | L);
+      }
+  return bytes;
+}
+
+// The cell bytes for a trace: the volume's levels (or null) without a body; with one, the bytes
+// of MakeCellBytes, kept for the last stamped volume.
+static std::shared_ptr<const std::vector<unsigned char>> CellBytesOf(const Volume& v)
+{
+  if (!v.Solid)
+    return nullptr;
+  static VolumeIdentity bytesOf;
+  static std::shared_ptr<const std::vector<unsigned char>> kept;
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    if (kept && bytesOf == VolumeIdentity(v))
+      return kept;
+  }
+  auto bytes = std::make_shared<const std::vector<unsigned char>>(MakeCellBytes(v));
+  if (v.Stamp != 0)
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    bytesOf = VolumeIdentity(v);
+    kept = bytes;
+  }
+  return bytes;
+}
+
 // ------------------------------------------------------------------ film sums
 
 std::vector<std::vector<double>*> FilmSums::PixelChannels()
 {
   return { &Count, &Weight, &DeflectionX, &DeflectionY, &AbsDeflection, &Red, &Green, &Blue, &Phase,
-    &ShiftX, &ShiftY, &ErrorSum };
+    &ShiftX, &ShiftY, &ErrorSum, &Blocked };
 }
 
 std::vector<double*> FilmSums::Totals()
 {
-  return { &Photons, &Samples, &FailedRays, &MissedRays, &UnderresolvedRays, &SideRays, &Steps };
+  return { &Photons, &Samples, &FailedRays, &MissedRays, &UnderresolvedRays, &SideRays, &Steps,
+    &BlockedRays };
 }
 
 std::vector<double*> FilmSums::Maxima()
@@ -666,6 +758,13 @@ struct Splatter
         F.UnderresolvedRays += 1;
       if (flags & SCH_RAY_SIDE)
         F.SideRays += 1;
+      if (flags & SCH_RAY_BLOCKED)
+      {
+        // stopped by a body: no light; counted in the pixel it was emitted through (the shadow)
+        F.BlockedRays += 1;
+        F.Blocked[static_cast<std::size_t>(P.rayOffset + (first + r) * P.rayStride)] += 1;
+        continue;
+      }
       if (flags & SCH_RAY_LOST)
       {
         F.FailedRays += 1;
@@ -785,7 +884,8 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
 class OpenCLTracer
 {
 public:
-  OpenCLTracer(const Volume& volume, std::size_t chunk, int raysPerItem)
+  // bytes: the cell bytes (octree levels, solid points) or null
+  OpenCLTracer(const Volume& volume, const unsigned char* cellBytes, std::size_t chunk, int raysPerItem)
     : RT(ocl::GetRuntime())
     , RaysPerItem(raysPerItem > 0 ? raysPerItem : (RT.IsCPU ? 4 : 1))
   {
@@ -805,7 +905,7 @@ public:
       SlabCells = static_cast<int>(std::max<std::int64_t>(cells, 1));
       total = bytes + std::uint64_t(Slabs - 1) * planeFloats * sizeof(float);
     }
-    const std::uint64_t levelBytes = volume.Levels ? volume.NumberOfPoints() : 1;
+    const std::uint64_t levelBytes = cellBytes ? volume.NumberOfPoints() : 1;
     if (Slabs > MaxSlabs || total + levelBytes > RT.GlobalMemory)
     {
       std::ostringstream msg;
@@ -827,11 +927,11 @@ public:
           &err);
         ocl::Check(err, "clCreateBuffer(field)");
       }
-      // the octree levels, or one byte that no kernel reads when there are none
+      // the cell bytes (octree levels, solid points), or one byte that no kernel reads when
+      // there are none
       static unsigned char none = 0;
       Levels = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-        volume.Levels ? volume.NumberOfPoints() : 1,
-        const_cast<unsigned char*>(volume.Levels ? volume.Levels : &none), &err);
+        cellBytes ? volume.NumberOfPoints() : 1, const_cast<unsigned char*>(cellBytes ? cellBytes : &none), &err);
       ocl::Check(err, "clCreateBuffer(levels)");
       EnsureOut(chunk);
     }
@@ -890,7 +990,9 @@ public:
   {
     const char* spec = std::getenv("SCHLIEREN_CL_SPECIALISE");
     const bool specialise = !(spec && std::string(spec) == "0");
-    const int setting = specialise ? 1 + P.integrator * 4 + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0) : 0;
+    const int setting = specialise
+      ? 1 + P.integrator * 8 + (P.useSolid ? 4 : 0) + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0)
+      : 0;
     const int key = setting * 3 + static_cast<int>(entry);
     auto it = Kernels.find(key);
     if (it != Kernels.end())
@@ -905,7 +1007,8 @@ public:
       opts << " -DSCH_SLABS=" << Slabs;
     if (specialise)
       opts << " -DSCH_FIXED_INTEGRATOR=" << P.integrator << " -DSCH_FIXED_LEVELS=" << (P.useLevels ? 1 : 0)
-           << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0);
+           << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0)
+           << " -DSCH_FIXED_SOLID=" << (P.useSolid ? 1 : 0);
     // extra OpenCL build options, for experiments (e.g. -cl-mad-enable)
     if (const char* extra = std::getenv("SCHLIEREN_CL_OPTIONS"))
       opts << " " << extra;
@@ -1043,7 +1146,8 @@ KeptTracer& Kept()
   return *kept;
 }
 
-std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t chunk, int raysPerItem)
+std::shared_ptr<OpenCLTracer> AcquireTracer(
+  const Volume& volume, const unsigned char* bytes, std::size_t chunk, int raysPerItem)
 {
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
@@ -1060,7 +1164,7 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t ch
     k.Tracer.reset();
     k.Identity = VolumeIdentity();
   }
-  auto t = std::make_shared<OpenCLTracer>(volume, chunk, raysPerItem);
+  auto t = std::make_shared<OpenCLTracer>(volume, bytes, chunk, raysPerItem);
   if (volume.Stamp != 0)
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
@@ -1074,7 +1178,8 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t ch
 // The OpenCL tracer for this trace, or null for the CPU (asked for, or OpenCL unusable under Auto,
 // with a warning). points: the caller traces explicit film points (TracePoints) rather than passes
 // (Trace); the kernel it will run is built here, so that a build failure falls back too.
-std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSettings& s,
+std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned char* bytes,
+  const TraceSettings& s,
   const sch_params& P, std::size_t chunk, bool points, std::string& used, std::string& device,
   std::string& warnings)
 {
@@ -1086,7 +1191,7 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSetti
   }
   try
   {
-    auto t = AcquireTracer(volume, chunk, s.RaysPerWorkItem);
+    auto t = AcquireTracer(volume, bytes, chunk, s.RaysPerWorkItem);
     t->KernelFor(P, points); // built here, so that a build failure falls back like a missing device
     used = "OpenCL";
     device = t->RT.DeviceName;
@@ -1150,8 +1255,14 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     chunk *= 2;
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
-  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, P, chunk, false, used, device, warn);
+  const auto solidBytes = CellBytesOf(volume);
+  const unsigned char* bytes = solidBytes ? solidBytes->data() : volume.Levels;
+  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, bytes, s, P, chunk, false, used, device, warn);
   SetFeatureTolerance(P, volume);
+  if (volume.Solid && s.StepSize > 1.0 && sums.Passes == 0)
+    warn += "StepSize " + std::to_string(s.StepSize) +
+      " voxels was limited to 1 voxel: the volume has a solid body, and a longer step could pass "
+      "over a thin one.\n";
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
   const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
@@ -1165,7 +1276,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
       if (cl)
         cl->Trace(P, first, count, records.data());
       else
-        TraceChunkCPU(volume.Field, volume.Levels, P, first, count, records.data());
+        TraceChunkCPU(volume.Field, bytes, P, first, count, records.data());
       splat.Add(records.data(), first, count);
       done += count;
       if (progress && !progress(done / total))
@@ -1310,6 +1421,8 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     r.Phase.assign(n, 0.f);
   if (s.Mode == Cutoff::BOS)
     r.Displacement.assign(2 * n, 0.f);
+  if (volume.Solid)
+    r.Blocked.assign(n, 0.f);
   const double passes = sums.Passes;
   const double ang = s.KnifeAngle * 3.14159265358979323846 / 180.0;
   const double ca = std::cos(ang), sa = std::sin(ang);
@@ -1373,9 +1486,12 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
         I = sums.Weight[i] / passes;
         break;
       case Cutoff::BOS:
-        I = c > 0 ? sums.Weight[i] / c : 0.0;
+        // the background as seen through the flow; a body hides it (its photons count, dark)
+        I = c + sums.Blocked[i] > 0 ? sums.Weight[i] / (c + sums.Blocked[i]) : 0.0;
         break;
     }
+    if (volume.Solid)
+      r.Blocked[i] = static_cast<float>(sums.Blocked[i] / passes);
     r.Intensity[i] = static_cast<float>(I);
   }
   r.CutoffScaleUsed = (s.Mode == Cutoff::Shadowgraph || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::BOS) ? 0.0 : k;
@@ -1388,6 +1504,7 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   r.UnderresolvedRays = sums.UnderresolvedRays;
   r.SideRays = sums.SideRays;
   r.Steps = sums.Steps;
+  r.BlockedRays = sums.BlockedRays;
   if (sums.UnderresolvedRays > 0 && s.AutoMeasuredError >= 0)
   {
     std::ostringstream msg;
@@ -1476,7 +1593,8 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   const std::vector<RayRecord> R = TraceRays(volume, ref, ab);
   double emax = 0;
   for (const RayRecord& r : R)
-    emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
+    if (!(r.Flags & RayBlocked))
+      emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
   const double tol = in.Tolerance > 0 ? in.Tolerance : 0.01 * emax;
   struct Candidate
   {
@@ -1489,6 +1607,11 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
     for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
       candidates.push_back({ m, st });
+  // with a body no step is longer than a cell (MakeParams): longer candidates repeat 1 voxel
+  if (volume.Solid)
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                       [](const Candidate& c) { return c.Step > 1.0; }),
+      candidates.end());
   bool found = false;
   double bestCost = 1e300, bestErr = 1e300;
   AutoChoice fallback;
@@ -1509,6 +1632,10 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
       samples += T[k].Samples;
       if (R[k].Flags & bad)
         continue; // the reference itself cannot be trusted here: nothing to compare
+      // a body stopped it (in either trace: a grazing ray may stop at a body's corner with one
+      // step and pass it with another): dark, no deflection to compare
+      if ((R[k].Flags | T[k].Flags) & RayBlocked)
+        continue;
       if (T[k].Flags & bad)
         lost = true; // it fails (or steps over structure) where the reference does not
       err = std::max(err, double(std::hypot(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
@@ -1644,14 +1771,17 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const std::size_t count = ab.size() / 2;
   std::vector<RayRecord> out(count);
   std::string used, device, warn;
-  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
+  const auto solidBytes = CellBytesOf(volume);
+  const unsigned char* bytes = solidBytes ? solidBytes->data() : volume.Levels;
+  std::shared_ptr<OpenCLTracer> cl =
+    OpenBackend(volume, bytes, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
   SetFeatureTolerance(P, volume);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)
     cl->TracePoints(P, ab.data(), count, rec);
   else
     for (std::size_t k = 0; k < count; ++k)
-      sch_trace(volume.Field, volume.Levels, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
+      sch_trace(volume.Field, bytes, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
   // the flags travel as floats in the record; turn them into integers
   for (RayRecord& r : out)
   {

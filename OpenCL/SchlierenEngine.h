@@ -45,7 +45,16 @@ struct Volume
   /** The index tolerance the levels were built for (for the step-quality checks). */
   double LevelTolerance = 0.0;
   /**
-   * The caller's version of Field and Levels. Equal non-zero stamps with the same pointers and
+   * Optional solid bodies: one byte per grid point, non-zero where the point lies in a body
+   * (null: no body, and no cost). A ray stops where a step ends nearer to a solid point than to
+   * any other (the body is the union of the solid points' cubes of one spacing): its light
+   * never reaches the film, and it is counted (RayBlocked, TraceResult::BlockedRays). With a
+   * body the base step is at most one cell and no octree skip crosses one, so that no step
+   * passes over a body one point thick. Rays that leave through the box's faces are not blocked.
+   */
+  const unsigned char* Solid = nullptr;
+  /**
+   * The caller's version of Field, Levels and Solid. Equal non-zero stamps with the same pointers and
    * dimensions promise unchanged contents: the engine then keeps what it derived from them (the
    * OpenCL device's copy, the index range) from one call to the next, so that a new camera or
    * a few more passes do not upload the volume again. 0 (the default): nothing is kept.
@@ -213,6 +222,8 @@ struct FilmSums
   double MaxError = 0.0;       ///< max over rays of the step-doubling estimate
   double Photons = 0.0, Samples = 0.0, FailedRays = 0.0, MissedRays = 0.0;
   double UnderresolvedRays = 0.0, SideRays = 0.0, Steps = 0.0;
+  double BlockedRays = 0.0;   ///< rays stopped by a solid body (Volume::Solid)
+  std::vector<double> Blocked; ///< per pixel: photons emitted there that a body stopped
   int Passes = 0;
 
   void Resize(int nx, int ny);
@@ -253,12 +264,16 @@ struct TraceResult
   std::vector<float> RGB;        ///< 3*nx*ny (ColorFilter only, else empty)
   std::vector<float> Phase;      ///< nx*ny, radians (Interferometry only, else empty)
   std::vector<float> Displacement; ///< 2*nx*ny, world units (BOS only, else empty)
+  /// nx*ny: the fraction of the photons emitted at a pixel that a solid body stopped (the
+  /// body's shadow, as the beam sees it before any deflection); only when the volume has Solid
+  std::vector<float> Blocked;
   double CutoffScaleUsed = 0.0;
   std::string BackendUsed;  ///< "OpenCL" or "CPU"
   std::string DeviceName;
   std::string Warnings;     ///< what the user should know (fallbacks, failed rays)
   double Photons = 0, Samples = 0, FailedRays = 0, MissedRays = 0, MaxDrift = 0;
   double UnderresolvedRays = 0, SideRays = 0, Steps = 0, MaxError = 0;
+  double BlockedRays = 0; ///< stopped by a solid body: dark on the film, not failed
   AutoChoice Choice; ///< what was traced with (for Auto: what it chose)
   double Seconds = 0; ///< tracing time
 };
@@ -323,7 +338,8 @@ enum RayFlags : std::uint32_t
   RayNonFinite = 8,
   RayOffFilm = 16,
   RayUnderresolved = 32,
-  RaySide = 64
+  RaySide = 64,
+  RayBlocked = 128 ///< stopped by a solid body (Volume::Solid)
 };
 
 /**

@@ -89,10 +89,16 @@ static inline sch_f4 sch_f4_lerp(sch_f4 a, sch_f4 b, float t)
 #define SCH_INTEGRATOR(P) (SCH_FIXED_INTEGRATOR)
 #define SCH_USE_LEVELS(P) (SCH_FIXED_LEVELS)
 #define SCH_KEEP(P) (SCH_FIXED_KEEP)
+#ifdef SCH_FIXED_SOLID
+#define SCH_USE_SOLID(P) (SCH_FIXED_SOLID)
+#else
+#define SCH_USE_SOLID(P) ((P)->useSolid)
+#endif
 #else
 #define SCH_INTEGRATOR(P) ((P)->integrator)
 #define SCH_USE_LEVELS(P) ((P)->useLevels)
 #define SCH_KEEP(P) ((P)->keepInvariant)
+#define SCH_USE_SOLID(P) ((P)->useSolid)
 #endif
 /* Number of floats per output ray record. */
 #define SCH_RECORD 12
@@ -119,6 +125,7 @@ static inline sch_f4 sch_f4_lerp(sch_f4 a, sch_f4 b, float t)
 #define SCH_RAY_UNDERRESOLVED                                                                      \
   32u                    /* a step jumped over structure (e.g. a shock): the result is suspect */
 #define SCH_RAY_SIDE 64u /* left through a side of the box (grazing or strongly bent) */
+#define SCH_RAY_BLOCKED 128u /* stopped by a solid body: no light of it reaches the film */
 /* Rays whose photon is dropped from the image. */
 #define SCH_RAY_LOST (SCH_RAY_MAXSTEPS | SCH_RAY_TURNED | SCH_RAY_NONFINITE | SCH_RAY_OFFFILM)
 
@@ -168,7 +175,15 @@ typedef struct
   float gx0, gy0, gz0;       /* grid coordinate of the centre: -(origin - centre) / spacing */
   int rowFloats, sliceFloats; /* floats from one grid row, and slice, to the next: 4 nx, 4 nx ny */
   int slabCells;              /* cells along z per slab (SCH_SLABS builds only) */
+  int useSolid;               /* 1: the cell bytes carry solid points (SCH_SOLID_BIT) that stop rays */
 } sch_params;
+
+/* The byte per grid point that travels with the field (the `levels` buffer): the octree level of
+ * the cell whose lower corner the point is, in the low bits, and SCH_SOLID_BIT where the point
+ * lies in a solid body. The host keeps a cell's level 0 where its block, with the block's
+ * one-point halo, holds a solid point, so that no skip crosses a body. */
+#define SCH_LEVEL_MASK 0x7f
+#define SCH_SOLID_BIT 0x80
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
 {
@@ -304,6 +319,21 @@ SCH_FN sch_sample sch_sample_field(SCH_FIELD field, const sch_params* P, sch_v3 
 {
   long cell;
   return sch_sample_cell(field, P, p, &cell);
+}
+
+/* 1 if the grid point nearest to p (relative to the centre) is solid: SCH_SOLID_BIT of its byte
+ * in the cell bytes (see SCH_LEVEL_MASK). A body is the union of its points' cells of the
+ * nearest-point (Voronoi) partition: cubes of one spacing around each solid point. */
+SCH_FN int sch_solid_at(SCH_GLOBAL const sch_uchar* bytes, const sch_params* P, sch_v3 p)
+{
+  int i, j, k;
+  float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
+  float fy = sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
+  float fz = sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
+  i += fx - (float)i >= 0.5f ? 1 : 0;
+  j += fy - (float)j >= 0.5f ? 1 : 0;
+  k += fz - (float)k >= 0.5f ? 1 : 0;
+  return (bytes[((long)k * P->ny + j) * P->nx + i] & SCH_SOLID_BIT) != 0;
 }
 
 /* ---------------------------------------------------------------- geometry */
@@ -488,7 +518,10 @@ SCH_FN void sch_walk_begin(SCH_FIELD field,
   /* the index where the ray enters is the background the deflection is measured against */
   long cell;
   W->s = sch_sample_cell(field, P, x, &cell);
-  W->level = SCH_USE_LEVELS(P) ? (int)levels[cell] : 0;
+  W->level = SCH_USE_LEVELS(P) ? (int)(levels[cell] & SCH_LEVEL_MASK) : 0;
+  /* a ray that enters inside a body (one that touches the box) is stopped where it enters */
+  if (SCH_USE_SOLID(P) && sch_solid_at(levels, P, x))
+    W->flags |= SCH_RAY_BLOCKED;
   W->ne1 = W->s.n1;
   W->ne = 1.0f + W->ne1;
   W->invn = 1.0f / W->ne;
@@ -501,6 +534,8 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   SCH_WALK_AS sch_walk* W)
 {
   if (W->it >= P->maxSteps)
+    return 0;
+  if (SCH_USE_SOLID(P) && (W->flags & SCH_RAY_BLOCKED))
     return 0;
   sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
   sch_v3 v = sch_axpy(W->ne, d0, W->w);
@@ -604,11 +639,20 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   const int aimed = (SCH_INTEGRATOR(P) == SCH_EULER) | (SCH_INTEGRATOR(P) == SCH_STRAIGHT);
   if (aimed ? !whole : !sch_inside(P, W->x))
     return 0;
+  /* a body stops the ray where a step ends in it. The host limits the base step to a cell with
+   * bodies present (and no octree skip crosses one), so a step cannot pass over a body one grid
+   * point thick; it can clip the corner of a solid point's cube, a voxelisation detail */
+  if (SCH_USE_SOLID(P) && sch_solid_at(levels, P, W->x))
+  {
+    W->flags |= SCH_RAY_BLOCKED;
+    W->it++;
+    return 0;
+  }
   /* the sample at the end of a step is counted by it (sch_walk_end), W->samples counts the others */
   long cell;
   sch_sample sn = sch_sample_cell(field, P, W->x, &cell);
   if (SCH_USE_LEVELS(P))
-    W->level = (int)levels[cell];
+    W->level = (int)(levels[cell] & SCH_LEVEL_MASK);
   /* a step longer than a feature: over a step of more than one cell, the index changed in a way
    * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
    * cannot jump over anything: trilinear data has no structure finer than a cell. */
@@ -651,7 +695,7 @@ SCH_FN void sch_walk_end(SCH_FIELD field,
     W->flags |= SCH_RAY_NONFINITE;
   if (W->it >= P->maxSteps)
     W->flags |= SCH_RAY_MAXSTEPS;
-  else if (!(W->flags & SCH_RAY_NONFINITE))
+  else if (!(W->flags & (SCH_RAY_NONFINITE | SCH_RAY_BLOCKED)))
   {
     /* heading back against the beam where it left (a mirage): it never reaches the film */
     if (W->ne + sch_dot(sch_make(P->dx, P->dy, P->dz), W->w) <= 0.0f)
@@ -749,11 +793,11 @@ SCH_FN void sch_record(SCH_FIELD field,
   if (!(R.flags & SCH_RAY_MISSED))
   {
     /* it left through a side if the exit point is not beyond the back of the box */
-    if (!(R.flags & SCH_RAY_LOST) &&
+    if (!(R.flags & (SCH_RAY_LOST | SCH_RAY_BLOCKED)) &&
       sch_dot(sch_axpy(-s1, d0, sch_axpy(-1.0f, o, R.x)), d0) < -P->step)
       R.flags |= SCH_RAY_SIDE;
 #ifdef SCH_PRIVATE_WALKS
-    if (P->estimate)
+    if (P->estimate && !(R.flags & SCH_RAY_BLOCKED))
     {
       /* step doubling: the difference to a trace at twice the step, scaled by the scheme's order */
       sch_ray R2;
@@ -763,7 +807,9 @@ SCH_FN void sch_record(SCH_FIELD field,
       sch_deflection(P, &R2, &ex2, &ey2);
       float order =
         P->integrator == SCH_RK4 ? 15.0f : (P->integrator == SCH_MIDPOINT ? 3.0f : 1.0f);
-      err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
+      /* a ray the doubled step stops at a body has no deflection to compare */
+      if (!(R2.flags & SCH_RAY_BLOCKED))
+        err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
       R.samples += R2.samples;
     }
 #endif
