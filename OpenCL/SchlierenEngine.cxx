@@ -421,9 +421,7 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.pixel = static_cast<float>(f.PixelSize);
   P.filmNx = f.Size[0];
   P.filmNy = f.Size[1];
-  // with a body, no step longer than a cell: a longer one could pass over a body one point thick
-  const double step = volume.Solid ? std::min(s.StepSize, 1.0) * MinSpacing(volume)
-                                   : s.StepSize * MinSpacing(volume);
+  const double step = s.StepSize * MinSpacing(volume);
   P.step = static_cast<float>(step);
   const double diag = 2 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy + double(P.hz) * P.hz);
   double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / step + 16;
@@ -520,10 +518,12 @@ static void SetFeatureTolerance(sch_params& P, const Volume& volume)
     P.featureTol = 1e-30f;
 }
 
-// The byte per grid point that the kernels read (SCH_LEVEL_MASK, SCH_SOLID_BIT): the volume's
-// levels as they are without a body; with one, the solid bit and the levels lowered until no
-// block (with its one-point halo) holds a solid point, so that no skip crosses a body.
-static std::vector<unsigned char> MakeCellBytes(const Volume& v)
+// The byte per grid point that the kernels read (SCH_LEVEL_MASK, SCH_NEAR_BIT, SCH_SOLID_BIT):
+// with a body, the solid bit; the near bit where a solid point lies within `reach` (world units:
+// the longest step) of the cell, so that steps there are cut to a cell; and the volume's levels
+// lowered until no block (with its one-point halo) holds a solid point, so that no skip crosses a
+// body.
+static std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach)
 {
   const std::size_t N = v.NumberOfPoints();
   const int nx = v.Dimensions[0], ny = v.Dimensions[1], nz = v.Dimensions[2];
@@ -535,8 +535,6 @@ static std::vector<unsigned char> MakeCellBytes(const Volume& v)
     bytes[i] = static_cast<unsigned char>(lvl | (v.Solid[i] ? SCH_SOLID_BIT : 0));
     anyLevel = anyLevel || lvl > 0;
   }
-  if (!anyLevel)
-    return bytes;
   // solid points in any box of points by a summed-volume table
   const std::size_t sx = 1, sy = nx + 1, sz = static_cast<std::size_t>(nx + 1) * (ny + 1);
   std::vector<std::uint32_t> S(sz * (nz + 1), 0);
@@ -557,6 +555,11 @@ static std::vector<unsigned char> MakeCellBytes(const Volume& v)
       S[k0 * sz + j1 * sy + i0] + S[k0 * sz + j0 * sy + i1] - S[k0 * sz + j0 * sy + i0];
     return c > 0;
   };
+  // a step of length `reach` from inside cell c stays within the cells c - r .. c + r, and the
+  // points nearest to it within c - r .. c + 1 + r, r = ceil(reach / spacing) along each axis
+  int r[3];
+  for (int a = 0; a < 3; ++a)
+    r[a] = static_cast<int>(std::ceil(reach / v.Spacing[a])) + 1;
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
@@ -564,6 +567,13 @@ static std::vector<unsigned char> MakeCellBytes(const Volume& v)
         unsigned char& b = bytes[(static_cast<std::size_t>(k) * ny + j) * nx + i];
         int L = b & SCH_LEVEL_MASK;
         const int c[3] = { i, j, k };
+        int nlo[3], nhi[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          nlo[a] = std::max(0, c[a] - r[a]);
+          nhi[a] = std::min(v.Dimensions[a] - 1, c[a] + 1 + r[a]);
+        }
+        const bool near = solidIn(nlo, nhi);
         while (L > 0)
         {
           // the points the block's cells touch, grown by one (as ComputeOctreeLevels)
@@ -578,32 +588,41 @@ static std::vector<unsigned char> MakeCellBytes(const Volume& v)
             break;
           --L;
         }
-        b = static_cast<unsigned char>((b & SCH_SOLID_BIT) | L);
+        b = static_cast<unsigned char>((b & SCH_SOLID_BIT) | (near ? SCH_NEAR_BIT : 0) | L);
       }
   return bytes;
 }
 
-// The cell bytes for a trace: the volume's levels (or null) without a body; with one, the bytes
-// of MakeCellBytes, kept for the last stamped volume.
-static std::shared_ptr<const std::vector<unsigned char>> CellBytesOf(const Volume& v)
+// The cell bytes for a trace with steps of up to `reach` world units: the volume's levels (or
+// null) without a body; with one, the bytes of MakeCellBytes, kept for the last stamped volume
+// and reach.
+static std::shared_ptr<const std::vector<unsigned char>> CellBytesOf(const Volume& v, double reach)
 {
   if (!v.Solid)
     return nullptr;
   static VolumeIdentity bytesOf;
+  static double reachOf = 0;
   static std::shared_ptr<const std::vector<unsigned char>> kept;
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
-    if (kept && bytesOf == VolumeIdentity(v))
+    if (kept && bytesOf == VolumeIdentity(v) && reachOf == reach)
       return kept;
   }
-  auto bytes = std::make_shared<const std::vector<unsigned char>>(MakeCellBytes(v));
+  auto bytes = std::make_shared<const std::vector<unsigned char>>(MakeCellBytes(v, reach));
   if (v.Stamp != 0)
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
     bytesOf = VolumeIdentity(v);
+    reachOf = reach;
     kept = bytes;
   }
   return bytes;
+}
+
+// The longest step a trace with parameters P takes (the step-doubling estimate doubles it).
+static double StepReach(const sch_params& P)
+{
+  return double(P.step) * (P.estimate ? 2.0 : 1.0);
 }
 
 // ------------------------------------------------------------------ film sums
@@ -1255,14 +1274,10 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     chunk *= 2;
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
-  const auto solidBytes = CellBytesOf(volume);
+  const auto solidBytes = CellBytesOf(volume, StepReach(P));
   const unsigned char* bytes = solidBytes ? solidBytes->data() : volume.Levels;
   std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, bytes, s, P, chunk, false, used, device, warn);
   SetFeatureTolerance(P, volume);
-  if (volume.Solid && s.StepSize > 1.0 && sums.Passes == 0)
-    warn += "StepSize " + std::to_string(s.StepSize) +
-      " voxels was limited to 1 voxel: the volume has a solid body, and a longer step could pass "
-      "over a thin one.\n";
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
   const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
@@ -1607,11 +1622,6 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
     for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
       candidates.push_back({ m, st });
-  // with a body no step is longer than a cell (MakeParams): longer candidates repeat 1 voxel
-  if (volume.Solid)
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                       [](const Candidate& c) { return c.Step > 1.0; }),
-      candidates.end());
   bool found = false;
   double bestCost = 1e300, bestErr = 1e300;
   AutoChoice fallback;
@@ -1771,7 +1781,7 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const std::size_t count = ab.size() / 2;
   std::vector<RayRecord> out(count);
   std::string used, device, warn;
-  const auto solidBytes = CellBytesOf(volume);
+  const auto solidBytes = CellBytesOf(volume, StepReach(P));
   const unsigned char* bytes = solidBytes ? solidBytes->data() : volume.Levels;
   std::shared_ptr<OpenCLTracer> cl =
     OpenBackend(volume, bytes, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);

@@ -179,10 +179,13 @@ typedef struct
 } sch_params;
 
 /* The byte per grid point that travels with the field (the `levels` buffer): the octree level of
- * the cell whose lower corner the point is, in the low bits, and SCH_SOLID_BIT where the point
- * lies in a solid body. The host keeps a cell's level 0 where its block, with the block's
- * one-point halo, holds a solid point, so that no skip crosses a body. */
-#define SCH_LEVEL_MASK 0x7f
+ * the cell whose lower corner the point is, in the low bits; SCH_SOLID_BIT where the point lies
+ * in a solid body; SCH_NEAR_BIT where a solid point lies within the reach of a step (twice the
+ * base step with the step-doubling estimate) of the cell. The host keeps a cell's level 0 where
+ * its block, with the block's one-point halo, holds a solid point, so that no skip crosses a
+ * body, and near a body no step is longer than a cell, so that none passes over a thin one. */
+#define SCH_LEVEL_MASK 0x3f
+#define SCH_NEAR_BIT 0x40
 #define SCH_SOLID_BIT 0x80
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
@@ -495,6 +498,7 @@ typedef struct
   float ne1, ne, base;
   float invn; /* 1 / n at x */
   int level;  /* octree level of x's cell (with levels) */
+  int nearSolid; /* x's cell is within a step's reach of a solid body (SCH_NEAR_BIT) */
   float samples, opl, path, mismatch;
   sch_uint flags;
   int it;
@@ -519,6 +523,7 @@ SCH_FN void sch_walk_begin(SCH_FIELD field,
   long cell;
   W->s = sch_sample_cell(field, P, x, &cell);
   W->level = SCH_USE_LEVELS(P) ? (int)(levels[cell] & SCH_LEVEL_MASK) : 0;
+  W->nearSolid = SCH_USE_SOLID(P) ? (int)(levels[cell] & SCH_NEAR_BIT) : 0;
   /* a ray that enters inside a body (one that touches the box) is stopped where it enters */
   if (SCH_USE_SOLID(P) && sch_solid_at(levels, P, x))
     W->flags |= SCH_RAY_BLOCKED;
@@ -551,6 +556,9 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
     dir = d0;
   if (SCH_USE_LEVELS(P))
     ds = sch_skip(P, W->x, dir, W->base, W->level);
+  /* next to a body no step is longer than a cell: a longer one could pass over a thin body */
+  if (SCH_USE_SOLID(P) && W->nearSolid)
+    ds = ds < P->cellStep ? ds : P->cellStep;
   /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
    * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
    * end point is outside pays for the exact distance. */
@@ -639,9 +647,9 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   const int aimed = (SCH_INTEGRATOR(P) == SCH_EULER) | (SCH_INTEGRATOR(P) == SCH_STRAIGHT);
   if (aimed ? !whole : !sch_inside(P, W->x))
     return 0;
-  /* a body stops the ray where a step ends in it. The host limits the base step to a cell with
-   * bodies present (and no octree skip crosses one), so a step cannot pass over a body one grid
-   * point thick; it can clip the corner of a solid point's cube, a voxelisation detail */
+  /* a body stops the ray where a step ends in it. Near a body steps are at most a cell long
+   * (and no octree skip crosses one), so a step cannot pass over a body one grid point thick; it
+   * can clip the corner of a solid point's cube, a voxelisation detail */
   if (SCH_USE_SOLID(P) && sch_solid_at(levels, P, W->x))
   {
     W->flags |= SCH_RAY_BLOCKED;
@@ -653,6 +661,8 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   sch_sample sn = sch_sample_cell(field, P, W->x, &cell);
   if (SCH_USE_LEVELS(P))
     W->level = (int)(levels[cell] & SCH_LEVEL_MASK);
+  if (SCH_USE_SOLID(P))
+    W->nearSolid = (int)(levels[cell] & SCH_NEAR_BIT);
   /* a step longer than a feature: over a step of more than one cell, the index changed in a way
    * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
    * cannot jump over anything: trilinear data has no structure finer than a cell. */
