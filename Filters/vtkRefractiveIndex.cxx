@@ -1347,4 +1347,9 @@ void vtkRefractiveIndex::PrintSelf(ostream& os, vtkIndent indent)
   os << "\n";
   os << indent << "AmbientMode: " << this->AmbientMode << "\n";
   os << indent << "AmbientValue: " << this->AmbientValue << "\n";
+  os << indent << "BodyFromGrid: " << (this->BodyFromGrid ? "On" : "Off") << ", BodyWallFaces: "
+     << this->BodyWallFaces[0] << " " << this->BodyWallFaces[1] << " " << this->BodyWallFaces[2]
+     << " " << this->BodyWallFaces[3] << " " << this->BodyWallFaces[4] << " "
+     << this->BodyWallFaces[5] << ", SolidArray: "
+     << (this->SolidArray.empty() ? std::string("(none)") : this->SolidArray) << "\n";
 }

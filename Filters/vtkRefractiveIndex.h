@@ -52,6 +52,10 @@
  * 0.7 rho_inf, it draws the grid's outer boundary as a false edge. The constant used is in the
  * field data `ambient_n_minus_1`.
  *
+ * Solid bodies (see BodyFromGrid): the output's point array `solid` (unsigned char) marks the
+ * points in a body, from the grid's enclosed holes, a SolidArray or a closed surface on input
+ * port 1; SchlierenImage stops the light there.
+ *
  * The output is always a vtkImageData with the point arrays `n_minus_1` (float, the active
  * scalars) and `grad_n` (float, 3 components, per world unit: central differences, one-sided at
  * the borders; schlieren::ComputeGradient), the input's (or the resampled) point arrays and, where
