@@ -46,8 +46,8 @@ struct Volume
   double LevelTolerance = 0.0;
   /**
    * Optional solid bodies: one byte per grid point, non-zero where the point lies in a body
-   * (null: no body, and no cost). A ray stops where a step ends nearer to a solid point than to
-   * any other (the body is the union of the solid points' cubes of one spacing): its light
+   * (null: no body, and no cost). A ray stops where a step ends in a body, where the trilinear
+   * interpolation of the solid points (1 solid, 0 not) is at least one half: its light
    * never reaches the film, and it is counted (RayBlocked, TraceResult::BlockedRays). With a
    * body the base step is at most one cell and no octree skip crosses one, so that no step
    * passes over a body one point thick. Rays that leave through the box's faces are not blocked.

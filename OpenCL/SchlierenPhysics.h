@@ -324,19 +324,29 @@ SCH_FN sch_sample sch_sample_field(SCH_FIELD field, const sch_params* P, sch_v3 
   return sch_sample_cell(field, P, p, &cell);
 }
 
-/* 1 if the grid point nearest to p (relative to the centre) is solid: SCH_SOLID_BIT of its byte
- * in the cell bytes (see SCH_LEVEL_MASK). A body is the union of its points' cells of the
- * nearest-point (Voronoi) partition: cubes of one spacing around each solid point. */
+/* 1 if p (relative to the centre) lies in a solid body: where the trilinear interpolation of the
+ * solid points (SCH_SOLID_BIT of the cell bytes, see SCH_LEVEL_MASK: 1 solid, 0 not) is at least
+ * one half. The body's surface is then the half-level surface of that interpolant: it passes
+ * half-way between a solid point and its fluid neighbours along the grid lines, and between
+ * them it is smooth, not a staircase of voxels. */
 SCH_FN int sch_solid_at(SCH_GLOBAL const sch_uchar* bytes, const sch_params* P, sch_v3 p)
 {
   int i, j, k;
   float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
   float fy = sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
   float fz = sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
-  i += fx - (float)i >= 0.5f ? 1 : 0;
-  j += fy - (float)j >= 0.5f ? 1 : 0;
-  k += fz - (float)k >= 0.5f ? 1 : 0;
-  return (bytes[((long)k * P->ny + j) * P->nx + i] & SCH_SOLID_BIT) != 0;
+  float tx = fx - (float)i, ty = fy - (float)j, tz = fz - (float)k;
+  const long sy = P->nx, sz = (long)P->nx * P->ny;
+  SCH_GLOBAL const sch_uchar* c = bytes + (long)k * sz + (long)j * sy + i;
+  /* SCH_SOLID_BIT is the top bit: b >> 7 is 1 in a body, 0 elsewhere */
+  float e00 = (float)(c[0] >> 7) + tx * ((float)(c[1] >> 7) - (float)(c[0] >> 7));
+  float e10 = (float)(c[sy] >> 7) + tx * ((float)(c[sy + 1] >> 7) - (float)(c[sy] >> 7));
+  float e01 = (float)(c[sz] >> 7) + tx * ((float)(c[sz + 1] >> 7) - (float)(c[sz] >> 7));
+  float e11 =
+    (float)(c[sz + sy] >> 7) + tx * ((float)(c[sz + sy + 1] >> 7) - (float)(c[sz + sy] >> 7));
+  float f0 = e00 + ty * (e10 - e00);
+  float f1 = e01 + ty * (e11 - e01);
+  return f0 + tz * (f1 - f0) >= 0.5f;
 }
 
 /* ---------------------------------------------------------------- geometry */
@@ -647,10 +657,11 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   const int aimed = (SCH_INTEGRATOR(P) == SCH_EULER) | (SCH_INTEGRATOR(P) == SCH_STRAIGHT);
   if (aimed ? !whole : !sch_inside(P, W->x))
     return 0;
-  /* a body stops the ray where a step ends in it. Near a body steps are at most a cell long
-   * (and no octree skip crosses one), so a step cannot pass over a body one grid point thick; it
-   * can clip the corner of a solid point's cube, a voxelisation detail */
-  if (SCH_USE_SOLID(P) && sch_solid_at(levels, P, W->x))
+  /* a body stops the ray where a step ends in it; only where the step began within a step's reach
+   * of a body (SCH_NEAR_BIT) can it end in one. Near a body steps are at most a cell long (and no
+   * octree skip crosses one), so a step cannot pass over a plate of solid points one point thick
+   * (its half-level surfaces lie half a spacing either side); it can clip an edge of a body */
+  if (SCH_USE_SOLID(P) && W->nearSolid && sch_solid_at(levels, P, W->x))
   {
     W->flags |= SCH_RAY_BLOCKED;
     W->it++;

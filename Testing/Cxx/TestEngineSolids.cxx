@@ -8,8 +8,8 @@
 //  - shadowgraph: the shadow's edge is sharp (one partial pixel on each side);
 //  - a plate one grid point thick is not jumped over by the octree's skips or by long steps;
 //  - the CPU and OpenCL backends, and the lock-step and per-item kernels, agree.
-// The body is the union of the nearest-point cubes of the solid points, so its silhouette differs
-// from the exact one by at most half a spacing: "to a pixel" with pixel = spacing.
+// The body is the half-level surface of the interpolated solid points, within about half a
+// spacing of the exact one: "to a pixel" with pixel = spacing.
 #include "SchlierenTesting.h"
 
 #include <algorithm>
@@ -279,7 +279,7 @@ void TestShadowEdge(Backend backend)
     }
   std::printf("shadowgraph (%s): rows through the centre: %d dark, %d partial, %d fully lit pixels\n",
     BackendName(backend), dark, partial, lit);
-  // the pixel edges lie on grid points, the faces of the solid points' cubes half-way between:
+  // the pixel edges lie on grid points, the body's surface along a grid line half-way between:
   // an edge of the shadow falls inside a pixel and may half-cover it and its neighbour
   CHECK(partial <= 8 && dark + partial + lit == 2 * nx,
     "the shadow's edge is sharp: at most two partial pixels at each edge of each row");
