@@ -1192,6 +1192,19 @@ std::string vtkRefractiveIndex::ComputeSolid(vtkInformationVector** inputVector,
              "as a SolidArray or a surface instead.";
     }
   }
+  // a body the input already carries (RefractiveScene's Body, an upstream RefractiveIndex's): kept
+  if (vtkDataArray* upstream = grid->GetPointData()->GetArray("solid"))
+  {
+    for (vtkIdType i = 0; upstream->GetNumberOfComponents() == 1 && i < count; ++i)
+    {
+      const double v = upstream->GetComponent(i, 0);
+      if (resampled ? v >= 0.5 : v != 0.0)
+      {
+        solid[i] = 1;
+        any = true;
+      }
+    }
+  }
   // the mask array
   if (!this->SolidArray.empty())
   {

@@ -5,7 +5,7 @@
     radius R (equivalent radius of the dark area within a pixel; pixel = spacing = 1/32), 0.5
     elsewhere; the image's `blocked` array is 1 inside and 0 outside, `blocked_rays` counts the
     rays through the disc and `failed_rays` stays 0; CPU and OpenCL stop the same rays.
-  - RefractiveIndex, where the body comes from:
+  - RefractiveIndex, where the body comes from (and it keeps a body its input already has):
       * the holes of the grid (an image with vtkValidPointMask 0 in a ball in the middle, and in a
         slab on the z min face): the enclosed ball is solid, the slab on the face is not, unless
         BodyWallFaces marks that face;
@@ -89,6 +89,11 @@ x = -1 + h * np.arange(65)
 Z, Yg, Xg = np.meshgrid(x, x, x, indexing="ij")
 T.check(np.array_equal(solid > 0, Xg ** 2 + Yg ** 2 + Z ** 2 <= 0.25),
         "RefractiveScene: `solid` marks the grid points within the sphere (%d points)" % (solid > 0).sum())
+through = RefractiveIndex(Input=scene, Model="Passthrough")
+through.InputArray = ["POINTS", "n_minus_1"]
+kept, _ = fetch(through)
+T.check(ct.field_value(kept, "solid_points") == (solid > 0).sum(),
+        "RefractiveIndex keeps the body its input carries (%d points)" % ct.field_value(kept, "solid_points"))
 fields = {}
 for backend in ("CPU", "OpenCL"):
     img = SchlierenImage(Input=scene, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0], Resolution=[64, 64],
