@@ -424,7 +424,9 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   const double step = s.StepSize * MinSpacing(volume);
   P.step = static_cast<float>(step);
   const double diag = 2 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy + double(P.hz) * P.hz);
-  double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / step + 16;
+  // near a body steps are cut to a cell: the default limit allows for a whole path of them
+  const double shortest = volume.Solid ? std::min(step, MinSpacing(volume)) : step;
+  double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / shortest + 16;
   P.maxSteps = static_cast<int>(std::min(maxSteps, 1e9));
   P.seed = s.Seed;
   P.pass = 0;
