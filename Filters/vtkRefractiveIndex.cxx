@@ -20,10 +20,12 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSelectEnclosedPoints.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
@@ -70,7 +72,10 @@ std::string NotAVolume(vtkDataObject* input)
                      "grid (structured, rectilinear, unstructured, or a multiblock of them) to "
                      "resample onto an image; got ") +
     (input ? input->GetClassName() : "nothing") +
-    (vtkPolyData::SafeDownCast(input) ? " (surfaces, lines and points have no inside)." : ".");
+    (vtkPolyData::SafeDownCast(input)
+        ? " (surfaces, lines and points have no inside; a 2D flow on a mesh in a plane: set "
+          "Symmetry to Planar or Axisymmetric)."
+        : ".");
 }
 /** The names of the point and cell arrays of a data set or of the leaves of a composite one. */
 std::vector<std::string> InputArrayNames(vtkDataObject* data)
@@ -404,8 +409,31 @@ int vtkRefractiveIndex::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkDataObject* input = vtkDataObject::GetData(inInfo);
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-  if (vtkImageData::SafeDownCast(input))
+  if (this->Symmetry != NO_SYMMETRY &&
+    (vtkDataSet::SafeDownCast(input) || vtkCompositeDataSet::SafeDownCast(input)))
   {
+    // A 2D input made into a volume on this filter's grid (vtkRefractiveIndexInputs.cxx).
+    int whole[6];
+    double origin[3], spacing[3];
+    if (!this->SymmetricGrid(inInfo, whole, origin, spacing))
+    {
+      outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+      return 0;
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  }
+  else if (vtkImageData::SafeDownCast(input))
+  {
+    // A 2D image without Symmetry: said here, so that nothing downstream adds its own message.
+    const std::string flat = this->FlatInputError(input);
+    if (!flat.empty())
+    {
+      outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+      vtkErrorMacro(<< flat);
+      return 0;
+    }
     if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
     {
       return 0;
@@ -420,6 +448,14 @@ int vtkRefractiveIndex::RequestInformation(
     if (!this->SamplingGrid(inInfo, whole, origin, spacing))
     {
       outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+      return 0;
+    }
+    const std::string flat = this->FlatInputError(vtkDataObject::GetData(inInfo));
+    if (!flat.empty())
+    {
+      this->SamplingError = flat; // repeated by RequestData
+      outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+      vtkErrorMacro(<< flat);
       return 0;
     }
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
@@ -460,12 +496,17 @@ int vtkRefractiveIndex::RequestUpdateExtent(
     ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER())
     : 0;
 
-  if (!vtkImageData::SafeDownCast(vtkDataObject::GetData(inInfo)))
+  if (!vtkImageData::SafeDownCast(vtkDataObject::GetData(inInfo)) || this->Symmetry != NO_SYMMETRY)
   {
     // Resampled: every rank probes the whole grid against its own piece of the input (or the
-    // whole input on one process).
+    // whole input on one process); a 2D input made into a volume is read whole on every rank.
     int rank, size;
     RankAndSize(rank, size);
+    if (this->Symmetry != NO_SYMMETRY)
+    {
+      rank = 0;
+      size = 1;
+    }
     inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), size > 1 ? rank : 0);
     inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), size);
     inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
@@ -517,10 +558,8 @@ namespace
 /** The name chosen for input-array index `idx` ("" if none). */
 std::string ChosenName(vtkRefractiveIndex* self, int idx)
 {
-  vtkInformation* info = self->GetInputArrayInformation(idx);
-  return info && info->Has(vtkDataObject::FIELD_NAME()) && info->Get(vtkDataObject::FIELD_NAME())
-    ? std::string(info->Get(vtkDataObject::FIELD_NAME()))
-    : std::string();
+  // As chosen, or found by name where the choice was left automatic (ResolveChoices).
+  return self->GetArrayInUse(idx);
 }
 
 /** The array chosen for input-array index `idx` among the point arrays of `data`, or null. */
@@ -557,7 +596,7 @@ vtkDataArray* ChosenArray(vtkRefractiveIndex* self, int idx, vtkImageData* data,
 /** The composition the model uses (SINGLE_GAS for the models without one). */
 int CompositionOf(vtkRefractiveIndex* self)
 {
-  switch (self->GetModel())
+  switch (self->GetModelInUse())
   {
     case vtkRefractiveIndex::GLADSTONE_DALE_MIXTURE:
       return self->GetMixtureComposition();
@@ -572,7 +611,7 @@ int CompositionOf(vtkRefractiveIndex* self)
 std::vector<int> NeededArrays(vtkRefractiveIndex* self)
 {
   std::vector<int> needed;
-  const int model = self->GetModel();
+  const int model = self->GetModelInUse();
   if (model == vtkRefractiveIndex::IDEAL_GAS || model == vtkRefractiveIndex::CIDDOR)
   {
     needed = { vtkRefractiveIndex::TEMPERATURE_ARRAY, vtkRefractiveIndex::PRESSURE_ARRAY };
@@ -608,8 +647,8 @@ std::vector<int> NeededArrays(vtkRefractiveIndex* self)
 schlieren::FieldModel ModelOf(vtkRefractiveIndex* self)
 {
   schlieren::FieldModel m;
-  m.Model = static_cast<schlieren::IndexModel>(self->GetModel());
-  m.IndexIsN = self->GetPassthroughHoldsN();
+  m.Model = static_cast<schlieren::IndexModel>(self->GetModelInUse());
+  m.IndexIsN = self->GetPassthroughHoldsNInUse();
   m.SingleGas = GasOf(self->GetGas(), self->GetGladstoneDaleConstant(), self->GetMolarMass());
   m.Mixture = static_cast<schlieren::Composition>(CompositionOf(self));
   m.Gas0 = static_cast<schlieren::Gas>(self->GetMixtureGas0());
@@ -718,7 +757,7 @@ vtkSmartPointer<vtkImageData> Resample(
 std::string GatherFields(vtkRefractiveIndex* self, vtkImageData* grid, const std::vector<int>& needed,
   schlieren::FieldArrays& fields, std::vector<std::vector<float>>& storage)
 {
-  const int model = self->GetModel();
+  const int model = self->GetModelInUse();
   storage.assign(needed.size(), std::vector<float>());
   std::vector<std::pair<std::string, int>> chosen; // name, index
   for (std::size_t k = 0; k < needed.size(); ++k)
@@ -793,6 +832,35 @@ std::string GatherFields(vtkRefractiveIndex* self, vtkImageData* grid, const std
   return std::string();
 }
 
+/**
+ * "" or the error of Passthrough on values that no gas has as n - 1 (|n - 1| > 0.1: a density, a
+ * temperature or a pressure taken for n - 1), naming the array, its range and the models to use.
+ */
+std::string PassthroughRangeError(const float* n1, vtkIdType count, const std::string& name, bool holdsN)
+{
+  const double limit = 0.1;
+  float lo = 0.0f, hi = 0.0f;
+  if (count > 0)
+  {
+    const auto range = std::minmax_element(n1, n1 + count);
+    lo = *range.first;
+    hi = *range.second;
+  }
+  if (hi <= limit && lo >= -limit)
+  {
+    return std::string();
+  }
+  std::ostringstream m;
+  m << "Passthrough takes '" << name << "' as " << (holdsN ? "n" : "n - 1") << ", but it gives n - 1 from "
+    << lo << " to " << hi << ": no gas has |n - 1| above " << limit
+    << " (air at 1 atm: 2.7e-4). If '" << name
+    << "' is a density, choose Model GladstoneDale (with DensityReference for non-dimensional "
+       "data); a temperature and a pressure: IdealGas; if it holds n itself, turn on "
+       "PassthroughHoldsN. A lens or a liquid (not a gas) goes to SchlierenImage directly as an "
+       "image carrying n_minus_1.";
+  return m.str();
+}
+
 /** "The input's extent (...) does not cover the requested extent (...)", or "". */
 std::string CheckCovers(const int gridExt[6], const int outExt[6])
 {
@@ -824,7 +892,8 @@ int vtkRefractiveIndex::RequestData(
   vtkDataObject* inputObject = vtkDataObject::GetData(inInfo);
   vtkImageData* inputImage = vtkImageData::SafeDownCast(inputObject);
   vtkImageData* output = vtkImageData::GetData(outInfo);
-  if (!output || vtkPolyData::SafeDownCast(inputObject) ||
+  const bool symmetric = this->Symmetry != NO_SYMMETRY;
+  if (!output || (vtkPolyData::SafeDownCast(inputObject) && !symmetric) ||
     (!vtkDataSet::SafeDownCast(inputObject) && !vtkCompositeDataSet::SafeDownCast(inputObject)))
   {
     vtkErrorMacro(<< NotAVolume(inputObject));
@@ -833,7 +902,55 @@ int vtkRefractiveIndex::RequestData(
   int rank, ranks;
   RankAndSize(rank, ranks);
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const bool resampled = inputImage == nullptr;
+  const bool resampled = inputImage == nullptr || symmetric;
+
+  // 0. What to read (vtkRefractiveIndexInputs.cxx): a 2D input without Symmetry is one clear
+  // error; the model and the arrays left automatic are resolved by name; ids and integer arrays
+  // are refused; cell arrays become point arrays.
+  std::vector<std::string> notes;
+  vtkSmartPointer<vtkDataObject> pointInput; // the input with cell arrays made point arrays
+  int outWhole[6];
+  outInfo->Get(SDDP::WHOLE_EXTENT(), outWhole);
+  if (!resampled || (!IsEmpty(outWhole) && outInfo->Has(vtkDataObject::ORIGIN())))
+  {
+    // (without a resampling grid, RequestInformation's error is repeated below instead)
+    std::string problem = this->FlatInputError(inputObject);
+    if (problem.empty())
+    {
+      problem = this->ResolveChoices(inputObject, notes);
+    }
+    std::vector<std::string> readNames;
+    for (int idx : NeededArrays(this))
+    {
+      const std::string name = ChosenName(this, idx);
+      if (!name.empty())
+      {
+        readNames.push_back(name);
+      }
+    }
+    if (problem.empty())
+    {
+      pointInput = this->PointFields(inputObject, readNames, notes, problem);
+    }
+    if (!problem.empty())
+    {
+      output->Initialize();
+      vtkErrorMacro(<< problem);
+      return 0;
+    }
+    for (const std::string& note : notes)
+    {
+      if (rank == 0) // the same on every rank: said once
+      {
+        vtkOutputWindowDisplayText((note + "\n").c_str());
+      }
+    }
+    if (pointInput != inputObject)
+    {
+      inputObject = pointInput;
+      inputImage = vtkImageData::SafeDownCast(inputObject);
+    }
+  }
   const std::vector<int> needed = NeededArrays(this);
 
   // 1. The grid the model runs on: the input image's (grown) piece, or the whole resampling grid
@@ -891,7 +1008,7 @@ int vtkRefractiveIndex::RequestData(
             list << (i ? ", " : "") << present[i];
           }
           output->Initialize();
-          vtkErrorMacro(<< ModelLabel(this->Model) << " reads the array '" << name
+          vtkErrorMacro(<< ModelLabel(this->GetModelInUse()) << " reads the array '" << name
                         << "', which the input does not have. Arrays present: "
                         << (present.empty() ? std::string("none") : list.str())
                         << ". Choose one of them.");
@@ -899,7 +1016,8 @@ int vtkRefractiveIndex::RequestData(
         }
       }
     }
-    grid = Resample(inputObject, structure, names);
+    grid = symmetric ? this->SymmetricResample(inputObject, structure, names)
+                     : Resample(inputObject, structure, names);
     this->UpdateProgress(0.4);
   }
 
@@ -1064,7 +1182,16 @@ int vtkRefractiveIndex::RequestData(
       schlieren::ValidateIndex(nMinus1->GetPointer(0), static_cast<std::size_t>(count));
     if (!problem.empty())
     {
-      throw schlieren::Error(problem + " (model " + ModelLabel(this->Model) + ").");
+      throw schlieren::Error(problem + " (model " + ModelLabel(this->GetModelInUse()) + ").");
+    }
+    if (this->GetModelInUse() == PASSTHROUGH)
+    {
+      const std::string notGas = PassthroughRangeError(
+        nMinus1->GetPointer(0), count, ChosenName(this, INPUT_ARRAY), this->GetPassthroughHoldsNInUse());
+      if (!notGas.empty())
+      {
+        throw schlieren::Error(notGas);
+      }
     }
     schlieren::ComputeGradient(dims, grid->GetSpacing(), nMinus1->GetPointer(0), gradient->GetPointer(0));
   }
@@ -1123,6 +1250,30 @@ int vtkRefractiveIndex::RequestData(
     a->SetName("ambient_n_minus_1");
     a->InsertNextValue(ambient);
     fieldData->AddArray(a);
+  }
+  {
+    // What was read, for scripts and for the GUI's information panel.
+    vtkNew<vtkStringArray> model;
+    model->SetName("index_model");
+    model->InsertNextValue(ModelLabel(this->GetModelInUse()));
+    fieldData->AddArray(model);
+    vtkNew<vtkStringArray> read;
+    read->SetName("index_arrays");
+    for (int idx : needed)
+    {
+      read->InsertNextValue(ChosenName(this, idx));
+    }
+    fieldData->AddArray(read);
+    if (!notes.empty())
+    {
+      vtkNew<vtkStringArray> said;
+      said->SetName("index_notes");
+      for (const std::string& note : notes)
+      {
+        said->InsertNextValue(note);
+      }
+      fieldData->AddArray(said);
+    }
   }
   vtkNew<vtkDoubleArray> fraction;
   fraction->SetName("valid_point_fraction");
@@ -1320,7 +1471,7 @@ std::string vtkRefractiveIndex::ComputeSolid(vtkInformationVector** inputVector,
 void vtkRefractiveIndex::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Model: " << this->Model << " (" << ModelLabel(this->Model) << ")\n";
+  os << indent << "Model: " << this->Model << " (" << ModelLabel(this->GetModelInUse()) << ")\n";
   os << indent << "PassthroughHoldsN: " << this->PassthroughHoldsN << "\n";
   os << indent << "Gas: " << this->Gas << "\n";
   os << indent << "GladstoneDaleConstant: " << this->GladstoneDaleConstant << " m^3/kg\n";

@@ -80,8 +80,12 @@
 #include "SchlierenFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
+#include "vtkSmartPointer.h" // for vtkSmartPointer
+
 #include <string> // for std::string
 #include <vector> // for std::vector
+
+class vtkImageData;
 
 class SCHLIERENFILTERS_EXPORT vtkRefractiveIndex : public vtkImageAlgorithm
 {
@@ -93,6 +97,7 @@ public:
   /** How the input arrays become n - 1. */
   enum ModelType
   {
+    AUTOMATIC = -1,             ///< chosen in RequestData from the arrays present (see SetModel)
     PASSTHROUGH = 0,            ///< the array is n - 1 (or n)
     GLADSTONE_DALE = 1,         ///< the array is the density; n - 1 = K rho
     GLADSTONE_DALE_MIXTURE = 2, ///< the density, K by mass fraction
@@ -164,15 +169,88 @@ public:
     AMBIENT_VALUE = 2       ///< one value: AmbientValue
   };
 
+  /** How a 2D result is made into the 3D volume that is traced. */
+  enum SymmetryType
+  {
+    NO_SYMMETRY = 0, ///< the input is a volume (a 2D input is an error that names the others)
+    PLANAR = 1,      ///< a 2D flow extruded across its plane over Span
+    AXISYMMETRIC = 2 ///< an r-z half plane revolved about SymmetryAxis
+  };
+
   ///@{
-  /** The model (a ModelType). Default PASSTHROUGH. */
-  vtkSetClampMacro(Model, int, PASSTHROUGH, CIDDOR);
+  /**
+   * The model (a ModelType). Default AUTOMATIC: resolved in RequestData from the arrays' names
+   * (case-insensitive). An InputArray chosen by name decides: a name of n - 1 (n_minus_1,
+   * refractivity) gives PASSTHROUGH, of n (n, refractive_index) PASSTHROUGH with
+   * PassthroughHoldsN, of a density (density, rho, dens) GLADSTONE_DALE, of a temperature or a
+   * pressure IDEAL_GAS; any other chosen name PASSTHROUGH (whose range check then stops a field
+   * that is not n - 1). With InputArray left automatic, the first of: an n - 1 array
+   * (PASSTHROUGH), a density (GLADSTONE_DALE with Gas, air by default), a temperature
+   * (temperature, temp, t) and a pressure (pressure, pres, p) (IDEAL_GAS), an n array; none of
+   * them is an error that lists the arrays. The choice is reported as text and in the field data
+   * `index_model` (see GetModelInUse).
+   */
+  vtkSetClampMacro(Model, int, AUTOMATIC, CIDDOR);
   vtkGetMacro(Model, int);
+  void SetModelToAutomatic() { this->SetModel(AUTOMATIC); }
   void SetModelToPassthrough() { this->SetModel(PASSTHROUGH); }
   void SetModelToGladstoneDale() { this->SetModel(GLADSTONE_DALE); }
   void SetModelToGladstoneDaleMixture() { this->SetModel(GLADSTONE_DALE_MIXTURE); }
   void SetModelToIdealGas() { this->SetModel(IDEAL_GAS); }
   void SetModelToCiddor() { this->SetModel(CIDDOR); }
+  ///@}
+
+  /** The model the last RequestData used: Model, or what AUTOMATIC resolved to. */
+  int GetModelInUse() const;
+  /**
+   * The array name the last RequestData used for input-array index `idx`: the one chosen, or the
+   * one found by name where the choice was left automatic ("" if none).
+   */
+  std::string GetArrayInUse(int idx) const;
+  /** PassthroughHoldsN, or what AUTOMATIC chose (on for an array named n). */
+  bool GetPassthroughHoldsNInUse() const;
+
+  /**
+   * The array name that stands for "not chosen: find it by name" (the GUI's default entry):
+   * "(automatic)". An unset array (no name) means the same.
+   */
+  static const char* AutomaticArrayName() { return "(automatic)"; }
+
+  ///@{
+  /**
+   * How the input becomes a volume (a SymmetryType). NO_SYMMETRY (default): the input is a
+   * volume; a 2D input (an image one point thick, or bounds of no thickness) is an error that
+   * says to choose one of the others. PLANAR: a 2D flow (a 2D data set, or the mid-plane of a
+   * thin 3D one: the plane is normal to the input's thinnest axis) is extruded across its plane
+   * over Span (the test section's width), the field uniform across it, onto an image grid with
+   * the plane's points (an image's own in-plane grid, else AutomaticDimension or
+   * SamplingDimensions) and SamplingDimensions' count across (3 when automatic). View it along
+   * the plane's normal. AXISYMMETRIC: the input is the r-z half plane of an axisymmetric flow
+   * lying in a coordinate plane; it is revolved about SymmetryAxis (the line through the origin
+   * of the plane's other in-plane axis; r = |that coordinate|) onto an image grid of
+   * SamplingDimensions (or AutomaticDimension along the longest side) over the revolved bounds
+   * (or SamplingBounds): each grid point takes the 2D field's value at (its axial coordinate, its
+   * distance to the axis), probed in the 2D input, so that memory and time follow the 3D grid
+   * and no 3D copy of the input is made. Any view direction works.
+   */
+  vtkSetClampMacro(Symmetry, int, NO_SYMMETRY, AXISYMMETRIC);
+  vtkGetMacro(Symmetry, int);
+  ///@}
+
+  ///@{
+  /** PLANAR: the extent across the plane (the test section's width), world units. Default 1. */
+  vtkSetMacro(Span, double);
+  vtkGetMacro(Span, double);
+  ///@}
+
+  ///@{
+  /**
+   * AXISYMMETRIC: the world axis (0 x, 1 y, 2 z) that is the symmetry axis; it must lie in the
+   * input's plane, and r is measured along the plane's other axis. Default 0 (x: r along y for
+   * data in the x-y plane).
+   */
+  vtkSetClampMacro(SymmetryAxis, int, 0, 2);
+  vtkGetMacro(SymmetryAxis, int);
   ///@}
 
   ///@{
@@ -420,7 +498,10 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  int Model = PASSTHROUGH;
+  int Model = AUTOMATIC;
+  int Symmetry = NO_SYMMETRY;
+  double Span = 1.0;
+  int SymmetryAxis = 0;
   bool PassthroughHoldsN = false;
   int Gas = CUSTOM_GAS;
   double GladstoneDaleConstant = 2.256e-4;
@@ -475,6 +556,38 @@ private:
     std::vector<unsigned char>& solid, std::string& note);
   /** Why the last RequestInformation could not set up the resampling grid (for RequestData). */
   std::string SamplingError;
+
+  // Planar and axisymmetric inputs, automatic choices and the checks of the arrays read: defined
+  // in vtkRefractiveIndexInputs.cxx.
+  /** The 3D grid of a PLANAR or AXISYMMETRIC input (RequestInformation); false after an error. */
+  bool SymmetricGrid(vtkInformation* inInfo, int whole[6], double origin[3], double spacing[3]);
+  /** The 2D input sampled onto the 3D grid `structure`: the arrays `names` and the valid mask. */
+  vtkSmartPointer<vtkImageData> SymmetricResample(
+    vtkDataObject* input, vtkImageData* structure, const std::vector<std::string>& names);
+  /**
+   * Resolves AUTOMATIC and the arrays left automatic (the *InUse state); returns "" or an error
+   * for the user; `notes` gets what was chosen.
+   */
+  std::string ResolveChoices(vtkDataObject* input, std::vector<std::string>& notes);
+  /**
+   * Checks the arrays `names` on the input (no integer or id arrays) and converts those that are
+   * cell data only to point data; returns the input to use (itself or a converted copy), or null
+   * after an error (in `error`).
+   */
+  vtkSmartPointer<vtkDataObject> PointFields(vtkDataObject* input,
+    const std::vector<std::string>& names, std::vector<std::string>& notes, std::string& error);
+  /** "" or the error of a NO_SYMMETRY input that is 2D (one message, naming Symmetry). */
+  std::string FlatInputError(vtkDataObject* input);
+
+  int ResolvedModel = PASSTHROUGH;
+  bool ResolvedHoldsN = false;
+  std::vector<std::string> ResolvedArrays;
+  // The symmetric grid's geometry (SymmetricGrid): the axis normal to the input's plane, that
+  // plane's coordinate, the half plane of the radius (+1 or -1), the input's largest radius.
+  int PlaneAxis = 2;
+  double PlaneCoordinate = 0.0;
+  double RadialSign = 1.0;
+  double RadialExtent = 0.0; // the input's largest r
 };
 
 #endif

@@ -380,6 +380,18 @@ int vtkSchlierenImage::RequestInformation(
     vtkErrorMacro(<< NotAnImage(input));
     return 0;
   }
+  int inWhole[6] = { 0, -1, 0, -1, 0, -1 };
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), inWhole);
+  }
+  if (inWhole[1] < inWhole[0] || inWhole[3] < inWhole[2] || inWhole[5] < inWhole[4])
+  {
+    // Not a grid with too few points: nothing came (a filter upstream that failed said why).
+    vtkErrorMacro(<< "The input volume is empty: nothing to trace. If a filter upstream reported "
+                     "an error, that is the cause; fix it there.");
+    return 0;
+  }
   try
   {
     const schlieren::Volume volume = WholeVolume(inInfo);

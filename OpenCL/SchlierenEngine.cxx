@@ -49,7 +49,9 @@ static void CheckGrid(const int dims[3], const double spacing[3])
       std::ostringstream msg;
       msg << "The volume is " << dims[0] << " x " << dims[1] << " x " << dims[2]
           << " points: tracing needs at least 2 points along every axis (axis " << "xyz"[a]
-          << " has " << dims[a] << "). Give the source or reader a 3D extent.";
+          << " has " << dims[a]
+          << "). Give the source or reader a 3D extent; a 2D result (planar or axisymmetric) goes "
+             "through RefractiveIndex with Symmetry Planar or Axisymmetric.";
       throw Error(msg.str());
     }
     if (!(spacing[a] > 0) || !std::isfinite(spacing[a]))

@@ -1,0 +1,1035 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkRefractiveIndex, the parts that decide what the filter reads: planar and axisymmetric 2D
+// inputs made into a volume, the automatic choice of the model and of the arrays left unchosen,
+// and the checks of the arrays a model reads (no integer or id arrays; cell data converted to
+// point data). The resampling of volumes stays in vtkRefractiveIndex.cxx.
+#include "vtkRefractiveIndex.h"
+
+#include "vtkBoundingBox.h"
+#include "vtkCellData.h"
+#include "vtkCellDataToPointData.h"
+#include "vtkCharArray.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataProbeFilter.h"
+#include "vtkCommunicator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include "SchlierenEngine.h"
+#include "SchlierenIndexModels.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* const ValidMask = "vtkValidPointMask";
+const char* const AxisNames = "xyz";
+
+/** Calls f(vtkDataSet*) for a data set or for every leaf of a composite data set. */
+template <class F>
+void ForEachLeaf(vtkDataObject* data, F f)
+{
+  if (auto* ds = vtkDataSet::SafeDownCast(data))
+  {
+    f(ds);
+  }
+  else if (auto* cd = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it;
+    it.TakeReference(cd->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (auto* leaf = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        f(leaf);
+      }
+    }
+  }
+}
+
+/** The names of the point arrays, then of the cell arrays, of every leaf (each name once). */
+std::vector<std::string> ArrayNames(vtkDataObject* data)
+{
+  std::vector<std::string> names;
+  for (int cells = 0; cells < 2; ++cells)
+  {
+    ForEachLeaf(data, [&](vtkDataSet* ds) {
+      vtkFieldData* fd = cells ? static_cast<vtkFieldData*>(ds->GetCellData())
+                               : static_cast<vtkFieldData*>(ds->GetPointData());
+      for (int i = 0; i < fd->GetNumberOfArrays(); ++i)
+      {
+        const char* n = fd->GetArrayName(i);
+        if (n && std::string(n) != ValidMask &&
+          std::find(names.begin(), names.end(), n) == names.end())
+        {
+          names.emplace_back(n);
+        }
+      }
+    });
+  }
+  return names;
+}
+
+/** The controller when there is more than one process, else null. */
+vtkMultiProcessController* Parallel()
+{
+  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
+  return c && c->GetNumberOfProcesses() > 1 ? c : nullptr;
+}
+
+/** Every rank's `names`, in rank order, each name once (the local list on one process). */
+std::vector<std::string> GatherNames(const std::vector<std::string>& names)
+{
+  vtkMultiProcessController* c = Parallel();
+  if (!c)
+  {
+    return names;
+  }
+  std::string mine;
+  for (const std::string& n : names)
+  {
+    mine += n + '\n';
+  }
+  const int ranks = c->GetNumberOfProcesses();
+  vtkIdType length = static_cast<vtkIdType>(mine.size());
+  std::vector<vtkIdType> lengths(ranks), offsets(ranks, 0);
+  c->AllGather(&length, lengths.data(), 1);
+  for (int r = 1; r < ranks; ++r)
+  {
+    offsets[r] = offsets[r - 1] + lengths[r - 1];
+  }
+  std::vector<char> all(static_cast<std::size_t>(offsets[ranks - 1] + lengths[ranks - 1]) + 1, '\0');
+  c->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+  std::vector<std::string> global;
+  std::string current;
+  for (std::size_t i = 0; i + 1 < all.size(); ++i)
+  {
+    if (all[i] == '\n')
+    {
+      if (std::find(global.begin(), global.end(), current) == global.end())
+      {
+        global.push_back(current);
+      }
+      current.clear();
+    }
+    else
+    {
+      current += all[i];
+    }
+  }
+  return global;
+}
+
+/**
+ * ArrayNames over every rank's piece, in rank order, so that every rank makes the same choices and
+ * the same errors (a rank's piece may be empty).
+ */
+std::vector<std::string> GlobalArrayNames(vtkDataObject* data)
+{
+  return GatherNames(ArrayNames(data));
+}
+
+/** The largest of `value` over the ranks (itself on one process). */
+int GlobalMax(int value)
+{
+  vtkMultiProcessController* c = Parallel();
+  int global = value;
+  if (c)
+  {
+    c->AllReduce(&value, &global, 1, vtkCommunicator::MAX_OP);
+  }
+  return global;
+}
+
+std::string List(const std::vector<std::string>& names)
+{
+  std::ostringstream s;
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    s << (i ? ", " : "") << names[i];
+  }
+  return names.empty() ? std::string("none") : s.str();
+}
+
+std::string Lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+/** What a field's name says it holds. */
+enum class Kind
+{
+  NMinus1,
+  N,
+  Density,
+  Temperature,
+  Pressure,
+  MixtureFraction,
+  Unknown
+};
+
+/** The names (lower case) taken for each kind, in order of preference. */
+const std::vector<std::string>& NamesOf(Kind kind)
+{
+  static const std::vector<std::string> n1{ "n_minus_1", "nminus1", "n-1", "refractivity" };
+  static const std::vector<std::string> n{ "n", "refractive_index", "refractiveindex",
+    "index_of_refraction" };
+  static const std::vector<std::string> rho{ "density", "rho", "dens", "mass_density" };
+  static const std::vector<std::string> t{ "temperature", "temp", "t", "static_temperature",
+    "t_static" };
+  static const std::vector<std::string> p{ "pressure", "pres", "press", "p", "static_pressure",
+    "p_static" };
+  static const std::vector<std::string> f{ "mixture_fraction", "mixturefraction", "f", "z" };
+  static const std::vector<std::string> none;
+  switch (kind)
+  {
+    case Kind::NMinus1:
+      return n1;
+    case Kind::N:
+      return n;
+    case Kind::Density:
+      return rho;
+    case Kind::Temperature:
+      return t;
+    case Kind::Pressure:
+      return p;
+    case Kind::MixtureFraction:
+      return f;
+    default:
+      return none;
+  }
+}
+
+Kind KindOf(const std::string& name)
+{
+  const std::string l = Lower(name);
+  for (Kind k : { Kind::NMinus1, Kind::N, Kind::Density, Kind::Temperature, Kind::Pressure })
+  {
+    const auto& names = NamesOf(k);
+    if (std::find(names.begin(), names.end(), l) != names.end())
+    {
+      return k;
+    }
+  }
+  return Kind::Unknown;
+}
+
+/** The first present array whose name is one of `kind`'s (by the order of preference), or "". */
+std::string Find(const std::vector<std::string>& present, Kind kind)
+{
+  for (const std::string& want : NamesOf(kind))
+  {
+    for (const std::string& name : present)
+    {
+      if (Lower(name) == want)
+      {
+        return name;
+      }
+    }
+  }
+  return std::string();
+}
+
+const char* Label(int model)
+{
+  static const char* const names[] = { "Passthrough", "GladstoneDale", "GladstoneDaleMixture",
+    "IdealGas", "Ciddor" };
+  return model >= 0 && model <= 4 ? names[model] : "Automatic";
+}
+
+/** Names of ids and index arrays that VTK readers and filters add. */
+bool IsIdName(const std::string& name)
+{
+  static const char* const ids[] = { "objectid", "globalelementid", "globalnodeid", "pedigreeid",
+    "pedigreeids", "vtkoriginalcellids", "vtkoriginalpointids", "vtkoriginalindices",
+    "vtkcompositeindex", "vtkblockcolors", "blockid", "processid", "vtkprocessid", "element_id",
+    "node_id", "cellid", "pointid", "ids" };
+  const std::string l = Lower(name);
+  return std::find(std::begin(ids), std::end(ids), l) != std::end(ids);
+}
+
+/** Bounds of the points of a data set or of the leaves of a composite one; false if none. */
+bool BoundsOf(vtkDataObject* data, double bounds[6])
+{
+  vtkBoundingBox box;
+  ForEachLeaf(data, [&](vtkDataSet* ds) {
+    if (ds->GetNumberOfPoints() > 0)
+    {
+      box.AddBounds(ds->GetBounds());
+    }
+  });
+  if (!box.IsValid())
+  {
+    return false;
+  }
+  box.GetBounds(bounds);
+  return true;
+}
+
+std::string Flat2DAdvice(int thin)
+{
+  std::ostringstream m;
+  m << " Set Symmetry to Planar (a 2D flow seen across its plane, as through a test section: "
+       "Span is its width; view along "
+    << AxisNames[thin]
+    << ") or Axisymmetric (an r-z half plane revolved about SymmetryAxis; any view).";
+  return m.str();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+int vtkRefractiveIndex::GetModelInUse() const
+{
+  return this->Model == AUTOMATIC ? this->ResolvedModel : this->Model;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveIndex::GetPassthroughHoldsNInUse() const
+{
+  return this->Model == AUTOMATIC ? this->ResolvedHoldsN : this->PassthroughHoldsN;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::GetArrayInUse(int idx) const
+{
+  if (idx >= 0 && static_cast<std::size_t>(idx) < this->ResolvedArrays.size())
+  {
+    return this->ResolvedArrays[idx];
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector<std::string>& notes)
+{
+  const std::vector<std::string> present = GlobalArrayNames(input);
+  this->ResolvedArrays.assign(CO2_ARRAY + 1, std::string());
+  for (int idx = 0; idx <= CO2_ARRAY; ++idx)
+  {
+    vtkInformation* info = this->GetInputArrayInformation(idx);
+    const char* name = info && info->Has(vtkDataObject::FIELD_NAME())
+      ? info->Get(vtkDataObject::FIELD_NAME())
+      : nullptr;
+    if (name && std::string(name) != AutomaticArrayName())
+    {
+      this->ResolvedArrays[idx] = name;
+    }
+  }
+  std::vector<std::string>& arrays = this->ResolvedArrays;
+  int model = this->Model;
+  bool holdsN = this->PassthroughHoldsN;
+  if (model == AUTOMATIC)
+  {
+    std::ostringstream why;
+    const std::string chosen = arrays[INPUT_ARRAY];
+    if (!chosen.empty())
+    {
+      switch (KindOf(chosen))
+      {
+        case Kind::N:
+          model = PASSTHROUGH;
+          holdsN = true;
+          why << "Input Array '" << chosen << "' is named as n";
+          break;
+        case Kind::Density:
+          model = GLADSTONE_DALE;
+          why << "Input Array '" << chosen << "' is named as a density";
+          break;
+        case Kind::Temperature:
+        case Kind::Pressure:
+        {
+          const bool isT = KindOf(chosen) == Kind::Temperature;
+          std::string& slot = arrays[isT ? TEMPERATURE_ARRAY : PRESSURE_ARRAY];
+          if (slot.empty())
+          {
+            slot = chosen;
+          }
+          model = IDEAL_GAS;
+          why << "Input Array '" << chosen << "' is named as a "
+              << (isT ? "temperature" : "pressure");
+          break;
+        }
+        case Kind::NMinus1:
+          model = PASSTHROUGH;
+          holdsN = false;
+          why << "Input Array '" << chosen << "' is named as n - 1";
+          break;
+        default:
+          model = PASSTHROUGH;
+          holdsN = false;
+          why << "Input Array '" << chosen
+              << "' has no name it knows, so it is taken as n - 1 (choose Model if it is not)";
+          break;
+      }
+    }
+    else if (!Find(present, Kind::NMinus1).empty())
+    {
+      model = PASSTHROUGH;
+      holdsN = false;
+      arrays[INPUT_ARRAY] = Find(present, Kind::NMinus1);
+      why << "the input carries n - 1 ('" << arrays[INPUT_ARRAY] << "')";
+    }
+    else if (!Find(present, Kind::Density).empty())
+    {
+      model = GLADSTONE_DALE;
+      arrays[INPUT_ARRAY] = Find(present, Kind::Density);
+      why << "the input has a density ('" << arrays[INPUT_ARRAY] << "')";
+    }
+    else if (!Find(present, Kind::Temperature).empty() && !Find(present, Kind::Pressure).empty())
+    {
+      model = IDEAL_GAS;
+      why << "the input has a temperature and a pressure";
+    }
+    else if (!Find(present, Kind::N).empty())
+    {
+      model = PASSTHROUGH;
+      holdsN = true;
+      arrays[INPUT_ARRAY] = Find(present, Kind::N);
+      why << "the input carries n ('" << arrays[INPUT_ARRAY] << "')";
+    }
+    else
+    {
+      return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
+             "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
+             "pressure, Pres, p) among the input's arrays: " +
+        List(present) + ". Choose the Model and its arrays.";
+    }
+    std::ostringstream note;
+    note << "RefractiveIndex: Model Automatic chose " << Label(model);
+    if (model == GLADSTONE_DALE || model == IDEAL_GAS)
+    {
+      note << " (Gas ";
+      if (this->Gas == CUSTOM_GAS)
+      {
+        note << "Custom, K = " << this->GladstoneDaleConstant << " m^3/kg: air unless set otherwise";
+      }
+      else
+      {
+        note << "from the table";
+      }
+      note << ")";
+    }
+    if (model == PASSTHROUGH && holdsN)
+    {
+      note << " of n";
+    }
+    note << ": " << why.str() << ".";
+    notes.push_back(note.str());
+  }
+  this->ResolvedModel = model;
+  this->ResolvedHoldsN = holdsN;
+
+  // The arrays left automatic, found by name for what the model reads there.
+  auto fill = [&](int idx, Kind kind, const char* property) {
+    if (arrays[idx].empty())
+    {
+      arrays[idx] = Find(present, kind);
+      if (!arrays[idx].empty() && this->Model != AUTOMATIC)
+      {
+        notes.push_back(std::string("RefractiveIndex: ") + property + " '" + arrays[idx] +
+          "', found by name.");
+      }
+    }
+  };
+  if (model == PASSTHROUGH)
+  {
+    fill(INPUT_ARRAY, holdsN ? Kind::N : Kind::NMinus1, "InputArray");
+  }
+  else if (model == GLADSTONE_DALE || model == GLADSTONE_DALE_MIXTURE)
+  {
+    fill(INPUT_ARRAY, Kind::Density, "InputArray");
+  }
+  if (arrays[INPUT_ARRAY].empty() && model != IDEAL_GAS && model != CIDDOR)
+  {
+    // Nothing chosen and no name known: the active point scalars, else the first point array
+    // (as before there was an automatic choice).
+    ForEachLeaf(input, [&](vtkDataSet* ds) {
+      vtkPointData* pd = ds->GetPointData();
+      vtkDataArray* a = pd->GetScalars();
+      for (int i = 0; !a && i < pd->GetNumberOfArrays(); ++i)
+      {
+        const char* n = pd->GetArrayName(i);
+        if (n && std::string(n) != ValidMask)
+        {
+          a = pd->GetArray(i);
+        }
+      }
+      if (arrays[INPUT_ARRAY].empty() && a && a->GetName())
+      {
+        arrays[INPUT_ARRAY] = a->GetName();
+      }
+    });
+    // the same on every rank: the first rank's that has one
+    const std::vector<std::string> candidates =
+      GatherNames(std::vector<std::string>{ arrays[INPUT_ARRAY] });
+    arrays[INPUT_ARRAY].clear();
+    for (const std::string& c : candidates)
+    {
+      if (!c.empty())
+      {
+        arrays[INPUT_ARRAY] = c;
+        break;
+      }
+    }
+  }
+  if (model == IDEAL_GAS || model == CIDDOR)
+  {
+    fill(TEMPERATURE_ARRAY, Kind::Temperature, "TemperatureArray");
+    fill(PRESSURE_ARRAY, Kind::Pressure, "PressureArray");
+  }
+  if ((model == GLADSTONE_DALE_MIXTURE && this->MixtureComposition == MIXTURE_FRACTION) ||
+    (model == IDEAL_GAS && this->IdealGasComposition == MIXTURE_FRACTION))
+  {
+    fill(MIXTURE_FRACTION_ARRAY, Kind::MixtureFraction, "MixtureFractionArray");
+  }
+  if (this->Model == AUTOMATIC && model == IDEAL_GAS)
+  {
+    notes.back() += " Temperature '" + arrays[TEMPERATURE_ARRAY] + "', pressure '" +
+      arrays[PRESSURE_ARRAY] + "' (in K and Pa unless the units and references say otherwise).";
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(vtkDataObject* input,
+  const std::vector<std::string>& names, std::vector<std::string>& notes, std::string& error)
+{
+  std::vector<std::string> fromCells;
+  for (const std::string& name : names)
+  {
+    bool inPoints = false, inCells = false, integral = false;
+    std::string type;
+    ForEachLeaf(input, [&](vtkDataSet* ds) {
+      for (int cells = 0; cells < 2; ++cells)
+      {
+        vtkFieldData* fd = cells ? static_cast<vtkFieldData*>(ds->GetCellData())
+                                 : static_cast<vtkFieldData*>(ds->GetPointData());
+        vtkAbstractArray* a = fd->GetAbstractArray(name.c_str());
+        if (!a)
+        {
+          continue;
+        }
+        (cells ? inCells : inPoints) = true;
+        auto* da = vtkDataArray::SafeDownCast(a);
+        if (!da || da->GetDataType() == VTK_BIT ||
+          (da->GetDataType() != VTK_FLOAT && da->GetDataType() != VTK_DOUBLE))
+        {
+          integral = true;
+          type = a->GetDataTypeAsString();
+        }
+      }
+    });
+    integral = GlobalMax(integral ? 1 : 0) != 0;
+    inPoints = GlobalMax(inPoints ? 1 : 0) != 0;
+    inCells = GlobalMax(inCells ? 1 : 0) != 0;
+    if (integral || ((inPoints || inCells) && IsIdName(name)))
+    {
+      std::ostringstream m;
+      m << "The array '" << name << "' is "
+        << (integral ? "of an integer type" + (type.empty() ? std::string() : " (" + type + ")")
+                     : std::string("named as an id"))
+        << ": ids and index arrays (ObjectId, GlobalElementId, vtkOriginalCellIds, ...) are not "
+           "a density, temperature, pressure or index field. Choose the field itself (Model "
+           "and its arrays); arrays present: "
+        << List(GlobalArrayNames(input)) << ".";
+      error = m.str();
+      return nullptr;
+    }
+    if (inCells && !inPoints)
+    {
+      fromCells.push_back(name);
+    }
+  }
+  if (fromCells.empty())
+  {
+    return input;
+  }
+  vtkNew<vtkCellDataToPointData> toPoints;
+  toPoints->SetInputData(input);
+  toPoints->SetProcessAllArrays(false);
+  for (const std::string& name : fromCells)
+  {
+    toPoints->AddCellDataArray(name.c_str());
+  }
+  toPoints->PassCellDataOff();
+  toPoints->Update();
+  vtkDataObject* converted = toPoints->GetOutputDataObject(0);
+  if (!converted)
+  {
+    error = "The cell arrays " + List(fromCells) + " could not be converted to point data.";
+    return nullptr;
+  }
+  vtkSmartPointer<vtkDataObject> copy;
+  copy.TakeReference(converted->NewInstance());
+  copy->ShallowCopy(converted);
+  notes.push_back("RefractiveIndex: the cell array" + std::string(fromCells.size() > 1 ? "s " : " ") +
+    List(fromCells) +
+    " converted to point data (each point the mean of the cells around it, "
+    "vtkCellDataToPointData), since n - 1 and its gradient are fields on points.");
+  return copy;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::FlatInputError(vtkDataObject* input)
+{
+  if (this->Symmetry != NO_SYMMETRY)
+  {
+    return std::string();
+  }
+  std::ostringstream m;
+  if (auto* image = vtkImageData::SafeDownCast(input))
+  {
+    int ext[6];
+    vtkInformation* info = this->GetInputInformation(0, 0);
+    if (info && info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), ext);
+    }
+    else
+    {
+      image->GetExtent(ext);
+    }
+    int dims[3] = { ext[1] - ext[0] + 1, ext[3] - ext[2] + 1, ext[5] - ext[4] + 1 };
+    for (int a = 2; a >= 0; --a)
+    {
+      if (dims[a] == 1 && dims[(a + 1) % 3] >= 1 && dims[(a + 2) % 3] >= 1)
+      {
+        m << "The input image is 2D (" << dims[0] << " x " << dims[1] << " x " << dims[2]
+          << " points, one along " << AxisNames[a] << "): there is no volume to trace through."
+          << Flat2DAdvice(a);
+        return m.str();
+      }
+    }
+    return std::string();
+  }
+  double b[6] = { 0, -1, 0, -1, 0, -1 };
+  const bool have = BoundsOf(input, b);
+  if (vtkMultiProcessController* c = Parallel())
+  {
+    // every rank decides on the whole input's bounds (a piece may be empty)
+    double lo[3], hi[3], glo[3], ghi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = have ? -b[2 * a] : -VTK_DOUBLE_MAX;
+      hi[a] = have ? b[2 * a + 1] : -VTK_DOUBLE_MAX;
+    }
+    c->AllReduce(lo, glo, 3, vtkCommunicator::MAX_OP);
+    c->AllReduce(hi, ghi, 3, vtkCommunicator::MAX_OP);
+    for (int a = 0; a < 3; ++a)
+    {
+      b[2 * a] = -glo[a];
+      b[2 * a + 1] = ghi[a];
+    }
+  }
+  if (!(b[0] <= b[1]))
+  {
+    return std::string();
+  }
+  const double largest = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  for (int a = 2; a >= 0; --a)
+  {
+    if (largest > 0 && b[2 * a + 1] - b[2 * a] <= 1e-9 * largest)
+    {
+      m << "The input is 2D (its bounds have no thickness along " << AxisNames[a]
+        << "): there is no volume to trace through." << Flat2DAdvice(a);
+      return m.str();
+    }
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveIndex::SymmetricGrid(
+  vtkInformation* inInfo, int whole[6], double origin[3], double spacing[3])
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  this->SamplingError.clear();
+  // Every rank samples the whole 2D input (it is small): ask for all of it, as
+  // RequestUpdateExtent will.
+  int producerPort = 0;
+  if (vtkAlgorithm* producer = this->GetInputAlgorithm(0, 0, producerPort))
+  {
+    inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    if (inInfo->Has(SDDP::WHOLE_EXTENT()))
+    {
+      inInfo->Set(SDDP::UPDATE_EXTENT(), inInfo->Get(SDDP::WHOLE_EXTENT()), 6);
+    }
+    producer->Update(producerPort);
+  }
+  vtkDataObject* input = vtkDataObject::GetData(inInfo);
+  double b[6];
+  auto fail = [this](const std::string& message) {
+    this->SamplingError = message;
+    vtkErrorMacro(<< message);
+    return false;
+  };
+  if (!BoundsOf(input, b))
+  {
+    return fail("The input has no points to make a volume of (Symmetry " +
+      std::string(this->Symmetry == PLANAR ? "Planar" : "Axisymmetric") + ").");
+  }
+  vtkImageData* image = vtkImageData::SafeDownCast(input);
+  int imageDims[3] = { 0, 0, 0 };
+  if (image)
+  {
+    int ext[6];
+    image->GetExtent(ext);
+    for (int a = 0; a < 3; ++a)
+    {
+      imageDims[a] = ext[2 * a + 1] - ext[2 * a] + 1;
+    }
+  }
+  // The axis normal to the input's plane: an image's axis of fewest points, else the thinnest
+  // side of the bounds (ties: the later axis, z before y before x).
+  const bool axisym = this->Symmetry == AXISYMMETRIC;
+  int thin = -1;
+  for (int a = 2; a >= 0; --a)
+  {
+    if (axisym && a == this->SymmetryAxis)
+    {
+      continue;
+    }
+    const double size = image ? imageDims[a] : b[2 * a + 1] - b[2 * a];
+    const double best = thin < 0 ? 0 : (image ? imageDims[thin] : b[2 * thin + 1] - b[2 * thin]);
+    if (thin < 0 || size < best)
+    {
+      thin = a;
+    }
+  }
+  const double largest = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  if (!(largest > 0))
+  {
+    return fail("The input's bounds have zero size (a single point): nothing to make a volume of.");
+  }
+  if (axisym)
+  {
+    // The axis must lie in the input's plane: the thinnest side overall must not be along it.
+    const double axisSize = b[2 * this->SymmetryAxis + 1] - b[2 * this->SymmetryAxis];
+    const double thinSize = b[2 * thin + 1] - b[2 * thin];
+    if (axisSize < thinSize || axisSize <= 1e-9 * largest)
+    {
+      std::ostringstream m;
+      m << "SymmetryAxis " << AxisNames[this->SymmetryAxis]
+        << " is normal to the input's plane (its bounds have no extent along it): choose an "
+           "axis that lies in the plane of the r-z data.";
+      return fail(m.str());
+    }
+  }
+  this->PlaneAxis = thin;
+  this->PlaneCoordinate = 0.5 * (b[2 * thin] + b[2 * thin + 1]);
+  const bool automatic = this->SamplingDimensions[0] <= 0 || this->SamplingDimensions[1] <= 0 ||
+    this->SamplingDimensions[2] <= 0;
+  int dims[3];
+  double box[6];
+  if (!axisym)
+  {
+    if (!(this->Span > 0) || !std::isfinite(this->Span))
+    {
+      return fail("Span is " + std::to_string(this->Span) +
+        ": it must be positive (the width of the test section across the 2D flow, world units).");
+    }
+    const int p = (thin + 1) % 3, q = (thin + 2) % 3;
+    if (image && automatic && !this->UseSamplingBounds)
+    {
+      // The image's own grid in its plane: no interpolation.
+      const double* o = image->GetOrigin();
+      const double* h = image->GetSpacing();
+      int ext[6];
+      image->GetExtent(ext);
+      for (int a : { p, q })
+      {
+        dims[a] = imageDims[a];
+        origin[a] = o[a] + ext[2 * a] * h[a];
+        spacing[a] = h[a];
+      }
+    }
+    else
+    {
+      std::copy(b, b + 6, box);
+      if (this->UseSamplingBounds)
+      {
+        for (int a : { p, q })
+        {
+          box[2 * a] = this->SamplingBounds[2 * a];
+          box[2 * a + 1] = this->SamplingBounds[2 * a + 1];
+        }
+      }
+      else
+      {
+        // A hair inside, so that the outermost points are found in the outermost cells.
+        for (int a : { p, q })
+        {
+          const double c = 0.5 * (box[2 * a] + box[2 * a + 1]), r = 0.5 * (box[2 * a + 1] - box[2 * a]);
+          box[2 * a] = c - r * (1.0 - 1e-6);
+          box[2 * a + 1] = c + r * (1.0 - 1e-6);
+        }
+      }
+      box[2 * thin] = box[2 * thin + 1] = this->PlaneCoordinate;
+      try
+      {
+        schlieren::AutomaticDimensions(box, this->AutomaticDimension, dims);
+      }
+      catch (const schlieren::Error& e)
+      {
+        return fail(e.what());
+      }
+      for (int a : { p, q })
+      {
+        if (!automatic)
+        {
+          dims[a] = this->SamplingDimensions[a];
+        }
+        origin[a] = box[2 * a];
+        spacing[a] = dims[a] > 1 ? (box[2 * a + 1] - box[2 * a]) / (dims[a] - 1) : 1.0;
+      }
+    }
+    if (dims[p] < 2 || dims[q] < 2)
+    {
+      std::ostringstream m;
+      m << "Symmetry Planar: the input's plane has " << dims[p] << " x " << dims[q]
+        << " points along " << AxisNames[p] << " and " << AxisNames[q]
+        << "; a 2D flow needs at least 2 along each (the input is a line or a point).";
+      return fail(m.str());
+    }
+    // Across the plane: the field is uniform, a few points carry it.
+    dims[thin] = automatic ? 3 : std::max(2, this->SamplingDimensions[thin]);
+    origin[thin] = this->PlaneCoordinate - 0.5 * this->Span;
+    spacing[thin] = this->Span / (dims[thin] - 1);
+  }
+  else
+  {
+    const int axial = this->SymmetryAxis;
+    const int radial = 3 - axial - thin;
+    const double rmax = b[2 * radial + 1], rmin = b[2 * radial];
+    this->RadialSign = rmax >= -rmin ? 1.0 : -1.0;
+    const double R = this->RadialSign > 0 ? rmax : -rmin;
+    this->RadialExtent = R;
+    if (!(R > 0))
+    {
+      std::ostringstream m;
+      m << "Symmetry Axisymmetric: the input has no extent in r (along " << AxisNames[radial]
+        << ", measured from " << AxisNames[radial] << " = 0, the axis): its bounds along "
+        << AxisNames[radial] << " are " << rmin << " to " << rmax << ".";
+      return fail(m.str());
+    }
+    if (this->UseSamplingBounds)
+    {
+      std::copy(this->SamplingBounds, this->SamplingBounds + 6, box);
+    }
+    else
+    {
+      const double c = 0.5 * (b[2 * axial] + b[2 * axial + 1]);
+      const double half = 0.5 * (b[2 * axial + 1] - b[2 * axial]) * (1.0 - 1e-6);
+      box[2 * axial] = c - half;
+      box[2 * axial + 1] = c + half;
+      box[2 * radial] = -R;
+      box[2 * radial + 1] = R;
+      box[2 * thin] = this->PlaneCoordinate - R;
+      box[2 * thin + 1] = this->PlaneCoordinate + R;
+    }
+    try
+    {
+      if (automatic)
+      {
+        schlieren::AutomaticDimensions(box, this->AutomaticDimension, dims);
+      }
+      else
+      {
+        std::copy(this->SamplingDimensions, this->SamplingDimensions + 3, dims);
+      }
+    }
+    catch (const schlieren::Error& e)
+    {
+      return fail(e.what());
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      if (dims[a] < 2)
+      {
+        return fail("Symmetry Axisymmetric: the revolved grid would have " +
+          std::to_string(dims[a]) + " point(s) along " + AxisNames[a] +
+          "; give SamplingDimensions (or SamplingBounds) at least 2 along every axis.");
+      }
+      origin[a] = box[2 * a];
+      spacing[a] = (box[2 * a + 1] - box[2 * a]) / (dims[a] - 1);
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    whole[2 * a] = 0;
+    whole[2 * a + 1] = dims[a] - 1;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
+  vtkDataObject* input, vtkImageData* structure, const std::vector<std::string>& names)
+{
+  int dims[3];
+  structure->GetDimensions(dims);
+  const double* o = structure->GetOrigin();
+  const double* h = structure->GetSpacing();
+  const int thin = this->PlaneAxis;
+  const bool axisym = this->Symmetry == AXISYMMETRIC;
+  const vtkIdType count = structure->GetNumberOfPoints();
+
+  // The 2D sample points, and for every grid point the sample it takes.
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  std::vector<vtkIdType> sampleOf(static_cast<std::size_t>(count));
+  if (!axisym)
+  {
+    // Planar: one sample per in-plane point, the same across the span.
+    const int p = (thin + 1) % 3, q = (thin + 2) % 3;
+    points->SetNumberOfPoints(static_cast<vtkIdType>(dims[p]) * dims[q]);
+    for (int iq = 0; iq < dims[q]; ++iq)
+    {
+      for (int ip = 0; ip < dims[p]; ++ip)
+      {
+        double x[3];
+        x[p] = o[p] + ip * h[p];
+        x[q] = o[q] + iq * h[q];
+        x[thin] = this->PlaneCoordinate;
+        points->SetPoint(ip + static_cast<vtkIdType>(dims[p]) * iq, x);
+      }
+    }
+    int i[3];
+    vtkIdType id = 0;
+    for (i[2] = 0; i[2] < dims[2]; ++i[2])
+      for (i[1] = 0; i[1] < dims[1]; ++i[1])
+        for (i[0] = 0; i[0] < dims[0]; ++i[0], ++id)
+        {
+          sampleOf[id] = i[p] + static_cast<vtkIdType>(dims[p]) * i[q];
+        }
+  }
+  else
+  {
+    // Axisymmetric: a grid point at axial coordinate x_a and distance r from the axis takes the
+    // 2D value at (x_a, r). The distances repeat over the transverse plane (its symmetries), so
+    // each distinct r is probed once per axial position.
+    const int axial = this->SymmetryAxis;
+    const int radial = 3 - axial - thin;
+    const double hmin = std::min(h[radial], h[thin]);
+    const double outer = this->RadialExtent * (1.0 - 1e-6); // a hair inside the outermost cells
+    std::map<long long, int> index; // quantised r -> distinct radius
+    std::vector<double> radii;
+    std::vector<int> radiusOf(static_cast<std::size_t>(dims[radial]) * dims[thin]);
+    for (int it = 0; it < dims[thin]; ++it)
+    {
+      for (int ir = 0; ir < dims[radial]; ++ir)
+      {
+        const double dr = o[radial] + ir * h[radial];
+        const double dt = o[thin] + it * h[thin] - this->PlaneCoordinate;
+        // Beyond the input's largest radius (the box's corners) the field is carried outward
+        // at its value there (zero gradient in r, as at a CFD outflow boundary), rather than
+        // left to AmbientMode: no void to fill where the revolution, not the flow, ends.
+        const double r = std::min(std::sqrt(dr * dr + dt * dt), outer);
+        const long long key = std::llround(r / (1e-9 * hmin));
+        auto found = index.find(key);
+        int u;
+        if (found == index.end())
+        {
+          u = static_cast<int>(radii.size());
+          index.emplace(key, u);
+          radii.push_back(r);
+        }
+        else
+        {
+          u = found->second;
+        }
+        radiusOf[ir + static_cast<std::size_t>(dims[radial]) * it] = u;
+      }
+    }
+    const vtkIdType U = static_cast<vtkIdType>(radii.size());
+    points->SetNumberOfPoints(dims[axial] * U);
+    for (int ia = 0; ia < dims[axial]; ++ia)
+    {
+      for (vtkIdType u = 0; u < U; ++u)
+      {
+        double x[3];
+        x[axial] = o[axial] + ia * h[axial];
+        x[radial] = this->RadialSign * radii[u];
+        x[thin] = this->PlaneCoordinate;
+        points->SetPoint(ia * U + u, x);
+      }
+    }
+    int i[3];
+    vtkIdType id = 0;
+    for (i[2] = 0; i[2] < dims[2]; ++i[2])
+      for (i[1] = 0; i[1] < dims[1]; ++i[1])
+        for (i[0] = 0; i[0] < dims[0]; ++i[0], ++id)
+        {
+          sampleOf[id] =
+            i[axial] * U + radiusOf[i[radial] + static_cast<std::size_t>(dims[radial]) * i[thin]];
+        }
+  }
+
+  vtkNew<vtkPolyData> samples;
+  samples->SetPoints(points);
+  vtkNew<vtkCompositeDataProbeFilter> probe;
+  probe->SetInputData(samples);
+  probe->SetSourceData(input);
+  probe->SetValidPointMaskArrayName(ValidMask);
+  probe->Update();
+  vtkDataSet* probed = vtkDataSet::SafeDownCast(probe->GetOutputDataObject(0));
+
+  vtkSmartPointer<vtkImageData> grid = vtkSmartPointer<vtkImageData>::New();
+  grid->CopyStructure(structure);
+  if (!probed || probed->GetNumberOfPoints() != points->GetNumberOfPoints())
+  {
+    return grid;
+  }
+  vtkDataArray* found = probed->GetPointData()->GetArray(ValidMask);
+  vtkNew<vtkCharArray> mask;
+  mask->SetName(ValidMask);
+  mask->SetNumberOfTuples(count);
+  for (vtkIdType id = 0; id < count; ++id)
+  {
+    mask->SetValue(id, found && found->GetComponent(sampleOf[id], 0) != 0.0 ? 1 : 0);
+  }
+  grid->GetPointData()->AddArray(mask);
+  for (const std::string& name : names)
+  {
+    vtkDataArray* a = probed->GetPointData()->GetArray(name.c_str());
+    if (!a)
+    {
+      continue; // reported as missing by the caller
+    }
+    const int nc = a->GetNumberOfComponents();
+    vtkNew<vtkFloatArray> copy;
+    copy->SetName(name.c_str());
+    copy->SetNumberOfComponents(nc);
+    copy->SetNumberOfTuples(count);
+    float* out = copy->GetPointer(0);
+    for (vtkIdType id = 0; id < count; ++id)
+    {
+      for (int c = 0; c < nc; ++c)
+      {
+        out[id * nc + c] = static_cast<float>(a->GetComponent(sampleOf[id], c));
+      }
+    }
+    grid->GetPointData()->AddArray(copy);
+  }
+  return grid;
+}
