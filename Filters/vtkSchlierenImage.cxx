@@ -127,6 +127,7 @@ struct vtkSchlierenImage::vtkInternals
   std::vector<float> Packed;
   std::vector<unsigned char> Levels;
   std::vector<unsigned char> Solid; // the input's `solid` points (empty: no body)
+  std::vector<unsigned char> Smooth; // PackFieldHighOrder's smoothness (Reconstruction not trilinear)
   schlieren::Volume Volume;
 };
 
@@ -174,6 +175,7 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.Passes = self->GetPasses();
   s.StepSize = self->GetStepSize();
   s.Method = static_cast<schlieren::Integrator>(self->GetIntegrator());
+  s.Recon = static_cast<schlieren::Reconstruction>(self->GetReconstruction());
   s.Tolerance = self->GetTolerance();
   s.KeepInvariant = self->GetKeepInvariant();
   s.EstimateError = self->GetEstimateError();
@@ -285,17 +287,19 @@ bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
   schlieren::TraceSettings& settings, schlieren::AutoChoice& choice,
   vtkMultiProcessController* controller, int ranks, int rank)
 {
-  if (settings.Method != schlieren::Integrator::Auto)
+  if (settings.Method != schlieren::Integrator::Auto &&
+    settings.Recon != schlieren::Reconstruction::Auto)
   {
     choice = schlieren::AutoChoice();
     choice.Method = settings.Method;
     choice.StepSize = settings.StepSize;
+    choice.Recon = settings.Recon;
     return true;
   }
   std::string error;
   // ok, method, step, measured error, expected error, landing error, samples per ray,
-  // tolerance, met, octree
-  std::vector<double> numbers(10, 0.0);
+  // tolerance, met, octree, reconstruction, the trilinear's estimated error
+  std::vector<double> numbers(12, 0.0);
   if (rank == 0)
   {
     try
@@ -307,12 +311,12 @@ bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
       numbers = { 1.0, double(static_cast<int>(chosen.Method)), chosen.StepSize,
         chosen.AutoMeasuredError, choice.ExpectedError, choice.ExpectedLandingError,
         choice.SamplesPerRay, choice.Tolerance, choice.Met ? 1.0 : 0.0,
-        chosen.UseOctree ? 1.0 : 0.0 };
+        chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), choice.TrilinearError };
     }
     catch (const schlieren::Error& e)
     {
       error = e.what();
-      numbers.assign(10, 0.0);
+      numbers.assign(12, 0.0);
     }
   }
   std::string text = error.empty() ? choice.Report : error;
@@ -342,6 +346,9 @@ bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
   settings.StepSize = numbers[2];
   settings.AutoMeasuredError = numbers[3];
   settings.UseOctree = numbers[9] == 1.0;
+  settings.Recon = static_cast<schlieren::Reconstruction>(static_cast<int>(numbers[10]));
+  choice.Recon = settings.Recon;
+  choice.TrilinearError = numbers[11];
   choice.Method = settings.Method;
   choice.StepSize = settings.StepSize;
   choice.ExpectedError = numbers[4];
@@ -496,7 +503,8 @@ int vtkSchlierenImage::RequestData(
     input->GetExtent(pieceExtent);
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
     std::ostringstream vk;
-    vk << input->GetMTime() << " " << this->UseOctree << " " << ranks;
+    vk << input->GetMTime() << " " << this->UseOctree << " " << ranks << " "
+       << (this->Reconstruction != TRILINEAR);
     for (int a = 0; a < 6; ++a)
     {
       vk << " " << pieceExtent[a] << " " << wholeExtent[a];
@@ -514,7 +522,7 @@ int vtkSchlierenImage::RequestData(
   std::string problem;
   schlieren::Volume volume;
   std::vector<float> packed;
-  std::vector<unsigned char> levels;
+  std::vector<unsigned char> levels, smooth;
   std::vector<unsigned char> solid;
   // steps 1-3: the volume from the input; 0 when it failed (reported, agreed by all ranks)
   auto buildVolume = [&]() -> int {
@@ -723,7 +731,17 @@ int vtkSchlierenImage::RequestData(
     try
     {
       packed.resize(4 * total);
-      schlieren::PackField(volume.Dimensions, volume.Spacing, field.data(), packed.data());
+      if (this->Reconstruction == TRILINEAR)
+      {
+        schlieren::PackField(volume.Dimensions, volume.Spacing, field.data(), packed.data());
+      }
+      else
+      {
+        // fourth-order gradients where the data is smooth, and the smoothness per cell
+        smooth.resize(total);
+        schlieren::PackFieldHighOrder(
+          volume.Dimensions, volume.Spacing, field.data(), packed.data(), smooth.data());
+      }
       std::vector<float>().swap(field);
       volume.Field = packed.data();
       if (!levels.empty())
@@ -754,6 +772,7 @@ int vtkSchlierenImage::RequestData(
     cache.Packed.clear();
     cache.Levels.clear();
     cache.Solid.clear();
+    cache.Smooth.clear();
     if (!buildVolume())
     {
       return 0;
@@ -762,8 +781,10 @@ int vtkSchlierenImage::RequestData(
     cache.Levels.swap(levels);
     cache.Solid.swap(solid);
     volume.Solid = cache.Solid.empty() ? nullptr : cache.Solid.data();
+    cache.Smooth.swap(smooth);
     volume.Field = cache.Packed.data();
     volume.Levels = cache.Levels.empty() ? nullptr : cache.Levels.data();
+    volume.Smooth = cache.Smooth.empty() ? nullptr : cache.Smooth.data();
     volume.Stamp = schlieren::NewVolumeStamp();
     cache.Volume = volume;
     cache.VolumeKey = volumeKey;
@@ -947,6 +968,7 @@ int vtkSchlierenImage::RequestData(
   addNumber("max_drift", result.MaxDrift);
   addNumber("max_error", result.MaxError);
   addString("integrator", schlieren::IntegratorName(settings.Method));
+  addString("reconstruction", schlieren::ReconstructionName(settings.Recon));
   addNumber("step_size", settings.StepSize);
   // Auto may have found that the octree does not pay (settings.UseOctree off)
   const bool octreeUsed = volume.Levels && settings.UseOctree;
@@ -955,7 +977,7 @@ int vtkSchlierenImage::RequestData(
   {
     addNumber("octree_tolerance", volume.LevelTolerance);
   }
-  if (this->Integrator == AUTO_INTEGRATOR)
+  if (this->Integrator == AUTO_INTEGRATOR || this->Reconstruction == AUTO_RECONSTRUCTION)
   {
     addString("auto_report", choice.Report);
     addNumber("expected_error", choice.ExpectedError);
@@ -979,6 +1001,9 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StepSize: " << this->StepSize << " voxels\n";
   os << indent << "Integrator: "
      << schlieren::IntegratorName(static_cast<schlieren::Integrator>(this->Integrator)) << "\n";
+  os << indent << "Reconstruction: "
+     << schlieren::ReconstructionName(static_cast<schlieren::Reconstruction>(this->Reconstruction))
+     << "\n";
   os << indent << "Tolerance: " << this->Tolerance
      << (this->Tolerance > 0 ? " rad" : " (automatic: 1 % of the largest deflection)") << "\n";
   os << indent << "KeepInvariant: " << (this->KeepInvariant ? "On" : "Off") << "\n";

@@ -30,7 +30,9 @@
  * steps jumped over a feature), `side_rays` (rays that left through a side of the box), `blocked_rays` (rays a solid body stopped),
  * `max_drift` (largest | |v| - n | at exit), `max_error` (EstimateError: the largest estimate),
  * `integrator` (string: the integrator traced with) and `step_size` (voxels: the step traced with),
- * `octree` (1 if the octree levels were used, else 0) and, for Integrator AUTO_INTEGRATOR,
+ * `reconstruction` (string: Trilinear or Cubic, as traced),
+ * `octree` (1 if the octree levels were used, else 0) and, for Integrator AUTO_INTEGRATOR (or
+ * Reconstruction AUTO_RECONSTRUCTION),
  * `auto_report` (string: what Auto chose and why), `expected_error` (radians: the chosen setting's
  * error on the pilot rays), `auto_tolerance` (radians, as applied) and `auto_met` (1 if a
  * candidate met it).
@@ -45,6 +47,11 @@
  * - Integrator (EULER): EULER (the paper's), MIDPOINT, RK4, STRAIGHT (line of sight: grad n
  *   integrated along the unbent ray) or AUTO_INTEGRATOR (the cheapest of those, and a step, that
  *   meets Tolerance on a pilot of 16 x 16 rays; StepSize is then ignored).
+ * - Reconstruction (TRILINEAR): TRILINEAR (central differences, trilinear: second order), CUBIC
+ *   (fourth-order differences and tricubic sampling where the data is smooth, the trilinear scheme
+ *   beside jumps; StepSize only through smooth data, a voxel at most from cells near a jump) or
+ *   AUTO_RECONSTRUCTION (CUBIC where the trilinear scheme's error, estimated on the pilot rays,
+ *   exceeds half the Tolerance, or where it is cheaper at it).
  * - Tolerance (radians, default 0 = 1 % of the largest deflection of the pilot rays): Auto's error
  *   allowance on the deflection.
  * - KeepInvariant (off): hold |v| = n after every step. EstimateError (off): trace each ray again
@@ -94,6 +101,15 @@ public:
   static vtkSchlierenImage* New();
   vtkTypeMacro(vtkSchlierenImage, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /** Reconstructions of the field between grid points; the values are those of
+   * schlieren::Reconstruction. */
+  enum ReconstructionType
+  {
+    TRILINEAR = 0,
+    CUBIC = 1,
+    AUTO_RECONSTRUCTION = 2
+  };
 
   /** Integrators; the values are those of schlieren::Integrator. */
   enum IntegratorType
@@ -189,6 +205,20 @@ public:
    */
   vtkSetClampMacro(Integrator, int, EULER, AUTO_INTEGRATOR);
   vtkGetMacro(Integrator, int);
+  ///@}
+
+  ///@{
+  /**
+   * How n - 1 and grad n are reconstructed between grid points (a ReconstructionType). Default
+   * TRILINEAR: central differences and trilinear interpolation (second order in the spacing).
+   * CUBIC: fourth-order differences and tricubic interpolation where the data is smooth, the
+   * trilinear scheme beside jumps (shocks, interfaces), so that nothing overshoots there; steps of
+   * StepSize only through smooth data, at most a voxel from cells near a jump. AUTO_RECONSTRUCTION:
+   * CUBIC where the trilinear scheme's error, estimated on Auto's pilot rays, would exceed half the
+   * tolerance, or where it is cheaper at the tolerance (with Integrator AUTO_INTEGRATOR).
+   */
+  vtkSetClampMacro(Reconstruction, int, TRILINEAR, AUTO_RECONSTRUCTION);
+  vtkGetMacro(Reconstruction, int);
   ///@}
 
   ///@{
@@ -383,6 +413,7 @@ protected:
   int Passes = 4;
   double StepSize = 0.5;
   int Integrator = EULER;
+  int Reconstruction = TRILINEAR;
   double Tolerance = 0.0;
   bool KeepInvariant = false;
   bool EstimateError = false;

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -157,6 +158,247 @@ void PackField(const int dims[3], const double spacing[3], const float* n1, floa
     out[4 * idx + 2] = static_cast<float>(g[1]);
     out[4 * idx + 3] = static_cast<float>(g[2]);
   });
+}
+
+// Runs body(k0, k1) over z ranges on up to 8 threads (the packing loops).
+template <typename Body>
+static void ParallelSlices(int nz, Body body)
+{
+  const int nt = std::max(1, std::min(std::min(8, nz), static_cast<int>(std::thread::hardware_concurrency())));
+  std::vector<std::thread> threads;
+  for (int t = 1; t < nt; ++t)
+    threads.emplace_back(body, nz * t / nt, nz * (t + 1) / nt);
+  body(0, nz / nt);
+  for (auto& th : threads)
+    th.join();
+}
+
+double PackFieldHighOrder(const int dims[3], const double spacing[3], const float* n1, float* out,
+  unsigned char* smooth, double threshold)
+{
+  CheckGrid(dims, spacing);
+  if (!(threshold > 0) || !std::isfinite(threshold))
+    throw Error("PackFieldHighOrder: the smoothness threshold must be positive and finite.");
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::string bad = ValidateIndex(n1, n);
+  if (!bad.empty())
+    throw Error(bad);
+  const std::size_t strides[3] = { 1, static_cast<std::size_t>(dims[0]),
+    static_cast<std::size_t>(dims[0]) * dims[1] };
+  // structure below this part of the field's range is left to the smooth scheme: its overshoot
+  // there is far below what the tracer resolves (steps are flagged for 1 % of the range)
+  const auto mm = std::minmax_element(n1, n1 + n);
+  const double floor = 1e-4 * (double(*mm.second) - *mm.first) + 1e-30;
+  // 1. the smooth points: two or more points from every border, and along every axis a fourth
+  // difference small against the range of the five points (a jump or a kink makes it of the
+  // order of the range; smooth data makes it O(h^2) smaller)
+  // (near a border the five points are the five nearest inside: jumpFree, what the step length
+  // needs; point adds the two points of margin that the fourth-order stencils need)
+  std::vector<unsigned char> point(n, 0), jumpFree(n, 0);
+  // the loops read the grid's sizes from locals (captured by value): byte and float stores could
+  // alias captured references, which the compiler must then reload at every point
+  const int G[3] = { dims[0], dims[1], dims[2] };
+  const std::size_t St[3] = { strides[0], strides[1], strides[2] };
+  const double H[3] = { spacing[0], spacing[1], spacing[2] };
+  unsigned char* const PT = point.data();
+  unsigned char* const JF = jumpFree.data();
+  ParallelSlices(dims[2], [=](int k0, int k1) {
+    const int dims[3] = { G[0], G[1], G[2] };
+    const std::size_t strides[3] = { St[0], St[1], St[2] };
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const int ijk[3] = { i, j, k };
+          const std::size_t idx = i + j * strides[1] + k * strides[2];
+          bool ok = true, inner = true;
+          for (int a = 0; a < 3 && ok; ++a)
+          {
+            if (dims[a] < 5)
+            {
+              ok = false;
+              break;
+            }
+            inner = inner && ijk[a] >= 2 && ijk[a] <= dims[a] - 3;
+            const int c = std::min(std::max(ijk[a], 2), dims[a] - 3);
+            const std::size_t s = strides[a];
+            const std::size_t m = idx + (static_cast<std::ptrdiff_t>(c) - ijk[a]) * static_cast<std::ptrdiff_t>(s);
+            const double f[5] = { n1[m - 2 * s], n1[m - s], n1[m], n1[m + s], n1[m + 2 * s] };
+            const double lo = std::min({ f[0], f[1], f[2], f[3], f[4] });
+            const double hi = std::max({ f[0], f[1], f[2], f[3], f[4] });
+            const double d4 = f[0] - 4 * f[1] + 6 * f[2] - 4 * f[3] + f[4];
+            ok = std::fabs(d4) <= threshold * (hi - lo + floor);
+          }
+          JF[idx] = ok ? 1 : 0;
+          PT[idx] = ok && inner ? 1 : 0;
+        }
+  });
+  // 2. n - 1 and the gradient: along each axis, fourth order where the five points of the
+  // difference are all smooth (a point beside a jump may pass the test on its own), PackField's
+  // second order elsewhere
+  ParallelSlices(dims[2], [=](int k0, int k1) {
+    const int dims[3] = { G[0], G[1], G[2] };
+    const std::size_t strides[3] = { St[0], St[1], St[2] };
+    const double spacing[3] = { H[0], H[1], H[2] };
+    const unsigned char* const point = PT;
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const int ijk[3] = { i, j, k };
+          const std::size_t idx = i + j * strides[1] + k * strides[2];
+          out[4 * idx] = n1[idx];
+          for (int a = 0; a < 3; ++a)
+          {
+            const std::size_t s = strides[a];
+            double g;
+            if (point[idx] && point[idx - s] && point[idx + s] && point[idx - 2 * s] && point[idx + 2 * s])
+              g = (double(n1[idx - 2 * s]) - 8.0 * n1[idx - s] + 8.0 * n1[idx + s] - n1[idx + 2 * s]) /
+                (12.0 * spacing[a]);
+            else if (ijk[a] == 0)
+              g = (double(n1[idx + s]) - n1[idx]) / spacing[a];
+            else if (ijk[a] == dims[a] - 1)
+              g = (double(n1[idx]) - n1[idx - s]) / spacing[a];
+            else
+              g = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
+            out[4 * idx + 1 + a] = static_cast<float>(g);
+          }
+        }
+  });
+  // 3. the smooth cells, and 4. their levels, by minima along one axis at a time: dst(i) = the
+  // least src(i + d) over the offsets d; beyond the grid, 0 (cells) or the border's value (levels)
+  auto minPass = [&](const std::vector<unsigned char>& src, std::vector<unsigned char>& dst, int a,
+                   std::initializer_list<int> offsets, bool clamp) {
+    // everything the loops read in locals: byte stores may alias any captured value, which kept
+    // the compiler from vectorising (and reloaded the bounds every iteration)
+    int off[4] = { 0, 0, 0, 0 }, no = 0, dlo = 0, dhi = 0;
+    for (int d : offsets)
+    {
+      off[no++] = d;
+      dlo = std::min(dlo, d);
+      dhi = std::max(dhi, d);
+    }
+    const int nx = dims[0], ny = dims[1], na = dims[a];
+    const std::size_t sy = strides[1], sz = strides[2];
+    const unsigned char* const S = src.data();
+    unsigned char* const D = dst.data();
+    ParallelSlices(dims[2], [=](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        for (int j = 0; j < ny; ++j)
+        {
+          unsigned char* __restrict out = D + j * sy + k * sz;
+          if (a == 0)
+          {
+            const unsigned char* __restrict in = S + j * sy + k * sz;
+            // inside the row no offset reaches past it: one sweep per offset (vectorised)
+            const int i0 = std::max(0, -dlo), i1 = nx - std::max(0, dhi);
+            if (i1 > i0)
+            {
+              std::fill(out + i0, out + i1, static_cast<unsigned char>(1));
+              for (int o = 0; o < no; ++o)
+              {
+                const int d = off[o];
+                for (int i = i0; i < i1; ++i)
+                  out[i] = std::min(out[i], in[i + d]);
+              }
+            }
+            for (int i = 0; i < nx; ++i)
+            {
+              if (i >= i0 && i < i1)
+                continue;
+              unsigned char m = 1;
+              for (int o = 0; o < no; ++o)
+              {
+                int c = i + off[o];
+                if (c < 0 || c > nx - 1)
+                {
+                  if (!clamp)
+                  {
+                    m = 0;
+                    break;
+                  }
+                  c = c < 0 ? 0 : nx - 1;
+                }
+                m = std::min(m, in[c]);
+              }
+              out[i] = m;
+            }
+            continue;
+          }
+          std::fill(out, out + nx, static_cast<unsigned char>(1));
+          for (int o = 0; o < no; ++o)
+          {
+            int c = (a == 1 ? j : k) + off[o];
+            if (c < 0 || c > na - 1)
+            {
+              if (!clamp)
+              {
+                std::fill(out, out + nx, static_cast<unsigned char>(0));
+                break;
+              }
+              c = c < 0 ? 0 : na - 1;
+            }
+            const unsigned char* __restrict in = S + (a == 1 ? c : j) * sy + (a == 2 ? c : k) * sz;
+            for (int i = 0; i < nx; ++i)
+              out[i] = std::min(out[i], in[i]);
+          }
+        }
+    });
+  };
+  // cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are, along every axis
+  std::vector<unsigned char> cell = point, next(n, 0);
+  for (int a = 0; a < 3; ++a)
+  {
+    minPass(cell, next, a, { -1, 0, 1, 2 }, false);
+    cell.swap(next);
+  }
+  std::vector<unsigned char>().swap(point);
+  // level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is free of jumps
+  // (its points c - 1 .. c + 2 inside the grid are jumpFree; beyond the grid no step goes). A
+  // cube erosion of radius 1 (offsets -1, 0, 1), then radius r -> 2 r by offsets -r, r.
+  std::vector<unsigned char> ero = jumpFree;
+  for (int a = 0; a < 3; ++a)
+  {
+    minPass(ero, next, a, { -1, 0, 1, 2 }, true);
+    ero.swap(next);
+  }
+  std::vector<unsigned char>().swap(jumpFree);
+  std::vector<unsigned char> level(n, 0);
+  for (int a = 0; a < 3; ++a)
+  {
+    minPass(ero, next, a, { -1, 0, 1 }, true);
+    ero.swap(next);
+  }
+  for (int q = 1, r = 1; q <= 7; ++q, r *= 2)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      minPass(ero, next, a, { -r, r }, true);
+      ero.swap(next);
+    }
+    std::atomic<bool> any(false);
+    ParallelSlices(dims[2], [&, q](int k0, int k1) {
+      bool found = false;
+      for (std::size_t i = k0 * strides[2]; i < k1 * strides[2]; ++i)
+        if (ero[i])
+        {
+          level[i] = static_cast<unsigned char>(q);
+          found = true;
+        }
+      if (found)
+        any = true;
+    });
+    if (!any)
+      break;
+  }
+  std::size_t count = 0, total = 0;
+  for (int k = 0; k + 1 < dims[2]; ++k)
+    for (int j = 0; j + 1 < dims[1]; ++j)
+      for (int i = 0; i + 1 < dims[0]; ++i, ++total)
+        count += cell[i + j * strides[1] + k * strides[2]];
+  for (std::size_t i = 0; i < n; ++i)
+    smooth[i] = static_cast<unsigned char>((cell[i] ? SCH_SMOOTH_CELL : 0) | (level[i] << SCH_SMOOTH_SHIFT));
+  return total ? double(count) / total : 0.0;
 }
 
 // ------------------------------------------------------------------ octree
@@ -455,6 +697,15 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
     throw Error("A slice of the volume has more than 2^29 points: not supported.");
   P.rowFloats = 4 * P.nx;
   P.sliceFloats = 4 * P.nx * P.ny;
+  if (s.Recon == Reconstruction::Auto)
+    throw Error("Reconstruction Auto must be resolved first (ResolveAuto).");
+  if (s.Recon == Reconstruction::Cubic && !volume.Smooth)
+    throw Error("Reconstruction Cubic needs the volume's smoothness (Volume::Smooth): pack the field "
+                "with PackFieldHighOrder, or use Reconstruction Trilinear.");
+  // with a body the levels byte carries its bits where Cubic keeps the smoothness: trilinear
+  P.recon = s.Recon == Reconstruction::Cubic && !volume.Solid ? SCH_CUBIC : SCH_TRILINEAR;
+  // from cells that are not smooth, steps of at most a cell: they cannot jump over a feature
+  P.roughStep = P.recon == SCH_CUBIC ? P.cellStep : 0.0f;
   return P;
 }
 
@@ -522,7 +773,7 @@ static void SetFeatureTolerance(sch_params& P, const Volume& volume)
     P.featureTol = 1e-30f;
 }
 
-// The byte per grid point that the kernels read (SCH_LEVEL_MASK, SCH_NEAR_BIT, SCH_SOLID_BIT):
+// The byte per grid point that the kernels read (SCH_OCTREE_BITS, SCH_NEAR_BIT, SCH_SOLID_BIT):
 // with a body, the solid bit; the near bit where a solid point lies within `reach` (world units:
 // the longest step) of the cell, so that steps there are cut to a cell; and the volume's levels
 // lowered until no block (with its one-point halo) holds a solid point, so that no skip crosses a
@@ -535,7 +786,7 @@ static std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach)
   bool anyLevel = false;
   for (std::size_t i = 0; i < N; ++i)
   {
-    const unsigned char lvl = v.Levels ? static_cast<unsigned char>(v.Levels[i] & SCH_LEVEL_MASK) : 0;
+    const unsigned char lvl = v.Levels ? static_cast<unsigned char>(v.Levels[i] & SCH_OCTREE_BITS) : 0;
     bytes[i] = static_cast<unsigned char>(lvl | (v.Solid[i] ? SCH_SOLID_BIT : 0));
     anyLevel = anyLevel || lvl > 0;
   }
@@ -569,7 +820,7 @@ static std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach)
       for (int i = 0; i < nx; ++i)
       {
         unsigned char& b = bytes[(static_cast<std::size_t>(k) * ny + j) * nx + i];
-        int L = b & SCH_LEVEL_MASK;
+        int L = b & SCH_OCTREE_BITS;
         const int c[3] = { i, j, k };
         int nlo[3], nhi[3];
         for (int a = 0; a < 3; ++a)
@@ -1014,7 +1265,8 @@ public:
     const char* spec = std::getenv("SCHLIEREN_CL_SPECIALISE");
     const bool specialise = !(spec && std::string(spec) == "0");
     const int setting = specialise
-      ? 1 + P.integrator * 8 + (P.useSolid ? 4 : 0) + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0)
+      ? 1 + P.integrator * 8 + (P.useSolid ? 4 : 0) + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0) +
+        64 * P.recon
       : 0;
     const int key = setting * 3 + static_cast<int>(entry);
     auto it = Kernels.find(key);
@@ -1030,7 +1282,7 @@ public:
       opts << " -DSCH_SLABS=" << Slabs;
     if (specialise)
       opts << " -DSCH_FIXED_INTEGRATOR=" << P.integrator << " -DSCH_FIXED_LEVELS=" << (P.useLevels ? 1 : 0)
-           << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0)
+           << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0) << " -DSCH_FIXED_RECON=" << P.recon
            << " -DSCH_FIXED_SOLID=" << (P.useSolid ? 1 : 0);
     // extra OpenCL build options, for experiments (e.g. -cl-mad-enable)
     if (const char* extra = std::getenv("SCHLIEREN_CL_OPTIONS"))
@@ -1161,6 +1413,10 @@ struct KeptTracer
 {
   VolumeIdentity Identity;
   int RaysPerItem = 0;
+  // the cell bytes the device copy was made from, held so that no other allocation can take
+  // their address while the copy is kept: with a body they change with the step's reach
+  const unsigned char* Bytes = nullptr;
+  std::shared_ptr<const void> BytesOwner;
   std::shared_ptr<OpenCLTracer> Tracer;
 };
 KeptTracer& Kept()
@@ -1169,15 +1425,15 @@ KeptTracer& Kept()
   return *kept;
 }
 
-std::shared_ptr<OpenCLTracer> AcquireTracer(
-  const Volume& volume, const unsigned char* bytes, std::size_t chunk, int raysPerItem)
+std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
+  const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem)
 {
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
     KeptTracer& k = Kept();
     // in use by another call (use_count > 1): that call keeps it; this one makes its own
     if (k.Tracer && k.Identity == VolumeIdentity(volume) && k.RaysPerItem == raysPerItem &&
-      k.Tracer.use_count() == 1)
+      k.Bytes == bytes && k.Tracer.use_count() == 1)
     {
       std::shared_ptr<OpenCLTracer> t = k.Tracer;
       t->EnsureOut(chunk);
@@ -1186,6 +1442,8 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(
     // one volume on the device at a time: the old copy goes before the new one is made
     k.Tracer.reset();
     k.Identity = VolumeIdentity();
+    k.Bytes = nullptr;
+    k.BytesOwner.reset();
   }
   auto t = std::make_shared<OpenCLTracer>(volume, bytes, chunk, raysPerItem);
   if (volume.Stamp != 0)
@@ -1193,6 +1451,8 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(
     std::lock_guard<std::mutex> lock(KeptMutex);
     Kept().Identity = VolumeIdentity(volume);
     Kept().RaysPerItem = raysPerItem;
+    Kept().Bytes = bytes;
+    Kept().BytesOwner = bytesOwner;
     Kept().Tracer = t;
   }
   return t;
@@ -1202,7 +1462,7 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(
 // with a warning). points: the caller traces explicit film points (TracePoints) rather than passes
 // (Trace); the kernel it will run is built here, so that a build failure falls back too.
 std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned char* bytes,
-  const TraceSettings& s,
+  const std::shared_ptr<const void>& bytesOwner, const TraceSettings& s,
   const sch_params& P, std::size_t chunk, bool points, std::string& used, std::string& device,
   std::string& warnings)
 {
@@ -1214,7 +1474,7 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned c
   }
   try
   {
-    auto t = AcquireTracer(volume, bytes, chunk, s.RaysPerWorkItem);
+    auto t = AcquireTracer(volume, bytes, bytesOwner, chunk, s.RaysPerWorkItem);
     t->KernelFor(P, points); // built here, so that a build failure falls back like a missing device
     used = "OpenCL";
     device = t->RT.DeviceName;
@@ -1231,6 +1491,55 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned c
     warnings += std::string("OpenCL is not usable, tracing on the CPU instead: ") + e.what() + "\n";
     return nullptr;
   }
+}
+
+// The volume as the kernels see it: with Volume::Smooth, its levels buffer holds the smoothness
+// bits (Reconstruction Cubic) above the octree levels (SCH_OCTREE_BITS), for either
+// reconstruction, so that switching between them (Auto's pilot) keeps the device copy. The merged
+// bytes of a stamped volume are kept for its next trace; `own` holds those of this call.
+Volume TraceVolume(const Volume& v, std::shared_ptr<std::vector<unsigned char>>& own)
+{
+  if (!v.Smooth)
+    return v;
+  Volume out = v;
+  if (!v.Levels)
+  {
+    out.Levels = v.Smooth;
+    return out;
+  }
+  struct Merged
+  {
+    const unsigned char* Levels = nullptr;
+    const unsigned char* Smooth = nullptr;
+    std::uint64_t Stamp = 0;
+    std::size_t Points = 0;
+    std::shared_ptr<std::vector<unsigned char>> Bytes;
+  };
+  static Merged kept;
+  const std::size_t n = v.NumberOfPoints();
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    if (v.Stamp != 0 && kept.Stamp == v.Stamp && kept.Levels == v.Levels && kept.Smooth == v.Smooth &&
+      kept.Points == n && kept.Bytes)
+      own = kept.Bytes;
+  }
+  if (!own)
+  {
+    own = std::make_shared<std::vector<unsigned char>>(n);
+    for (std::size_t i = 0; i < n; ++i)
+      (*own)[i] = static_cast<unsigned char>((v.Levels[i] & SCH_OCTREE_BITS) | (v.Smooth[i] & ~SCH_OCTREE_BITS));
+    if (v.Stamp != 0)
+    {
+      std::lock_guard<std::mutex> lock(KeptMutex);
+      kept.Levels = v.Levels;
+      kept.Smooth = v.Smooth;
+      kept.Stamp = v.Stamp;
+      kept.Points = n;
+      kept.Bytes = own;
+    }
+  }
+  out.Levels = own->data();
+  return out;
 }
 
 void CheckVolume(const Volume& v)
@@ -1264,6 +1573,8 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     throw Error("BackgroundDistance must be a finite distance >= 0.");
   const FilmGeometry film = MakeFilm(volume, s);
   sch_params P = MakeParams(volume, s, film);
+  std::shared_ptr<std::vector<unsigned char>> levelBytes;
+  const Volume tv = TraceVolume(volume, levelBytes);
   if (sums.Size[0] != film.Size[0] || sums.Size[1] != film.Size[1] || sums.Count.empty())
     sums.Resize(film.Size[0], film.Size[1]);
 
@@ -1278,10 +1589,12 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     chunk *= 2;
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
+  // with a body the kernels read its solid and near bits in the levels byte (no Cubic then)
   const auto solidBytes = CellBytesOf(volume, StepReach(P));
-  const unsigned char* bytes = solidBytes ? solidBytes->data() : volume.Levels;
-  std::shared_ptr<OpenCLTracer> cl = OpenBackend(volume, bytes, s, P, chunk, false, used, device, warn);
-  SetFeatureTolerance(P, volume);
+  const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
+  std::shared_ptr<OpenCLTracer> cl =
+    OpenBackend(tv, bytes, solidBytes, s, P, chunk, false, used, device, warn);
+  SetFeatureTolerance(P, tv);
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
   const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
@@ -1295,7 +1608,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
       if (cl)
         cl->Trace(P, first, count, records.data());
       else
-        TraceChunkCPU(volume.Field, bytes, P, first, count, records.data());
+        TraceChunkCPU(tv.Field, bytes, P, first, count, records.data());
       splat.Add(records.data(), first, count);
       done += count;
       if (progress && !progress(done / total))
@@ -1560,7 +1873,7 @@ std::string TraceSettings::PhotonKey() const
   k << ViewDirection[0] << ' ' << ViewDirection[1] << ' ' << ViewDirection[2] << ' ' << ViewUp[0]
     << ' ' << ViewUp[1] << ' ' << ViewUp[2] << ' ' << Resolution[0] << ' ' << Resolution[1] << ' '
     << StepSize << ' ' << static_cast<int>(Method) << ' ' << KeepInvariant << ' ' << EstimateError
-    << ' ' << UseOctree << ' ' << Tolerance << ' ' << AutoMeasuredError << ' '
+    << ' ' << UseOctree << ' ' << static_cast<int>(Recon) << ' ' << Tolerance << ' ' << AutoMeasuredError << ' '
     << static_cast<int>(Mode) << ' ' << KnifeAngle << ' ' << CutoffScale << ' ' << FilmDistance
     << ' ' << Wavelength << ' ' << ReferenceTilt << ' ' << BackgroundDistance << ' '
     << BackgroundPattern << ' ' << BackgroundPeriod << ' ' << RussianRoulette << ' ' << Jitter
@@ -1587,15 +1900,48 @@ const char* IntegratorName(Integrator m)
   return "?";
 }
 
+const char* ReconstructionName(Reconstruction r)
+{
+  switch (r)
+  {
+    case Reconstruction::Trilinear:
+      return "Trilinear";
+    case Reconstruction::Cubic:
+      return "Cubic";
+    case Reconstruction::Auto:
+      return "Auto";
+  }
+  return "?";
+}
+
+namespace
+{
+// What a tricubic sample costs against a trilinear one when Auto weighs the two reconstructions:
+// it reads 64 points instead of 8, mostly from the same cache lines (docs/PERFORMANCE.md has the
+// measured ratio).
+constexpr double CubicSampleCost = 3.0;
+
+// The rays of a pilot that a comparison can use: neither lost.
+bool Comparable(const RayRecord& a, const RayRecord& b)
+{
+  const std::uint32_t bad = RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm;
+  return !(a.Flags & bad) && !(b.Flags & bad);
+}
+} // namespace
+
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice)
 {
   AutoChoice c;
   c.Method = in.Method;
   c.StepSize = in.StepSize;
+  c.Recon = in.Recon;
   c.Met = true;
-  if (in.Method != Integrator::Auto)
+  const bool autoRecon = in.Recon == Reconstruction::Auto;
+  if (in.Method != Integrator::Auto && !autoRecon)
   {
     c.Report = std::string(IntegratorName(in.Method)) + " at " + std::to_string(in.StepSize) + " voxel";
+    if (in.Recon != Reconstruction::Trilinear)
+      c.Report += std::string(", reconstruction ") + ReconstructionName(in.Recon);
     if (choice)
       *choice = c;
     return in;
@@ -1609,33 +1955,106 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   ref.UseOctree = false;
   ref.EstimateError = false;
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<RayRecord> R = TraceRays(volume, ref, ab);
+  // the reference of each reconstruction that may be chosen. Reconstruction Auto: the difference
+  // between the two references is the second-order reconstruction's error (the fourth-order one's
+  // is far smaller where the data is smooth, and both are the same trilinear code elsewhere), an
+  // error that a reference on the same grid with the same reconstruction cannot see
+  // (with a body the levels byte holds its bits instead of the smoothness: trilinear only)
+  bool tryTri = in.Recon == Reconstruction::Trilinear || (autoRecon) || volume.Solid;
+  bool tryCubic = !volume.Solid && (in.Recon == Reconstruction::Cubic || (autoRecon && volume.Smooth));
+  std::vector<RayRecord> refTri, refCubic;
+  if (tryTri)
+  {
+    ref.Recon = Reconstruction::Trilinear;
+    refTri = TraceRays(volume, ref, ab);
+  }
+  if (tryCubic)
+  {
+    ref.Recon = Reconstruction::Cubic;
+    refCubic = TraceRays(volume, ref, ab);
+  }
+  const std::vector<RayRecord>& R0 = tryCubic ? refCubic : refTri;
   double emax = 0;
-  for (const RayRecord& r : R)
+  for (const RayRecord& r : R0)
     if (!(r.Flags & RayBlocked))
       emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
   const double tol = in.Tolerance > 0 ? in.Tolerance : 0.01 * emax;
+  double triError = 0;
+  if (tryTri && tryCubic)
+  {
+    for (std::size_t k = 0; k < refTri.size(); ++k)
+      if (Comparable(refTri[k], refCubic[k]))
+        triError = std::max(triError,
+          double(std::hypot(refTri[k].DeflX - refCubic[k].DeflX, refTri[k].DeflY - refCubic[k].DeflY)));
+    c.TrilinearError = triError;
+    // trilinear only where its own error leaves at least half the tolerance to the integrator
+    if (triError > 0.5 * tol)
+      tryTri = false;
+  }
+  if (in.Method != Integrator::Auto)
+  {
+    // Reconstruction Auto with a fixed integrator: trilinear where it is accurate enough
+    c.Recon = tryTri ? Reconstruction::Trilinear : Reconstruction::Cubic;
+    c.Tolerance = tol;
+    std::ostringstream rep;
+    rep << IntegratorName(in.Method) << " at " << in.StepSize << " voxel, reconstruction "
+        << ReconstructionName(c.Recon) << " (the trilinear's estimated error " << triError
+        << " rad against the tolerance " << tol << " rad)";
+    c.Report = rep.str();
+    if (choice)
+      *choice = c;
+    TraceSettings out = in;
+    out.Recon = c.Recon;
+    return out;
+  }
   struct Candidate
   {
     Integrator M;
     double Step;
+    Reconstruction Rc;
   };
   std::vector<Candidate> candidates;
-  for (double st : { 8.0, 4.0, 2.0, 1.0 })
-    candidates.push_back({ Integrator::Straight, st });
-  for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
-    for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
-      candidates.push_back({ m, st });
+  for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
+  {
+    if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
+      continue;
+    // tricubic: steps sized by the field, up to 64 voxels where the data is smooth (a voxel
+    // elsewhere, see sch_walk_step)
+    std::vector<double> longSteps;
+    if (rc == Reconstruction::Cubic)
+      longSteps = { 64.0, 32.0, 16.0 };
+    for (double st : longSteps)
+      candidates.push_back({ Integrator::Straight, st, rc });
+    for (double st : { 8.0, 4.0, 2.0, 1.0 })
+      candidates.push_back({ Integrator::Straight, st, rc });
+    for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    {
+      for (double st : longSteps)
+        candidates.push_back({ m, st, rc });
+      for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
+        candidates.push_back({ m, st, rc });
+    }
+  }
   bool found = false;
   double bestCost = 1e300, bestErr = 1e300;
   AutoChoice fallback;
+  // each integrator's steps come longest first: once one meets the tolerance, the shorter ones of
+  // that integrator and reconstruction only cost more
+  std::map<int, bool> met;
   for (const Candidate& cand : candidates)
   {
+    const int group = static_cast<int>(cand.Rc) * 8 + static_cast<int>(cand.M);
+    if (met[group])
+      continue;
     TraceSettings t = in;
     t.Method = cand.M;
     t.StepSize = cand.Step;
+    t.Recon = cand.Rc;
     t.EstimateError = false;
     const std::vector<RayRecord> T = TraceRays(volume, t, ab);
+    const std::vector<RayRecord>& R = cand.Rc == Reconstruction::Cubic ? refCubic : refTri;
+    // a trilinear candidate answers for the trilinear's own error too (Reconstruction Auto)
+    const double base = cand.Rc == Reconstruction::Trilinear && tryCubic ? triError : 0.0;
     double err = 0, land = 0, samples = 0;
     bool lost = false;
     // rays the candidate loses where the reference does not disqualify it; steps over structure
@@ -1658,31 +2077,36 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
     land /= film.PixelSize;
     if (lost)
       continue;
-    if (err <= tol && land <= 0.5 && samples < bestCost)
+    const double cost = samples * (cand.Rc == Reconstruction::Cubic ? CubicSampleCost : 1.0);
+    if (err + base <= tol && land <= 0.5)
+      met[group] = true;
+    if (err + base <= tol && land <= 0.5 && cost < bestCost)
     {
       found = true;
-      bestCost = samples;
+      bestCost = cost;
       c.Method = cand.M;
       c.StepSize = cand.Step;
-      c.ExpectedError = err;
+      c.Recon = cand.Rc;
+      c.ExpectedError = err + base;
       c.ExpectedLandingError = land;
       c.SamplesPerRay = samples / T.size();
     }
-    if (!found && err < bestErr)
+    if (!found && err + base < bestErr)
     {
-      bestErr = err;
+      bestErr = err + base;
       fallback.Method = cand.M;
       fallback.StepSize = cand.Step;
-      fallback.ExpectedError = err;
+      fallback.Recon = cand.Rc;
+      fallback.ExpectedError = err + base;
       fallback.ExpectedLandingError = land;
       fallback.SamplesPerRay = samples / T.size();
     }
   }
   if (!found)
   {
-    const double tolKeep = tol;
+    const double keep = c.TrilinearError;
     c = fallback;
-    c.Tolerance = tolKeep;
+    c.TrilinearError = keep;
     c.Met = false;
   }
   c.Tolerance = tol;
@@ -1695,6 +2119,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
     TraceSettings t = in;
     t.Method = c.Method;
     t.StepSize = c.StepSize;
+    t.Recon = c.Recon;
     t.EstimateError = false;
     t.UseOctree = false;
     double plain = 0;
@@ -1709,6 +2134,10 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
       << "deflection error " << c.ExpectedError << " rad (tolerance " << tol << " rad), landing error "
       << c.ExpectedLandingError << " pixel, " << c.SamplesPerRay << " samples per ray (pilot of "
       << ab.size() / 2 << " rays, " << static_cast<int>(ms) << " ms)";
+  if (c.Recon != Reconstruction::Trilinear || autoRecon)
+    rep << "; reconstruction " << ReconstructionName(c.Recon);
+  if (autoRecon && tryCubic)
+    rep << " (the trilinear's estimated error " << c.TrilinearError << " rad)";
   if (!c.Met)
     rep << "; no candidate met the tolerance: using the most accurate one";
   if (in.UseOctree && volume.Levels)
@@ -1721,6 +2150,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   TraceSettings out = in;
   out.Method = c.Method;
   out.StepSize = c.StepSize;
+  out.Recon = c.Recon;
   out.AutoMeasuredError = c.Met ? c.ExpectedError : -1.0;
   out.UseOctree = in.UseOctree && c.UseOctree;
   return out;
@@ -1785,17 +2215,19 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const std::size_t count = ab.size() / 2;
   std::vector<RayRecord> out(count);
   std::string used, device, warn;
+  std::shared_ptr<std::vector<unsigned char>> levelBytes;
+  const Volume tv = TraceVolume(volume, levelBytes);
   const auto solidBytes = CellBytesOf(volume, StepReach(P));
-  const unsigned char* bytes = solidBytes ? solidBytes->data() : volume.Levels;
-  std::shared_ptr<OpenCLTracer> cl =
-    OpenBackend(volume, bytes, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
-  SetFeatureTolerance(P, volume);
+  const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
+  std::shared_ptr<OpenCLTracer> cl = OpenBackend(
+    tv, bytes, solidBytes, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
+  SetFeatureTolerance(P, tv);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)
     cl->TracePoints(P, ab.data(), count, rec);
   else
     for (std::size_t k = 0; k < count; ++k)
-      sch_trace(volume.Field, bytes, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
+      sch_trace(tv.Field, bytes, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
   // the flags travel as floats in the record; turn them into integers
   for (RayRecord& r : out)
   {

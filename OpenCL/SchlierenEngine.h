@@ -49,12 +49,20 @@ struct Volume
    * (null: no body, and no cost). A ray stops where a step ends in a body, where the trilinear
    * interpolation of the solid points (1 solid, 0 not) is at least one half: its light
    * never reaches the film, and it is counted (RayBlocked, TraceResult::BlockedRays). With a
-   * body the base step is at most one cell and no octree skip crosses one, so that no step
+   * body no step near it is longer than a cell and no octree skip crosses one, so that no step
    * passes over a body one point thick. Rays that leave through the box's faces are not blocked.
+   * With a body the trace is trilinear (Reconstruction Cubic needs the bits it uses).
    */
   const unsigned char* Solid = nullptr;
   /**
-   * The caller's version of Field, Levels and Solid. Equal non-zero stamps with the same pointers and
+   * Optional smoothness of the data per cell (byte per grid point, the cell whose lower corner it
+   * is), written by PackFieldHighOrder together with Field: what Reconstruction Cubic needs. Bit 7:
+   * the 4 x 4 x 4 points around the cell are smooth (tricubic there, trilinear elsewhere); bits
+   * 4-6, q: every cell within 2^q cells is smooth (steps may be as long as 2^q - 1 cells).
+   */
+  const unsigned char* Smooth = nullptr;
+  /**
+   * The caller's version of Field, Levels, Smooth and Solid. Equal non-zero stamps with the same pointers and
    * dimensions promise unchanged contents: the engine then keeps what it derived from them (the
    * OpenCL device's copy, the index range) from one call to the next, so that a new camera or
    * a few more passes do not upload the volume again. 0 (the default): nothing is kept.
@@ -81,6 +89,19 @@ void ReleaseKeptVolume();
  * Throws Error if a dimension is below 2, a spacing is not positive, or n-1 is NaN/Inf or <= -1.
  */
 void PackField(const int dims[3], const double spacing[3], const float* nMinus1, float* out);
+
+/**
+ * PackField for Reconstruction Cubic: the gradient by fourth-order central differences,
+ * (f[-2] - 8 f[-1] + 8 f[1] - f[2]) / 12h, where the five points of the difference are all smooth,
+ * by PackField's second-order differences elsewhere; and the smoothness of every cell in `smooth`
+ * (a byte per point, see Volume::Smooth). A point is smooth where, along each axis, the fourth
+ * difference of its five points is below `threshold` times their range (a jump or a kink gives 1
+ * to 3, a Gaussian of width s sampled at h about 6 (h/s)^2; structure below 1e-4 of the field's
+ * range counts as smooth) and it is at least two points from the border; a cell is smooth where the 4 x 4 x 4 points around it are. Returns the fraction of
+ * cells that are smooth. Throws what PackField throws.
+ */
+double PackFieldHighOrder(const int dims[3], const double spacing[3], const float* nMinus1,
+  float* out, unsigned char* smooth, double threshold = 0.25);
 
 /** The same gradient written into a 3-component array (for the `grad_n` output of filters). */
 void ComputeGradient(const int dims[3], const double spacing[3], const float* nMinus1, float* grad3);
@@ -117,6 +138,17 @@ enum class Integrator
   Auto = 4      ///< the cheapest of the above (and step) that meets TraceSettings::Tolerance
 };
 
+/** How the packed field is reconstructed between grid points. */
+enum class Reconstruction
+{
+  Trilinear = 0, ///< trilinear (second order): the paper's; needs nothing beyond PackField
+  Cubic = 1,     ///< tricubic where the data is smooth, trilinear near jumps (fourth order where
+                 ///< smooth); steps of StepSize only in smooth data, at most a voxel elsewhere.
+                 ///< Needs Volume::Smooth (PackFieldHighOrder)
+  Auto = 2       ///< Cubic where the second-order reconstruction's error (estimated on the pilot
+                 ///< rays) would exceed half the tolerance, else Trilinear; Trilinear without Smooth
+};
+
 enum class Cutoff
 {
   KnifeEdge = 0,          ///< I = 0.5 - k e.a, per photon, clamped to [0, 1]
@@ -147,6 +179,7 @@ struct TraceSettings
   bool KeepInvariant = false; ///< rescale v = n dx/ds to |v| = n after every step
   bool EstimateError = false; ///< trace each ray again at twice the step: per-pixel error estimate
   bool UseOctree = true;      ///< skip through uniform blocks when the volume has Levels
+  Reconstruction Recon = Reconstruction::Trilinear; ///< between grid points (see Reconstruction)
   /** Integrator Auto: the deflection error allowed, radians; <= 0 means 1 % of the largest
    * deflection of the pilot rays. */
   double Tolerance = 0.0;
@@ -251,6 +284,10 @@ struct AutoChoice
   bool Met = false;             ///< false: no candidate met the tolerance; the most accurate is used
   bool UseOctree = false;       ///< the octree pays for the choice (asked for, and skips >= 10 %)
   double OctreeSaving = 0;      ///< fraction of the pilot's samples the octree skips
+  Reconstruction Recon = Reconstruction::Trilinear; ///< the reconstruction traced with
+  /** Reconstruction Auto: the largest pilot difference between the trilinear and the tricubic
+   * reference traces, radians: the second-order reconstruction's estimated error (-1: not measured). */
+  double TrilinearError = -1;
   std::string Report;           ///< one line for the user
 };
 
@@ -294,6 +331,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, A
 std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings);
 
 const char* IntegratorName(Integrator m);
+const char* ReconstructionName(Reconstruction r);
 const char* CutoffName(Cutoff c);
 
 /** Called with progress in [0, 1]; return false to abort (Trace then throws Error("aborted")). */

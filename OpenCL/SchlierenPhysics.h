@@ -45,6 +45,8 @@ typedef uchar sch_uchar;
 typedef float4 sch_f4;
 #define sch_f4_load(p) vload4(0, (p))
 #define sch_f4_lerp(a, b, t) ((a) + (t) * ((b) - (a)))
+#define sch_f4_zero() ((float4)(0.0f))
+#define sch_f4_madd(acc, w, b) ((acc) + (w) * (b))
 #else
 #include <math.h>
 #include <stdint.h>
@@ -83,6 +85,21 @@ static inline sch_f4 sch_f4_lerp(sch_f4 a, sch_f4 b, float t)
   r.w = a.w + t * (b.w - a.w);
   return r;
 }
+static inline sch_f4 sch_f4_zero()
+{
+  sch_f4 r;
+  r.x = r.y = r.z = r.w = 0.0f;
+  return r;
+}
+/* acc + w b */
+static inline sch_f4 sch_f4_madd(sch_f4 acc, float w, sch_f4 b)
+{
+  acc.x += w * b.x;
+  acc.y += w * b.y;
+  acc.z += w * b.z;
+  acc.w += w * b.w;
+  return acc;
+}
 #endif
 
 #ifdef SCH_FIXED_INTEGRATOR
@@ -94,7 +111,13 @@ static inline sch_f4 sch_f4_lerp(sch_f4 a, sch_f4 b, float t)
 #else
 #define SCH_USE_SOLID(P) ((P)->useSolid)
 #endif
+#ifdef SCH_FIXED_RECON
+#define SCH_RECON(P) (SCH_FIXED_RECON)
 #else
+#define SCH_RECON(P) ((P)->recon)
+#endif
+#else
+#define SCH_RECON(P) ((P)->recon)
 #define SCH_INTEGRATOR(P) ((P)->integrator)
 #define SCH_USE_LEVELS(P) ((P)->useLevels)
 #define SCH_KEEP(P) ((P)->keepInvariant)
@@ -175,16 +198,29 @@ typedef struct
   float gx0, gy0, gz0;       /* grid coordinate of the centre: -(origin - centre) / spacing */
   int rowFloats, sliceFloats; /* floats from one grid row, and slice, to the next: 4 nx, 4 nx ny */
   int slabCells;              /* cells along z per slab (SCH_SLABS builds only) */
-  int useSolid;               /* 1: the cell bytes carry solid points (SCH_SOLID_BIT) that stop rays */
+  int recon;       /* reconstruction: SCH_TRILINEAR, or SCH_CUBIC where the cell is smooth */
+  float roughStep; /* SCH_CUBIC: the longest step (world units) from a cell that is not smooth */
+  int useSolid;    /* 1: the cell bytes carry solid points (SCH_SOLID_BIT) that stop rays */
 } sch_params;
 
-/* The byte per grid point that travels with the field (the `levels` buffer): the octree level of
- * the cell whose lower corner the point is, in the low bits; SCH_SOLID_BIT where the point lies
- * in a solid body; SCH_NEAR_BIT where a solid point lies within the reach of a step (twice the
- * base step with the step-doubling estimate) of the cell. The host keeps a cell's level 0 where
- * its block, with the block's one-point halo, holds a solid point, so that no skip crosses a
- * body, and near a body no step is longer than a cell, so that none passes over a thin one. */
-#define SCH_LEVEL_MASK 0x3f
+/* Reconstructions of the packed field between grid points. */
+#define SCH_TRILINEAR 0 /* trilinear: second order (with central differences for grad n) */
+#define SCH_CUBIC 1     /* tricubic Lagrange on the 4 x 4 x 4 points around the cell, where the
+                           level byte's SCH_SMOOTH_CELL bit says the data there is smooth; trilinear
+                           elsewhere: fourth order (with fourth-order differences for grad n) */
+
+/* The per-cell byte of the levels buffer: the octree level in the low four bits; for SCH_CUBIC
+ * (PackFieldHighOrder) the smoothness of the data around the cell above them. */
+#define SCH_OCTREE_BITS 15
+#define SCH_SMOOTH_CELL 128 /* the 4 x 4 x 4 points around the cell are smooth: cubic is safe */
+#define SCH_SMOOTH_SHIFT 4  /* bits 4-6, q: every cell within 2^q cells is smooth (q = 0: none) */
+
+/* With a solid body (useSolid; the host then traces SCH_TRILINEAR, so bits 4-7 are free of the
+ * smoothness): SCH_SOLID_BIT where the point lies in a body; SCH_NEAR_BIT where a solid point lies
+ * within the reach of a step (twice the base step with the step-doubling estimate) of the cell.
+ * The host keeps a cell's octree level 0 where its block, with the block's one-point halo, holds a
+ * solid point, so that no skip crosses a body, and near a body no step is longer than a cell, so
+ * that none passes over a thin one. */
 #define SCH_NEAR_BIT 0x40
 #define SCH_SOLID_BIT 0x80
 
@@ -325,7 +361,7 @@ SCH_FN sch_sample sch_sample_field(SCH_FIELD field, const sch_params* P, sch_v3 
 }
 
 /* 1 if p (relative to the centre) lies in a solid body: where the trilinear interpolation of the
- * solid points (SCH_SOLID_BIT of the cell bytes, see SCH_LEVEL_MASK: 1 solid, 0 not) is at least
+ * solid points (SCH_SOLID_BIT of the cell bytes: 1 solid, 0 not) is at least
  * one half. The body's surface is then the half-level surface of that interpolant: it passes
  * half-way between a solid point and its fluid neighbours along the grid lines, and between
  * them it is smooth, not a staircase of voxels. */
@@ -347,6 +383,110 @@ SCH_FN int sch_solid_at(SCH_GLOBAL const sch_uchar* bytes, const sch_params* P, 
   float f0 = e00 + ty * (e10 - e00);
   float f1 = e01 + ty * (e11 - e01);
   return f0 + tz * (f1 - f0) >= 0.5f;
+}
+
+/* The weights of 4-point Lagrange interpolation at t in [0, 1] between the second and third of
+ * the points -1, 0, 1, 2: exact for cubics, so the interpolation error is O(h^4). Scalars, not an
+ * array: PoCL kept small indexed arrays in memory. */
+#define SCH_CUBIC_WEIGHTS(t, w0, w1, w2, w3)                                                       \
+  const float w0 = -(t) * ((t) - 1.0f) * ((t) - 2.0f) * (1.0f / 6.0f);                               \
+  const float w1 = ((t) + 1.0f) * ((t) - 1.0f) * ((t) - 2.0f) * 0.5f;                                \
+  const float w2 = -((t) + 1.0f) * (t) * ((t) - 2.0f) * 0.5f;                                        \
+  const float w3 = ((t) + 1.0f) * (t) * ((t) - 1.0f) * (1.0f / 6.0f)
+
+/* One row of 4 points (x - 1 .. x + 2) blended along x. */
+SCH_FN sch_f4 sch_cubic_row(SCH_GLOBAL const float* row, float w0, float w1, float w2, float w3)
+{
+  sch_f4 r = sch_f4_zero();
+  r = sch_f4_madd(r, w0, sch_f4_load(row));
+  r = sch_f4_madd(r, w1, sch_f4_load(row + 4));
+  r = sch_f4_madd(r, w2, sch_f4_load(row + 8));
+  r = sch_f4_madd(r, w3, sch_f4_load(row + 12));
+  return r;
+}
+
+/* One plane of 4 x 4 points blended along x, then y. */
+SCH_FN sch_f4 sch_cubic_plane(SCH_GLOBAL const float* p, long sy, float x0, float x1, float x2,
+  float x3, float y0, float y1, float y2, float y3)
+{
+  sch_f4 r = sch_f4_zero();
+  r = sch_f4_madd(r, y0, sch_cubic_row(p, x0, x1, x2, x3));
+  r = sch_f4_madd(r, y1, sch_cubic_row(p + sy, x0, x1, x2, x3));
+  r = sch_f4_madd(r, y2, sch_cubic_row(p + 2 * sy, x0, x1, x2, x3));
+  r = sch_f4_madd(r, y3, sch_cubic_row(p + 3 * sy, x0, x1, x2, x3));
+  return r;
+}
+
+/* Tricubic (tensor-product Lagrange) interpolation of the packed field at p on the 4 x 4 x 4 points
+ * around cell (i, j, k) (grid coordinates f): the caller has checked that the cell is smooth, which
+ * also keeps the neighbourhood inside the grid (PackFieldHighOrder leaves the border cells
+ * trilinear). */
+SCH_FN sch_sample sch_sample_cubic_at(SCH_GLOBAL const float* base, const sch_params* P, int i,
+  int j, int k, float fx, float fy, float fz)
+{
+  const float tx = fx - (float)i, ty = fy - (float)j, tz = fz - (float)k;
+  SCH_CUBIC_WEIGHTS(tx, x0, x1, x2, x3);
+  SCH_CUBIC_WEIGHTS(ty, y0, y1, y2, y3);
+  SCH_CUBIC_WEIGHTS(tz, z0, z1, z2, z3);
+  const long sy = P->rowFloats, sz = P->sliceFloats;
+  SCH_GLOBAL const float* c = base + (long)(k - 1) * sz + (long)(j - 1) * sy + (long)(i - 1) * 4;
+  sch_f4 r = sch_f4_zero();
+  r = sch_f4_madd(r, z0, sch_cubic_plane(c, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z1, sch_cubic_plane(c + sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z2, sch_cubic_plane(c + 2 * sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z3, sch_cubic_plane(c + 3 * sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  sch_sample s;
+  s.n1 = r.x;
+  s.gx = r.y;
+  s.gy = r.z;
+  s.gz = r.w;
+  return s;
+}
+
+/* The field at p under the trace's reconstruction: tricubic where the cell's level byte says the
+ * data around it is smooth (SCH_CUBIC), trilinear elsewhere (and always for SCH_TRILINEAR, which
+ * reads no level here). *cell: as sch_sample_cell. */
+SCH_FN sch_sample sch_sample_at(SCH_FIELD field, SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P, sch_v3 p, long* cell)
+{
+  if (SCH_RECON(P) == SCH_CUBIC)
+  {
+    int i, j, k;
+    float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
+    float fy = sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
+    float fz = sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
+    *cell = ((long)k * P->ny + j) * P->nx + i;
+    if (levels[*cell] & SCH_SMOOTH_CELL)
+    {
+#ifdef SCH_SLABS
+      /* the 4 planes k - 1 .. k + 2 must lie in cell k's slab (which holds its planes q K .. q K +
+       * K): the first and last cell of a slab stay trilinear */
+      const int q = k / P->slabCells;
+      const int kk = k - q * P->slabCells;
+      if (kk >= 1 && kk + 2 <= P->slabCells)
+      {
+        SCH_GLOBAL const float* base = q == 1 ? field.slab[1] : field.slab[0];
+#if SCH_SLABS > 2
+        base = q == 2 ? field.slab[2] : base;
+#endif
+#if SCH_SLABS > 3
+        base = q == 3 ? field.slab[3] : base;
+#endif
+        return sch_sample_cubic_at(base, P, i, j, kk, fx, fy, fz - (float)(q * P->slabCells));
+      }
+#else
+      return sch_sample_cubic_at(field, P, i, j, k, fx, fy, fz);
+#endif
+    }
+  }
+  return sch_sample_cell(field, P, p, cell);
+}
+
+SCH_FN sch_sample sch_sample_pt(SCH_FIELD field, SCH_GLOBAL const sch_uchar* levels,
+  const sch_params* P, sch_v3 p)
+{
+  long cell;
+  return sch_sample_at(field, levels, P, p, &cell);
 }
 
 /* ---------------------------------------------------------------- geometry */
@@ -531,8 +671,8 @@ SCH_FN void sch_walk_begin(SCH_FIELD field,
   W->it = 0;
   /* the index where the ray enters is the background the deflection is measured against */
   long cell;
-  W->s = sch_sample_cell(field, P, x, &cell);
-  W->level = SCH_USE_LEVELS(P) ? (int)(levels[cell] & SCH_LEVEL_MASK) : 0;
+  W->s = sch_sample_at(field, levels, P, x, &cell);
+  W->level = (SCH_USE_LEVELS(P) | (SCH_RECON(P) == SCH_CUBIC)) ? (int)levels[cell] : 0;
   W->nearSolid = SCH_USE_SOLID(P) ? (int)(levels[cell] & SCH_NEAR_BIT) : 0;
   /* a ray that enters inside a body (one that touches the box) is stopped where it enters */
   if (SCH_USE_SOLID(P) && sch_solid_at(levels, P, x))
@@ -564,8 +704,18 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   sch_v3 dir = sch_scale(v, invn);
   if (SCH_INTEGRATOR(P) == SCH_STRAIGHT)
     dir = d0;
+  if (SCH_RECON(P) == SCH_CUBIC)
+  {
+    /* steps sized by the field: the base step only where every cell within 2^q cells is smooth
+     * (level bits 4-6), so that a long step stays in smooth data; from other cells at most
+     * roughStep (a cell), so that no step jumps a shock or an interface */
+    const int q = (W->level >> SCH_SMOOTH_SHIFT) & 7;
+    const float room = q > 0 ? (float)((1 << q) - 1) * P->cellStep : 0.0f;
+    const float cap = room > P->roughStep ? room : P->roughStep;
+    ds = ds < cap ? ds : cap;
+  }
   if (SCH_USE_LEVELS(P))
-    ds = sch_skip(P, W->x, dir, W->base, W->level);
+    ds = sch_skip(P, W->x, dir, ds, W->level & SCH_OCTREE_BITS);
   /* next to a body no step is longer than a cell: a longer one could pass over a thin body */
   if (SCH_USE_SOLID(P) && W->nearSolid)
     ds = ds < P->cellStep ? ds : P->cellStep;
@@ -600,7 +750,7 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
     /* half step with the slope at x, full step with the slope at the midpoint */
     sch_v3 xm = sch_axpy(0.5f * ds * invn, v, W->x);
     sch_v3 vm = sch_axpy(0.5f * ds, sch_grad(W->s), v);
-    sch_sample sm = sch_sample_field(field, P, xm);
+    sch_sample sm = sch_sample_pt(field, levels, P, xm);
     W->samples += 1.0f;
     xn = sch_axpy(ds / (1.0f + sm.n1), vm, W->x);
     dw = sch_scale(sch_grad(sm), ds);
@@ -611,13 +761,13 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   {
     /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
     sch_v3 k1x = sch_scale(v, invn);
-    sch_sample sa = sch_sample_field(field, P, sch_axpy(0.5f * ds, k1x, W->x));
+    sch_sample sa = sch_sample_pt(field, levels, P, sch_axpy(0.5f * ds, k1x, W->x));
     sch_v3 v2 = sch_axpy(0.5f * ds, sch_grad(W->s), v);
     sch_v3 k2x = sch_scale(v2, 1.0f / (1.0f + sa.n1));
-    sch_sample sb = sch_sample_field(field, P, sch_axpy(0.5f * ds, k2x, W->x));
+    sch_sample sb = sch_sample_pt(field, levels, P, sch_axpy(0.5f * ds, k2x, W->x));
     sch_v3 v3 = sch_axpy(0.5f * ds, sch_grad(sa), v);
     sch_v3 k3x = sch_scale(v3, 1.0f / (1.0f + sb.n1));
-    sch_sample sc = sch_sample_field(field, P, sch_axpy(ds, k3x, W->x));
+    sch_sample sc = sch_sample_pt(field, levels, P, sch_axpy(ds, k3x, W->x));
     sch_v3 v4 = sch_axpy(ds, sch_grad(sb), v);
     sch_v3 k4x = sch_scale(v4, 1.0f / (1.0f + sc.n1));
     W->samples += 3.0f;
@@ -669,9 +819,9 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   }
   /* the sample at the end of a step is counted by it (sch_walk_end), W->samples counts the others */
   long cell;
-  sch_sample sn = sch_sample_cell(field, P, W->x, &cell);
-  if (SCH_USE_LEVELS(P))
-    W->level = (int)(levels[cell] & SCH_LEVEL_MASK);
+  sch_sample sn = sch_sample_at(field, levels, P, W->x, &cell);
+  if (SCH_USE_LEVELS(P) | (SCH_RECON(P) == SCH_CUBIC))
+    W->level = (int)levels[cell];
   if (SCH_USE_SOLID(P))
     W->nearSolid = (int)(levels[cell] & SCH_NEAR_BIT);
   /* a step longer than a feature: over a step of more than one cell, the index changed in a way

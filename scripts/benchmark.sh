@@ -5,7 +5,9 @@
 # a 480 x 720 x 100 helium plume and the NASA blunt fin resampled to 256^3 (both against RK4 at
 # 1/8 voxel). Ratios are only meaningful within one run. Extra arguments go to SchlierenBenchmark
 # (--cases gaussian,plume,bluntfin --size N --film N --passes N --step voxels
-#  --backends OpenCL,CPU --rays-per-item N --rows euler,octree,auto,onethread).
+#  --backends OpenCL,CPU --rays-per-item N --rows euler,octree,auto,onethread). The
+# reconstructions' case, the weak Gaussian on 64^3 to 512^3 under Auto at a fixed tolerance (512^3
+# needs about 5 GB of memory): --cases grids --grids 64,128,256,512 --tolerance 1e-3 --backends OpenCL
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 schlieren_install "${SCHLIEREN_BUILD_PACKAGES[@]}"
 schlieren_build

@@ -4,7 +4,8 @@
 
 One panel per known-answer scene: time per pass (x) against the error of the traced deflection
 relative to the answer's largest deflection (y), one colour per integrator, one marker per octree
-tolerance; settings flagged for stepping over structure are hollow; the Pareto front (no other
+tolerance (diamonds: Reconstruction Cubic, octree off); settings flagged for stepping over
+structure are hollow; the Pareto front (no other
 setting both faster and more accurate) is the line.
 """
 import csv
@@ -34,7 +35,8 @@ def main(src, dst):
             tol = float(r["octree_tolerance"])
             flagged = r["flagged"] == "1"
             c = COLOURS[r["method"]]
-            ax.scatter(ms, err, marker=MARKERS.get(tol, "x"), s=36,
+            cubic = r.get("reconstruction", "Trilinear") == "Cubic"
+            ax.scatter(ms, err, marker="D" if cubic else MARKERS.get(tol, "x"), s=36,
                        facecolors="none" if flagged else c, edgecolors=c)
             pts.append((ms, err, r))
         pts.sort(key=lambda p: p[0])
@@ -46,7 +48,7 @@ def main(src, dst):
         ax.plot([p[0] for p in front], [p[1] for p in front], "k-", lw=1, label="Pareto front")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_ylim(top=2)
+        ax.set_ylim(top=2, bottom=1e-7)
         ax.set_title(scene)
         ax.set_xlabel("ms per pass")
         ax.set_ylabel("error / largest deflection")
@@ -55,6 +57,7 @@ def main(src, dst):
     handles += [plt.Line2D([], [], color="k", marker=mk, ls="", mfc="none",
                            label="octree off" if t == 0 else "octree %g of range" % t)
                 for t, mk in MARKERS.items()]
+    handles.append(plt.Line2D([], [], color="k", marker="D", ls="", mfc="none", label="Reconstruction Cubic"))
     handles.append(plt.Line2D([], [], color="k", label="Pareto front"))
     fig.legend(handles=handles, loc="lower center", ncol=4)
     fig.suptitle("Schlieren: time per pass against error (hollow: flagged as stepping over structure)")

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The speed-versus-accuracy chart's data (a benchmark, not a test): every method x step x octree
-// tolerance on four known-answer scenes. For each: the time per pass of a full film and the error
+// tolerance on four known-answer scenes, and every method x step (up to 32 voxels) with
+// Reconstruction Cubic (PackFieldHighOrder, octree off). For each: the time per pass of a full film and the error
 // of the same setting against the scene's closed form (SchlierenOracles.h, on Auto's pilot rays),
 // relative to the answer's largest deflection. Prints a table and the Pareto front, writes a CSV
 // for Testing/Benchmarks/accuracy_chart.py.
@@ -30,12 +31,12 @@ int main(int argc, char** argv)
       csv = argv[i + 1];
   }
   std::ofstream out(csv);
-  out << "scene,method,step,octree_tolerance,ms_per_pass,samples_per_ray,relative_error,flagged\n";
+  out << "scene,method,step,octree_tolerance,ms_per_pass,samples_per_ray,relative_error,flagged,reconstruction\n";
   std::vector<schtest::OracleCase> cases = { schtest::GaussianCase(size), schtest::LuneburgCase(size),
     schtest::ShockCase(size, 2.0), schtest::LinearCase(size) };
   std::printf("Speed against accuracy, %d^3 grids, %d^2 film, backend %s\n\n", size, filmSize, backend.c_str());
-  std::printf("| scene | method | step (voxel) | octree tol (of range) | ms/pass | samples/ray | error (of max deflection) | flagged |\n");
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+  std::printf("| scene | reconstruction | method | step (voxel) | octree tol (of range) | ms/pass | samples/ray | error (of max deflection) | flagged |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (schtest::OracleCase& c : cases)
   {
     const Volume base = c.SV->V;
@@ -51,23 +52,36 @@ int main(int argc, char** argv)
       double Step, Tol, Ms, Err;
     };
     std::vector<Row> rows;
-    std::vector<unsigned char> levels(base.NumberOfPoints());
-    for (double rel : { 0.0, 1e-4, 1e-2 })
+    std::vector<unsigned char> levels(base.NumberOfPoints()), smooth(base.NumberOfPoints());
+    std::vector<float> high(c.SV->Field.size());
+    PackFieldHighOrder(base.Dimensions, base.Spacing, c.SV->N1.data(), high.data(), smooth.data());
+    // -1: Reconstruction Cubic (octree off)
+    for (double rel : { 0.0, 1e-4, 1e-2, -1.0 })
     {
       Volume v = base;
+      const bool cubic = rel < 0;
+      const double shown = cubic ? 0.0 : rel;
       if (rel > 0)
       {
         v.LevelTolerance = rel * (double(hi) - lo);
         ComputeOctreeLevels(v.Dimensions, c.SV->N1.data(), v.LevelTolerance, levels.data());
         v.Levels = levels.data();
       }
+      if (cubic)
+      {
+        v.Field = high.data();
+        v.Smooth = smooth.data();
+      }
+      const std::vector<double> steps = cubic ? std::vector<double>{ 32, 16, 8, 4, 2, 1, 0.5, 0.25 }
+                                              : std::vector<double>{ 8, 4, 2, 1, 0.5, 0.25 };
       for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
-        for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
+        for (double st : steps)
         {
           TraceSettings s = c.S;
           s.Device = ParseBackend(backend);
           s.Method = m;
           s.StepSize = st;
+          s.Recon = cubic ? Reconstruction::Cubic : Reconstruction::Trilinear;
           const std::vector<RayRecord> r = TraceRays(v, s, c.AB);
           const double err = std::min(c.Error(r) / c.Magnitude, 1e3);
           bool flagged = false;
@@ -79,11 +93,11 @@ int main(int argc, char** argv)
           img = Trace(v, s);
           const double ms = img.Seconds * 1e3;
           const double spr = img.Samples / img.Photons;
-          std::printf("| %s | %s | %g | %g | %.1f | %.0f | %.3g | %s |\n", c.Name.c_str(), IntegratorName(m), st,
-            rel, ms, spr, err, flagged ? "yes" : "");
-          out << c.Name << "," << IntegratorName(m) << "," << st << "," << rel << "," << ms << "," << spr
-              << "," << err << "," << (flagged ? 1 : 0) << "\n";
-          rows.push_back({ IntegratorName(m), st, rel, ms, err });
+          std::printf("| %s | %s | %s | %g | %g | %.1f | %.0f | %.3g | %s |\n", c.Name.c_str(),
+            ReconstructionName(s.Recon), IntegratorName(m), st, shown, ms, spr, err, flagged ? "yes" : "");
+          out << c.Name << "," << IntegratorName(m) << "," << st << "," << shown << "," << ms << "," << spr
+              << "," << err << "," << (flagged ? 1 : 0) << "," << ReconstructionName(s.Recon) << "\n";
+          rows.push_back({ std::string(cubic ? "Cubic " : "") + IntegratorName(m), st, shown, ms, err });
         }
     }
     // Pareto front: no other setting is both faster and more accurate

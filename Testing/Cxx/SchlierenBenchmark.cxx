@@ -10,9 +10,16 @@
 // Rows per case and backend: fixed Euler steps, the same with the octree, and Auto (tolerance 1 %
 // of the largest deflection) with the octree; the CPU path once more on one thread, so that each
 // run shows how its second core scaled.
+//   grids     the weak Gaussian (A = 2e-4, s = 0.25 on [-1, 1]^3) on each grid of --grids (64^3 to
+//             512^3), packed for both reconstructions: Integrator and Reconstruction Auto at a fixed
+//             tolerance (--tolerance, of the peak deflection), beside the present scheme
+//             (Reconstruction Trilinear, Integrator Auto, the same tolerance); rays/s with the RMS
+//             and largest deflection error against the closed form over the film's pixel centres
+//             within |x|, |y| < 2.2 s
 //
 //   SchlierenBenchmark [--cases gaussian,plume,bluntfin] [--size N] [--film N] [--passes N]
 //     [--step voxels] [--backends OpenCL,CPU] [--rays-per-item N] [--raw bluntfin_256 (no suffix)]
+//     [--grids 64,128,256,512] [--tolerance 1e-3]
 #include "SchlierenEngine.h"
 #include "SchlierenOracles.h"
 #include "SchlierenScenes.h"
@@ -279,6 +286,123 @@ void Run(Case& c, const std::string& backends, const std::string& only, int film
     c.PackMs, c.OctreeTolerance, 100 * c.Skippable, c.LevelMs);
 }
 
+// The grids case: one row per grid, reconstruction and backend.
+void Grids(const std::string& grids, const std::string& backends, int film, int passes, double tolFrac)
+{
+  const double A = 2e-4, w = 0.25;
+  const double peak = schtest::GaussianMaxDeflection(A);
+  std::printf("## Weak Gaussian A = 2e-4, s = 0.25 on [-1, 1]^3, beam along -z, Auto at a tolerance of "
+              "%.3g of the peak deflection (%.3g rad)\n\n", tolFrac, tolFrac * peak);
+  std::printf("error: RMS and largest over the film's pixel centres within |x|, |y| < 2.2 s of "
+              "|deflection - closed form|, as a fraction of the peak; rays/s of %d passes of a %d^2 film "
+              "(Auto's pilot not included: its time is the last column)\n\n", passes, film);
+  std::printf("| grid | backend, setting | chosen | rays/s | samples/ray | RMS error | max error | "
+              "pack ms | pilot ms |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::stringstream gs(grids);
+  std::string g;
+  while (std::getline(gs, g, ','))
+  {
+    const int n = std::atoi(g.c_str());
+    Volume v;
+    for (int a = 0; a < 3; ++a)
+    {
+      v.Dimensions[a] = n;
+      v.Origin[a] = -1;
+      v.Spacing[a] = 2.0 / (n - 1);
+    }
+    std::vector<float> n1, packed, present;
+    std::vector<unsigned char> smooth;
+    try
+    {
+      n1.resize(v.NumberOfPoints());
+      SceneParameters p;
+      p.Amplitude = A;
+      p.Width = w;
+      FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
+      packed.resize(4 * n1.size());
+      smooth.resize(n1.size());
+    }
+    catch (const std::exception& e)
+    {
+      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | |\n", n, e.what());
+      continue;
+    }
+    v.Field = packed.data();
+    // the rays through the film's pixel centres within |x|, |y| < 2.2 s (the film covers the box)
+    std::vector<float> ab;
+    const double pix = 2.0 / film;
+    for (int j = 0; j < film; ++j)
+      for (int i = 0; i < film; ++i)
+      {
+        const double a = -1 + (i + 0.5) * pix, b = -1 + (j + 0.5) * pix;
+        if (std::fabs(a) < 2.2 * w && std::fabs(b) < 2.2 * w)
+        {
+          ab.push_back(static_cast<float>(a));
+          ab.push_back(static_cast<float>(b));
+        }
+      }
+    std::stringstream bs(backends);
+    std::string name;
+    while (std::getline(bs, name, ','))
+      for (Reconstruction rc : { Reconstruction::Auto, Reconstruction::Trilinear })
+      {
+        // Auto: the field packed for both (PackFieldHighOrder); the present scheme: PackField
+        const auto t0 = Clock::now();
+        if (rc == Reconstruction::Auto)
+          PackFieldHighOrder(v.Dimensions, v.Spacing, n1.data(), packed.data(), smooth.data());
+        else
+          PackField(v.Dimensions, v.Spacing, n1.data(), packed.data());
+        const double packMs = Since(t0) * 1e3;
+        v.Smooth = rc == Reconstruction::Auto ? smooth.data() : nullptr;
+        ReleaseKeptVolume();
+        v.Stamp = NewVolumeStamp();
+        TraceSettings s;
+        s.Device = ParseBackend(name);
+        s.Resolution[0] = s.Resolution[1] = film;
+        s.Passes = 1;
+        s.CutoffScale = 1000;
+        s.Jitter = false;
+        s.Method = Integrator::Auto;
+        s.Recon = rc;
+        s.Tolerance = tolFrac * peak;
+        try
+        {
+          const auto tp = Clock::now();
+          AutoChoice choice;
+          s = ResolveAuto(v, s, &choice);
+          const double pilotMs = Since(tp) * 1e3;
+          Trace(v, s); // the first trace builds the program and uploads
+          s.Passes = passes;
+          const TraceResult r = Trace(v, s);
+          const std::vector<RayRecord> rec = TraceRays(v, s, ab);
+          double sum = 0, worst = 0;
+          for (std::size_t k = 0; k < rec.size(); ++k)
+          {
+            double e[2];
+            schtest::GaussianDeflection(A, w, ab[2 * k], ab[2 * k + 1], e);
+            const double d2 = (rec[k].DeflX - e[0]) * (rec[k].DeflX - e[0]) + (rec[k].DeflY - e[1]) * (rec[k].DeflY - e[1]);
+            sum += d2;
+            worst = std::max(worst, std::sqrt(d2));
+          }
+          char chosen[96];
+          std::snprintf(chosen, sizeof(chosen), "%s %s %.3g vox%s", ReconstructionName(s.Recon),
+            IntegratorName(s.Method), s.StepSize, choice.Met ? "" : " (tolerance not met)");
+          std::printf("| %d^3 | %s, %s | %s | %.3g M | %.1f | %.3g %% | %.3g %% | %.0f | %.0f |\n", n,
+            r.BackendUsed.c_str(), rc == Reconstruction::Auto ? "Auto / Auto" : "Auto / Trilinear (present)",
+            chosen, r.Photons / r.Seconds / 1e6, r.Samples / r.Photons,
+            100 * std::sqrt(sum / rec.size()) / peak, 100 * worst / peak, packMs, pilotMs);
+        }
+        catch (const Error& e)
+        {
+          std::printf("| %d^3 | %s | failed: %s | | | | | | |\n", n, name.c_str(), e.what());
+        }
+        std::fflush(stdout);
+      }
+    ReleaseKeptVolume();
+  }
+  std::printf("\n");
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -287,6 +411,8 @@ int main(int argc, char** argv)
   double step = 0.5;
   std::string backends = "OpenCL,CPU", cases = "gaussian,plume,bluntfin", raw = "bluntfin_256";
   std::string rows; // empty: all rows (euler,octree,auto,onethread)
+  std::string grids = "64,128,256,512";
+  double tolFrac = 1e-3;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     if (!std::strcmp(argv[i], "--size"))
@@ -307,6 +433,10 @@ int main(int argc, char** argv)
       raw = argv[i + 1];
     else if (!std::strcmp(argv[i], "--rows"))
       rows = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--grids"))
+      grids = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--tolerance"))
+      tolFrac = std::atof(argv[i + 1]);
   }
   DeviceInfo dev = QueryOpenCLDevice();
   std::printf("# Schlieren benchmark: film %d^2, %d passes, Euler step %.2f voxel\n\n", film, passes, step);
@@ -321,14 +451,16 @@ int main(int argc, char** argv)
     bool ok = false;
     try
     {
-      if (name == "gaussian")
+      if (name == "grids")
+        Grids(grids, backends, film, passes, tolFrac);
+      else if (name == "gaussian")
         ok = Gaussian(c, size);
       else if (name == "plume")
         ok = Plume(c);
       else if (name == "bluntfin")
         ok = BluntFin(c, raw);
       else
-        std::printf("unknown case '%s' (gaussian, plume, bluntfin)\n", name.c_str());
+        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids)\n", name.c_str());
     }
     catch (const Error& e)
     {
