@@ -1595,6 +1595,9 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   std::shared_ptr<OpenCLTracer> cl =
     OpenBackend(tv, bytes, solidBytes, s, P, chunk, false, used, device, warn);
   SetFeatureTolerance(P, tv);
+  if (volume.Solid && s.Recon == Reconstruction::Cubic && sums.Passes == 0)
+    warn += "Reconstruction Cubic is not available with a solid body (the byte per point that "
+            "carries the body holds the smoothness it needs): traced trilinear.\n";
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
   const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
