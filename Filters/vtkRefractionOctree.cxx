@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkRefractionOctree.h"
+#include "SchlierenGuard.h"
+
+#include <sstream>
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -15,6 +18,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,7 +51,14 @@ int vtkRefractionOctree::RequestData(
   std::string problem;
   std::vector<float> n1;
   int dims[3] = { 0, 0, 0 };
-  if (!input || !output)
+  if (!(this->Tolerance >= 0.0 && this->Tolerance <= 1.0))
+  {
+    std::ostringstream msg;
+    msg << "Tolerance is " << this->Tolerance
+        << ": it must be in [0, 1] (a spread of n - 1, index units; 0: automatic).";
+    problem = msg.str();
+  }
+  else if (!input || !output)
   {
     problem = "RefractionOctree needs a vtkImageData input with the point array 'n_minus_1'. "
               "Resample the data onto an image and apply RefractiveIndex first.";
@@ -63,6 +74,21 @@ int vtkRefractionOctree::RequestData(
     else
     {
       input->GetDimensions(dims);
+      try
+      {
+        // the float copy of n - 1, the levels, and the min/max scratch of the first level
+        std::ostringstream what;
+        what << "RefractionOctree on " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points";
+        schlieren::CheckHostMemory(double(array->GetNumberOfTuples()) * (4.0 + 1.0 + 4.0), what.str(),
+          "Resample the volume to fewer points (RefractiveIndex SamplingDimensions).");
+      }
+      catch (const schlieren::Error& e)
+      {
+        problem = e.what();
+      }
+    }
+    if (problem.empty() && array && array->GetNumberOfComponents() == 1)
+    {
       n1.resize(static_cast<std::size_t>(array->GetNumberOfTuples()));
       for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
       {
@@ -164,4 +190,12 @@ void vtkRefractionOctree::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Tolerance: " << this->Tolerance
      << (this->Tolerance > 0 ? "" : " (automatic: a fraction of the range of n - 1)") << "\n";
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkRefractionOctree::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return SchlierenGuarded(this,
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); });
 }

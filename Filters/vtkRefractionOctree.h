@@ -52,9 +52,9 @@ public:
   /**
    * The largest spread of n - 1 (dimensionless, index units) that an octree block may hold.
    * 0 (the default) means automatic: AutomaticToleranceFraction times the range of n - 1.
-   * Clamped to [0, 1].
+   * Valid range [0, 1]; a value outside it is an error when the filter runs (never clamped).
    */
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkSetMacro(Tolerance, double);
   vtkGetMacro(Tolerance, double);
   ///@}
 
@@ -70,6 +70,13 @@ public:
 protected:
   vtkRefractionOctree();
   ~vtkRefractionOctree() override;
+
+public:
+  /** Every request, with any exception turned into an error and a failed request. */
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+protected:
 
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkRefractiveIndex.h"
+#include "SchlierenGuard.h"
 
 #include "vtkBoundingBox.h"
 #include "vtkCellData.h"
@@ -33,6 +34,7 @@
 #include "SchlierenBodies.h"
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
+#include "SchlierenLimits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -383,6 +385,33 @@ bool vtkRefractiveIndex::SamplingGrid(
       int ignored[3];
       schlieren::AutomaticDimensions(bounds, 2, ignored); // checks the bounds
     }
+    // the resampled grid (the probe's copy of every input array, its mask, then n - 1 and
+    // grad n), checked before the probe allocates it
+    double perPoint = 1.0 + 16.0;
+    if (vtkDataSet* ds = vtkDataSet::SafeDownCast(vtkDataObject::GetData(inInfo)))
+    {
+      for (vtkDataSetAttributes* attributes :
+        { static_cast<vtkDataSetAttributes*>(ds->GetPointData()),
+          static_cast<vtkDataSetAttributes*>(ds->GetCellData()) })
+      {
+        for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
+        {
+          if (vtkDataArray* a = attributes->GetArray(i))
+          {
+            perPoint += a->GetNumberOfComponents() * a->GetDataTypeSize();
+          }
+        }
+      }
+    }
+    else
+    {
+      perPoint += 64.0; // a composite input: a few double arrays
+    }
+    std::ostringstream what;
+    what << "Resampling onto " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points";
+    schlieren::CheckHostMemory(double(dims[0]) * dims[1] * dims[2] * perPoint, what.str(),
+      automatic ? "Lower AutomaticDimension (points along the longest side)."
+                : "Lower SamplingDimensions.");
   }
   catch (const schlieren::Error& e)
   {
@@ -777,8 +806,16 @@ std::string GatherFields(vtkRefractiveIndex* self, vtkImageData* grid, const std
       }
       else
       {
-        m << "('" << name << "', " << role.Property
-          << ") but the input has no point array of that name.";
+        m << "('" << name << "', " << role.Property << ") but ";
+        if (grid->GetCellData()->GetArray(name.c_str()))
+        {
+          m << "'" << name << "' is a cell array, and the model reads point arrays: convert it "
+            << "first (Cell Data to Point Data).";
+        }
+        else
+        {
+          m << "the input has no point array of that name.";
+        }
       }
       m << " Point arrays present: " << PointArrayNames(grid) << ".";
       return m.str();
@@ -1516,4 +1553,12 @@ void vtkRefractiveIndex::PrintSelf(ostream& os, vtkIndent indent)
      << " " << this->BodyWallFaces[3] << " " << this->BodyWallFaces[4] << " "
      << this->BodyWallFaces[5] << ", SolidArray: "
      << (this->SolidArray.empty() ? std::string("(none)") : this->SolidArray) << "\n";
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkRefractiveIndex::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return SchlierenGuarded(this,
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); });
 }

@@ -404,7 +404,7 @@ public:
    * The light's vacuum wavelength, nm. Default 632.8 (HeNe). Used by Ciddor (300-1700 nm); the
    * Gladstone-Dale constants of the table are those at 632.8 nm.
    */
-  vtkSetClampMacro(Wavelength, double, 100.0, 20000.0);
+  vtkSetMacro(Wavelength, double); // checked by the model that uses it (never clamped)
   vtkGetMacro(Wavelength, double);
   ///@}
 
@@ -489,6 +489,13 @@ public:
 protected:
   vtkRefractiveIndex();
   ~vtkRefractiveIndex() override;
+
+public:
+  /** Every request, with any exception turned into an error and a failed request. */
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,

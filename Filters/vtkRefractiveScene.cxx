@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkRefractiveScene.h"
+#include "SchlierenGuard.h"
+#include "SchlierenLimits.h"
+
+#include <sstream>
 
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -120,6 +124,21 @@ int vtkRefractiveScene::RequestData(
   const double pieceOrigin[3] = { origin[0] + ext[0] * spacing[0], origin[1] + ext[2] * spacing[1],
     origin[2] + ext[4] * spacing[2] };
   const vtkIdType count = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  const bool plume = this->Scene == HELIUM_PLUME;
+  try
+  {
+    std::ostringstream what;
+    what << "RefractiveScene's grid of " << dims[0] << " x " << dims[1] << " x " << dims[2]
+         << " points (" << (plume ? 3 : 2) << " float arrays)";
+    schlieren::CheckHostMemory(double(dims[0]) * dims[1] * dims[2] * 4.0 * (plume ? 3 : 2),
+      what.str(), "Lower Dimensions.");
+  }
+  catch (const schlieren::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    output->Initialize();
+    return 0;
+  }
 
   vtkNew<vtkFloatArray> nMinus1;
   nMinus1->SetName("n_minus_1");
@@ -128,7 +147,6 @@ int vtkRefractiveScene::RequestData(
   density->SetName("density");
   density->SetNumberOfTuples(count);
   vtkNew<vtkFloatArray> mixture;
-  const bool plume = this->Scene == HELIUM_PLUME;
   if (plume)
   {
     mixture->SetName("mixture_fraction");
@@ -226,4 +244,12 @@ void vtkRefractiveScene::PrintSelf(ostream& os, vtkIndent indent)
      << ", radius " << this->BodyRadius << ", centre " << this->BodyCenter[0] << " "
      << this->BodyCenter[1] << " " << this->BodyCenter[2] << ", axis " << this->BodyAxis[0] << " "
      << this->BodyAxis[1] << " " << this->BodyAxis[2] << "\n";
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkRefractiveScene::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return SchlierenGuarded(this,
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); });
 }

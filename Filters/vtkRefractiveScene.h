@@ -222,6 +222,13 @@ protected:
   vtkRefractiveScene();
   ~vtkRefractiveScene() override;
 
+public:
+  /** Every request, with any exception turned into an error and a failed request. */
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+protected:
+
   int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,

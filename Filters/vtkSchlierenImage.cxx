@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSchlierenImage.h"
+#include "SchlierenGuard.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -20,9 +21,11 @@
 #include "vtkStringArray.h"
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -124,7 +127,7 @@ struct vtkSchlierenImage::vtkInternals
   // the whole volume of the last trace (n - 1 and gradient, octree levels) and the input it came
   // from: kept while only the view, optics or passes change
   std::string VolumeKey;
-  std::vector<float> Packed;
+  schlieren::AlignedFloats Packed; // page-aligned: a CPU OpenCL device traces it in place
   std::vector<unsigned char> Levels;
   std::vector<unsigned char> Solid; // the input's `solid` points (empty: no body)
   std::vector<unsigned char> Smooth; // PackFieldHighOrder's smoothness (Reconstruction not trilinear)
@@ -521,7 +524,7 @@ int vtkSchlierenImage::RequestData(
   }
   std::string problem;
   schlieren::Volume volume;
-  std::vector<float> packed;
+  schlieren::AlignedFloats packed;
   std::vector<unsigned char> levels, smooth;
   std::vector<unsigned char> solid;
   // steps 1-3: the volume from the input; 0 when it failed (reported, agreed by all ranks)
@@ -730,6 +733,13 @@ int vtkSchlierenImage::RequestData(
     // share of the photons.
     try
     {
+      std::ostringstream what;
+      what << "Tracing the " << volume.Dimensions[0] << " x " << volume.Dimensions[1] << " x "
+           << volume.Dimensions[2] << " volume";
+      schlieren::CheckHostMemory(double(total) * (schlieren::VolumeBytesPerPoint() - 4.0),
+        what.str(),
+        "Resample the data to fewer points (RefractiveIndex SamplingDimensions or "
+        "AutomaticDimension), or trace a subset (ExtractSubset).");
       packed.resize(4 * total);
       if (this->Reconstruction == TRILINEAR)
       {
@@ -754,6 +764,11 @@ int vtkSchlierenImage::RequestData(
     catch (const schlieren::Error& e)
     {
       problem = e.what();
+    }
+    catch (const std::bad_alloc&)
+    {
+      problem = "Out of memory while packing the volume (std::bad_alloc): resample it to fewer "
+                "points.";
     }
     if (!agree(problem))
     {
@@ -824,6 +839,8 @@ int vtkSchlierenImage::RequestData(
     const schlieren::FilmGeometry film = schlieren::MakeFilm(volume, settings);
     if (!reuse)
     {
+      cache.Sums.Resize(0, 0); // the old film goes before the new one is checked and made
+      schlieren::CheckFilmMemory(film.Size);
       cache.Sums.Resize(film.Size[0], film.Size[1]);
     }
     cache.Key.clear(); // valid again only once the passes below are all in
@@ -846,6 +863,13 @@ int vtkSchlierenImage::RequestData(
   {
     cache.Sums.Resize(0, 0);
     problem = e.what();
+  }
+  catch (const std::bad_alloc&)
+  {
+    // here, not in ProcessRequest's guard: under MPI the other ranks wait in agree() below
+    cache.Sums.Resize(0, 0);
+    problem = "Out of memory while tracing (std::bad_alloc): lower Resolution or resample the "
+              "volume to fewer points.";
   }
   if (!agree(problem))
   {
@@ -953,6 +977,8 @@ int vtkSchlierenImage::RequestData(
     fd->AddArray(a);
   };
   addNumber("cutoff_scale", result.CutoffScaleUsed);
+  // what the user was warned of (empty: nothing), for scripts that check an image is usable
+  addString("warnings", warnings + (result.Warnings != warnings ? result.Warnings : std::string()));
   addString("backend", result.BackendUsed.empty() ? backendUsed : result.BackendUsed);
   addString("device", result.DeviceName.empty() ? deviceName : result.DeviceName);
   addNumber("photons", result.Photons);
@@ -962,6 +988,12 @@ int vtkSchlierenImage::RequestData(
   addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
   addNumber("failed_rays", result.FailedRays);
   addNumber("missed_rays", result.MissedRays);
+  double landed = 0; // photons that reached the film (0: a blank image, which the warnings explain)
+  for (double c : sums.Count)
+  {
+    landed += c;
+  }
+  addNumber("landed_photons", landed);
   addNumber("underresolved_rays", result.UnderresolvedRays);
   addNumber("side_rays", result.SideRays);
   addNumber("blocked_rays", result.BlockedRays);
@@ -1030,4 +1062,12 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Backend: "
      << (this->Backend == OPENCL ? "OpenCL" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";
+}
+
+//------------------------------------------------------------------------------
+vtkTypeBool vtkSchlierenImage::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return SchlierenGuarded(this,
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); });
 }

@@ -191,10 +191,10 @@ public:
 
   ///@{
   /**
-   * The base integration step, in voxels (of the smallest spacing). Clamped to [0.01, 64].
-   * Default 0.5.
+   * The base integration step, in voxels (of the smallest spacing). Valid range [0.01, 64]:
+   * a value outside it is an error when the filter runs (never clamped). Default 0.5.
    */
-  vtkSetClampMacro(StepSize, double, 0.01, 64.0);
+  vtkSetMacro(StepSize, double);
   vtkGetMacro(StepSize, double);
   ///@}
 
@@ -224,9 +224,9 @@ public:
   ///@{
   /**
    * Integrator AUTO_INTEGRATOR: the deflection error allowed, radians; 0 (the default) means 1 % of the
-   * largest deflection of the pilot rays. Clamped to [0, 1].
+   * largest deflection of the pilot rays. Valid range [0, 1] (an error outside it).
    */
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkSetMacro(Tolerance, double);
   vtkGetMacro(Tolerance, double);
   ///@}
 
@@ -281,27 +281,28 @@ public:
   ///@{
   /**
    * The cutoff scale k (per radian of deflection); 0 means automatic: the largest deflection maps
-   * to full contrast. Clamped to [0, 1e12]. Default 0.
+   * to full contrast. Valid range [0, 1e12] (an error outside it). Default 0.
    */
-  vtkSetClampMacro(CutoffScale, double, 0.0, 1e12);
+  vtkSetMacro(CutoffScale, double);
   vtkGetMacro(CutoffScale, double);
   ///@}
 
   ///@{
   /**
-   * Distance of the film behind the back of the volume's box, world units (>= 0). Default 0.
+   * Distance of the film behind the back of the volume's box, world units (>= 0 and finite,
+   * else an error). Default 0.
    */
-  vtkSetClampMacro(FilmDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(FilmDistance, double);
   vtkGetMacro(FilmDistance, double);
   ///@}
 
   ///@{
   /**
    * INTERFEROMETRY: the light's vacuum wavelength, nm (world units are taken as metres for the
-   * phase 2 pi / lambda * integral (n - n_entry) ds). Clamped to [100, 100000]. Default 632.8.
+   * phase 2 pi / lambda * integral (n - n_entry) ds). Valid range [100, 100000] (an error outside it). Default 632.8.
    * The index itself is computed upstream (vtkRefractiveIndex has its own Wavelength).
    */
-  vtkSetClampMacro(Wavelength, double, 100.0, 100000.0);
+  vtkSetMacro(Wavelength, double);
   vtkGetMacro(Wavelength, double);
   ///@}
 
@@ -317,9 +318,9 @@ public:
   ///@{
   /**
    * BOS: distance from the front of the volume's box (where the beam enters) to the background,
-   * world units (>= 0). Default 1.
+   * world units (>= 0 and finite, else an error). Default 1.
    */
-  vtkSetClampMacro(BackgroundDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(BackgroundDistance, double);
   vtkGetMacro(BackgroundDistance, double);
   ///@}
 
@@ -336,7 +337,7 @@ public:
   /**
    * BOS: the dot spacing or stripe period, world units; 0 (the default) means 6 pixels.
    */
-  vtkSetClampMacro(BackgroundPeriod, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(BackgroundPeriod, double);
   vtkGetMacro(BackgroundPeriod, double);
   ///@}
 
@@ -351,9 +352,10 @@ public:
   ///@{
   /**
    * The filter's width in pixels: the Gaussian's standard deviation, or the cone's radius at one
-   * pass (it shrinks as 1 / sqrt(passes), to at least 1 pixel). Clamped to [0.01, 64]. Default 1.
+   * pass (it shrinks as 1 / sqrt(passes), to at least 1 pixel). Valid range [0.01, 64] (an error
+   * outside it). Default 1.
    */
-  vtkSetClampMacro(FilterWidth, double, 0.01, 64.0);
+  vtkSetMacro(FilterWidth, double);
   vtkGetMacro(FilterWidth, double);
   ///@}
 
@@ -398,6 +400,13 @@ public:
 protected:
   vtkSchlierenImage();
   ~vtkSchlierenImage() override;
+
+public:
+  /** Every request, with any exception turned into an error and a failed request. */
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,

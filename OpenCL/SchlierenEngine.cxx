@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 #include "SchlierenOpenCL.h"
 
 // The physics, compiled as C++ for the CPU backend and for the host-side film. The CPU path
@@ -563,9 +564,18 @@ void FilmGeometry::GetImageOrigin(double origin[2]) const
   origin[1] = Dot(Center, Up) + Corner[1] + 0.5 * PixelSize;
 }
 
+// Half the extent of the box of grid points along each axis, from the grid itself: the bounds
+// (origin + extent) lose the extent's digits when the volume sits far from the world origin.
+static void HalfExtent(const Volume& v, double h[3])
+{
+  for (int a = 0; a < 3; ++a)
+    h[a] = 0.5 * (v.Dimensions[a] - 1) * v.Spacing[a];
+}
+
 FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
 {
   CheckGrid(volume.Dimensions, volume.Spacing);
+  CheckSettings(s);
   FilmGeometry f;
   const double dlen = std::sqrt(Dot(s.ViewDirection, s.ViewDirection));
   if (!(dlen > 0) || !std::isfinite(dlen))
@@ -593,14 +603,10 @@ FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
         << " is out of range: each side must be 1 to 16384 pixels.";
     throw Error(msg.str());
   }
-  double b[6];
-  volume.GetBounds(b);
   double h[3];
+  HalfExtent(volume, h);
   for (int a = 0; a < 3; ++a)
-  {
-    f.Center[a] = 0.5 * (b[2 * a] + b[2 * a + 1]);
-    h[a] = 0.5 * (b[2 * a + 1] - b[2 * a]);
-  }
+    f.Center[a] = volume.Origin[a] + h[a];
   double wa = 0, wb = 0, wd = 0;
   for (int a = 0; a < 3; ++a)
   {
@@ -636,19 +642,21 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
     msg << "StepSize " << s.StepSize << " voxels is out of range: use a value in (0, 1000].";
     throw Error(msg.str());
   }
+  CheckPrecision(volume, s);
   sch_params P;
   std::memset(&P, 0, sizeof(P));
   P.nx = volume.Dimensions[0];
   P.ny = volume.Dimensions[1];
   P.nz = volume.Dimensions[2];
-  double b[6];
-  volume.GetBounds(b);
+  // the tracer works relative to the volume's centre: only the extent enters, never the origin
+  double h[3];
+  HalfExtent(volume, h);
   P.isx = static_cast<float>(1.0 / volume.Spacing[0]);
   P.isy = static_cast<float>(1.0 / volume.Spacing[1]);
   P.isz = static_cast<float>(1.0 / volume.Spacing[2]);
-  P.hx = static_cast<float>(0.5 * (b[1] - b[0]));
-  P.hy = static_cast<float>(0.5 * (b[3] - b[2]));
-  P.hz = static_cast<float>(0.5 * (b[5] - b[4]));
+  P.hx = static_cast<float>(h[0]);
+  P.hy = static_cast<float>(h[1]);
+  P.hz = static_cast<float>(h[2]);
   P.dx = static_cast<float>(f.Direction[0]);
   P.dy = static_cast<float>(f.Direction[1]);
   P.dz = static_cast<float>(f.Direction[2]);
@@ -690,9 +698,10 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.gxMax = std::nextafter(static_cast<float>(P.nx - 1), 0.0f);
   P.gyMax = std::nextafter(static_cast<float>(P.ny - 1), 0.0f);
   P.gzMax = std::nextafter(static_cast<float>(P.nz - 1), 0.0f);
-  P.gx0 = static_cast<float>(-(volume.Origin[0] - f.Center[0]) / volume.Spacing[0]);
-  P.gy0 = static_cast<float>(-(volume.Origin[1] - f.Center[1]) / volume.Spacing[1]);
-  P.gz0 = static_cast<float>(-(volume.Origin[2] - f.Center[2]) / volume.Spacing[2]);
+  // the grid coordinate of the centre, (origin - centre) / spacing, exactly
+  P.gx0 = static_cast<float>(0.5 * (P.nx - 1));
+  P.gy0 = static_cast<float>(0.5 * (P.ny - 1));
+  P.gz0 = static_cast<float>(0.5 * (P.nz - 1));
   if (4.0 * P.nx * P.ny > 2147483647.0)
     throw Error("A slice of the volume has more than 2^29 points: not supported.");
   P.rowFloats = 4 * P.nx;
@@ -1126,7 +1135,8 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
 {
   const unsigned nt = CpuThreads();
   std::atomic<std::size_t> next(0);
-  const std::size_t block = 256;
+  // blocks of 256 rays, smaller where a chunk has fewer rays than that for each thread
+  const std::size_t block = std::max<std::size_t>(1, std::min<std::size_t>(256, (count + nt - 1) / nt));
   auto worker = [&]() {
     // each thread reads its own copy of the parameters: the caller's sits on the main thread's
     // stack, next to what that thread writes every step, and the other thread's reads of it
@@ -1189,6 +1199,28 @@ public:
           << " MiB in all. Resample the data to fewer points, or choose Backend CPU.";
       throw Error(msg.str());
     }
+    // A CPU device's buffers live in host memory: there the buffer uses the caller's field where
+    // its address has the device's alignment (no second copy of the volume), else the driver
+    // keeps a copy, which must fit in what the machine has left.
+    cl_uint alignBits = 0;
+    clGetDeviceInfo(RT.Device, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof(alignBits), &alignBits, nullptr);
+    const std::uintptr_t align = std::max<std::uintptr_t>(alignBits / 8, 64);
+    const char* useHost = std::getenv("SCHLIEREN_CL_USE_HOST_PTR");
+    const bool shareHost = RT.IsCPU && !(useHost && std::string(useHost) == "0");
+    auto slabStart = [&](int q) {
+      return volume.Field + std::uint64_t(q) * SlabCells * planeFloats;
+    };
+    double copied = 0;
+    for (int q = 0; q < Slabs; ++q)
+    {
+      Shared[q] = shareHost && reinterpret_cast<std::uintptr_t>(slabStart(q)) % align == 0;
+      if (!Shared[q] && RT.IsCPU)
+        copied += double(total) / Slabs;
+    }
+    if (copied > 0)
+      CheckHostMemory(copied + levelBytes,
+        "The OpenCL device '" + RT.DeviceName + "' keeps its copy of the volume in host memory; it",
+        "Choose Backend CPU (which traces the field in place), or resample the data to fewer points.");
     try
     {
       cl_int err = CL_SUCCESS;
@@ -1196,9 +1228,9 @@ public:
       {
         const std::uint64_t first = std::uint64_t(q) * SlabCells;
         const std::uint64_t planes = std::min<std::uint64_t>(SlabCells, nz - 1 - first) + 1;
-        Fields[q] = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-          planes * planeFloats * sizeof(float), const_cast<float*>(volume.Field + first * planeFloats),
-          &err);
+        const cl_mem_flags flags = CL_MEM_READ_ONLY | (Shared[q] ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR);
+        Fields[q] = clCreateBuffer(RT.Context, flags, planes * planeFloats * sizeof(float),
+          const_cast<float*>(slabStart(q)), &err);
         ocl::Check(err, "clCreateBuffer(field)");
       }
       // the cell bytes (octree levels, solid points), or one byte that no kernel reads when
@@ -1401,14 +1433,15 @@ public:
   // the field: one buffer, or Slabs buffers of SlabCells cells along z (see the constructor)
   static constexpr int MaxSlabs = 4;
   cl_mem Fields[MaxSlabs] = { nullptr, nullptr, nullptr, nullptr };
+  bool Shared[MaxSlabs] = { false, false, false, false }; // uses the caller's memory (CPU device)
   int Slabs = 1, SlabCells = 0;
   cl_mem Levels = nullptr, Out = nullptr;
 };
 
 // Chooses the backend; returns the OpenCL tracer or null for the CPU.
 // The device copy of the last stamped volume, kept for the next call (an interactive view traces
-// the same volume again and again: at 256^3 the upload is ~0.2 s on PoCL). Allocated once and
-// never destroyed at exit, where the OpenCL runtime may already be gone.
+// the same volume again and again: at 256^3 the upload is ~0.2 s on PoCL). Allocated once; its
+// device objects are released by the runtime's exit hook (ocl::AtRelease), before the context.
 struct KeptTracer
 {
   VolumeIdentity Identity;
@@ -1419,10 +1452,20 @@ struct KeptTracer
   std::shared_ptr<const void> BytesOwner;
   std::shared_ptr<OpenCLTracer> Tracer;
 };
+void ReleaseKeptAtExit();
 KeptTracer& Kept()
 {
-  static KeptTracer* kept = new KeptTracer;
+  static KeptTracer* kept = [] {
+    ocl::AtRelease(&ReleaseKeptAtExit);
+    return new KeptTracer;
+  }();
   return *kept;
+}
+void ReleaseKeptAtExit()
+{
+  std::lock_guard<std::mutex> lock(KeptMutex);
+  Kept().Tracer.reset();
+  Kept().Identity = VolumeIdentity();
 }
 
 std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
@@ -1555,36 +1598,31 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   const ProgressFunction& progress)
 {
   CheckVolume(volume);
-  if (s.Passes < 1 || s.Passes > 1000000)
-  {
-    std::ostringstream msg;
-    msg << "Passes is " << s.Passes << ": it must be at least 1 (and at most 1000000).";
-    throw Error(msg.str());
-  }
+  CheckSettings(s);
   if (s.Method == Integrator::Auto)
     throw Error("Accumulate: resolve Integrator Auto first (ResolveAuto).");
   if (s.RussianRoulette && !(s.CutoffScale > 0) &&
     (s.Mode == Cutoff::KnifeEdge || s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular))
     throw Error("Photon killing (RussianRoulette) needs a fixed CutoffScale: the automatic scale is "
                 "known only after the trace.");
-  if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))
-    throw Error("Wavelength must be between 100 and 100000 nm.");
-  if (s.Mode == Cutoff::BOS && !(s.BackgroundDistance >= 0 && std::isfinite(s.BackgroundDistance)))
-    throw Error("BackgroundDistance must be a finite distance >= 0.");
   const FilmGeometry film = MakeFilm(volume, s);
   sch_params P = MakeParams(volume, s, film);
   std::shared_ptr<std::vector<unsigned char>> levelBytes;
   const Volume tv = TraceVolume(volume, levelBytes);
   if (sums.Size[0] != film.Size[0] || sums.Size[1] != film.Size[1] || sums.Count.empty())
+  {
+    CheckFilmMemory(film.Size);
     sums.Resize(film.Size[0], film.Size[1]);
+  }
 
   const std::size_t rays = RaysForRank(P);
   // chunks of about 8 M samples (~0.1-0.2 s on a CPU): progress and abort are checked between
-  // chunks, so an abort stops the trace within one chunk
+  // chunks, so an abort stops the trace within one chunk; long rays make small chunks
   const double samplesPerRay = std::max(1.0, 2.0 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy +
                                                  double(P.hz) * P.hz) / P.step *
-      (s.Method == Integrator::RK4 ? 4 : (s.Method == Integrator::Midpoint ? 2 : 1)));
-  std::size_t chunk = 4096;
+      (s.Method == Integrator::RK4 ? 4 : (s.Method == Integrator::Midpoint ? 2 : 1)) *
+      (s.EstimateError ? 1.5 : 1.0));
+  std::size_t chunk = 64;
   while (chunk < (1u << 16) && (2 * chunk) * samplesPerRay <= 8e6)
     chunk *= 2;
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
@@ -1625,6 +1663,44 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     *deviceName = device;
   if (warnings)
     *warnings += warn;
+}
+
+// What the user must be told when the photons did not make a picture: no ray entered the volume
+// (a uniform image), or the photons that did landed off the film (a blank image). Uses the raw
+// (unfiltered) sums: a landed photon is counted once there.
+static std::string PhotonWarnings(const Volume& volume, const FilmGeometry& film, const FilmSums& raw)
+{
+  if (!(raw.Photons > 0))
+    return std::string();
+  double landed = 0;
+  for (double c : raw.Count)
+    landed += c;
+  const double entered = raw.Photons - raw.MissedRays;
+  const double kept = raw.Photons - raw.FailedRays;
+  const double off = std::max(0.0, kept - landed);
+  std::ostringstream msg;
+  if (!(entered > 0))
+  {
+    double h[3];
+    for (int a = 0; a < 3; ++a)
+      h[a] = (volume.Dimensions[a] - 1) * volume.Spacing[a];
+    msg << "No ray entered the volume (" << h[0] << " x " << h[1] << " x " << h[2]
+        << " world units) of " << raw.Photons << " traced: the image is uniform and shows nothing "
+        << "of the field. The film's pixels are " << film.PixelSize << " world units wide; a "
+        << "volume thinner than that across the beam is missed by the rays through the pixel "
+        << "centres. Raise Resolution, view the volume face-on, or resample it thicker.\n";
+  }
+  else if (!(landed > 0))
+    msg << "No photon reached the film: all " << kept << " photons that left the volume landed "
+        << "off the film (it is " << film.Size[0] * film.PixelSize << " world units wide and "
+        << "images the plane " << film.FilmPlane << " from the volume's centre). The image is "
+        << "blank: lower FilmDistance (or CutoffScale) so that the deflected light stays on the "
+        << "film.\n";
+  else if (off > 0.5 * kept)
+    msg << off << " of " << kept << " photons landed off the film (the film images the plane "
+        << film.FilmPlane << " from the volume's centre): the image shows only the rest. Lower "
+        << "FilmDistance to keep more of the light on the film.\n";
+  return msg.str();
 }
 
 // Film filters (paper section 6): every per-pixel sum is convolved with the same kernel, so that
@@ -1866,6 +1942,7 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
            "from the image.\n";
     r.Warnings += msg.str();
   }
+  r.Warnings += PhotonWarnings(volume, r.Film, raw);
   return r;
 }
 
@@ -1958,6 +2035,18 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   ref.UseOctree = false;
   ref.EstimateError = false;
   const auto t0 = std::chrono::steady_clock::now();
+  // the reference's step (and the candidates') is Auto's, not the user's StepSize: say so when
+  // the volume cannot be traced at it
+  try
+  {
+    CheckPrecision(volume, ref);
+  }
+  catch (const Error& e)
+  {
+    throw Error(std::string("Integrator Auto measures its candidates against RK4 at 0.125 voxel, "
+                            "which this volume does not allow: ") + e.what() +
+      " Or choose a fixed Integrator and StepSize.");
+  }
   // the reference of each reconstruction that may be chosen. Reconstruction Auto: the difference
   // between the two references is the second-order reconstruction's error (the fourth-order one's
   // is far smaller where the data is smooth, and both are the same trilinear code elsewhere), an

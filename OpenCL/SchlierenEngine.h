@@ -323,7 +323,14 @@ struct TraceResult
  * The reference shares the grid, so this measures integration error, not the grid's own.
  * With UseOctree and volume.Levels, the octree is kept only if it skips at least 10 % of the
  * chosen setting's pilot samples (a skipping step costs more than a plain one).
- * Settings whose Method is not Auto come back unchanged.
+ * Reconstruction Cubic adds steps of 16, 32 and 64 voxels to the candidates (taken only through
+ * smooth data). Reconstruction Auto (with Volume::Smooth) traces both references: their difference
+ * is the trilinear scheme's own error, which a reference with the same reconstruction cannot see;
+ * trilinear candidates are kept only where that error is at most half the tolerance and answer for
+ * it on top of their own, and a tricubic sample is counted as three trilinear ones, so
+ * that the cheaper reconstruction at the tolerance is chosen. With Reconstruction Auto and a fixed
+ * integrator only the reconstruction is chosen.
+ * Settings whose Method is not Auto (and whose Recon is not Auto) come back unchanged.
  */
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr);
 

@@ -226,7 +226,48 @@ struct ProgramEntry
   std::string Error;
 };
 std::map<std::tuple<cl_device_id, std::string, std::size_t>, ProgramEntry> gPrograms;
+std::vector<void (*)()> gReleaseHooks;
+
+// Releases every OpenCL object the engine made when the process exits. Declared after the
+// runtime and the program cache, so that it is destroyed before them (while they still exist).
+struct RuntimeOwner
+{
+  ~RuntimeOwner() { ReleaseRuntime(); }
+} gOwner;
 } // namespace
+
+void AtRelease(void (*hook)())
+{
+  std::lock_guard<std::mutex> lock(gMutex);
+  gReleaseHooks.push_back(hook);
+}
+
+void ReleaseRuntime()
+{
+  std::vector<void (*)()> hooks;
+  {
+    std::lock_guard<std::mutex> lock(gMutex);
+    hooks.swap(gReleaseHooks);
+  }
+  for (auto h : hooks)
+    h();
+  std::lock_guard<std::mutex> lock(gMutex);
+  for (auto& p : gPrograms)
+    if (p.second.Program)
+      clReleaseProgram(p.second.Program);
+  gPrograms.clear();
+  if (gRuntime)
+  {
+    if (gRuntime->Queue)
+    {
+      clFinish(gRuntime->Queue);
+      clReleaseCommandQueue(gRuntime->Queue);
+    }
+    if (gRuntime->Context)
+      clReleaseContext(gRuntime->Context);
+    gRuntime.reset();
+  }
+}
 
 Runtime& GetRuntime()
 {

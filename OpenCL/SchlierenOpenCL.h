@@ -48,6 +48,16 @@ Runtime& GetRuntime();
 /** A built program (cached); throws schlieren::Error with the build log on failure. */
 cl_program GetProgram(const std::string& name, const std::string& source, const std::string& options);
 
+/**
+ * Registers a function that releases what its caller holds on the runtime's context (kernels,
+ * buffers). At process exit the hooks run, then the cached programs, the queue and the context
+ * are released (before the OpenCL driver's own teardown, which runs after every exit handler).
+ */
+void AtRelease(void (*hook)());
+
+/** Runs the hooks and releases programs, queue and context now (process exit calls it). */
+void ReleaseRuntime();
+
 } // namespace ocl
 } // namespace schlieren
 

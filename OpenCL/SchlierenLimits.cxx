@@ -1,0 +1,274 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SchlierenLimits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+namespace schlieren
+{
+
+namespace
+{
+// A "Key: <number> kB" line of a /proc file, in bytes; 0 if absent.
+std::uint64_t ProcKiB(const char* file, const char* key)
+{
+  std::FILE* f = std::fopen(file, "r");
+  if (!f)
+    return 0;
+  char line[256];
+  std::uint64_t value = 0;
+  const std::size_t len = std::strlen(key);
+  while (std::fgets(line, sizeof(line), f))
+    if (std::strncmp(line, key, len) == 0 && line[len] == ':')
+    {
+      value = std::strtoull(line + len + 1, nullptr, 10) * 1024;
+      break;
+    }
+  std::fclose(f);
+  return value;
+}
+
+std::string Num(double v)
+{
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// "<Property> is <value>: it must be <range>."
+[[noreturn]] void OutOfRange(const char* property, double value, const std::string& range,
+  const std::string& more = std::string())
+{
+  std::ostringstream msg;
+  msg << property << " is " << Num(value) << ": it must be " << range << "." << more;
+  throw Error(msg.str());
+}
+
+void CheckFinite(const char* property, const double* v, int n)
+{
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(v[i]))
+    {
+      std::ostringstream msg;
+      msg << property << " has a non-finite component (" << Num(v[i]) << "): give finite numbers.";
+      throw Error(msg.str());
+    }
+}
+} // namespace
+
+std::uint64_t PhysicalMemory()
+{
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+  return pages > 0 && size > 0 ? std::uint64_t(pages) * std::uint64_t(size) : 0;
+}
+
+std::uint64_t AvailableMemory()
+{
+  std::uint64_t avail = ProcKiB("/proc/meminfo", "MemAvailable");
+  if (avail == 0)
+    avail = PhysicalMemory();
+  struct rlimit lim;
+  if (getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY)
+  {
+    const std::uint64_t used = ProcKiB("/proc/self/status", "VmSize");
+    const std::uint64_t cap = std::uint64_t(lim.rlim_cur);
+    avail = std::min(avail, cap > used ? cap - used : 0);
+  }
+  if (const char* e = std::getenv("SCHLIEREN_MEMORY_LIMIT"))
+  {
+    const std::uint64_t m = std::strtoull(e, nullptr, 10);
+    if (m > 0)
+      avail = std::min(avail, m);
+  }
+  return avail;
+}
+
+std::string FormatBytes(double b)
+{
+  std::ostringstream s;
+  s.precision(3);
+  if (b >= 1024.0 * 1024 * 1024 * 1024)
+    s << b / (1024.0 * 1024 * 1024 * 1024) << " TiB";
+  else if (b >= 1024.0 * 1024 * 1024)
+    s << b / (1024.0 * 1024 * 1024) << " GiB";
+  else if (b >= 1024.0 * 1024)
+    s << b / (1024.0 * 1024) << " MiB";
+  else
+    s << b / 1024.0 << " KiB";
+  return s.str();
+}
+
+void CheckHostMemory(double bytes, const std::string& what, const std::string& hint)
+{
+  const double avail = double(AvailableMemory());
+  if (std::isfinite(bytes) && bytes <= avail)
+    return;
+  std::ostringstream msg;
+  msg << what << " needs " << FormatBytes(bytes) << " of memory; this machine has "
+      << FormatBytes(avail) << " available (" << FormatBytes(double(PhysicalMemory()))
+      << " installed). " << hint;
+  throw Error(msg.str());
+}
+
+double FilmBytesPerPixel()
+{
+  // FilmSums: 12 double channels (96 B), kept by the filter for progressive passes, copied by
+  // the filter and again by Finalize (which filters a copy: a 96 B channel of scratch), then the
+  // image's float arrays (at most 1 + 2 + 1 + 3 + 1 + 2 = 10 floats) and the caller's copy of them
+  return 3 * 96.0 + 8.0 + 2 * 40.0;
+}
+
+void CheckFilmMemory(const int size[2])
+{
+  std::ostringstream what;
+  what << "A film of " << size[0] << " x " << size[1] << " pixels";
+  CheckHostMemory(double(size[0]) * size[1] * FilmBytesPerPixel(), what.str(),
+    "Lower Resolution (the film costs about " + std::to_string(int(FilmBytesPerPixel())) +
+      " bytes per pixel).");
+}
+
+double VolumeBytesPerPoint()
+{
+  // the packed field (n - 1 and grad n as 4 floats), the octree levels, the filter's copy of n - 1
+  return 16.0 + 1.0 + 4.0;
+}
+
+double MaxStepsAcross()
+{
+  return 4194304.0; // 2^22
+}
+
+void CheckSettings(const TraceSettings& s)
+{
+  CheckFinite("ViewDirection", s.ViewDirection, 3);
+  CheckFinite("ViewUp", s.ViewUp, 3);
+  if (s.Resolution[0] < 1 || s.Resolution[1] < 1 || s.Resolution[0] > 16384 ||
+    s.Resolution[1] > 16384)
+  {
+    std::ostringstream msg;
+    msg << "Resolution " << s.Resolution[0] << " x " << s.Resolution[1]
+        << " is out of range: each side must be 1 to 16384 pixels.";
+    throw Error(msg.str());
+  }
+  if (s.Passes < 1 || s.Passes > 1000000)
+  {
+    std::ostringstream msg;
+    msg << "Passes is " << s.Passes << ": it must be at least 1 (and at most 1000000).";
+    throw Error(msg.str());
+  }
+  if (!(s.StepSize >= 0.01 && s.StepSize <= 64))
+    OutOfRange("StepSize", s.StepSize, "in [0.01, 64] voxels (of the smallest spacing)");
+  if (!(s.Tolerance >= 0 && s.Tolerance <= 1))
+    OutOfRange("Tolerance", s.Tolerance, "in [0, 1] radians (0: automatic, 1 % of the largest deflection)");
+  if (!(s.CutoffScale >= 0 && s.CutoffScale <= 1e12))
+    OutOfRange("CutoffScale", s.CutoffScale, "in [0, 1e12] (0: automatic)");
+  if (!std::isfinite(s.KnifeAngle))
+    OutOfRange("KnifeAngle", s.KnifeAngle, "a finite angle in degrees");
+  if (!(s.FilmDistance >= 0 && std::isfinite(s.FilmDistance)))
+    OutOfRange("FilmDistance", s.FilmDistance, "a finite distance >= 0 (world units behind the volume)");
+  if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))
+    OutOfRange("Wavelength", s.Wavelength, "in [100, 100000] nm");
+  if (!std::isfinite(s.ReferenceTilt))
+    OutOfRange("ReferenceTilt", s.ReferenceTilt, "finite (fringes per world unit)");
+  if (!(s.BackgroundDistance >= 0 && std::isfinite(s.BackgroundDistance)))
+    OutOfRange("BackgroundDistance", s.BackgroundDistance, "a finite distance >= 0 (world units)");
+  if (s.BackgroundPattern != 0 && s.BackgroundPattern != 1)
+    OutOfRange("BackgroundPattern", s.BackgroundPattern, "0 (dots) or 1 (stripes)");
+  if (!(s.BackgroundPeriod >= 0 && std::isfinite(s.BackgroundPeriod)))
+    OutOfRange("BackgroundPeriod", s.BackgroundPeriod, "a finite length >= 0 (0: 6 pixels)");
+  if (!(s.FilterWidth >= 0.01 && s.FilterWidth <= 64))
+    OutOfRange("FilterWidth", s.FilterWidth, "in [0.01, 64] pixels");
+  if (s.MaxSteps < 0)
+    OutOfRange("MaxSteps", s.MaxSteps, ">= 0 (0: automatic)");
+  if (s.RaysPerWorkItem < 0 || s.RaysPerWorkItem > 64)
+    OutOfRange("RaysPerWorkItem", s.RaysPerWorkItem, "in [0, 64] (0: automatic)");
+}
+
+void CheckPrecision(const Volume& volume, const TraceSettings& s)
+{
+  // the box, from the grid itself (not from bounds, which lose the extent far from the origin)
+  double h[3], hmax = 0, hmin = std::numeric_limits<double>::max(), smin = hmin;
+  for (int a = 0; a < 3; ++a)
+  {
+    h[a] = 0.5 * (volume.Dimensions[a] - 1) * volume.Spacing[a];
+    hmax = std::max(hmax, h[a]);
+    hmin = std::min(hmin, h[a]);
+    smin = std::min(smin, volume.Spacing[a]);
+  }
+  // positions in the tracer are floats relative to the volume's centre, of magnitude up to hmax:
+  // an axis thinner than a few float steps at that magnitude cannot be told apart from a plane,
+  // and 1 / spacing must be a float
+  const double eps = std::numeric_limits<float>::epsilon(); // 2^-23
+  const double ratio = hmax / hmin;
+  if (!(hmin >= 8 * eps * hmax) || !(1.0 / smin < 1e30) || !(hmax < 1e30))
+  {
+    std::ostringstream msg;
+    msg << "The volume is " << Num(2 * h[0]) << " x " << Num(2 * h[1]) << " x " << Num(2 * h[2])
+        << " world units (spacing " << Num(volume.Spacing[0]) << ", " << Num(volume.Spacing[1])
+        << ", " << Num(volume.Spacing[2]) << "): its longest side is " << Num(ratio)
+        << " times its shortest, more than the float tracer can resolve (at most "
+        << Num(1.0 / (8 * eps)) << "). Resample it with less extreme spacing, or scale the "
+        << "thin axis (the physics of a sheet that thin is that of a plane).";
+    throw Error(msg.str());
+  }
+  // the base step must move a float position by many of its units along the axis the beam
+  // advances along fastest (positions are relative to the centre, at most the half-size there),
+  // and a ray must cross the volume in a bounded number of steps
+  const double step = s.StepSize * smin;
+  const double across = 2 * std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]) / step;
+  const double dlen = std::sqrt(s.ViewDirection[0] * s.ViewDirection[0] +
+    s.ViewDirection[1] * s.ViewDirection[1] + s.ViewDirection[2] * s.ViewDirection[2]);
+  double units = 0; // float units at the position's scale that one step moves it by, at most
+  for (int a = 0; a < 3; ++a)
+    if (dlen > 0)
+      units = std::max(units, step * std::fabs(s.ViewDirection[a]) / dlen / (eps * h[a]));
+  if (!(units >= 16) || !(across <= MaxStepsAcross()))
+  {
+    std::ostringstream msg;
+    msg << "StepSize " << Num(s.StepSize) << " voxels is a step of " << Num(step)
+        << " world units (of the smallest spacing, " << Num(smin) << ") in a volume of "
+        << Num(2 * h[0]) << " x " << Num(2 * h[1]) << " x " << Num(2 * h[2]) << " world units";
+    if (!(units >= 16))
+      msg << ": along the beam that moves a float position by only " << Num(units)
+          << " of its last-digit units (at least 16 are needed; below 1 the ray never advances)";
+    else
+      msg << ": a ray would need " << Num(across) << " steps to cross it (at most "
+          << Num(MaxStepsAcross()) << ")";
+    msg << ". Raise StepSize, view the volume along its thin axis, or resample it with a less "
+        << "extreme spacing ratio (largest / smallest spacing here "
+        << Num(std::max(volume.Spacing[0], std::max(volume.Spacing[1], volume.Spacing[2])) / smin)
+        << ").";
+    throw Error(msg.str());
+  }
+  // the film plane: beyond a million volume sizes a photon deflected by a micro-radian (far
+  // weaker than any flow a schlieren system shows) moves by more than the film's width
+  const double diag = 2 * std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  if (!(s.FilmDistance <= 1e6 * diag))
+  {
+    std::ostringstream msg;
+    msg << "FilmDistance " << Num(s.FilmDistance) << " is more than 1e6 times the volume's size ("
+        << Num(diag) << " world units): there a deflection of a micro-radian moves a photon by "
+        << "more than the film's width, and the image would be blank. Use a distance of at most "
+        << Num(1e6 * diag) << ".";
+    throw Error(msg.str());
+  }
+  if (s.Mode == Cutoff::BOS && !(s.BackgroundDistance <= 1e6 * diag))
+  {
+    std::ostringstream msg;
+    msg << "BackgroundDistance " << Num(s.BackgroundDistance)
+        << " is more than 1e6 times the volume's size (" << Num(diag)
+        << " world units). Use a distance of at most " << Num(1e6 * diag) << ".";
+    throw Error(msg.str());
+  }
+}
+
+} // namespace schlieren

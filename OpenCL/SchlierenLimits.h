@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenLimits.h
+ * @brief What the machine and the float tracer can honour, checked before any work is done.
+ *
+ * Every allocation that a user's setting sizes (the packed volume, a resampling grid, a scene, the
+ * film and its sums, device buffers) is checked here against the memory the machine can give
+ * before it is made, and refused with a schlieren::Error that says how much it needs, how much is
+ * available and what to change. The settings of a trace are checked against their documented
+ * ranges (the message names the property, the value and the range), and the volume against the
+ * resolution of the float tracer (a step that would not move a float position, an axis thinner
+ * than float can tell apart). No VTK here.
+ */
+#ifndef SchlierenLimits_h
+#define SchlierenLimits_h
+
+#include "SchlierenEngine.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace schlieren
+{
+
+/** Bytes of RAM installed (sysconf(_SC_PHYS_PAGES) * page size). */
+std::uint64_t PhysicalMemory();
+
+/**
+ * Bytes this process can still allocate: the smaller of MemAvailable (/proc/meminfo; the physical
+ * memory where that is missing) and what the address-space limit (RLIMIT_AS, `ulimit -v`) leaves
+ * above the process's current size. SCHLIEREN_MEMORY_LIMIT (bytes) lowers it further, for tests.
+ */
+std::uint64_t AvailableMemory();
+
+/** "1.5 GiB", "340 MiB", "12 KiB": for messages. */
+std::string FormatBytes(double bytes);
+
+/**
+ * Throws Error if `bytes` exceed AvailableMemory(): "<what> needs <bytes>; this machine has
+ * <available> available (<physical> installed). <hint>". `bytes` is a double so that a product of
+ * user-sized factors cannot overflow before it is checked.
+ */
+void CheckHostMemory(double bytes, const std::string& what, const std::string& hint);
+
+/** Host bytes per film pixel that a trace and its image hold at their peak (the sums, their
+ * filtered copy, the image arrays and the caller's copy of them). */
+double FilmBytesPerPixel();
+
+/** Throws Error if a film of size[0] x size[1] pixels (FilmBytesPerPixel each) does not fit. */
+void CheckFilmMemory(const int size[2]);
+
+/** Bytes per grid point that tracing holds on the host besides the caller's n - 1: the packed
+ * field (4 floats), the octree levels and the index copy the filter makes. */
+double VolumeBytesPerPoint();
+
+/**
+ * Checks every setting against its range; throws Error naming the property (the ParaView name),
+ * the value and the valid range. Documented special values pass: CutoffScale 0 and Tolerance 0
+ * (automatic), BackgroundPeriod 0 (6 pixels), MaxSteps 0 (automatic).
+ */
+void CheckSettings(const TraceSettings& settings);
+
+/**
+ * Checks that the float tracer can honour the volume and settings: a base step that moves a float
+ * position at the volume's scale, no more steps across the volume than a ray can take in
+ * reasonable time, every axis resolvable next to the longest one (spacing ratios), and a film
+ * plane at a finite, sane distance. Throws Error with the reason and what to change.
+ */
+void CheckPrecision(const Volume& volume, const TraceSettings& settings);
+
+/**
+ * Page-aligned storage: a packed field held in it is used in place by a CPU OpenCL device
+ * (CL_MEM_USE_HOST_PTR needs the device's base-address alignment) instead of being copied.
+ */
+template <typename T>
+struct PageAlignedAllocator
+{
+  using value_type = T;
+  PageAlignedAllocator() = default;
+  template <typename U>
+  PageAlignedAllocator(const PageAlignedAllocator<U>&)
+  {
+  }
+  T* allocate(std::size_t n)
+  {
+    const std::size_t page = 4096;
+    const std::size_t bytes = (n * sizeof(T) + page - 1) / page * page;
+    void* p = std::aligned_alloc(page, bytes ? bytes : page);
+    if (!p)
+      throw std::bad_alloc();
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, std::size_t) { std::free(p); }
+  template <typename U>
+  bool operator==(const PageAlignedAllocator<U>&) const
+  {
+    return true;
+  }
+  template <typename U>
+  bool operator!=(const PageAlignedAllocator<U>&) const
+  {
+    return false;
+  }
+};
+using AlignedFloats = std::vector<float, PageAlignedAllocator<float>>;
+
+/** The most base steps a ray may need across the volume's diagonal (CheckPrecision refuses more). */
+double MaxStepsAcross();
+
+} // namespace schlieren
+
+#endif

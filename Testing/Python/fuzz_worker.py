@@ -1,0 +1,218 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""One child of the fuzz test (test_fuzz.py): runs the cases of a JSON file in this pvpython and
+prints one JSON line per case ("BEGIN <id>" before it, so that the parent knows which case a
+crash or hang belongs to).
+
+Run: pvpython fuzz_worker.py --plugin <Schlieren.so> --cases cases.json
+
+A case is a dict: `source` (a volume made here with numpy: dims, spacing, origin, field; or a
+RefractiveScene; or an unstructured grid for RefractiveIndex), optional `index` (RefractiveIndex
+properties) and `octree` (RefractionOctree properties), `image` (SchlierenImage properties;
+absent: the last filter's output is the result). Outcomes:
+  image    an image, no warning
+  warned   an image with a warning (output window or field data 'warnings')
+  error    no output and an error message that says more than "returned failure"
+  FAIL-*   anything else: an empty output without a clear error, an image that no photon
+           reached (samples 0 or landed_photons 0) without a warning, non-finite values, an
+           exception in Python, an expected phrase missing from the message
+"""
+import json
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import numpy as np
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager as sm
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
+
+import schlieren_testing as st
+
+st.load_plugin(globals())
+
+
+def make_field(src):
+    nx, ny, nz = src["dims"]
+    kind = src.get("field", "gauss")
+    amp = src.get("amp", 1e-4)
+    rng = np.random.default_rng(src.get("seed", 0))
+    z, y, x = np.meshgrid(np.linspace(-1, 1, max(nz, 1)), np.linspace(-1, 1, max(ny, 1)),
+                          np.linspace(-1, 1, max(nx, 1)), indexing="ij")
+    if kind == "gauss":
+        f = amp * np.exp(-(x * x + y * y + z * z) / 0.25)
+    elif kind == "noise":
+        f = amp * rng.random((nz, ny, nx))
+    elif kind == "uniform":
+        f = np.full((nz, ny, nx), amp)
+    elif kind == "linear":
+        f = amp * (1 + x)
+    elif kind == "shock":
+        f = np.where(x > 0.1, 2 * amp, amp)
+    elif kind == "nan":
+        f = amp * np.exp(-(x * x + y * y + z * z) / 0.25)
+        f.flat[rng.integers(0, f.size)] = np.nan
+    elif kind == "negative":
+        f = np.full((nz, ny, nx), -2.0)
+    else:
+        raise ValueError(kind)
+    return f.astype(np.float32)
+
+
+def image_source(src):
+    img = vtkImageData()
+    img.SetDimensions(*src["dims"])
+    img.SetSpacing(*src["spacing"])
+    img.SetOrigin(*src["origin"])
+    a = numpy_to_vtk(np.ascontiguousarray(make_field(src)).ravel(), deep=1)
+    a.SetName(src.get("array", "n_minus_1"))
+    if src.get("cells"):
+        # a cell-only input: the values on the cells (one fewer along each axis)
+        nx, ny, nz = src["dims"]
+        cells = np.ascontiguousarray(make_field(dict(src, dims=[max(nx - 1, 1), max(ny - 1, 1),
+                                                                 max(nz - 1, 1)]))).ravel()
+        c = numpy_to_vtk(cells, deep=1)
+        c.SetName(src.get("array", "n_minus_1"))
+        img.GetCellData().AddArray(c)
+    else:
+        img.GetPointData().AddArray(a)
+    tp = TrivialProducer()
+    tp.GetClientSideObject().SetOutput(img)
+    return tp, img
+
+
+def build(case):
+    """The pipeline of a case: (the proxy to update, every proxy made, data to keep alive)."""
+    src = case["source"]
+    keep = []
+    made = []
+    if src["kind"] == "image":
+        p, img = image_source(src)
+        keep.append(img)
+    elif src["kind"] == "scene":
+        p = RefractiveScene(**src["properties"])
+    elif src["kind"] == "unstructured":
+        w = Wavelet(WholeExtent=[-8, 8, -8, 8, -8, 8])
+        made.append(w)
+        p = Tetrahedralize(Input=w)
+    else:
+        raise ValueError(src["kind"])
+    made.append(p)
+    if "index" in case:
+        props = dict(case["index"])
+        arrays = {k: props.pop(k) for k in list(props) if k.endswith("Array")}
+        p = RefractiveIndex(Input=p, **props)
+        for k, v in arrays.items():
+            setattr(p, k, v)
+        made.append(p)
+    if "octree" in case:
+        p = RefractionOctree(Input=p, **case["octree"])
+        made.append(p)
+    if "image" in case:
+        p = SchlierenImage(Input=p, **case["image"])
+        made.append(p)
+    return p, made, keep
+
+
+def classify(case, data, text, pyerror):
+    # the output window's blocks: "ERROR: In <file>, line <n>" (or "Warning: In ...") and then
+    # "<class> (<address>): <message>"
+    errors, warns = [], []
+    kind = None
+    for line in text.splitlines():
+        line = line.strip()
+        if line.startswith("ERROR: In ") or "ERR|" in line:
+            kind = errors
+            if "ERR|" not in line:
+                continue
+        elif line.startswith("Warning: In ") or "WARN|" in line:
+            kind = warns
+            if "WARN|" not in line:
+                continue
+        if kind is not None and line:
+            if "returned failure" not in line:
+                kind.append(line)
+            kind = None
+    points = data.GetNumberOfPoints() if data is not None else 0
+    r = {"id": case["id"], "group": case.get("group", "random")}
+    if pyerror:
+        r.update(outcome="FAIL-python", detail=pyerror[:300])
+        return r
+    if points == 0:
+        if errors:
+            r.update(outcome="error", detail=errors[0][errors[0].find("): ") + 3:][:300]
+                     if "): " in errors[0] else errors[0][:300])
+        else:
+            r.update(outcome="FAIL-empty-without-error", detail=text.strip()[:300])
+    else:
+        fd = data.GetFieldData()
+        warned = bool(warns)
+        w = fd.GetAbstractArray("warnings")
+        if w is not None and w.GetNumberOfValues() > 0 and w.GetValue(0).strip():
+            warned = True
+        pd = data.GetPointData()
+        nonfinite = []
+        for i in range(pd.GetNumberOfArrays()):
+            a = pd.GetArray(i)
+            if a is not None and not np.all(np.isfinite(vtk_to_numpy(a))):
+                nonfinite.append(a.GetName())
+        samples = fd.GetArray("samples")
+        landed = fd.GetArray("landed_photons")
+        blank = False
+        if "image" in case and samples is not None and landed is not None:
+            blank = samples.GetValue(0) == 0 or landed.GetValue(0) == 0
+            r["samples"] = samples.GetValue(0)
+        if nonfinite:
+            r.update(outcome="FAIL-nonfinite", detail=",".join(nonfinite))
+        elif blank and not warned:
+            r.update(outcome="FAIL-blank-without-warning",
+                     detail="samples %g, landed %g" % (samples.GetValue(0), landed.GetValue(0)))
+        else:
+            r.update(outcome="warned" if warned else "image",
+                     detail=(warns[0][warns[0].find("): ") + 3:][:300] if warns else ""))
+    exp = case.get("expect")
+    if exp and not r["outcome"].startswith("FAIL"):
+        allowed = exp.get("outcome")
+        if allowed and r["outcome"] not in allowed:
+            r.update(outcome="FAIL-expected-" + "/".join(allowed), detail=r.get("detail", ""))
+        message = r.get("detail", "") if r["outcome"] == "error" else text
+        missing = [ph for ph in exp.get("phrases", []) if ph not in message]
+        absent = [ph for ph in exp.get("not_phrases", []) if ph in message]
+        if missing or absent:
+            r.update(outcome="FAIL-message", detail="missing %s, unwanted %s: %s"
+                     % (missing, absent, r.get("detail", "")[:250]))
+    return r
+
+
+def run(case):
+    pyerror = None
+    data = None
+    made = []
+    with st.CapturedOutput() as out:
+        try:
+            proxy, made, keep = build(case)
+            data = sm.Fetch(proxy)
+        except Exception as e:  # reported, never swallowed
+            pyerror = "%s: %s" % (type(e).__name__, e)
+    r = classify(case, data, out.text, pyerror)
+    for p in reversed(made):
+        Delete(p)
+    return r
+
+
+def main():
+    path = st.argument("--cases")
+    with open(path) as f:
+        cases = json.load(f)
+    for case in cases:
+        sys.stdout.write("BEGIN %s\n" % case["id"])
+        sys.stdout.flush()
+        r = run(case)
+        sys.stdout.write("RESULT " + json.dumps(r) + "\n")
+        sys.stdout.flush()
+
+
+main()
