@@ -15,7 +15,8 @@ index = RefractiveIndex(registrationName="RefractiveIndex1", Input=reader, Model
                         UseSamplingBounds=1, SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7], AutomaticDimension=128, AmbientMode="Extend")
 index.InputArray = ["POINTS", "Density"]
 image = SchlierenImage(registrationName="SchlierenImage1", Input=index, Cutoff="KnifeEdge", CutoffScale=40.0,
-                       Resolution=[640, 320], Passes=16, Filter="Gaussian", FilterWidth=0.7, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+                       Resolution=[640, 320], Passes=16, Filter="Gaussian", FilterWidth=0.7, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0],
+                       OpenImageView=0)  # this script lays the views out itself
 layout = GetLayout()
 rv3 = GetActiveViewOrCreate("RenderView")
 d = Show(index, rv3)

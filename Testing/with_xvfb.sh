@@ -3,6 +3,8 @@
 # Runs a command under a private Xvfb and returns the command's exit status.
 #
 #   with_xvfb.sh command [args...]
+#   SCHLIEREN_XVFB_WM=openbox with_xvfb.sh command...   the same with a window manager (GUI tests
+#                                                        that drag windows' contents with xdotool)
 #
 # Why not `xvfb-run -a`: an X server resets when its last client disconnects, and a connection that
 # arrives during the reset is closed unanswered. ParaView opens a display to probe the rendering
@@ -26,10 +28,15 @@ fi
 dir=$(mktemp -d "${TMPDIR:-/tmp}/schlieren-xvfb.XXXXXX")
 pid=""
 child=""
+wm=""
 cleanup() {
   if [ -n "$child" ]; then
     kill "$child" 2>/dev/null || true
     wait "$child" 2>/dev/null || true
+  fi
+  if [ -n "$wm" ]; then
+    kill "$wm" 2>/dev/null || true
+    wait "$wm" 2>/dev/null || true
   fi
   if [ -n "$pid" ]; then
     kill "$pid" 2>/dev/null || true
@@ -78,6 +85,22 @@ fi
 display=":$(tr -d ' \n' <"$dir/display")"
 export DISPLAY="$display"
 unset XAUTHORITY
+if [ -n "${SCHLIEREN_XVFB_WM:-}" ]; then
+  # the window manager, and the command only once it manages the screen (it sets the root
+  # window's _NET_SUPPORTING_WM_CHECK)
+  "$SCHLIEREN_XVFB_WM" >"$dir/wm.log" 2>&1 &
+  wm=$!
+  for _ in $(seq 200); do
+    xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q "window id" && break
+    kill -0 "$wm" 2>/dev/null || break
+    sleep 0.05
+  done
+  if ! xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q "window id"; then
+    echo "with_xvfb.sh: the window manager $SCHLIEREN_XVFB_WM did not start; its log:" >&2
+    cat "$dir/wm.log" >&2
+    exit 2
+  fi
+fi
 # in the background so that a TERM (a test's timeout) reaches the command and the server at once
 "$@" &
 child=$!

@@ -13,9 +13,13 @@ SCHLIEREN_BUILD_PACKAGES=(
   paraview paraview-dev python3-paraview
   openmpi-bin libopenmpi-dev
   libdouble-conversion-dev liblz4-dev libutfcpp-dev
+  qtbase5-dev qttools5-dev qttools5-dev-tools libqt5svg5-dev qhelpgenerator-qt5 qtxmlpatterns5-dev-tools
+  libglew-dev libxml2-dev libhdf5-dev libboost-dev libnetcdf-dev libtiff-dev
+  libavformat-dev libavcodec-dev libavutil-dev libswscale-dev
 )
-# Only the tests need these: an X server for rendering tests.
-SCHLIEREN_TEST_PACKAGES=(xvfb)
+# Only the tests need these: an X server for rendering tests; a window manager, xdotool (real mouse
+# and key events) and ImageMagick (screenshots) for the GUI tests.
+SCHLIEREN_TEST_PACKAGES=(xvfb openbox xdotool x11-utils imagemagick)
 
 schlieren_install() {
   local missing=()

@@ -74,8 +74,15 @@ try:
     image.UpdatePipeline()
     after = sm.Fetch(image)
     D1 = vtk_to_numpy(after.GetPointData().GetArray("deflection")).copy()
-    check(np.abs(D1 - before).max() > 1e-4, "the schlieren image changed with the view (max |change| %.3g rad)"
-          % np.abs(D1 - before).max())
+    # a 35/20 degree turn moves the projection of an off-centre feature by many pixels, so the
+    # change is of the order of the image's peak deflection whatever the scene: a quarter of the
+    # peak (the blunt fin's is ~1e-3 rad, the built-in sphere's ~1.4e-4 rad) tells a re-traced image
+    # from an unchanged one (0) or from noise of one pass
+    peak = max(np.abs(before).max(), np.abs(D1).max())
+    change = np.abs(D1 - before).max()
+    check(peak > 0 and change > 0.25 * peak,
+          "the schlieren image changed with the view (max |change| %.3g rad, %.0f %% of the peak %.3g rad)"
+          % (change, 100 * change / peak if peak > 0 else 0, peak))
 
     # the same camera traced by a separate filter (as a pvpython script would): the same numbers
     same = SchlierenImage(Input=volume, Passes=1, ViewDirection=d1, ViewUp=u1, **common)

@@ -1,0 +1,801 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "pqSchlierenToolbar.h"
+
+#include "pqActiveObjects.h"
+#include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
+#include "pqDataRepresentation.h"
+#include "pqObjectBuilder.h"
+#include "pqOutputPort.h"
+#include "pqPipelineSource.h"
+#include "pqProgressManager.h"
+#include "pqRenderView.h"
+#include "pqServerManagerModel.h"
+#include "pqView.h"
+
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDataObject.h"
+#include "vtkNew.h"
+#include "vtkPVDataInformation.h"
+#include "vtkSMPVRepresentationProxy.h"
+#include "vtkSMParaViewPipelineControllerWithRendering.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMRenderViewProxy.h"
+#include "vtkSMSourceProxy.h"
+#include "vtkSMTransferFunctionProxy.h"
+#include "vtkSMViewLayoutProxy.h"
+
+#include <QAction>
+#include <QDateTime>
+#include <QElapsedTimer>
+#include <QEvent>
+#include <QIcon>
+#include <QMainWindow>
+#include <QStatusBar>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace
+{
+// The refinement adds passes in chunks of about this many seconds: the event loop (a new drag,
+// Stop) runs between chunks.
+constexpr double ChunkSeconds = 0.25;
+// The camera counts as resting after this long without a change.
+constexpr int RestMilliseconds = 300;
+// ViewDirection/ViewUp differences below this are not a rotation (a zoom or a pan).
+constexpr double SameDirection = 1e-9;
+
+bool IsSchlierenImage(pqPipelineSource* source)
+{
+  return source && source->getProxy() &&
+    QString(source->getProxy()->GetXMLName()) == QLatin1String("SchlierenImage");
+}
+
+// ParaView processes events while a pipeline update reports progress: nothing here starts work
+// inside another update (it waits for the update to end)
+int UpdatesInProgress = 0;
+bool Idle()
+{
+  return UpdatesInProgress == 0;
+}
+
+void StatusMessage(const QString& text)
+{
+  if (auto* window = qobject_cast<QMainWindow*>(pqCoreUtilities::mainWidget()))
+  {
+    window->statusBar()->showMessage(text, 5000);
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* parent)
+  : QObject(parent)
+  , Image(image)
+{
+  this->Target = std::max(1, this->passes());
+  QObject::connect(image,
+    SIGNAL(representationAdded(pqPipelineSource*, pqDataRepresentation*, int)), this,
+    SLOT(onRepresentationAdded(pqPipelineSource*, pqDataRepresentation*, int)));
+  // an update made elsewhere (Apply, a script): the image shown has the passes asked for
+  QObject::connect(image, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
+    [this](pqPipelineSource*) {
+    if (!this->Busy)
+    {
+      this->LastPasses = this->passes();
+    }
+  });
+  vtkSMProxy* proxy = image->getProxy();
+  pqCoreUtilities::connect(
+    proxy->GetProperty("Passes"), vtkCommand::ModifiedEvent, this, SLOT(onPassesModified()));
+  pqCoreUtilities::connect(proxy->GetProperty("FollowCamera"), vtkCommand::ModifiedEvent, this,
+    SLOT(onFollowModified()));
+  pqCoreUtilities::connect(proxy->GetProperty("Resolution"), vtkCommand::ModifiedEvent, this,
+    SLOT(onResolutionModified()));
+  vtkSMPropertyHelper(proxy, "Resolution").Get(this->FullResolution, 2);
+  this->RestTimer.setSingleShot(true);
+  QObject::connect(&this->RestTimer, &QTimer::timeout, this, [this]() {
+    if (this->following() && !this->Stopped && this->Coarse)
+    {
+      this->restoreResolution(); // the refinement is on the full film
+    }
+    if (this->following() && !this->Stopped && this->LastPasses < this->Target)
+    {
+      this->RefineTimer.start();
+      Q_EMIT this->stateChanged();
+    }
+  });
+  this->RefineTimer.setInterval(1);
+  QObject::connect(&this->RefineTimer, SIGNAL(timeout()), this, SLOT(refineStep()));
+}
+
+//------------------------------------------------------------------------------
+pqSchlierenFollower::~pqSchlierenFollower()
+{
+  if (this->Camera)
+  {
+    this->Camera->RemoveObserver(this->CameraTag);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool pqSchlierenFollower::following() const
+{
+  return this->Image && vtkSMPropertyHelper(this->Image->getProxy(), "FollowCamera").GetAsInt() != 0;
+}
+
+//------------------------------------------------------------------------------
+int pqSchlierenFollower::passes() const
+{
+  return this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "Passes").GetAsInt() : 0;
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::setPasses(int passes)
+{
+  this->Guard = true;
+  vtkSMPropertyHelper(this->Image->getProxy(), "Passes").Set(passes);
+  this->Guard = false;
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::log(const char* event) const
+{
+  // SCHLIEREN_GUI_TRACE=1: one line per event on stderr (wall-clock seconds, as Python's
+  // time.time()), for tests and for timing the loop
+  static const bool enabled = std::getenv("SCHLIEREN_GUI_TRACE") != nullptr;
+  if (!enabled || !this->Image)
+  {
+    return;
+  }
+  vtkSMProxy* p = this->Image->getProxy();
+  double d[3], u[3];
+  vtkSMPropertyHelper(p, "ViewDirection").Get(d, 3);
+  vtkSMPropertyHelper(p, "ViewUp").Get(u, 3);
+  int r[2];
+  vtkSMPropertyHelper(p, "Resolution").Get(r, 2);
+  std::fprintf(stderr,
+    "schlieren-gui %.6f %s %s passes=%d target=%d resolution=%dx%d seconds_per_pass=%.4f "
+    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g\n",
+    QDateTime::currentMSecsSinceEpoch() / 1000.0, event,
+    this->Image->getSMName().toLocal8Bit().constData(), this->passes(), this->Target, r[0], r[1],
+    this->SecondsPerPass, d[0], d[1], d[2], u[0], u[1], u[2]);
+  std::fflush(stderr);
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::setFollowing(bool on)
+{
+  if (!this->Image || on == this->following())
+  {
+    return;
+  }
+  vtkSMPropertyHelper(this->Image->getProxy(), "FollowCamera").Set(on ? 1 : 0);
+  this->Image->getProxy()->UpdateVTKObjects();
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onRepresentationAdded(pqPipelineSource*, pqDataRepresentation* repr, int)
+{
+  // the representation joins its view after this signal: look once the Apply (or Show) is done
+  QPointer<pqDataRepresentation> added(repr);
+  this->openWhenIdle(added, 200);
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int tries)
+{
+  QTimer::singleShot(tries == 200 ? 0 : 50, this, [this, added, tries]() {
+    if (!Idle() || this->Busy)
+    {
+      if (tries > 0)
+      {
+        this->openWhenIdle(added, tries - 1);
+      }
+      return;
+    }
+    auto* view = added ? qobject_cast<pqRenderView*>(added->getView()) : nullptr;
+    if (!view || view == this->ImageView || !this->Image)
+    {
+      return;
+    }
+    if (!this->View3D)
+    {
+      this->View3D = view;
+      this->watchCamera(view);
+    }
+    if (!this->ImageView &&
+      vtkSMPropertyHelper(this->Image->getProxy(), "OpenImageView").GetAsInt() != 0)
+    {
+      this->openImageView(view);
+    }
+  });
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::watchCamera(pqRenderView* view)
+{
+  if (this->Camera)
+  {
+    this->Camera->RemoveObserver(this->CameraTag);
+    this->Camera = nullptr;
+  }
+  if (!view || !view->getRenderViewProxy())
+  {
+    return;
+  }
+  this->Camera = view->getRenderViewProxy()->GetActiveCamera();
+  this->CameraTag = pqCoreUtilities::connect(
+    this->Camera, vtkCommand::ModifiedEvent, this, SLOT(onCameraModified()));
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::openImageView(pqRenderView* view3D)
+{
+  if (!this->Image)
+  {
+    return;
+  }
+  if (!view3D)
+  {
+    view3D = this->View3D;
+  }
+  if (this->ImageView)
+  {
+    pqActiveObjects::instance().setActiveView(this->ImageView);
+    return;
+  }
+  vtkSMSourceProxy* source = vtkSMSourceProxy::SafeDownCast(this->Image->getProxy());
+  pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
+
+  // a split beside the 3D view, in its layout
+  vtkSMViewLayoutProxy* layout =
+    view3D ? vtkSMViewLayoutProxy::FindLayout(view3D->getViewProxy()) : nullptr;
+  if (!layout)
+  {
+    layout = pqActiveObjects::instance().activeLayout();
+  }
+  int cell = -1;
+  if (layout && view3D)
+  {
+    const int location = layout->GetViewLocation(view3D->getViewProxy());
+    if (location >= 0)
+    {
+      const int first = layout->SplitHorizontal(location, 0.5);
+      cell = first >= 0 ? first + 1 : -1;
+    }
+  }
+  pqView* view = builder->createView("RenderView", this->Image->getServer());
+  this->ImageView = qobject_cast<pqRenderView*>(view);
+  if (!this->ImageView)
+  {
+    return;
+  }
+  vtkSMProxy* viewProxy = this->ImageView->getViewProxy();
+  if (layout)
+  {
+    if (cell < 0 || !layout->AssignView(cell, vtkSMViewProxy::SafeDownCast(viewProxy)))
+    {
+      layout->AssignViewToAnyCell(vtkSMViewProxy::SafeDownCast(viewProxy), 0);
+    }
+  }
+  vtkSMPropertyHelper(viewProxy, "InteractionMode").Set(1); // 2D
+  vtkSMPropertyHelper(viewProxy, "OrientationAxesVisibility").Set(0);
+  vtkSMPropertyHelper(viewProxy, "CameraParallelProjection").Set(1);
+  viewProxy->UpdateVTKObjects();
+
+  vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+  vtkSMProxy* repr = controller->Show(source, 0, vtkSMViewProxy::SafeDownCast(viewProxy));
+  if (repr)
+  {
+    const bool colour = vtkSMPropertyHelper(source, "Cutoff").GetAsInt() == 4; // ColorFilter
+    if (colour)
+    {
+      vtkSMPVRepresentationProxy::SetScalarColoring(repr, "rgb", vtkDataObject::POINT);
+      vtkSMPropertyHelper(repr, "MapScalars", true).Set(0); // rgb in [0, 1] as colours
+    }
+    else
+    {
+      vtkSMPVRepresentationProxy::SetScalarColoring(repr, "intensity", vtkDataObject::POINT);
+      if (vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy())
+      {
+        vtkSMTransferFunctionProxy::ApplyPreset(lut, "Grayscale", false);
+        vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode", true).Set(-1); // Never
+        vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, 0.0, 1.0, false);
+        lut->UpdateVTKObjects();
+      }
+    }
+    repr->UpdateVTKObjects();
+  }
+  if (view3D)
+  {
+    controller->Hide(source, 0, vtkSMViewProxy::SafeDownCast(view3D->getViewProxy()));
+    if (!this->View3D)
+    {
+      this->View3D = view3D;
+      this->watchCamera(view3D);
+    }
+  }
+  this->ImageView->widget()->installEventFilter(this);
+  this->fitImageView();
+  this->ImageView->render();
+  if (view3D)
+  {
+    view3D->render();
+    pqActiveObjects::instance().setActiveView(view3D); // the user goes on turning the volume
+  }
+  pqActiveObjects::instance().setActiveSource(this->Image);
+  this->log("opened");
+}
+
+//------------------------------------------------------------------------------
+bool pqSchlierenFollower::eventFilter(QObject* watched, QEvent* event)
+{
+  if (this->ImageView && watched == this->ImageView->widget() && event->type() == QEvent::Resize)
+  {
+    QTimer::singleShot(0, this, SLOT(fitImageView()));
+  }
+  return QObject::eventFilter(watched, event);
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::fitImageView()
+{
+  if (!this->ImageView || !this->Image)
+  {
+    return;
+  }
+  vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+  double* b = info ? info->GetBounds() : nullptr;
+  if (!b || !(b[0] <= b[1]) || !(b[2] <= b[3]))
+  {
+    return;
+  }
+  const QSize size = this->ImageView->widget()->size();
+  const double aspect =
+    size.height() > 0 ? double(std::max(1, size.width())) / size.height() : 1.0;
+  const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
+  const double hx = 0.5 * (b[1] - b[0]), hy = 0.5 * (b[3] - b[2]);
+  // the whole film inside the view, its aspect kept: fit the tighter of the two directions
+  const double scale = 1.02 * std::max(hy, hx / aspect);
+  if (!(scale > 0))
+  {
+    return;
+  }
+  vtkSMProxy* viewProxy = this->ImageView->getViewProxy();
+  const double focal[3] = { cx, cy, 0.0 };
+  const double position[3] = { cx, cy, 10.0 * std::max(hx, hy) + 1.0 };
+  const double up[3] = { 0.0, 1.0, 0.0 };
+  vtkSMPropertyHelper(viewProxy, "CameraFocalPoint").Set(focal, 3);
+  vtkSMPropertyHelper(viewProxy, "CameraPosition").Set(position, 3);
+  vtkSMPropertyHelper(viewProxy, "CameraViewUp").Set(up, 3);
+  vtkSMPropertyHelper(viewProxy, "CameraParallelScale").Set(scale);
+  viewProxy->UpdateVTKObjects();
+  std::copy(b, b + 4, this->FilmBounds);
+  this->ImageView->render();
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onCameraModified()
+{
+  auto* camera = vtkCamera::SafeDownCast(this->Camera);
+  if (!camera || !this->Image || !this->following())
+  {
+    return;
+  }
+  if (this->Busy)
+  {
+    // not inside our own update: once it is done
+    QTimer::singleShot(0, this, SLOT(onCameraModified()));
+    return;
+  }
+  double position[3], focal[3], up[3], direction[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  camera->GetViewUp(up);
+  double norm = 0;
+  for (int i = 0; i < 3; ++i)
+  {
+    direction[i] = focal[i] - position[i];
+    norm += direction[i] * direction[i];
+  }
+  norm = std::sqrt(norm);
+  if (!(norm > 0))
+  {
+    return;
+  }
+  for (double& c : direction)
+  {
+    c /= norm;
+  }
+  vtkSMProxy* proxy = this->Image->getProxy();
+  double d[3], u[3];
+  vtkSMPropertyHelper(proxy, "ViewDirection").Get(d, 3);
+  vtkSMPropertyHelper(proxy, "ViewUp").Get(u, 3);
+  double change = 0;
+  for (int i = 0; i < 3; ++i)
+  {
+    change = std::max({ change, std::abs(d[i] - direction[i]), std::abs(u[i] - up[i]) });
+  }
+  if (change < SameDirection)
+  {
+    return; // a zoom or a pan: the image stays
+  }
+  // a new view: back to the interactive passes (cancels the refinement in progress)
+  const bool cancelled = this->RefineTimer.isActive();
+  this->RefineTimer.stop();
+  this->LastChunk = 1;
+  this->Stopped = false;
+  vtkSMPropertyHelper(proxy, "ViewDirection").Set(direction, 3);
+  vtkSMPropertyHelper(proxy, "ViewUp").Set(up, 3);
+  this->setPasses(
+    std::min(this->Target, std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt())));
+  const double scale = vtkSMPropertyHelper(proxy, "InteractiveScale").GetAsDouble();
+  if (scale > 0 && scale < 1)
+  {
+    // a coarser film while the view turns: fewer rays per pass
+    int coarse[2];
+    for (int i = 0; i < 2; ++i)
+    {
+      coarse[i] = std::max(8, static_cast<int>(std::lround(this->FullResolution[i] * scale)));
+    }
+    if (!this->Coarse && this->SecondsPerPass > 0)
+    {
+      this->SecondsPerPass *= double(coarse[0]) * coarse[1] /
+        (double(this->FullResolution[0]) * this->FullResolution[1]);
+    }
+    this->Guard = true;
+    vtkSMPropertyHelper(proxy, "Resolution").Set(coarse, 2);
+    this->Guard = false;
+    this->Coarse = true;
+  }
+  proxy->UpdateVTKObjects();
+  if (cancelled)
+  {
+    this->log("cancelled");
+    Q_EMIT this->stateChanged();
+  }
+  this->RestTimer.start(RestMilliseconds);
+  if (!this->RetracePending)
+  {
+    // coalesced: one trace for the mouse moves queued meanwhile
+    this->RetracePending = true;
+    QTimer::singleShot(0, this, SLOT(retrace()));
+  }
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::retrace()
+{
+  if (this->Busy || !Idle())
+  {
+    QTimer::singleShot(20, this, SLOT(retrace()));
+    return;
+  }
+  this->RetracePending = false;
+  if (this->Image)
+  {
+    this->update("retrace");
+  }
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::update(const char* what)
+{
+  QElapsedTimer clock;
+  clock.start();
+  const int before = this->LastPasses;
+  // our chunks are short: no progress bar for them, so that ParaView neither blocks the mouse
+  // (a new drag) nor processes events inside the trace
+  pqProgressManager* progress = pqApplicationCore::instance()->getProgressManager();
+  progress->lockProgress(this);
+  this->Busy = true;
+  this->Image->updatePipeline();
+  this->Busy = false;
+  progress->unlockProgress(this);
+  const double seconds = clock.nsecsElapsed() * 1e-9;
+  const int now = this->passes();
+  // the filter traced only the passes it did not have (all of them after a new view)
+  const int traced = (now > before && std::strcmp(what, "refine") == 0) ? now - before : now;
+  this->SecondsPerPass = seconds / std::max(1, traced);
+  this->LastPasses = now;
+  vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+  double* b = info ? info->GetBounds() : nullptr;
+  if (b && (b[0] != this->FilmBounds[0] || b[1] != this->FilmBounds[1] ||
+             b[2] != this->FilmBounds[2] || b[3] != this->FilmBounds[3]))
+  {
+    this->fitImageView();
+  }
+  if (this->ImageView)
+  {
+    this->ImageView->render();
+  }
+  this->log(what);
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::refineStep()
+{
+  if (!this->Image || !this->following() || this->Stopped)
+  {
+    this->RefineTimer.stop();
+    return;
+  }
+  if (this->Busy || !Idle())
+  {
+    return; // the next tick
+  }
+  const int now = this->LastPasses; // the passes of the image shown (0: none on this film yet)
+  if (now >= this->Target)
+  {
+    this->RefineTimer.stop();
+    this->log("converged");
+    Q_EMIT this->stateChanged();
+    return;
+  }
+  // sized from the last measured pass time, growing at most twofold from chunk to chunk (one
+  // short measurement must not buy a long chunk that Stop would wait for)
+  int chunk = this->SecondsPerPass > 0
+    ? std::max(1, static_cast<int>(ChunkSeconds / this->SecondsPerPass))
+    : 1;
+  chunk = std::min(chunk, 2 * this->LastChunk);
+  this->LastChunk = chunk;
+  this->setPasses(std::min(this->Target, now + chunk));
+  this->Image->getProxy()->UpdateVTKObjects();
+  this->update("refine");
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onPassesModified()
+{
+  if (this->Guard || !this->Image)
+  {
+    return;
+  }
+  const int asked = this->passes();
+  this->Target = std::max(1, asked);
+  this->Stopped = false;
+  if (!this->following())
+  {
+    return;
+  }
+  // following: the new target is reached in chunks (so that it can be stopped), starting from
+  // the passes the image has
+  const int start = std::max(
+    std::max(1, vtkSMPropertyHelper(this->Image->getProxy(), "InteractivePasses").GetAsInt()),
+    this->LastPasses);
+  if (asked > start)
+  {
+    this->setPasses(start);
+    this->RestTimer.start(0);
+  }
+  this->log("target");
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onFollowModified()
+{
+  if (!this->Image)
+  {
+    return;
+  }
+  if (this->following())
+  {
+    this->Target = std::max(this->Target, this->passes());
+    if (!this->View3D)
+    {
+      auto* view = qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView());
+      if (view && view != this->ImageView)
+      {
+        this->View3D = view;
+      }
+    }
+    this->watchCamera(this->View3D);
+    this->log("follow");
+    this->onCameraModified();
+    if (!this->RetracePending)
+    {
+      this->RestTimer.start(0);
+    }
+  }
+  else
+  {
+    this->RefineTimer.stop();
+    this->RestTimer.stop();
+    if (this->Coarse)
+    {
+      this->restoreResolution();
+    }
+    this->log("unfollow");
+  }
+  Q_EMIT this->stateChanged();
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::restoreResolution()
+{
+  if (!this->Coarse || !this->Image)
+  {
+    return;
+  }
+  vtkSMProxy* proxy = this->Image->getProxy();
+  int coarse[2];
+  vtkSMPropertyHelper(proxy, "Resolution").Get(coarse, 2);
+  this->Guard = true;
+  vtkSMPropertyHelper(proxy, "Resolution").Set(this->FullResolution, 2);
+  this->Guard = false;
+  this->Coarse = false;
+  // the full film traces every pass again, with more rays per pass
+  if (this->SecondsPerPass > 0)
+  {
+    this->SecondsPerPass *= double(this->FullResolution[0]) * this->FullResolution[1] /
+      std::max(1.0, double(coarse[0]) * coarse[1]);
+  }
+  this->LastPasses = 0;
+  this->setPasses(
+    std::min(this->Target, std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt())));
+  proxy->UpdateVTKObjects();
+  this->LastPasses = 0;
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onResolutionModified()
+{
+  if (!this->Guard && this->Image)
+  {
+    vtkSMPropertyHelper(this->Image->getProxy(), "Resolution").Get(this->FullResolution, 2);
+    this->Coarse = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::stop()
+{
+  const bool was = this->RefineTimer.isActive() || this->RestTimer.isActive();
+  this->RefineTimer.stop();
+  this->RestTimer.stop();
+  this->Stopped = true;
+  if (was && this->Image)
+  {
+    StatusMessage(QString("%1: refinement stopped at %2 of %3 passes")
+                    .arg(this->Image->getSMName())
+                    .arg(this->passes())
+                    .arg(this->Target));
+  }
+  this->log("stopped");
+  Q_EMIT this->stateChanged();
+}
+
+//==============================================================================
+pqSchlierenToolbar::pqSchlierenToolbar(QWidget* parent)
+  : QToolBar("Schlieren", parent)
+{
+  this->setObjectName("SchlierenToolbar");
+  if (std::getenv("SCHLIEREN_GUI_TRACE"))
+  {
+    std::fprintf(stderr, "schlieren-gui %.6f toolbar created\n", QDateTime::currentMSecsSinceEpoch() / 1000.0);
+  }
+  this->FollowAction = this->addAction(QIcon(":/Schlieren/Icons/FollowCamera.svg"), "Follow Camera");
+  this->FollowAction->setObjectName("actionSchlierenFollowCamera");
+  this->FollowAction->setCheckable(true);
+  this->FollowAction->setShortcut(QKeySequence("Ctrl+Alt+F"));
+  this->FollowAction->setToolTip("The active Schlieren Image follows the 3D view's camera: a few "
+                                 "passes while the view turns, refined to Passes when it rests "
+                                 "(the FollowCamera property; Ctrl+Alt+F)");
+  this->StopAction = this->addAction(QIcon(":/Schlieren/Icons/StopRefinement.svg"), "Stop Refinement");
+  this->StopAction->setObjectName("actionSchlierenStop");
+  this->StopAction->setShortcut(QKeySequence("Ctrl+Alt+S"));
+  this->StopAction->setToolTip(
+    "Stops the refinement in progress; the image keeps the passes done (Ctrl+Alt+S)");
+  this->ViewAction = this->addAction(QIcon(":/Schlieren/Icons/SchlierenImage.svg"), "Schlieren View");
+  this->ViewAction->setObjectName("actionSchlierenView");
+  this->ViewAction->setToolTip("Shows the active Schlieren Image in a 2D view beside the 3D view");
+  QObject::connect(this->FollowAction, SIGNAL(toggled(bool)), this, SLOT(toggleFollow(bool)));
+  QObject::connect(this->StopAction, SIGNAL(triggered()), this, SLOT(stopRefinement()));
+  QObject::connect(this->ViewAction, SIGNAL(triggered()), this, SLOT(showImageView()));
+
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  QObject::connect(model, SIGNAL(sourceAdded(pqPipelineSource*)), this,
+    SLOT(onSourceAdded(pqPipelineSource*)));
+  QObject::connect(model, SIGNAL(preSourceRemoved(pqPipelineSource*)), this,
+    SLOT(onSourceRemoved(pqPipelineSource*)));
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    this->onSourceAdded(source);
+  }
+  QObject::connect(&pqActiveObjects::instance(), SIGNAL(sourceChanged(pqPipelineSource*)), this,
+    SLOT(updateActions()));
+  pqProgressManager* progress = pqApplicationCore::instance()->getProgressManager();
+  QObject::connect(progress, &pqProgressManager::progressStartEvent, this, []() { ++UpdatesInProgress; });
+  QObject::connect(progress, &pqProgressManager::progressEndEvent, this,
+    []() { UpdatesInProgress = std::max(0, UpdatesInProgress - 1); });
+  this->updateActions();
+}
+
+//------------------------------------------------------------------------------
+pqSchlierenToolbar::~pqSchlierenToolbar() = default;
+
+//------------------------------------------------------------------------------
+void pqSchlierenToolbar::onSourceAdded(pqPipelineSource* source)
+{
+  if (!IsSchlierenImage(source) || this->Followers.contains(source))
+  {
+    return;
+  }
+  auto* follower = new pqSchlierenFollower(source, this);
+  follower->log("tracked");
+  this->Followers.insert(source, follower);
+  QObject::connect(follower, SIGNAL(stateChanged()), this, SLOT(updateActions()));
+  this->updateActions();
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenToolbar::onSourceRemoved(pqPipelineSource* source)
+{
+  if (auto follower = this->Followers.take(source))
+  {
+    delete follower;
+  }
+  this->updateActions();
+}
+
+//------------------------------------------------------------------------------
+pqSchlierenFollower* pqSchlierenToolbar::active() const
+{
+  pqPipelineSource* source = pqActiveObjects::instance().activeSource();
+  if (source && this->Followers.contains(source))
+  {
+    return this->Followers.value(source);
+  }
+  // the one schlieren image of the session, when another source is selected
+  return this->Followers.size() == 1 ? this->Followers.first().data() : nullptr;
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenToolbar::updateActions()
+{
+  pqSchlierenFollower* follower = this->active();
+  this->FollowAction->setEnabled(follower != nullptr);
+  this->FollowAction->blockSignals(true);
+  this->FollowAction->setChecked(follower && follower->following());
+  this->FollowAction->blockSignals(false);
+  this->StopAction->setEnabled(!this->Followers.isEmpty());
+  this->ViewAction->setEnabled(follower != nullptr);
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenToolbar::toggleFollow(bool on)
+{
+  if (pqSchlierenFollower* follower = this->active())
+  {
+    follower->setFollowing(on);
+  }
+  this->updateActions();
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenToolbar::stopRefinement()
+{
+  for (const auto& f : this->Followers)
+  {
+    if (f)
+    {
+      f->stop();
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenToolbar::showImageView()
+{
+  if (pqSchlierenFollower* follower = this->active())
+  {
+    follower->openImageView(qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView()));
+  }
+}

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The Schlieren plugin's GUI side (client only; the trace runs where the data is).
+ *
+ * pqSchlierenToolbar: a toolbar with "Follow camera" (a toggle of the active SchlierenImage's
+ * FollowCamera property), "Stop refinement" and "Show in a schlieren view". It owns one
+ * pqSchlierenFollower per SchlierenImage of the session.
+ *
+ * pqSchlierenFollower: when a SchlierenImage is first shown in a 3D render view (Apply), opens its
+ * film in a 2D render view in a split beside it (intensity in a grey 0-1 map, rgb as direct
+ * colours for the colour filter, 2D interaction, the camera fitted to the film and refitted on
+ * resize), and hides it from the 3D view. With FollowCamera on, a change of the 3D view's camera
+ * sets ViewDirection/ViewUp from it and traces InteractivePasses passes; once the camera has
+ * rested, passes are added in chunks sized to a fraction of a second up to the target (the Passes
+ * the user set) from a Qt timer, so that the event loop runs between chunks: a new drag or Stop
+ * interrupts the refinement within one chunk, and the image keeps the passes done. The filter
+ * traces only the passes it does not have yet, so the converged image equals a trace of all the
+ * passes at once.
+ */
+#ifndef pqSchlierenToolbar_h
+#define pqSchlierenToolbar_h
+
+#include <QElapsedTimer>
+#include <QMap>
+#include <QObject>
+#include <QPointer>
+#include <QTimer>
+#include <QToolBar>
+
+#include "pqPipelineSource.h"
+#include "pqRenderView.h"
+#include "vtkObject.h"
+#include "vtkWeakPointer.h"
+
+#include "pqDataRepresentation.h"
+
+class QAction;
+
+class pqSchlierenFollower : public QObject
+{
+  Q_OBJECT
+public:
+  pqSchlierenFollower(pqPipelineSource* image, QObject* parent);
+  ~pqSchlierenFollower() override;
+
+  pqPipelineSource* image() const { return this->Image; }
+  pqRenderView* imageView() const { return this->ImageView; }
+  bool following() const;
+  bool refining() const { return this->RefineTimer.isActive(); }
+  /// Sets FollowCamera (the property, so that the panel and pvpython see it).
+  void setFollowing(bool on);
+  /// Opens (or re-opens) the image's 2D view beside `view3D` (or the view it was shown in).
+  void openImageView(pqRenderView* view3D);
+  /// Stops the refinement in progress; the image keeps the passes done.
+  void stop();
+  /// SCHLIEREN_GUI_TRACE=1: one line on stderr per event (for tests and timing).
+  void log(const char* event) const;
+
+Q_SIGNALS:
+  void stateChanged();
+
+protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
+
+private Q_SLOTS:
+  void onRepresentationAdded(pqPipelineSource*, pqDataRepresentation*, int);
+  void onCameraModified();
+  void onPassesModified();
+  void onFollowModified();
+  void onResolutionModified();
+  void retrace();
+  void refineStep();
+  void fitImageView();
+
+private:
+  void watchCamera(pqRenderView* view);
+  void openWhenIdle(QPointer<pqDataRepresentation> added, int tries);
+  void setPasses(int passes);
+  void restoreResolution();
+  int passes() const;
+  void update(const char* what);
+
+  QPointer<pqPipelineSource> Image;
+  QPointer<pqRenderView> View3D;
+  QPointer<pqRenderView> ImageView;
+  vtkWeakPointer<vtkObject> Camera;
+  unsigned long CameraTag = 0;
+  int Target = 1;        // the passes the user asked for
+  bool Guard = false;    // set while this object changes Passes itself
+  bool Stopped = false;  // Stop pressed: no refinement until the next camera change
+  bool RetracePending = false;
+  bool Busy = false; // inside our own pipeline update
+  double SecondsPerPass = 0; // measured on the last update
+  int LastPasses = 0;        // the passes of the image shown
+  int LastChunk = 1;         // passes added by the last refinement chunk
+  int FullResolution[2] = { 512, 512 }; // the film the user asked for
+  bool Coarse = false;       // the film is InteractiveScale of it (the view is turning)
+  double FilmBounds[4] = { 0, 0, 0, 0 };
+  QTimer RestTimer;   // the camera rested: start refining
+  QTimer RefineTimer; // one chunk of passes per tick
+};
+
+class pqSchlierenToolbar : public QToolBar
+{
+  Q_OBJECT
+public:
+  pqSchlierenToolbar(QWidget* parent = nullptr);
+  ~pqSchlierenToolbar() override;
+
+private Q_SLOTS:
+  void onSourceAdded(pqPipelineSource*);
+  void onSourceRemoved(pqPipelineSource*);
+  void updateActions();
+  void toggleFollow(bool);
+  void stopRefinement();
+  void showImageView();
+
+private:
+  pqSchlierenFollower* active() const;
+
+  QMap<pqPipelineSource*, QPointer<pqSchlierenFollower>> Followers;
+  QAction* FollowAction;
+  QAction* StopAction;
+  QAction* ViewAction;
+};
+
+#endif
