@@ -14,6 +14,10 @@ pipeline:
 RefractiveIndex resamples the curvilinear grid onto an image grid around the fin (SamplingBounds),
 and fills the points outside the CFD grid (beyond its outer boundary and inside the fin) with a
 smooth continuation of the flow (AmbientMode Extend), so that the grid's edge draws no false line.
+The fin itself is the grid's hole: with BodyWallFaces 0 1 1 0 1 1 (the fin runs past the box's
+x max, the symmetry plane y = 0 cuts it, it stands on the plate z = 0 and reaches the top) those
+points become the point array `solid`, and the fin stops the light: a black silhouette, as in a
+wind tunnel's photograph (--no-body traces through it, as before bodies were known).
 --view top looks down on the plate (the bow shock wraps around the fin's nose and sweeps
 outward); side looks across the flow (the shock stands ahead of the fin, with its foot
 on the plate where the boundary layer separates). Runs without a display: the PNG is written from
@@ -27,6 +31,10 @@ from paraview.simple import LoadPlugin, PLOT3DReader, servermanager
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_DATA = os.environ.get("SCHLIEREN_DATA") or os.path.join(HERE, "..", "..", "shared", "data")
+
+
+# The faces of the sampling box the fin touches (x min, x max, y min, y max, z min, z max).
+FIN_WALL_FACES = [0, 1, 1, 0, 1, 1]
 
 
 def blunt_fin_index(ns, data, **resampling):
@@ -44,7 +52,7 @@ def blunt_fin_index(ns, data, **resampling):
     index = ns["RefractiveIndex"](Input=reader, Model="GladstoneDale", Gas="Air",
                                   DensityReference=1.2,  # rho_inf, kg/m^3: the density is rho / rho_inf
                                   UseSamplingBounds=1, SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7],
-                                  AmbientMode="Extend", **resampling)
+                                  AmbientMode="Extend", BodyWallFaces=FIN_WALL_FACES, **resampling)
     index.InputArray = ["POINTS", "Density"]
     return index
 
@@ -57,10 +65,13 @@ def main():
     ap.add_argument("--view", default="top", choices=["top", "side"])
     ap.add_argument("--backend", default="Auto", choices=["Auto", "OpenCL", "CPU"])
     ap.add_argument("--passes", type=int, default=8)
+    ap.add_argument("--no-body", action="store_true", help="let the light through the fin")
     args = ap.parse_args()
 
     LoadPlugin(args.plugin, remote=False, ns=globals())
     index = blunt_fin_index(globals(), args.data, AutomaticDimension=160)
+    if index is not None and args.no_body:
+        index.BodyFromGrid = 0
     if index is None:
         print("bluntfin: SKIP, no data in %s (pass --data or set SCHLIEREN_DATA)" % os.path.abspath(args.data))
         sys.exit(125)
@@ -87,11 +98,13 @@ def main():
     rng = out.GetPointData().GetArray("intensity").GetRange()
     print("wrote %s: %d x %d knife-edge schlieren of the blunt fin (%s view) from a %d x %d x %d "
           "resampled grid (%.0f %% inside the CFD grid), n - 1 %.3g..%.3g, intensity %.3f..%.3f, "
-          "k = %.4g, traced on %s"
+          "k = %.4g, traced on %s; %d solid points, %d of %d rays stopped by the fin"
           % (os.path.abspath(args.output), out.GetDimensions()[0], out.GetDimensions()[1], args.view,
              *grid.GetDimensions(), 100 * grid.GetFieldData().GetArray("valid_point_fraction").GetValue(0),
              *grid.GetPointData().GetArray("n_minus_1").GetRange(), rng[0], rng[1],
-             k.GetValue(0) if k else float("nan"), backend.GetValue(0) if backend else "?"))
+             k.GetValue(0) if k else float("nan"), backend.GetValue(0) if backend else "?",
+             grid.GetFieldData().GetArray("solid_points").GetValue(0),
+             fd.GetArray("blocked_rays").GetValue(0), fd.GetArray("photons").GetValue(0)))
 
 
 if __name__ == "__main__":

@@ -14,7 +14,8 @@ behind the shock to 1.090 on the surface, over a free stream of 0.792.
         Symmetry Axisymmetric about x) -> SchlierenImage (knife edge across the axis; along it)
 
 The filter revolves the half plane onto a 3D grid (SamplingDimensions) by probing the 2D mesh at
-(x, r) for each grid point; the cone itself (no cells) is filled by AmbientMode Extend. Across the
+(x, r) for each grid point; the cone itself (no cells) is filled by AmbientMode Extend (with
+--body it is opaque instead: a black silhouette, see docs/CFD.md, Solid bodies). Across the
 axis the shock shows as two straight lines from the tip at +-33.9 degrees, which the script
 checks on the image (the largest |deflection| along columns behind the tip).
 """
@@ -37,6 +38,9 @@ def main():
     ap.add_argument("--backend", default="Auto", choices=["Auto", "OpenCL", "CPU"])
     ap.add_argument("--passes", type=int, default=4)
     ap.add_argument("--dimensions", type=int, nargs=3, default=[256, 160, 160])
+    ap.add_argument("--body", action="store_true",
+                    help="make the cone opaque: the grid's hole, which runs out through the box's x max "
+                         "face, as a solid body (BodyWallFaces 0 1 0 0 0 0)")
     args = ap.parse_args()
 
     data = args.data or os.path.join(os.path.dirname(os.path.abspath(args.output)), "cone_m2_15deg.vtu")
@@ -54,6 +58,8 @@ def main():
     reader = XMLUnstructuredGridReader(FileName=[data])
     index = RefractiveIndex(Input=reader, Symmetry="Axisymmetric", SymmetryAxis="X",  # noqa: F821
                             SamplingDimensions=args.dimensions)
+    if args.body:
+        index.BodyWallFaces = [0, 1, 0, 0, 0, 0]
     across = SchlierenImage(Input=index, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0],  # noqa: F821
                             Resolution=[512, 384], Passes=args.passes, Cutoff="KnifeEdge",
                             KnifeAngle=0.0, Backend=args.backend)

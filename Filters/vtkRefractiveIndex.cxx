@@ -24,11 +24,14 @@
 #include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSelectEnclosedPoints.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "SchlierenBodies.h"
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
@@ -269,7 +272,8 @@ Role RoleOf(int idx, int model)
 //------------------------------------------------------------------------------
 vtkRefractiveIndex::vtkRefractiveIndex()
 {
-  this->SetNumberOfInputPorts(1);
+  // port 1: an optional closed surface of a solid body
+  this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(1);
   // Default: the active point scalars.
   this->SetInputArrayToProcess(
@@ -282,6 +286,12 @@ vtkRefractiveIndex::~vtkRefractiveIndex() = default;
 //------------------------------------------------------------------------------
 int vtkRefractiveIndex::FillInputPortInformation(int port, vtkInformation* info)
 {
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
   // Any data set or composite data set: images are used as they are, the rest is resampled. The
   // composite type keeps the executive from running the filter block by block.
   this->Superclass::FillInputPortInformation(port, info);
@@ -501,6 +511,13 @@ int vtkRefractiveIndex::RequestUpdateExtent(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (vtkInformation* bodyInfo = inputVector[1]->GetInformationObject(0))
+  {
+    // the whole body surface on every rank: the inside test needs all of it
+    bodyInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+    bodyInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+    bodyInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
   const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES())
     ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES())
     : 1;
@@ -1008,6 +1025,11 @@ int vtkRefractiveIndex::RequestData(
         names.push_back(name);
       }
     }
+    if (!this->SolidArray.empty() &&
+      std::find(names.begin(), names.end(), this->SolidArray) == names.end())
+    {
+      names.push_back(this->SolidArray); // probed with the fields
+    }
     if (ranks <= 1)
     {
       // A missing array is reported before the (costly) probing; under MPI after it, since a
@@ -1216,6 +1238,21 @@ int vtkRefractiveIndex::RequestData(
     vtkErrorMacro(<< e.what());
     return 0;
   }
+  // 4b. Solid bodies: enclosed holes of the grid, the mask array, the body surface.
+  std::vector<unsigned char> solid;
+  std::string solidNote;
+  const std::string solidProblem =
+    this->ComputeSolid(inputVector, grid, valid, anyInvalid, resampled, solid, solidNote);
+  if (!solidProblem.empty())
+  {
+    output->Initialize();
+    vtkErrorMacro(<< solidProblem);
+    return 0;
+  }
+  if (!solidNote.empty() && rank == 0)
+  {
+    vtkWarningMacro(<< solidNote);
+  }
   this->UpdateProgress(0.9);
 
   // 5. The output: the requested extent of the grid, with the new arrays.
@@ -1227,6 +1264,16 @@ int vtkRefractiveIndex::RequestData(
   }
   pointData->AddArray(gradient);
   pointData->AddArray(nMinus1);
+  vtkIdType solidPoints = 0;
+  if (!solid.empty())
+  {
+    vtkNew<vtkUnsignedCharArray> solidArray;
+    solidArray->SetName("solid");
+    solidArray->SetNumberOfTuples(count);
+    std::copy(solid.begin(), solid.end(), solidArray->GetPointer(0));
+    solidPoints = static_cast<vtkIdType>(std::count(solid.begin(), solid.end(), 1));
+    pointData->AddArray(solidArray);
+  }
   pointData->SetActiveScalars("n_minus_1");
 
   vtkNew<vtkFieldData> fieldData;
@@ -1269,6 +1316,10 @@ int vtkRefractiveIndex::RequestData(
   fraction->SetName("valid_point_fraction");
   fraction->InsertNextValue(count ? 1.0 - static_cast<double>(invalidPoints) / count : 0.0);
   fieldData->AddArray(fraction);
+  vtkNew<vtkDoubleArray> solidCount;
+  solidCount->SetName("solid_points");
+  solidCount->InsertNextValue(static_cast<double>(solidPoints));
+  fieldData->AddArray(solidCount);
 
   output->Initialize();
   if (std::equal(gridExt, gridExt + 6, outExt))
@@ -1301,6 +1352,156 @@ int vtkRefractiveIndex::RequestData(
   output->GetPointData()->SetActiveScalars("n_minus_1");
   output->GetFieldData()->ShallowCopy(fieldData);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::ComputeSolid(vtkInformationVector** inputVector, vtkImageData* grid,
+  const std::vector<unsigned char>& valid, bool anyInvalid, bool resampled,
+  std::vector<unsigned char>& solid, std::string& note)
+{
+  const vtkIdType count = grid->GetNumberOfPoints();
+  int dims[3];
+  grid->GetDimensions(dims);
+  int rank, ranks;
+  RankAndSize(rank, ranks);
+  solid.assign(static_cast<std::size_t>(count), 0);
+  bool any = false;
+  // the holes the grid leaves that the flow encloses (the whole grid: resampled, or one process)
+  if (this->BodyFromGrid && anyInvalid)
+  {
+    if (resampled || ranks == 1)
+    {
+      any = schlieren::EnclosedInvalidPoints(dims, valid.data(), this->BodyWallFaces, solid.data()) > 0;
+    }
+    else
+    {
+      note = "BodyFromGrid: the invalid points of an image split over MPI ranks cannot be told "
+             "apart (body or outside) piece by piece; no body is taken from them. Give the body "
+             "as a SolidArray or a surface instead.";
+    }
+  }
+  // a body the input already carries (RefractiveScene's Body, an upstream RefractiveIndex's): kept
+  if (vtkDataArray* upstream = grid->GetPointData()->GetArray("solid"))
+  {
+    for (vtkIdType i = 0; upstream->GetNumberOfComponents() == 1 && i < count; ++i)
+    {
+      const double v = upstream->GetComponent(i, 0);
+      if (resampled ? v >= 0.5 : v != 0.0)
+      {
+        solid[i] = 1;
+        any = true;
+      }
+    }
+  }
+  // the mask array
+  if (!this->SolidArray.empty())
+  {
+    vtkDataArray* mask = grid->GetPointData()->GetArray(this->SolidArray.c_str());
+    if (!mask)
+    {
+      return "SolidArray '" + this->SolidArray + "' is not a point array of the input. Point " +
+        "arrays present: " + PointArrayNames(grid) + ".";
+    }
+    if (mask->GetNumberOfComponents() != 1)
+    {
+      return "SolidArray '" + this->SolidArray + "' has " +
+        std::to_string(mask->GetNumberOfComponents()) + " components; it must be a scalar (non-zero: solid).";
+    }
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      const double v = mask->GetComponent(i, 0);
+      if (resampled ? v >= 0.5 : v != 0.0)
+      {
+        solid[i] = 1;
+        any = true;
+      }
+    }
+  }
+  // the body surface: the grid points inside it (tested only within the surface's bounds)
+  vtkPolyData* surface = inputVector[1] && inputVector[1]->GetInformationObject(0)
+    ? vtkPolyData::GetData(inputVector[1]->GetInformationObject(0))
+    : nullptr;
+  if (surface)
+  {
+    if (surface->GetNumberOfPolys() == 0 && surface->GetNumberOfStrips() == 0)
+    {
+      return "The Body input has no polygons: it must be a closed surface (vtkPolyData), such as "
+             "an STL of the model.";
+    }
+    vtkNew<vtkTriangleFilter> triangles;
+    triangles->SetInputData(surface);
+    triangles->PassLinesOff();
+    triangles->PassVertsOff();
+    triangles->Update();
+    vtkPolyData* closed = triangles->GetOutput();
+    if (!vtkSelectEnclosedPoints::IsSurfaceClosed(closed))
+    {
+      return "The Body input is not a closed surface (it has boundary or non-manifold edges), so "
+             "its inside is not defined. Close it (e.g. Fill Holes, or export the model as a "
+             "watertight STL).";
+    }
+    double b[6];
+    closed->GetBounds(b);
+    const double* origin = grid->GetOrigin();
+    const double* spacing = grid->GetSpacing();
+    int ext[6];
+    grid->GetExtent(ext);
+    int sub[6];
+    bool overlaps = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      sub[2 * a] = std::max(ext[2 * a], static_cast<int>(std::floor((b[2 * a] - origin[a]) / spacing[a])));
+      sub[2 * a + 1] =
+        std::min(ext[2 * a + 1], static_cast<int>(std::ceil((b[2 * a + 1] - origin[a]) / spacing[a])));
+      overlaps = overlaps && sub[2 * a] <= sub[2 * a + 1];
+    }
+    if (overlaps)
+    {
+      vtkNew<vtkImageData> box;
+      box->SetExtent(sub);
+      box->SetOrigin(grid->GetOrigin());
+      box->SetSpacing(grid->GetSpacing());
+      vtkNew<vtkSelectEnclosedPoints> inside;
+      inside->SetInputData(box);
+      inside->SetSurfaceData(closed);
+      inside->CheckSurfaceOff(); // checked above, with a message of our own
+      inside->Update();
+      vtkDataArray* selected =
+        inside->GetOutput()->GetPointData()->GetArray("SelectedPoints");
+      if (!selected)
+      {
+        return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
+               "result).";
+      }
+      vtkIdType p = 0;
+      for (int k = sub[4]; k <= sub[5]; ++k)
+      {
+        for (int j = sub[2]; j <= sub[3]; ++j)
+        {
+          for (int i = sub[0]; i <= sub[1]; ++i, ++p)
+          {
+            if (selected->GetComponent(p, 0) != 0.0)
+            {
+              const vtkIdType g = (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] + (i - ext[0]);
+              solid[g] = 1;
+              any = true;
+            }
+          }
+        }
+      }
+    }
+    if (!overlaps || !any)
+    {
+      note += std::string(note.empty() ? "" : " ") +
+        "The Body surface encloses no point of the grid: check that it is in the data's "
+        "coordinates and inside the sampling bounds.";
+    }
+  }
+  if (!any)
+  {
+    solid.clear();
+  }
+  return std::string();
 }
 
 //------------------------------------------------------------------------------
@@ -1347,6 +1548,11 @@ void vtkRefractiveIndex::PrintSelf(ostream& os, vtkIndent indent)
   os << "\n";
   os << indent << "AmbientMode: " << this->AmbientMode << "\n";
   os << indent << "AmbientValue: " << this->AmbientValue << "\n";
+  os << indent << "BodyFromGrid: " << (this->BodyFromGrid ? "On" : "Off") << ", BodyWallFaces: "
+     << this->BodyWallFaces[0] << " " << this->BodyWallFaces[1] << " " << this->BodyWallFaces[2]
+     << " " << this->BodyWallFaces[3] << " " << this->BodyWallFaces[4] << " "
+     << this->BodyWallFaces[5] << ", SolidArray: "
+     << (this->SolidArray.empty() ? std::string("(none)") : this->SolidArray) << "\n";
 }
 
 //------------------------------------------------------------------------------

@@ -52,6 +52,10 @@
  * 0.7 rho_inf, it draws the grid's outer boundary as a false edge. The constant used is in the
  * field data `ambient_n_minus_1`.
  *
+ * Solid bodies (see BodyFromGrid): the output's point array `solid` (unsigned char) marks the
+ * points in a body, from the grid's enclosed holes, a SolidArray or a closed surface on input
+ * port 1; SchlierenImage stops the light there.
+ *
  * The output is always a vtkImageData with the point arrays `n_minus_1` (float, the active
  * scalars) and `grad_n` (float, 3 components, per world unit: central differences, one-sided at
  * the borders; schlieren::ComputeGradient), the input's (or the resampled) point arrays and, where
@@ -438,6 +442,50 @@ public:
   vtkGetMacro(AmbientValue, double);
   ///@}
 
+  ///@{
+  /**
+   * Solid bodies, output as the point array `solid` (unsigned char, 1 in a body) that
+   * SchlierenImage reads: rays that meet a body stop, so its shadow is dark (field data
+   * `solid_points` counts them). A body is the union of what these give:
+   *  - BodyFromGrid (default on): points outside every cell of the input (vtkValidPointMask 0)
+   *    that the flow encloses: their connected region of such points does not reach the grid's
+   *    boundary, except through the faces marked in BodyWallFaces (schlieren::EnclosedInvalidPoints).
+   *    Points beyond the CFD grid's outer boundary reach an open face and stay transparent.
+   *  - BodyWallFaces (xmin, xmax, ymin, ymax, zmin, zmax; default all 0): the faces of the grid a
+   *    body may touch and the outside may not: a wall the body stands on, a symmetry plane that
+   *    cuts it, a face where the sampling box cuts through it. The blunt fin: 0 1 1 0 1 1 (it
+   *    runs past x max, is cut by the symmetry plane y = 0, stands on the plate z = 0 and
+   *    reaches the top).
+   *  - SolidArray (default none): a point array of the input, solid where non-zero (where
+   *    resampled, where its interpolated value is at least 0.5).
+   *  - The second input (port 1, optional): a closed surface (vtkPolyData, e.g. an STL of the
+   *    model, in the data's coordinates); the grid points inside it are solid. A surface that is
+   *    not closed is an error.
+   */
+  vtkSetMacro(BodyFromGrid, bool);
+  vtkGetMacro(BodyFromGrid, bool);
+  vtkBooleanMacro(BodyFromGrid, bool);
+  vtkSetVector6Macro(BodyWallFaces, int);
+  vtkGetVector6Macro(BodyWallFaces, int);
+  void SetSolidArray(const char* name)
+  {
+    // "None" (the GUI's entry for no array) and "" mean no mask array
+    std::string v = name ? name : "";
+    if (v == "None")
+    {
+      v.clear();
+    }
+    if (v != this->SolidArray)
+    {
+      this->SolidArray = v;
+      this->Modified();
+    }
+  }
+  const char* GetSolidArray() { return this->SolidArray.c_str(); }
+  /** The body surface on port 1 (ParaView: the Body input). */
+  void SetBodyConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  ///@}
+
 protected:
   vtkRefractiveIndex();
   ~vtkRefractiveIndex() override;
@@ -494,6 +542,9 @@ protected:
   double SamplingBounds[6] = { 0, 1, 0, 1, 0, 1 };
   int AmbientMode = EXTEND;
   double AmbientValue = 2.7164e-4;
+  bool BodyFromGrid = true;
+  int BodyWallFaces[6] = { 0, 0, 0, 0, 0, 0 };
+  std::string SolidArray;
 
 private:
   vtkRefractiveIndex(const vtkRefractiveIndex&) = delete;
@@ -503,6 +554,13 @@ private:
   bool SamplingGrid(vtkInformation* inInfo, int whole[6], double origin[3], double spacing[3]);
   /** Updates the input once and returns its bounds (all ranks); false if it has no points. */
   bool UpdatedInputBounds(vtkInformation* inInfo, double bounds[6]);
+  /**
+   * The `solid` points of `grid` (see BodyFromGrid): "" or a message for the user; `solid` is
+   * left empty where there is no body. `note` gets what the user should know.
+   */
+  std::string ComputeSolid(vtkInformationVector** inputVector, vtkImageData* grid,
+    const std::vector<unsigned char>& valid, bool anyInvalid, bool resampled,
+    std::vector<unsigned char>& solid, std::string& note);
   /** Why the last RequestInformation could not set up the resampling grid (for RequestData). */
   std::string SamplingError;
 

@@ -13,6 +13,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <vector>
@@ -184,6 +185,31 @@ int vtkRefractiveScene::RequestData(
     return 0;
   }
 
+  if (this->Body != NO_BODY)
+  {
+    schlieren::BodyParameters b;
+    b.Shape = static_cast<schlieren::Body>(this->Body);
+    b.Radius = this->BodyRadius;
+    for (int a = 0; a < 3; ++a)
+    {
+      b.Center[a] = this->BodyCenter[a];
+      b.Axis[a] = this->BodyAxis[a];
+    }
+    vtkNew<vtkUnsignedCharArray> solid;
+    solid->SetName("solid");
+    solid->SetNumberOfTuples(count);
+    try
+    {
+      schlieren::FillBody(b, dims, pieceOrigin, spacing, solid->GetPointer(0));
+    }
+    catch (const schlieren::Error& e)
+    {
+      vtkErrorMacro(<< e.what());
+      output->Initialize();
+      return 0;
+    }
+    output->GetPointData()->AddArray(solid);
+  }
   output->GetPointData()->SetScalars(nMinus1);
   output->GetPointData()->AddArray(density);
   if (plume)
@@ -214,6 +240,10 @@ void vtkRefractiveScene::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Density: " << this->Density << " kg/m^3\n";
   os << indent << "Time: " << this->Time << "\n";
   os << indent << "TimeSteps: " << this->TimeSteps << "\n";
+  os << indent << "Body: " << schlieren::BodyName(static_cast<schlieren::Body>(this->Body))
+     << ", radius " << this->BodyRadius << ", centre " << this->BodyCenter[0] << " "
+     << this->BodyCenter[1] << " " << this->BodyCenter[2] << ", axis " << this->BodyAxis[0] << " "
+     << this->BodyAxis[1] << " " << this->BodyAxis[2] << "\n";
 }
 
 //------------------------------------------------------------------------------

@@ -181,6 +181,43 @@ public:
   vtkGetMacro(TimeSteps, int);
   ///@}
 
+  /** Opaque bodies the scene may hold; the values are those of schlieren::Body. */
+  enum BodyType
+  {
+    NO_BODY = 0,
+    SPHERE_BODY = 1,
+    CYLINDER_BODY = 2
+  };
+
+  ///@{
+  /**
+   * An opaque body in the scene (a BodyType): the grid points inside it get 1 in the point array
+   * `solid` (unsigned char, 0 elsewhere), which SchlierenImage reads: rays that meet it stop, and
+   * its shadow is dark under every cutoff. The index field is left as the scene makes it (the
+   * body does not change the flow). Default NO_BODY (no `solid` array).
+   */
+  vtkSetClampMacro(Body, int, NO_BODY, CYLINDER_BODY);
+  vtkGetMacro(Body, int);
+  ///@}
+
+  ///@{
+  /** The body's radius, world units (> 0). Default 0.25. */
+  vtkSetClampMacro(BodyRadius, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkGetMacro(BodyRadius, double);
+  ///@}
+
+  ///@{
+  /** The sphere's centre, or a point on the cylinder's axis; world units. Default 0 0 0. */
+  vtkSetVector3Macro(BodyCenter, double);
+  vtkGetVector3Macro(BodyCenter, double);
+  ///@}
+
+  ///@{
+  /** The cylinder's axis direction (non-zero). Default 1 0 0. */
+  vtkSetVector3Macro(BodyAxis, double);
+  vtkGetVector3Macro(BodyAxis, double);
+  ///@}
+
 protected:
   vtkRefractiveScene();
   ~vtkRefractiveScene() override;
@@ -213,6 +250,10 @@ protected:
   double Density = 1.2;
   double Time = 1.0;
   int TimeSteps = 10;
+  int Body = NO_BODY;
+  double BodyRadius = 0.25;
+  double BodyCenter[3] = { 0, 0, 0 };
+  double BodyAxis[3] = { 1, 0, 0 };
 
 private:
   vtkRefractiveScene(const vtkRefractiveScene&) = delete;

@@ -35,6 +35,7 @@ vtkStandardNewMacro(vtkSchlierenImage);
 namespace
 {
 const char* const IndexArrayName = "n_minus_1";
+const char* const SolidArrayName = "solid";
 
 /** "a, b, c" for the point arrays of a data set, or "none". */
 std::string PointArrayNames(vtkDataSet* ds)
@@ -128,6 +129,7 @@ struct vtkSchlierenImage::vtkInternals
   std::string VolumeKey;
   schlieren::AlignedFloats Packed; // page-aligned: a CPU OpenCL device traces it in place
   std::vector<unsigned char> Levels;
+  std::vector<unsigned char> Solid; // the input's `solid` points (empty: no body)
   std::vector<unsigned char> Smooth; // PackFieldHighOrder's smoothness (Reconstruction not trilinear)
   schlieren::Volume Volume;
 };
@@ -524,11 +526,13 @@ int vtkSchlierenImage::RequestData(
   schlieren::Volume volume;
   schlieren::AlignedFloats packed;
   std::vector<unsigned char> levels, smooth;
+  std::vector<unsigned char> solid;
   // steps 1-3: the volume from the input; 0 when it failed (reported, agreed by all ranks)
   auto buildVolume = [&]() -> int {
     // 1. This rank's piece of n - 1 (and of the octree levels, where asked for and present).
     int ext[6] = { 0, -1, 0, -1, 0, -1 };
     std::vector<float> values;
+    std::vector<float> solidValues; // the piece's `solid` array (1 solid, 0 not), if any
     std::vector<unsigned char> pieceLevels;
     OctreeInfo octree;
     if (!input || !output)
@@ -572,6 +576,23 @@ int vtkSchlierenImage::RequestData(
         {
           octree = ReadOctree(input, pieceLevels);
         }
+        // solid bodies (RefractiveIndex, RefractiveScene): non-zero points stop the rays
+        vtkDataArray* solidArray = input->GetPointData()->GetArray(SolidArrayName);
+        if (solidArray && solidArray->GetNumberOfComponents() == 1 &&
+          solidArray->GetNumberOfTuples() == count)
+        {
+          solidValues.resize(static_cast<std::size_t>(count));
+          bool any = false;
+          for (vtkIdType i = 0; i < count; ++i)
+          {
+            solidValues[i] = solidArray->GetComponent(i, 0) != 0.0 ? 1.0f : 0.0f;
+            any = any || solidValues[i] != 0.0f;
+          }
+          if (!any)
+          {
+            solidValues.clear();
+          }
+        }
       }
     }
     else if (ranks == 1)
@@ -590,44 +611,75 @@ int vtkSchlierenImage::RequestData(
     const std::size_t total = volume.NumberOfPoints();
     std::vector<float> field;
     const bool wholePiece = ranks == 1 && std::equal(ext, ext + 6, whole);
-    if (wholePiece)
+    // the solid points: every rank learns whether any piece has a body, and gathers them as the
+    // field below
+    int hasSolid = solidValues.empty() ? 0 : 1;
+    if (ranks > 1)
     {
-      field.swap(values);
-    }
-    else
-    {
-      field.assign(total, 0.0f);
-      std::vector<unsigned char> covered(total, 0);
-      if (ranks == 1)
+      int anySolid = 0;
+      controller->AllReduce(&hasSolid, &anySolid, 1, vtkCommunicator::MAX_OP);
+      hasSolid = anySolid;
+      if (hasSolid && solidValues.empty())
       {
-        Insert(whole, ext, values.data(), field, covered);
+        solidValues.assign(values.size(), 0.0f);
+      }
+    }
+    // pass 0: n - 1 into `field`; pass 1 (with a body): the solid points into `solid`
+    for (int pass = 0; pass < (hasSolid ? 2 : 1); ++pass)
+    {
+      std::vector<float>& source = pass == 0 ? values : solidValues;
+      std::vector<float> gathered;
+      if (wholePiece)
+      {
+        gathered.swap(source);
       }
       else
       {
-        std::vector<int> extents(6 * static_cast<std::size_t>(ranks));
-        controller->AllGather(ext, extents.data(), 6);
-        std::vector<vtkIdType> counts(ranks), offsets(ranks);
-        vtkIdType sum = 0;
-        for (int r = 0; r < ranks; ++r)
+        gathered.assign(total, 0.0f);
+        std::vector<unsigned char> covered(total, 0);
+        if (ranks == 1)
         {
-          counts[r] = ExtentPoints(&extents[6 * r]);
-          offsets[r] = sum;
-          sum += counts[r];
+          Insert(whole, ext, source.data(), gathered, covered);
         }
-        std::vector<float> all(static_cast<std::size_t>(std::max<vtkIdType>(sum, 1)));
-        controller->AllGatherV(values.data(), all.data(), static_cast<vtkIdType>(values.size()),
-          counts.data(), offsets.data());
-        for (int r = 0; r < ranks; ++r)
+        else
         {
-          Insert(whole, &extents[6 * r], all.data() + offsets[r], field, covered);
+          std::vector<int> extents(6 * static_cast<std::size_t>(ranks));
+          controller->AllGather(ext, extents.data(), 6);
+          std::vector<vtkIdType> counts(ranks), offsets(ranks);
+          vtkIdType sum = 0;
+          for (int r = 0; r < ranks; ++r)
+          {
+            counts[r] = ExtentPoints(&extents[6 * r]);
+            offsets[r] = sum;
+            sum += counts[r];
+          }
+          std::vector<float> all(static_cast<std::size_t>(std::max<vtkIdType>(sum, 1)));
+          controller->AllGatherV(source.data(), all.data(), static_cast<vtkIdType>(source.size()),
+            counts.data(), offsets.data());
+          for (int r = 0; r < ranks; ++r)
+          {
+            Insert(whole, &extents[6 * r], all.data() + offsets[r], gathered, covered);
+          }
+        }
+        // The same answer on every rank: no agreement needed.
+        if (std::find(covered.begin(), covered.end(), 0) != covered.end())
+        {
+          vtkErrorMacro("The input pieces do not cover the input's whole extent; the tracer needs "
+                        "the whole volume.");
+          return 0;
         }
       }
-      // The same answer on every rank: no agreement needed.
-      if (std::find(covered.begin(), covered.end(), 0) != covered.end())
+      if (pass == 0)
       {
-        vtkErrorMacro("The input pieces do not cover the input's whole extent; the tracer needs "
-                      "the whole volume.");
-        return 0;
+        field.swap(gathered);
+      }
+      else
+      {
+        solid.resize(total);
+        for (std::size_t i = 0; i < total; ++i)
+        {
+          solid[i] = gathered[i] != 0.0f ? 1 : 0;
+        }
       }
     }
     std::vector<float>().swap(values);
@@ -734,6 +786,7 @@ int vtkSchlierenImage::RequestData(
     cache.VolumeKey.clear();
     cache.Packed.clear();
     cache.Levels.clear();
+    cache.Solid.clear();
     cache.Smooth.clear();
     if (!buildVolume())
     {
@@ -741,6 +794,8 @@ int vtkSchlierenImage::RequestData(
     }
     cache.Packed.swap(packed);
     cache.Levels.swap(levels);
+    cache.Solid.swap(solid);
+    volume.Solid = cache.Solid.empty() ? nullptr : cache.Solid.data();
     cache.Smooth.swap(smooth);
     volume.Field = cache.Packed.data();
     volume.Levels = cache.Levels.empty() ? nullptr : cache.Levels.data();
@@ -768,7 +823,8 @@ int vtkSchlierenImage::RequestData(
             << ' ' << volume.Dimensions[1] << ' ' << volume.Dimensions[2] << ' '
             << volume.Origin[0] << ' ' << volume.Origin[1] << ' ' << volume.Origin[2] << ' '
             << volume.Spacing[0] << ' ' << volume.Spacing[1] << ' ' << volume.Spacing[2] << ' '
-            << (volume.Levels ? 1 : 0) << ' ' << volume.LevelTolerance;
+            << (volume.Levels ? 1 : 0) << ' ' << volume.LevelTolerance << ' '
+            << (volume.Solid ? 1 : 0);
   const std::string key = keyStream.str();
   int reuse = (key == cache.Key && cache.Sums.Passes > 0 && this->Passes >= cache.Sums.Passes) ? 1 : 0;
   if (ranks > 1)
@@ -902,6 +958,10 @@ int vtkSchlierenImage::RequestData(
   {
     pd->AddArray(FloatArray("error_estimate", result.ErrorEstimate, 1, pixels));
   }
+  if (!result.Blocked.empty())
+  {
+    pd->AddArray(FloatArray("blocked", result.Blocked, 1, pixels));
+  }
 
   vtkFieldData* fd = output->GetFieldData();
   auto addNumber = [fd](const char* name, double value) {
@@ -936,6 +996,7 @@ int vtkSchlierenImage::RequestData(
   addNumber("landed_photons", landed);
   addNumber("underresolved_rays", result.UnderresolvedRays);
   addNumber("side_rays", result.SideRays);
+  addNumber("blocked_rays", result.BlockedRays);
   addNumber("max_drift", result.MaxDrift);
   addNumber("max_error", result.MaxError);
   addString("integrator", schlieren::IntegratorName(settings.Method));

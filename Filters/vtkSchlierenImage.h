@@ -5,7 +5,9 @@
  *
  * vtkSchlierenImage takes a vtkImageData with the point array `n_minus_1` (n - 1, dimensionless)
  * and traces a collimated beam through it with the schlieren engine (OpenCL, or the C++ build of
- * the same physics). The output is a 2D vtkImageData, the film: its spacing is the pixel size and
+ * the same physics). Where the input has the point array `solid` (vtkRefractiveIndex,
+ * vtkRefractiveScene: non-zero in a solid body), rays stop where they meet a body: its shadow is
+ * dark under every cutoff, and those rays are counted, not failed. The output is a 2D vtkImageData, the film: its spacing is the pixel size and
  * its origin the centre of pixel (0, 0), both in world units of the film plane (measured from the
  * volume's centre along the film's x = ViewDirection x ViewUp and y = ViewUp axes).
  *
@@ -19,11 +21,13 @@
  * - `bos_displacement` (float, 2 components, world units; BOS only): the apparent shift of the
  *   background, about -Z eps for a background Z behind the object;
  * - `error_estimate` (float, radians; EstimateError only): the step-doubling estimate of the
- *   deflection error per pixel.
+ *   deflection error per pixel;
+ * - `blocked` (float in [0, 1]; where the input has a body): the fraction of the photons emitted
+ *   through the pixel that a body stopped.
  *
  * Field data: `cutoff_scale` (the k used), `backend` and `device` (strings), `photons`,
  * `samples`, `samples_per_ray`, `failed_rays`, `missed_rays`, `underresolved_rays` (rays whose
- * steps jumped over a feature), `side_rays` (rays that left through a side of the box),
+ * steps jumped over a feature), `side_rays` (rays that left through a side of the box), `blocked_rays` (rays a solid body stopped),
  * `max_drift` (largest | |v| - n | at exit), `max_error` (EstimateError: the largest estimate),
  * `integrator` (string: the integrator traced with) and `step_size` (voxels: the step traced with),
  * `reconstruction` (string: Trilinear or Cubic, as traced),

@@ -676,7 +676,9 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   const double step = s.StepSize * MinSpacing(volume);
   P.step = static_cast<float>(step);
   const double diag = 2 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy + double(P.hz) * P.hz);
-  double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / step + 16;
+  // near a body steps are cut to a cell: the default limit allows for a whole path of them
+  const double shortest = volume.Solid ? std::min(step, MinSpacing(volume)) : step;
+  double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / shortest + 16;
   P.maxSteps = static_cast<int>(std::min(maxSteps, 1e9));
   P.seed = s.Seed;
   P.pass = 0;
@@ -687,6 +689,7 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   P.rayOffset = s.RankIndex;
   P.rayStride = s.RankCount;
   P.useLevels = (s.UseOctree && volume.Levels) ? 1 : 0;
+  P.useSolid = volume.Solid ? 1 : 0;
   P.keepInvariant = s.KeepInvariant ? 1 : 0;
   P.estimate = s.EstimateError ? 1 : 0;
   P.featureTol = 0.0f; // see SetFeatureTolerance
@@ -708,7 +711,8 @@ static sch_params MakeParams(const Volume& volume, const TraceSettings& s, const
   if (s.Recon == Reconstruction::Cubic && !volume.Smooth)
     throw Error("Reconstruction Cubic needs the volume's smoothness (Volume::Smooth): pack the field "
                 "with PackFieldHighOrder, or use Reconstruction Trilinear.");
-  P.recon = s.Recon == Reconstruction::Cubic ? SCH_CUBIC : SCH_TRILINEAR;
+  // with a body the levels byte carries its bits where Cubic keeps the smoothness: trilinear
+  P.recon = s.Recon == Reconstruction::Cubic && !volume.Solid ? SCH_CUBIC : SCH_TRILINEAR;
   // from cells that are not smooth, steps of at most a cell: they cannot jump over a feature
   P.roughStep = P.recon == SCH_CUBIC ? P.cellStep : 0.0f;
   return P;
@@ -722,12 +726,14 @@ struct VolumeIdentity
 {
   const float* Field = nullptr;
   const unsigned char* Levels = nullptr;
+  const unsigned char* Solid = nullptr;
   int Dimensions[3] = { 0, 0, 0 };
   std::uint64_t Stamp = 0;
 
   explicit VolumeIdentity(const Volume& v)
     : Field(v.Field)
     , Levels(v.Levels)
+    , Solid(v.Solid)
     , Stamp(v.Stamp)
   {
     std::copy(v.Dimensions, v.Dimensions + 3, Dimensions);
@@ -736,7 +742,7 @@ struct VolumeIdentity
   bool operator==(const VolumeIdentity& o) const
   {
     return Stamp != 0 && Stamp == o.Stamp && Field == o.Field && Levels == o.Levels &&
-      std::equal(Dimensions, Dimensions + 3, o.Dimensions);
+      Solid == o.Solid && std::equal(Dimensions, Dimensions + 3, o.Dimensions);
   }
 };
 
@@ -776,17 +782,125 @@ static void SetFeatureTolerance(sch_params& P, const Volume& volume)
     P.featureTol = 1e-30f;
 }
 
+// The byte per grid point that the kernels read (SCH_OCTREE_BITS, SCH_NEAR_BIT, SCH_SOLID_BIT):
+// with a body, the solid bit; the near bit where a solid point lies within `reach` (world units:
+// the longest step) of the cell, so that steps there are cut to a cell; and the volume's levels
+// lowered until no block (with its one-point halo) holds a solid point, so that no skip crosses a
+// body.
+static std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach)
+{
+  const std::size_t N = v.NumberOfPoints();
+  const int nx = v.Dimensions[0], ny = v.Dimensions[1], nz = v.Dimensions[2];
+  std::vector<unsigned char> bytes(N, 0);
+  bool anyLevel = false;
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    const unsigned char lvl = v.Levels ? static_cast<unsigned char>(v.Levels[i] & SCH_OCTREE_BITS) : 0;
+    bytes[i] = static_cast<unsigned char>(lvl | (v.Solid[i] ? SCH_SOLID_BIT : 0));
+    anyLevel = anyLevel || lvl > 0;
+  }
+  // solid points in any box of points by a summed-volume table
+  const std::size_t sx = 1, sy = nx + 1, sz = static_cast<std::size_t>(nx + 1) * (ny + 1);
+  std::vector<std::uint32_t> S(sz * (nz + 1), 0);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        const std::size_t o = (k + 1) * sz + (j + 1) * sy + (i + 1) * sx;
+        const std::uint32_t here = v.Solid[(static_cast<std::size_t>(k) * ny + j) * nx + i] ? 1u : 0u;
+        S[o] = here + S[o - sx] + S[o - sy] + S[o - sz] - S[o - sx - sy] - S[o - sx - sz] -
+          S[o - sy - sz] + S[o - sx - sy - sz];
+      }
+  auto solidIn = [&](const int lo[3], const int hi[3]) {
+    // points lo..hi inclusive
+    const std::size_t i0 = lo[0], i1 = hi[0] + 1, j0 = lo[1], j1 = hi[1] + 1, k0 = lo[2], k1 = hi[2] + 1;
+    const std::int64_t c = std::int64_t(S[k1 * sz + j1 * sy + i1]) - S[k1 * sz + j1 * sy + i0] -
+      S[k1 * sz + j0 * sy + i1] - S[k0 * sz + j1 * sy + i1] + S[k1 * sz + j0 * sy + i0] +
+      S[k0 * sz + j1 * sy + i0] + S[k0 * sz + j0 * sy + i1] - S[k0 * sz + j0 * sy + i0];
+    return c > 0;
+  };
+  // a step of length `reach` from inside cell c stays within the cells c - r .. c + r, and the
+  // points nearest to it within c - r .. c + 1 + r, r = ceil(reach / spacing) along each axis
+  int r[3];
+  for (int a = 0; a < 3; ++a)
+    r[a] = static_cast<int>(std::ceil(reach / v.Spacing[a])) + 1;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+      {
+        unsigned char& b = bytes[(static_cast<std::size_t>(k) * ny + j) * nx + i];
+        int L = b & SCH_OCTREE_BITS;
+        const int c[3] = { i, j, k };
+        int nlo[3], nhi[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          nlo[a] = std::max(0, c[a] - r[a]);
+          nhi[a] = std::min(v.Dimensions[a] - 1, c[a] + 1 + r[a]);
+        }
+        const bool near = solidIn(nlo, nhi);
+        while (L > 0)
+        {
+          // the points the block's cells touch, grown by one (as ComputeOctreeLevels)
+          int lo[3], hi[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            const int b0 = (c[a] >> L) << L;
+            lo[a] = std::max(0, b0 - 1);
+            hi[a] = std::min(v.Dimensions[a] - 1, b0 + (1 << L) + 1);
+          }
+          if (!solidIn(lo, hi))
+            break;
+          --L;
+        }
+        b = static_cast<unsigned char>((b & SCH_SOLID_BIT) | (near ? SCH_NEAR_BIT : 0) | L);
+      }
+  return bytes;
+}
+
+// The cell bytes for a trace with steps of up to `reach` world units: the volume's levels (or
+// null) without a body; with one, the bytes of MakeCellBytes, kept for the last stamped volume
+// and reach.
+static std::shared_ptr<const std::vector<unsigned char>> CellBytesOf(const Volume& v, double reach)
+{
+  if (!v.Solid)
+    return nullptr;
+  static VolumeIdentity bytesOf;
+  static double reachOf = 0;
+  static std::shared_ptr<const std::vector<unsigned char>> kept;
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    if (kept && bytesOf == VolumeIdentity(v) && reachOf == reach)
+      return kept;
+  }
+  auto bytes = std::make_shared<const std::vector<unsigned char>>(MakeCellBytes(v, reach));
+  if (v.Stamp != 0)
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    bytesOf = VolumeIdentity(v);
+    reachOf = reach;
+    kept = bytes;
+  }
+  return bytes;
+}
+
+// The longest step a trace with parameters P takes (the step-doubling estimate doubles it).
+static double StepReach(const sch_params& P)
+{
+  return double(P.step) * (P.estimate ? 2.0 : 1.0);
+}
+
 // ------------------------------------------------------------------ film sums
 
 std::vector<std::vector<double>*> FilmSums::PixelChannels()
 {
   return { &Count, &Weight, &DeflectionX, &DeflectionY, &AbsDeflection, &Red, &Green, &Blue, &Phase,
-    &ShiftX, &ShiftY, &ErrorSum };
+    &ShiftX, &ShiftY, &ErrorSum, &Blocked };
 }
 
 std::vector<double*> FilmSums::Totals()
 {
-  return { &Photons, &Samples, &FailedRays, &MissedRays, &UnderresolvedRays, &SideRays, &Steps };
+  return { &Photons, &Samples, &FailedRays, &MissedRays, &UnderresolvedRays, &SideRays, &Steps,
+    &BlockedRays };
 }
 
 std::vector<double*> FilmSums::Maxima()
@@ -927,6 +1041,13 @@ struct Splatter
         F.UnderresolvedRays += 1;
       if (flags & SCH_RAY_SIDE)
         F.SideRays += 1;
+      if (flags & SCH_RAY_BLOCKED)
+      {
+        // stopped by a body: no light; counted in the pixel it was emitted through (the shadow)
+        F.BlockedRays += 1;
+        F.Blocked[static_cast<std::size_t>(P.rayOffset + (first + r) * P.rayStride)] += 1;
+        continue;
+      }
       if (flags & SCH_RAY_LOST)
       {
         F.FailedRays += 1;
@@ -1047,7 +1168,8 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
 class OpenCLTracer
 {
 public:
-  OpenCLTracer(const Volume& volume, std::size_t chunk, int raysPerItem)
+  // bytes: the cell bytes (octree levels, solid points) or null
+  OpenCLTracer(const Volume& volume, const unsigned char* cellBytes, std::size_t chunk, int raysPerItem)
     : RT(ocl::GetRuntime())
     , RaysPerItem(raysPerItem > 0 ? raysPerItem : (RT.IsCPU ? 4 : 1))
   {
@@ -1067,7 +1189,7 @@ public:
       SlabCells = static_cast<int>(std::max<std::int64_t>(cells, 1));
       total = bytes + std::uint64_t(Slabs - 1) * planeFloats * sizeof(float);
     }
-    const std::uint64_t levelBytes = volume.Levels ? volume.NumberOfPoints() : 1;
+    const std::uint64_t levelBytes = cellBytes ? volume.NumberOfPoints() : 1;
     if (Slabs > MaxSlabs || total + levelBytes > RT.GlobalMemory)
     {
       std::ostringstream msg;
@@ -1111,11 +1233,11 @@ public:
           const_cast<float*>(slabStart(q)), &err);
         ocl::Check(err, "clCreateBuffer(field)");
       }
-      // the octree levels, or one byte that no kernel reads when there are none
+      // the cell bytes (octree levels, solid points), or one byte that no kernel reads when
+      // there are none
       static unsigned char none = 0;
       Levels = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-        volume.Levels ? volume.NumberOfPoints() : 1,
-        const_cast<unsigned char*>(volume.Levels ? volume.Levels : &none), &err);
+        cellBytes ? volume.NumberOfPoints() : 1, const_cast<unsigned char*>(cellBytes ? cellBytes : &none), &err);
       ocl::Check(err, "clCreateBuffer(levels)");
       EnsureOut(chunk);
     }
@@ -1175,7 +1297,8 @@ public:
     const char* spec = std::getenv("SCHLIEREN_CL_SPECIALISE");
     const bool specialise = !(spec && std::string(spec) == "0");
     const int setting = specialise
-      ? 1 + P.integrator * 4 + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0) + 32 * P.recon
+      ? 1 + P.integrator * 8 + (P.useSolid ? 4 : 0) + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0) +
+        64 * P.recon
       : 0;
     const int key = setting * 3 + static_cast<int>(entry);
     auto it = Kernels.find(key);
@@ -1191,7 +1314,8 @@ public:
       opts << " -DSCH_SLABS=" << Slabs;
     if (specialise)
       opts << " -DSCH_FIXED_INTEGRATOR=" << P.integrator << " -DSCH_FIXED_LEVELS=" << (P.useLevels ? 1 : 0)
-           << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0) << " -DSCH_FIXED_RECON=" << P.recon;
+           << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0) << " -DSCH_FIXED_RECON=" << P.recon
+           << " -DSCH_FIXED_SOLID=" << (P.useSolid ? 1 : 0);
     // extra OpenCL build options, for experiments (e.g. -cl-mad-enable)
     if (const char* extra = std::getenv("SCHLIEREN_CL_OPTIONS"))
       opts << " " << extra;
@@ -1322,6 +1446,10 @@ struct KeptTracer
 {
   VolumeIdentity Identity;
   int RaysPerItem = 0;
+  // the cell bytes the device copy was made from, held so that no other allocation can take
+  // their address while the copy is kept: with a body they change with the step's reach
+  const unsigned char* Bytes = nullptr;
+  std::shared_ptr<const void> BytesOwner;
   std::shared_ptr<OpenCLTracer> Tracer;
 };
 void ReleaseKeptAtExit();
@@ -1340,14 +1468,15 @@ void ReleaseKeptAtExit()
   Kept().Identity = VolumeIdentity();
 }
 
-std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t chunk, int raysPerItem)
+std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
+  const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem)
 {
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
     KeptTracer& k = Kept();
     // in use by another call (use_count > 1): that call keeps it; this one makes its own
     if (k.Tracer && k.Identity == VolumeIdentity(volume) && k.RaysPerItem == raysPerItem &&
-      k.Tracer.use_count() == 1)
+      k.Bytes == bytes && k.Tracer.use_count() == 1)
     {
       std::shared_ptr<OpenCLTracer> t = k.Tracer;
       t->EnsureOut(chunk);
@@ -1356,13 +1485,17 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t ch
     // one volume on the device at a time: the old copy goes before the new one is made
     k.Tracer.reset();
     k.Identity = VolumeIdentity();
+    k.Bytes = nullptr;
+    k.BytesOwner.reset();
   }
-  auto t = std::make_shared<OpenCLTracer>(volume, chunk, raysPerItem);
+  auto t = std::make_shared<OpenCLTracer>(volume, bytes, chunk, raysPerItem);
   if (volume.Stamp != 0)
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
     Kept().Identity = VolumeIdentity(volume);
     Kept().RaysPerItem = raysPerItem;
+    Kept().Bytes = bytes;
+    Kept().BytesOwner = bytesOwner;
     Kept().Tracer = t;
   }
   return t;
@@ -1371,7 +1504,8 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, std::size_t ch
 // The OpenCL tracer for this trace, or null for the CPU (asked for, or OpenCL unusable under Auto,
 // with a warning). points: the caller traces explicit film points (TracePoints) rather than passes
 // (Trace); the kernel it will run is built here, so that a build failure falls back too.
-std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSettings& s,
+std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned char* bytes,
+  const std::shared_ptr<const void>& bytesOwner, const TraceSettings& s,
   const sch_params& P, std::size_t chunk, bool points, std::string& used, std::string& device,
   std::string& warnings)
 {
@@ -1383,7 +1517,7 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const TraceSetti
   }
   try
   {
-    auto t = AcquireTracer(volume, chunk, s.RaysPerWorkItem);
+    auto t = AcquireTracer(volume, bytes, bytesOwner, chunk, s.RaysPerWorkItem);
     t->KernelFor(P, points); // built here, so that a build failure falls back like a missing device
     used = "OpenCL";
     device = t->RT.DeviceName;
@@ -1493,8 +1627,15 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     chunk *= 2;
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
-  std::shared_ptr<OpenCLTracer> cl = OpenBackend(tv, s, P, chunk, false, used, device, warn);
+  // with a body the kernels read its solid and near bits in the levels byte (no Cubic then)
+  const auto solidBytes = CellBytesOf(volume, StepReach(P));
+  const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
+  std::shared_ptr<OpenCLTracer> cl =
+    OpenBackend(tv, bytes, solidBytes, s, P, chunk, false, used, device, warn);
   SetFeatureTolerance(P, tv);
+  if (volume.Solid && s.Recon == Reconstruction::Cubic && sums.Passes == 0)
+    warn += "Reconstruction Cubic is not available with a solid body (the byte per point that "
+            "carries the body holds the smoothness it needs): traced trilinear.\n";
   std::vector<float> records(chunk * SCH_RECORD);
   Splatter splat(P, s, sums);
   const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
@@ -1508,7 +1649,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
       if (cl)
         cl->Trace(P, first, count, records.data());
       else
-        TraceChunkCPU(tv.Field, tv.Levels, P, first, count, records.data());
+        TraceChunkCPU(tv.Field, bytes, P, first, count, records.data());
       splat.Add(records.data(), first, count);
       done += count;
       if (progress && !progress(done / total))
@@ -1691,6 +1832,8 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     r.Phase.assign(n, 0.f);
   if (s.Mode == Cutoff::BOS)
     r.Displacement.assign(2 * n, 0.f);
+  if (volume.Solid)
+    r.Blocked.assign(n, 0.f);
   const double passes = sums.Passes;
   const double ang = s.KnifeAngle * 3.14159265358979323846 / 180.0;
   const double ca = std::cos(ang), sa = std::sin(ang);
@@ -1754,9 +1897,12 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
         I = sums.Weight[i] / passes;
         break;
       case Cutoff::BOS:
-        I = c > 0 ? sums.Weight[i] / c : 0.0;
+        // the background as seen through the flow; a body hides it (its photons count, dark)
+        I = c + sums.Blocked[i] > 0 ? sums.Weight[i] / (c + sums.Blocked[i]) : 0.0;
         break;
     }
+    if (volume.Solid)
+      r.Blocked[i] = static_cast<float>(sums.Blocked[i] / passes);
     r.Intensity[i] = static_cast<float>(I);
   }
   r.CutoffScaleUsed = (s.Mode == Cutoff::Shadowgraph || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::BOS) ? 0.0 : k;
@@ -1769,6 +1915,7 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   r.UnderresolvedRays = sums.UnderresolvedRays;
   r.SideRays = sums.SideRays;
   r.Steps = sums.Steps;
+  r.BlockedRays = sums.BlockedRays;
   if (sums.UnderresolvedRays > 0 && s.AutoMeasuredError >= 0)
   {
     std::ostringstream msg;
@@ -1904,8 +2051,9 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   // between the two references is the second-order reconstruction's error (the fourth-order one's
   // is far smaller where the data is smooth, and both are the same trilinear code elsewhere), an
   // error that a reference on the same grid with the same reconstruction cannot see
-  bool tryTri = in.Recon == Reconstruction::Trilinear || (autoRecon);
-  bool tryCubic = in.Recon == Reconstruction::Cubic || (autoRecon && volume.Smooth);
+  // (with a body the levels byte holds its bits instead of the smoothness: trilinear only)
+  bool tryTri = in.Recon == Reconstruction::Trilinear || (autoRecon) || volume.Solid;
+  bool tryCubic = !volume.Solid && (in.Recon == Reconstruction::Cubic || (autoRecon && volume.Smooth));
   std::vector<RayRecord> refTri, refCubic;
   if (tryTri)
   {
@@ -1920,7 +2068,8 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   const std::vector<RayRecord>& R0 = tryCubic ? refCubic : refTri;
   double emax = 0;
   for (const RayRecord& r : R0)
-    emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
+    if (!(r.Flags & RayBlocked))
+      emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
   const double tol = in.Tolerance > 0 ? in.Tolerance : 0.01 * emax;
   double triError = 0;
   if (tryTri && tryCubic)
@@ -2008,6 +2157,10 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
       samples += T[k].Samples;
       if (R[k].Flags & bad)
         continue; // the reference itself cannot be trusted here: nothing to compare
+      // a body stopped it (in either trace: a grazing ray may stop at a body's corner with one
+      // step and pass it with another): dark, no deflection to compare
+      if ((R[k].Flags | T[k].Flags) & RayBlocked)
+        continue;
       if (T[k].Flags & bad)
         lost = true; // it fails (or steps over structure) where the reference does not
       err = std::max(err, double(std::hypot(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
@@ -2156,14 +2309,17 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   std::string used, device, warn;
   std::shared_ptr<std::vector<unsigned char>> levelBytes;
   const Volume tv = TraceVolume(volume, levelBytes);
-  std::shared_ptr<OpenCLTracer> cl = OpenBackend(tv, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
+  const auto solidBytes = CellBytesOf(volume, StepReach(P));
+  const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
+  std::shared_ptr<OpenCLTracer> cl = OpenBackend(
+    tv, bytes, solidBytes, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
   SetFeatureTolerance(P, tv);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)
     cl->TracePoints(P, ab.data(), count, rec);
   else
     for (std::size_t k = 0; k < count; ++k)
-      sch_trace(tv.Field, tv.Levels, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
+      sch_trace(tv.Field, bytes, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
   // the flags travel as floats in the record; turn them into integers
   for (RayRecord& r : out)
   {

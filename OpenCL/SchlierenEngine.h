@@ -45,6 +45,16 @@ struct Volume
   /** The index tolerance the levels were built for (for the step-quality checks). */
   double LevelTolerance = 0.0;
   /**
+   * Optional solid bodies: one byte per grid point, non-zero where the point lies in a body
+   * (null: no body, and no cost). A ray stops where a step ends in a body, where the trilinear
+   * interpolation of the solid points (1 solid, 0 not) is at least one half: its light
+   * never reaches the film, and it is counted (RayBlocked, TraceResult::BlockedRays). With a
+   * body no step near it is longer than a cell and no octree skip crosses one, so that no step
+   * passes over a body one point thick. Rays that leave through the box's faces are not blocked.
+   * With a body the trace is trilinear (Reconstruction Cubic needs the bits it uses).
+   */
+  const unsigned char* Solid = nullptr;
+  /**
    * Optional smoothness of the data per cell (byte per grid point, the cell whose lower corner it
    * is), written by PackFieldHighOrder together with Field: what Reconstruction Cubic needs. Bit 7:
    * the 4 x 4 x 4 points around the cell are smooth (tricubic there, trilinear elsewhere); bits
@@ -52,7 +62,7 @@ struct Volume
    */
   const unsigned char* Smooth = nullptr;
   /**
-   * The caller's version of Field and Levels. Equal non-zero stamps with the same pointers and
+   * The caller's version of Field, Levels, Smooth and Solid. Equal non-zero stamps with the same pointers and
    * dimensions promise unchanged contents: the engine then keeps what it derived from them (the
    * OpenCL device's copy, the index range) from one call to the next, so that a new camera or
    * a few more passes do not upload the volume again. 0 (the default): nothing is kept.
@@ -245,6 +255,8 @@ struct FilmSums
   double MaxError = 0.0;       ///< max over rays of the step-doubling estimate
   double Photons = 0.0, Samples = 0.0, FailedRays = 0.0, MissedRays = 0.0;
   double UnderresolvedRays = 0.0, SideRays = 0.0, Steps = 0.0;
+  double BlockedRays = 0.0;   ///< rays stopped by a solid body (Volume::Solid)
+  std::vector<double> Blocked; ///< per pixel: photons emitted there that a body stopped
   int Passes = 0;
 
   void Resize(int nx, int ny);
@@ -289,12 +301,16 @@ struct TraceResult
   std::vector<float> RGB;        ///< 3*nx*ny (ColorFilter only, else empty)
   std::vector<float> Phase;      ///< nx*ny, radians (Interferometry only, else empty)
   std::vector<float> Displacement; ///< 2*nx*ny, world units (BOS only, else empty)
+  /// nx*ny: the fraction of the photons emitted at a pixel that a solid body stopped (the
+  /// body's shadow, as the beam sees it before any deflection); only when the volume has Solid
+  std::vector<float> Blocked;
   double CutoffScaleUsed = 0.0;
   std::string BackendUsed;  ///< "OpenCL" or "CPU"
   std::string DeviceName;
   std::string Warnings;     ///< what the user should know (fallbacks, failed rays)
   double Photons = 0, Samples = 0, FailedRays = 0, MissedRays = 0, MaxDrift = 0;
   double UnderresolvedRays = 0, SideRays = 0, Steps = 0, MaxError = 0;
+  double BlockedRays = 0; ///< stopped by a solid body: dark on the film, not failed
   AutoChoice Choice; ///< what was traced with (for Auto: what it chose)
   double Seconds = 0; ///< tracing time
 };
@@ -367,7 +383,8 @@ enum RayFlags : std::uint32_t
   RayNonFinite = 8,
   RayOffFilm = 16,
   RayUnderresolved = 32,
-  RaySide = 64
+  RaySide = 64,
+  RayBlocked = 128 ///< stopped by a solid body (Volume::Solid)
 };
 
 /**

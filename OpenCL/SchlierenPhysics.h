@@ -106,6 +106,11 @@ static inline sch_f4 sch_f4_madd(sch_f4 acc, float w, sch_f4 b)
 #define SCH_INTEGRATOR(P) (SCH_FIXED_INTEGRATOR)
 #define SCH_USE_LEVELS(P) (SCH_FIXED_LEVELS)
 #define SCH_KEEP(P) (SCH_FIXED_KEEP)
+#ifdef SCH_FIXED_SOLID
+#define SCH_USE_SOLID(P) (SCH_FIXED_SOLID)
+#else
+#define SCH_USE_SOLID(P) ((P)->useSolid)
+#endif
 #ifdef SCH_FIXED_RECON
 #define SCH_RECON(P) (SCH_FIXED_RECON)
 #else
@@ -116,6 +121,7 @@ static inline sch_f4 sch_f4_madd(sch_f4 acc, float w, sch_f4 b)
 #define SCH_INTEGRATOR(P) ((P)->integrator)
 #define SCH_USE_LEVELS(P) ((P)->useLevels)
 #define SCH_KEEP(P) ((P)->keepInvariant)
+#define SCH_USE_SOLID(P) ((P)->useSolid)
 #endif
 /* Number of floats per output ray record. */
 #define SCH_RECORD 12
@@ -142,6 +148,7 @@ static inline sch_f4 sch_f4_madd(sch_f4 acc, float w, sch_f4 b)
 #define SCH_RAY_UNDERRESOLVED                                                                      \
   32u                    /* a step jumped over structure (e.g. a shock): the result is suspect */
 #define SCH_RAY_SIDE 64u /* left through a side of the box (grazing or strongly bent) */
+#define SCH_RAY_BLOCKED 128u /* stopped by a solid body: no light of it reaches the film */
 /* Rays whose photon is dropped from the image. */
 #define SCH_RAY_LOST (SCH_RAY_MAXSTEPS | SCH_RAY_TURNED | SCH_RAY_NONFINITE | SCH_RAY_OFFFILM)
 
@@ -193,6 +200,7 @@ typedef struct
   int slabCells;              /* cells along z per slab (SCH_SLABS builds only) */
   int recon;       /* reconstruction: SCH_TRILINEAR, or SCH_CUBIC where the cell is smooth */
   float roughStep; /* SCH_CUBIC: the longest step (world units) from a cell that is not smooth */
+  int useSolid;    /* 1: the cell bytes carry solid points (SCH_SOLID_BIT) that stop rays */
 } sch_params;
 
 /* Reconstructions of the packed field between grid points. */
@@ -206,6 +214,15 @@ typedef struct
 #define SCH_OCTREE_BITS 15
 #define SCH_SMOOTH_CELL 128 /* the 4 x 4 x 4 points around the cell are smooth: cubic is safe */
 #define SCH_SMOOTH_SHIFT 4  /* bits 4-6, q: every cell within 2^q cells is smooth (q = 0: none) */
+
+/* With a solid body (useSolid; the host then traces SCH_TRILINEAR, so bits 4-7 are free of the
+ * smoothness): SCH_SOLID_BIT where the point lies in a body; SCH_NEAR_BIT where a solid point lies
+ * within the reach of a step (twice the base step with the step-doubling estimate) of the cell.
+ * The host keeps a cell's octree level 0 where its block, with the block's one-point halo, holds a
+ * solid point, so that no skip crosses a body, and near a body no step is longer than a cell, so
+ * that none passes over a thin one. */
+#define SCH_NEAR_BIT 0x40
+#define SCH_SOLID_BIT 0x80
 
 SCH_FN sch_v3 sch_make(float x, float y, float z)
 {
@@ -341,6 +358,31 @@ SCH_FN sch_sample sch_sample_field(SCH_FIELD field, const sch_params* P, sch_v3 
 {
   long cell;
   return sch_sample_cell(field, P, p, &cell);
+}
+
+/* 1 if p (relative to the centre) lies in a solid body: where the trilinear interpolation of the
+ * solid points (SCH_SOLID_BIT of the cell bytes: 1 solid, 0 not) is at least
+ * one half. The body's surface is then the half-level surface of that interpolant: it passes
+ * half-way between a solid point and its fluid neighbours along the grid lines, and between
+ * them it is smooth, not a staircase of voxels. */
+SCH_FN int sch_solid_at(SCH_GLOBAL const sch_uchar* bytes, const sch_params* P, sch_v3 p)
+{
+  int i, j, k;
+  float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
+  float fy = sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
+  float fz = sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
+  float tx = fx - (float)i, ty = fy - (float)j, tz = fz - (float)k;
+  const long sy = P->nx, sz = (long)P->nx * P->ny;
+  SCH_GLOBAL const sch_uchar* c = bytes + (long)k * sz + (long)j * sy + i;
+  /* SCH_SOLID_BIT is the top bit: b >> 7 is 1 in a body, 0 elsewhere */
+  float e00 = (float)(c[0] >> 7) + tx * ((float)(c[1] >> 7) - (float)(c[0] >> 7));
+  float e10 = (float)(c[sy] >> 7) + tx * ((float)(c[sy + 1] >> 7) - (float)(c[sy] >> 7));
+  float e01 = (float)(c[sz] >> 7) + tx * ((float)(c[sz + 1] >> 7) - (float)(c[sz] >> 7));
+  float e11 =
+    (float)(c[sz + sy] >> 7) + tx * ((float)(c[sz + sy + 1] >> 7) - (float)(c[sz + sy] >> 7));
+  float f0 = e00 + ty * (e10 - e00);
+  float f1 = e01 + ty * (e11 - e01);
+  return f0 + tz * (f1 - f0) >= 0.5f;
 }
 
 /* The weights of 4-point Lagrange interpolation at t in [0, 1] between the second and third of
@@ -606,6 +648,7 @@ typedef struct
   float ne1, ne, base;
   float invn; /* 1 / n at x */
   int level;  /* octree level of x's cell (with levels) */
+  int nearSolid; /* x's cell is within a step's reach of a solid body (SCH_NEAR_BIT) */
   float samples, opl, path, mismatch;
   sch_uint flags;
   int it;
@@ -630,6 +673,10 @@ SCH_FN void sch_walk_begin(SCH_FIELD field,
   long cell;
   W->s = sch_sample_at(field, levels, P, x, &cell);
   W->level = (SCH_USE_LEVELS(P) | (SCH_RECON(P) == SCH_CUBIC)) ? (int)levels[cell] : 0;
+  W->nearSolid = SCH_USE_SOLID(P) ? (int)(levels[cell] & SCH_NEAR_BIT) : 0;
+  /* a ray that enters inside a body (one that touches the box) is stopped where it enters */
+  if (SCH_USE_SOLID(P) && sch_solid_at(levels, P, x))
+    W->flags |= SCH_RAY_BLOCKED;
   W->ne1 = W->s.n1;
   W->ne = 1.0f + W->ne1;
   W->invn = 1.0f / W->ne;
@@ -642,6 +689,8 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   SCH_WALK_AS sch_walk* W)
 {
   if (W->it >= P->maxSteps)
+    return 0;
+  if (SCH_USE_SOLID(P) && (W->flags & SCH_RAY_BLOCKED))
     return 0;
   sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
   sch_v3 v = sch_axpy(W->ne, d0, W->w);
@@ -667,6 +716,9 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   }
   if (SCH_USE_LEVELS(P))
     ds = sch_skip(P, W->x, dir, ds, W->level & SCH_OCTREE_BITS);
+  /* next to a body no step is longer than a cell: a longer one could pass over a thin body */
+  if (SCH_USE_SOLID(P) && W->nearSolid)
+    ds = ds < P->cellStep ? ds : P->cellStep;
   /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
    * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
    * end point is outside pays for the exact distance. */
@@ -755,11 +807,23 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   const int aimed = (SCH_INTEGRATOR(P) == SCH_EULER) | (SCH_INTEGRATOR(P) == SCH_STRAIGHT);
   if (aimed ? !whole : !sch_inside(P, W->x))
     return 0;
+  /* a body stops the ray where a step ends in it; only where the step began within a step's reach
+   * of a body (SCH_NEAR_BIT) can it end in one. Near a body steps are at most a cell long (and no
+   * octree skip crosses one), so a step cannot pass over a plate of solid points one point thick
+   * (its half-level surfaces lie half a spacing either side); it can clip an edge of a body */
+  if (SCH_USE_SOLID(P) && W->nearSolid && sch_solid_at(levels, P, W->x))
+  {
+    W->flags |= SCH_RAY_BLOCKED;
+    W->it++;
+    return 0;
+  }
   /* the sample at the end of a step is counted by it (sch_walk_end), W->samples counts the others */
   long cell;
   sch_sample sn = sch_sample_at(field, levels, P, W->x, &cell);
   if (SCH_USE_LEVELS(P) | (SCH_RECON(P) == SCH_CUBIC))
     W->level = (int)levels[cell];
+  if (SCH_USE_SOLID(P))
+    W->nearSolid = (int)(levels[cell] & SCH_NEAR_BIT);
   /* a step longer than a feature: over a step of more than one cell, the index changed in a way
    * that the gradients at both ends (trapezoidal rule) do not explain. Steps of a cell or less
    * cannot jump over anything: trilinear data has no structure finer than a cell. */
@@ -802,7 +866,7 @@ SCH_FN void sch_walk_end(SCH_FIELD field,
     W->flags |= SCH_RAY_NONFINITE;
   if (W->it >= P->maxSteps)
     W->flags |= SCH_RAY_MAXSTEPS;
-  else if (!(W->flags & SCH_RAY_NONFINITE))
+  else if (!(W->flags & (SCH_RAY_NONFINITE | SCH_RAY_BLOCKED)))
   {
     /* heading back against the beam where it left (a mirage): it never reaches the film */
     if (W->ne + sch_dot(sch_make(P->dx, P->dy, P->dz), W->w) <= 0.0f)
@@ -900,11 +964,11 @@ SCH_FN void sch_record(SCH_FIELD field,
   if (!(R.flags & SCH_RAY_MISSED))
   {
     /* it left through a side if the exit point is not beyond the back of the box */
-    if (!(R.flags & SCH_RAY_LOST) &&
+    if (!(R.flags & (SCH_RAY_LOST | SCH_RAY_BLOCKED)) &&
       sch_dot(sch_axpy(-s1, d0, sch_axpy(-1.0f, o, R.x)), d0) < -P->step)
       R.flags |= SCH_RAY_SIDE;
 #ifdef SCH_PRIVATE_WALKS
-    if (P->estimate)
+    if (P->estimate && !(R.flags & SCH_RAY_BLOCKED))
     {
       /* step doubling: the difference to a trace at twice the step, scaled by the scheme's order */
       sch_ray R2;
@@ -914,7 +978,9 @@ SCH_FN void sch_record(SCH_FIELD field,
       sch_deflection(P, &R2, &ex2, &ey2);
       float order =
         P->integrator == SCH_RK4 ? 15.0f : (P->integrator == SCH_MIDPOINT ? 3.0f : 1.0f);
-      err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
+      /* a ray the doubled step stops at a body has no deflection to compare */
+      if (!(R2.flags & SCH_RAY_BLOCKED))
+        err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
       R.samples += R2.samples;
     }
 #endif

@@ -3,6 +3,7 @@
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -159,6 +160,56 @@ const char* SceneName(Scene scene)
       return "HeliumPlume";
     case Scene::BlastWave:
       return "BlastWave";
+  }
+  return "?";
+}
+
+std::size_t FillBody(const BodyParameters& b, const int dims[3], const double origin[3],
+  const double spacing[3], unsigned char* solid)
+{
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::fill(solid, solid + n, static_cast<unsigned char>(0));
+  if (b.Shape == Body::None)
+    return 0;
+  if (!(b.Radius > 0) || !std::isfinite(b.Radius))
+    throw Error("The body's radius must be positive and finite.");
+  double axis[3] = { b.Axis[0], b.Axis[1], b.Axis[2] };
+  const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  if (b.Shape == Body::Cylinder && !(len > 0 && std::isfinite(len)))
+    throw Error("The cylinder's axis must be a non-zero, finite vector.");
+  for (double& a : axis)
+    a = len > 0 ? a / len : 0.0;
+  const double r2 = b.Radius * b.Radius;
+  std::size_t count = 0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        double d[3] = { origin[0] + i * spacing[0] - b.Center[0],
+          origin[1] + j * spacing[1] - b.Center[1], origin[2] + k * spacing[2] - b.Center[2] };
+        if (b.Shape == Body::Cylinder)
+        {
+          const double along = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
+          for (int a = 0; a < 3; ++a)
+            d[a] -= along * axis[a];
+        }
+        const bool in = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= r2;
+        solid[(static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i] = in ? 1 : 0;
+        count += in;
+      }
+  return count;
+}
+
+const char* BodyName(Body body)
+{
+  switch (body)
+  {
+    case Body::None:
+      return "None";
+    case Body::Sphere:
+      return "Sphere";
+    case Body::Cylinder:
+      return "Cylinder";
   }
   return "?";
 }

@@ -10,6 +10,8 @@
 #ifndef SchlierenScenes_h
 #define SchlierenScenes_h
 
+#include <cstddef>
+
 namespace schlieren
 {
 
@@ -76,6 +78,29 @@ void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const d
   const double spacing[3], float* nMinus1, float* density, float* mixtureFraction = nullptr);
 
 const char* SceneName(Scene scene);
+
+/** Opaque bodies a scene may hold (the solid mask of Volume::Solid). */
+enum class Body
+{
+  None = 0,
+  Sphere = 1,  ///< the points within Radius of Center
+  Cylinder = 2 ///< the points within Radius of the line through Center along Axis (unit)
+};
+
+struct BodyParameters
+{
+  Body Shape = Body::None;
+  double Radius = 0.25;
+  double Center[3] = { 0, 0, 0 };
+  double Axis[3] = { 1, 0, 0 };
+};
+
+/** Fills `solid` (one byte per grid point, x fastest) with 1 inside the body, 0 elsewhere;
+ * returns the number of solid points. Throws schlieren::Error on a radius <= 0 or a zero axis. */
+std::size_t FillBody(const BodyParameters& b, const int dims[3], const double origin[3],
+  const double spacing[3], unsigned char* solid);
+
+const char* BodyName(Body body);
 
 } // namespace schlieren
 

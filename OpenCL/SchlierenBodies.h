@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenBodies.h
+ * @brief Solid bodies from a CFD grid's resampling: which points outside every cell are a body.
+ *
+ * A CFD grid leaves out the solid it flows around (the blunt fin's fin, a cylinder, a wing): when
+ * it is resampled onto an image, the points inside the body find no cell, as do the points beyond
+ * the grid's outer boundary. Only the former should stop light. The rule (see docs/CFD.md):
+ * invalid points are a body when the flow encloses them, that is, when their connected region of
+ * invalid points (6 neighbours) does not reach the image's boundary; except through the faces
+ * the user marks as walls (a plate the body stands on, a symmetry plane that cuts it, a face where
+ * the sampling box cuts through it), which no outside region is meant to reach.
+ */
+#ifndef SchlierenBodies_h
+#define SchlierenBodies_h
+
+#include <cstddef>
+
+namespace schlieren
+{
+
+/**
+ * Marks in `solid` (one byte per point, x fastest: 1 body, 0 not) the points with valid[i] == 0
+ * whose region of invalid points does not reach a face of the grid except those with
+ * wallFaces[f] != 0 (f: xmin, xmax, ymin, ymax, zmin, zmax); valid points are never solid.
+ * Returns the number of solid points. `wallFaces` may be null (no walls: only enclosed holes).
+ */
+std::size_t EnclosedInvalidPoints(
+  const int dims[3], const unsigned char* valid, const int* wallFaces, unsigned char* solid);
+
+} // namespace schlieren
+
+#endif

@@ -1,0 +1,63 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Solid bodies under MPI: the same image and the same stopped rays on 2 ranks as on one process.
+
+    mpiexec -n 2 pvbatch --mpi test_solids_mpi.py --plugin <Schlieren.so> --output <dir>/solids_mpi.npz
+    pvpython test_solids_mpi.py --plugin <Schlieren.so> --compare <dir>/solids_mpi.npz
+
+Two bodies, each split over the ranks' pieces: RefractiveScene's sphere beside the Gaussian sphere
+(its `solid` array kept by RefractiveIndex and gathered by SchlierenImage like n - 1), and a
+closed sphere surface on RefractiveIndex's Body input (every rank voxelises its own piece against
+the whole surface). Knife edge, Auto: the intensity, the `blocked` fraction and `blocked_rays`
+must equal one process's exactly (the photons are put on the film in ray order on rank 0).
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import numpy as np
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager as sm
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+import schlieren_testing as st
+
+st.load_plugin(globals())
+T = st.Checker("test_solids_mpi")
+output = st.argument("--output")
+compare = st.argument("--compare")
+if not output and not compare:
+    raise RuntimeError("pass --output FILE.npz (under MPI) or --compare FILE.npz (one process)")
+if output and os.path.exists(output):
+    os.remove(output)  # a failed run must not leave an older result for the comparison
+
+scene = RefractiveScene(Scene="GaussianSphere", Dimensions=[49, 49, 49], Body="Sphere", BodyRadius=0.25,
+                        BodyCenter=[0.45, 0.1, 0.0])
+index = RefractiveIndex(Input=scene, Model="Passthrough",
+                        Body=Sphere(Radius=0.2, Center=[-0.5, -0.3, 0.1], ThetaResolution=32, PhiResolution=32))
+index.InputArray = ["POINTS", "n_minus_1"]
+image = SchlierenImage(Input=index, Resolution=[48, 48], Passes=2, Integrator="Auto", Cutoff="KnifeEdge",
+                       CutoffScale=1000.0, Backend="CPU")
+ranks = sm.ActiveConnection.GetNumberOfDataPartitions()
+with st.CapturedOutput() as out:
+    image.UpdatePipeline()
+    film = sm.Fetch(image, 0)
+T.check("ERROR" not in out.text, "no error%s" % ("" if "ERROR" not in out.text else ": " + out.text.strip()[:500]))
+fd = film.GetFieldData()
+record = {"intensity": vtk_to_numpy(film.GetPointData().GetArray("intensity")).copy(),
+          "blocked": vtk_to_numpy(film.GetPointData().GetArray("blocked")).copy(),
+          "blocked_rays": np.array(fd.GetArray("blocked_rays").GetValue(0))}
+print("%d rank(s): %.0f rays stopped, blocked pixels %d" % (ranks, record["blocked_rays"], (record["blocked"] > 0.5).sum()))
+T.check(record["blocked_rays"] > 100 and (record["blocked"] == 1).sum() > 20,
+        "both bodies stop rays (%.0f)" % record["blocked_rays"])
+if output:
+    T.check(ranks == 2, "pvbatch runs on 2 ranks (got %d)" % ranks)
+    np.savez(output, **record)
+    print("wrote %s" % output)
+else:
+    mpi = np.load(compare)
+    T.check(float(mpi["blocked_rays"]) == float(record["blocked_rays"]),
+            "the same rays stopped on 2 ranks as on one process (%.0f)" % record["blocked_rays"])
+    T.check(np.array_equal(mpi["blocked"], record["blocked"]), "the same blocked fraction in every pixel")
+    T.close(mpi["intensity"], record["intensity"], 1e-6, "the image on 2 ranks = on one process")
+T.finish()
