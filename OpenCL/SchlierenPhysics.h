@@ -278,6 +278,19 @@ typedef struct
   SCH_GLOBAL const float* slab[SCH_SLABS];
 } sch_field;
 #define SCH_FIELD sch_field
+
+/* The buffer of slab q, by comparisons (an indexed array of pointers would sit in memory). */
+SCH_FN SCH_GLOBAL const float* sch_slab_base(sch_field field, int q)
+{
+  SCH_GLOBAL const float* base = q == 1 ? field.slab[1] : field.slab[0];
+#if SCH_SLABS > 2
+  base = q == 2 ? field.slab[2] : base;
+#endif
+#if SCH_SLABS > 3
+  base = q == 3 ? field.slab[3] : base;
+#endif
+  return base;
+}
 #else
 #define SCH_FIELD SCH_GLOBAL const float*
 #endif
@@ -325,13 +338,7 @@ SCH_FN sch_sample sch_sample_cell(
 #ifdef SCH_SLABS
   /* the slab of cell k, by comparisons (no indexed array), and k within it */
   const int q = k / P->slabCells;
-  SCH_GLOBAL const float* base = q == 1 ? field.slab[1] : field.slab[0];
-#if SCH_SLABS > 2
-  base = q == 2 ? field.slab[2] : base;
-#endif
-#if SCH_SLABS > 3
-  base = q == 3 ? field.slab[3] : base;
-#endif
+  SCH_GLOBAL const float* base = sch_slab_base(field, q);
   k -= q * P->slabCells;
 #else
   SCH_GLOBAL const float* base = field;
@@ -465,14 +472,8 @@ SCH_FN sch_sample sch_sample_at(SCH_FIELD field, SCH_GLOBAL const sch_uchar* lev
       const int kk = k - q * P->slabCells;
       if (kk >= 1 && kk + 2 <= P->slabCells)
       {
-        SCH_GLOBAL const float* base = q == 1 ? field.slab[1] : field.slab[0];
-#if SCH_SLABS > 2
-        base = q == 2 ? field.slab[2] : base;
-#endif
-#if SCH_SLABS > 3
-        base = q == 3 ? field.slab[3] : base;
-#endif
-        return sch_sample_cubic_at(base, P, i, j, kk, fx, fy, fz - (float)(q * P->slabCells));
+        return sch_sample_cubic_at(
+          sch_slab_base(field, q), P, i, j, kk, fx, fy, fz - (float)(q * P->slabCells));
       }
 #else
       return sch_sample_cubic_at(field, P, i, j, k, fx, fy, fz);
