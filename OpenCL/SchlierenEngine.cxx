@@ -1440,7 +1440,7 @@ public:
 
 // Chooses the backend; returns the OpenCL tracer or null for the CPU.
 // The device copy of the last stamped volume, kept for the next call (an interactive view traces
-// the same volume again and again: at 256^3 the upload is ~0.2 s on PoCL). Allocated once; its
+// the same volume again and again, so the upload is paid once). Allocated once; its
 // device objects are released by the runtime's exit hook (ocl::AtRelease), before the context.
 struct KeptTracer
 {
