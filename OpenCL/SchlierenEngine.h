@@ -204,6 +204,11 @@ struct TraceSettings
   std::uint32_t Seed = 1;
   int MaxSteps = 0;          ///< per ray; 0: 8 times the box diagonal over the step
   Backend Device = Backend::Auto;
+  /// OpenCL device: a substring of the device name; empty: the runtime options' choice
+  /// (SCHLIEREN_OPENCL_DEVICE, else the first GPU, else the first device)
+  std::string DeviceName;
+  /// CPU backend threads; 0: the runtime options' choice (SCHLIEREN_CPU_THREADS, else all cores)
+  int Threads = 0;
   /// OpenCL per-item kernel: rays each work-item advances in turn; 0: 4 on CPU devices, 1 on
   /// others (GPUs: a ray per work-item). CPU devices trace passes in lock step, which ignores it.
   int RaysPerWorkItem = 0;
