@@ -113,6 +113,8 @@ extern std::mutex KeptMutex;
  * call it once the backend has accepted the volume.
  */
 void SetFeatureTolerance(sch_params& P, const Volume& volume);
+/** The feature tolerance for a field whose n - 1 spans [lo, hi] (SetFeatureTolerance's rule). */
+float FeatureTolerance(float lo, float hi, double levelTolerance);
 
 /** The longest step a trace with parameters P takes (the step-doubling estimate doubles it). */
 inline double StepReach(const sch_params& P)

@@ -126,9 +126,13 @@ void SetFeatureTolerance(sch_params& P, const Volume& volume)
     rangeLo = lo;
     rangeHi = hi;
   }
-  P.featureTol = static_cast<float>(std::max(volume.LevelTolerance, 0.01 * (double(hi) - lo)));
-  if (!(P.featureTol > 0))
-    P.featureTol = 1e-30f;
+  P.featureTol = FeatureTolerance(lo, hi, volume.LevelTolerance);
+}
+
+float FeatureTolerance(float lo, float hi, double levelTolerance)
+{
+  const float tol = static_cast<float>(std::max(levelTolerance, 0.01 * (double(hi) - lo)));
+  return tol > 0 ? tol : 1e-30f;
 }
 
 std::size_t RaysForRank(const sch_params& P)

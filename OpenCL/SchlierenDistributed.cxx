@@ -1,0 +1,601 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Distributed tracing: pieces with ghost points, rays handed from rank to rank (see the header).
+#include "SchlierenDistributed.h"
+
+#include "SchlierenEngineInternal.h"
+#include "SchlierenLimits.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <thread>
+
+namespace schlieren
+{
+
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/** Everything a ray carries from rank to rank: which ray, where it started, its march. */
+struct RayState
+{
+  std::uint32_t Index; // into the caller's film points (or the pixel of a pass)
+  float A, B, S1;
+  sch_v3 O, Entry;
+  sch_walk W;
+};
+
+/** A finished ray's record and which ray it is. */
+struct Finished
+{
+  std::uint32_t Index;
+  float Rec[SCH_RECORD];
+};
+
+template <typename T>
+void Append(std::vector<char>& bytes, const T& value)
+{
+  const std::size_t at = bytes.size();
+  bytes.resize(at + sizeof(T));
+  std::memcpy(bytes.data() + at, &value, sizeof(T));
+}
+
+template <typename T>
+std::vector<T> Unpack(const std::vector<char>& bytes)
+{
+  std::vector<T> out(bytes.size() / sizeof(T));
+  if (!out.empty())
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
+  return out;
+}
+
+bool Empty(const int box[6])
+{
+  return box[1] < box[0] || box[3] < box[2] || box[5] < box[4];
+}
+
+/** The intersection of two inclusive point boxes. */
+void Intersect(const int a[6], const int b[6], int out[6])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    out[2 * d] = std::max(a[2 * d], b[2 * d]);
+    out[2 * d + 1] = std::min(a[2 * d + 1], b[2 * d + 1]);
+  }
+}
+
+std::size_t BoxPoints(const int box[6])
+{
+  if (Empty(box))
+    return 0;
+  return static_cast<std::size_t>(box[1] - box[0] + 1) * (box[3] - box[2] + 1) *
+    (box[5] - box[4] + 1);
+}
+
+std::string BoxText(const int b[6])
+{
+  std::ostringstream s;
+  s << "[" << b[0] << ", " << b[1] << "] x [" << b[2] << ", " << b[3] << "] x [" << b[4] << ", "
+    << b[5] << "]";
+  return s.str();
+}
+
+} // namespace
+
+int GhostPointsFor(const double spacing[3], const TraceSettings& s)
+{
+  // a step of StepSize voxels of the smallest spacing moves at most that many cells along any
+  // axis; the midpoint and Runge-Kutta stages stay within a step of its start. Then the cell of a
+  // trilinear sample (1), the gradient's central difference (1) and one to spare.
+  (void)spacing;
+  const double reach = s.StepSize * (s.EstimateError ? 2.0 : 1.0);
+  return static_cast<int>(std::ceil(reach)) + 3;
+}
+
+// ------------------------------------------------------------------ the distributed volume
+
+DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel)
+{
+  std::copy(piece.WholeDimensions, piece.WholeDimensions + 3, this->WholeDimensions);
+  std::copy(piece.Origin, piece.Origin + 3, this->Origin);
+  std::copy(piece.Spacing, piece.Spacing + 3, this->Spacing);
+  this->Ghost = std::max(ghostPoints, 2);
+  const int ranks = parallel.Size(), me = parallel.Rank();
+
+  // 1. Every rank's extent, and the cells it owns.
+  std::string failure;
+  const int* e = piece.Extent;
+  if (!Empty(e))
+  {
+    for (int d = 0; d < 3 && failure.empty(); ++d)
+      if (e[2 * d] < 0 || e[2 * d + 1] >= this->WholeDimensions[d])
+        failure = "this rank's piece " + BoxText(e) + " lies outside the whole grid";
+    if (failure.empty() && !piece.NMinus1)
+      failure = "this rank's piece has no n - 1 values";
+  }
+  failure = parallel.Failure(failure);
+  if (!failure.empty())
+    throw Error("Distributed volume: " + failure + ".");
+  std::vector<char> mine;
+  for (int k = 0; k < 6; ++k)
+    Append(mine, e[k]);
+  std::vector<std::vector<char>> all = parallel.AllGather(mine);
+  std::vector<std::array<int, 6>> extents(ranks);
+  for (int r = 0; r < ranks; ++r)
+    std::memcpy(extents[r].data(), all[r].data(), 6 * sizeof(int));
+  this->AllOwned.assign(ranks, { 0, 0, 0, 0, 0, 0 });
+  double ownedCells = 0;
+  for (int r = 0; r < ranks; ++r)
+  {
+    if (Empty(extents[r].data()))
+      continue;
+    for (int d = 0; d < 3; ++d)
+    {
+      this->AllOwned[r][2 * d] = extents[r][2 * d];
+      this->AllOwned[r][2 * d + 1] = extents[r][2 * d + 1]; // cells lo .. hi-1: [lo, hi)
+    }
+    double c = 1;
+    for (int d = 0; d < 3; ++d)
+      c *= std::max(0, this->AllOwned[r][2 * d + 1] - this->AllOwned[r][2 * d]);
+    ownedCells += c;
+  }
+  std::copy(this->AllOwned[me].begin(), this->AllOwned[me].end(), this->Owned);
+  // the pieces must share out the cells: no two own one, none is left over
+  double wholeCells = 1;
+  for (int d = 0; d < 3; ++d)
+    wholeCells *= std::max(0, this->WholeDimensions[d] - 1);
+  for (int r = 0; r < ranks && failure.empty(); ++r)
+    for (int q = r + 1; q < ranks && failure.empty(); ++q)
+    {
+      bool overlap = true;
+      for (int d = 0; d < 3; ++d)
+        overlap = overlap &&
+          std::max(this->AllOwned[r][2 * d], this->AllOwned[q][2 * d]) <
+            std::min(this->AllOwned[r][2 * d + 1], this->AllOwned[q][2 * d + 1]);
+      if (overlap)
+        failure = "the pieces of ranks " + std::to_string(r) + " and " + std::to_string(q) +
+          " overlap in cells (" + BoxText(extents[r].data()) + ", " + BoxText(extents[q].data()) +
+          "): pieces must share only their face points";
+    }
+  if (failure.empty() && ownedCells != wholeCells)
+    failure = "the pieces leave cells of the whole grid uncovered: pieces must tile it";
+  // every rank found the same from the same extents
+  if (!failure.empty())
+    throw Error("Distributed volume: " + failure + ".");
+
+  // 2. The points held: the owned cells' points and the ghosts around them, within the grid.
+  int held[6] = { 0, -1, 0, -1, 0, -1 };
+  if (!Empty(e))
+    for (int d = 0; d < 3; ++d)
+    {
+      held[2 * d] = std::max(0, this->Owned[2 * d] - this->Ghost);
+      held[2 * d + 1] = std::min(this->WholeDimensions[d] - 1, this->Owned[2 * d + 1] + this->Ghost);
+    }
+  for (int d = 0; d < 3; ++d)
+  {
+    this->HeldLo[d] = held[2 * d];
+    this->HeldDims[d] = std::max(0, held[2 * d + 1] - held[2 * d] + 1);
+  }
+
+  // 3. The held points from whichever ranks have them (its own piece included).
+  std::vector<char> heldBox;
+  for (int k = 0; k < 6; ++k)
+    Append(heldBox, held[k]);
+  all = parallel.AllGather(heldBox);
+  std::vector<std::vector<char>> out(ranks);
+  const int ex = e[1] - e[0] + 1, ey = e[3] - e[2] + 1;
+  for (int r = 0; r < ranks; ++r)
+  {
+    int theirs[6], part[6];
+    std::memcpy(theirs, all[r].data(), 6 * sizeof(int));
+    if (Empty(e) || Empty(theirs))
+      continue;
+    Intersect(e, theirs, part);
+    if (Empty(part))
+      continue;
+    // the box, then its values in x-fastest order
+    for (int k = 0; k < 6; ++k)
+      Append(out[r], part[k]);
+    for (int z = part[4]; z <= part[5]; ++z)
+      for (int y = part[2]; y <= part[3]; ++y)
+      {
+        const float* row = piece.NMinus1 +
+          (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex + (part[0] - e[0]);
+        const std::size_t at = out[r].size();
+        out[r].resize(at + sizeof(float) * (part[1] - part[0] + 1));
+        std::memcpy(out[r].data() + at, row, sizeof(float) * (part[1] - part[0] + 1));
+      }
+  }
+  std::vector<std::vector<char>> in = parallel.Exchange(out);
+  out.clear();
+  const std::size_t heldPoints = BoxPoints(held);
+  std::vector<float> n1(heldPoints, 0.0f);
+  std::vector<unsigned char> have(heldPoints, 0);
+  const int hx = this->HeldDims[0], hy = this->HeldDims[1];
+  for (int r = 0; r < ranks; ++r)
+  {
+    if (in[r].empty())
+      continue;
+    int part[6];
+    std::memcpy(part, in[r].data(), 6 * sizeof(int));
+    const char* values = in[r].data() + 6 * sizeof(int);
+    const int len = part[1] - part[0] + 1;
+    for (int z = part[4]; z <= part[5]; ++z)
+      for (int y = part[2]; y <= part[3]; ++y, values += sizeof(float) * len)
+      {
+        const std::size_t at =
+          (static_cast<std::size_t>(z - held[4]) * hy + (y - held[2])) * hx + (part[0] - held[0]);
+        std::memcpy(n1.data() + at, values, sizeof(float) * len);
+        std::memset(have.data() + at, 1, len);
+      }
+  }
+  if (std::find(have.begin(), have.end(), 0) != have.end())
+    failure = "no rank holds some of the points this rank needs: pieces must tile the grid";
+
+  // 4. Validated and packed as one process packs the whole: the gradient is wrong only on the
+  // outermost ghost layer (one-sided there), which no sample of an owned cell's step reads.
+  if (failure.empty() && heldPoints)
+    failure = ValidateIndex(n1.data(), heldPoints);
+  if (failure.empty() && heldPoints)
+  {
+    try
+    {
+      this->Packed.resize(4 * heldPoints);
+      PackField(this->HeldDims, this->Spacing, n1.data(), this->Packed.data());
+    }
+    catch (const Error& err)
+    {
+      failure = err.what();
+    }
+  }
+  failure = parallel.Failure(failure);
+  if (!failure.empty())
+    throw Error("Distributed volume: " + failure);
+
+  // 5. The index range of the whole grid (for the step-quality checks), from the owned points.
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t i = 0; i < heldPoints; ++i)
+  {
+    lo = std::min(lo, double(n1[i]));
+    hi = std::max(hi, double(n1[i]));
+  }
+  lo = parallel.Min(lo);
+  hi = parallel.Max(hi);
+  this->RangeLo = static_cast<float>(lo);
+  this->RangeHi = static_cast<float>(hi);
+}
+
+Volume DistributedVolume::Whole() const
+{
+  Volume v;
+  std::copy(this->WholeDimensions, this->WholeDimensions + 3, v.Dimensions);
+  std::copy(this->Origin, this->Origin + 3, v.Origin);
+  std::copy(this->Spacing, this->Spacing + 3, v.Spacing);
+  return v;
+}
+
+Volume DistributedVolume::Held() const
+{
+  Volume v;
+  std::copy(this->HeldDims, this->HeldDims + 3, v.Dimensions);
+  for (int d = 0; d < 3; ++d)
+    v.Origin[d] = this->Origin[d] + this->HeldLo[d] * this->Spacing[d];
+  std::copy(this->Spacing, this->Spacing + 3, v.Spacing);
+  v.Field = this->Packed.empty() ? nullptr : this->Packed.data();
+  return v;
+}
+
+bool DistributedVolume::OwnsCell(int i, int j, int k) const
+{
+  return i >= this->Owned[0] && i < this->Owned[1] && j >= this->Owned[2] && j < this->Owned[3] &&
+    k >= this->Owned[4] && k < this->Owned[5];
+}
+
+int DistributedVolume::OwnerOfCell(int i, int j, int k) const
+{
+  for (std::size_t r = 0; r < this->AllOwned.size(); ++r)
+  {
+    const std::array<int, 6>& o = this->AllOwned[r];
+    if (i >= o[0] && i < o[1] && j >= o[2] && j < o[3] && k >= o[4] && k < o[5])
+      return static_cast<int>(r);
+  }
+  return 0; // unreachable: the pieces tile the cells (checked on construction)
+}
+
+// ------------------------------------------------------------------ tracing
+
+namespace
+{
+
+/** The parameters of a trace on this rank's held points: the whole grid's, addressing the held. */
+sch_params PieceParams(const DistributedVolume& dv, const TraceSettings& s, const FilmGeometry& film)
+{
+  if (s.Method == Integrator::Auto || s.Recon == Reconstruction::Auto)
+    throw Error("Distributed tracing: resolve Auto first (ResolveAuto).");
+  if (s.Recon == Reconstruction::Cubic)
+    throw Error("Distributed tracing does not take Reconstruction Cubic yet: use Trilinear.");
+  if (s.EstimateError)
+    throw Error("Distributed tracing does not take the step-doubling error estimate yet.");
+  if (s.RankCount != 1 || s.RankIndex != 0)
+    throw Error("Distributed tracing: RankIndex/RankCount must be 0/1 (every rank traces its piece).");
+  const int need = GhostPointsFor(dv.Spacing, s);
+  if (dv.Ghost < need)
+    throw Error("Distributed tracing: StepSize " + std::to_string(s.StepSize) + " needs " +
+      std::to_string(need) + " ghost points; the volume holds " + std::to_string(dv.Ghost) + ".");
+  const Volume whole = dv.Whole();
+  sch_params P = MakeParams(whole, s, film);
+  P.useLevels = 0;
+  P.nx = dv.HeldDims[0];
+  P.ny = dv.HeldDims[1];
+  P.nz = dv.HeldDims[2];
+  P.ox = dv.HeldLo[0];
+  P.oy = dv.HeldLo[1];
+  P.oz = dv.HeldLo[2];
+  P.rowFloats = 4 * P.nx;
+  P.sliceFloats = 4 * P.nx * P.ny;
+  P.featureTol = FeatureTolerance(dv.RangeLo, dv.RangeHi, whole.LevelTolerance);
+  return P;
+}
+
+/** The cell of x (relative to the centre) in the whole grid, as the sampler finds it. */
+void CellOf(const sch_params& P, sch_v3 x, int c[3])
+{
+  sch_grid_coord(x.x, P.isx, P.gx0, P.gxMax, &c[0]);
+  sch_grid_coord(x.y, P.isy, P.gy0, P.gyMax, &c[1]);
+  sch_grid_coord(x.z, P.isz, P.gz0, P.gzMax, &c[2]);
+}
+
+/** Advances the rays in `live` until each has left the volume (finished) or this rank's cells
+ * (handed on, by owner). Rays are split over threads; each ray's steps are its own. */
+void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RayState>& live,
+  std::vector<Finished>& finished, std::vector<std::vector<RayState>>& handOn)
+{
+  const float* field = dv.Packed.data();
+  const unsigned nt = std::max(1u, std::min<unsigned>(CpuThreads(),
+                                     static_cast<unsigned>((live.size() + 63) / 64)));
+  std::vector<std::vector<Finished>> fin(nt);
+  std::vector<std::vector<std::vector<RayState>>> out(nt, std::vector<std::vector<RayState>>(handOn.size()));
+  auto work = [&](unsigned t) {
+    const sch_params Pw = P;
+    for (std::size_t r = t; r < live.size(); r += nt)
+    {
+      RayState st = live[r];
+      bool left = false;
+      while (sch_walk_step(field, nullptr, &Pw, &st.W))
+      {
+        int c[3];
+        CellOf(Pw, st.W.x, c);
+        if (!dv.OwnsCell(c[0], c[1], c[2]))
+        {
+          out[t][dv.OwnerOfCell(c[0], c[1], c[2])].push_back(st);
+          left = true;
+          break;
+        }
+      }
+      if (left)
+        continue;
+      sch_ray R;
+      sch_walk_end(field, &Pw, &st.W, &R);
+      Finished f;
+      f.Index = st.Index;
+      sch_record(field, nullptr, &Pw, st.A, st.B, st.O, st.Entry, st.S1, &R, f.Rec);
+      fin[t].push_back(f);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (unsigned t = 1; t < nt; ++t)
+    threads.emplace_back(work, t);
+  work(0);
+  for (std::thread& th : threads)
+    th.join();
+  for (unsigned t = 0; t < nt; ++t)
+  {
+    finished.insert(finished.end(), fin[t].begin(), fin[t].end());
+    for (std::size_t q = 0; q < handOn.size(); ++q)
+      handOn[q].insert(handOn[q].end(), out[t][q].begin(), out[t][q].end());
+  }
+  live.clear();
+}
+
+/**
+ * The records of rays 0 .. count-1 whose film points `pointOf(k, &a, &b)` gives, traced on the
+ * pieces; in ray order on rank 0 (and every rank with `everywhere`).
+ */
+template <typename PointOf>
+std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, std::size_t count,
+  PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats)
+{
+  const int ranks = parallel.Size(), me = parallel.Rank();
+  if (count > 0xffffffffu)
+    throw Error("Distributed tracing: too many rays in one pass.");
+  Clock::time_point t0 = Clock::now();
+  // every rank finds where each ray enters; the owner of that cell starts it, rank 0 keeps misses
+  std::vector<RayState> live;
+  std::vector<Finished> finished;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    RayState st;
+    st.Index = static_cast<std::uint32_t>(k);
+    pointOf(k, &st.A, &st.B);
+    st.S1 = 0.0f;
+    const int hit = sch_entry(&P, st.A, st.B, &st.O, &st.Entry, &st.S1);
+    if (!hit)
+    {
+      if (me == 0)
+      {
+        sch_ray R;
+        sch_missed(st.O, &R);
+        Finished f;
+        f.Index = st.Index;
+        sch_record(dv.Packed.data(), nullptr, &P, st.A, st.B, st.O, st.Entry, st.S1, &R, f.Rec);
+        finished.push_back(f);
+      }
+      continue;
+    }
+    int c[3];
+    CellOf(P, st.Entry, c);
+    if (!dv.OwnsCell(c[0], c[1], c[2]))
+      continue;
+    sch_walk_begin(dv.Packed.data(), nullptr, &P, st.Entry, P.step, &st.W);
+    live.push_back(st);
+  }
+  double tracing = 0, exchanging = 0, rounds = 0, handed = 0, bytes = 0;
+  for (;;)
+  {
+    Clock::time_point ta = Clock::now();
+    std::vector<std::vector<RayState>> handOn(ranks);
+    Advance(dv, P, live, finished, handOn);
+    tracing += SecondsSince(ta);
+    Clock::time_point tb = Clock::now();
+    std::vector<std::vector<char>> out(ranks);
+    double sent = 0;
+    for (int q = 0; q < ranks; ++q)
+    {
+      out[q].resize(handOn[q].size() * sizeof(RayState));
+      if (!handOn[q].empty())
+        std::memcpy(out[q].data(), handOn[q].data(), out[q].size());
+      sent += handOn[q].size();
+      if (q != me)
+        bytes += out[q].size();
+    }
+    handed += sent;
+    rounds += 1;
+    // every rank learns whether any ray is still in flight (the same answer everywhere)
+    const double inFlight = parallel.Sum(sent);
+    if (inFlight == 0)
+    {
+      exchanging += SecondsSince(tb);
+      break;
+    }
+    std::vector<std::vector<char>> in = parallel.Exchange(out);
+    for (const std::vector<char>& m : in)
+    {
+      std::vector<RayState> got = Unpack<RayState>(m);
+      live.insert(live.end(), got.begin(), got.end());
+    }
+    exchanging += SecondsSince(tb);
+  }
+  // the records to rank 0 (or everyone), put in ray order
+  Clock::time_point tc = Clock::now();
+  std::vector<char> mine(finished.size() * sizeof(Finished));
+  if (!finished.empty())
+    std::memcpy(mine.data(), finished.data(), mine.size());
+  std::vector<std::vector<char>> got;
+  if (everywhere)
+  {
+    got = parallel.AllGather(mine);
+    bytes += mine.size() * (ranks - 1);
+  }
+  else
+  {
+    std::vector<std::vector<char>> out(ranks);
+    out[0] = std::move(mine);
+    if (me != 0)
+      bytes += out[0].size();
+    got = parallel.Exchange(out);
+  }
+  std::vector<float> records;
+  if (everywhere || me == 0)
+  {
+    records.assign(count * SCH_RECORD, 0.0f);
+    std::size_t n = 0;
+    for (const std::vector<char>& m : got)
+      for (const Finished& f : Unpack<Finished>(m))
+      {
+        std::memcpy(records.data() + static_cast<std::size_t>(f.Index) * SCH_RECORD, f.Rec,
+          sizeof(f.Rec));
+        ++n;
+      }
+    if (n != count)
+      throw Error("Distributed tracing lost rays (" + std::to_string(count - n) + " of " +
+        std::to_string(count) + "): a bug; please report it.");
+  }
+  exchanging += SecondsSince(tc);
+  (void)t0;
+  if (stats)
+  {
+    stats->Rounds += rounds;
+    stats->RaysHandedOn += handed;
+    stats->BytesExchanged += bytes;
+    stats->SecondsTracing += tracing;
+    stats->SecondsExchanging += exchanging;
+  }
+  return records;
+}
+
+} // namespace
+
+std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const TraceSettings& s,
+  const std::vector<float>& ab, Parallel& parallel, bool everywhere, DistributedStats* stats)
+{
+  const FilmGeometry film = MakeFilm(dv.Whole(), s);
+  const sch_params P = PieceParams(dv, s, film);
+  const std::size_t count = ab.size() / 2;
+  std::vector<float> rec = TraceAll(
+    dv, P, count,
+    [&](std::size_t k, float* a, float* b) {
+      *a = ab[2 * k];
+      *b = ab[2 * k + 1];
+    },
+    parallel, everywhere, stats);
+  std::vector<RayRecord> out;
+  if (rec.empty())
+    return out;
+  out.resize(count);
+  std::memcpy(out.data(), rec.data(), rec.size() * sizeof(float));
+  // the flags travel as floats in the record; turn them into integers
+  for (RayRecord& r : out)
+  {
+    float f;
+    std::memcpy(&f, &r.Flags, sizeof(f));
+    r.Flags = static_cast<std::uint32_t>(f);
+  }
+  return out;
+}
+
+void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, FilmSums& sums,
+  Parallel& parallel, DistributedStats* stats, const ProgressFunction& progress)
+{
+  CheckSettings(s);
+  if (s.RussianRoulette && !(s.CutoffScale > 0) &&
+    (s.Mode == Cutoff::KnifeEdge || s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular))
+    throw Error("Photon killing (RussianRoulette) needs a fixed CutoffScale: the automatic scale is "
+                "known only after the trace.");
+  const FilmGeometry film = MakeFilm(dv.Whole(), s);
+  sch_params P = PieceParams(dv, s, film);
+  if (sums.Size[0] != film.Size[0] || sums.Size[1] != film.Size[1] || sums.Count.empty())
+  {
+    CheckFilmMemory(film.Size);
+    sums.Resize(film.Size[0], film.Size[1]);
+  }
+  const std::size_t pixels = static_cast<std::size_t>(film.Size[0]) * film.Size[1];
+  Splatter splat(P, s, sums);
+  for (int pass = 0; pass < s.Passes; ++pass)
+  {
+    P.pass = sums.Passes + pass;
+    std::vector<float> rec = TraceAll(
+      dv, P, pixels,
+      [&](std::size_t k, float* a, float* b) { sch_emit(&P, static_cast<int>(k), a, b); },
+      parallel, false, stats);
+    // in pixel order on rank 0, as one process splats them: the same sums, bit for bit
+    if (parallel.Rank() == 0)
+      splat.Add(rec.data(), 0, pixels);
+    // every rank stops together: rank 0's answer
+    bool go = true;
+    if (progress)
+      go = progress(double(pass + 1) / s.Passes);
+    if (!parallel.AllOk(go))
+      throw Error("aborted");
+  }
+  sums.Passes += s.Passes;
+}
+
+} // namespace schlieren

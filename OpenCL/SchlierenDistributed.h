@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenDistributed.h
+ * @brief Tracing a volume spread over ranks: each rank holds its piece (with ghost points), traces
+ * the rays that are in it and hands a ray that leaves it to the rank that owns where it went.
+ *
+ * The cells of the whole grid are shared out by the pieces' point extents (a piece with points
+ * x0..x1 owns cells x0..x1-1 along x, as VTK's structured pieces share their face points). A ray
+ * belongs to the rank that owns the cell it is in; after every step that ends in a cell another
+ * rank owns, its whole state (the march, where it started, its pixel) goes to that rank; rounds of
+ * tracing and exchange continue until no ray is in flight. Samples are taken with the whole grid's
+ * coordinates on ghost points that are copies of the neighbours' (sch_params ox, oy, oz), so a ray
+ * takes the same steps with the same arithmetic whichever ranks it crosses: records are bit for bit
+ * those of one process with the whole volume, and the films too (they are splatted on rank 0 in
+ * pixel order, as one process does).
+ *
+ * For now: the CPU backend, trilinear reconstruction, fixed steps (no octree skips), no solid bodies
+ * and no step-doubling estimate; other settings are refused with an Error that says so.
+ */
+#ifndef SchlierenDistributed_h
+#define SchlierenDistributed_h
+
+#include "SchlierenEngine.h"
+#include "SchlierenParallel.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace schlieren
+{
+
+/** A rank's piece of the whole volume, as a reader or ParaView's redistribution gives it. */
+struct Piece
+{
+  int WholeDimensions[3] = { 0, 0, 0 };
+  double Origin[3] = { 0, 0, 0 }; ///< of the whole grid's first point
+  double Spacing[3] = { 1, 1, 1 };
+  /** Points held, inclusive whole-grid indices: x0, x1, y0, y1, z0, z1 (empty: x1 < x0). */
+  int Extent[6] = { 0, -1, 0, -1, 0, -1 };
+  const float* NMinus1 = nullptr; ///< n - 1 at the Extent's points, x fastest
+};
+
+/** What ray passing cost in a trace (this rank's share, then summed over ranks by the caller). */
+struct DistributedStats
+{
+  double Rounds = 0;          ///< trace-and-exchange rounds (the same on every rank)
+  double RaysHandedOn = 0;    ///< rays this rank sent to another
+  double BytesExchanged = 0;  ///< bytes this rank sent (ray states and the records to rank 0)
+  double SecondsTracing = 0;  ///< this rank's time stepping rays
+  double SecondsExchanging = 0; ///< this rank's time in the exchanges (waiting for others included)
+};
+
+/**
+ * The ghost points a trace with settings `s` needs around the owned cells: the longest step's reach
+ * in cells, the trilinear cell and the gradient's central differences, and one to spare.
+ */
+int GhostPointsFor(const double spacing[3], const TraceSettings& s);
+
+/** This rank's share of a distributed volume. Construction is collective. */
+class DistributedVolume
+{
+public:
+  /**
+   * Gathers every rank's extent, checks that the pieces share out the whole grid's cells (no gap,
+   * no overlap), copies the ghost points from the ranks that hold them, validates and packs n - 1
+   * and its gradient. Throws the same Error on every rank where any rank's piece is bad.
+   */
+  DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel);
+
+  /** The whole grid (no field): for the film and the parameters. */
+  Volume Whole() const;
+  /** The points this rank holds (owned cells' points and ghosts), packed. */
+  Volume Held() const;
+  /** The rank that owns cell (i, j, k) of the whole grid. */
+  int OwnerOfCell(int i, int j, int k) const;
+  bool OwnsCell(int i, int j, int k) const;
+
+  int WholeDimensions[3];
+  double Origin[3], Spacing[3];
+  int Ghost;
+  int HeldLo[3], HeldDims[3]; ///< first held point (whole-grid index) and held dimensions
+  int Owned[6];               ///< owned cells: [lo, hi) per axis (x, y, z)
+  std::vector<std::array<int, 6>> AllOwned; ///< every rank's owned cells
+  std::vector<float> Packed;  ///< 4 floats per held point (Volume::Field layout)
+  float RangeLo = 0, RangeHi = 0; ///< n - 1 over the whole grid
+  double HeldBytes() const { return double(sizeof(float)) * Packed.size(); }
+};
+
+/**
+ * Traces rays that start at the film points ab (pairs; the same on every rank) through the
+ * distributed volume; returns every record, in the order of ab, on every rank (`everywhere`) or
+ * on rank 0 only (the others get an empty vector).
+ */
+std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& volume,
+  const TraceSettings& settings, const std::vector<float>& ab, Parallel& parallel,
+  bool everywhere = true, DistributedStats* stats = nullptr);
+
+/**
+ * Accumulate on a distributed volume: settings.Passes passes of the whole film; the sums are
+ * complete on rank 0 (the other ranks' `sums` are left with their size and no photons).
+ * RankIndex/RankCount must be 0/1 (every rank traces the rays in its piece, not a pixel share).
+ */
+void AccumulateDistributed(const DistributedVolume& volume, const TraceSettings& settings,
+  FilmSums& sums, Parallel& parallel, DistributedStats* stats = nullptr,
+  const ProgressFunction& progress = nullptr);
+
+} // namespace schlieren
+
+#endif

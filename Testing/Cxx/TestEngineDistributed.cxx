@@ -1,0 +1,321 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Distributed tracing on in-process ranks: a volume split into pieces (slabs, blocks, uneven), each
+// rank holding only its piece and ghosts, rays handed from rank to rank. The known answer is one
+// process tracing the whole volume on the CPU backend: every ray record and every film sum must be
+// equal bit for bit (the same steps with the same arithmetic, splatted in the same order), for the
+// Gaussian sphere seen obliquely, the Luneburg lens (rays that curve across pieces and back) and a
+// shadowgraph with caustics. Bad decompositions and bad pieces give one error on every rank.
+#include "SchlierenDistributed.h"
+#include "SchlierenTesting.h"
+
+#include <cstring>
+#include <mutex>
+
+using namespace schlieren;
+
+namespace
+{
+
+/** A decomposition: per rank, its point extent (inclusive) of a grid of n points per side. */
+using Decomposition = std::vector<std::array<int, 6>>;
+
+/** Splits points 0..n-1 into `parts` ranges sharing their end points, at the given fractions. */
+std::vector<std::array<int, 2>> Split(int n, const std::vector<double>& cuts)
+{
+  std::vector<std::array<int, 2>> out;
+  int lo = 0;
+  for (double c : cuts)
+  {
+    const int hi = static_cast<int>(c * (n - 1));
+    out.push_back({ lo, hi });
+    lo = hi;
+  }
+  out.push_back({ lo, n - 1 });
+  return out;
+}
+
+Decomposition Blocks(int n, const std::vector<double>& cx, const std::vector<double>& cy,
+  const std::vector<double>& cz)
+{
+  Decomposition d;
+  for (auto z : Split(n, cz))
+    for (auto y : Split(n, cy))
+      for (auto x : Split(n, cx))
+        d.push_back({ x[0], x[1], y[0], y[1], z[0], z[1] });
+  return d;
+}
+
+/** The piece of `extent` cut from the whole grid's n - 1. */
+std::vector<float> Cut(const schtest::SceneVolume& sv, const std::array<int, 6>& e)
+{
+  const int* d = sv.V.Dimensions;
+  std::vector<float> out;
+  for (int z = e[4]; z <= e[5]; ++z)
+    for (int y = e[2]; y <= e[3]; ++y)
+      for (int x = e[0]; x <= e[1]; ++x)
+        out.push_back(sv.N1[(static_cast<std::size_t>(z) * d[1] + y) * d[0] + x]);
+  return out;
+}
+
+Piece PieceOf(const schtest::SceneVolume& sv, const std::array<int, 6>& e, const std::vector<float>& values)
+{
+  Piece p;
+  std::copy(sv.V.Dimensions, sv.V.Dimensions + 3, p.WholeDimensions);
+  std::copy(sv.V.Origin, sv.V.Origin + 3, p.Origin);
+  std::copy(sv.V.Spacing, sv.V.Spacing + 3, p.Spacing);
+  std::copy(e.begin(), e.end(), p.Extent);
+  p.NMinus1 = values.data();
+  return p;
+}
+
+bool SameRecords(const std::vector<RayRecord>& a, const std::vector<RayRecord>& b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(RayRecord)) == 0;
+}
+
+bool SameSums(FilmSums& a, FilmSums& b)
+{
+  std::vector<double> aa, am, ba, bm;
+  a.ToArrays(aa, am);
+  b.ToArrays(ba, bm);
+  return aa.size() == ba.size() && am.size() == bm.size() &&
+    std::memcmp(aa.data(), ba.data(), aa.size() * sizeof(double)) == 0 &&
+    std::memcmp(am.data(), bm.data(), am.size() * sizeof(double)) == 0;
+}
+
+struct Case
+{
+  const char* Name;
+  schtest::SceneVolume* Volume;
+  TraceSettings Settings;
+};
+
+/** Traces `c` on the decomposition and compares with one process; returns the rays handed on. */
+double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
+{
+  const schtest::SceneVolume& sv = *c.Volume;
+  TraceSettings s = c.Settings;
+  s.Device = Backend::CPU;
+  // the known answer: one process, the whole volume, the CPU backend
+  std::vector<float> ab;
+  const FilmGeometry film = MakeFilm(sv.V, s);
+  for (int j = 0; j < s.Resolution[1]; ++j)
+    for (int i = 0; i < s.Resolution[0]; ++i)
+    {
+      ab.push_back(static_cast<float>(film.Corner[0] + (i + 0.5) * film.PixelSize));
+      ab.push_back(static_cast<float>(film.Corner[1] + (j + 0.5) * film.PixelSize));
+    }
+  const std::vector<RayRecord> expected = TraceRays(sv.V, s, ab);
+  FilmSums expectedSums;
+  Accumulate(sv.V, s, expectedSums);
+
+  const int ranks = static_cast<int>(deco.size());
+  std::vector<std::vector<float>> values(ranks);
+  for (int r = 0; r < ranks; ++r)
+    values[r] = Cut(sv, deco[r]);
+  std::mutex m;
+  bool recordsEqual = true, sumsEqual = true, smaller = true;
+  double handed = 0, rounds = 0;
+  RunInProcessRanks(ranks, [&](Parallel& p) {
+    const int r = p.Rank();
+    DistributedVolume dv(PieceOf(sv, deco[r], values[r]), GhostPointsFor(sv.V.Spacing, s), p);
+    DistributedStats st;
+    const std::vector<RayRecord> got = TraceRaysDistributed(dv, s, ab, p, true, &st);
+    FilmSums sums;
+    AccumulateDistributed(dv, s, sums, p, &st);
+    std::lock_guard<std::mutex> lock(m);
+    recordsEqual = recordsEqual && SameRecords(got, expected);
+    if (r == 0)
+      sumsEqual = SameSums(sums, expectedSums);
+    // a rank holds its piece and ghosts, not the whole volume
+    if (ranks > 1)
+      smaller = smaller && dv.Packed.size() < sv.Field.size();
+    handed += st.RaysHandedOn;
+    rounds = std::max(rounds, st.Rounds);
+  });
+  const std::string what = std::string(c.Name) + ", " + decoName + " (" + std::to_string(ranks) +
+    " ranks)";
+  CHECK(recordsEqual, what + ": every ray record equals one process's, bit for bit");
+  CHECK(sumsEqual, what + ": the film sums equal one process's, bit for bit");
+  CHECK(smaller, what + ": no rank holds the whole volume");
+  std::printf("%-34s %-22s ranks %d: %8.0f rays handed on, %3.0f rounds (both traces)\n", c.Name,
+    decoName, ranks, handed, rounds);
+  return handed;
+}
+
+} // namespace
+
+int main()
+{
+  const int n = 40;
+  SceneParameters gp;
+  gp.Amplitude = 2e-3;
+  gp.Width = 0.3;
+  gp.Center[0] = 0.1;
+  schtest::SceneVolume gauss(Scene::GaussianSphere, gp, n, 1.0);
+  SceneParameters lp;
+  lp.Radius = 0.8;
+  schtest::SceneVolume luneburg(Scene::LuneburgLens, lp, n, 1.0);
+
+  std::vector<Case> cases;
+  {
+    Case c{ "Gaussian sphere, oblique, RK4", &gauss, TraceSettings() };
+    c.Settings.ViewDirection[0] = 0.6;
+    c.Settings.ViewDirection[1] = -0.5;
+    c.Settings.ViewDirection[2] = -0.62;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Method = Integrator::RK4;
+    c.Settings.StepSize = 1.0;
+    cases.push_back(c);
+  }
+  {
+    Case c{ "Luneburg lens, midpoint", &luneburg, TraceSettings() };
+    c.Settings.ViewDirection[0] = 0.3;
+    c.Settings.ViewDirection[2] = -1;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Method = Integrator::Midpoint;
+    c.Settings.StepSize = 0.5;
+    c.Settings.Mode = Cutoff::Shadowgraph;
+    cases.push_back(c);
+  }
+  {
+    Case c{ "Gaussian shadowgraph, caustics", &gauss, TraceSettings() };
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Mode = Cutoff::Shadowgraph;
+    c.Settings.FilmDistance = 40.0; // far behind: the focused rays cross (caustics)
+    c.Settings.Passes = 2;
+    cases.push_back(c);
+  }
+
+  const std::vector<std::pair<const char*, Decomposition>> decos = {
+    { "whole", Blocks(n, {}, {}, {}) },
+    { "2 slabs along z", Blocks(n, {}, {}, { 0.5 }) },
+    { "3 uneven slabs along x", Blocks(n, { 0.2, 0.7 }, {}, {}) },
+    { "2 x 2 blocks", Blocks(n, { 0.5 }, { 0.5 }, {}) },
+    { "2 x 2 uneven blocks", Blocks(n, { 0.3 }, {}, { 0.6 }) },
+  };
+  for (Case& c : cases)
+  {
+    double handedLens = 0;
+    for (const auto& d : decos)
+      handedLens += CheckCase(c, d.first, d.second);
+    CHECK(handedLens > 0, std::string(c.Name) + ": rays were handed from rank to rank");
+  }
+
+  // the shadowgraph has caustics: photons pile up (a pixel with several times the mean count)
+  {
+    TraceSettings s = cases[2].Settings;
+    s.Device = Backend::CPU;
+    FilmSums f;
+    Accumulate(gauss.V, s, f);
+    double peak = 0, mean = 0;
+    for (double c : f.Count)
+    {
+      peak = std::max(peak, c);
+      mean += c / f.Count.size();
+    }
+    CHECK(peak > 4 * mean, "the shadowgraph case has caustics (peak count over 4 x the mean)");
+  }
+
+  // a ray that crosses a piece several times: the Luneburg lens in 4 blocks across the beam
+  {
+    Case& c = cases[1];
+    const Decomposition d = Blocks(n, { 0.5 }, { 0.5 }, {});
+    std::vector<std::vector<float>> values(4);
+    for (int r = 0; r < 4; ++r)
+      values[r] = Cut(luneburg, d[r]);
+    std::vector<float> ab;
+    TraceSettings s = c.Settings;
+    s.Device = Backend::CPU;
+    // rays that pass close to the lens axis: they bend through the centre, across block faces
+    for (int k = 0; k < 64; ++k)
+    {
+      ab.push_back(static_cast<float>(-0.05 + 0.1 * (k % 8) / 7.0));
+      ab.push_back(static_cast<float>(-0.05 + 0.1 * (k / 8) / 7.0));
+    }
+    double handed = 0;
+    std::mutex m;
+    RunInProcessRanks(4, [&](Parallel& p) {
+      DistributedVolume dv(PieceOf(luneburg, d[p.Rank()], values[p.Rank()]),
+        GhostPointsFor(luneburg.V.Spacing, s), p);
+      DistributedStats st;
+      TraceRaysDistributed(dv, s, ab, p, true, &st);
+      std::lock_guard<std::mutex> lock(m);
+      handed += st.RaysHandedOn;
+    });
+    std::printf("Luneburg near-axis rays: %.0f hand-offs for 64 rays\n", handed);
+    CHECK(handed > 64, "near-axis rays through the lens cross block faces more than once each on average");
+  }
+
+  // bad pieces: the same error on every rank, no hang
+  {
+    const Decomposition d = Blocks(n, {}, {}, { 0.5 });
+    std::vector<std::vector<float>> values = { Cut(gauss, d[0]), Cut(gauss, d[1]) };
+    values[1].back() = std::nanf(""); // far from rank 0's ghosts
+    std::vector<std::string> messages(2);
+    RunInProcessRanks(2, [&](Parallel& p) {
+      try
+      {
+        DistributedVolume dv(PieceOf(gauss, d[p.Rank()], values[p.Rank()]), 4, p);
+      }
+      catch (const Error& e)
+      {
+        messages[p.Rank()] = e.what();
+      }
+    });
+    CHECK(messages[1].find("NaN") != std::string::npos || messages[1].find("not finite") != std::string::npos ||
+        messages[1].find("nan") != std::string::npos,
+      "a NaN in rank 1's piece is named: " + messages[1]);
+    CHECK(messages[0].find("another rank (1) failed") != std::string::npos,
+      "rank 0 reports rank 1's failure: " + messages[0]);
+  }
+  {
+    // overlapping pieces, and a gap
+    const Decomposition overlap = { { 0, n - 1, 0, n - 1, 0, 25 }, { 0, n - 1, 0, n - 1, 20, n - 1 } };
+    const Decomposition gap = { { 0, n - 1, 0, n - 1, 0, 15 }, { 0, n - 1, 0, n - 1, 20, n - 1 } };
+    for (int which = 0; which < 2; ++which)
+    {
+      const Decomposition& d = which ? gap : overlap;
+      std::vector<std::vector<float>> values = { Cut(gauss, d[0]), Cut(gauss, d[1]) };
+      std::vector<std::string> messages(2);
+      RunInProcessRanks(2, [&](Parallel& p) {
+        try
+        {
+          DistributedVolume dv(PieceOf(gauss, d[p.Rank()], values[p.Rank()]), 4, p);
+        }
+        catch (const Error& e)
+        {
+          messages[p.Rank()] = e.what();
+        }
+      });
+      const char* word = which ? "uncovered" : "overlap";
+      CHECK(messages[0] == messages[1] && messages[0].find(word) != std::string::npos,
+        std::string("pieces that ") + (which ? "leave a gap" : "overlap") + " are refused on both ranks: " +
+          messages[0]);
+    }
+  }
+  // a step longer than the ghosts allow is refused, not traced wrong
+  {
+    const Decomposition d = Blocks(n, {}, {}, { 0.5 });
+    std::vector<std::vector<float>> values = { Cut(gauss, d[0]), Cut(gauss, d[1]) };
+    std::vector<std::string> messages(2);
+    RunInProcessRanks(2, [&](Parallel& p) {
+      DistributedVolume dv(PieceOf(gauss, d[p.Rank()], values[p.Rank()]), 3, p);
+      TraceSettings s;
+      s.Resolution[0] = s.Resolution[1] = 8;
+      s.StepSize = 4.0;
+      try
+      {
+        FilmSums f;
+        AccumulateDistributed(dv, s, f, p);
+      }
+      catch (const Error& e)
+      {
+        messages[p.Rank()] = e.what();
+      }
+    });
+    CHECK(messages[0].find("ghost points") != std::string::npos && messages[0] == messages[1],
+      "a step longer than the ghosts is refused: " + messages[0]);
+  }
+  return schtest::Finish();
+}
