@@ -90,19 +90,28 @@ std::string BoxText(const int b[6])
 
 } // namespace
 
-int GhostPointsFor(const double spacing[3], const TraceSettings& s)
+int GhostPointsFor(const TraceSettings& s, int octreeLevel)
 {
   // a step of StepSize voxels of the smallest spacing moves at most that many cells along any
-  // axis; the midpoint and Runge-Kutta stages stay within a step of its start. Then the cell of a
-  // trilinear sample (1), the gradient's central difference (1) and one to spare.
-  (void)spacing;
-  const double reach = s.StepSize * (s.EstimateError ? 2.0 : 1.0);
-  return static_cast<int>(std::ceil(reach)) + 3;
+  // axis; the midpoint and Runge-Kutta stages stay within a step of its start. An octree skip
+  // ends a hair past the face of its block: at most a block and a cell along any axis. Then the
+  // cell of a trilinear sample (1), the gradient's central difference (1) and one to spare.
+  const int block = (s.UseOctree && octreeLevel > 0) ? (1 << octreeLevel) : 0;
+  const int reach = std::max(
+    static_cast<int>(std::ceil(s.StepSize * (s.EstimateError ? 2.0 : 1.0))), block ? block + 1 : 0);
+  // an owned cell's level: its block and the block's one-point halo
+  return std::max(reach + 3, block ? block + 2 : 0);
 }
 
 // ------------------------------------------------------------------ the distributed volume
 
 DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel)
+  : DistributedVolume(piece, ghostPoints, parallel, -1.0, 0)
+{
+}
+
+DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel,
+  double octreeTolerance, int octreeMaxLevel)
 {
   std::copy(piece.WholeDimensions, piece.WholeDimensions + 3, this->WholeDimensions);
   std::copy(piece.Origin, piece.Origin + 3, this->Origin);
@@ -256,11 +265,34 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
       failure = err.what();
     }
   }
+  // 5. The octree levels of the held cells, on the whole grid's blocks.
+  if (failure.empty() && heldPoints && octreeTolerance >= 0 && octreeMaxLevel > 0)
+  {
+    this->LevelMax = std::min(octreeMaxLevel, DistributedOctreeMaxLevel);
+    this->LevelTolerance = octreeTolerance;
+    if ((1 << this->LevelMax) + 2 > this->Ghost)
+      failure = "octree levels up to " + std::to_string(this->LevelMax) + " need " +
+        std::to_string((1 << this->LevelMax) + 2) + " ghost points, not " +
+        std::to_string(this->Ghost);
+    else
+    {
+      try
+      {
+        this->Levels.resize(heldPoints);
+        ComputeOctreeLevelsOfPiece(this->HeldDims, this->HeldLo, this->WholeDimensions, n1.data(),
+          octreeTolerance, this->Levels.data(), this->LevelMax);
+      }
+      catch (const Error& err)
+      {
+        failure = err.what();
+      }
+    }
+  }
   failure = parallel.Failure(failure);
   if (!failure.empty())
     throw Error("Distributed volume: " + failure);
 
-  // 5. The index range of the whole grid (for the step-quality checks), from the owned points.
+  // 6. The index range of the whole grid (for the step-quality checks), from the owned points.
   double lo = 1e300, hi = -1e300;
   for (std::size_t i = 0; i < heldPoints; ++i)
   {
@@ -326,13 +358,14 @@ sch_params PieceParams(const DistributedVolume& dv, const TraceSettings& s, cons
     throw Error("Distributed tracing does not take the step-doubling error estimate yet.");
   if (s.RankCount != 1 || s.RankIndex != 0)
     throw Error("Distributed tracing: RankIndex/RankCount must be 0/1 (every rank traces its piece).");
-  const int need = GhostPointsFor(dv.Spacing, s);
+  const int need = GhostPointsFor(s, dv.Levels.empty() ? 0 : dv.LevelMax);
   if (dv.Ghost < need)
     throw Error("Distributed tracing: StepSize " + std::to_string(s.StepSize) + " needs " +
       std::to_string(need) + " ghost points; the volume holds " + std::to_string(dv.Ghost) + ".");
-  const Volume whole = dv.Whole();
+  Volume whole = dv.Whole();
+  whole.LevelTolerance = dv.LevelTolerance;
   sch_params P = MakeParams(whole, s, film);
-  P.useLevels = 0;
+  P.useLevels = (s.UseOctree && !dv.Levels.empty()) ? 1 : 0;
   P.nx = dv.HeldDims[0];
   P.ny = dv.HeldDims[1];
   P.nz = dv.HeldDims[2];
@@ -359,6 +392,7 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
   std::vector<Finished>& finished, std::vector<std::vector<RayState>>& handOn)
 {
   const float* field = dv.Packed.data();
+  const unsigned char* levels = dv.Levels.empty() ? nullptr : dv.Levels.data();
   const unsigned nt = std::max(1u, std::min<unsigned>(CpuThreads(),
                                      static_cast<unsigned>((live.size() + 63) / 64)));
   std::vector<std::vector<Finished>> fin(nt);
@@ -369,7 +403,15 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
     {
       RayState st = live[r];
       bool left = false;
-      while (sch_walk_step(field, nullptr, &Pw, &st.W))
+      if (Pw.useLevels)
+      {
+        // the level of the cell it is in, as its owner knows it (a sender's ghost cell may be
+        // lower: its block reaches past the sender's ghosts)
+        long cell;
+        sch_sample_cell(field, &Pw, st.W.x, &cell);
+        st.W.level = levels[cell];
+      }
+      while (sch_walk_step(field, levels, &Pw, &st.W))
       {
         int c[3];
         CellOf(Pw, st.W.x, c);
@@ -386,7 +428,7 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
       sch_walk_end(field, &Pw, &st.W, &R);
       Finished f;
       f.Index = st.Index;
-      sch_record(field, nullptr, &Pw, st.A, st.B, st.O, st.Entry, st.S1, &R, f.Rec);
+      sch_record(field, levels, &Pw, st.A, st.B, st.O, st.Entry, st.S1, &R, f.Rec);
       fin[t].push_back(f);
     }
   };
@@ -444,7 +486,8 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
     CellOf(P, st.Entry, c);
     if (!dv.OwnsCell(c[0], c[1], c[2]))
       continue;
-    sch_walk_begin(dv.Packed.data(), nullptr, &P, st.Entry, P.step, &st.W);
+    sch_walk_begin(dv.Packed.data(), dv.Levels.empty() ? nullptr : dv.Levels.data(), &P, st.Entry,
+      P.step, &st.W);
     live.push_back(st);
   }
   double tracing = 0, exchanging = 0, rounds = 0, handed = 0, bytes = 0;

@@ -51,11 +51,17 @@ struct DistributedStats
   double SecondsExchanging = 0; ///< this rank's time in the exchanges (waiting for others included)
 };
 
+/** The largest octree level distributed tracing builds (blocks of 2^3 cells): every level a rank
+ * holds must be the one the whole grid gives, which takes ghosts as deep as a block. */
+constexpr int DistributedOctreeMaxLevel = 3;
+
 /**
  * The ghost points a trace with settings `s` needs around the owned cells: the longest step's reach
- * in cells, the trilinear cell and the gradient's central differences, and one to spare.
+ * in cells (an octree skip crosses at most a block of 2^octreeLevel cells), the trilinear cell and
+ * the gradient's central differences, and one to spare; with the octree, also the block and halo
+ * that an owned cell's level is computed from.
  */
-int GhostPointsFor(const double spacing[3], const TraceSettings& s);
+int GhostPointsFor(const TraceSettings& s, int octreeLevel = 0);
 
 /** This rank's share of a distributed volume. Construction is collective. */
 class DistributedVolume
@@ -67,6 +73,13 @@ public:
    * and its gradient. Throws the same Error on every rank where any rank's piece is bad.
    */
   DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel);
+  /**
+   * The same, with the min-max octree of the whole grid (levels up to `octreeMaxLevel`, at most
+   * DistributedOctreeMaxLevel) for `octreeTolerance` (>= 0): each rank computes the levels of the
+   * cells it holds on the whole grid's blocks, which for its owned cells are the whole grid's.
+   */
+  DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel, double octreeTolerance,
+    int octreeMaxLevel = DistributedOctreeMaxLevel);
 
   /** The whole grid (no field): for the film and the parameters. */
   Volume Whole() const;
@@ -83,8 +96,11 @@ public:
   int Owned[6];               ///< owned cells: [lo, hi) per axis (x, y, z)
   std::vector<std::array<int, 6>> AllOwned; ///< every rank's owned cells
   std::vector<float> Packed;  ///< 4 floats per held point (Volume::Field layout)
+  std::vector<unsigned char> Levels; ///< octree level per held cell (empty: no octree)
+  double LevelTolerance = 0;         ///< the tolerance the levels were built for
+  int LevelMax = 0;                  ///< the largest level they may hold
   float RangeLo = 0, RangeHi = 0; ///< n - 1 over the whole grid
-  double HeldBytes() const { return double(sizeof(float)) * Packed.size(); }
+  double HeldBytes() const { return double(sizeof(float)) * Packed.size() + Levels.size(); }
 };
 
 /**

@@ -48,6 +48,18 @@ inline double MinSpacing(const Volume& v)
   return std::min(v.Spacing[0], std::min(v.Spacing[1], v.Spacing[2]));
 }
 
+// ------------------------------------------------------------------ octree (SchlierenOctree.cxx)
+
+/**
+ * ComputeOctreeLevels on a piece of a larger grid: `dims` points held, the first at grid index
+ * `offset` of a grid of `whole` points. The blocks are the whole grid's (aligned on its index 0,
+ * windows clamped to its borders), so a held cell gets the level the whole grid would give it
+ * wherever its block's points are all held, and a lower one where they are not. With offset 0 and
+ * whole == dims it is ComputeOctreeLevels. Returns the fraction of held cells at level >= 1.
+ */
+double ComputeOctreeLevelsOfPiece(const int dims[3], const int offset[3], const int whole[3],
+  const float* n1, double tol, unsigned char* levels, int maxLevel);
+
 // ------------------------------------------------------------------ film (SchlierenFilm.cxx)
 
 /** Half the extent of the box of grid points along each axis, from the grid itself. */

@@ -13,6 +13,13 @@ namespace schlieren
 double ComputeOctreeLevels(const int dims[3], const float* n1, double tol, unsigned char* levels,
   int maxLevel)
 {
+  const int offset[3] = { 0, 0, 0 };
+  return ComputeOctreeLevelsOfPiece(dims, offset, dims, n1, tol, levels, maxLevel);
+}
+
+double ComputeOctreeLevelsOfPiece(const int dims[3], const int offset[3], const int whole[3],
+  const float* n1, double tol, unsigned char* levels, int maxLevel)
+{
   for (int a = 0; a < 3; ++a)
     if (dims[a] < 2)
       throw Error("ComputeOctreeLevels: every dimension needs at least 2 points.");
@@ -26,14 +33,22 @@ double ComputeOctreeLevels(const int dims[3], const float* n1, double tol, unsig
   for (int L = 1; L <= maxLevel; ++L)
   {
     const int B = 1 << L;
-    int nb[3];
+    // the blocks are aligned on the whole grid: blocks b0[a] .. b0[a] + nb[a] - 1 meet the cells
+    // held (offset .. offset + cells - 1)
+    int nb[3], b0[3];
     for (int a = 0; a < 3; ++a)
-      nb[a] = (cells[a] + B - 1) / B;
+    {
+      b0[a] = offset[a] / B;
+      nb[a] = (offset[a] + cells[a] - 1) / B - b0[a] + 1;
+    }
     // separable min/max of the points that the block's cells touch, grown by one: block b along an
-    // axis covers points [b B - 1, b B + B + 1], clamped to the grid
+    // axis covers points [b B - 1, b B + B + 1], clamped to the whole grid, here in the held
+    // points' indices. A block whose points are not all held gets no level (an empty range).
     auto window = [&](int a, int b, int& p0, int& p1) {
-      p0 = std::max(0, b * B - 1);
-      p1 = std::min(dims[a] - 1, b * B + B + 1);
+      const int g = (b0[a] + b) * B;
+      p0 = std::max(0, g - 1) - offset[a];
+      p1 = std::min(whole[a] - 1, g + B + 1) - offset[a];
+      return p0 >= 0 && p1 <= dims[a] - 1;
     };
     // x
     lo.assign(static_cast<std::size_t>(nb[0]) * dims[1] * dims[2], 0.f);
@@ -43,7 +58,13 @@ double ComputeOctreeLevels(const int dims[3], const float* n1, double tol, unsig
         for (int b = 0; b < nb[0]; ++b)
         {
           int p0, p1;
-          window(0, b, p0, p1);
+          const std::size_t o = (static_cast<std::size_t>(k) * dims[1] + j) * nb[0] + b;
+          if (!window(0, b, p0, p1))
+          {
+            lo[o] = -1e30f;
+            hi[o] = 1e30f;
+            continue;
+          }
           const float* row = n1 + (static_cast<std::size_t>(k) * dims[1] + j) * dims[0];
           float mn = row[p0], mx = row[p0];
           for (int i = p0 + 1; i <= p1; ++i)
@@ -51,7 +72,6 @@ double ComputeOctreeLevels(const int dims[3], const float* n1, double tol, unsig
             mn = std::min(mn, row[i]);
             mx = std::max(mx, row[i]);
           }
-          const std::size_t o = (static_cast<std::size_t>(k) * dims[1] + j) * nb[0] + b;
           lo[o] = mn;
           hi[o] = mx;
         }
@@ -62,27 +82,28 @@ double ComputeOctreeLevels(const int dims[3], const float* n1, double tol, unsig
       for (int b = 0; b < nb[1]; ++b)
       {
         int p0, p1;
-        window(1, b, p0, p1);
+        const bool held = window(1, b, p0, p1);
         for (int bx = 0; bx < nb[0]; ++bx)
         {
           float mn = 1e30f, mx = -1e30f;
-          for (int j = p0; j <= p1; ++j)
+          for (int j = std::max(p0, 0); held && j <= p1; ++j)
           {
             const std::size_t o = (static_cast<std::size_t>(k) * dims[1] + j) * nb[0] + bx;
             mn = std::min(mn, lo[o]);
             mx = std::max(mx, hi[o]);
           }
           const std::size_t o2 = (static_cast<std::size_t>(k) * nb[1] + b) * nb[0] + bx;
-          lo2[o2] = mn;
-          hi2[o2] = mx;
+          lo2[o2] = held ? mn : -1e30f;
+          hi2[o2] = held ? mx : 1e30f;
         }
       }
-    // z, and the level of every cell of blocks that pass
+    // z, and the level of every held cell of blocks that pass
     bool any = false;
     for (int bz = 0; bz < nb[2]; ++bz)
     {
       int p0, p1;
-      window(2, bz, p0, p1);
+      if (!window(2, bz, p0, p1))
+        continue;
       for (int by = 0; by < nb[1]; ++by)
         for (int bx = 0; bx < nb[0]; ++bx)
         {
@@ -96,11 +117,16 @@ double ComputeOctreeLevels(const int dims[3], const float* n1, double tol, unsig
           if (double(mx) - double(mn) > tol)
             continue;
           any = true;
-          for (int k = bz * B; k < std::min(cells[2], bz * B + B); ++k)
-            for (int j = by * B; j < std::min(cells[1], by * B + B); ++j)
+          const int c0[3] = { std::max(0, (b0[0] + bx) * B - offset[0]),
+            std::max(0, (b0[1] + by) * B - offset[1]), std::max(0, (b0[2] + bz) * B - offset[2]) };
+          const int c1[3] = { std::min(cells[0], (b0[0] + bx) * B + B - offset[0]),
+            std::min(cells[1], (b0[1] + by) * B + B - offset[1]),
+            std::min(cells[2], (b0[2] + bz) * B + B - offset[2]) };
+          for (int k = c0[2]; k < c1[2]; ++k)
+            for (int j = c0[1]; j < c1[1]; ++j)
             {
               unsigned char* row = levels + (static_cast<std::size_t>(k) * dims[1] + j) * dims[0];
-              for (int i = bx * B; i < std::min(cells[0], bx * B + B); ++i)
+              for (int i = c0[0]; i < c1[0]; ++i)
                 row[i] = static_cast<unsigned char>(L);
             }
         }

@@ -88,6 +88,7 @@ struct Case
   const char* Name;
   schtest::SceneVolume* Volume;
   TraceSettings Settings;
+  double OctreeTolerance = -1; ///< >= 0: with the min-max octree (levels up to 3)
 };
 
 /** Traces `c` on the decomposition and compares with one process; returns the rays handed on. */
@@ -96,18 +97,31 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   const schtest::SceneVolume& sv = *c.Volume;
   TraceSettings s = c.Settings;
   s.Device = Backend::CPU;
+  // one process's volume, with the whole grid's octree where the case has one
+  Volume whole = sv.V;
+  std::vector<unsigned char> levels;
+  if (c.OctreeTolerance >= 0)
+  {
+    levels.resize(whole.NumberOfPoints());
+    ComputeOctreeLevels(whole.Dimensions, sv.N1.data(), c.OctreeTolerance, levels.data(),
+      DistributedOctreeMaxLevel);
+    whole.Levels = levels.data();
+    whole.LevelTolerance = c.OctreeTolerance;
+    s.UseOctree = true;
+  }
+  const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
   // the known answer: one process, the whole volume, the CPU backend
   std::vector<float> ab;
-  const FilmGeometry film = MakeFilm(sv.V, s);
+  const FilmGeometry film = MakeFilm(whole, s);
   for (int j = 0; j < s.Resolution[1]; ++j)
     for (int i = 0; i < s.Resolution[0]; ++i)
     {
       ab.push_back(static_cast<float>(film.Corner[0] + (i + 0.5) * film.PixelSize));
       ab.push_back(static_cast<float>(film.Corner[1] + (j + 0.5) * film.PixelSize));
     }
-  const std::vector<RayRecord> expected = TraceRays(sv.V, s, ab);
+  const std::vector<RayRecord> expected = TraceRays(whole, s, ab);
   FilmSums expectedSums;
-  Accumulate(sv.V, s, expectedSums);
+  Accumulate(whole, s, expectedSums);
 
   const int ranks = static_cast<int>(deco.size());
   std::vector<std::vector<float>> values(ranks);
@@ -118,7 +132,9 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   double handed = 0, rounds = 0;
   RunInProcessRanks(ranks, [&](Parallel& p) {
     const int r = p.Rank();
-    DistributedVolume dv(PieceOf(sv, deco[r], values[r]), GhostPointsFor(sv.V.Spacing, s), p);
+    DistributedVolume dv = c.OctreeTolerance >= 0
+      ? DistributedVolume(PieceOf(sv, deco[r], values[r]), ghost, p, c.OctreeTolerance)
+      : DistributedVolume(PieceOf(sv, deco[r], values[r]), ghost, p);
     DistributedStats st;
     const std::vector<RayRecord> got = TraceRaysDistributed(dv, s, ab, p, true, &st);
     FilmSums sums;
@@ -127,9 +143,12 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
     recordsEqual = recordsEqual && SameRecords(got, expected);
     if (r == 0)
       sumsEqual = SameSums(sums, expectedSums);
-    // a rank holds its piece and ghosts, not the whole volume
-    if (ranks > 1)
-      smaller = smaller && dv.Packed.size() < sv.Field.size();
+    // a rank holds its owned cells' points and the ghosts around them, within the grid: no more
+    std::size_t held = 4;
+    for (int d = 0; d < 3; ++d)
+      held *= std::min(sv.V.Dimensions[d] - 1, deco[r][2 * d + 1] + ghost) -
+        std::max(0, deco[r][2 * d] - ghost) + 1;
+    smaller = smaller && dv.Packed.size() == held;
     handed += st.RaysHandedOn;
     rounds = std::max(rounds, st.Rounds);
   });
@@ -137,7 +156,21 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
     " ranks)";
   CHECK(recordsEqual, what + ": every ray record equals one process's, bit for bit");
   CHECK(sumsEqual, what + ": the film sums equal one process's, bit for bit");
-  CHECK(smaller, what + ": no rank holds the whole volume");
+  CHECK(smaller, what + ": each rank holds its piece and " + std::to_string(ghost) +
+      " ghost points, no more");
+  if (c.OctreeTolerance >= 0)
+  {
+    // the octree skips: fewer steps than fixed steps through the same volume
+    TraceSettings fixed = s;
+    fixed.UseOctree = false;
+    double skipping = 0, plain = 0;
+    for (const RayRecord& r : expected)
+      skipping += r.Steps;
+    for (const RayRecord& r : TraceRays(whole, fixed, ab))
+      plain += r.Steps;
+    CHECK(skipping < 0.7 * plain, what + ": the octree skips (steps " + std::to_string(skipping) +
+        " against " + std::to_string(plain) + " fixed)");
+  }
   std::printf("%-34s %-22s ranks %d: %8.0f rays handed on, %3.0f rounds (both traces)\n", c.Name,
     decoName, ranks, handed, rounds);
   return handed;
@@ -179,6 +212,16 @@ int main()
     cases.push_back(c);
   }
   {
+    // the octree skips the uniform air around the sphere (tolerance: 1e-3 of the peak)
+    Case c{ "Gaussian sphere, octree, Euler", &gauss, TraceSettings(), 2e-6 };
+    c.Settings.ViewDirection[0] = 0.2;
+    c.Settings.ViewDirection[1] = 0.3;
+    c.Settings.ViewDirection[2] = -1;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.StepSize = 0.5;
+    cases.push_back(c);
+  }
+  {
     Case c{ "Gaussian shadowgraph, caustics", &gauss, TraceSettings() };
     c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
     c.Settings.Mode = Cutoff::Shadowgraph;
@@ -204,7 +247,7 @@ int main()
 
   // the shadowgraph has caustics: photons pile up (a pixel with several times the mean count)
   {
-    TraceSettings s = cases[2].Settings;
+    TraceSettings s = cases[3].Settings;
     s.Device = Backend::CPU;
     FilmSums f;
     Accumulate(gauss.V, s, f);
@@ -237,7 +280,7 @@ int main()
     std::mutex m;
     RunInProcessRanks(4, [&](Parallel& p) {
       DistributedVolume dv(PieceOf(luneburg, d[p.Rank()], values[p.Rank()]),
-        GhostPointsFor(luneburg.V.Spacing, s), p);
+        GhostPointsFor(s), p);
       DistributedStats st;
       TraceRaysDistributed(dv, s, ab, p, true, &st);
       std::lock_guard<std::mutex> lock(m);
