@@ -32,6 +32,21 @@ bool Comparable(const RayRecord& a, const RayRecord& b)
 
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice)
 {
+  if (in.Method == Integrator::Auto || in.Recon == Reconstruction::Auto)
+    CheckVolume(volume);
+  AutoVolume grid;
+  grid.Grid = volume;
+  grid.HasLevels = volume.Levels != nullptr;
+  grid.HasSmooth = volume.Smooth != nullptr;
+  grid.HasSolid = volume.Solid != nullptr;
+  return ResolveAutoWith(grid, in, choice,
+    [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); });
+}
+
+TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, AutoChoice* choice,
+  const PilotTracer& traceRays)
+{
+  const Volume& volume = grid.Grid;
   AutoChoice c;
   c.Method = in.Method;
   c.StepSize = in.StepSize;
@@ -47,7 +62,6 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
       *choice = c;
     return in;
   }
-  CheckVolume(volume);
   const FilmGeometry film = MakeFilm(volume, in);
   const std::vector<float> ab = PilotRays(volume, in);
   TraceSettings ref = in;
@@ -73,18 +87,18 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   // is far smaller where the data is smooth, and both are the same trilinear code elsewhere), an
   // error that a reference on the same grid with the same reconstruction cannot see
   // (with a body the levels byte holds its bits instead of the smoothness: trilinear only)
-  bool tryTri = in.Recon == Reconstruction::Trilinear || (autoRecon) || volume.Solid;
-  bool tryCubic = !volume.Solid && (in.Recon == Reconstruction::Cubic || (autoRecon && volume.Smooth));
+  bool tryTri = in.Recon == Reconstruction::Trilinear || (autoRecon) || grid.HasSolid;
+  bool tryCubic = !grid.HasSolid && (in.Recon == Reconstruction::Cubic || (autoRecon && grid.HasSmooth));
   std::vector<RayRecord> refTri, refCubic;
   if (tryTri)
   {
     ref.Recon = Reconstruction::Trilinear;
-    refTri = TraceRays(volume, ref, ab);
+    refTri = traceRays(ref, ab);
   }
   if (tryCubic)
   {
     ref.Recon = Reconstruction::Cubic;
-    refCubic = TraceRays(volume, ref, ab);
+    refCubic = traceRays(ref, ab);
   }
   const std::vector<RayRecord>& R0 = tryCubic ? refCubic : refTri;
   double emax = 0;
@@ -164,7 +178,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
     t.StepSize = cand.Step;
     t.Recon = cand.Rc;
     t.EstimateError = false;
-    const std::vector<RayRecord> T = TraceRays(volume, t, ab);
+    const std::vector<RayRecord> T = traceRays(t, ab);
     const std::vector<RayRecord>& R = cand.Rc == Reconstruction::Cubic ? refCubic : refTri;
     // a trilinear candidate answers for the trilinear's own error too (Reconstruction Auto)
     const double base = cand.Rc == Reconstruction::Trilinear && tryCubic ? triError : 0.0;
@@ -226,7 +240,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   // the octree is a cost too: a skipping step costs more than a plain one (1.2-1.9x here). Kept
   // when it saves at least 10 % of the chosen setting's samples on the pilot; without it the
   // error can only stay or shrink (fixed steps through the blocks it would have skipped).
-  c.UseOctree = in.UseOctree && volume.Levels != nullptr;
+  c.UseOctree = in.UseOctree && grid.HasLevels;
   if (c.UseOctree)
   {
     TraceSettings t = in;
@@ -236,7 +250,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
     t.EstimateError = false;
     t.UseOctree = false;
     double plain = 0;
-    for (const RayRecord& r : TraceRays(volume, t, ab))
+    for (const RayRecord& r : traceRays(t, ab))
       plain += r.Samples;
     c.OctreeSaving = plain > 0 ? 1.0 - c.SamplesPerRay * (ab.size() / 2) / plain : 0.0;
     c.UseOctree = c.OctreeSaving >= 0.1;
@@ -253,7 +267,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
     rep << " (the trilinear's estimated error " << c.TrilinearError << " rad)";
   if (!c.Met)
     rep << "; no candidate met the tolerance: using the most accurate one";
-  if (in.UseOctree && volume.Levels)
+  if (in.UseOctree && grid.HasLevels)
     rep << "; octree " << (c.UseOctree ? "on" : "off") << ": it skips "
         << static_cast<int>(std::lround(100 * c.OctreeSaving)) << " % of the samples"
         << (c.UseOctree ? "" : " (less than 10 %)");

@@ -97,8 +97,10 @@ int GhostPointsFor(const TraceSettings& s, int octreeLevel)
   // ends a hair past the face of its block: at most a block and a cell along any axis. Then the
   // cell of a trilinear sample (1), the gradient's central difference (1) and one to spare.
   const int block = (s.UseOctree && octreeLevel > 0) ? (1 << octreeLevel) : 0;
+  // Auto's trilinear candidates step up to 8 voxels
+  const double step = s.Method == Integrator::Auto ? std::max(s.StepSize, 8.0) : s.StepSize;
   const int reach = std::max(
-    static_cast<int>(std::ceil(s.StepSize * (s.EstimateError ? 2.0 : 1.0))), block ? block + 1 : 0);
+    static_cast<int>(std::ceil(step * (s.EstimateError ? 2.0 : 1.0))), block ? block + 1 : 0);
   // an owned cell's level: its block and the block's one-point halo
   return std::max(reach + 3, block ? block + 2 : 0);
 }
@@ -602,6 +604,20 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const T
     r.Flags = static_cast<std::uint32_t>(f);
   }
   return out;
+}
+
+TraceSettings ResolveAutoDistributed(const DistributedVolume& dv, const TraceSettings& s,
+  Parallel& parallel, AutoChoice* choice)
+{
+  if (s.Recon != Reconstruction::Trilinear)
+    throw Error("Distributed tracing does not take Reconstruction Cubic or Auto yet: use Trilinear.");
+  AutoVolume grid;
+  grid.Grid = dv.Whole();
+  grid.HasLevels = !dv.Levels.empty();
+  return ResolveAutoWith(grid, s, choice,
+    [&](const TraceSettings& t, const std::vector<float>& ab) {
+      return TraceRaysDistributed(dv, t, ab, parallel, true);
+    });
 }
 
 void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, FilmSums& sums,

@@ -113,6 +113,14 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& volume,
   bool everywhere = true, DistributedStats* stats = nullptr);
 
 /**
+ * ResolveAuto on a distributed volume: the pilot rays traced on the pieces (every rank gets every
+ * record), so every rank makes the same choice, and it is the choice one process makes with the
+ * whole volume (and the same octree). Collective.
+ */
+TraceSettings ResolveAutoDistributed(const DistributedVolume& volume, const TraceSettings& settings,
+  Parallel& parallel, AutoChoice* choice = nullptr);
+
+/**
  * Accumulate on a distributed volume: settings.Passes passes of the whole film; the sums are
  * complete on rank 0 (the other ranks' `sums` are left with their size and no photons).
  * RankIndex/RankCount must be 0/1 (every rank traces the rays in its piece, not a pixel share).

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -59,6 +60,22 @@ inline double MinSpacing(const Volume& v)
  */
 double ComputeOctreeLevelsOfPiece(const int dims[3], const int offset[3], const int whole[3],
   const float* n1, double tol, unsigned char* levels, int maxLevel);
+
+// ------------------------------------------------------------------ Auto (SchlierenAuto.cxx)
+
+/** What ResolveAuto needs of a volume: its grid (no field needed) and which data it has. */
+struct AutoVolume
+{
+  Volume Grid;
+  bool HasLevels = false, HasSmooth = false, HasSolid = false;
+};
+/** Traces the pilot's rays (film points, pairs) with settings t: TraceRays, or a distributed trace
+ * that returns the same records on every rank (so that every rank makes the same choice). */
+using PilotTracer =
+  std::function<std::vector<RayRecord>(const TraceSettings& t, const std::vector<float>& ab)>;
+/** ResolveAuto with the pilot traced by `traceRays`. */
+TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, AutoChoice* choice,
+  const PilotTracer& traceRays);
 
 // ------------------------------------------------------------------ film (SchlierenFilm.cxx)
 

@@ -290,6 +290,49 @@ int main()
     CHECK(handed > 64, "near-axis rays through the lens cross block faces more than once each on average");
   }
 
+  // Auto on pieces: every rank makes one process's choice (with the octree: it may keep it)
+  for (double tol : { -1.0, 2e-6 })
+  {
+    TraceSettings s;
+    s.Method = Integrator::Auto;
+    s.Device = Backend::CPU;
+    s.Resolution[0] = s.Resolution[1] = 24;
+    s.ViewDirection[0] = 0.6;
+    s.ViewDirection[2] = -0.8;
+    Volume whole = gauss.V;
+    std::vector<unsigned char> levels;
+    if (tol >= 0)
+    {
+      levels.resize(whole.NumberOfPoints());
+      ComputeOctreeLevels(whole.Dimensions, gauss.N1.data(), tol, levels.data(),
+        DistributedOctreeMaxLevel);
+      whole.Levels = levels.data();
+      whole.LevelTolerance = tol;
+    }
+    AutoChoice one;
+    const TraceSettings expected = ResolveAuto(whole, s, &one);
+    const Decomposition d = Blocks(n, { 0.4 }, {}, { 0.6 });
+    std::vector<std::vector<float>> values(4);
+    for (int r = 0; r < 4; ++r)
+      values[r] = Cut(gauss, d[r]);
+    std::mutex m;
+    bool same = true;
+    RunInProcessRanks(4, [&](Parallel& p) {
+      const int ghost = GhostPointsFor(s, tol >= 0 ? DistributedOctreeMaxLevel : 0);
+      const Piece piece = PieceOf(gauss, d[p.Rank()], values[p.Rank()]);
+      DistributedVolume dv = tol >= 0 ? DistributedVolume(piece, ghost, p, tol)
+                                      : DistributedVolume(piece, ghost, p);
+      AutoChoice c;
+      const TraceSettings got = ResolveAutoDistributed(dv, s, p, &c);
+      std::lock_guard<std::mutex> lock(m);
+      same = same && got.Method == expected.Method && got.StepSize == expected.StepSize &&
+        got.UseOctree == expected.UseOctree && c.ExpectedError == one.ExpectedError &&
+        c.SamplesPerRay == one.SamplesPerRay;
+    });
+    CHECK(same, std::string("Auto on 4 ranks makes one process's choice") +
+        (tol >= 0 ? " (with the octree)" : "") + ": " + one.Report);
+  }
+
   // bad pieces: the same error on every rank, no hang
   {
     const Decomposition d = Blocks(n, {}, {}, { 0.5 });
