@@ -462,7 +462,7 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
     throw Error("Distributed tracing: too many rays in one pass.");
   Clock::time_point t0 = Clock::now();
   // every rank finds where each ray enters; the owner of that cell starts it, rank 0 keeps misses
-  std::vector<RayState> live;
+  std::vector<RayState> fresh, live;
   std::vector<Finished> finished;
   for (std::size_t k = 0; k < count; ++k)
   {
@@ -490,12 +490,22 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
       continue;
     sch_walk_begin(dv.Packed.data(), dv.Levels.empty() ? nullptr : dv.Levels.data(), &P, st.Entry,
       P.step, &st.W);
-    live.push_back(st);
+    fresh.push_back(st);
   }
+  // the rays that start here go in batches, a batch a round: while the next rank along the beam
+  // traces the first batch on, this one traces the second (a pipeline; all at once, the ranks
+  // behind would wait for the whole pass)
+  const std::size_t batch = ranks == 1
+    ? fresh.size()
+    : std::max<std::size_t>(64, (fresh.size() + 4 * ranks - 1) / (4 * ranks));
+  std::size_t next = 0;
   double tracing = 0, exchanging = 0, rounds = 0, handed = 0, bytes = 0;
   for (;;)
   {
     Clock::time_point ta = Clock::now();
+    const std::size_t take = std::min(batch, fresh.size() - next);
+    live.insert(live.end(), fresh.begin() + next, fresh.begin() + next + take);
+    next += take;
     std::vector<std::vector<RayState>> handOn(ranks);
     Advance(dv, P, live, finished, handOn);
     tracing += SecondsSince(ta);
@@ -513,8 +523,8 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
     }
     handed += sent;
     rounds += 1;
-    // every rank learns whether any ray is still in flight (the same answer everywhere)
-    const double inFlight = parallel.Sum(sent);
+    // every rank learns whether any ray is still in flight or to start (the same answer everywhere)
+    const double inFlight = parallel.Sum(sent + double(fresh.size() - next));
     if (inFlight == 0)
     {
       exchanging += SecondsSince(tb);
