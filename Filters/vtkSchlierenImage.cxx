@@ -343,6 +343,16 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
   {
     addNumber("octree_tolerance", image.OctreeTolerance);
   }
+  // traced in pieces over ranks (0: every rank had the whole volume, or one process)
+  addNumber("distributed_ranks", image.DistributedRanks);
+  if (image.DistributedRanks > 0)
+  {
+    addNumber("held_points_max", image.HeldPointsMax);
+    addNumber("rays_handed_on", image.RaysHandedOn);
+    addNumber("ray_traffic_bytes", image.BytesExchanged);
+    addNumber("exchange_rounds", image.Rounds);
+    addNumber("ghost_layers", image.GhostLayers);
+  }
   if (image.AutoAsked)
   {
     addString("auto_report", image.Choice.Report);

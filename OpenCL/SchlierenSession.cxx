@@ -238,6 +238,8 @@ void TraceSession::Clear()
   this->ClearVolume();
   this->SumsKey.clear();
   this->Sums.Resize(0, 0);
+  this->Pieces.reset();
+  this->PiecesKey.clear();
 }
 
 void TraceSession::ClearVolume()
@@ -260,6 +262,26 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
       progress(fraction);
   };
   out = SessionImage();
+  // on more than one rank, the volume in pieces where the settings allow (SchlierenSessionPieces)
+  if (ranks > 1)
+  {
+    std::string why = WhyNotInPieces(settings);
+    if (why.empty())
+    {
+      this->UpdatePieces(parallel, piece, settings, out, progress);
+      if (out.DistributedRanks > 0)
+        return;
+      why = "a solid body is not traced in pieces yet";
+    }
+    if (rank == 0)
+      out.Notes.push_back({ false, "Tracing the whole volume on every rank: " + why + "." });
+  }
+  // the pieces go (a key without pieces stays: it marks a volume with a body)
+  if (this->Pieces)
+  {
+    this->Pieces.reset();
+    this->PiecesKey.clear();
+  }
 
   // 0. The packed volume of the last update, where the input and the pieces have not changed
   // since (a new camera, other optics, more passes): steps 1-3 are skipped.

@@ -25,12 +25,14 @@
 #ifndef SchlierenSession_h
 #define SchlierenSession_h
 
+#include "SchlierenDistributed.h"
 #include "SchlierenEngine.h"
 #include "SchlierenLimits.h"
 #include "SchlierenParallel.h"
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,6 +80,14 @@ struct SessionImage
   AutoChoice Choice;     ///< what was traced with (for Auto: what it chose, and its report)
   std::string Warnings;  ///< this rank's engine warnings, then Finalize's where they differ
   std::string BackendUsed, DeviceName;
+  /** Distributed tracing (the volume in pieces, rays handed between ranks): the ranks it ran on;
+   * 0 where every rank traced the whole volume. */
+  int DistributedRanks = 0;
+  double HeldPointsMax = 0;   ///< the most grid points any rank held (its piece and ghosts)
+  double RaysHandedOn = 0;    ///< over all ranks and passes of this update
+  double BytesExchanged = 0;  ///< ray states and records sent between ranks, all ranks
+  double Rounds = 0;          ///< trace-and-exchange rounds of this update
+  int GhostLayers = 0;        ///< ghost points around each rank's owned cells
   int Passes = 0;        ///< passes in the image
   int PassesTraced = 0;  ///< passes traced by this update (the others were kept)
   double LandedPhotons = 0; ///< photons that reached the film (0: a blank image)
@@ -117,6 +127,9 @@ public:
 
 private:
   void ClearVolume();
+  /** Update with the volume in pieces (SchlierenSessionPieces.cxx): no rank holds the whole. */
+  void UpdatePieces(Parallel& parallel, const VolumePiece& piece, const TraceSettings& settings,
+    SessionImage& out, const ProgressFunction& progress);
 
   // the whole volume and what it was built from
   std::string VolumeKey;
@@ -127,7 +140,16 @@ private:
   // this rank's film sums and the photons and volume they were traced from
   std::string SumsKey;
   FilmSums Sums;
+  // distributed tracing: this rank's piece with its ghosts, and what it was built from
+  std::shared_ptr<DistributedVolume> Pieces;
+  std::string PiecesKey;
 };
+
+/**
+ * Why an update of `settings` on more than one rank cannot trace the volume in pieces (empty:
+ * it can): what distributed tracing does not take yet. The same on every rank.
+ */
+std::string WhyNotInPieces(const TraceSettings& settings);
 
 /**
  * The whole volume from every rank's piece, on every rank (collective): n - 1 into `field`, and

@@ -135,11 +135,14 @@ def mpi_pipeline(ns):
                                    Center=[0.1, -0.05, 0.02])
     index = ns["RefractiveIndex"](Input=scene, Model="GladstoneDale")
     index.InputArray = ["POINTS", "density"]
+    # Backend CPU: under MPI the volume is traced in pieces, on the CPU backend; one process on
+    # the same backend then gives the same image bit for bit
     knife = ns["SchlierenImage"](Input=index, ViewDirection=[0.3, -0.2, -1.0], ViewUp=[0, 1, 0],
                                   Resolution=[96, 80], Passes=2, Seed=3, Cutoff="KnifeEdge",
-                                  CutoffScale=0.0, KnifeAngle=30.0)
+                                  CutoffScale=0.0, KnifeAngle=30.0, Backend="CPU")
     shadow = ns["SchlierenImage"](Input=index, Resolution=[64, 64], Passes=2, Seed=5,
-                                   Cutoff="Shadowgraph", FilmDistance=2.0, Integrator="Midpoint")
+                                   Cutoff="Shadowgraph", FilmDistance=2.0, Integrator="Midpoint",
+                                   Backend="CPU")
     return index, knife, shadow
 
 

@@ -89,6 +89,19 @@ for name, proxy in (("knife", knife), ("shadow", shadow)):
             "%s: rank 0 holds the image (%d pixels), the other ranks empty ones (%s)"
             % (name, image.GetNumberOfPoints(), others))
     record.update(st.image_record(name, image))
+    # traced in pieces: no rank held more than its piece's owned cells and 4 ghost layers (the
+    # ghosts of 0.5-voxel steps), clipped to the volume
+    fd = image.GetFieldData()
+    number = lambda key: fd.GetArray(key).GetValue(0) if fd.GetArray(key) else -1
+    held = max(np.prod([min(63, e[2 * a + 1] + 4) - max(0, e[2 * a] - 4) + 1 for a in range(3)])
+               for e in extents)
+    T.check(number("distributed_ranks") == ranks and number("ghost_layers") == 4
+            and number("held_points_max") == held and held < 64 ** 3,
+            "%s: traced in pieces on %d ranks, the most a rank held %d points (expected %d of %d)"
+            % (name, number("distributed_ranks"), number("held_points_max"), held, 64 ** 3))
+    T.check(number("rays_handed_on") > 0 and number("ray_traffic_bytes") > 0,
+            "%s: rays were handed between ranks (%d rays, %d bytes)"
+            % (name, number("rays_handed_on"), number("ray_traffic_bytes")))
 
 # A sanity check that the traced image is the sphere's: max |deflection| near sqrt(2 pi) A e^-1/2
 # (coarse here: 64^3 and an oblique view; the pixel-exact comparison is test_mpi_compare.py).

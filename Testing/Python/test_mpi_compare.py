@@ -51,13 +51,14 @@ for name, proxy in (("knife", knife), ("shadow", shadow)):
     T.check(mpi[name + "_intensity"].shape == serial[name + "_intensity"].shape,
             "%s: image size %s" % (name, serial[name + "_intensity"].shape))
     T.close(mpi[name + "_photons"], serial[name + "_photons"], 0.0, "%s: photons" % name)
-    T.close(mpi[name + "_cutoff_scale"], serial[name + "_cutoff_scale"],
-            1e-9 * max(1.0, float(serial[name + "_cutoff_scale"])), "%s: cutoff_scale" % name)
-    T.close(mpi[name + "_intensity"], serial[name + "_intensity"], 1e-6, "%s: intensity, 2 ranks vs 1" % name)
+    # traced in pieces with rays handed between ranks, the records splatted in pixel order on rank
+    # 0: the same arithmetic as one process, so the same numbers bit for bit
+    T.close(mpi[name + "_cutoff_scale"], serial[name + "_cutoff_scale"], 0.0, "%s: cutoff_scale" % name)
+    T.close(mpi[name + "_intensity"], serial[name + "_intensity"], 0.0, "%s: intensity, MPI vs 1 process" % name)
     dmax = np.abs(serial[name + "_deflection"]).max()
     T.check(dmax > 0, "%s: the image has deflections (max %.3g rad)" % (name, dmax))
-    T.close(mpi[name + "_deflection"] / dmax, serial[name + "_deflection"] / dmax, 1e-6,
-            "%s: deflection / max|deflection|, 2 ranks vs 1" % name)
+    T.close(mpi[name + "_deflection"], serial[name + "_deflection"], 0.0,
+            "%s: deflection, MPI vs 1 process" % name)
     I = serial[name + "_intensity"]
     T.check(I.max() - I.min() > 0.1, "%s: the image has contrast (I in [%.3f, %.3f])" % (name, I.min(), I.max()))
 

@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// TraceSession with the volume in pieces: each rank keeps its piece (and ghosts) and the rays are
+// handed between ranks (SchlierenDistributed.h); the other path, every rank with the whole volume,
+// is in SchlierenSession.cxx.
+#include "SchlierenSession.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace schlieren
+{
+
+namespace
+{
+
+/** Throws on every rank where any rank failed: its own message on a rank that failed. */
+void AgreeOn(Parallel& parallel, const std::string& mine)
+{
+  const std::string failure = parallel.Failure(mine);
+  if (!failure.empty())
+    throw Error(mine.empty() ? failure : mine);
+}
+
+std::size_t Points(const int e[6])
+{
+  if (e[1] < e[0] || e[3] < e[2] || e[5] < e[4])
+    return 0;
+  return static_cast<std::size_t>(e[1] - e[0] + 1) * (e[3] - e[2] + 1) * (e[5] - e[4] + 1);
+}
+
+} // namespace
+
+std::string WhyNotInPieces(const TraceSettings& s)
+{
+  if (s.Device == Backend::OpenCL)
+    return "Backend OpenCL was asked for, and tracing in pieces runs on the CPU backend";
+  if (s.Recon != Reconstruction::Trilinear)
+    return std::string("Reconstruction ") + ReconstructionName(s.Recon) +
+      " is not available in pieces yet";
+  if (s.EstimateError)
+    return "the step-doubling error estimate is not available in pieces yet";
+  return std::string();
+}
+
+void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
+  const TraceSettings& settings, SessionImage& out, const ProgressFunction& progress)
+{
+  const int ranks = parallel.Size(), rank = parallel.Rank();
+
+  // 1. This rank's piece with its ghosts: kept while the input, the pieces and the ghosts it
+  // needs stay the same.
+  Piece p;
+  for (int a = 0; a < 3; ++a)
+  {
+    p.WholeDimensions[a] = piece.WholeExtent[2 * a + 1] - piece.WholeExtent[2 * a] + 1;
+    p.Origin[a] = piece.Origin[a] + piece.WholeExtent[2 * a] * piece.Spacing[a];
+    p.Spacing[a] = piece.Spacing[a];
+    p.Extent[2 * a] = piece.Extent[2 * a] - piece.WholeExtent[2 * a];
+    p.Extent[2 * a + 1] = piece.Extent[2 * a + 1] - piece.WholeExtent[2 * a];
+  }
+  const bool octreeAsked = settings.UseOctree;
+  std::ostringstream key;
+  key.precision(17);
+  key << piece.Version << ' ' << ranks << ' ' << octreeAsked;
+  for (int a = 0; a < 6; ++a)
+    key << ' ' << piece.Extent[a] << ' ' << piece.WholeExtent[a];
+  for (int a = 0; a < 3; ++a)
+    key << ' ' << piece.Origin[a] << ' ' << piece.Spacing[a];
+  // a volume found to hold a body (PiecesKey set, no pieces) goes the other way at once
+  if (parallel.AllOk(!this->Pieces && !this->PiecesKey.empty() && key.str() == this->PiecesKey))
+    return;
+  // kept while the ghosts are deep enough for these settings' steps
+  const bool reuse = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
+    this->Pieces && key.str() == this->PiecesKey &&
+    this->Pieces->Ghost >=
+      GhostPointsFor(settings, this->Pieces->Levels.empty() ? 0 : this->Pieces->LevelMax));
+  if (!reuse)
+  {
+    this->Pieces.reset();
+    this->PiecesKey.clear();
+    std::string problem = piece.Problem;
+    PieceValues values;
+    const std::size_t count = Points(piece.Extent);
+    if (problem.empty() && settings.Passes < 1)
+      problem = "Passes is " + std::to_string(settings.Passes) +
+        "; it must be at least 1 (one photon per pixel per pass).";
+    else if (problem.empty() && count > 0)
+    {
+      try
+      {
+        problem = piece.Load ? piece.Load(values) : std::string("no values for the input piece");
+        if (problem.empty() && values.NMinus1.size() != count)
+          problem = "The input piece has " + std::to_string(values.NMinus1.size()) +
+            " values of n - 1 for its " + std::to_string(count) + " points.";
+      }
+      catch (const std::bad_alloc&)
+      {
+        problem = "Out of memory while reading the input (std::bad_alloc): resample it to fewer "
+                  "points.";
+      }
+    }
+    AgreeOn(parallel, problem);
+    // a body is not traced in pieces yet: the caller traces the whole volume on every rank
+    const bool body = std::any_of(values.Solid.begin(), values.Solid.end(),
+      [](unsigned char c) { return c != 0; });
+    if (parallel.Max(body ? 1.0 : 0.0) > 0)
+    {
+      this->PiecesKey = key.str();
+      return;
+    }
+    // the whole-volume path's volume and sums go (its film sums are not these)
+    this->ClearVolume();
+    this->Sums.Resize(0, 0);
+    this->SumsKey.clear();
+    // the octree's tolerance: the smallest any piece was built for (RefractionOctree)
+    const bool present = octreeAsked && count > 0 && values.Levels.size() == count &&
+      values.HasLevelTolerance && values.LevelTolerance >= 0;
+    const double tol = -parallel.Max(present ? -values.LevelTolerance : -1e300);
+    const bool octree = octreeAsked && tol < 1e300;
+    const int ghost = GhostPointsFor(settings, octree ? DistributedOctreeMaxLevel : 0);
+    p.NMinus1 = values.NMinus1.empty() ? nullptr : values.NMinus1.data();
+    // the pieces, ghosts and octree: a failure on any rank throws on every rank
+    this->Pieces = octree
+      ? std::make_shared<DistributedVolume>(p, ghost, parallel, tol, DistributedOctreeMaxLevel)
+      : std::make_shared<DistributedVolume>(p, ghost, parallel);
+    this->PiecesKey = key.str();
+  }
+  if (progress)
+    progress(0.05);
+  const DistributedVolume& dv = *this->Pieces;
+
+  // 2. Auto on the pieces (every rank the same choice), then the passes not yet traced.
+  TraceSettings traced = settings;
+  traced.RankIndex = 0;
+  traced.RankCount = 1;
+  traced.Device = Backend::CPU;
+  AutoChoice choice;
+  const bool autoAsked = settings.Method == Integrator::Auto;
+  traced = ResolveAutoDistributed(dv, traced, parallel, &choice);
+  if (!autoAsked)
+  {
+    choice.Method = traced.Method;
+    choice.StepSize = traced.StepSize;
+    choice.Recon = traced.Recon;
+  }
+  else if (rank == 0)
+  {
+    out.Notes.push_back({ false, choice.Report });
+    if (!choice.Met)
+      out.Notes.push_back({ true, choice.Report });
+  }
+  const Volume grid = dv.Whole();
+  std::ostringstream sk;
+  sk.precision(17);
+  sk << traced.PhotonKey() << " | " << this->PiecesKey << ' ' << dv.Levels.empty();
+  const std::string sumsKey = sk.str();
+  const bool reuseSums = parallel.AllOk(
+    sumsKey == this->SumsKey && this->Sums.Passes > 0 && settings.Passes >= this->Sums.Passes);
+  if (!reuseSums)
+  {
+    this->Sums.Resize(0, 0);
+    this->SumsKey.clear();
+  }
+  DistributedStats stats;
+  std::string problem;
+  out.PassesTraced = settings.Passes - this->Sums.Passes;
+  try
+  {
+    if (out.PassesTraced > 0)
+    {
+      traced.Passes = out.PassesTraced;
+      AccumulateDistributed(dv, traced, this->Sums, parallel, &stats,
+        [&progress](double f) { return progress ? progress(0.05 + 0.9 * f) : true; });
+    }
+  }
+  catch (const Error& e)
+  {
+    problem = e.what();
+  }
+  // AccumulateDistributed's errors come on every rank alike (its collectives agree)
+  if (!problem.empty())
+  {
+    this->Sums.Resize(0, 0);
+    throw Error(problem);
+  }
+  traced.Passes = settings.Passes;
+  this->SumsKey = sumsKey;
+
+  // 3. What it cost, over all ranks.
+  double sums[3] = { stats.RaysHandedOn, stats.BytesExchanged, 0.0 };
+  parallel.Sum(sums, 2);
+  double held = static_cast<double>(dv.HeldDims[0]) * dv.HeldDims[1] * dv.HeldDims[2];
+  const double heldMax = parallel.Max(held);
+  out.DistributedRanks = ranks;
+  out.HeldPointsMax = heldMax;
+  out.RaysHandedOn = sums[0];
+  out.BytesExchanged = sums[1];
+  out.Rounds = stats.Rounds;
+  out.GhostLayers = dv.Ghost;
+  if (rank != 0)
+    return;
+
+  // 4. The image (rank 0).
+  out.Result = Finalize(grid, traced, this->Sums);
+  out.BackendUsed = "CPU";
+  out.Result.BackendUsed = "CPU";
+  std::ostringstream note;
+  note << "Traced in pieces on " << ranks << " ranks: the most any rank holds is " << heldMax
+       << " of the volume's " << double(grid.NumberOfPoints()) << " points (its piece and "
+       << dv.Ghost << " ghost layers); " << sums[0] << " rays handed between ranks, " << sums[1]
+       << " bytes exchanged, " << stats.Rounds << " rounds.";
+  if (!dv.Levels.empty())
+    note << " Octree blocks up to 2^" << dv.LevelMax << " cells (tolerance " << dv.LevelTolerance
+         << ").";
+  out.Notes.push_back({ false, note.str() });
+  if (!out.Result.Warnings.empty())
+    out.Notes.push_back({ true, out.Result.Warnings });
+  out.HasImage = true;
+  out.Traced = traced;
+  out.Choice = choice;
+  out.AutoAsked = autoAsked;
+  out.Warnings = out.Result.Warnings;
+  out.Passes = this->Sums.Passes;
+  for (double c : this->Sums.Count)
+    out.LandedPhotons += c;
+  out.OctreeUsed = !dv.Levels.empty() && traced.UseOctree;
+  out.OctreeTolerance = dv.LevelTolerance;
+}
+
+} // namespace schlieren
