@@ -7,11 +7,13 @@ Two runs of this script, one pipeline:
 
 The 2-rank run checks that the octree filter ran on both pieces with one tolerance (the automatic
 tolerance reduces the range of n - 1 across ranks) and writes the images; the one-process run
-traces the same pipeline and compares. Under MPI SchlierenImage recomputes the octree levels of the
-gathered volume at the filter's tolerance, and Auto is resolved on rank 0 and broadcast, so the
-images must be those of one process: every point array within 1e-6 (of its largest value), the
-same integrator, step, expected error and samples per ray, and the same Auto report (less its
-timing).
+traces the same pipeline and compares. Under MPI SchlierenImage traces "color" and "bos" in pieces
+(the CPU backend; each rank computes the whole grid's octree levels of its cells at the filter's
+tolerance, blocks of up to 2^3 cells, so the octree here stops at level 3 as well, and Auto is
+resolved on the pieces with every rank the same choice), and "fringes" (the error estimate) with
+the whole volume on every rank (Auto on rank 0, broadcast). The images must be those of one
+process: every point array within 1e-6 (of its largest value), the same integrator, step,
+expected error and samples per ray, and the same Auto report (less its timing).
 """
 import os
 import re
@@ -32,18 +34,19 @@ T = st.Checker("test_mpi_optics (%d rank%s)" % (ranks, "s" if ranks > 1 else "")
 
 scene = RefractiveScene(Scene="GaussianSphere", Dimensions=[64, 64, 64], Bounds=[-1, 1, -1, 1, -1, 1],  # noqa: F821
                         Amplitude=1e-4, Width=0.2, Center=[0.1, -0.05, 0.02])
-octree = RefractionOctree(Input=scene)  # noqa: F821
+octree = RefractionOctree(Input=scene, MaxLevel=3)  # noqa: F821
 images = {
     # Auto with the octree, colour filter (rgb), automatic k (reduced across ranks)
     "color": SchlierenImage(Input=octree, Integrator="Auto", Cutoff="ColorFilter",  # noqa: F821
-                            Resolution=[64, 48], Passes=2, Seed=3, ViewDirection=[0.3, -0.2, -1.0]),
+                            Resolution=[64, 48], Passes=2, Seed=3, ViewDirection=[0.3, -0.2, -1.0],
+                            Backend="CPU"),
     # interferometry with the error estimate and a Gaussian film filter
     "fringes": SchlierenImage(Input=octree, Integrator="Midpoint", StepSize=1.0, Cutoff="Interferometry",  # noqa: F821
                               EstimateError=1, Filter="Gaussian", FilterWidth=0.7, Resolution=[48, 48],
                               Passes=2, Seed=5, ReferenceTilt=3.0),
     # BOS with RK4 over the octree
     "bos": SchlierenImage(Input=octree, Integrator="RK4", StepSize=1.0, Cutoff="BOS",  # noqa: F821
-                          BackgroundDistance=3.0, Resolution=[48, 48], Passes=1, Jitter=0),
+                          BackgroundDistance=3.0, Resolution=[48, 48], Passes=1, Jitter=0, Backend="CPU"),
 }
 ARRAYS = {"color": ["intensity", "deflection", "rgb"], "fringes": ["intensity", "deflection", "phase", "error_estimate"],
           "bos": ["intensity", "deflection", "bos_displacement"]}
@@ -117,6 +120,8 @@ else:
         for key in ("integrator", "auto_report"):
             T.check(str(mpi[name + "/" + key]) == str(serial[name + "/" + key]),
                     "%s: %s the same: %r" % (name, key, str(serial[name + "/" + key])[:90]))
-    T.check(float(mpi["color/octree"]) == 1.0, "the octree was used under MPI")
+    # (Auto may find that blocks of up to 2^3 cells do not pay for "color": it says so, the same
+    # on both sides; "bos" asks for the octree and uses it)
+    T.check(float(mpi["bos/octree"]) == 1.0, "the octree was used under MPI (bos)")
 
 T.finish()
