@@ -124,6 +124,49 @@ def gaussian_max_deflection(amplitude):
     return math.sqrt(2.0 * math.pi) * amplitude * math.exp(-0.5)
 
 
+def start_pvserver(ns):
+    """Starts `--mpiexec -n --ranks pvserver` (the --pvserver program) on a free local port,
+    connects paraview.simple to it and loads the plugin on the server. Returns the server process
+    (see stop_pvserver); its output goes to --output + ".pvserver.log"."""
+    import socket
+    import subprocess
+    import time
+    from paraview import simple
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    log_path = argument("--output") + ".pvserver.log"
+    log = open(log_path, "w")
+    server = subprocess.Popen([argument("--mpiexec"), "-n", argument("--ranks", "2"),
+                               "--allow-run-as-root", "--oversubscribe", argument("--pvserver"),
+                               "--server-port=%d" % port],
+                              stdout=log, stderr=subprocess.STDOUT,
+                              env={k: v for k, v in os.environ.items()
+                                   if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "PRTE_"))})
+    deadline = time.time() + 120
+    while time.time() < deadline and "Accepting connection" not in open(log_path).read():
+        if server.poll() is not None:
+            raise RuntimeError("pvserver exited with status %s: %s" % (server.returncode, open(log_path).read()))
+        time.sleep(0.25)
+    if not simple.Connect("localhost", port):
+        raise RuntimeError("could not connect to pvserver on port %d" % port)
+    simple.LoadPlugin(plugin_path(), remote=True, ns=ns)
+    return server
+
+
+def stop_pvserver(server):
+    """Disconnects from a server of start_pvserver and waits for it (kills it after 5 s)."""
+    if server is None:
+        return
+    from paraview import simple
+    simple.Disconnect()
+    try:
+        server.wait(timeout=5)
+    except Exception:
+        server.kill()
+
+
 def mpi_pipeline(ns):
     """The pipeline that test_mpi.py runs on 2 ranks and test_mpi_compare.py on one: an off-centre
     Gaussian sphere (64^3), its index, an oblique knife-edge image with the automatic scale (the

@@ -21,34 +21,7 @@ import schlieren_testing as st
 
 # --pvserver PATH --mpiexec PATH: the same checks in client-server mode, against a pvserver of
 # --ranks ranks that this script starts on a free loopback port and stops at the end
-server = None
-if st.argument("--pvserver"):
-    import socket
-    import subprocess
-    import time
-
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        port = probe.getsockname()[1]
-    log_path = st.argument("--output") + ".pvserver.log"
-    log = open(log_path, "w")
-    server = subprocess.Popen([st.argument("--mpiexec"), "-n", st.argument("--ranks", "2"),
-                               "--allow-run-as-root", "--oversubscribe", st.argument("--pvserver"),
-                               "--server-port=%d" % port],
-                              stdout=log, stderr=subprocess.STDOUT,
-                              # pvpython is a singleton MPI process: its Open MPI variables would
-                              # make the child mpiexec refuse to start
-                              env={k: v for k, v in os.environ.items()
-                                   if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "PRTE_"))})
-    # pvserver serves one client and exits: wait for it to say it listens, then connect once
-    deadline = time.time() + 120
-    while time.time() < deadline and "Accepting connection" not in open(log_path).read():
-        if server.poll() is not None:
-            raise RuntimeError("pvserver exited with status %s: %s" % (server.returncode, open(log_path).read()))
-        time.sleep(0.25)
-    if not simple.Connect("localhost", port):
-        raise RuntimeError("could not connect to pvserver on port %d" % port)
-    simple.LoadPlugin(st.plugin_path(), remote=True, ns=globals())
+server = st.start_pvserver(globals()) if st.argument("--pvserver") else None
 st.load_plugin(globals())
 T = st.Checker("test_mpi")
 output = st.argument("--output")
@@ -110,10 +83,5 @@ T.check(0.8 < dmax < 1.1, "knife: max |deflection| / max|eps| = %.3f" % dmax)
 
 np.savez(output, **record)
 print("wrote %s" % output)
-if server is not None:
-    simple.Disconnect()
-    try:
-        server.wait(timeout=5)
-    except Exception:
-        server.kill()
+st.stop_pvserver(server)
 T.finish()
