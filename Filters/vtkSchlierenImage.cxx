@@ -352,6 +352,9 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
     addNumber("ray_traffic_bytes", image.BytesExchanged);
     addNumber("exchange_rounds", image.Rounds);
     addNumber("ghost_layers", image.GhostLayers);
+    // where the time went (the slowest rank's): for benchmarks, not for tests
+    addNumber("tracing_seconds", image.SecondsTracing);
+    addNumber("exchange_seconds", image.SecondsExchanging);
   }
   if (image.AutoAsked)
   {

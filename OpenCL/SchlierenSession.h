@@ -88,6 +88,8 @@ struct SessionImage
   double BytesExchanged = 0;  ///< ray states and records sent between ranks, all ranks
   double Rounds = 0;          ///< trace-and-exchange rounds of this update
   int GhostLayers = 0;        ///< ghost points around each rank's owned cells
+  double SecondsTracing = 0;    ///< the longest any rank spent stepping rays (this update)
+  double SecondsExchanging = 0; ///< the longest any rank spent in the exchanges, waiting included
   int Passes = 0;        ///< passes in the image
   int PassesTraced = 0;  ///< passes traced by this update (the others were kept)
   double LandedPhotons = 0; ///< photons that reached the film (0: a blank image)

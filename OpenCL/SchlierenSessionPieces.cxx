@@ -189,8 +189,12 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
   // 3. What it cost, over all ranks.
   double sums[3] = { stats.RaysHandedOn, stats.BytesExchanged, 0.0 };
   parallel.Sum(sums, 2);
-  double held = static_cast<double>(dv.HeldDims[0]) * dv.HeldDims[1] * dv.HeldDims[2];
-  const double heldMax = parallel.Max(held);
+  double maxima[3] = { static_cast<double>(dv.HeldDims[0]) * dv.HeldDims[1] * dv.HeldDims[2],
+    stats.SecondsTracing, stats.SecondsExchanging };
+  parallel.Max(maxima, 3);
+  const double heldMax = maxima[0];
+  out.SecondsTracing = maxima[1];
+  out.SecondsExchanging = maxima[2];
   out.DistributedRanks = ranks;
   out.HeldPointsMax = heldMax;
   out.RaysHandedOn = sums[0];

@@ -1,0 +1,121 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Tracing in pieces under MPI: peak memory per rank, ray traffic and time per pass at 1, 2 and 4
+ranks; prints a table.
+
+Run: /usr/bin/python3 distributed.py --plugin <Schlieren.so> [--size 384] [--resolution 256]
+         [--passes 2] [--ranks 1,2,4] [--pvbatch pvbatch] [--mpiexec mpiexec]
+
+Each row is one `mpiexec -n N pvbatch --mpi --symmetric` run of this script (--worker): every rank
+makes its piece of a RefractiveScene of size^3 points (the Gaussian sphere), reads its high-water
+mark of resident memory (VmHWM), traces it with SchlierenImage (Euler, 0.5 voxel, knife edge) and
+reads VmHWM again. "pieces" is the default under MPI (Backend CPU: the volume stays in pieces,
+rays are handed between ranks); "whole" asks for Backend OpenCL, which still gives every rank the
+whole volume (the path every rank took before tracing in pieces). Columns: the largest VmHWM of
+any rank and the most the trace added on any rank (after - before), the points the busiest rank
+held (its piece and ghosts), ray traffic per pass, and the time per pass with where the slowest
+rank spent it (stepping rays, exchanging: waiting for the other ranks included). Each rank runs
+max(1, cores / N) CPU threads (SCHLIEREN_CPU_THREADS): with more ranks than cores the ranks share
+them (oversubscribed), so times at 4 ranks on a 2-core machine show the cost of the exchange, not a
+speed-up.
+"""
+import os
+import re
+import subprocess
+import sys
+import time
+
+
+def argument(name, default=None):
+    for i, a in enumerate(sys.argv):
+        if a == name and i + 1 < len(sys.argv):
+            return sys.argv[i + 1]
+    return default
+
+
+def hwm():
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) * 1024
+    return 0
+
+
+def worker():
+    from paraview import simple
+    from paraview.modules.vtkRemotingCore import vtkProcessModule
+    ns = globals()
+    simple.LoadPlugin(argument("--plugin"), remote=False, ns=ns)
+    controller = vtkProcessModule.GetProcessModule().GetGlobalController()
+    rank = controller.GetLocalProcessId()
+    size = int(argument("--size"))
+    scene = ns["RefractiveScene"](Dimensions=[size] * 3, Amplitude=1e-4, Width=0.3)
+    scene.UpdatePipeline()
+    before = hwm()
+    image = ns["SchlierenImage"](Input=scene, Resolution=[int(argument("--resolution"))] * 2,
+                                 Passes=int(argument("--passes")), Backend=argument("--backend"),
+                                 Integrator="Euler", StepSize=0.5)
+    t0 = time.time()
+    image.UpdatePipeline()
+    seconds = time.time() - t0
+    after = hwm()
+    print("RANK %d hwm_before %d hwm_after %d" % (rank, before, after), flush=True)
+    if rank == 0:
+        fd = image.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
+        numbers = {}
+        for i in range(fd.GetNumberOfArrays()):
+            a = fd.GetArray(i)
+            if a is not None and a.GetNumberOfTuples() == 1 and a.GetNumberOfComponents() == 1:
+                numbers[fd.GetArrayName(i)] = a.GetValue(0)
+        print("FIELD seconds %.6g %s" % (seconds, " ".join("%s %.9g" % kv for kv in sorted(numbers.items()))),
+              flush=True)
+
+
+def main():
+    plugin = argument("--plugin")
+    if not plugin:
+        raise SystemExit("pass --plugin <Schlieren.so>")
+    size = argument("--size", "384")
+    resolution = argument("--resolution", "256")
+    passes = argument("--passes", "2")
+    pvbatch = argument("--pvbatch", "pvbatch")
+    mpiexec = argument("--mpiexec", "mpiexec")
+    ranks = [int(r) for r in argument("--ranks", "1,2,4").split(",")]
+    cores = os.cpu_count() or 1
+    points = int(size) ** 3
+    print("%s^3 points (%.0f MB of n - 1 as floats, %.0f MB packed), film %s^2, %s passes, %d cores"
+          % (size, points * 4 / 1e6, points * 16 / 1e6, resolution, passes, cores))
+    print("%5s %6s %11s %11s %13s %12s %10s %10s %10s" % (
+        "ranks", "mode", "peak MB", "trace MB", "held points", "MB/pass", "s/pass", "tracing", "exchange"))
+    for n in ranks:
+        for mode, backend in (("pieces", "CPU"), ("whole", "OpenCL")):
+            if n == 1 and mode == "whole":
+                continue  # one rank always has the whole volume (its row says "one")
+            env = dict(os.environ, SCHLIEREN_CPU_THREADS=str(max(1, cores // n)))
+            cmd = [mpiexec, "-n", str(n), "--allow-run-as-root", "--oversubscribe", pvbatch, "--mpi",
+                   "--symmetric", os.path.abspath(__file__), "--worker", "--plugin", plugin, "--size", size,
+                   "--resolution", resolution, "--passes", passes, "--backend", backend]
+            run = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            text = run.stdout
+            rows = [tuple(int(x) for x in m) for m in re.findall(r"RANK \d+ hwm_before (\d+) hwm_after (\d+)", text)]
+            field = re.search(r"FIELD (.*)", text)
+            if run.returncode != 0 or not rows or not field:
+                print("%5d %6s failed (status %d): %s" % (n, mode, run.returncode, text[-800:]))
+                continue
+            f = field.group(1).split()
+            numbers = {f[i]: float(f[i + 1]) for i in range(0, len(f) - 1, 2)}
+            peak = max(after for before, after in rows) / 1e6
+            added = max(after - before for before, after in rows) / 1e6
+            held = numbers.get("held_points_max", points)
+            p = float(passes)
+            mode = "one" if n == 1 else mode
+            print("%5d %6s %11.0f %11.0f %13.0f %12.2f %10.2f %10.2f %10.2f" % (
+                n, mode, peak, added, held, numbers.get("ray_traffic_bytes", 0) / 1e6 / p,
+                numbers["seconds"] / p, numbers.get("tracing_seconds", float("nan")) / p,
+                numbers.get("exchange_seconds", float("nan")) / p))
+
+
+if __name__ == "__main__":
+    if "--worker" in sys.argv:
+        worker()
+    else:
+        main()
