@@ -5,6 +5,7 @@
 #include "SchlierenEngineInternal.h"
 #include "SchlierenLimits.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -207,7 +208,8 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
   {
     int theirs[6], part[6];
     std::memcpy(theirs, all[r].data(), 6 * sizeof(int));
-    if (Empty(e) || Empty(theirs))
+    // this rank's own points are copied in place below, not through a message
+    if (r == me || Empty(e) || Empty(theirs))
       continue;
     Intersect(e, theirs, part);
     if (Empty(part))
@@ -231,6 +233,21 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
   std::vector<float> n1(heldPoints, 0.0f);
   std::vector<unsigned char> have(heldPoints, 0);
   const int hx = this->HeldDims[0], hy = this->HeldDims[1];
+  {
+    int part[6];
+    Intersect(e, held, part);
+    if (!Empty(e) && !Empty(part))
+      for (int z = part[4]; z <= part[5]; ++z)
+        for (int y = part[2]; y <= part[3]; ++y)
+        {
+          const std::size_t at =
+            (static_cast<std::size_t>(z - held[4]) * hy + (y - held[2])) * hx + (part[0] - held[0]);
+          const float* row = piece.NMinus1 +
+            (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex + (part[0] - e[0]);
+          std::memcpy(n1.data() + at, row, sizeof(float) * (part[1] - part[0] + 1));
+          std::memset(have.data() + at, 1, part[1] - part[0] + 1);
+        }
+  }
   for (int r = 0; r < ranks; ++r)
   {
     if (in[r].empty())
@@ -247,9 +264,11 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
         std::memcpy(n1.data() + at, values, sizeof(float) * len);
         std::memset(have.data() + at, 1, len);
       }
+    std::vector<char>().swap(in[r]);
   }
   if (std::find(have.begin(), have.end(), 0) != have.end())
     failure = "no rank holds some of the points this rank needs: pieces must tile the grid";
+  std::vector<unsigned char>().swap(have);
 
   // 4. Validated and packed as one process packs the whole: the gradient is wrong only on the
   // outermost ghost layer (one-sided there), which no sample of an owned cell's step reads.
@@ -453,10 +472,267 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
  * The records of rays 0 .. count-1 whose film points `pointOf(k, &a, &b)` gives, traced on the
  * pieces; in ray order on rank 0 (and every rank with `everywhere`).
  */
+/**
+ * A run of consecutive steps of one line-of-sight ray in one rank's cells: its partial integrals.
+ * Along the unbent line w is a plain sum of the pieces' parts, and the sideways displacement
+ * (the sum of w ds / n) is the run's own part plus the w of the runs before it times the run's
+ * sum of ds / n, so the runs add up in the order of their first step.
+ */
+struct StraightRun
+{
+  std::uint32_t Index;  // the ray
+  std::uint32_t First;  // its first step
+  float W[3];           // sum of grad n ds over the run
+  float Dev[3];         // sum of w ds / n with w counted from the run's start
+  float InvN;           // sum of ds / n
+  float NDs;            // sum of (n - n_entry) ds: the optical path excess
+  float Ds;             // sum of ds
+  float N1;             // n - 1 at the run's first point (at the entry: the background index)
+  float ExitN1;         // n - 1 where the ray left the box (the run that ends there), else 0
+  std::uint32_t Last;   // 1: the run ends where the ray leaves the box
+};
+
+/** Line of sight without ray passing: every rank walks every ray's positions (the same float
+ * arithmetic as sch_walk_step, no sample) and integrates the steps that start in its cells; the
+ * runs go to rank 0 (or everyone), which adds them in order and makes the records. */
+template <typename PointOf>
+std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_params& P,
+  std::size_t count, PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats)
+{
+  const int ranks = parallel.Size(), me = parallel.Rank();
+  const float* field = dv.Packed.data();
+  Clock::time_point ta = Clock::now();
+  const sch_v3 d0 = sch_make(P.dx, P.dy, P.dz);
+  std::vector<StraightRun> runs;
+  std::vector<float> A(count), B(count), S1(count);
+  std::vector<sch_v3> O(count), E(count);
+  std::vector<int> hit(count);
+  // the index where each ray enters, from the rank that owns that cell, on every rank: the optical
+  // path is summed against it step by step, as one process sums it
+  std::vector<double> entryN1(count, 0.0);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    pointOf(k, &A[k], &B[k]);
+    S1[k] = 0.0f;
+    hit[k] = sch_entry(&P, A[k], B[k], &O[k], &E[k], &S1[k]);
+    int c[3];
+    CellOf(P, E[k], c);
+    if (hit[k] && dv.OwnsCell(c[0], c[1], c[2]))
+      entryN1[k] = sch_sample_field(field, &P, E[k]).n1;
+  }
+  parallel.Sum(entryN1.data(), entryN1.size());
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    if (!hit[k])
+      continue;
+    const float ne1 = static_cast<float>(entryN1[k]);
+    sch_v3 x = E[k];
+    const float base = P.step;
+    bool open = false; // a run of this rank is open
+    StraightRun run;
+    sch_sample smp;
+    float invn = 0.0f;
+    int it = 0;
+    for (;; ++it)
+    {
+      int c[3];
+      CellOf(P, x, c);
+      const bool mine = dv.OwnsCell(c[0], c[1], c[2]);
+      if (mine)
+      {
+        smp = sch_sample_field(field, &P, x);
+        invn = 1.0f / (1.0f + smp.n1);
+        if (!open)
+        {
+          run = StraightRun();
+          run.Index = static_cast<std::uint32_t>(k);
+          run.First = static_cast<std::uint32_t>(it);
+          run.N1 = smp.n1;
+          open = true;
+        }
+      }
+      else if (open)
+      {
+        runs.push_back(run);
+        open = false;
+      }
+      if (it >= P.maxSteps)
+        break;
+      // the step of sch_walk_step along the unbent line
+      float ds = base;
+      int whole = 1;
+      if (!sch_inside(&P, sch_axpy(ds, d0, x)))
+      {
+        float tex = sch_exit_distance(&P, x, d0);
+        if (it > 0 && tex < 1e-3f * base)
+          break;
+        tex += 1e-4f * base;
+        ds = ds < tex ? ds : tex;
+        whole = 0;
+      }
+      if (mine)
+      {
+        // ddev = w ds / n with the run's own w (the runs before add theirs in the sum)
+        for (int a = 0; a < 3; ++a)
+          run.Dev[a] += run.W[a] * (ds * invn);
+        run.W[0] += smp.gx * ds;
+        run.W[1] += smp.gy * ds;
+        run.W[2] += smp.gz * ds;
+        run.InvN += ds * invn;
+        run.NDs += ds * (smp.n1 - ne1);
+        run.Ds += ds;
+      }
+      x = sch_axpy(ds, d0, x);
+      if (!whole)
+        break;
+    }
+    // where it left: the owner of that (clamped) cell samples the index there
+    int c[3];
+    CellOf(P, x, c);
+    if (dv.OwnsCell(c[0], c[1], c[2]))
+    {
+      if (!open)
+      {
+        run = StraightRun();
+        run.Index = static_cast<std::uint32_t>(k);
+        run.First = static_cast<std::uint32_t>(it + 1);
+        open = true;
+      }
+      run.Last = 1;
+      run.ExitN1 = sch_sample_field(field, &P, x).n1;
+    }
+    if (open)
+      runs.push_back(run);
+  }
+  const double tracing = SecondsSince(ta);
+  Clock::time_point tb = Clock::now();
+  std::vector<char> mine(runs.size() * sizeof(StraightRun));
+  if (!runs.empty())
+    std::memcpy(mine.data(), runs.data(), mine.size());
+  double bytes = 0;
+  std::vector<std::vector<char>> got;
+  if (everywhere)
+  {
+    got = parallel.AllGather(mine);
+    bytes += mine.size() * (ranks - 1);
+  }
+  else
+  {
+    std::vector<std::vector<char>> out(ranks);
+    if (me != 0)
+      bytes += mine.size();
+    out[0] = std::move(mine);
+    got = parallel.Exchange(out);
+  }
+  std::vector<float> records;
+  if (everywhere || me == 0)
+  {
+    std::vector<StraightRun> all;
+    for (const std::vector<char>& m : got)
+    {
+      std::vector<StraightRun> r = Unpack<StraightRun>(m);
+      all.insert(all.end(), r.begin(), r.end());
+    }
+    std::sort(all.begin(), all.end(), [](const StraightRun& a, const StraightRun& b) {
+      return a.Index != b.Index ? a.Index < b.Index : a.First < b.First;
+    });
+    records.assign(count * SCH_RECORD, 0.0f);
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      sch_ray R;
+      if (!hit[k])
+        sch_missed(O[k], &R);
+      else
+      {
+        // the runs of ray k, in the order of their first step
+        float w[3] = { 0, 0, 0 }, dev[3] = { 0, 0, 0 }, nds = 0, len = 0, ne1 = 0, exitN1 = 0;
+        std::uint32_t steps = 0;
+        bool first = true;
+        for (; at < all.size() && all[at].Index == k; ++at)
+        {
+          const StraightRun& r = all[at];
+          if (first)
+            ne1 = r.N1;
+          first = false;
+          for (int a = 0; a < 3; ++a)
+          {
+            dev[a] += r.Dev[a] + w[a] * r.InvN;
+            w[a] += r.W[a];
+          }
+          nds += r.NDs;
+          len += r.Ds;
+          if (r.Last)
+            exitN1 = r.ExitN1;
+        }
+        // the march's end as sch_walk_end sees it: the position is replayed here too
+        sch_v3 x = E[k];
+        int it = 0;
+        for (;; ++it)
+        {
+          if (it >= P.maxSteps)
+            break;
+          float ds = P.step;
+          int whole = 1;
+          if (!sch_inside(&P, sch_axpy(ds, d0, x)))
+          {
+            float tex = sch_exit_distance(&P, x, d0);
+            if (it > 0 && tex < 1e-3f * P.step)
+              break;
+            tex += 1e-4f * P.step;
+            ds = ds < tex ? ds : tex;
+            whole = 0;
+          }
+          x = sch_axpy(ds, d0, x);
+          if (!whole)
+            break;
+        }
+        steps = static_cast<std::uint32_t>(it);
+        R.x = x;
+        R.w = sch_make(w[0], w[1], w[2]);
+        R.dev = sch_make(dev[0], dev[1], dev[2]);
+        R.ne1 = ne1;
+        R.n1 = exitN1;
+        R.opl = nds;
+        R.path = len;
+        R.samples = 1.0f + static_cast<float>(steps);
+        R.steps = static_cast<float>(steps);
+        R.mismatch = 0.0f;
+        R.flags = 0u;
+        if (!(sch_isfinite(x.x) && sch_isfinite(x.y) && sch_isfinite(x.z) && sch_isfinite(w[0]) &&
+              sch_isfinite(w[1]) && sch_isfinite(w[2])))
+          R.flags |= SCH_RAY_NONFINITE;
+        if (it >= P.maxSteps)
+          R.flags |= SCH_RAY_MAXSTEPS;
+        else if (!(R.flags & SCH_RAY_NONFINITE) && (1.0f + ne1) + sch_dot(d0, R.w) <= 0.0f)
+          R.flags |= SCH_RAY_TURNED;
+      }
+      sch_record(field, nullptr, &P, A[k], B[k], O[k], E[k], S1[k], &R,
+        records.data() + k * SCH_RECORD);
+    }
+  }
+  if (stats)
+  {
+    stats->Rounds += 1;
+    stats->BytesExchanged += bytes;
+    stats->SecondsTracing += tracing;
+    stats->SecondsExchanging += SecondsSince(tb);
+  }
+  return records;
+}
+
+/** Whether a trace with P takes the line-of-sight partial integrals (no ray passing). */
+bool StraightSums(const sch_params& P)
+{
+  return P.integrator == SCH_STRAIGHT && !P.useLevels && !P.keepInvariant && !P.estimate;
+}
+
 template <typename PointOf>
 std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, std::size_t count,
-  PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats)
+  PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats, bool sums = true)
 {
+  if (sums && StraightSums(P))
+    return TraceStraightSums(dv, P, count, pointOf, parallel, everywhere, stats);
   const int ranks = parallel.Size(), me = parallel.Rank();
   if (count > 0xffffffffu)
     throw Error("Distributed tracing: too many rays in one pass.");
@@ -589,7 +865,8 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
 } // namespace
 
 std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const TraceSettings& s,
-  const std::vector<float>& ab, Parallel& parallel, bool everywhere, DistributedStats* stats)
+  const std::vector<float>& ab, Parallel& parallel, bool everywhere, DistributedStats* stats,
+  bool lineOfSightSums)
 {
   const FilmGeometry film = MakeFilm(dv.Whole(), s);
   const sch_params P = PieceParams(dv, s, film);
@@ -600,7 +877,7 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const T
       *a = ab[2 * k];
       *b = ab[2 * k + 1];
     },
-    parallel, everywhere, stats);
+    parallel, everywhere, stats, lineOfSightSums);
   std::vector<RayRecord> out;
   if (rec.empty())
     return out;
@@ -626,7 +903,9 @@ TraceSettings ResolveAutoDistributed(const DistributedVolume& dv, const TraceSet
   grid.HasLevels = !dv.Levels.empty();
   return ResolveAutoWith(grid, s, choice,
     [&](const TraceSettings& t, const std::vector<float>& ab) {
-      return TraceRaysDistributed(dv, t, ab, parallel, true);
+      // the pilot's line-of-sight rays handed on like the others: its records, hence its
+      // choice, are one process's bit for bit
+      return TraceRaysDistributed(dv, t, ab, parallel, true, nullptr, false);
     });
 }
 

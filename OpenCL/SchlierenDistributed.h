@@ -104,13 +104,20 @@ public:
 };
 
 /**
+ * Line of sight (Integrator Straight, without the octree or KeepInvariant) needs no ray passing:
+ * every rank integrates the steps that start in its cells (walking every ray's positions with the
+ * same arithmetic as one process, sampling only its own), and rank 0 adds each ray's runs in
+ * order. The sums are reassociated, so these records equal one process's within float rounding
+ * (TestEngineDistributed: deflections within 1e-5 of the largest), not bit for bit; with
+ * lineOfSightSums false such rays are handed on like the others (bit for bit).
+ *
  * Traces rays that start at the film points ab (pairs; the same on every rank) through the
  * distributed volume; returns every record, in the order of ab, on every rank (`everywhere`) or
  * on rank 0 only (the others get an empty vector).
  */
 std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& volume,
   const TraceSettings& settings, const std::vector<float>& ab, Parallel& parallel,
-  bool everywhere = true, DistributedStats* stats = nullptr);
+  bool everywhere = true, DistributedStats* stats = nullptr, bool lineOfSightSums = true);
 
 /**
  * ResolveAuto on a distributed volume: the pilot rays traced on the pieces (every rank gets every

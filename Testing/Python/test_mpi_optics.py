@@ -10,7 +10,9 @@ tolerance reduces the range of n - 1 across ranks) and writes the images; the on
 traces the same pipeline and compares. Under MPI SchlierenImage traces "color" and "bos" in pieces
 (the CPU backend; each rank computes the whole grid's octree levels of its cells at the filter's
 tolerance, blocks of up to 2^3 cells, so the octree here stops at level 3 as well, and Auto is
-resolved on the pieces with every rank the same choice), and "fringes" (the error estimate) with
+resolved on the pieces with every rank the same choice; Auto's line of sight is then traced
+without ray passing, its partial integrals added in another order: k within 1e-6), and "fringes"
+(the error estimate) with
 the whole volume on every rank (Auto on rank 0, broadcast). The images must be those of one
 process: every point array within 1e-6 (of its largest value), the same integrator, step,
 expected error and samples per ray, and the same Auto report (less its timing).
@@ -115,7 +117,11 @@ else:
                 T.close(mpi[key] / scale, serial[key] / scale, 1e-6, "%s: %s, 2 ranks vs 1 (relative to its largest)" % (name, a))
         for key in NUMBERS + ["expected_error", "auto_tolerance"]:
             a, b = float(mpi[name + "/" + key]), float(serial[name + "/" + key])
-            T.check((np.isnan(a) and np.isnan(b)) or abs(a - b) <= 1e-9 * max(abs(b), 1e-30),
+            # Auto's line of sight is traced in pieces without ray passing: each ray's partial
+            # integrals add up in another order, so the largest deflection (hence k) agrees to
+            # float rounding; every count and every choice stays exact
+            rel = 1e-6 if key == "cutoff_scale" else 1e-9
+            T.check((np.isnan(a) and np.isnan(b)) or abs(a - b) <= rel * max(abs(b), 1e-30),
                     "%s: field data %s, 2 ranks %.10g vs 1 %.10g" % (name, key, a, b))
         for key in ("integrator", "auto_report"):
             T.check(str(mpi[name + "/" + key]) == str(serial[name + "/" + key]),
