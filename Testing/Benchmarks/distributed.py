@@ -3,7 +3,7 @@
 ranks; prints a table.
 
 Run: /usr/bin/python3 distributed.py --plugin <Schlieren.so> [--size 384] [--resolution 256]
-         [--passes 2] [--ranks 1,2,4] [--pvbatch pvbatch] [--mpiexec mpiexec]
+         [--passes 2] [--ranks 1,2,4] [--integrator Euler] [--pvbatch pvbatch] [--mpiexec mpiexec]
 
 Each row is one `mpiexec -n N pvbatch --mpi --symmetric` run of this script (--worker): every rank
 makes its piece of a RefractiveScene of size^3 points (the Gaussian sphere), reads its high-water
@@ -18,10 +18,12 @@ max(1, cores / N) CPU threads (SCHLIEREN_CPU_THREADS): with more ranks than core
 them (oversubscribed), so times at 4 ranks on a 2-core machine show the cost of the exchange, not a
 speed-up.
 """
+import json
 import os
-import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 
 
@@ -53,21 +55,22 @@ def worker():
     before = hwm()
     image = ns["SchlierenImage"](Input=scene, Resolution=[int(argument("--resolution"))] * 2,
                                  Passes=int(argument("--passes")), Backend=argument("--backend"),
-                                 Integrator="Euler", StepSize=0.5)
+                                 Integrator=argument("--integrator", "Euler"), StepSize=0.5)
     t0 = time.time()
     image.UpdatePipeline()
     seconds = time.time() - t0
     after = hwm()
-    print("RANK %d hwm_before %d hwm_after %d" % (rank, before, after), flush=True)
+    # each rank's numbers in a file of its own (the ranks' standard outputs interleave)
+    numbers = {"hwm_before": before, "hwm_after": after}
     if rank == 0:
+        numbers["seconds"] = seconds
         fd = image.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
-        numbers = {}
         for i in range(fd.GetNumberOfArrays()):
             a = fd.GetArray(i)
             if a is not None and a.GetNumberOfTuples() == 1 and a.GetNumberOfComponents() == 1:
                 numbers[fd.GetArrayName(i)] = a.GetValue(0)
-        print("FIELD seconds %.6g %s" % (seconds, " ".join("%s %.9g" % kv for kv in sorted(numbers.items()))),
-              flush=True)
+    with open(os.path.join(argument("--outdir"), "rank%d.json" % rank), "w") as f:
+        json.dump(numbers, f)
 
 
 def main():
@@ -82,8 +85,8 @@ def main():
     ranks = [int(r) for r in argument("--ranks", "1,2,4").split(",")]
     cores = os.cpu_count() or 1
     points = int(size) ** 3
-    print("%s^3 points (%.0f MB of n - 1 as floats, %.0f MB packed), film %s^2, %s passes, %d cores"
-          % (size, points * 4 / 1e6, points * 16 / 1e6, resolution, passes, cores))
+    print("%s^3 points (%.0f MB of n - 1 as floats, %.0f MB packed), film %s^2, %s passes, %s at 0.5 voxel, %d cores"
+          % (size, points * 4 / 1e6, points * 16 / 1e6, resolution, passes, argument("--integrator", "Euler"), cores))
     print("%5s %6s %11s %11s %13s %12s %10s %10s %10s" % (
         "ranks", "mode", "peak MB", "trace MB", "held points", "MB/pass", "s/pass", "tracing", "exchange"))
     for n in ranks:
@@ -93,16 +96,23 @@ def main():
             env = dict(os.environ, SCHLIEREN_CPU_THREADS=str(max(1, cores // n)))
             cmd = [mpiexec, "-n", str(n), "--allow-run-as-root", "--oversubscribe", pvbatch, "--mpi",
                    "--symmetric", os.path.abspath(__file__), "--worker", "--plugin", plugin, "--size", size,
-                   "--resolution", resolution, "--passes", passes, "--backend", backend]
-            run = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-            text = run.stdout
-            rows = [tuple(int(x) for x in m) for m in re.findall(r"RANK \d+ hwm_before (\d+) hwm_after (\d+)", text)]
-            field = re.search(r"FIELD (.*)", text)
-            if run.returncode != 0 or not rows or not field:
-                print("%5d %6s failed (status %d): %s" % (n, mode, run.returncode, text[-800:]))
+                   "--resolution", resolution, "--passes", passes, "--backend", backend,
+                   "--integrator", argument("--integrator", "Euler")]
+            outdir = tempfile.mkdtemp(prefix="schlieren_distributed_")
+            run = subprocess.run(cmd + ["--outdir", outdir], env=env, stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, text=True)
+            ranks_numbers = []
+            for r in range(n):
+                path = os.path.join(outdir, "rank%d.json" % r)
+                if os.path.exists(path):
+                    with open(path) as f:
+                        ranks_numbers.append(json.load(f))
+            shutil.rmtree(outdir, ignore_errors=True)
+            if run.returncode != 0 or len(ranks_numbers) != n:
+                print("%5d %6s failed (status %d): %s" % (n, mode, run.returncode, run.stdout[-800:]))
                 continue
-            f = field.group(1).split()
-            numbers = {f[i]: float(f[i + 1]) for i in range(0, len(f) - 1, 2)}
+            rows = [(x["hwm_before"], x["hwm_after"]) for x in ranks_numbers]
+            numbers = ranks_numbers[0]
             peak = max(after for before, after in rows) / 1e6
             added = max(after - before for before, after in rows) / 1e6
             held = numbers.get("held_points_max", points)
