@@ -34,7 +34,7 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
   auto worker = [&]() {
     // each thread reads its own copy of the parameters: the caller's sits on the main thread's
     // stack, next to what that thread writes every step, and the other thread's reads of it
-    // missed the cache on every step (false sharing: 2 threads ran no faster than 1)
+    // missed the cache on every step (false sharing)
     const sch_params Pw = P;
     for (;;)
     {

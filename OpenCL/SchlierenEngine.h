@@ -266,8 +266,6 @@ struct FilmSums
   int Passes = 0;
 
   void Resize(int nx, int ny);
-  /** Adds another rank's sums (same size, same passes). */
-  void Merge(const FilmSums& other);
   /** Every per-pixel channel, every additive total, every maximum: for generic loops and MPI. */
   std::vector<std::vector<double>*> PixelChannels();
   std::vector<double*> Totals();

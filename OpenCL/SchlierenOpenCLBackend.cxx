@@ -16,7 +16,9 @@
 namespace schlieren
 {
 
-// The OpenCL backend: holds the device buffers for one Accumulate call.
+// The OpenCL backend for one volume on one device: the field's buffers (in slabs over the
+// device's buffer limit), the cell bytes, the records buffer and the kernels built for it. Kept
+// between calls for a stamped volume (see KeptTracer).
 class OpenCLTracer
 {
 public:
@@ -136,8 +138,7 @@ public:
   OpenCLTracer& operator=(const OpenCLTracer&) = delete;
 
   // The kernels for P's integrator, octree use and invariant rescaling: built with them as
-  // constants (-DSCH_FIXED_*), so that the step has no branches on them (+10-28 % on PoCL, Euler,
-  // 192^3). Two programs per setting: the per-item one (sch_trace_rays, sch_trace_points) and the
+  // constants (-DSCH_FIXED_*), so that the step has no branches on them. Two programs per setting: the per-item one (sch_trace_rays, sch_trace_points) and the
   // lock-step one (sch_trace_lockstep, -DSCH_LOCKSTEP_GROUP: its walks in local memory). Each is
   // built on first use and kept, known by its entry point and every build option;
   // RuntimeOptions::Specialise false (SCHLIEREN_CL_SPECIALISE=0) builds one generic program of each.
@@ -228,11 +229,20 @@ public:
     ocl::Check(err, "clCreateBuffer(points)");
     const int c = static_cast<int>(count);
     const sch_params Q = WithSlabs(P);
-    SetFieldArgs(PointsKernel);
-    clSetKernelArg(PointsKernel, 5, sizeof(sch_params), &Q);
-    clSetKernelArg(PointsKernel, 6, sizeof(cl_mem), &abBuf);
-    clSetKernelArg(PointsKernel, 7, sizeof(int), &c);
-    clSetKernelArg(PointsKernel, 8, sizeof(cl_mem), &Out);
+    try
+    {
+      SetFieldArgs(PointsKernel);
+      ocl::Check(clSetKernelArg(PointsKernel, 5, sizeof(sch_params), &Q), "clSetKernelArg(params)");
+      ocl::Check(clSetKernelArg(PointsKernel, 6, sizeof(cl_mem), &abBuf), "clSetKernelArg(points)");
+      ocl::Check(clSetKernelArg(PointsKernel, 7, sizeof(int), &c), "clSetKernelArg(count)");
+      ocl::Check(clSetKernelArg(PointsKernel, 8, sizeof(cl_mem), &Out), "clSetKernelArg(out)");
+    }
+    catch (...)
+    {
+      // the points' buffer is this call's: released however the call ends
+      clReleaseMemObject(abBuf);
+      throw;
+    }
     const std::size_t global = count;
     cl_int st = clEnqueueNDRangeKernel(RT.Queue, PointsKernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
     if (st == CL_SUCCESS)
@@ -264,10 +274,10 @@ public:
   }
 
   // Lock-step rays (sch_trace_lockstep) on CPU devices: PoCL then runs each step over the whole
-  // group of rays, whose memory reads overlap (line of sight + octree too, since session 3:
-  // 2.7-3.2 -> 4.3 M photons/s on the plume). Other devices take the per-item kernel, and so does
-  // the step-doubling estimate (the lock-step program has no private walks to march the second
-  // ray with). RuntimeOptions::Lockstep (SCHLIEREN_CL_LOCKSTEP=0/1) overrides (for measurements).
+  // group of rays, whose memory reads overlap (line of sight and the octree included). Other
+  // devices take the per-item kernel, and so does the step-doubling estimate (the lock-step
+  // program has no private walks to march the second ray with). RuntimeOptions::Lockstep
+  // (SCHLIEREN_CL_LOCKSTEP=0/1) overrides (for measurements).
   bool UseLockstep(const sch_params& P) const
   {
     if (P.estimate)

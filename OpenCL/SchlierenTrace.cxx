@@ -69,7 +69,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   }
 
   const std::size_t rays = RaysForRank(P);
-  // chunks of about 8 M samples (~0.1-0.2 s on a CPU): progress and abort are checked between
+  // chunks of about 8 M samples (a fraction of a second): progress and abort are checked between
   // chunks, so an abort stops the trace within one chunk; long rays make small chunks
   const double samplesPerRay = std::max(1.0, 2.0 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy +
                                                  double(P.hz) * P.hz) / P.step *

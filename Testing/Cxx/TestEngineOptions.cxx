@@ -113,11 +113,12 @@ int main()
     c.Device = Backend::Auto;
     const TraceResult r = Trace(sphere.V, c);
     std::printf("Auto with a bogus device: %s; %s", r.BackendUsed.c_str(), r.Warnings.c_str());
+    // without any OpenCL device the warning says that instead
     CHECK(r.BackendUsed == "CPU" && r.Warnings.find("tracing on the CPU instead") != std::string::npos &&
-        r.Warnings.find("no such device 1234") != std::string::npos,
+        (!haveCL || r.Warnings.find("no such device 1234") != std::string::npos),
       "Backend Auto with a device name no device has traces on the CPU and says why");
     const DeviceInfo none = QueryOpenCLDevice("no such device 1234");
-    CHECK(!none.Available && none.Reason.find("matches no OpenCL device") != std::string::npos,
+    CHECK(!none.Available && (!haveCL || none.Reason.find("matches no OpenCL device") != std::string::npos),
       "QueryOpenCLDevice says that no device has the name");
   }
   if (!haveCL)
