@@ -9,7 +9,9 @@
  * SchlierenFilm.cxx (film geometry, sums, the splatter), SchlierenFinalize.cxx (film filters,
  * sums to image, photon warnings), SchlierenAuto.cxx (Auto's pilot), SchlierenCpuBackend.cxx,
  * SchlierenOpenCLBackend.cxx, SchlierenTrace.cxx (Accumulate, Trace, TraceRays, the backend
- * choice) and SchlierenNames.cxx (enum names, the photon key).
+ * choice) and SchlierenNames.cxx (enum names, the photon key). The runtime options (the
+ * environment, read once) are in SchlierenOptions.h; the OpenCL context and program cache in
+ * SchlierenOpenCL.h.
  */
 #ifndef SchlierenEngineInternal_h
 #define SchlierenEngineInternal_h
