@@ -117,6 +117,15 @@ int main()
     CHECK(r.BackendUsed == "CPU" && r.Warnings.find("tracing on the CPU instead") != std::string::npos &&
         (!haveCL || r.Warnings.find("no such device 1234") != std::string::npos),
       "Backend Auto with a device name no device has traces on the CPU and says why");
+    // the same name from the options (SCHLIEREN_OPENCL_DEVICE) when DeviceName is empty
+    {
+      const schtest::ScopedOptions env([](RuntimeOptions& o) { o.OpenCLDevice = "no such device 1234"; });
+      TraceSettings e = s;
+      e.Device = Backend::OpenCL;
+      ExpectError("SCHLIEREN_OPENCL_DEVICE that matches nothing", [&] { Trace(sphere.V, e); },
+        haveCL ? std::vector<std::string>{ "SCHLIEREN_OPENCL_DEVICE='no such device 1234'" }
+               : std::vector<std::string>{});
+    }
     const DeviceInfo none = QueryOpenCLDevice("no such device 1234");
     CHECK(!none.Available && (!haveCL || none.Reason.find("matches no OpenCL device") != std::string::npos),
       "QueryOpenCLDevice says that no device has the name");
