@@ -237,7 +237,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     c.Met = false;
   }
   c.Tolerance = tol;
-  // the octree is a cost too: a skipping step costs more than a plain one (1.2-1.9x here). Kept
+  // the octree is a cost too: a skipping step costs more than a plain one. Kept
   // when it saves at least 10 % of the chosen setting's samples on the pilot; without it the
   // error can only stay or shrink (fixed steps through the blocks it would have skipped).
   c.UseOctree = in.UseOctree && grid.HasLevels;

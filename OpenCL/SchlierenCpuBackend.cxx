@@ -11,31 +11,30 @@
 namespace schlieren
 {
 
-// Threads of the CPU backend: SCHLIEREN_CPU_THREADS when set (for instance 1 per MPI rank, or to
-// measure scaling), else every hardware thread.
-unsigned CpuThreads()
+// Threads of the CPU backend: the trace's Threads, else the options' (SCHLIEREN_CPU_THREADS: for
+// instance 1 per MPI rank, or to measure scaling), else every hardware thread.
+unsigned CpuThreads(int requested)
 {
-  if (const char* env = std::getenv("SCHLIEREN_CPU_THREADS"))
-  {
-    const int n = std::atoi(env);
-    if (n > 0)
-      return static_cast<unsigned>(n);
-  }
+  if (requested > 0)
+    return static_cast<unsigned>(requested);
+  const int n = GetRuntimeOptions().CpuThreads;
+  if (n > 0)
+    return static_cast<unsigned>(n);
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
 // The CPU backend: the C++ build of SchlierenPhysics.h on std::thread.
 void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_params& P,
-  std::size_t first, std::size_t count, float* out)
+  std::size_t first, std::size_t count, float* out, unsigned threadCount)
 {
-  const unsigned nt = CpuThreads();
+  const unsigned nt = threadCount > 0 ? threadCount : CpuThreads();
   std::atomic<std::size_t> next(0);
   // blocks of 256 rays, smaller where a chunk has fewer rays than that for each thread
   const std::size_t block = std::max<std::size_t>(1, std::min<std::size_t>(256, (count + nt - 1) / nt));
   auto worker = [&]() {
     // each thread reads its own copy of the parameters: the caller's sits on the main thread's
     // stack, next to what that thread writes every step, and the other thread's reads of it
-    // missed the cache on every step (false sharing: 2 threads ran no faster than 1)
+    // missed the cache on every step (false sharing)
     const sch_params Pw = P;
     for (;;)
     {

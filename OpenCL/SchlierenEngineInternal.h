@@ -9,12 +9,15 @@
  * SchlierenFilm.cxx (film geometry, sums, the splatter), SchlierenFinalize.cxx (film filters,
  * sums to image, photon warnings), SchlierenAuto.cxx (Auto's pilot), SchlierenCpuBackend.cxx,
  * SchlierenOpenCLBackend.cxx, SchlierenTrace.cxx (Accumulate, Trace, TraceRays, the backend
- * choice) and SchlierenNames.cxx (enum names, the photon key).
+ * choice) and SchlierenNames.cxx (enum names, the photon key). The runtime options (the
+ * environment, read once) are in SchlierenOptions.h; the OpenCL context and program cache in
+ * SchlierenOpenCL.h.
  */
 #ifndef SchlierenEngineInternal_h
 #define SchlierenEngineInternal_h
 
 #include "SchlierenEngine.h"
+#include "SchlierenOptions.h"
 
 // The physics, compiled as C++ for the CPU backend and for the host-side film. The CPU path
 // advances SCH_PACKET rays in turn per packet (sch_trace_packet): more rays' steps in flight
@@ -171,12 +174,14 @@ Volume TraceVolume(const Volume& v, std::shared_ptr<std::vector<unsigned char>>&
 
 // ------------------------------------------------------------------ CPU backend (SchlierenCpuBackend.cxx)
 
-/** Threads the CPU backend runs on. */
-unsigned CpuThreads();
+/** Threads the CPU backend runs on: `requested` (TraceSettings::Threads) where positive, else the
+ * runtime options' CpuThreads where positive, else every hardware thread. */
+unsigned CpuThreads(int requested = 0);
 
-/** Traces rays first .. first + count - 1 of this rank's pass P.pass into `out` (SCH_RECORD each). */
+/** Traces rays first .. first + count - 1 of this rank's pass P.pass into `out` (SCH_RECORD each),
+ * on `threadCount` threads (0: CpuThreads()). The records do not depend on the thread count. */
 void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_params& P,
-  std::size_t first, std::size_t count, float* out);
+  std::size_t first, std::size_t count, float* out, unsigned threadCount = 0);
 
 // ------------------------------------------------------------------ OpenCL backend (SchlierenOpenCLBackend.cxx)
 
@@ -185,11 +190,14 @@ class OpenCLTracer;
 
 /**
  * The OpenCL tracer for `volume` with cell bytes `bytes` (held alive by `bytesOwner`), its records
- * buffer for at least `chunk` rays: the kept one where it matches, else a new one (kept where the
- * volume is stamped). Throws Error where the device cannot take the volume.
+ * buffer for at least `chunk` rays, on the device whose name contains `deviceName` (empty: the
+ * options' device) with the OpenCL options of `options`: the kept one where all of these match,
+ * else a new one (kept where the volume is stamped). Throws Error where the device cannot take
+ * the volume or none matches.
  */
 std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
-  const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem);
+  const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem,
+  const RuntimeOptions& options, const std::string& deviceName);
 
 /** Builds (or finds) the kernel that TraceOpenCL (points false) or TracePointsOpenCL (true) runs
  * for P; throws Error on a build failure. */

@@ -132,23 +132,6 @@ void FilmSums::Resize(int nx, int ny)
   Passes = 0;
 }
 
-void FilmSums::Merge(const FilmSums& o)
-{
-  if (o.Size[0] != Size[0] || o.Size[1] != Size[1])
-    throw schlieren::Error("FilmSums::Merge: films of different sizes.");
-  FilmSums& other = const_cast<FilmSums&>(o);
-  const auto mine = PixelChannels(), theirs = other.PixelChannels();
-  for (std::size_t c = 0; c < mine.size(); ++c)
-    for (std::size_t i = 0; i < mine[c]->size(); ++i)
-      (*mine[c])[i] += (*theirs[c])[i];
-  const auto t0 = Totals(), t1 = other.Totals();
-  for (std::size_t i = 0; i < t0.size(); ++i)
-    *t0[i] += *t1[i];
-  const auto m0 = Maxima(), m1 = other.Maxima();
-  for (std::size_t i = 0; i < m0.size(); ++i)
-    *m0[i] = std::max(*m0[i], *m1[i]);
-}
-
 void FilmSums::ToArrays(std::vector<double>& additive, std::vector<double>& maxima)
 {
   additive.clear();

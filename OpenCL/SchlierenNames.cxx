@@ -66,7 +66,8 @@ std::string TraceSettings::PhotonKey() const
     << static_cast<int>(Mode) << ' ' << KnifeAngle << ' ' << CutoffScale << ' ' << FilmDistance
     << ' ' << Wavelength << ' ' << ReferenceTilt << ' ' << BackgroundDistance << ' '
     << BackgroundPattern << ' ' << BackgroundPeriod << ' ' << RussianRoulette << ' ' << Jitter
-    << ' ' << Seed << ' ' << MaxSteps << ' ' << static_cast<int>(Device) << ' ' << RaysPerWorkItem
+    << ' ' << Seed << ' ' << MaxSteps << ' ' << static_cast<int>(Device) << ' ' << DeviceName.size()
+    << ':' << DeviceName << ' ' << RaysPerWorkItem
     << ' ' << RankIndex << ' ' << RankCount;
   return k.str();
 }

@@ -3,6 +3,7 @@
 #include "SchlierenEngineInternal.h"
 #include "SchlierenLimits.h"
 #include "SchlierenOpenCL.h"
+#include "SchlierenOptions.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -15,13 +16,18 @@
 namespace schlieren
 {
 
-// The OpenCL backend: holds the device buffers for one Accumulate call.
+// The OpenCL backend for one volume on one device: the field's buffers (in slabs over the
+// device's buffer limit), the cell bytes, the records buffer and the kernels built for it. Kept
+// between calls for a stamped volume (see KeptTracer).
 class OpenCLTracer
 {
 public:
-  // bytes: the cell bytes (octree levels, solid points) or null
-  OpenCLTracer(const Volume& volume, const unsigned char* cellBytes, std::size_t chunk, int raysPerItem)
-    : RT(ocl::GetRuntime())
+  // bytes: the cell bytes (octree levels, solid points) or null; deviceName: a part of the
+  // device's name, empty for the options' device
+  OpenCLTracer(const Volume& volume, const unsigned char* cellBytes, std::size_t chunk, int raysPerItem,
+    const RuntimeOptions& options, const std::string& deviceName)
+    : RT(ocl::GetRuntime(deviceName))
+    , Options(options)
     , RaysPerItem(raysPerItem > 0 ? raysPerItem : (RT.IsCPU ? 4 : 1))
   {
     // over one buffer's limit, the field goes in slabs along z, up to MaxSlabs buffers: slab q
@@ -56,8 +62,7 @@ public:
     cl_uint alignBits = 0;
     clGetDeviceInfo(RT.Device, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof(alignBits), &alignBits, nullptr);
     const std::uintptr_t align = std::max<std::uintptr_t>(alignBits / 8, 64);
-    const char* useHost = std::getenv("SCHLIEREN_CL_USE_HOST_PTR");
-    const bool shareHost = RT.IsCPU && !(useHost && std::string(useHost) == "0");
+    const bool shareHost = RT.IsCPU && Options.UseHostPtr;
     auto slabStart = [&](int q) {
       return volume.Field + std::uint64_t(q) * SlabCells * planeFloats;
     };
@@ -133,10 +138,10 @@ public:
   OpenCLTracer& operator=(const OpenCLTracer&) = delete;
 
   // The kernels for P's integrator, octree use and invariant rescaling: built with them as
-  // constants (-DSCH_FIXED_*), so that the step has no branches on them (+10-28 % on PoCL, Euler,
-  // 192^3). Two programs per setting: the per-item one (sch_trace_rays, sch_trace_points) and the
+  // constants (-DSCH_FIXED_*), so that the step has no branches on them. Two programs per setting: the per-item one (sch_trace_rays, sch_trace_points) and the
   // lock-step one (sch_trace_lockstep, -DSCH_LOCKSTEP_GROUP: its walks in local memory). Each is
-  // built on first use and kept; SCHLIEREN_CL_SPECIALISE=0 builds one generic program of each.
+  // built on first use and kept, known by its entry point and every build option;
+  // RuntimeOptions::Specialise false (SCHLIEREN_CL_SPECIALISE=0) builds one generic program of each.
   enum class Entry
   {
     Rays,
@@ -145,16 +150,11 @@ public:
   };
   cl_kernel KernelFor(const sch_params& P, Entry entry)
   {
-    const char* spec = std::getenv("SCHLIEREN_CL_SPECIALISE");
-    const bool specialise = !(spec && std::string(spec) == "0");
+    const bool specialise = Options.Specialise;
     const int setting = specialise
       ? 1 + P.integrator * 8 + (P.useSolid ? 4 : 0) + (P.useLevels ? 2 : 0) + (P.keepInvariant ? 1 : 0) +
         64 * P.recon
       : 0;
-    const int key = setting * 3 + static_cast<int>(entry);
-    auto it = Kernels.find(key);
-    if (it != Kernels.end())
-      return it->second;
     std::ostringstream opts;
     opts << "-cl-std=CL1.2";
     if (entry == Entry::Lockstep)
@@ -168,12 +168,17 @@ public:
            << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0) << " -DSCH_FIXED_RECON=" << P.recon
            << " -DSCH_FIXED_SOLID=" << (P.useSolid ? 1 : 0);
     // extra OpenCL build options, for experiments (e.g. -cl-mad-enable)
-    if (const char* extra = std::getenv("SCHLIEREN_CL_OPTIONS"))
-      opts << " " << extra;
-    cl_program prog = ocl::GetProgram("SchlierenTrace.cl", EmbeddedKernelSource(), opts.str());
+    if (!Options.BuildOptions.empty())
+      opts << " " << Options.BuildOptions;
     const char* name = entry == Entry::Rays ? "sch_trace_rays"
       : entry == Entry::Points              ? "sch_trace_points"
                                             : "sch_trace_lockstep";
+    // the kernel is known by its entry point and every build option
+    const std::string key = std::string(name) + " " + opts.str();
+    auto it = Kernels.find(key);
+    if (it != Kernels.end())
+      return it->second;
+    cl_program prog = ocl::GetProgram(RT, "SchlierenTrace.cl", EmbeddedKernelSource(), opts.str());
     cl_int err = CL_SUCCESS;
     cl_kernel k = clCreateKernel(prog, name, &err);
     ocl::Check(err, (std::string("clCreateKernel(") + name + ")").c_str());
@@ -224,11 +229,20 @@ public:
     ocl::Check(err, "clCreateBuffer(points)");
     const int c = static_cast<int>(count);
     const sch_params Q = WithSlabs(P);
-    SetFieldArgs(PointsKernel);
-    clSetKernelArg(PointsKernel, 5, sizeof(sch_params), &Q);
-    clSetKernelArg(PointsKernel, 6, sizeof(cl_mem), &abBuf);
-    clSetKernelArg(PointsKernel, 7, sizeof(int), &c);
-    clSetKernelArg(PointsKernel, 8, sizeof(cl_mem), &Out);
+    try
+    {
+      SetFieldArgs(PointsKernel);
+      ocl::Check(clSetKernelArg(PointsKernel, 5, sizeof(sch_params), &Q), "clSetKernelArg(params)");
+      ocl::Check(clSetKernelArg(PointsKernel, 6, sizeof(cl_mem), &abBuf), "clSetKernelArg(points)");
+      ocl::Check(clSetKernelArg(PointsKernel, 7, sizeof(int), &c), "clSetKernelArg(count)");
+      ocl::Check(clSetKernelArg(PointsKernel, 8, sizeof(cl_mem), &Out), "clSetKernelArg(out)");
+    }
+    catch (...)
+    {
+      // the points' buffer is this call's: released however the call ends
+      clReleaseMemObject(abBuf);
+      throw;
+    }
     const std::size_t global = count;
     cl_int st = clEnqueueNDRangeKernel(RT.Queue, PointsKernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
     if (st == CL_SUCCESS)
@@ -252,35 +266,33 @@ public:
     Q.slabCells = SlabCells;
     return Q;
   }
-  // The device's largest buffer, or less where SCHLIEREN_CL_MAX_ALLOC (bytes) says so: the split
-  // into slabs is tested on small volumes that way.
+  // The device's largest buffer, or less where RuntimeOptions::MaxAlloc (SCHLIEREN_CL_MAX_ALLOC)
+  // says so: the split into slabs is tested on small volumes that way.
   std::uint64_t MaxAllocation() const
   {
-    std::uint64_t m = RT.MaxAlloc;
-    if (const char* e = std::getenv("SCHLIEREN_CL_MAX_ALLOC"))
-      m = std::min<std::uint64_t>(m, std::strtoull(e, nullptr, 10));
-    return m;
+    return Options.MaxAlloc > 0 ? std::min(RT.MaxAlloc, Options.MaxAlloc) : RT.MaxAlloc;
   }
 
   // Lock-step rays (sch_trace_lockstep) on CPU devices: PoCL then runs each step over the whole
-  // group of rays, whose memory reads overlap (line of sight + octree too, since session 3:
-  // 2.7-3.2 -> 4.3 M photons/s on the plume). Other devices take the per-item kernel, and so does
-  // the step-doubling estimate (the lock-step program has no private walks to march the second
-  // ray with). SCHLIEREN_CL_LOCKSTEP=0/1 overrides (for measurements).
+  // group of rays, whose memory reads overlap (line of sight and the octree included). Other
+  // devices take the per-item kernel, and so does the step-doubling estimate (the lock-step
+  // program has no private walks to march the second ray with). RuntimeOptions::Lockstep
+  // (SCHLIEREN_CL_LOCKSTEP=0/1) overrides (for measurements).
   bool UseLockstep(const sch_params& P) const
   {
     if (P.estimate)
       return false;
-    if (const char* e = std::getenv("SCHLIEREN_CL_LOCKSTEP"))
-      return std::string(e) != "0";
+    if (Options.Lockstep >= 0)
+      return Options.Lockstep != 0;
     return RT.IsCPU;
   }
   static constexpr std::size_t LockstepGroup = 64;
 
   ocl::Runtime& RT;
+  const RuntimeOptions Options;
   int RaysPerItem;
   std::size_t Chunk = 0;
-  std::map<int, cl_kernel> Kernels;
+  std::map<std::string, cl_kernel> Kernels;
   // the field: one buffer, or Slabs buffers of SlabCells cells along z (see the constructor)
   static constexpr int MaxSlabs = 4;
   cl_mem Fields[MaxSlabs] = { nullptr, nullptr, nullptr, nullptr };
@@ -298,6 +310,8 @@ struct KeptTracer
 {
   VolumeIdentity Identity;
   int RaysPerItem = 0;
+  // the device asked for and the OpenCL options (RuntimeOptions::OpenCLKey) it was made with
+  std::string Device;
   // the cell bytes the device copy was made from, held so that no other allocation can take
   // their address while the copy is kept: with a body they change with the step's reach
   const unsigned char* Bytes = nullptr;
@@ -323,14 +337,16 @@ void ReleaseKeptAtExit()
 } // namespace
 
 std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
-  const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem)
+  const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem,
+  const RuntimeOptions& options, const std::string& deviceName)
 {
+  const std::string device = deviceName + '\n' + options.OpenCLKey();
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
     KeptTracer& k = Kept();
     // in use by another call (use_count > 1): that call keeps it; this one makes its own
     if (k.Tracer && k.Identity == VolumeIdentity(volume) && k.RaysPerItem == raysPerItem &&
-      k.Bytes == bytes && k.Tracer.use_count() == 1)
+      k.Device == device && k.Bytes == bytes && k.Tracer.use_count() == 1)
     {
       std::shared_ptr<OpenCLTracer> t = k.Tracer;
       t->EnsureOut(chunk);
@@ -339,15 +355,17 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned
     // one volume on the device at a time: the old copy goes before the new one is made
     k.Tracer.reset();
     k.Identity = VolumeIdentity();
+    k.Device.clear();
     k.Bytes = nullptr;
     k.BytesOwner.reset();
   }
-  auto t = std::make_shared<OpenCLTracer>(volume, bytes, chunk, raysPerItem);
+  auto t = std::make_shared<OpenCLTracer>(volume, bytes, chunk, raysPerItem, options, deviceName);
   if (volume.Stamp != 0)
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
     Kept().Identity = VolumeIdentity(volume);
     Kept().RaysPerItem = raysPerItem;
+    Kept().Device = device;
     Kept().Bytes = bytes;
     Kept().BytesOwner = bytesOwner;
     Kept().Tracer = t;
@@ -386,12 +404,12 @@ void ReleaseKeptVolume()
   Kept().Identity = VolumeIdentity();
 }
 
-DeviceInfo QueryOpenCLDevice()
+DeviceInfo QueryOpenCLDevice(const std::string& deviceName)
 {
   DeviceInfo info;
   try
   {
-    ocl::Runtime& rt = ocl::GetRuntime();
+    ocl::Runtime& rt = ocl::GetRuntime(deviceName);
     info.Available = true;
     info.Name = rt.DeviceName;
     info.Platform = rt.PlatformName;

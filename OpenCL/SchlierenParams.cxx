@@ -99,7 +99,7 @@ std::mutex KeptMutex;
 
 void SetFeatureTolerance(sch_params& P, const Volume& volume)
 {
-  // the index range of the last stamped volume (a pass over the whole field: ~40 ms at 256^3)
+  // the index range of the last stamped volume (kept: finding it is a pass over the whole field)
   static VolumeIdentity rangeOf;
   static float rangeLo = 0, rangeHi = 0;
   float lo = volume.Field[0], hi = volume.Field[0];

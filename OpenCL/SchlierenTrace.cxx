@@ -15,9 +15,6 @@
 namespace schlieren
 {
 
-// The OpenCL tracer for this trace, or null for the CPU (asked for, or OpenCL unusable under Auto,
-// with a warning). points: the caller traces explicit film points (TracePoints) rather than passes
-// (Trace); the kernel it will run is built here, so that a build failure falls back too.
 std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned char* bytes,
   const std::shared_ptr<const void>& bytesOwner, const TraceSettings& s,
   const sch_params& P, std::size_t chunk, bool points, std::string& used, std::string& device,
@@ -26,12 +23,13 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned c
   if (s.Device == Backend::CPU)
   {
     used = "CPU";
-    device = "CPU (" + std::to_string(CpuThreads()) + " threads)";
+    device = "CPU (" + std::to_string(CpuThreads(s.Threads)) + " threads)";
     return nullptr;
   }
   try
   {
-    auto t = AcquireTracer(volume, bytes, bytesOwner, chunk, s.RaysPerWorkItem);
+    auto t = AcquireTracer(
+      volume, bytes, bytesOwner, chunk, s.RaysPerWorkItem, GetRuntimeOptions(), s.DeviceName);
     PrepareKernel(*t, P, points); // built here, so that a build failure falls back like a missing device
     used = "OpenCL";
     device = TracerDeviceName(*t);
@@ -42,7 +40,7 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned c
     if (s.Device == Backend::OpenCL)
       throw;
     used = "CPU";
-    device = "CPU (" + std::to_string(CpuThreads()) + " threads)";
+    device = "CPU (" + std::to_string(CpuThreads(s.Threads)) + " threads)";
     warnings += std::string("OpenCL is not usable, tracing on the CPU instead: ") + e.what() + "\n";
     return nullptr;
   }
@@ -71,7 +69,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   }
 
   const std::size_t rays = RaysForRank(P);
-  // chunks of about 8 M samples (~0.1-0.2 s on a CPU): progress and abort are checked between
+  // chunks of about 8 M samples (a fraction of a second): progress and abort are checked between
   // chunks, so an abort stops the trace within one chunk; long rays make small chunks
   const double samplesPerRay = std::max(1.0, 2.0 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy +
                                                  double(P.hz) * P.hz) / P.step *
@@ -92,6 +90,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
     warn += "Reconstruction Cubic is not available with a solid body (the byte per point that "
             "carries the body holds the smoothness it needs): traced trilinear.\n";
   std::vector<float> records(chunk * SCH_RECORD);
+  const unsigned threads = CpuThreads(s.Threads);
   Splatter splat(P, s, sums);
   const double total = double(s.Passes) * std::max<std::size_t>(rays, 1);
   double done = 0;
@@ -104,7 +103,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
       if (cl)
         TraceOpenCL(*cl, P, first, count, records.data());
       else
-        TraceChunkCPU(tv.Field, bytes, P, first, count, records.data());
+        TraceChunkCPU(tv.Field, bytes, P, first, count, records.data(), threads);
       splat.Add(records.data(), first, count);
       done += count;
       if (progress && !progress(done / total))
