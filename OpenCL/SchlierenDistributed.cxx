@@ -410,11 +410,11 @@ void CellOf(const sch_params& P, sch_v3 x, int c[3])
 /** Advances the rays in `live` until each has left the volume (finished) or this rank's cells
  * (handed on, by owner). Rays are split over threads; each ray's steps are its own. */
 void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RayState>& live,
-  std::vector<Finished>& finished, std::vector<std::vector<RayState>>& handOn)
+  std::vector<Finished>& finished, std::vector<std::vector<RayState>>& handOn, int threadCount)
 {
   const float* field = dv.Packed.data();
   const unsigned char* levels = dv.Levels.empty() ? nullptr : dv.Levels.data();
-  const unsigned nt = std::max(1u, std::min<unsigned>(CpuThreads(),
+  const unsigned nt = std::max(1u, std::min<unsigned>(CpuThreads(threadCount),
                                      static_cast<unsigned>((live.size() + 63) / 64)));
   std::vector<std::vector<Finished>> fin(nt);
   std::vector<std::vector<std::vector<RayState>>> out(nt, std::vector<std::vector<RayState>>(handOn.size()));
@@ -729,7 +729,8 @@ bool StraightSums(const sch_params& P)
 
 template <typename PointOf>
 std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, std::size_t count,
-  PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats, bool sums = true)
+  PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats, int threads,
+  bool sums = true)
 {
   if (sums && StraightSums(P))
     return TraceStraightSums(dv, P, count, pointOf, parallel, everywhere, stats);
@@ -783,7 +784,7 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
     live.insert(live.end(), fresh.begin() + next, fresh.begin() + next + take);
     next += take;
     std::vector<std::vector<RayState>> handOn(ranks);
-    Advance(dv, P, live, finished, handOn);
+    Advance(dv, P, live, finished, handOn, threads);
     tracing += SecondsSince(ta);
     Clock::time_point tb = Clock::now();
     std::vector<std::vector<char>> out(ranks);
@@ -877,7 +878,7 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const T
       *a = ab[2 * k];
       *b = ab[2 * k + 1];
     },
-    parallel, everywhere, stats, lineOfSightSums);
+    parallel, everywhere, stats, s.Threads, lineOfSightSums);
   std::vector<RayRecord> out;
   if (rec.empty())
     return out;
@@ -932,7 +933,7 @@ void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, 
     std::vector<float> rec = TraceAll(
       dv, P, pixels,
       [&](std::size_t k, float* a, float* b) { sch_emit(&P, static_cast<int>(k), a, b); },
-      parallel, false, stats);
+      parallel, false, stats, s.Threads);
     // in pixel order on rank 0, as one process splats them: the same sums, bit for bit
     if (parallel.Rank() == 0)
       splat.Add(rec.data(), 0, pixels);
