@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Tracing in pieces under MPI gives one process's image, bit for bit, on 1, 2 and 4 ranks of
-pvbatch and on pvservers of 2 and 4 ranks with pvpython as their client, for the cases where rays cross
-pieces in every way: the Gaussian sphere seen obliquely, the Luneburg lens (rays that bend across
-the pieces and back to a focus), a shadowgraph far behind a strong sphere (caustics: the rays
-cross), and the NASA blunt fin through its reader's own partition (when the shared data is there).
+pvbatch and on pvservers of 2 and 4 ranks with pvpython as their client, for the cases where rays
+cross pieces in every way: the Gaussian sphere seen obliquely, the Luneburg lens (rays that bend
+across the pieces and back to a focus), a shadowgraph far behind a strong sphere (caustics: the
+rays cross), and the NASA blunt fin through its reader's own partition (when the shared data is
+there).
 
     mpiexec -n N pvbatch --mpi test_mpi_cases.py --plugin <Schlieren.so> --output <dir>/cases_N.npz --ranks N
     pvpython test_mpi_cases.py --plugin <Schlieren.so> --output <dir>/cases_pvs.npz --ranks 2 \\
