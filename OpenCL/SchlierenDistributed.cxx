@@ -197,6 +197,27 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
     this->HeldDims[d] = std::max(0, held[2 * d + 1] - held[2 * d] + 1);
   }
 
+  // What this rank will hold at the peak of building its share: the packed field (16 bytes a
+  // point), n - 1 of the held points (4) and their bookkeeping (1), and the octree levels (1).
+  {
+    std::string tooBig;
+    try
+    {
+      std::ostringstream what;
+      what << "This rank's share of the volume (" << this->HeldDims[0] << " x " << this->HeldDims[1]
+           << " x " << this->HeldDims[2] << " points with its ghosts)";
+      CheckHostMemory(22.0 * BoxPoints(held), what.str(),
+        "Run on more ranks (or nodes), or resample the data to fewer points.");
+    }
+    catch (const Error& err)
+    {
+      tooBig = err.what();
+    }
+    tooBig = parallel.Failure(tooBig);
+    if (!tooBig.empty())
+      throw Error("Distributed volume: " + tooBig);
+  }
+
   // 3. The held points from whichever ranks have them (its own piece included).
   std::vector<char> heldBox;
   for (int k = 0; k < 6; ++k)

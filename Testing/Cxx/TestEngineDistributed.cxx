@@ -6,6 +6,7 @@
 // Gaussian sphere seen obliquely, the Luneburg lens (rays that curve across pieces and back) and a
 // shadowgraph with caustics. Bad decompositions and bad pieces give one error on every rank.
 #include "SchlierenDistributed.h"
+#include "SchlierenOptions.h"
 #include "SchlierenTesting.h"
 
 #include <cstring>
@@ -446,6 +447,56 @@ int main()
         std::string("pieces that ") + (which ? "leave a gap" : "overlap") + " are refused on both ranks: " +
           messages[0]);
     }
+  }
+  // a rank with an empty piece (more ranks than a reader splits into): it owns nothing, holds
+  // nothing, and the image is still one process's
+  {
+    const Decomposition d = { { 0, n - 1, 0, n - 1, 0, 20 }, { 0, -1, 0, -1, 0, -1 },
+      { 0, n - 1, 0, n - 1, 20, n - 1 } };
+    std::vector<std::vector<float>> values = { Cut(gauss, d[0]), {}, Cut(gauss, d[2]) };
+    TraceSettings s = cases[0].Settings;
+    s.Device = Backend::CPU;
+    FilmSums expected;
+    Accumulate(gauss.V, s, expected);
+    bool same = false, empty = false;
+    std::mutex m;
+    RunInProcessRanks(3, [&](Parallel& p) {
+      Piece piece = PieceOf(gauss, d[p.Rank()], values[p.Rank()]);
+      if (p.Rank() == 1)
+        piece.NMinus1 = nullptr;
+      DistributedVolume dv(piece, GhostPointsFor(s), p);
+      FilmSums sums;
+      AccumulateDistributed(dv, s, sums, p);
+      std::lock_guard<std::mutex> lock(m);
+      if (p.Rank() == 0)
+        same = SameSums(sums, expected);
+      if (p.Rank() == 1)
+        empty = dv.Packed.empty();
+    });
+    CHECK(same && empty, "a rank with an empty piece holds nothing; the film is one process's");
+  }
+  // a share that does not fit in memory is refused on every rank (SCHLIEREN_MEMORY_LIMIT's option)
+  {
+    const Decomposition d = Blocks(n, {}, {}, { 0.5 });
+    std::vector<std::vector<float>> values = { Cut(gauss, d[0]), Cut(gauss, d[1]) };
+    std::vector<std::string> messages(2);
+    {
+      schtest::ScopedOptions small([](RuntimeOptions& o) { o.MemoryLimit = 100000; });
+      RunInProcessRanks(2, [&](Parallel& p) {
+        try
+        {
+          DistributedVolume dv(PieceOf(gauss, d[p.Rank()], values[p.Rank()]), 4, p);
+        }
+        catch (const Error& e)
+        {
+          messages[p.Rank()] = e.what();
+        }
+      });
+    }
+    CHECK(messages[0].find("share of the volume") != std::string::npos &&
+        messages[1].find("share of the volume") != std::string::npos &&
+        messages[0].find("more ranks") != std::string::npos,
+      "a share too large for memory is refused on both ranks: " + messages[0]);
   }
   // a step longer than the ghosts allow is refused, not traced wrong
   {
