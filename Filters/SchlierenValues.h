@@ -32,6 +32,19 @@ struct CopyValues
       [](const auto v) { return static_cast<T>(static_cast<double>(v)); });
   }
 };
+
+struct VisitFirstComponent
+{
+  template <class ArrayT, class F>
+  void operator()(ArrayT* array, F& f) const
+  {
+    vtkIdType i = 0;
+    for (const auto tuple : vtk::DataArrayTupleRange(array))
+    {
+      f(i++, static_cast<double>(tuple[0]));
+    }
+  }
+};
 } // namespace detail
 
 /**
@@ -49,6 +62,19 @@ std::vector<T> Values(vtkDataArray* array)
     worker(array, out);
   }
   return out;
+}
+/**
+ * Calls f(i, value) for every tuple i of `array` (with at least one component), value being its
+ * first component as a double (what GetComponent(i, 0) gives), without a copy of the array.
+ */
+template <class F>
+void ForEachFirstComponent(vtkDataArray* array, F&& f)
+{
+  detail::VisitFirstComponent worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, f))
+  {
+    worker(array, f);
+  }
 }
 } // namespace values
 } // namespace schlieren

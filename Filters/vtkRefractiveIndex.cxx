@@ -171,16 +171,14 @@ bool LocalBounds(vtkDataObject* data, double bounds[6])
  */
 bool MarkSolid(vtkDataArray* mask, bool resampled, std::vector<unsigned char>& solid)
 {
-  const std::vector<double> values = schlieren::values::Values<double>(mask);
   bool any = false;
-  for (std::size_t i = 0; i < solid.size() && i < values.size(); ++i)
-  {
-    if (resampled ? values[i] >= 0.5 : values[i] != 0.0)
+  schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
+    if (static_cast<std::size_t>(i) < solid.size() && (resampled ? v >= 0.5 : v != 0.0))
     {
       solid[i] = 1;
       any = true;
     }
-  }
+  });
   return any;
 }
 
@@ -192,16 +190,13 @@ std::vector<unsigned char> Validity(vtkImageData* image, bool& any)
   any = false;
   if (vtkDataArray* mask = image->GetPointData()->GetArray(MaskName))
   {
-    const std::vector<double> found = schlieren::values::Values<double>(mask);
-    const int stride = mask->GetNumberOfComponents();
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      if (found[i * stride] == 0.0)
+    schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
+      if (i < n && v == 0.0)
       {
         valid[i] = 0;
         any = true;
       }
-    }
+    });
   }
   if (vtkUnsignedCharArray* ghosts = image->GetPointGhostArray())
   {
@@ -730,12 +725,12 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
   std::vector<double> found(n, 0.0);
   if (mask)
   {
-    const std::vector<double> values = schlieren::values::Values<double>(mask);
-    const int stride = mask->GetNumberOfComponents();
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      found[i] = values[i * stride] != 0.0 ? 1.0 : 0.0;
-    }
+    schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
+      if (i < n)
+      {
+        found[i] = v != 0.0 ? 1.0 : 0.0;
+      }
+    });
   }
   std::vector<double> total = found;
   parallel.Sum(total.data(), total.size());
@@ -760,11 +755,12 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
     std::vector<double> all(n, 0.0);
     if (have)
     {
-      const std::vector<double> values = schlieren::values::Values<double>(a);
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        all[i] = found[i] != 0.0 ? values[i] : 0.0;
-      }
+      schlieren::values::ForEachFirstComponent(a, [&](vtkIdType i, double v) {
+        if (i < n && found[i] != 0.0)
+        {
+          all[i] = v;
+        }
+      });
     }
     parallel.Sum(all.data(), all.size());
     vtkNew<vtkFloatArray> r;
@@ -1490,8 +1486,9 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
       return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
              "result).";
     }
-    const std::vector<double> enclosed = schlieren::values::Values<double>(selected);
-    const int stride = selected->GetNumberOfComponents();
+    std::vector<unsigned char> enclosed(static_cast<std::size_t>(selected->GetNumberOfTuples()));
+    schlieren::values::ForEachFirstComponent(
+      selected, [&](vtkIdType i, double v) { enclosed[i] = v != 0.0 ? 1 : 0; });
     vtkIdType p = 0;
     for (int k = sub[4]; k <= sub[5]; ++k)
     {
@@ -1499,7 +1496,7 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
       {
         for (int i = sub[0]; i <= sub[1]; ++i, ++p)
         {
-          if (enclosed[p * stride] != 0.0)
+          if (enclosed[p])
           {
             const vtkIdType g = (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] + (i - ext[0]);
             solid[g] = 1;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Filters/SchlierenValues.h: Values<T> reads every value of a vtkDataArray through VTK's typed
-// dispatch, and must give exactly what the per-value virtual GetComponent it replaced gave
-// (static_cast<T>(GetComponent(i, c))), for every value type, for several components, and for
+// Filters/SchlierenValues.h: Values<T> and ForEachFirstComponent read the values of a vtkDataArray
+// through VTK's typed dispatch, and must give exactly what the per-value virtual GetComponent they
+// replaced gave (static_cast<T>(GetComponent(i, c))), for every value type, for several components, and for
 // arrays the dispatch does not know (vtkBitArray, a structure-of-arrays layout) that go through
 // vtkDataArray's generic API. Exact equality is the known answer: the filters' outputs must not
 // change by a bit (a 64-bit integer converted straight to float, not through double, rounds
@@ -55,10 +55,23 @@ void Compare(vtkDataArray* a, const std::string& name)
     name + (sizeof(T) == 4 ? " as float" : " as double") + ": the values GetComponent gives");
 }
 
+/** ForEachFirstComponent(a) against GetComponent(i, 0), tuple by tuple, each tuple once. */
+void CompareFirst(vtkDataArray* a, const std::string& name)
+{
+  vtkIdType next = 0;
+  bool same = true;
+  schlieren::values::ForEachFirstComponent(a, [&](vtkIdType i, double v) {
+    same = same && i == next++ && v == a->GetComponent(i, 0);
+  });
+  Check(same && next == a->GetNumberOfTuples(),
+    name + ": ForEachFirstComponent visits every tuple's first component in order");
+}
+
 void CompareBoth(vtkDataArray* a, const std::string& name)
 {
   Compare<float>(a, name);
   Compare<double>(a, name);
+  CompareFirst(a, name);
 }
 } // namespace
 
