@@ -1250,7 +1250,8 @@ std::string vtkRefractiveIndex::AgreeAcrossRanks(Work& w, std::string failure)
     {
       const std::size_t n = theirs.size() / sizeof(float);
       w.Edge.resize(w.Edge.size() + n);
-      std::copy(theirs.begin(), theirs.end(), reinterpret_cast<char*>(w.Edge.data() + w.Edge.size() - n));
+      char* to = reinterpret_cast<char*>(w.Edge.data() + w.Edge.size() - n);
+      std::copy(theirs.begin(), theirs.end(), to);
     }
   }
   return std::string();
@@ -1463,9 +1464,10 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
   bool overlaps = true;
   for (int a = 0; a < 3; ++a)
   {
-    sub[2 * a] = std::max(ext[2 * a], static_cast<int>(std::floor((b[2 * a] - origin[a]) / spacing[a])));
-    sub[2 * a + 1] =
-      std::min(ext[2 * a + 1], static_cast<int>(std::ceil((b[2 * a + 1] - origin[a]) / spacing[a])));
+    sub[2 * a] =
+      std::max(ext[2 * a], static_cast<int>(std::floor((b[2 * a] - origin[a]) / spacing[a])));
+    sub[2 * a + 1] = std::min(
+      ext[2 * a + 1], static_cast<int>(std::ceil((b[2 * a + 1] - origin[a]) / spacing[a])));
     overlaps = overlaps && sub[2 * a] <= sub[2 * a + 1];
   }
   if (overlaps)
@@ -1498,7 +1500,9 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
         {
           if (enclosed[p])
           {
-            const vtkIdType g = (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] + (i - ext[0]);
+            const vtkIdType g =
+              (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] +
+              (i - ext[0]);
             solid[g] = 1;
             any = true;
           }

@@ -88,7 +88,8 @@ std::vector<std::string> ArrayNames(vtkDataObject* data)
 }
 
 /** Every rank's `names`, in rank order, each name once (the local list on one process). */
-std::vector<std::string> GatherNames(schlieren::Parallel& parallel, const std::vector<std::string>& names)
+std::vector<std::string> GatherNames(
+  schlieren::Parallel& parallel, const std::vector<std::string>& names)
 {
   if (parallel.Size() <= 1)
   {
@@ -167,7 +168,8 @@ enum class Kind
 /** The names (lower case) taken for each kind, in order of preference. */
 const std::vector<std::string>& NamesOf(Kind kind)
 {
-  static const std::vector<std::string> n1{ schlieren::arrays::NMinus1, "nminus1", "n-1", "refractivity" };
+  static const std::vector<std::string> n1{ schlieren::arrays::NMinus1, "nminus1", "n-1",
+    "refractivity" };
   static const std::vector<std::string> n{ "n", "refractive_index", "refractiveindex",
     "index_of_refraction" };
   static const std::vector<std::string> rho{ "density", "rho", "dens", "mass_density" };

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Filters/SchlierenValues.h: Values<T> and ForEachFirstComponent read the values of a vtkDataArray
 // through VTK's typed dispatch, and must give exactly what the per-value virtual GetComponent they
-// replaced gave (static_cast<T>(GetComponent(i, c))), for every value type, for several components, and for
-// arrays the dispatch does not know (vtkBitArray, a structure-of-arrays layout) that go through
-// vtkDataArray's generic API. Exact equality is the known answer: the filters' outputs must not
-// change by a bit (a 64-bit integer converted straight to float, not through double, rounds
-// differently: the case below shows it).
+// replaced gave (static_cast<T>(GetComponent(i, c))): for every value type, for several
+// components, and for arrays the dispatch does not know (vtkBitArray, a structure-of-arrays
+// layout), which go through vtkDataArray's generic API. Exact equality is the known answer: the
+// filters' outputs must not change by a bit (a 64-bit integer converted straight to float, not
+// through double, rounds differently: the case below shows it).
 #include "SchlierenValues.h"
 
 #include "vtkBitArray.h"
