@@ -201,6 +201,11 @@ typedef struct
   int recon;       /* reconstruction: SCH_TRILINEAR, or SCH_CUBIC where the cell is smooth */
   float roughStep; /* SCH_CUBIC: the longest step (world units) from a cell that is not smooth */
   int useSolid;    /* 1: the cell bytes carry solid points (SCH_SOLID_BIT) that stop rays */
+  /* The grid index of the first point the field and cell bytes hold: 0 for a whole volume; a
+   * piece's first (ghost) point where a rank holds a piece of it. nx, ny, nz are the dimensions of
+   * what is held (the strides); the grid coordinates (g0, gMax) are the whole volume's, so that a
+   * sample, its cell and the octree blocks are the same whichever piece takes it. */
+  int ox, oy, oz;
 } sch_params;
 
 /* Reconstructions of the packed field between grid points. */
@@ -333,6 +338,10 @@ SCH_FN sch_sample sch_sample_cell(
   float tx = fx - (float)i;
   float ty = fy - (float)j;
   float tz = fz - (float)k;
+  /* the weights from the whole grid's coordinates, the address in the points held */
+  i -= P->ox;
+  j -= P->oy;
+  k -= P->oz;
   const long sy = P->rowFloats, sz = P->sliceFloats;
   *cell = ((long)k * P->ny + j) * P->nx + i;
 #ifdef SCH_SLABS
@@ -379,6 +388,9 @@ SCH_FN int sch_solid_at(SCH_GLOBAL const sch_uchar* bytes, const sch_params* P, 
   float fy = sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
   float fz = sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
   float tx = fx - (float)i, ty = fy - (float)j, tz = fz - (float)k;
+  i -= P->ox;
+  j -= P->oy;
+  k -= P->oz;
   const long sy = P->nx, sz = (long)P->nx * P->ny;
   SCH_GLOBAL const sch_uchar* c = bytes + (long)k * sz + (long)j * sy + i;
   /* SCH_SOLID_BIT is the top bit: b >> 7 is 1 in a body, 0 elsewhere */
@@ -462,6 +474,14 @@ SCH_FN sch_sample sch_sample_at(SCH_FIELD field, SCH_GLOBAL const sch_uchar* lev
     float fx = sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
     float fy = sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
     float fz = sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
+    /* local indices and grid coordinates: the same fractions (an integer offset of a float below
+     * 2^24 is exact) */
+    i -= P->ox;
+    j -= P->oy;
+    k -= P->oz;
+    fx -= (float)P->ox;
+    fy -= (float)P->oy;
+    fz -= (float)P->oz;
     *cell = ((long)k * P->ny + j) * P->nx + i;
     if (levels[*cell] & SCH_SMOOTH_CELL)
     {
