@@ -298,6 +298,122 @@ std::string vtkRefractiveIndex::GetArrayInUse(int idx) const
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+using Filter = vtkRefractiveIndex;
+
+/**
+ * Model Automatic: the model (and whether Passthrough's array holds n) from the name of the chosen
+ * input array, else from the names `present`; fills the arrays it implies. `why` gets the reason
+ * for the note; returns "" or the error where no name says anything.
+ */
+std::string ChooseModel(const std::vector<std::string>& present, std::vector<std::string>& arrays,
+  int& model, bool& holdsN, std::ostringstream& why)
+{
+  const std::string chosen = arrays[Filter::INPUT_ARRAY];
+  if (!chosen.empty())
+  {
+    switch (KindOf(chosen))
+    {
+      case Kind::N:
+        model = Filter::PASSTHROUGH;
+        holdsN = true;
+        why << "Input Array '" << chosen << "' is named as n";
+        break;
+      case Kind::Density:
+        model = Filter::GLADSTONE_DALE;
+        why << "Input Array '" << chosen << "' is named as a density";
+        break;
+      case Kind::Temperature:
+      case Kind::Pressure:
+      {
+        const bool isT = KindOf(chosen) == Kind::Temperature;
+        std::string& slot = arrays[isT ? Filter::TEMPERATURE_ARRAY : Filter::PRESSURE_ARRAY];
+        if (slot.empty())
+        {
+          slot = chosen;
+        }
+        model = Filter::IDEAL_GAS;
+        why << "Input Array '" << chosen << "' is named as a "
+            << (isT ? "temperature" : "pressure");
+        break;
+      }
+      case Kind::NMinus1:
+        model = Filter::PASSTHROUGH;
+        holdsN = false;
+        why << "Input Array '" << chosen << "' is named as n - 1";
+        break;
+      default:
+        model = Filter::PASSTHROUGH;
+        holdsN = false;
+        why << "Input Array '" << chosen
+            << "' has no name it knows, so it is taken as n - 1 (choose Model if it is not)";
+        break;
+    }
+  }
+  else if (!Find(present, Kind::NMinus1).empty())
+  {
+    model = Filter::PASSTHROUGH;
+    holdsN = false;
+    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::NMinus1);
+    why << "the input carries n - 1 ('" << arrays[Filter::INPUT_ARRAY] << "')";
+  }
+  else if (!Find(present, Kind::Density).empty())
+  {
+    model = Filter::GLADSTONE_DALE;
+    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::Density);
+    why << "the input has a density ('" << arrays[Filter::INPUT_ARRAY] << "')";
+  }
+  else if (!Find(present, Kind::Temperature).empty() && !Find(present, Kind::Pressure).empty())
+  {
+    model = Filter::IDEAL_GAS;
+    why << "the input has a temperature and a pressure";
+  }
+  else if (!Find(present, Kind::N).empty())
+  {
+    model = Filter::PASSTHROUGH;
+    holdsN = true;
+    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::N);
+    why << "the input carries n ('" << arrays[Filter::INPUT_ARRAY] << "')";
+  }
+  else
+  {
+    return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
+           "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
+           "pressure, Pres, p) among the input's arrays: " +
+      List(present) + ". Choose the Model and its arrays.";
+  }
+  return std::string();
+}
+
+/** The note that says what Model Automatic chose, and why. */
+std::string ChoiceNote(int model, bool holdsN, bool customGas, double K, const std::string& why)
+{
+  std::ostringstream note;
+  note << "RefractiveIndex: Model Automatic chose " << Label(model);
+  if (model == Filter::GLADSTONE_DALE || model == Filter::IDEAL_GAS)
+  {
+    note << " (Gas ";
+    if (customGas)
+    {
+      note << "Custom, K = " << K << " m^3/kg: air unless set otherwise";
+    }
+    else
+    {
+      note << "from the table";
+    }
+    note << ")";
+  }
+  if (model == Filter::PASSTHROUGH && holdsN)
+  {
+    note << " of n";
+  }
+  note << ": " << why << ".";
+  return note.str();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 std::string vtkRefractiveIndex::ResolveChoices(
   schlieren::Parallel& parallel, vtkDataObject* input, std::vector<std::string>& notes)
 {
@@ -320,100 +436,13 @@ std::string vtkRefractiveIndex::ResolveChoices(
   if (model == AUTOMATIC)
   {
     std::ostringstream why;
-    const std::string chosen = arrays[INPUT_ARRAY];
-    if (!chosen.empty())
+    const std::string problem = ChooseModel(present, arrays, model, holdsN, why);
+    if (!problem.empty())
     {
-      switch (KindOf(chosen))
-      {
-        case Kind::N:
-          model = PASSTHROUGH;
-          holdsN = true;
-          why << "Input Array '" << chosen << "' is named as n";
-          break;
-        case Kind::Density:
-          model = GLADSTONE_DALE;
-          why << "Input Array '" << chosen << "' is named as a density";
-          break;
-        case Kind::Temperature:
-        case Kind::Pressure:
-        {
-          const bool isT = KindOf(chosen) == Kind::Temperature;
-          std::string& slot = arrays[isT ? TEMPERATURE_ARRAY : PRESSURE_ARRAY];
-          if (slot.empty())
-          {
-            slot = chosen;
-          }
-          model = IDEAL_GAS;
-          why << "Input Array '" << chosen << "' is named as a "
-              << (isT ? "temperature" : "pressure");
-          break;
-        }
-        case Kind::NMinus1:
-          model = PASSTHROUGH;
-          holdsN = false;
-          why << "Input Array '" << chosen << "' is named as n - 1";
-          break;
-        default:
-          model = PASSTHROUGH;
-          holdsN = false;
-          why << "Input Array '" << chosen
-              << "' has no name it knows, so it is taken as n - 1 (choose Model if it is not)";
-          break;
-      }
+      return problem;
     }
-    else if (!Find(present, Kind::NMinus1).empty())
-    {
-      model = PASSTHROUGH;
-      holdsN = false;
-      arrays[INPUT_ARRAY] = Find(present, Kind::NMinus1);
-      why << "the input carries n - 1 ('" << arrays[INPUT_ARRAY] << "')";
-    }
-    else if (!Find(present, Kind::Density).empty())
-    {
-      model = GLADSTONE_DALE;
-      arrays[INPUT_ARRAY] = Find(present, Kind::Density);
-      why << "the input has a density ('" << arrays[INPUT_ARRAY] << "')";
-    }
-    else if (!Find(present, Kind::Temperature).empty() && !Find(present, Kind::Pressure).empty())
-    {
-      model = IDEAL_GAS;
-      why << "the input has a temperature and a pressure";
-    }
-    else if (!Find(present, Kind::N).empty())
-    {
-      model = PASSTHROUGH;
-      holdsN = true;
-      arrays[INPUT_ARRAY] = Find(present, Kind::N);
-      why << "the input carries n ('" << arrays[INPUT_ARRAY] << "')";
-    }
-    else
-    {
-      return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
-             "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
-             "pressure, Pres, p) among the input's arrays: " +
-        List(present) + ". Choose the Model and its arrays.";
-    }
-    std::ostringstream note;
-    note << "RefractiveIndex: Model Automatic chose " << Label(model);
-    if (model == GLADSTONE_DALE || model == IDEAL_GAS)
-    {
-      note << " (Gas ";
-      if (this->Gas == CUSTOM_GAS)
-      {
-        note << "Custom, K = " << this->GladstoneDaleConstant << " m^3/kg: air unless set otherwise";
-      }
-      else
-      {
-        note << "from the table";
-      }
-      note << ")";
-    }
-    if (model == PASSTHROUGH && holdsN)
-    {
-      note << " of n";
-    }
-    note << ": " << why.str() << ".";
-    notes.push_back(note.str());
+    notes.push_back(ChoiceNote(
+      model, holdsN, this->Gas == CUSTOM_GAS, this->GladstoneDaleConstant, why.str()));
   }
   this->ResolvedModel = model;
   this->ResolvedHoldsN = holdsN;
