@@ -985,7 +985,10 @@ int vtkRefractiveIndex::RequestData(
   if (problem.empty())
   {
     problem = this->AgreeAcrossRanks(w, this->EvaluateModel(w));
-    for (const std::string& warning : problem.empty() ? w.Warnings : std::vector<std::string>())
+  }
+  for (const std::string& warning : w.Warnings)
+  {
+    if (problem.empty())
     {
       vtkWarningMacro(<< warning);
     }
