@@ -19,9 +19,8 @@
  * Settings:
  * - Tolerance (n - 1 units, >= 0; default 0 = automatic): the largest spread of n - 1 a block may
  *   hold. Automatic is AutomaticToleranceFraction (1e-4) times the range of n - 1 over the whole
- *   volume: on the Gaussian sphere this keeps the image within 1e-4 of its largest deflection of
- *   the fixed-step image (see Testing/Python/test_accuracy.py for the numbers). A uniform field
- *   (range 0) gets tolerance 0: every block is uniform.
+ *   volume (the error it costs against the fixed-step image: Testing/Python/test_accuracy.py and
+ *   docs/PERFORMANCE.md). A uniform field (range 0) gets tolerance 0: every block is uniform.
  * - MaxLevel (0 to 10, default 7): blocks of at most 2^MaxLevel cells.
  *
  * Under MPI each rank computes the levels of its own piece, with the tolerance of the whole

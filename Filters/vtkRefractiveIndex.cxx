@@ -5,7 +5,6 @@
 #include "vtkBoundingBox.h"
 #include "vtkCellData.h"
 #include "vtkCharArray.h"
-#include "vtkCommunicator.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
 #include "vtkCompositeDataSet.h"
@@ -18,7 +17,6 @@
 #include "vtkInformation.h"
 #include "vtkInformationIntegerRequestKey.h"
 #include "vtkInformationVector.h"
-#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
@@ -31,10 +29,13 @@
 #include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "SchlierenArrays.h"
 #include "SchlierenBodies.h"
+#include "SchlierenController.h"
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
+#include "SchlierenValues.h"
 
 #include <algorithm>
 #include <cmath>
@@ -132,14 +133,6 @@ bool IsEmpty(const int ext[6])
   return ext[1] < ext[0] || ext[3] < ext[2] || ext[5] < ext[4];
 }
 
-/** The rank and number of processes of the global controller (0 and 1 without one). */
-void RankAndSize(int& rank, int& size)
-{
-  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
-  rank = c ? c->GetLocalProcessId() : 0;
-  size = c ? std::max(c->GetNumberOfProcesses(), 1) : 1;
-}
-
 /** Bounds of the points of a data set or of the leaves of a composite data set. */
 bool LocalBounds(vtkDataObject* data, double bounds[6])
 {
@@ -172,23 +165,21 @@ bool LocalBounds(vtkDataObject* data, double bounds[6])
   return true;
 }
 
-/** A 1-component array as floats. */
-std::vector<float> AsFloat(vtkDataArray* a)
+/**
+ * Marks `solid` where the one-component `mask` says solid: non-zero, or at least one half on a
+ * resampled grid (where the probe interpolates the mask). True where it marked any point.
+ */
+bool MarkSolid(vtkDataArray* mask, bool resampled, std::vector<unsigned char>& solid)
 {
-  const vtkIdType n = a->GetNumberOfTuples();
-  std::vector<float> v(static_cast<std::size_t>(n));
-  if (auto* f = vtkFloatArray::SafeDownCast(a))
-  {
-    std::copy(f->GetPointer(0), f->GetPointer(0) + n, v.begin());
-  }
-  else
-  {
-    for (vtkIdType i = 0; i < n; ++i)
+  bool any = false;
+  schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
+    if (static_cast<std::size_t>(i) < solid.size() && (resampled ? v >= 0.5 : v != 0.0))
     {
-      v[i] = static_cast<float>(a->GetComponent(i, 0));
+      solid[i] = 1;
+      any = true;
     }
-  }
-  return v;
+  });
+  return any;
 }
 
 /** 1 where a point of `image` is in the flow (vtkValidPointMask != 0 and not a hidden point). */
@@ -199,14 +190,13 @@ std::vector<unsigned char> Validity(vtkImageData* image, bool& any)
   any = false;
   if (vtkDataArray* mask = image->GetPointData()->GetArray(MaskName))
   {
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      if (mask->GetComponent(i, 0) == 0.0)
+    schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
+      if (i < n && v == 0.0)
       {
         valid[i] = 0;
         any = true;
       }
-    }
+    });
   }
   if (vtkUnsignedCharArray* ghosts = image->GetPointGhostArray())
   {
@@ -301,13 +291,13 @@ int vtkRefractiveIndex::FillInputPortInformation(int port, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
-bool vtkRefractiveIndex::UpdatedInputBounds(vtkInformation* inInfo, double bounds[6])
+bool vtkRefractiveIndex::UpdatedInputBounds(
+  schlieren::Parallel& parallel, vtkInformation* inInfo, double bounds[6])
 {
   // The bounds of a non-image input are known only once it has executed: update it now, for the
   // same piece as RequestUpdateExtent will ask (so that the later update does not run again).
   using SDDP = vtkStreamingDemandDrivenPipeline;
-  int rank, size;
-  RankAndSize(rank, size);
+  const int rank = parallel.Rank(), size = parallel.Size();
   int producerPort = 0;
   vtkAlgorithm* producer = this->GetInputAlgorithm(0, 0, producerPort);
   if (producer)
@@ -329,26 +319,25 @@ bool vtkRefractiveIndex::UpdatedInputBounds(vtkInformation* inInfo, double bound
     return have;
   }
   // All ranks: min of the minima, max of the maxima (empty ranks send +/- infinity).
-  double mins[3], maxs[3], gmins[3], gmaxs[3];
+  double mins[3], maxs[3];
   for (int a = 0; a < 3; ++a)
   {
     mins[a] = have ? local[2 * a] : VTK_DOUBLE_MAX;
     maxs[a] = have ? local[2 * a + 1] : -VTK_DOUBLE_MAX;
   }
-  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
-  c->AllReduce(mins, gmins, 3, vtkCommunicator::MIN_OP);
-  c->AllReduce(maxs, gmaxs, 3, vtkCommunicator::MAX_OP);
+  parallel.Min(mins, 3);
+  parallel.Max(maxs, 3);
   for (int a = 0; a < 3; ++a)
   {
-    bounds[2 * a] = gmins[a];
-    bounds[2 * a + 1] = gmaxs[a];
+    bounds[2 * a] = mins[a];
+    bounds[2 * a + 1] = maxs[a];
   }
-  return gmins[0] <= gmaxs[0];
+  return mins[0] <= maxs[0];
 }
 
 //------------------------------------------------------------------------------
-bool vtkRefractiveIndex::SamplingGrid(
-  vtkInformation* inInfo, int whole[6], double origin[3], double spacing[3])
+bool vtkRefractiveIndex::SamplingGrid(schlieren::Parallel& parallel, vtkInformation* inInfo,
+  int whole[6], double origin[3], double spacing[3])
 {
   this->SamplingError.clear();
   double bounds[6];
@@ -358,7 +347,7 @@ bool vtkRefractiveIndex::SamplingGrid(
   }
   else
   {
-    if (!this->UpdatedInputBounds(inInfo, bounds))
+    if (!this->UpdatedInputBounds(parallel, inInfo, bounds))
     {
       this->SamplingError = "The input has no points to resample onto an image grid.";
       vtkErrorMacro(<< this->SamplingError);
@@ -438,6 +427,7 @@ int vtkRefractiveIndex::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkDataObject* input = vtkDataObject::GetData(inInfo);
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+  schlieren::ControllerParallel parallel;
   if (this->Symmetry != NO_SYMMETRY &&
     (vtkDataSet::SafeDownCast(input) || vtkCompositeDataSet::SafeDownCast(input)))
   {
@@ -456,7 +446,7 @@ int vtkRefractiveIndex::RequestInformation(
   else if (vtkImageData::SafeDownCast(input))
   {
     // A 2D image without Symmetry: said here, so that nothing downstream adds its own message.
-    const std::string flat = this->FlatInputError(input);
+    const std::string flat = this->FlatInputError(parallel, input);
     if (!flat.empty())
     {
       outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
@@ -474,12 +464,12 @@ int vtkRefractiveIndex::RequestInformation(
     // Resampled: the grid is this filter's, whatever the input's structure.
     int whole[6];
     double origin[3], spacing[3];
-    if (!this->SamplingGrid(inInfo, whole, origin, spacing))
+    if (!this->SamplingGrid(parallel, inInfo, whole, origin, spacing))
     {
       outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
       return 0;
     }
-    const std::string flat = this->FlatInputError(vtkDataObject::GetData(inInfo));
+    const std::string flat = this->FlatInputError(parallel, vtkDataObject::GetData(inInfo));
     if (!flat.empty())
     {
       this->SamplingError = flat; // repeated by RequestData
@@ -529,8 +519,8 @@ int vtkRefractiveIndex::RequestUpdateExtent(
   {
     // Resampled: every rank probes the whole grid against its own piece of the input (or the
     // whole input on one process); a 2D input made into a volume is read whole on every rank.
-    int rank, size;
-    RankAndSize(rank, size);
+    const schlieren::ControllerParallel parallel;
+    int rank = parallel.Rank(), size = parallel.Size();
     if (this->Symmetry != NO_SYMMETRY)
     {
       rank = 0;
@@ -711,8 +701,8 @@ schlieren::FieldModel ModelOf(vtkRefractiveIndex* self)
  * Under MPI each rank probes its own piece; the arrays named in `names` and the mask are summed
  * over the ranks (value x found, found), so that every rank holds them on the whole grid.
  */
-vtkSmartPointer<vtkImageData> Resample(
-  vtkDataObject* input, vtkImageData* structure, const std::vector<std::string>& names)
+vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObject* input,
+  vtkImageData* structure, const std::vector<std::string>& names)
 {
   vtkNew<vtkCompositeDataProbeFilter> probe;
   probe->SetInputData(structure);
@@ -726,21 +716,24 @@ vtkSmartPointer<vtkImageData> Resample(
     grid = vtkSmartPointer<vtkImageData>::New();
     grid->CopyStructure(structure);
   }
-  int rank, ranks;
-  RankAndSize(rank, ranks);
-  if (ranks <= 1)
+  if (parallel.Size() <= 1)
   {
     return grid;
   }
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const vtkIdType n = grid->GetNumberOfPoints();
   vtkDataArray* mask = grid->GetPointData()->GetArray(MaskName);
-  std::vector<double> found(n, 0.0), total(n, 0.0);
-  for (vtkIdType i = 0; mask && i < n; ++i)
+  std::vector<double> found(n, 0.0);
+  if (mask)
   {
-    found[i] = mask->GetComponent(i, 0) != 0.0 ? 1.0 : 0.0;
+    schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
+      if (i < n)
+      {
+        found[i] = v != 0.0 ? 1.0 : 0.0;
+      }
+    });
   }
-  controller->AllReduce(found.data(), total.data(), n, vtkCommunicator::SUM_OP);
+  std::vector<double> total = found;
+  parallel.Sum(total.data(), total.size());
   vtkNew<vtkImageData> reduced;
   reduced->CopyStructure(structure);
   vtkNew<vtkCharArray> validMask;
@@ -754,18 +747,22 @@ vtkSmartPointer<vtkImageData> Resample(
   for (const std::string& name : names) // the same list, in the same order, on every rank
   {
     vtkDataArray* a = grid->GetPointData()->GetArray(name.c_str());
-    int have = (a && a->GetNumberOfComponents() == 1) ? 1 : 0, haveAny = 0;
-    controller->AllReduce(&have, &haveAny, 1, vtkCommunicator::MAX_OP);
-    if (!haveAny)
+    const bool have = a && a->GetNumberOfComponents() == 1;
+    if (parallel.Max(have ? 1.0 : 0.0) < 0.5)
     {
       continue; // reported as missing by the caller, the same on every rank
     }
-    std::vector<double> sum(n, 0.0), all(n, 0.0);
-    for (vtkIdType i = 0; have && i < n; ++i)
+    std::vector<double> all(n, 0.0);
+    if (have)
     {
-      sum[i] = found[i] != 0.0 ? a->GetComponent(i, 0) : 0.0;
+      schlieren::values::ForEachFirstComponent(a, [&](vtkIdType i, double v) {
+        if (i < n && found[i] != 0.0)
+        {
+          all[i] = v;
+        }
+      });
     }
-    controller->AllReduce(sum.data(), all.data(), n, vtkCommunicator::SUM_OP);
+    parallel.Sum(all.data(), all.size());
     vtkNew<vtkFloatArray> r;
     r->SetName(name.c_str());
     r->SetNumberOfTuples(n);
@@ -838,7 +835,7 @@ std::string GatherFields(vtkRefractiveIndex* self, vtkImageData* grid, const std
       }
     }
     chosen.emplace_back(name, idx);
-    storage[k] = AsFloat(a);
+    storage[k] = schlieren::values::Values<float>(a);
     const schlieren::NamedArray named{ storage[k].data(), name };
     switch (idx)
     {
@@ -920,41 +917,129 @@ std::string CheckCovers(const int gridExt[6], const int outExt[6])
 } // namespace
 
 //------------------------------------------------------------------------------
+/** What the steps of RequestData pass each other. */
+struct vtkRefractiveIndex::Work
+{
+  explicit Work(schlieren::Parallel& parallel)
+    : Ranks(parallel)
+  {
+  }
+  schlieren::Parallel& Ranks;
+  vtkInformationVector** InputVector = nullptr;
+  vtkInformation* InInfo = nullptr;
+  vtkInformation* OutInfo = nullptr;
+  vtkDataObject* Input = nullptr; // the input, or its copy with cell arrays made point arrays
+  vtkImageData* InputImage = nullptr;
+  vtkSmartPointer<vtkDataObject> PointInput;
+  vtkImageData* Output = nullptr;
+  bool Symmetric = false;
+  bool Resampled = false; // the grid is this filter's (a non-image or a symmetric input)
+  std::vector<std::string> Notes;
+  std::vector<int> Needed;
+  int OutExt[6], Whole[6], GridExt[6];
+  vtkSmartPointer<vtkImageData> Grid; // the input image's (grown) piece, or the resampled grid
+  vtkIdType Count = 0;
+  bool EmptyPiece = false;
+  // the model on the grid
+  std::vector<unsigned char> Valid;
+  bool AnyInvalid = false;
+  vtkNew<vtkFloatArray> NMinus1;
+  std::vector<std::string> Warnings;
+  std::vector<float> Edge; // n - 1 at the edge of the flow domain (DomainEdgeMedian)
+  // the points outside the flow domain, the gradient, the bodies
+  int AmbientMode = EXTEND;
+  double Ambient = 0.0;
+  vtkIdType InvalidPoints = 0;
+  vtkNew<vtkFloatArray> Gradient;
+  std::vector<unsigned char> Solid;
+};
+
+//------------------------------------------------------------------------------
 int vtkRefractiveIndex::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  using SDDP = vtkStreamingDemandDrivenPipeline;
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkDataObject* inputObject = vtkDataObject::GetData(inInfo);
-  vtkImageData* inputImage = vtkImageData::SafeDownCast(inputObject);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
-  const bool symmetric = this->Symmetry != NO_SYMMETRY;
-  if (!output || (vtkPolyData::SafeDownCast(inputObject) && !symmetric) ||
-    (!vtkDataSet::SafeDownCast(inputObject) && !vtkCompositeDataSet::SafeDownCast(inputObject)))
+  schlieren::ControllerParallel parallel;
+  Work w(parallel);
+  w.InputVector = inputVector;
+  w.InInfo = inputVector[0]->GetInformationObject(0);
+  w.OutInfo = outputVector->GetInformationObject(0);
+  w.Input = vtkDataObject::GetData(w.InInfo);
+  w.InputImage = vtkImageData::SafeDownCast(w.Input);
+  w.Output = vtkImageData::GetData(w.OutInfo);
+  w.Symmetric = this->Symmetry != NO_SYMMETRY;
+  if (!w.Output || (vtkPolyData::SafeDownCast(w.Input) && !w.Symmetric) ||
+    (!vtkDataSet::SafeDownCast(w.Input) && !vtkCompositeDataSet::SafeDownCast(w.Input)))
   {
-    vtkErrorMacro(<< NotAVolume(inputObject));
+    vtkErrorMacro(<< NotAVolume(w.Input));
     return 0;
   }
-  int rank, ranks;
-  RankAndSize(rank, ranks);
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const bool resampled = inputImage == nullptr || symmetric;
+  w.Resampled = w.InputImage == nullptr || w.Symmetric;
 
-  // 0. What to read (vtkRefractiveIndexInputs.cxx): a 2D input without Symmetry is one clear
-  // error; the model and the arrays left automatic are resolved by name; ids and integer arrays
-  // are refused; cell arrays become point arrays.
-  std::vector<std::string> notes;
-  vtkSmartPointer<vtkDataObject> pointInput; // the input with cell arrays made point arrays
-  int outWhole[6];
-  outInfo->Get(SDDP::WHOLE_EXTENT(), outWhole);
-  if (!resampled || (!IsEmpty(outWhole) && outInfo->Has(vtkDataObject::ORIGIN())))
+  // 0. What to read; 1. the grid the model runs on.
+  std::string problem = this->ReadInputs(w);
+  if (problem.empty())
   {
-    // (without a resampling grid, RequestInformation's error is repeated below instead)
-    std::string problem = this->FlatInputError(inputObject);
+    problem = this->MakeGrid(w);
+  }
+  // 2. The model on the grid; 3. under MPI, every rank learns whether any failed.
+  if (problem.empty())
+  {
+    problem = this->AgreeAcrossRanks(w, this->EvaluateModel(w));
+  }
+  for (const std::string& warning : w.Warnings)
+  {
     if (problem.empty())
     {
-      problem = this->ResolveChoices(inputObject, notes);
+      vtkWarningMacro(<< warning);
+    }
+  }
+  if (problem.empty() && w.EmptyPiece)
+  {
+    w.Output->Initialize();
+    return 1;
+  }
+  // 4. The points outside the flow domain, the check of n, the gradient; the solid bodies.
+  std::string solidNote;
+  if (problem.empty())
+  {
+    problem = this->FillAndDifferentiate(w);
+  }
+  if (problem.empty())
+  {
+    problem = this->ComputeSolid(w, solidNote);
+  }
+  if (!problem.empty())
+  {
+    w.Output->Initialize();
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+  if (!solidNote.empty() && parallel.Rank() == 0)
+  {
+    vtkWarningMacro(<< solidNote);
+  }
+  this->UpdateProgress(0.9);
+
+  // 5. The output: the requested extent of the grid, with the new arrays.
+  this->WriteOutput(w);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::ReadInputs(Work& w)
+{
+  // A 2D input without Symmetry is one clear error (vtkRefractiveIndexInputs.cxx); the model and
+  // the arrays left automatic are resolved by name; ids and integer arrays are refused; cell
+  // arrays become point arrays.
+  int outWhole[6];
+  w.OutInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), outWhole);
+  if (!w.Resampled || (!IsEmpty(outWhole) && w.OutInfo->Has(vtkDataObject::ORIGIN())))
+  {
+    // (without a resampling grid, RequestInformation's error is repeated by MakeGrid instead)
+    std::string problem = this->FlatInputError(w.Ranks, w.Input);
+    if (problem.empty())
+    {
+      problem = this->ResolveChoices(w.Ranks, w.Input, w.Notes);
     }
     std::vector<std::string> readNames;
     for (int idx : NeededArrays(this))
@@ -967,57 +1052,86 @@ int vtkRefractiveIndex::RequestData(
     }
     if (problem.empty())
     {
-      pointInput = this->PointFields(inputObject, readNames, notes, problem);
+      w.PointInput = this->PointFields(w.Ranks, w.Input, readNames, w.Notes, problem);
     }
     if (!problem.empty())
     {
-      output->Initialize();
-      vtkErrorMacro(<< problem);
-      return 0;
+      return problem;
     }
-    for (const std::string& note : notes)
+    for (const std::string& note : w.Notes)
     {
-      if (rank == 0) // the same on every rank: said once
+      if (w.Ranks.Rank() == 0) // the same on every rank: said once
       {
         vtkOutputWindowDisplayText((note + "\n").c_str());
       }
     }
-    if (pointInput != inputObject)
+    if (w.PointInput != w.Input)
     {
-      inputObject = pointInput;
-      inputImage = vtkImageData::SafeDownCast(inputObject);
+      w.Input = w.PointInput;
+      w.InputImage = vtkImageData::SafeDownCast(w.Input);
     }
   }
-  const std::vector<int> needed = NeededArrays(this);
+  w.Needed = NeededArrays(this);
+  return std::string();
+}
 
-  // 1. The grid the model runs on: the input image's (grown) piece, or the whole resampling grid
-  // (on every rank).
-  int outExt[6], whole[6];
-  outInfo->Get(SDDP::UPDATE_EXTENT(), outExt);
-  vtkSmartPointer<vtkImageData> grid;
-  if (!resampled)
+//------------------------------------------------------------------------------
+namespace
+{
+/**
+ * The message where the input (a data set or composite, on one process) lacks one of `names`:
+ * a missing array is reported before the (costly) probing; "" where all are there.
+ */
+std::string MissingArray(
+  vtkDataObject* input, const std::vector<std::string>& names, const char* model)
+{
+  const std::vector<std::string> present = InputArrayNames(input);
+  for (const std::string& name : names)
   {
-    inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
-    grid = inputImage;
+    if (std::find(present.begin(), present.end(), name) == present.end())
+    {
+      std::ostringstream m;
+      m << model << " reads the array '" << name
+        << "', which the input does not have. Arrays present: ";
+      for (std::size_t i = 0; i < present.size(); ++i)
+      {
+        m << (i ? ", " : "") << present[i];
+      }
+      m << (present.empty() ? "none" : "") << ". Choose one of them.";
+      return m.str();
+    }
+  }
+  return std::string();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::MakeGrid(Work& w)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  w.OutInfo->Get(SDDP::UPDATE_EXTENT(), w.OutExt);
+  if (!w.Resampled)
+  {
+    w.InInfo->Get(SDDP::WHOLE_EXTENT(), w.Whole);
+    w.Grid = w.InputImage;
   }
   else
   {
-    outInfo->Get(SDDP::WHOLE_EXTENT(), whole);
-    if (IsEmpty(whole) || !outInfo->Has(vtkDataObject::ORIGIN()))
+    // the whole resampling grid, on every rank
+    w.OutInfo->Get(SDDP::WHOLE_EXTENT(), w.Whole);
+    if (IsEmpty(w.Whole) || !w.OutInfo->Has(vtkDataObject::ORIGIN()))
     {
       // RequestInformation could not set up the grid (and said why then): say it again.
-      output->Initialize();
-      vtkErrorMacro(<< (this->SamplingError.empty()
-          ? std::string("No resampling grid: the pipeline information was not updated.")
-          : this->SamplingError));
-      return 0;
+      return this->SamplingError.empty()
+        ? std::string("No resampling grid: the pipeline information was not updated.")
+        : this->SamplingError;
     }
     vtkNew<vtkImageData> structure;
-    structure->SetExtent(whole);
-    structure->SetOrigin(outInfo->Get(vtkDataObject::ORIGIN()));
-    structure->SetSpacing(outInfo->Get(vtkDataObject::SPACING()));
+    structure->SetExtent(w.Whole);
+    structure->SetOrigin(w.OutInfo->Get(vtkDataObject::ORIGIN()));
+    structure->SetSpacing(w.OutInfo->Get(vtkDataObject::SPACING()));
     std::vector<std::string> names;
-    for (int idx : needed)
+    for (int idx : w.Needed)
     {
       const std::string name = ChosenName(this, idx);
       if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end())
@@ -1030,346 +1144,402 @@ int vtkRefractiveIndex::RequestData(
     {
       names.push_back(this->SolidArray); // probed with the fields
     }
-    if (ranks <= 1)
+    if (w.Ranks.Size() <= 1)
     {
-      // A missing array is reported before the (costly) probing; under MPI after it, since a
-      // rank's piece may be empty.
-      const std::vector<std::string> present = InputArrayNames(inputObject);
-      for (const std::string& name : names)
+      // under MPI a missing array is reported after the probing, since a rank's piece may be empty
+      const std::string missing = MissingArray(w.Input, names, ModelLabel(this->GetModelInUse()));
+      if (!missing.empty())
       {
-        if (std::find(present.begin(), present.end(), name) == present.end())
-        {
-          std::ostringstream list;
-          for (std::size_t i = 0; i < present.size(); ++i)
-          {
-            list << (i ? ", " : "") << present[i];
-          }
-          output->Initialize();
-          vtkErrorMacro(<< ModelLabel(this->GetModelInUse()) << " reads the array '" << name
-                        << "', which the input does not have. Arrays present: "
-                        << (present.empty() ? std::string("none") : list.str())
-                        << ". Choose one of them.");
-          return 0;
-        }
+        return missing;
       }
     }
-    grid = symmetric ? this->SymmetricResample(inputObject, structure, names)
-                     : Resample(inputObject, structure, names);
+    w.Grid = w.Symmetric ? this->SymmetricResample(w.Input, structure, names)
+                         : Resample(w.Ranks, w.Input, structure, names);
     this->UpdateProgress(0.4);
   }
+  w.Count = w.Grid->GetNumberOfPoints();
+  w.EmptyPiece = !w.Resampled && (IsEmpty(w.OutExt) || w.Count == 0);
+  w.Grid->GetExtent(w.GridExt);
+  return std::string();
+}
 
-  // 2. The model on the grid. Failures are collected so that, under MPI, every rank reaches the
-  // collective step below.
-  std::string failure;
-  std::vector<std::string> warnings;
-  const vtkIdType count = grid->GetNumberOfPoints();
-  const bool emptyPiece = !resampled && (IsEmpty(outExt) || count == 0);
-  bool anyInvalid = false;
-  std::vector<unsigned char> valid;
-  vtkNew<vtkFloatArray> nMinus1;
-  nMinus1->SetName("n_minus_1");
-  std::vector<float> edge;
-  int gridExt[6];
-  grid->GetExtent(gridExt);
-  if (!emptyPiece)
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::EvaluateModel(Work& w)
+{
+  // Failures are returned, not reported, so that under MPI every rank reaches AgreeAcrossRanks.
+  w.NMinus1->SetName(schlieren::arrays::NMinus1);
+  if (w.EmptyPiece)
   {
-    failure = CheckCovers(gridExt, outExt);
-    valid = Validity(grid, anyInvalid);
-    schlieren::FieldArrays fields;
-    fields.Count = static_cast<std::size_t>(count);
-    fields.Valid = anyInvalid ? valid.data() : nullptr;
-    std::vector<std::vector<float>> storage;
-    if (failure.empty())
-    {
-      failure = GatherFields(this, grid, needed, fields, storage);
-    }
-    nMinus1->SetNumberOfTuples(count);
-    std::fill(nMinus1->GetPointer(0), nMinus1->GetPointer(0) + count, 0.0f);
-    if (failure.empty())
-    {
-      try
-      {
-        const schlieren::FieldReport report =
-          schlieren::ComputeFieldIndex(fields, ModelOf(this), nMinus1->GetPointer(0));
-        warnings = report.Warnings;
-        if (anyInvalid && report.ValidPoints == 0)
-        {
-          failure = "No point of the " +
-            std::string(resampled ? "sampling grid lies inside the input's cells"
-                                  : "input is valid (vtkValidPointMask is 0 everywhere)") +
-            ": check SamplingBounds and the input.";
-        }
-      }
-      catch (const schlieren::Error& e)
-      {
-        failure = e.what();
-        if (resampled)
-        {
-          failure += " (Counted on the image grid the input was resampled onto.)";
-        }
-      }
-    }
-    // The values at the edge of the flow domain, for DomainEdgeMedian (and for Extend on an image
-    // piece under MPI, which cannot extend across pieces), over the points this piece owns: its
-    // output extent less the upper plane that the next piece also holds. A resampled grid is
-    // whole on every rank: all of it.
-    const bool pieceOfImage = ranks > 1 && !resampled;
-    if (failure.empty() && anyInvalid &&
-      (this->AmbientMode == DOMAIN_EDGE_MEDIAN || (this->AmbientMode == EXTEND && pieceOfImage)))
-    {
-      int dims[3], owned[6];
-      grid->GetDimensions(dims);
-      for (int a = 0; a < 3; ++a)
-      {
-        owned[2 * a] = resampled ? 0 : outExt[2 * a] - gridExt[2 * a];
-        owned[2 * a + 1] = resampled
-          ? dims[a] - 1
-          : outExt[2 * a + 1] - gridExt[2 * a] - (outExt[2 * a + 1] < whole[2 * a + 1] ? 1 : 0);
-      }
-      schlieren::CollectDomainEdge(dims, valid.data(), nMinus1->GetPointer(0), owned, edge);
-    }
+    return std::string();
   }
-
-  // 3. Under MPI, every rank learns whether any failed and, for an image input with invalid
-  // points, the domain edge of all pieces.
-  if (ranks > 1 && !resampled)
+  std::string failure = CheckCovers(w.GridExt, w.OutExt);
+  w.Valid = Validity(w.Grid, w.AnyInvalid);
+  schlieren::FieldArrays fields;
+  fields.Count = static_cast<std::size_t>(w.Count);
+  fields.Valid = w.AnyInvalid ? w.Valid.data() : nullptr;
+  std::vector<std::vector<float>> storage;
+  if (failure.empty())
   {
-    int localState[2] = { failure.empty() ? 0 : 1, anyInvalid ? 1 : 0 };
-    int globalState[2] = { 0, 0 };
-    controller->AllReduce(localState, globalState, 2, vtkCommunicator::MAX_OP);
-    if (globalState[0] && failure.empty())
-    {
-      failure = "Another rank failed (see its error); no output.";
-    }
-    if (!globalState[0] && globalState[1] && this->AmbientMode != AMBIENT_VALUE)
-    {
-      vtkIdType mine = static_cast<vtkIdType>(edge.size());
-      std::vector<vtkIdType> lengths(ranks), offsets(ranks, 0);
-      controller->AllGather(&mine, lengths.data(), 1);
-      for (int r = 1; r < ranks; ++r)
-      {
-        offsets[r] = offsets[r - 1] + lengths[r - 1];
-      }
-      std::vector<float> all(static_cast<std::size_t>(offsets[ranks - 1] + lengths[ranks - 1]));
-      controller->AllGatherV(edge.data(), all.data(), mine, lengths.data(), offsets.data());
-      edge.swap(all);
-    }
+    failure = GatherFields(this, w.Grid, w.Needed, fields, storage);
   }
+  w.NMinus1->SetNumberOfTuples(w.Count);
+  std::fill(w.NMinus1->GetPointer(0), w.NMinus1->GetPointer(0) + w.Count, 0.0f);
   if (!failure.empty())
   {
-    output->Initialize();
-    vtkErrorMacro(<< failure);
-    return 0;
+    return failure;
   }
-  for (const std::string& w : warnings)
-  {
-    vtkWarningMacro(<< w);
-  }
-  if (emptyPiece)
-  {
-    output->Initialize();
-    return 1;
-  }
-
-  // 4. The points outside the flow domain, the check of n, the gradient.
-  int ambientMode = this->AmbientMode;
-  if (anyInvalid && ambientMode == EXTEND && ranks > 1 && !resampled)
-  {
-    ambientMode = DOMAIN_EDGE_MEDIAN; // extending needs the whole grid
-  }
-  double ambient = ambientMode == AMBIENT_VALUE ? this->AmbientValue
-                                                : std::numeric_limits<double>::quiet_NaN();
-  vtkIdType invalidPoints = 0;
-  vtkNew<vtkFloatArray> gradient;
-  gradient->SetName("grad_n");
-  gradient->SetNumberOfComponents(3);
-  gradient->SetNumberOfTuples(count);
-  int dims[3];
-  grid->GetDimensions(dims);
   try
   {
-    if (anyInvalid && ambientMode == EXTEND)
+    const schlieren::FieldReport report =
+      schlieren::ComputeFieldIndex(fields, ModelOf(this), w.NMinus1->GetPointer(0));
+    w.Warnings = report.Warnings;
+    if (w.AnyInvalid && report.ValidPoints == 0)
     {
-      invalidPoints = static_cast<vtkIdType>(
-        schlieren::ExtendIntoInvalid(dims, valid.data(), nMinus1->GetPointer(0)));
+      return "No point of the " +
+        std::string(w.Resampled ? "sampling grid lies inside the input's cells"
+                                : "input is valid (vtkValidPointMask is 0 everywhere)") +
+        ": check SamplingBounds and the input.";
     }
-    else if (anyInvalid)
+  }
+  catch (const schlieren::Error& e)
+  {
+    return std::string(e.what()) +
+      (w.Resampled ? " (Counted on the image grid the input was resampled onto.)" : "");
+  }
+  // The values at the edge of the flow domain, for DomainEdgeMedian (and for Extend on an image
+  // piece under MPI, which cannot extend across pieces), over the points this piece owns: its
+  // output extent less the upper plane that the next piece also holds. A resampled grid is
+  // whole on every rank: all of it.
+  const bool pieceOfImage = w.Ranks.Size() > 1 && !w.Resampled;
+  if (w.AnyInvalid &&
+    (this->AmbientMode == DOMAIN_EDGE_MEDIAN || (this->AmbientMode == EXTEND && pieceOfImage)))
+  {
+    int dims[3], owned[6];
+    w.Grid->GetDimensions(dims);
+    for (int a = 0; a < 3; ++a)
     {
-      if (ambientMode == DOMAIN_EDGE_MEDIAN)
+      owned[2 * a] = w.Resampled ? 0 : w.OutExt[2 * a] - w.GridExt[2 * a];
+      owned[2 * a + 1] = w.Resampled ? dims[a] - 1
+                                     : w.OutExt[2 * a + 1] - w.GridExt[2 * a] -
+          (w.OutExt[2 * a + 1] < w.Whole[2 * a + 1] ? 1 : 0);
+    }
+    schlieren::CollectDomainEdge(dims, w.Valid.data(), w.NMinus1->GetPointer(0), owned, w.Edge);
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::AgreeAcrossRanks(Work& w, std::string failure)
+{
+  // A resampled grid is whole on every rank, and so is what failed on it: nothing to agree on.
+  if (w.Ranks.Size() <= 1 || w.Resampled)
+  {
+    return failure;
+  }
+  // every failing rank reports its own failure, the others the first failing rank's
+  const std::string agreed = w.Ranks.Failure(failure);
+  if (!agreed.empty())
+  {
+    return failure.empty() ? agreed : failure;
+  }
+  // for an image input with invalid points, the domain edge of all pieces
+  if (w.Ranks.Max(w.AnyInvalid ? 1.0 : 0.0) > 0.5 && this->AmbientMode != AMBIENT_VALUE)
+  {
+    const char* mine = reinterpret_cast<const char*>(w.Edge.data());
+    const std::vector<std::vector<char>> all =
+      w.Ranks.AllGather(std::vector<char>(mine, mine + w.Edge.size() * sizeof(float)));
+    w.Edge.clear();
+    for (const std::vector<char>& theirs : all)
+    {
+      const std::size_t n = theirs.size() / sizeof(float);
+      w.Edge.resize(w.Edge.size() + n);
+      char* to = reinterpret_cast<char*>(w.Edge.data() + w.Edge.size() - n);
+      std::copy(theirs.begin(), theirs.end(), to);
+    }
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::FillAndDifferentiate(Work& w)
+{
+  w.AmbientMode = this->AmbientMode;
+  if (w.AnyInvalid && w.AmbientMode == EXTEND && w.Ranks.Size() > 1 && !w.Resampled)
+  {
+    w.AmbientMode = DOMAIN_EDGE_MEDIAN; // extending needs the whole grid
+  }
+  w.Ambient = w.AmbientMode == AMBIENT_VALUE ? this->AmbientValue
+                                             : std::numeric_limits<double>::quiet_NaN();
+  w.Gradient->SetName(schlieren::arrays::GradN);
+  w.Gradient->SetNumberOfComponents(3);
+  w.Gradient->SetNumberOfTuples(w.Count);
+  int dims[3];
+  w.Grid->GetDimensions(dims);
+  float* n1 = w.NMinus1->GetPointer(0);
+  const std::size_t count = static_cast<std::size_t>(w.Count);
+  try
+  {
+    if (w.AnyInvalid && w.AmbientMode == EXTEND)
+    {
+      w.InvalidPoints =
+        static_cast<vtkIdType>(schlieren::ExtendIntoInvalid(dims, w.Valid.data(), n1));
+    }
+    else if (w.AnyInvalid)
+    {
+      if (w.AmbientMode == DOMAIN_EDGE_MEDIAN)
       {
-        ambient = schlieren::Median(edge);
-        if (!std::isfinite(ambient))
+        w.Ambient = schlieren::Median(w.Edge);
+        if (!std::isfinite(w.Ambient))
         {
           // No valid point touches an invalid one here: the median of the valid points.
           std::vector<float> values;
-          for (vtkIdType i = 0; i < count; ++i)
+          for (std::size_t i = 0; i < count; ++i)
           {
-            if (valid[i])
+            if (w.Valid[i])
             {
-              values.push_back(nMinus1->GetValue(i));
+              values.push_back(n1[i]);
             }
           }
-          ambient = schlieren::Median(values);
+          w.Ambient = schlieren::Median(values);
         }
       }
-      invalidPoints = static_cast<vtkIdType>(schlieren::FillInvalid(
-        static_cast<std::size_t>(count), valid.data(), ambient, nMinus1->GetPointer(0)));
+      w.InvalidPoints = static_cast<vtkIdType>(
+        schlieren::FillInvalid(count, w.Valid.data(), w.Ambient, n1));
     }
-    const std::string problem =
-      schlieren::ValidateIndex(nMinus1->GetPointer(0), static_cast<std::size_t>(count));
+    const std::string problem = schlieren::ValidateIndex(n1, count);
     if (!problem.empty())
     {
-      throw schlieren::Error(problem + " (model " + ModelLabel(this->GetModelInUse()) + ").");
+      return problem + " (model " + ModelLabel(this->GetModelInUse()) + ").";
     }
     if (this->GetModelInUse() == PASSTHROUGH)
     {
       const std::string notGas = PassthroughRangeError(
-        nMinus1->GetPointer(0), count, ChosenName(this, INPUT_ARRAY), this->GetPassthroughHoldsNInUse());
+        n1, w.Count, ChosenName(this, INPUT_ARRAY), this->GetPassthroughHoldsNInUse());
       if (!notGas.empty())
       {
-        throw schlieren::Error(notGas);
+        return notGas;
       }
     }
-    schlieren::ComputeGradient(dims, grid->GetSpacing(), nMinus1->GetPointer(0), gradient->GetPointer(0));
+    schlieren::ComputeGradient(dims, w.Grid->GetSpacing(), n1, w.Gradient->GetPointer(0));
   }
   catch (const schlieren::Error& e)
   {
-    output->Initialize();
-    vtkErrorMacro(<< e.what());
-    return 0;
+    return e.what();
   }
-  // 4b. Solid bodies: enclosed holes of the grid, the mask array, the body surface.
-  std::vector<unsigned char> solid;
-  std::string solidNote;
-  const std::string solidProblem =
-    this->ComputeSolid(inputVector, grid, valid, anyInvalid, resampled, solid, solidNote);
-  if (!solidProblem.empty())
-  {
-    output->Initialize();
-    vtkErrorMacro(<< solidProblem);
-    return 0;
-  }
-  if (!solidNote.empty() && rank == 0)
-  {
-    vtkWarningMacro(<< solidNote);
-  }
-  this->UpdateProgress(0.9);
+  return std::string();
+}
 
-  // 5. The output: the requested extent of the grid, with the new arrays.
+//------------------------------------------------------------------------------
+void vtkRefractiveIndex::WriteOutput(Work& w)
+{
   vtkNew<vtkPointData> pointData;
-  pointData->ShallowCopy(grid->GetPointData());
-  if (!anyInvalid && resampled)
+  pointData->ShallowCopy(w.Grid->GetPointData());
+  if (!w.AnyInvalid && w.Resampled)
   {
     pointData->RemoveArray(MaskName); // every point was found: the mask says nothing
   }
-  pointData->AddArray(gradient);
-  pointData->AddArray(nMinus1);
-  vtkIdType solidPoints = 0;
-  if (!solid.empty())
+  pointData->AddArray(w.Gradient);
+  pointData->AddArray(w.NMinus1);
+  if (!w.Solid.empty())
   {
-    vtkNew<vtkUnsignedCharArray> solidArray;
-    solidArray->SetName("solid");
-    solidArray->SetNumberOfTuples(count);
-    std::copy(solid.begin(), solid.end(), solidArray->GetPointer(0));
-    solidPoints = static_cast<vtkIdType>(std::count(solid.begin(), solid.end(), 1));
-    pointData->AddArray(solidArray);
+    vtkNew<vtkUnsignedCharArray> solid;
+    solid->SetName(schlieren::arrays::Solid);
+    solid->SetNumberOfTuples(w.Count);
+    std::copy(w.Solid.begin(), w.Solid.end(), solid->GetPointer(0));
+    pointData->AddArray(solid);
   }
-  pointData->SetActiveScalars("n_minus_1");
+  pointData->SetActiveScalars(schlieren::arrays::NMinus1);
 
-  vtkNew<vtkFieldData> fieldData;
-  if (!resampled && inputImage->GetFieldData())
-  {
-    fieldData->ShallowCopy(inputImage->GetFieldData());
-  }
-  if (anyInvalid && ambientMode != EXTEND)
-  {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName("ambient_n_minus_1");
-    a->InsertNextValue(ambient);
-    fieldData->AddArray(a);
-  }
-  {
-    // What was read, for scripts and for the GUI's information panel.
-    vtkNew<vtkStringArray> model;
-    model->SetName("index_model");
-    model->InsertNextValue(ModelLabel(this->GetModelInUse()));
-    fieldData->AddArray(model);
-    vtkNew<vtkStringArray> read;
-    read->SetName("index_arrays");
-    for (int idx : needed)
-    {
-      read->InsertNextValue(ChosenName(this, idx));
-    }
-    fieldData->AddArray(read);
-    if (!notes.empty())
-    {
-      vtkNew<vtkStringArray> said;
-      said->SetName("index_notes");
-      for (const std::string& note : notes)
-      {
-        said->InsertNextValue(note);
-      }
-      fieldData->AddArray(said);
-    }
-  }
-  vtkNew<vtkDoubleArray> fraction;
-  fraction->SetName("valid_point_fraction");
-  fraction->InsertNextValue(count ? 1.0 - static_cast<double>(invalidPoints) / count : 0.0);
-  fieldData->AddArray(fraction);
-  vtkNew<vtkDoubleArray> solidCount;
-  solidCount->SetName("solid_points");
-  solidCount->InsertNextValue(static_cast<double>(solidPoints));
-  fieldData->AddArray(solidCount);
-
+  vtkImageData* output = w.Output;
   output->Initialize();
-  if (std::equal(gridExt, gridExt + 6, outExt))
+  if (std::equal(w.GridExt, w.GridExt + 6, w.OutExt))
   {
-    output->CopyStructure(grid);
+    output->CopyStructure(w.Grid);
     output->GetPointData()->ShallowCopy(pointData);
-    if (!resampled)
+    if (!w.Resampled)
     {
-      output->GetCellData()->ShallowCopy(grid->GetCellData());
+      output->GetCellData()->ShallowCopy(w.Grid->GetCellData());
     }
   }
   else
   {
-    output->SetExtent(outExt);
-    output->SetOrigin(grid->GetOrigin());
-    output->SetSpacing(grid->GetSpacing());
-    output->SetDirectionMatrix(grid->GetDirectionMatrix());
-    const vtkIdType outCount = output->GetNumberOfPoints();
-    output->GetPointData()->CopyAllocate(pointData, outCount);
-    output->GetPointData()->CopyStructuredData(pointData, gridExt, outExt);
-    if (!resampled)
+    output->SetExtent(w.OutExt);
+    output->SetOrigin(w.Grid->GetOrigin());
+    output->SetSpacing(w.Grid->GetSpacing());
+    output->SetDirectionMatrix(w.Grid->GetDirectionMatrix());
+    output->GetPointData()->CopyAllocate(pointData, output->GetNumberOfPoints());
+    output->GetPointData()->CopyStructuredData(pointData, w.GridExt, w.OutExt);
+    if (!w.Resampled)
     {
       int inCells[6], outCells[6];
-      CellExtent(whole, gridExt, inCells);
-      CellExtent(whole, outExt, outCells);
-      output->GetCellData()->CopyAllocate(grid->GetCellData(), output->GetNumberOfCells());
-      output->GetCellData()->CopyStructuredData(grid->GetCellData(), inCells, outCells);
+      CellExtent(w.Whole, w.GridExt, inCells);
+      CellExtent(w.Whole, w.OutExt, outCells);
+      output->GetCellData()->CopyAllocate(w.Grid->GetCellData(), output->GetNumberOfCells());
+      output->GetCellData()->CopyStructuredData(w.Grid->GetCellData(), inCells, outCells);
     }
   }
-  output->GetPointData()->SetActiveScalars("n_minus_1");
-  output->GetFieldData()->ShallowCopy(fieldData);
-  return 1;
+  output->GetPointData()->SetActiveScalars(schlieren::arrays::NMinus1);
+  output->GetFieldData()->ShallowCopy(this->OutputFieldData(w));
 }
 
 //------------------------------------------------------------------------------
-std::string vtkRefractiveIndex::ComputeSolid(vtkInformationVector** inputVector, vtkImageData* grid,
-  const std::vector<unsigned char>& valid, bool anyInvalid, bool resampled,
-  std::vector<unsigned char>& solid, std::string& note)
+vtkSmartPointer<vtkFieldData> vtkRefractiveIndex::OutputFieldData(Work& w)
 {
+  auto fieldData = vtkSmartPointer<vtkFieldData>::New();
+  if (!w.Resampled && w.InputImage->GetFieldData())
+  {
+    fieldData->ShallowCopy(w.InputImage->GetFieldData());
+  }
+  auto addNumber = [&fieldData](const char* name, double value) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fieldData->AddArray(a);
+  };
+  auto addStrings = [&fieldData](const char* name, const std::vector<std::string>& values) {
+    vtkNew<vtkStringArray> a;
+    a->SetName(name);
+    for (const std::string& v : values)
+    {
+      a->InsertNextValue(v);
+    }
+    fieldData->AddArray(a);
+  };
+  if (w.AnyInvalid && w.AmbientMode != EXTEND)
+  {
+    addNumber("ambient_n_minus_1", w.Ambient);
+  }
+  // What was read, for scripts and for the GUI's information panel.
+  addStrings("index_model", { ModelLabel(this->GetModelInUse()) });
+  std::vector<std::string> read;
+  for (int idx : w.Needed)
+  {
+    read.push_back(ChosenName(this, idx));
+  }
+  addStrings("index_arrays", read);
+  if (!w.Notes.empty())
+  {
+    addStrings("index_notes", w.Notes);
+  }
+  addNumber("valid_point_fraction",
+    w.Count ? 1.0 - static_cast<double>(w.InvalidPoints) / w.Count : 0.0);
+  addNumber("solid_points", static_cast<double>(std::count(w.Solid.begin(), w.Solid.end(), 1)));
+  return fieldData;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+/**
+ * Marks `solid` at the points of `grid` inside the closed `surface` (tested only within the
+ * surface's bounds); `any` is set where it marked one. "" or the error for the user; `note` gets
+ * a surface that encloses no point.
+ */
+std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
+  std::vector<unsigned char>& solid, bool& any, std::string& note)
+{
+  int dims[3];
+  grid->GetDimensions(dims);
+  if (surface->GetNumberOfPolys() == 0 && surface->GetNumberOfStrips() == 0)
+  {
+    return "The Body input has no polygons: it must be a closed surface (vtkPolyData), such as "
+           "an STL of the model.";
+  }
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputData(surface);
+  triangles->PassLinesOff();
+  triangles->PassVertsOff();
+  triangles->Update();
+  vtkPolyData* closed = triangles->GetOutput();
+  if (!vtkSelectEnclosedPoints::IsSurfaceClosed(closed))
+  {
+    return "The Body input is not a closed surface (it has boundary or non-manifold edges), so "
+           "its inside is not defined. Close it (e.g. Fill Holes, or export the model as a "
+           "watertight STL).";
+  }
+  double b[6];
+  closed->GetBounds(b);
+  const double* origin = grid->GetOrigin();
+  const double* spacing = grid->GetSpacing();
+  int ext[6];
+  grid->GetExtent(ext);
+  int sub[6];
+  bool overlaps = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    sub[2 * a] =
+      std::max(ext[2 * a], static_cast<int>(std::floor((b[2 * a] - origin[a]) / spacing[a])));
+    sub[2 * a + 1] = std::min(
+      ext[2 * a + 1], static_cast<int>(std::ceil((b[2 * a + 1] - origin[a]) / spacing[a])));
+    overlaps = overlaps && sub[2 * a] <= sub[2 * a + 1];
+  }
+  if (overlaps)
+  {
+    vtkNew<vtkImageData> box;
+    box->SetExtent(sub);
+    box->SetOrigin(grid->GetOrigin());
+    box->SetSpacing(grid->GetSpacing());
+    vtkNew<vtkSelectEnclosedPoints> inside;
+    inside->SetInputData(box);
+    inside->SetSurfaceData(closed);
+    inside->CheckSurfaceOff(); // checked above, with a message of our own
+    inside->Update();
+    vtkDataArray* selected =
+      inside->GetOutput()->GetPointData()->GetArray("SelectedPoints");
+    if (!selected)
+    {
+      return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
+             "result).";
+    }
+    std::vector<unsigned char> enclosed(static_cast<std::size_t>(selected->GetNumberOfTuples()));
+    schlieren::values::ForEachFirstComponent(
+      selected, [&](vtkIdType i, double v) { enclosed[i] = v != 0.0 ? 1 : 0; });
+    vtkIdType p = 0;
+    for (int k = sub[4]; k <= sub[5]; ++k)
+    {
+      for (int j = sub[2]; j <= sub[3]; ++j)
+      {
+        for (int i = sub[0]; i <= sub[1]; ++i, ++p)
+        {
+          if (enclosed[p])
+          {
+            const vtkIdType g =
+              (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] +
+              (i - ext[0]);
+            solid[g] = 1;
+            any = true;
+          }
+        }
+      }
+    }
+  }
+  if (!overlaps || !any)
+  {
+    note += std::string(note.empty() ? "" : " ") +
+      "The Body surface encloses no point of the grid: check that it is in the data's "
+      "coordinates and inside the sampling bounds.";
+  }
+  return std::string();
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::ComputeSolid(Work& w, std::string& note)
+{
+  vtkImageData* grid = w.Grid;
+  const std::vector<unsigned char>& valid = w.Valid;
+  const bool resampled = w.Resampled;
+  std::vector<unsigned char>& solid = w.Solid;
   const vtkIdType count = grid->GetNumberOfPoints();
   int dims[3];
   grid->GetDimensions(dims);
-  int rank, ranks;
-  RankAndSize(rank, ranks);
   solid.assign(static_cast<std::size_t>(count), 0);
   bool any = false;
   // the holes the grid leaves that the flow encloses (the whole grid: resampled, or one process)
-  if (this->BodyFromGrid && anyInvalid)
+  if (this->BodyFromGrid && w.AnyInvalid)
   {
-    if (resampled || ranks == 1)
+    if (resampled || w.Ranks.Size() == 1)
     {
       any = schlieren::EnclosedInvalidPoints(dims, valid.data(), this->BodyWallFaces, solid.data()) > 0;
     }
@@ -1381,17 +1551,10 @@ std::string vtkRefractiveIndex::ComputeSolid(vtkInformationVector** inputVector,
     }
   }
   // a body the input already carries (RefractiveScene's Body, an upstream RefractiveIndex's): kept
-  if (vtkDataArray* upstream = grid->GetPointData()->GetArray("solid"))
+  vtkDataArray* upstream = grid->GetPointData()->GetArray(schlieren::arrays::Solid);
+  if (upstream && upstream->GetNumberOfComponents() == 1)
   {
-    for (vtkIdType i = 0; upstream->GetNumberOfComponents() == 1 && i < count; ++i)
-    {
-      const double v = upstream->GetComponent(i, 0);
-      if (resampled ? v >= 0.5 : v != 0.0)
-      {
-        solid[i] = 1;
-        any = true;
-      }
-    }
+    any = MarkSolid(upstream, resampled, solid) || any;
   }
   // the mask array
   if (!this->SolidArray.empty())
@@ -1407,94 +1570,18 @@ std::string vtkRefractiveIndex::ComputeSolid(vtkInformationVector** inputVector,
       return "SolidArray '" + this->SolidArray + "' has " +
         std::to_string(mask->GetNumberOfComponents()) + " components; it must be a scalar (non-zero: solid).";
     }
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      const double v = mask->GetComponent(i, 0);
-      if (resampled ? v >= 0.5 : v != 0.0)
-      {
-        solid[i] = 1;
-        any = true;
-      }
-    }
+    any = MarkSolid(mask, resampled, solid) || any;
   }
-  // the body surface: the grid points inside it (tested only within the surface's bounds)
-  vtkPolyData* surface = inputVector[1] && inputVector[1]->GetInformationObject(0)
-    ? vtkPolyData::GetData(inputVector[1]->GetInformationObject(0))
+  // the body surface: the grid points inside it
+  vtkPolyData* surface = w.InputVector[1] && w.InputVector[1]->GetInformationObject(0)
+    ? vtkPolyData::GetData(w.InputVector[1]->GetInformationObject(0))
     : nullptr;
   if (surface)
   {
-    if (surface->GetNumberOfPolys() == 0 && surface->GetNumberOfStrips() == 0)
+    const std::string problem = SurfaceSolid(surface, grid, solid, any, note);
+    if (!problem.empty())
     {
-      return "The Body input has no polygons: it must be a closed surface (vtkPolyData), such as "
-             "an STL of the model.";
-    }
-    vtkNew<vtkTriangleFilter> triangles;
-    triangles->SetInputData(surface);
-    triangles->PassLinesOff();
-    triangles->PassVertsOff();
-    triangles->Update();
-    vtkPolyData* closed = triangles->GetOutput();
-    if (!vtkSelectEnclosedPoints::IsSurfaceClosed(closed))
-    {
-      return "The Body input is not a closed surface (it has boundary or non-manifold edges), so "
-             "its inside is not defined. Close it (e.g. Fill Holes, or export the model as a "
-             "watertight STL).";
-    }
-    double b[6];
-    closed->GetBounds(b);
-    const double* origin = grid->GetOrigin();
-    const double* spacing = grid->GetSpacing();
-    int ext[6];
-    grid->GetExtent(ext);
-    int sub[6];
-    bool overlaps = true;
-    for (int a = 0; a < 3; ++a)
-    {
-      sub[2 * a] = std::max(ext[2 * a], static_cast<int>(std::floor((b[2 * a] - origin[a]) / spacing[a])));
-      sub[2 * a + 1] =
-        std::min(ext[2 * a + 1], static_cast<int>(std::ceil((b[2 * a + 1] - origin[a]) / spacing[a])));
-      overlaps = overlaps && sub[2 * a] <= sub[2 * a + 1];
-    }
-    if (overlaps)
-    {
-      vtkNew<vtkImageData> box;
-      box->SetExtent(sub);
-      box->SetOrigin(grid->GetOrigin());
-      box->SetSpacing(grid->GetSpacing());
-      vtkNew<vtkSelectEnclosedPoints> inside;
-      inside->SetInputData(box);
-      inside->SetSurfaceData(closed);
-      inside->CheckSurfaceOff(); // checked above, with a message of our own
-      inside->Update();
-      vtkDataArray* selected =
-        inside->GetOutput()->GetPointData()->GetArray("SelectedPoints");
-      if (!selected)
-      {
-        return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
-               "result).";
-      }
-      vtkIdType p = 0;
-      for (int k = sub[4]; k <= sub[5]; ++k)
-      {
-        for (int j = sub[2]; j <= sub[3]; ++j)
-        {
-          for (int i = sub[0]; i <= sub[1]; ++i, ++p)
-          {
-            if (selected->GetComponent(p, 0) != 0.0)
-            {
-              const vtkIdType g = (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] + (i - ext[0]);
-              solid[g] = 1;
-              any = true;
-            }
-          }
-        }
-      }
-    }
-    if (!overlaps || !any)
-    {
-      note += std::string(note.empty() ? "" : " ") +
-        "The Body surface encloses no point of the grid: check that it is in the data's "
-        "coordinates and inside the sampling bounds.";
+      return problem;
     }
   }
   if (!any)

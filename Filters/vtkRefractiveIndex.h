@@ -48,9 +48,9 @@
  * leaving the domain); it needs no reference conditions and works for every model.
  * DOMAIN_EDGE_MEDIAN: one value, the median n - 1 over the valid points next to an invalid one.
  * AMBIENT_VALUE: AmbientValue as typed (e.g. K rho_inf). A constant leaves a jump wherever the
- * edge's values differ from it: on the blunt fin, whose inflow boundary layer makes the edge median
- * 0.7 rho_inf, it draws the grid's outer boundary as a false edge. The constant used is in the
- * field data `ambient_n_minus_1`.
+ * edge's values differ from it: where a boundary layer lies along the grid's outer boundary (the
+ * blunt fin's inflow, docs/CFD.md), it draws that boundary as a false edge. The constant used is
+ * in the field data `ambient_n_minus_1`.
  *
  * Solid bodies (see BodyFromGrid): the output's point array `solid` (unsigned char) marks the
  * points in a body, from the grid's enclosed holes, a SolidArray or a closed surface on input
@@ -85,7 +85,12 @@
 #include <string> // for std::string
 #include <vector> // for std::vector
 
+class vtkFieldData;
 class vtkImageData;
+namespace schlieren
+{
+class Parallel; // OpenCL/SchlierenParallel.h: the one interface to the ranks
+}
 
 class SCHLIERENFILTERS_EXPORT vtkRefractiveIndex : public vtkImageAlgorithm
 {
@@ -551,16 +556,32 @@ private:
   void operator=(const vtkRefractiveIndex&) = delete;
 
   /** The resampling grid of a non-image input (RequestInformation); false after an error. */
-  bool SamplingGrid(vtkInformation* inInfo, int whole[6], double origin[3], double spacing[3]);
+  bool SamplingGrid(schlieren::Parallel& parallel, vtkInformation* inInfo, int whole[6],
+    double origin[3], double spacing[3]);
   /** Updates the input once and returns its bounds (all ranks); false if it has no points. */
-  bool UpdatedInputBounds(vtkInformation* inInfo, double bounds[6]);
+  bool UpdatedInputBounds(schlieren::Parallel& parallel, vtkInformation* inInfo, double bounds[6]);
+
+  // The steps of RequestData, in order (vtkRefractiveIndex.cxx). Each returns "" or the error
+  // for the user; Work carries what they pass each other.
+  struct Work;
+  /** What to read: the 2D check, the automatic choices, cell arrays made point arrays. */
+  std::string ReadInputs(Work& w);
+  /** The grid the model runs on: the input image's (grown) piece, or the resampled grid. */
+  std::string MakeGrid(Work& w);
+  /** n - 1 from the model on the grid, and the domain edge of the points this piece owns. */
+  std::string EvaluateModel(Work& w);
+  /** Under MPI: every rank learns whether any failed (given `failure`), and the whole edge. */
+  std::string AgreeAcrossRanks(Work& w, std::string failure);
+  /** The points outside the flow domain, the check of n, the gradient. */
+  std::string FillAndDifferentiate(Work& w);
   /**
-   * The `solid` points of `grid` (see BodyFromGrid): "" or a message for the user; `solid` is
-   * left empty where there is no body. `note` gets what the user should know.
+   * The `solid` points of the grid (see BodyFromGrid), left empty where there is no body;
+   * `note` gets what the user should know.
    */
-  std::string ComputeSolid(vtkInformationVector** inputVector, vtkImageData* grid,
-    const std::vector<unsigned char>& valid, bool anyInvalid, bool resampled,
-    std::vector<unsigned char>& solid, std::string& note);
+  std::string ComputeSolid(Work& w, std::string& note);
+  /** The requested extent of the grid, with the new arrays and the field data. */
+  void WriteOutput(Work& w);
+  vtkSmartPointer<vtkFieldData> OutputFieldData(Work& w);
   /** Why the last RequestInformation could not set up the resampling grid (for RequestData). */
   std::string SamplingError;
 
@@ -575,16 +596,17 @@ private:
    * Resolves AUTOMATIC and the arrays left automatic (the *InUse state); returns "" or an error
    * for the user; `notes` gets what was chosen.
    */
-  std::string ResolveChoices(vtkDataObject* input, std::vector<std::string>& notes);
+  std::string ResolveChoices(
+    schlieren::Parallel& parallel, vtkDataObject* input, std::vector<std::string>& notes);
   /**
    * Checks the arrays `names` on the input (no integer or id arrays) and converts those that are
    * cell data only to point data; returns the input to use (itself or a converted copy), or null
    * after an error (in `error`).
    */
-  vtkSmartPointer<vtkDataObject> PointFields(vtkDataObject* input,
+  vtkSmartPointer<vtkDataObject> PointFields(schlieren::Parallel& parallel, vtkDataObject* input,
     const std::vector<std::string>& names, std::vector<std::string>& notes, std::string& error);
   /** "" or the error of a NO_SYMMETRY input that is 2D (one message, naming Symmetry). */
-  std::string FlatInputError(vtkDataObject* input);
+  std::string FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input);
 
   int ResolvedModel = PASSTHROUGH;
   bool ResolvedHoldsN = false;

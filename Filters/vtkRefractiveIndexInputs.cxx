@@ -11,21 +11,22 @@
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
-#include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include "SchlierenArrays.h"
 #include "SchlierenEngine.h"
+#include "SchlierenParallel.h"
+#include "SchlierenValues.h"
 #include "SchlierenIndexModels.h"
 
 #include <algorithm>
@@ -86,18 +87,11 @@ std::vector<std::string> ArrayNames(vtkDataObject* data)
   return names;
 }
 
-/** The controller when there is more than one process, else null. */
-vtkMultiProcessController* Parallel()
-{
-  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
-  return c && c->GetNumberOfProcesses() > 1 ? c : nullptr;
-}
-
 /** Every rank's `names`, in rank order, each name once (the local list on one process). */
-std::vector<std::string> GatherNames(const std::vector<std::string>& names)
+std::vector<std::string> GatherNames(
+  schlieren::Parallel& parallel, const std::vector<std::string>& names)
 {
-  vtkMultiProcessController* c = Parallel();
-  if (!c)
+  if (parallel.Size() <= 1)
   {
     return names;
   }
@@ -106,31 +100,22 @@ std::vector<std::string> GatherNames(const std::vector<std::string>& names)
   {
     mine += n + '\n';
   }
-  const int ranks = c->GetNumberOfProcesses();
-  vtkIdType length = static_cast<vtkIdType>(mine.size());
-  std::vector<vtkIdType> lengths(ranks), offsets(ranks, 0);
-  c->AllGather(&length, lengths.data(), 1);
-  for (int r = 1; r < ranks; ++r)
-  {
-    offsets[r] = offsets[r - 1] + lengths[r - 1];
-  }
-  std::vector<char> all(static_cast<std::size_t>(offsets[ranks - 1] + lengths[ranks - 1]) + 1, '\0');
-  c->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
   std::vector<std::string> global;
-  std::string current;
-  for (std::size_t i = 0; i + 1 < all.size(); ++i)
+  for (const std::string& theirs : parallel.AllGatherStrings(mine))
   {
-    if (all[i] == '\n')
+    std::string current;
+    for (char c : theirs)
     {
+      if (c != '\n')
+      {
+        current += c;
+        continue;
+      }
       if (std::find(global.begin(), global.end(), current) == global.end())
       {
         global.push_back(current);
       }
       current.clear();
-    }
-    else
-    {
-      current += all[i];
     }
   }
   return global;
@@ -140,21 +125,15 @@ std::vector<std::string> GatherNames(const std::vector<std::string>& names)
  * ArrayNames over every rank's piece, in rank order, so that every rank makes the same choices and
  * the same errors (a rank's piece may be empty).
  */
-std::vector<std::string> GlobalArrayNames(vtkDataObject* data)
+std::vector<std::string> GlobalArrayNames(schlieren::Parallel& parallel, vtkDataObject* data)
 {
-  return GatherNames(ArrayNames(data));
+  return GatherNames(parallel, ArrayNames(data));
 }
 
-/** The largest of `value` over the ranks (itself on one process). */
-int GlobalMax(int value)
+/** True where `value` holds on any rank. */
+bool AnyRank(schlieren::Parallel& parallel, bool value)
 {
-  vtkMultiProcessController* c = Parallel();
-  int global = value;
-  if (c)
-  {
-    c->AllReduce(&value, &global, 1, vtkCommunicator::MAX_OP);
-  }
-  return global;
+  return parallel.Max(value ? 1.0 : 0.0) > 0.5;
 }
 
 std::string List(const std::vector<std::string>& names)
@@ -189,7 +168,8 @@ enum class Kind
 /** The names (lower case) taken for each kind, in order of preference. */
 const std::vector<std::string>& NamesOf(Kind kind)
 {
-  static const std::vector<std::string> n1{ "n_minus_1", "nminus1", "n-1", "refractivity" };
+  static const std::vector<std::string> n1{ schlieren::arrays::NMinus1, "nminus1", "n-1",
+    "refractivity" };
   static const std::vector<std::string> n{ "n", "refractive_index", "refractiveindex",
     "index_of_refraction" };
   static const std::vector<std::string> rho{ "density", "rho", "dens", "mass_density" };
@@ -318,9 +298,126 @@ std::string vtkRefractiveIndex::GetArrayInUse(int idx) const
 }
 
 //------------------------------------------------------------------------------
-std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector<std::string>& notes)
+namespace
 {
-  const std::vector<std::string> present = GlobalArrayNames(input);
+using Filter = vtkRefractiveIndex;
+
+/**
+ * Model Automatic: the model (and whether Passthrough's array holds n) from the name of the chosen
+ * input array, else from the names `present`; fills the arrays it implies. `why` gets the reason
+ * for the note; returns "" or the error where no name says anything.
+ */
+std::string ChooseModel(const std::vector<std::string>& present, std::vector<std::string>& arrays,
+  int& model, bool& holdsN, std::ostringstream& why)
+{
+  const std::string chosen = arrays[Filter::INPUT_ARRAY];
+  if (!chosen.empty())
+  {
+    switch (KindOf(chosen))
+    {
+      case Kind::N:
+        model = Filter::PASSTHROUGH;
+        holdsN = true;
+        why << "Input Array '" << chosen << "' is named as n";
+        break;
+      case Kind::Density:
+        model = Filter::GLADSTONE_DALE;
+        why << "Input Array '" << chosen << "' is named as a density";
+        break;
+      case Kind::Temperature:
+      case Kind::Pressure:
+      {
+        const bool isT = KindOf(chosen) == Kind::Temperature;
+        std::string& slot = arrays[isT ? Filter::TEMPERATURE_ARRAY : Filter::PRESSURE_ARRAY];
+        if (slot.empty())
+        {
+          slot = chosen;
+        }
+        model = Filter::IDEAL_GAS;
+        why << "Input Array '" << chosen << "' is named as a "
+            << (isT ? "temperature" : "pressure");
+        break;
+      }
+      case Kind::NMinus1:
+        model = Filter::PASSTHROUGH;
+        holdsN = false;
+        why << "Input Array '" << chosen << "' is named as n - 1";
+        break;
+      default:
+        model = Filter::PASSTHROUGH;
+        holdsN = false;
+        why << "Input Array '" << chosen
+            << "' has no name it knows, so it is taken as n - 1 (choose Model if it is not)";
+        break;
+    }
+  }
+  else if (!Find(present, Kind::NMinus1).empty())
+  {
+    model = Filter::PASSTHROUGH;
+    holdsN = false;
+    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::NMinus1);
+    why << "the input carries n - 1 ('" << arrays[Filter::INPUT_ARRAY] << "')";
+  }
+  else if (!Find(present, Kind::Density).empty())
+  {
+    model = Filter::GLADSTONE_DALE;
+    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::Density);
+    why << "the input has a density ('" << arrays[Filter::INPUT_ARRAY] << "')";
+  }
+  else if (!Find(present, Kind::Temperature).empty() && !Find(present, Kind::Pressure).empty())
+  {
+    model = Filter::IDEAL_GAS;
+    why << "the input has a temperature and a pressure";
+  }
+  else if (!Find(present, Kind::N).empty())
+  {
+    model = Filter::PASSTHROUGH;
+    holdsN = true;
+    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::N);
+    why << "the input carries n ('" << arrays[Filter::INPUT_ARRAY] << "')";
+  }
+  else
+  {
+    return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
+           "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
+           "pressure, Pres, p) among the input's arrays: " +
+      List(present) + ". Choose the Model and its arrays.";
+  }
+  return std::string();
+}
+
+/** The note that says what Model Automatic chose, and why. */
+std::string ChoiceNote(int model, bool holdsN, bool customGas, double K, const std::string& why)
+{
+  std::ostringstream note;
+  note << "RefractiveIndex: Model Automatic chose " << Label(model);
+  if (model == Filter::GLADSTONE_DALE || model == Filter::IDEAL_GAS)
+  {
+    note << " (Gas ";
+    if (customGas)
+    {
+      note << "Custom, K = " << K << " m^3/kg: air unless set otherwise";
+    }
+    else
+    {
+      note << "from the table";
+    }
+    note << ")";
+  }
+  if (model == Filter::PASSTHROUGH && holdsN)
+  {
+    note << " of n";
+  }
+  note << ": " << why << ".";
+  return note.str();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::ResolveChoices(
+  schlieren::Parallel& parallel, vtkDataObject* input, std::vector<std::string>& notes)
+{
+  const std::vector<std::string> present = GlobalArrayNames(parallel, input);
   this->ResolvedArrays.assign(CO2_ARRAY + 1, std::string());
   for (int idx = 0; idx <= CO2_ARRAY; ++idx)
   {
@@ -339,100 +436,13 @@ std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector
   if (model == AUTOMATIC)
   {
     std::ostringstream why;
-    const std::string chosen = arrays[INPUT_ARRAY];
-    if (!chosen.empty())
+    const std::string problem = ChooseModel(present, arrays, model, holdsN, why);
+    if (!problem.empty())
     {
-      switch (KindOf(chosen))
-      {
-        case Kind::N:
-          model = PASSTHROUGH;
-          holdsN = true;
-          why << "Input Array '" << chosen << "' is named as n";
-          break;
-        case Kind::Density:
-          model = GLADSTONE_DALE;
-          why << "Input Array '" << chosen << "' is named as a density";
-          break;
-        case Kind::Temperature:
-        case Kind::Pressure:
-        {
-          const bool isT = KindOf(chosen) == Kind::Temperature;
-          std::string& slot = arrays[isT ? TEMPERATURE_ARRAY : PRESSURE_ARRAY];
-          if (slot.empty())
-          {
-            slot = chosen;
-          }
-          model = IDEAL_GAS;
-          why << "Input Array '" << chosen << "' is named as a "
-              << (isT ? "temperature" : "pressure");
-          break;
-        }
-        case Kind::NMinus1:
-          model = PASSTHROUGH;
-          holdsN = false;
-          why << "Input Array '" << chosen << "' is named as n - 1";
-          break;
-        default:
-          model = PASSTHROUGH;
-          holdsN = false;
-          why << "Input Array '" << chosen
-              << "' has no name it knows, so it is taken as n - 1 (choose Model if it is not)";
-          break;
-      }
+      return problem;
     }
-    else if (!Find(present, Kind::NMinus1).empty())
-    {
-      model = PASSTHROUGH;
-      holdsN = false;
-      arrays[INPUT_ARRAY] = Find(present, Kind::NMinus1);
-      why << "the input carries n - 1 ('" << arrays[INPUT_ARRAY] << "')";
-    }
-    else if (!Find(present, Kind::Density).empty())
-    {
-      model = GLADSTONE_DALE;
-      arrays[INPUT_ARRAY] = Find(present, Kind::Density);
-      why << "the input has a density ('" << arrays[INPUT_ARRAY] << "')";
-    }
-    else if (!Find(present, Kind::Temperature).empty() && !Find(present, Kind::Pressure).empty())
-    {
-      model = IDEAL_GAS;
-      why << "the input has a temperature and a pressure";
-    }
-    else if (!Find(present, Kind::N).empty())
-    {
-      model = PASSTHROUGH;
-      holdsN = true;
-      arrays[INPUT_ARRAY] = Find(present, Kind::N);
-      why << "the input carries n ('" << arrays[INPUT_ARRAY] << "')";
-    }
-    else
-    {
-      return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
-             "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
-             "pressure, Pres, p) among the input's arrays: " +
-        List(present) + ". Choose the Model and its arrays.";
-    }
-    std::ostringstream note;
-    note << "RefractiveIndex: Model Automatic chose " << Label(model);
-    if (model == GLADSTONE_DALE || model == IDEAL_GAS)
-    {
-      note << " (Gas ";
-      if (this->Gas == CUSTOM_GAS)
-      {
-        note << "Custom, K = " << this->GladstoneDaleConstant << " m^3/kg: air unless set otherwise";
-      }
-      else
-      {
-        note << "from the table";
-      }
-      note << ")";
-    }
-    if (model == PASSTHROUGH && holdsN)
-    {
-      note << " of n";
-    }
-    note << ": " << why.str() << ".";
-    notes.push_back(note.str());
+    notes.push_back(ChoiceNote(
+      model, holdsN, this->Gas == CUSTOM_GAS, this->GladstoneDaleConstant, why.str()));
   }
   this->ResolvedModel = model;
   this->ResolvedHoldsN = holdsN;
@@ -479,7 +489,7 @@ std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector
     });
     // the same on every rank: the first rank's that has one
     const std::vector<std::string> candidates =
-      GatherNames(std::vector<std::string>{ arrays[INPUT_ARRAY] });
+      GatherNames(parallel, std::vector<std::string>{ arrays[INPUT_ARRAY] });
     arrays[INPUT_ARRAY].clear();
     for (const std::string& c : candidates)
     {
@@ -509,8 +519,9 @@ std::string vtkRefractiveIndex::ResolveChoices(vtkDataObject* input, std::vector
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(vtkDataObject* input,
-  const std::vector<std::string>& names, std::vector<std::string>& notes, std::string& error)
+vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parallel& parallel,
+  vtkDataObject* input, const std::vector<std::string>& names, std::vector<std::string>& notes,
+  std::string& error)
 {
   std::vector<std::string> fromCells;
   for (const std::string& name : names)
@@ -537,9 +548,9 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(vtkDataObject* in
         }
       }
     });
-    integral = GlobalMax(integral ? 1 : 0) != 0;
-    inPoints = GlobalMax(inPoints ? 1 : 0) != 0;
-    inCells = GlobalMax(inCells ? 1 : 0) != 0;
+    integral = AnyRank(parallel, integral);
+    inPoints = AnyRank(parallel, inPoints);
+    inCells = AnyRank(parallel, inCells);
     if (integral || ((inPoints || inCells) && IsIdName(name)))
     {
       std::ostringstream m;
@@ -549,7 +560,7 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(vtkDataObject* in
         << ": ids and index arrays (ObjectId, GlobalElementId, vtkOriginalCellIds, ...) are not "
            "a density, temperature, pressure or index field. Choose the field itself (Model "
            "and its arrays); arrays present: "
-        << List(GlobalArrayNames(input)) << ".";
+        << List(GlobalArrayNames(parallel, input)) << ".";
       error = m.str();
       return nullptr;
     }
@@ -588,7 +599,7 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(vtkDataObject* in
 }
 
 //------------------------------------------------------------------------------
-std::string vtkRefractiveIndex::FlatInputError(vtkDataObject* input)
+std::string vtkRefractiveIndex::FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input)
 {
   if (this->Symmetry != NO_SYMMETRY)
   {
@@ -622,21 +633,21 @@ std::string vtkRefractiveIndex::FlatInputError(vtkDataObject* input)
   }
   double b[6] = { 0, -1, 0, -1, 0, -1 };
   const bool have = BoundsOf(input, b);
-  if (vtkMultiProcessController* c = Parallel())
+  if (parallel.Size() > 1)
   {
     // every rank decides on the whole input's bounds (a piece may be empty)
-    double lo[3], hi[3], glo[3], ghi[3];
+    double lo[3], hi[3];
     for (int a = 0; a < 3; ++a)
     {
-      lo[a] = have ? -b[2 * a] : -VTK_DOUBLE_MAX;
+      lo[a] = have ? b[2 * a] : VTK_DOUBLE_MAX;
       hi[a] = have ? b[2 * a + 1] : -VTK_DOUBLE_MAX;
     }
-    c->AllReduce(lo, glo, 3, vtkCommunicator::MAX_OP);
-    c->AllReduce(hi, ghi, 3, vtkCommunicator::MAX_OP);
+    parallel.Min(lo, 3);
+    parallel.Max(hi, 3);
     for (int a = 0; a < 3; ++a)
     {
-      b[2 * a] = -glo[a];
-      b[2 * a + 1] = ghi[a];
+      b[2 * a] = lo[a];
+      b[2 * a + 1] = hi[a];
     }
   }
   if (!(b[0] <= b[1]))
@@ -1001,12 +1012,16 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     return grid;
   }
   vtkDataArray* found = probed->GetPointData()->GetArray(ValidMask);
+  const std::vector<double> foundValues =
+    found ? schlieren::values::Values<double>(found) : std::vector<double>();
+  const int foundComponents = found ? found->GetNumberOfComponents() : 1;
   vtkNew<vtkCharArray> mask;
   mask->SetName(ValidMask);
   mask->SetNumberOfTuples(count);
   for (vtkIdType id = 0; id < count; ++id)
   {
-    mask->SetValue(id, found && found->GetComponent(sampleOf[id], 0) != 0.0 ? 1 : 0);
+    mask->SetValue(
+      id, found && foundValues[sampleOf[id] * foundComponents] != 0.0 ? 1 : 0);
   }
   grid->GetPointData()->AddArray(mask);
   for (const std::string& name : names)
@@ -1022,12 +1037,10 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     copy->SetNumberOfComponents(nc);
     copy->SetNumberOfTuples(count);
     float* out = copy->GetPointer(0);
+    const std::vector<float> values = schlieren::values::Values<float>(a);
     for (vtkIdType id = 0; id < count; ++id)
     {
-      for (int c = 0; c < nc; ++c)
-      {
-        out[id * nc + c] = static_cast<float>(a->GetComponent(sampleOf[id], c));
-      }
+      std::copy_n(values.begin() + sampleOf[id] * nc, nc, out + id * nc);
     }
     grid->GetPointData()->AddArray(copy);
   }

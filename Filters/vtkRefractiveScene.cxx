@@ -12,12 +12,14 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <vector>
 
+#include "SchlierenArrays.h"
 #include "SchlierenEngine.h"
 #include "SchlierenScenes.h"
 
@@ -123,44 +125,39 @@ int vtkRefractiveScene::RequestData(
   const int dims[3] = { ext[1] - ext[0] + 1, ext[3] - ext[2] + 1, ext[5] - ext[4] + 1 };
   const double pieceOrigin[3] = { origin[0] + ext[0] * spacing[0], origin[1] + ext[2] * spacing[1],
     origin[2] + ext[4] * spacing[2] };
-  const vtkIdType count = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
-  const bool plume = this->Scene == HELIUM_PLUME;
-  try
+  const std::string problem = this->FillPiece(outInfo, output, dims, pieceOrigin, spacing);
+  if (!problem.empty())
   {
-    std::ostringstream what;
-    what << "RefractiveScene's grid of " << dims[0] << " x " << dims[1] << " x " << dims[2]
-         << " points (" << (plume ? 3 : 2) << " float arrays)";
-    schlieren::CheckHostMemory(double(dims[0]) * dims[1] * dims[2] * 4.0 * (plume ? 3 : 2),
-      what.str(), "Lower Dimensions.");
-  }
-  catch (const schlieren::Error& e)
-  {
-    vtkErrorMacro(<< e.what());
+    vtkErrorMacro(<< problem);
     output->Initialize();
     return 0;
   }
+  return 1;
+}
 
-  vtkNew<vtkFloatArray> nMinus1;
-  nMinus1->SetName("n_minus_1");
-  nMinus1->SetNumberOfTuples(count);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(count);
-  vtkNew<vtkFloatArray> mixture;
-  if (plume)
-  {
-    mixture->SetName("mixture_fraction");
-    mixture->SetNumberOfTuples(count);
-  }
+//------------------------------------------------------------------------------
+namespace
+{
+vtkSmartPointer<vtkFloatArray> NewFloats(const char* name, vtkIdType count)
+{
+  auto a = vtkSmartPointer<vtkFloatArray>::New();
+  a->SetName(name);
+  a->SetNumberOfTuples(count);
+  return a;
+}
+} // namespace
 
+//------------------------------------------------------------------------------
+std::string vtkRefractiveScene::FillPiece(vtkInformation* outInfo, vtkImageData* output,
+  const int dims[3], const double pieceOrigin[3], const double spacing[3])
+{
+  const vtkIdType count = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  const bool plume = this->Scene == HELIUM_PLUME;
   schlieren::SceneParameters p;
   p.Amplitude = this->Amplitude;
   p.Width = this->Width;
   p.Radius = this->Radius;
-  for (int a = 0; a < 3; ++a)
-  {
-    p.Center[a] = this->Center[a];
-  }
+  std::copy(this->Center, this->Center + 3, p.Center);
   p.GradientA = this->GradientA;
   p.GradientB = this->GradientB;
   p.Mach = this->Mach;
@@ -173,41 +170,39 @@ int vtkRefractiveScene::RequestData(
     p.Time = std::max(1e-6, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), p.Time);
   }
+  schlieren::BodyParameters b;
+  b.Shape = static_cast<schlieren::Body>(this->Body);
+  b.Radius = this->BodyRadius;
+  std::copy(this->BodyCenter, this->BodyCenter + 3, b.Center);
+  std::copy(this->BodyAxis, this->BodyAxis + 3, b.Axis);
+
+  vtkSmartPointer<vtkFloatArray> nMinus1, density, mixture;
+  vtkNew<vtkUnsignedCharArray> solid;
   try
   {
+    std::ostringstream what;
+    what << "RefractiveScene's grid of " << dims[0] << " x " << dims[1] << " x " << dims[2]
+         << " points (" << (plume ? 3 : 2) << " float arrays)";
+    schlieren::CheckHostMemory(double(dims[0]) * dims[1] * dims[2] * 4.0 * (plume ? 3 : 2),
+      what.str(), "Lower Dimensions.");
+    nMinus1 = NewFloats(schlieren::arrays::NMinus1, count);
+    density = NewFloats("density", count);
+    mixture = plume ? NewFloats("mixture_fraction", count) : nullptr;
     schlieren::FillScene(static_cast<schlieren::Scene>(this->Scene), p, dims, pieceOrigin, spacing,
       nMinus1->GetPointer(0), density->GetPointer(0), plume ? mixture->GetPointer(0) : nullptr);
+    if (this->Body != NO_BODY)
+    {
+      solid->SetName(schlieren::arrays::Solid);
+      solid->SetNumberOfTuples(count);
+      schlieren::FillBody(b, dims, pieceOrigin, spacing, solid->GetPointer(0));
+    }
   }
   catch (const schlieren::Error& e)
   {
-    vtkErrorMacro(<< e.what());
-    output->Initialize();
-    return 0;
+    return e.what();
   }
-
   if (this->Body != NO_BODY)
   {
-    schlieren::BodyParameters b;
-    b.Shape = static_cast<schlieren::Body>(this->Body);
-    b.Radius = this->BodyRadius;
-    for (int a = 0; a < 3; ++a)
-    {
-      b.Center[a] = this->BodyCenter[a];
-      b.Axis[a] = this->BodyAxis[a];
-    }
-    vtkNew<vtkUnsignedCharArray> solid;
-    solid->SetName("solid");
-    solid->SetNumberOfTuples(count);
-    try
-    {
-      schlieren::FillBody(b, dims, pieceOrigin, spacing, solid->GetPointer(0));
-    }
-    catch (const schlieren::Error& e)
-    {
-      vtkErrorMacro(<< e.what());
-      output->Initialize();
-      return 0;
-    }
     output->GetPointData()->AddArray(solid);
   }
   output->GetPointData()->SetScalars(nMinus1);
@@ -216,7 +211,7 @@ int vtkRefractiveScene::RequestData(
   {
     output->GetPointData()->AddArray(mixture);
   }
-  return 1;
+  return std::string();
 }
 
 //------------------------------------------------------------------------------

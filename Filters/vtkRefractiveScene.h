@@ -48,6 +48,8 @@
 #include "SchlierenFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
+#include <string>
+
 class SCHLIERENFILTERS_EXPORT vtkRefractiveScene : public vtkImageAlgorithm
 {
 public:
@@ -258,6 +260,13 @@ protected:
 private:
   vtkRefractiveScene(const vtkRefractiveScene&) = delete;
   void operator=(const vtkRefractiveScene&) = delete;
+
+  /**
+   * The scene's arrays (n - 1, density, the plume's mixture fraction, the body's `solid`) on the
+   * piece of `dims` points from `pieceOrigin`, added to `output`; "" or the error for the user.
+   */
+  std::string FillPiece(vtkInformation* outInfo, vtkImageData* output, const int dims[3],
+    const double pieceOrigin[3], const double spacing[3]);
 };
 
 #endif
