@@ -218,7 +218,8 @@ struct TraceSettings
   /** Every setting that changes which photons are traced or how they land and weigh: all but
    * Passes and the film filter (applied in Finalize). Equal keys, same volume: FilmSums of the
    * first passes can be continued with more (progressive refinement). Keep it in step with the
-   * fields above. */
+   * fields above. Device and DeviceName are in it (backends and devices agree to float rounding,
+   * not bit for bit); Threads is not (the film does not depend on the thread count). */
   std::string PhotonKey() const;
 };
 
@@ -265,8 +266,6 @@ struct FilmSums
   int Passes = 0;
 
   void Resize(int nx, int ny);
-  /** Adds another rank's sums (same size, same passes). */
-  void Merge(const FilmSums& other);
   /** Every per-pixel channel, every additive total, every maximum: for generic loops and MPI. */
   std::vector<std::vector<double>*> PixelChannels();
   std::vector<double*> Totals();
@@ -406,9 +405,10 @@ struct DeviceInfo
   std::string Name, Platform, Version, Reason;
   std::uint64_t MaxAlloc = 0, GlobalMemory = 0;
 };
-/** The device the OpenCL backend would use (the first GPU, else the first device; or the one named
- * by the environment variable SCHLIEREN_OPENCL_DEVICE, a substring of the device name). */
-DeviceInfo QueryOpenCLDevice();
+/** The device the OpenCL backend would use for TraceSettings::DeviceName `deviceName` (a substring
+ * of the device name; empty: the runtime options' device, SCHLIEREN_OPENCL_DEVICE, else the first
+ * GPU, else the first device). Reason says why where none can be used. */
+DeviceInfo QueryOpenCLDevice(const std::string& deviceName = std::string());
 
 /** Builds OpenCL source on the engine's device; throws Error with the build log on failure.
  * The program is cached per device, options and source. */

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenLimits.h"
+#include "SchlierenOptions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,12 +84,9 @@ std::uint64_t AvailableMemory()
     const std::uint64_t cap = std::uint64_t(lim.rlim_cur);
     avail = std::min(avail, cap > used ? cap - used : 0);
   }
-  if (const char* e = std::getenv("SCHLIEREN_MEMORY_LIMIT"))
-  {
-    const std::uint64_t m = std::strtoull(e, nullptr, 10);
-    if (m > 0)
-      avail = std::min(avail, m);
-  }
+  const std::uint64_t m = GetRuntimeOptions().MemoryLimit;
+  if (m > 0)
+    avail = std::min(avail, m);
   return avail;
 }
 
@@ -191,6 +189,8 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("MaxSteps", s.MaxSteps, ">= 0 (0: automatic)");
   if (s.RaysPerWorkItem < 0 || s.RaysPerWorkItem > 64)
     OutOfRange("RaysPerWorkItem", s.RaysPerWorkItem, "in [0, 64] (0: automatic)");
+  if (s.Threads < 0 || s.Threads > 4096)
+    OutOfRange("Threads", s.Threads, "in [0, 4096] (0: the runtime options' choice, else every core)");
 }
 
 void CheckPrecision(const Volume& volume, const TraceSettings& s)

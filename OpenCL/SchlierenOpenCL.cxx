@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenOpenCL.h"
 #include "SchlierenEngine.h"
+#include "SchlierenOptions.h"
 
 #include <cstdlib>
 #include <functional>
@@ -98,9 +99,22 @@ void Check(cl_int status, const char* what)
 
 namespace
 {
+// an OpenCL device that can build kernels
+struct Candidate
+{
+  cl_platform_id P;
+  cl_device_id D;
+  cl_device_type T;
+  std::string Name;
+};
+
 std::mutex gMutex;
-std::unique_ptr<Runtime> gRuntime;
-std::string gRuntimeError;
+// the devices (enumerated once; or why none can be used) and a runtime per device used
+bool gEnumerated = false;
+std::vector<Candidate> gDevices;
+std::string gEnumerationError;
+std::map<cl_device_id, std::unique_ptr<Runtime>> gRuntimes;
+std::map<cl_device_id, std::string> gRuntimeErrors;
 
 std::string DeviceString(cl_device_id d, cl_device_info what)
 {
@@ -126,7 +140,8 @@ std::string PlatformString(cl_platform_id p, cl_platform_info what)
   return s;
 }
 
-std::unique_ptr<Runtime> CreateRuntime()
+// Every available device with a compiler, on every platform.
+std::vector<Candidate> EnumerateDevices()
 {
   cl_uint np = 0;
   cl_int st = clGetPlatformIDs(0, nullptr, &np);
@@ -141,13 +156,6 @@ std::unique_ptr<Runtime> CreateRuntime()
   std::vector<cl_platform_id> platforms(np);
   Check(clGetPlatformIDs(np, platforms.data(), nullptr), "clGetPlatformIDs");
 
-  struct Candidate
-  {
-    cl_platform_id P;
-    cl_device_id D;
-    cl_device_type T;
-    std::string Name;
-  };
   std::vector<Candidate> all;
   for (cl_platform_id p : platforms)
   {
@@ -170,52 +178,57 @@ std::unique_ptr<Runtime> CreateRuntime()
   if (all.empty())
     throw Error("OpenCL platforms exist but none has an available device with a compiler; choose "
                 "Backend CPU.");
+  return all;
+}
 
-  const Candidate* pick = nullptr;
-  if (const char* want = std::getenv("SCHLIEREN_OPENCL_DEVICE"))
+// The device whose name contains `want` (from `source`, for the message), or with an empty
+// `want` the first GPU, else the first device.
+const Candidate& PickDevice(const std::vector<Candidate>& all, const std::string& want, const char* source)
+{
+  if (!want.empty())
   {
     for (const Candidate& c : all)
       if (c.Name.find(want) != std::string::npos)
-      {
-        pick = &c;
-        break;
-      }
-    if (!pick)
-    {
-      std::ostringstream msg;
-      msg << "SCHLIEREN_OPENCL_DEVICE='" << want << "' matches no device; devices:";
-      for (const Candidate& c : all)
-        msg << " '" << c.Name << "'";
-      throw Error(msg.str());
-    }
+        return c;
+    std::ostringstream msg;
+    msg << source << "='" << want << "' matches no OpenCL device; devices:";
+    for (const Candidate& c : all)
+      msg << " '" << c.Name << "'";
+    msg << ". Give a part of one of these names, leave it empty for the default device, or choose "
+           "Backend CPU.";
+    throw Error(msg.str());
   }
   for (const Candidate& c : all)
-    if (!pick && (c.T & CL_DEVICE_TYPE_GPU))
-      pick = &c;
-  if (!pick)
-    pick = &all.front();
+    if (c.T & CL_DEVICE_TYPE_GPU)
+      return c;
+  return all.front();
+}
 
+std::unique_ptr<Runtime> CreateRuntime(const Candidate& pick)
+{
   auto rt = std::make_unique<Runtime>();
-  rt->Platform = pick->P;
-  rt->Device = pick->D;
-  rt->DeviceName = pick->Name;
-  rt->PlatformName = PlatformString(pick->P, CL_PLATFORM_NAME);
-  rt->Version = DeviceString(pick->D, CL_DEVICE_VERSION);
+  rt->Platform = pick.P;
+  rt->Device = pick.D;
+  rt->DeviceName = pick.Name;
+  rt->PlatformName = PlatformString(pick.P, CL_PLATFORM_NAME);
+  rt->Version = DeviceString(pick.D, CL_DEVICE_VERSION);
   cl_ulong v = 0;
-  clGetDeviceInfo(pick->D, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof(v), &v, nullptr);
+  clGetDeviceInfo(pick.D, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof(v), &v, nullptr);
   rt->MaxAlloc = v;
-  clGetDeviceInfo(pick->D, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof(v), &v, nullptr);
+  clGetDeviceInfo(pick.D, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof(v), &v, nullptr);
   rt->GlobalMemory = v;
-  clGetDeviceInfo(pick->D, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof(rt->MaxWorkGroup), &rt->MaxWorkGroup, nullptr);
+  clGetDeviceInfo(pick.D, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof(rt->MaxWorkGroup), &rt->MaxWorkGroup, nullptr);
   cl_device_type type = 0;
-  clGetDeviceInfo(pick->D, CL_DEVICE_TYPE, sizeof(type), &type, nullptr);
+  clGetDeviceInfo(pick.D, CL_DEVICE_TYPE, sizeof(type), &type, nullptr);
   rt->IsCPU = (type & CL_DEVICE_TYPE_CPU) != 0;
   cl_context_properties props[] = { CL_CONTEXT_PLATFORM,
-    reinterpret_cast<cl_context_properties>(pick->P), 0 };
+    reinterpret_cast<cl_context_properties>(pick.P), 0 };
   cl_int err = CL_SUCCESS;
-  rt->Context = clCreateContext(props, 1, &pick->D, nullptr, nullptr, &err);
+  rt->Context = clCreateContext(props, 1, &pick.D, nullptr, nullptr, &err);
   Check(err, "clCreateContext");
-  rt->Queue = clCreateCommandQueue(rt->Context, pick->D, 0, &err);
+  rt->Queue = clCreateCommandQueue(rt->Context, pick.D, 0, &err);
+  if (err != CL_SUCCESS)
+    clReleaseContext(rt->Context);
   Check(err, "clCreateCommandQueue");
   return rt;
 }
@@ -256,41 +269,65 @@ void ReleaseRuntime()
     if (p.second.Program)
       clReleaseProgram(p.second.Program);
   gPrograms.clear();
-  if (gRuntime)
+  for (auto& r : gRuntimes)
   {
-    if (gRuntime->Queue)
+    if (r.second->Queue)
     {
-      clFinish(gRuntime->Queue);
-      clReleaseCommandQueue(gRuntime->Queue);
+      clFinish(r.second->Queue);
+      clReleaseCommandQueue(r.second->Queue);
     }
-    if (gRuntime->Context)
-      clReleaseContext(gRuntime->Context);
-    gRuntime.reset();
+    if (r.second->Context)
+      clReleaseContext(r.second->Context);
   }
+  gRuntimes.clear();
 }
 
-Runtime& GetRuntime()
+Runtime& GetRuntime(const std::string& deviceName)
 {
+  const std::string want = deviceName.empty() ? GetRuntimeOptions().OpenCLDevice : deviceName;
+  const char* source = deviceName.empty() ? "SCHLIEREN_OPENCL_DEVICE" : "DeviceName";
   std::lock_guard<std::mutex> lock(gMutex);
-  if (gRuntime)
-    return *gRuntime;
-  if (!gRuntimeError.empty())
-    throw Error(gRuntimeError);
+  if (!gEnumerated)
+  {
+    try
+    {
+      gDevices = EnumerateDevices();
+    }
+    catch (const Error& e)
+    {
+      gEnumerationError = e.what();
+    }
+    gEnumerated = true;
+  }
+  if (!gEnumerationError.empty())
+    throw Error(gEnumerationError);
+  const Candidate& pick = PickDevice(gDevices, want, source);
+  auto it = gRuntimes.find(pick.D);
+  if (it != gRuntimes.end())
+    return *it->second;
+  auto bad = gRuntimeErrors.find(pick.D);
+  if (bad != gRuntimeErrors.end())
+    throw Error(bad->second);
   try
   {
-    gRuntime = CreateRuntime();
+    return *(gRuntimes[pick.D] = CreateRuntime(pick));
   }
   catch (const Error& e)
   {
-    gRuntimeError = e.what();
+    gRuntimes.erase(pick.D);
+    gRuntimeErrors[pick.D] = e.what();
     throw;
   }
-  return *gRuntime;
 }
 
 cl_program GetProgram(const std::string& name, const std::string& source, const std::string& options)
 {
-  Runtime& rt = GetRuntime();
+  return GetProgram(GetRuntime(), name, source, options);
+}
+
+cl_program GetProgram(
+  Runtime& rt, const std::string& name, const std::string& source, const std::string& options)
+{
   std::lock_guard<std::mutex> lock(gMutex);
   auto key = std::make_tuple(rt.Device, options, std::hash<std::string>()(source));
   auto it = gPrograms.find(key);

@@ -3,10 +3,9 @@
  * @file SchlierenOpenCL.h
  * @brief Internal: the OpenCL device, context, queue and program cache of the engine.
  *
- * One process-wide runtime: the device is chosen once (SCHLIEREN_OPENCL_DEVICE, a substring of the
- * device name, else the first GPU, else the first device). Programs are cached per device, build
- * options and source hash for the life of the process; a failed build is cached too and reports the
- * kernel name, status, options and the full build log.
+ * A runtime (context and queue) per device used, made on first use and kept for the life of the
+ * process. Programs are cached per device, build options and source hash; a failed build is
+ * cached too and reports the kernel name, status, options and the full build log.
  */
 #ifndef SchlierenOpenCL_h
 #define SchlierenOpenCL_h
@@ -42,10 +41,17 @@ struct Runtime
   bool IsCPU = false; ///< CL_DEVICE_TYPE_CPU (PoCL here): lock-step rays vectorise there
 };
 
-/** The runtime, created on first use; throws schlieren::Error if no device can be used. */
-Runtime& GetRuntime();
+/**
+ * The runtime of the device whose name contains `deviceName`; empty: the runtime options' device
+ * (SCHLIEREN_OPENCL_DEVICE), else the first GPU, else the first device. Created on first use;
+ * throws schlieren::Error if no device can be used or none matches (listing the devices).
+ */
+Runtime& GetRuntime(const std::string& deviceName = std::string());
 
-/** A built program (cached); throws schlieren::Error with the build log on failure. */
+/** A built program (cached) on rt's device; throws schlieren::Error with the build log on failure. */
+cl_program GetProgram(
+  Runtime& rt, const std::string& name, const std::string& source, const std::string& options);
+/** GetProgram on the default device (GetRuntime()). */
 cl_program GetProgram(const std::string& name, const std::string& source, const std::string& options);
 
 /**

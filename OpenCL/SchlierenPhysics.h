@@ -716,7 +716,7 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);
   sch_v3 v = sch_axpy(W->ne, d0, W->w);
   /* 1 / n was taken with the last sample, off the path from this step's start to its sample:
-   * the lock-step kernel is bound by that path's latency (PoCL, 256^3: +7 % samples/s) */
+   * the lock-step kernel is bound by that path's latency */
   float invn = W->invn;
   float ds = W->base;
   /* v / n is the unit direction to first order (|v| = n): good enough to aim the step. Line of
@@ -822,7 +822,7 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   W->path += ds;
   /* a NaN fails every comparison: it leaves the loop through the exit test below and is caught
    * in sch_walk_end, as is a ray that turned back against the beam (it marches back out through
-   * the front or a side: a test here cost 7 % of the step on PoCL) */
+   * the front or a side: a test here costs a measurable part of the step) */
   /* Euler and line of sight end where the check above aimed: a whole step inside, a cut one a
    * hair outside. The other schemes bend away from that line and look again. */
   const int aimed = (SCH_INTEGRATOR(P) == SCH_EULER) | (SCH_INTEGRATOR(P) == SCH_STRAIGHT);

@@ -93,11 +93,6 @@ double NormalShockDensityRatio(double m, double g)
   return (g + 1) * m * m / ((g - 1) * m * m + 2);
 }
 
-double NormalShockPressureRatio(double m, double g)
-{
-  return 1 + 2 * g * (m * m - 1) / (g + 1);
-}
-
 void FillScene(Scene scene, const SceneParameters& p, const int dims[3], const double origin[3],
   const double spacing[3], float* nMinus1, float* density, float* mixtureFraction)
 {

@@ -42,8 +42,6 @@ enum class Scene
 
 /** Normal-shock density ratio rho2/rho1 = (g+1) M^2 / ((g-1) M^2 + 2). */
 double NormalShockDensityRatio(double mach, double gamma = 1.4);
-/** Normal-shock pressure ratio p2/p1 = 1 + 2 g (M^2 - 1) / (g + 1). */
-double NormalShockPressureRatio(double mach, double gamma = 1.4);
 
 struct SceneParameters
 {

@@ -82,8 +82,7 @@ __kernel void sch_trace_points(SCH_FIELD_ARGS, __global const uchar* levels,
  * independent and overlap; without the barrier it runs one work-item's whole march after another.
  * The walks live in local memory and are stepped in place: kept in private variables, PoCL copies
  * every field of every walk between context arrays at each barrier; called as a function, each
- * step pays a call and reloads the parameters (PoCL, 256^3 Gaussian, Euler: 147-150 against
- * 136-137 M samples/s). Not vectorised (PoCL's remarks: vector values, branches that are not
+ * step pays a call and reloads the parameters (docs/PERFORMANCE.md has the figures). Not vectorised (PoCL's remarks: vector values, branches that are not
  * selects; a probe that was, with 4-wide gathers, ran slower): the gain is the overlapped reads.
  * The arithmetic per ray is sch_trace's: the records are identical. The host launches groups of
  * exactly SCH_LOCKSTEP_GROUP items and never asks this program for the step-doubling estimate. */

@@ -1,6 +1,9 @@
 """Draw the speed-versus-accuracy chart from SchlierenAccuracyChart's CSV.
 
-    /usr/bin/python3 Testing/Benchmarks/accuracy_chart.py accuracy_chart.csv docs/accuracy_chart.png
+    /usr/bin/python3 Testing/Benchmarks/accuracy_chart.py build/accuracy_chart.csv docs/accuracy_chart.png
+
+(SchlierenAccuracyChart writes build/accuracy_chart.csv, or the file its --csv names;
+scripts/accuracy_chart.sh passes out/accuracy_chart.csv.)
 
 One panel per known-answer scene: time per pass (x) against the error of the traced deflection
 relative to the answer's largest deflection (y), one colour per integrator, one marker per octree

@@ -7,6 +7,9 @@
 // for Testing/Benchmarks/accuracy_chart.py.
 //
 //   SchlierenAccuracyChart [--size N] [--film N] [--backend CPU|OpenCL] [--csv file]
+//
+// The CSV goes to --csv, else to accuracy_chart.csv in the build folder (never the working
+// directory, which is often the source tree).
 #include "SchlierenOracles.h"
 
 #include <chrono>
@@ -18,7 +21,7 @@ using namespace schlieren;
 int main(int argc, char** argv)
 {
   int size = 96, filmSize = 128;
-  std::string backend = "CPU", csv = "accuracy_chart.csv";
+  std::string backend = "CPU", csv = SCHLIEREN_BINARY_DIR "/accuracy_chart.csv";
   for (int i = 1; i + 1 < argc; i += 2)
   {
     if (!std::strcmp(argv[i], "--size"))
@@ -31,6 +34,12 @@ int main(int argc, char** argv)
       csv = argv[i + 1];
   }
   std::ofstream out(csv);
+  if (!out)
+  {
+    std::fprintf(stderr, "SchlierenAccuracyChart: cannot write the CSV file %s: give a writable path with --csv\n",
+      csv.c_str());
+    return 1;
+  }
   out << "scene,method,step,octree_tolerance,ms_per_pass,samples_per_ray,relative_error,flagged,reconstruction\n";
   std::vector<schtest::OracleCase> cases = { schtest::GaussianCase(size), schtest::LuneburgCase(size),
     schtest::ShockCase(size, 2.0), schtest::LinearCase(size) };

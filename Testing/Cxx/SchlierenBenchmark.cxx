@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Benchmark (not a test): photons/s, samples/s and ms per pass of each backend side by side, with
 // the error of the traced deflection against a known answer, so that no speed is quoted without
-// the accuracy it was bought at. Three cases (issue 7):
+// the accuracy it was bought at. Three cases:
 //   gaussian  the 256^3 Gaussian sphere; error against the closed form
 //   plume     a 480 x 720 x 100 helium jet (combustion-like: a sharp, strongly refracting
 //             interface); error against RK4 at 1/8 voxel on the same grid
@@ -244,7 +244,7 @@ void Run(Case& c, const std::string& backends, const std::string& only, int film
         vv.LevelTolerance = c.OctreeTolerance;
       }
       if (row.OneThread)
-        setenv("SCHLIEREN_CPU_THREADS", "1", 1);
+        s.Threads = 1;
       try
       {
         // Auto chooses once (its pilot is not part of the pass time)
@@ -276,8 +276,6 @@ void Run(Case& c, const std::string& backends, const std::string& only, int film
       {
         std::printf("| %s, %s | failed: %s | | | | | |\n", name.c_str(), row.Name, e.what());
       }
-      if (row.OneThread)
-        unsetenv("SCHLIEREN_CPU_THREADS");
       std::fflush(stdout);
     }
   }

@@ -5,6 +5,7 @@
 #define SchlierenTesting_h
 
 #include "SchlierenEngine.h"
+#include "SchlierenOptions.h"
 #include "SchlierenScenes.h"
 
 #include <cmath>
@@ -67,6 +68,22 @@ struct SceneVolume
     schlieren::PackField(V.Dimensions, V.Spacing, N1.data(), Field.data());
     V.Field = Field.data();
   }
+};
+
+/** Changes the engine's runtime options for the life of this object (what a test would otherwise
+ * do with setenv, which the engine reads only once), then puts the previous ones back. */
+struct ScopedOptions
+{
+  schlieren::RuntimeOptions Saved = schlieren::GetRuntimeOptions();
+  explicit ScopedOptions(const std::function<void(schlieren::RuntimeOptions&)>& change)
+  {
+    schlieren::RuntimeOptions o = Saved;
+    change(o);
+    schlieren::SetRuntimeOptions(o);
+  }
+  ~ScopedOptions() { schlieren::SetRuntimeOptions(Saved); }
+  ScopedOptions(const ScopedOptions&) = delete;
+  ScopedOptions& operator=(const ScopedOptions&) = delete;
 };
 
 /** True if OpenCL can run here; tests that need it say so and skip otherwise. */

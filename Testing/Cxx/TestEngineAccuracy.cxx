@@ -1,21 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Tracing accuracy (issue 4): convergence orders, octree on/off, where methods fail (and that the
+// Tracing accuracy: convergence orders, octree on/off, where methods fail (and that the
 // tracer says so), line of sight against the curved trace, the step-doubling estimate, and Auto.
 // CPU backend throughout: the OpenCL build of the same source is held to it in TestEngineOracles.
-//
-// Numbers measured when this was written (64^3 grids unless stated; "ref" = RK4 at 1/32 voxel on
-// the same grid, so grid error cancels):
-//  - linear gradient n^2 = 1 + 0.2 y, beam along x: Euler landing error 1.42e-2, 7.1e-3, 3.6e-3,
-//    1.8e-3 at 4, 2, 1, 0.5 voxel (order 1.00); midpoint 1.31e-4, 3.86e-5, 1.05e-5 at 16, 8, 4
-//    voxel (order 1.8, tending to 2; below 4 voxel it meets float rounding, ~2e-6).
-//  - Luneburg lens R = 1: Euler 2.65e-2, 1.33e-2, 6.7e-3 at 1, 0.5, 0.25 voxel (order 1.00);
-//    midpoint 1.44e-5, 2.9e-6, 5.9e-7 (order 2.3).
-//  - Gaussian sphere s = 0.1 on 128^3 with the octree at tolerance 1e-8 (1e-4 A): 23x fewer
-//    samples, image deflection within 2.6e-5 of max eps of the fixed-step image.
-//  - normal shock (M = 2, 2 voxels thick), beam at 40 deg: errors 76 %, 8 %, 4.5 % at 8, 4, 2 voxel
-//    steps (flagged), 0.4 % at 1 voxel (not flagged).
-//  - helium/air interface (2 voxels), beam at 40 deg, midpoint: 77 %, 8.2 % at 8, 4 voxel (flagged),
-//    0.4 %, 0.2 % at 1, 0.5 voxel (not flagged).
+// The figures it gave when it was written are in docs/PERFORMANCE.md (accuracy of the tracer).
 #include "SchlierenIndexModels.h"
 #include "SchlierenOracles.h"
 

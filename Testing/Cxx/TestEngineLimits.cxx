@@ -17,6 +17,7 @@
 #include <sstream>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 using namespace schlieren;
 using schtest::ExpectError;
@@ -193,14 +194,14 @@ int main()
   // what it needs, what is available and what to change (the limit set low for the test, so
   // that it does not depend on this machine's RAM).
   {
-    setenv("SCHLIEREN_MEMORY_LIMIT", "100000000", 1);
+    auto limit = std::make_unique<schtest::ScopedOptions>([](RuntimeOptions& o) { o.MemoryLimit = 100000000; });
     TraceSettings s = Small(Backend::CPU);
     s.Resolution[0] = s.Resolution[1] = 16384;
     ExpectError("16384^2 film, 100 MB available", [&] { Trace(g.V, s); },
       { "16384 x 16384 pixels", "needs 94", "GiB", "available", "Lower Resolution" });
     s.Resolution[0] = s.Resolution[1] = 8000;
     ExpectError("8000^2 film", [&] { Trace(g.V, s); }, { "8000 x 8000", "Lower Resolution" });
-    unsetenv("SCHLIEREN_MEMORY_LIMIT");
+    limit.reset();
     CHECK(AvailableMemory() > 0 && AvailableMemory() <= PhysicalMemory(),
       "available memory is positive and at most the installed memory");
   }

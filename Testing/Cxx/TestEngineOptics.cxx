@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Image formation (issue 5) against the known answers of ORACLES.md on the Gaussian sphere
+// Image formation against the known answers of ORACLES.md on the Gaussian sphere
 // n = 1 + A exp(-r^2/s^2), s = 0.25, 128^3 over [-1, 1]^3, beam along -z:
 // circular and colour cutoffs, shadowgraph against the exact mapping 1/det(I + L grad grad P),
 // interferometric phase against 2 pi / lambda sqrt(pi) A s exp(-rho^2/s^2), BOS displacement,

@@ -407,12 +407,11 @@ void TestKernelsAgree(bool haveCL)
       double samples[2] = { 0, 0 };
       for (int lock = 0; lock < 2; ++lock)
       {
-        setenv("SCHLIEREN_CL_LOCKSTEP", lock ? "1" : "0", 1);
+        const schtest::ScopedOptions kernel([lock](RuntimeOptions& o) { o.Lockstep = lock; });
         const TraceResult r = Trace(v, s);
         out[lock] = r.Deflection;
         samples[lock] = r.Samples;
       }
-      unsetenv("SCHLIEREN_CL_LOCKSTEP");
       const double diff = LargestDifference(out[0], out[1]);
       std::printf("%s%s: lock-step against per-item kernel, largest deflection difference %.3g rad, "
                   "samples %.0f and %.0f\n",
@@ -434,10 +433,10 @@ void TestSlabs(bool haveCL)
     return;
   }
   const SmallSphere sphere;
-  const std::string planes20 = std::to_string(20 * 48 * 48 * 16);
+  const std::uint64_t planes20 = 20 * 48 * 48 * 16;
   for (bool octree : { false, true })
     for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::RK4 })
-      for (const char* lock : { "0", "1" })
+      for (int lock : { 0, 1 })
       {
         const Volume v = sphere.With(octree);
         TraceSettings s;
@@ -447,15 +446,16 @@ void TestSlabs(bool haveCL)
         s.Resolution[0] = 36;
         s.Resolution[1] = 30;
         s.CutoffScale = 1000;
-        setenv("SCHLIEREN_CL_LOCKSTEP", lock, 1);
+        const schtest::ScopedOptions kernel([lock](RuntimeOptions& o) { o.Lockstep = lock; });
         const TraceResult whole = Trace(v, s);
-        setenv("SCHLIEREN_CL_MAX_ALLOC", planes20.c_str(), 1);
-        const TraceResult split = Trace(v, s);
-        unsetenv("SCHLIEREN_CL_MAX_ALLOC");
-        unsetenv("SCHLIEREN_CL_LOCKSTEP");
+        TraceResult split;
+        {
+          const schtest::ScopedOptions limit([&](RuntimeOptions& o) { o.MaxAlloc = planes20; });
+          split = Trace(v, s);
+        }
         const double diff = LargestDifference(whole.Deflection, split.Deflection);
         const std::string name = std::string(IntegratorName(m)) + (octree ? " + octree" : "") +
-          (lock[0] == '1' ? ", lock-step" : ", per item");
+          (lock ? ", lock-step" : ", per item");
         std::printf("%s: 3 slabs against one buffer, largest deflection difference %.3g rad\n",
           name.c_str(), diff);
         CHECK(split.DeviceName.find("split in 3 buffers") != std::string::npos &&
@@ -471,24 +471,26 @@ void TestSlabs(bool haveCL)
   TraceSettings s;
   s.Device = Backend::OpenCL;
   const std::vector<RayRecord> a = TraceRays(sphere.SV.V, s, ab);
-  setenv("SCHLIEREN_CL_MAX_ALLOC", planes20.c_str(), 1);
-  const std::vector<RayRecord> b = TraceRays(sphere.SV.V, s, ab);
+  std::vector<RayRecord> b;
+  {
+    const schtest::ScopedOptions limit([&](RuntimeOptions& o) { o.MaxAlloc = planes20; });
+    b = TraceRays(sphere.SV.V, s, ab);
+  }
   double d = 0;
   for (std::size_t k = 0; k < a.size(); ++k)
     d = std::max(d, double(std::fabs(a[k].DeflX - b[k].DeflX) + std::fabs(a[k].DeflY - b[k].DeflY)));
   CHECK(d == 0.0, "TraceRays through slabs gives the same deflections");
   // a limit of 5 planes would need 12 slabs: refused, saying why and what to do
-  setenv("SCHLIEREN_CL_MAX_ALLOC", std::to_string(5 * 48 * 48 * 16).c_str(), 1);
   std::string what;
   try
   {
+    const schtest::ScopedOptions limit([](RuntimeOptions& o) { o.MaxAlloc = 5 * 48 * 48 * 16; });
     Trace(sphere.SV.V, s);
   }
   catch (const Error& e)
   {
     what = e.what();
   }
-  unsetenv("SCHLIEREN_CL_MAX_ALLOC");
   std::printf("12 slabs: %s\n", what.c_str());
   CHECK(what.find("MiB per buffer") != std::string::npos && what.find("Backend CPU") != std::string::npos,
     "a volume over four buffers is refused with the limit and the way around it");

@@ -355,13 +355,12 @@ void TestBackends()
       double samples[2] = { 0, 0 };
       for (int lock = 0; lock < 2; ++lock)
       {
-        setenv("SCHLIEREN_CL_LOCKSTEP", lock ? "1" : "0", 1);
+        const schtest::ScopedOptions kernel([lock](RuntimeOptions& o) { o.Lockstep = lock; });
         const TraceResult cl = Trace(cv.V, s);
         for (std::size_t i = 0; i < cl.Deflection.size(); ++i)
           diff[lock] = std::max(diff[lock], double(std::fabs(cl.Deflection[i] - cpu.Deflection[i])));
         samples[lock] = cl.Samples;
       }
-      unsetenv("SCHLIEREN_CL_LOCKSTEP");
       const double emax = schtest::GaussianMaxDeflection(kA);
       std::printf("cubic, %s at %g voxel: OpenCL per item / lock step against the CPU: %.3g / %.3g of "
                   "max eps; samples %.0f / %.0f / %.0f\n",

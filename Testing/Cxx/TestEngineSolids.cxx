@@ -232,11 +232,15 @@ void TestGaussianWithBody(bool haveCL)
   // CPU and OpenCL agree; the lock-step and per-item kernels are identical
   TraceSettings c = s;
   c.Device = Backend::OpenCL;
-  setenv("SCHLIEREN_CL_LOCKSTEP", "1", 1);
-  const TraceResult lock = Trace(bv.V, c);
-  setenv("SCHLIEREN_CL_LOCKSTEP", "0", 1);
-  const TraceResult item = Trace(bv.V, c);
-  unsetenv("SCHLIEREN_CL_LOCKSTEP");
+  TraceResult lock, item;
+  {
+    const schtest::ScopedOptions on([](RuntimeOptions& o) { o.Lockstep = 1; });
+    lock = Trace(bv.V, c);
+  }
+  {
+    const schtest::ScopedOptions off([](RuntimeOptions& o) { o.Lockstep = 0; });
+    item = Trace(bv.V, c);
+  }
   double dcl = 0, dki = 0;
   for (std::size_t k = 0; k < with.Deflection.size(); ++k)
   {

@@ -1,0 +1,287 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Integrator and Reconstruction Auto: the pilot rays, the candidates, the choice (ResolveAuto).
+#include "SchlierenEngineInternal.h"
+#include "SchlierenLimits.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <initializer_list>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace schlieren
+{
+
+namespace
+{
+// What a tricubic sample costs against a trilinear one when Auto weighs the two reconstructions:
+// it reads 64 points instead of 8, mostly from the same cache lines (docs/PERFORMANCE.md has the
+// measured ratio).
+constexpr double CubicSampleCost = 3.0;
+
+// The rays of a pilot that a comparison can use: neither lost.
+bool Comparable(const RayRecord& a, const RayRecord& b)
+{
+  const std::uint32_t bad = RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm;
+  return !(a.Flags & bad) && !(b.Flags & bad);
+}
+} // namespace
+
+TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice)
+{
+  AutoChoice c;
+  c.Method = in.Method;
+  c.StepSize = in.StepSize;
+  c.Recon = in.Recon;
+  c.Met = true;
+  const bool autoRecon = in.Recon == Reconstruction::Auto;
+  if (in.Method != Integrator::Auto && !autoRecon)
+  {
+    c.Report = std::string(IntegratorName(in.Method)) + " at " + std::to_string(in.StepSize) + " voxel";
+    if (in.Recon != Reconstruction::Trilinear)
+      c.Report += std::string(", reconstruction ") + ReconstructionName(in.Recon);
+    if (choice)
+      *choice = c;
+    return in;
+  }
+  CheckVolume(volume);
+  const FilmGeometry film = MakeFilm(volume, in);
+  const std::vector<float> ab = PilotRays(volume, in);
+  TraceSettings ref = in;
+  ref.Method = Integrator::RK4;
+  ref.StepSize = 0.125;
+  ref.UseOctree = false;
+  ref.EstimateError = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  // the reference's step (and the candidates') is Auto's, not the user's StepSize: say so when
+  // the volume cannot be traced at it
+  try
+  {
+    CheckPrecision(volume, ref);
+  }
+  catch (const Error& e)
+  {
+    throw Error(std::string("Integrator Auto measures its candidates against RK4 at 0.125 voxel, "
+                            "which this volume does not allow: ") + e.what() +
+      " Or choose a fixed Integrator and StepSize.");
+  }
+  // the reference of each reconstruction that may be chosen. Reconstruction Auto: the difference
+  // between the two references is the second-order reconstruction's error (the fourth-order one's
+  // is far smaller where the data is smooth, and both are the same trilinear code elsewhere), an
+  // error that a reference on the same grid with the same reconstruction cannot see
+  // (with a body the levels byte holds its bits instead of the smoothness: trilinear only)
+  bool tryTri = in.Recon == Reconstruction::Trilinear || (autoRecon) || volume.Solid;
+  bool tryCubic = !volume.Solid && (in.Recon == Reconstruction::Cubic || (autoRecon && volume.Smooth));
+  std::vector<RayRecord> refTri, refCubic;
+  if (tryTri)
+  {
+    ref.Recon = Reconstruction::Trilinear;
+    refTri = TraceRays(volume, ref, ab);
+  }
+  if (tryCubic)
+  {
+    ref.Recon = Reconstruction::Cubic;
+    refCubic = TraceRays(volume, ref, ab);
+  }
+  const std::vector<RayRecord>& R0 = tryCubic ? refCubic : refTri;
+  double emax = 0;
+  for (const RayRecord& r : R0)
+    if (!(r.Flags & RayBlocked))
+      emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
+  const double tol = in.Tolerance > 0 ? in.Tolerance : 0.01 * emax;
+  double triError = 0;
+  if (tryTri && tryCubic)
+  {
+    for (std::size_t k = 0; k < refTri.size(); ++k)
+      if (Comparable(refTri[k], refCubic[k]))
+        triError = std::max(triError,
+          double(std::hypot(refTri[k].DeflX - refCubic[k].DeflX, refTri[k].DeflY - refCubic[k].DeflY)));
+    c.TrilinearError = triError;
+    // trilinear only where its own error leaves at least half the tolerance to the integrator
+    if (triError > 0.5 * tol)
+      tryTri = false;
+  }
+  if (in.Method != Integrator::Auto)
+  {
+    // Reconstruction Auto with a fixed integrator: trilinear where it is accurate enough
+    c.Recon = tryTri ? Reconstruction::Trilinear : Reconstruction::Cubic;
+    c.Tolerance = tol;
+    std::ostringstream rep;
+    rep << IntegratorName(in.Method) << " at " << in.StepSize << " voxel, reconstruction "
+        << ReconstructionName(c.Recon) << " (the trilinear's estimated error " << triError
+        << " rad against the tolerance " << tol << " rad)";
+    c.Report = rep.str();
+    if (choice)
+      *choice = c;
+    TraceSettings out = in;
+    out.Recon = c.Recon;
+    return out;
+  }
+  struct Candidate
+  {
+    Integrator M;
+    double Step;
+    Reconstruction Rc;
+  };
+  std::vector<Candidate> candidates;
+  for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
+  {
+    if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
+      continue;
+    // tricubic: steps sized by the field, up to 64 voxels where the data is smooth (a voxel
+    // elsewhere, see sch_walk_step)
+    std::vector<double> longSteps;
+    if (rc == Reconstruction::Cubic)
+      longSteps = { 64.0, 32.0, 16.0 };
+    for (double st : longSteps)
+      candidates.push_back({ Integrator::Straight, st, rc });
+    for (double st : { 8.0, 4.0, 2.0, 1.0 })
+      candidates.push_back({ Integrator::Straight, st, rc });
+    for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    {
+      for (double st : longSteps)
+        candidates.push_back({ m, st, rc });
+      for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
+        candidates.push_back({ m, st, rc });
+    }
+  }
+  bool found = false;
+  double bestCost = 1e300, bestErr = 1e300;
+  AutoChoice fallback;
+  // each integrator's steps come longest first: once one meets the tolerance, the shorter ones of
+  // that integrator and reconstruction only cost more
+  std::map<int, bool> met;
+  for (const Candidate& cand : candidates)
+  {
+    const int group = static_cast<int>(cand.Rc) * 8 + static_cast<int>(cand.M);
+    if (met[group])
+      continue;
+    TraceSettings t = in;
+    t.Method = cand.M;
+    t.StepSize = cand.Step;
+    t.Recon = cand.Rc;
+    t.EstimateError = false;
+    const std::vector<RayRecord> T = TraceRays(volume, t, ab);
+    const std::vector<RayRecord>& R = cand.Rc == Reconstruction::Cubic ? refCubic : refTri;
+    // a trilinear candidate answers for the trilinear's own error too (Reconstruction Auto)
+    const double base = cand.Rc == Reconstruction::Trilinear && tryCubic ? triError : 0.0;
+    double err = 0, land = 0, samples = 0;
+    bool lost = false;
+    // rays the candidate loses where the reference does not disqualify it; steps over structure
+    // do not by themselves: their effect is in the measured error
+    const std::uint32_t bad = RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm;
+    for (std::size_t k = 0; k < T.size(); ++k)
+    {
+      samples += T[k].Samples;
+      if (R[k].Flags & bad)
+        continue; // the reference itself cannot be trusted here: nothing to compare
+      // a body stopped it (in either trace: a grazing ray may stop at a body's corner with one
+      // step and pass it with another): dark, no deflection to compare
+      if ((R[k].Flags | T[k].Flags) & RayBlocked)
+        continue;
+      if (T[k].Flags & bad)
+        lost = true; // it fails (or steps over structure) where the reference does not
+      err = std::max(err, double(std::hypot(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
+      land = std::max(land, double(std::hypot(T[k].LandA - R[k].LandA, T[k].LandB - R[k].LandB)));
+    }
+    land /= film.PixelSize;
+    if (lost)
+      continue;
+    const double cost = samples * (cand.Rc == Reconstruction::Cubic ? CubicSampleCost : 1.0);
+    if (err + base <= tol && land <= 0.5)
+      met[group] = true;
+    if (err + base <= tol && land <= 0.5 && cost < bestCost)
+    {
+      found = true;
+      bestCost = cost;
+      c.Method = cand.M;
+      c.StepSize = cand.Step;
+      c.Recon = cand.Rc;
+      c.ExpectedError = err + base;
+      c.ExpectedLandingError = land;
+      c.SamplesPerRay = samples / T.size();
+    }
+    if (!found && err + base < bestErr)
+    {
+      bestErr = err + base;
+      fallback.Method = cand.M;
+      fallback.StepSize = cand.Step;
+      fallback.Recon = cand.Rc;
+      fallback.ExpectedError = err + base;
+      fallback.ExpectedLandingError = land;
+      fallback.SamplesPerRay = samples / T.size();
+    }
+  }
+  if (!found)
+  {
+    const double keep = c.TrilinearError;
+    c = fallback;
+    c.TrilinearError = keep;
+    c.Met = false;
+  }
+  c.Tolerance = tol;
+  // the octree is a cost too: a skipping step costs more than a plain one. Kept
+  // when it saves at least 10 % of the chosen setting's samples on the pilot; without it the
+  // error can only stay or shrink (fixed steps through the blocks it would have skipped).
+  c.UseOctree = in.UseOctree && volume.Levels != nullptr;
+  if (c.UseOctree)
+  {
+    TraceSettings t = in;
+    t.Method = c.Method;
+    t.StepSize = c.StepSize;
+    t.Recon = c.Recon;
+    t.EstimateError = false;
+    t.UseOctree = false;
+    double plain = 0;
+    for (const RayRecord& r : TraceRays(volume, t, ab))
+      plain += r.Samples;
+    c.OctreeSaving = plain > 0 ? 1.0 - c.SamplesPerRay * (ab.size() / 2) / plain : 0.0;
+    c.UseOctree = c.OctreeSaving >= 0.1;
+  }
+  const double ms = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() * 1e3;
+  std::ostringstream rep;
+  rep << "Auto chose " << IntegratorName(c.Method) << " at " << c.StepSize << " voxel: expected "
+      << "deflection error " << c.ExpectedError << " rad (tolerance " << tol << " rad), landing error "
+      << c.ExpectedLandingError << " pixel, " << c.SamplesPerRay << " samples per ray (pilot of "
+      << ab.size() / 2 << " rays, " << static_cast<int>(ms) << " ms)";
+  if (c.Recon != Reconstruction::Trilinear || autoRecon)
+    rep << "; reconstruction " << ReconstructionName(c.Recon);
+  if (autoRecon && tryCubic)
+    rep << " (the trilinear's estimated error " << c.TrilinearError << " rad)";
+  if (!c.Met)
+    rep << "; no candidate met the tolerance: using the most accurate one";
+  if (in.UseOctree && volume.Levels)
+    rep << "; octree " << (c.UseOctree ? "on" : "off") << ": it skips "
+        << static_cast<int>(std::lround(100 * c.OctreeSaving)) << " % of the samples"
+        << (c.UseOctree ? "" : " (less than 10 %)");
+  c.Report = rep.str();
+  if (choice)
+    *choice = c;
+  TraceSettings out = in;
+  out.Method = c.Method;
+  out.StepSize = c.StepSize;
+  out.Recon = c.Recon;
+  out.AutoMeasuredError = c.Met ? c.ExpectedError : -1.0;
+  out.UseOctree = in.UseOctree && c.UseOctree;
+  return out;
+}
+
+std::vector<float> PilotRays(const Volume& volume, const TraceSettings& s)
+{
+  const FilmGeometry film = MakeFilm(volume, s);
+  std::vector<float> ab;
+  const int np = 16;
+  const double w = film.Size[0] * film.PixelSize, h = film.Size[1] * film.PixelSize;
+  for (int j = 0; j < np; ++j)
+    for (int i = 0; i < np; ++i)
+    {
+      ab.push_back(static_cast<float>(film.Corner[0] + (i + 0.5) * w / np));
+      ab.push_back(static_cast<float>(film.Corner[1] + (j + 0.5) * h / np));
+    }
+  return ab;
+}
+
+} // namespace schlieren

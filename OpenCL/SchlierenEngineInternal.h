@@ -1,0 +1,198 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenEngineInternal.h
+ * @brief Internal (not installed): what the engine's stage files share.
+ *
+ * The stages of a trace, one file each: SchlierenField.cxx (grid checks, gradient, packing),
+ * SchlierenOctree.cxx (the min-max octree), SchlierenCellBytes.cxx (the byte per cell the kernels
+ * read: levels, smoothness, solid bits), SchlierenParams.cxx (settings to sch_params),
+ * SchlierenFilm.cxx (film geometry, sums, the splatter), SchlierenFinalize.cxx (film filters,
+ * sums to image, photon warnings), SchlierenAuto.cxx (Auto's pilot), SchlierenCpuBackend.cxx,
+ * SchlierenOpenCLBackend.cxx, SchlierenTrace.cxx (Accumulate, Trace, TraceRays, the backend
+ * choice) and SchlierenNames.cxx (enum names, the photon key). The runtime options (the
+ * environment, read once) are in SchlierenOptions.h; the OpenCL context and program cache in
+ * SchlierenOpenCL.h.
+ */
+#ifndef SchlierenEngineInternal_h
+#define SchlierenEngineInternal_h
+
+#include "SchlierenEngine.h"
+#include "SchlierenOptions.h"
+
+// The physics, compiled as C++ for the CPU backend and for the host-side film. The CPU path
+// advances SCH_PACKET rays in turn per packet (sch_trace_packet): more rays' steps in flight
+// (docs/PERFORMANCE.md has the measurements behind the packet size).
+#define SCH_PACKET 64
+#include "SchlierenPhysics.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace schlieren
+{
+
+static_assert(sizeof(sch_params) % 4 == 0, "sch_params must hold only 4-byte members");
+static_assert(sizeof(RayRecord) == SCH_RECORD * sizeof(float), "RayRecord mirrors SCH_RECORD");
+
+// ------------------------------------------------------------------ field (SchlierenField.cxx)
+
+/** Throws Error unless every dimension has at least 2 points and every spacing is positive, finite. */
+void CheckGrid(const int dims[3], const double spacing[3]);
+/** CheckGrid, and a field to trace. */
+void CheckVolume(const Volume& v);
+
+inline double MinSpacing(const Volume& v)
+{
+  return std::min(v.Spacing[0], std::min(v.Spacing[1], v.Spacing[2]));
+}
+
+// ------------------------------------------------------------------ film (SchlierenFilm.cxx)
+
+/** Half the extent of the box of grid points along each axis, from the grid itself. */
+void HalfExtent(const Volume& v, double h[3]);
+
+/**
+ * Puts photons on the film. Runs on the host, in ray order, for both backends: the image does not
+ * depend on the order threads finish in, and both backends share this code.
+ */
+struct Splatter
+{
+  const sch_params& P;
+  const TraceSettings& S;
+  FilmSums& F;
+  float ca, sa, k;
+  bool manual;
+  double twoPiOverLambda, tilt, bgPlane, period;
+
+  Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f);
+  /** The photon's weight under the cutoff, with energy weighting or (optionally) photon killing. */
+  float CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const;
+  /** Adds `count` records (SCH_RECORD floats each) of the rays first, first + 1, ... of this rank. */
+  void Add(const float* rec, std::size_t first, std::size_t count);
+};
+
+// ------------------------------------------------------------------ parameters (SchlierenParams.cxx)
+
+/** The kernels' parameters for a trace of `volume` with settings `s` onto film `f`; throws Error on
+ * settings the tracer cannot take. featureTol is left 0: see SetFeatureTolerance. */
+sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGeometry& f);
+
+/** What identifies a stamped volume's contents (Volume::Stamp). */
+struct VolumeIdentity
+{
+  const float* Field = nullptr;
+  const unsigned char* Levels = nullptr;
+  const unsigned char* Solid = nullptr;
+  int Dimensions[3] = { 0, 0, 0 };
+  std::uint64_t Stamp = 0;
+
+  explicit VolumeIdentity(const Volume& v)
+    : Field(v.Field)
+    , Levels(v.Levels)
+    , Solid(v.Solid)
+    , Stamp(v.Stamp)
+  {
+    std::copy(v.Dimensions, v.Dimensions + 3, Dimensions);
+  }
+  VolumeIdentity() = default;
+  bool operator==(const VolumeIdentity& o) const
+  {
+    return Stamp != 0 && Stamp == o.Stamp && Field == o.Field && Levels == o.Levels &&
+      Solid == o.Solid && std::equal(Dimensions, Dimensions + 3, o.Dimensions);
+  }
+};
+
+/** Guards everything the engine keeps from one call to the next (kept tracer, cell bytes, range). */
+extern std::mutex KeptMutex;
+
+/**
+ * Sets P.featureTol: a step that leaves more than 1 % of the field's index range unexplained by the
+ * gradient (or more than the octree tolerance) has jumped over structure. Reads the whole field:
+ * call it once the backend has accepted the volume.
+ */
+void SetFeatureTolerance(sch_params& P, const Volume& volume);
+
+/** The longest step a trace with parameters P takes (the step-doubling estimate doubles it). */
+inline double StepReach(const sch_params& P)
+{
+  return double(P.step) * (P.estimate ? 2.0 : 1.0);
+}
+
+/** The rays this rank traces per pass (pixels p with p % rayStride == rayOffset). */
+std::size_t RaysForRank(const sch_params& P);
+
+// ------------------------------------------------------------------ cell bytes (SchlierenCellBytes.cxx)
+
+/**
+ * The cell bytes for a trace with steps of up to `reach` world units: the volume's levels (or
+ * null) without a body; with one, the solid, near and lowered-level bits, kept for the last
+ * stamped volume and reach.
+ */
+std::shared_ptr<const std::vector<unsigned char>> CellBytesOf(const Volume& v, double reach);
+
+/**
+ * The volume as the kernels see it: with Volume::Smooth, its levels buffer holds the smoothness
+ * bits above the octree levels; `own` holds the merged bytes of this call.
+ */
+Volume TraceVolume(const Volume& v, std::shared_ptr<std::vector<unsigned char>>& own);
+
+// ------------------------------------------------------------------ CPU backend (SchlierenCpuBackend.cxx)
+
+/** Threads the CPU backend runs on: `requested` (TraceSettings::Threads) where positive, else the
+ * runtime options' CpuThreads where positive, else every hardware thread. */
+unsigned CpuThreads(int requested = 0);
+
+/** Traces rays first .. first + count - 1 of this rank's pass P.pass into `out` (SCH_RECORD each),
+ * on `threadCount` threads (0: CpuThreads()). The records do not depend on the thread count. */
+void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_params& P,
+  std::size_t first, std::size_t count, float* out, unsigned threadCount = 0);
+
+// ------------------------------------------------------------------ OpenCL backend (SchlierenOpenCLBackend.cxx)
+
+/** The OpenCL tracer: the device's copy of a volume, its kernels and records buffer. */
+class OpenCLTracer;
+
+/**
+ * The OpenCL tracer for `volume` with cell bytes `bytes` (held alive by `bytesOwner`), its records
+ * buffer for at least `chunk` rays, on the device whose name contains `deviceName` (empty: the
+ * options' device) with the OpenCL options of `options`: the kept one where all of these match,
+ * else a new one (kept where the volume is stamped). Throws Error where the device cannot take
+ * the volume or none matches.
+ */
+std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
+  const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem,
+  const RuntimeOptions& options, const std::string& deviceName);
+
+/** Builds (or finds) the kernel that TraceOpenCL (points false) or TracePointsOpenCL (true) runs
+ * for P; throws Error on a build failure. */
+void PrepareKernel(OpenCLTracer& t, const sch_params& P, bool points);
+
+/** The device's name, and how the field is split on it, for TraceResult::DeviceName. */
+std::string TracerDeviceName(const OpenCLTracer& t);
+
+/** TraceChunkCPU on the device. */
+void TraceOpenCL(OpenCLTracer& t, const sch_params& P, std::size_t first, std::size_t count, float* out);
+
+/** Traces rays that start at the film points ab (pairs) into `out` (SCH_RECORD each). */
+void TracePointsOpenCL(
+  OpenCLTracer& t, const sch_params& P, const float* ab, std::size_t count, float* out);
+
+// ------------------------------------------------------------------ backend choice (SchlierenTrace.cxx)
+
+/**
+ * The OpenCL tracer for this trace, or null for the CPU (asked for, or OpenCL unusable under Auto,
+ * with a warning). points: the caller traces explicit film points (TracePoints) rather than passes
+ * (Trace); the kernel it will run is built here, so that a build failure falls back too.
+ */
+std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned char* bytes,
+  const std::shared_ptr<const void>& bytesOwner, const TraceSettings& s, const sch_params& P,
+  std::size_t chunk, bool points, std::string& used, std::string& device, std::string& warnings);
+
+} // namespace schlieren
+
+#endif

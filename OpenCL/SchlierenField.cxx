@@ -1,0 +1,393 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Field preparation: grid checks, ValidateIndex, the gradient, PackField and PackFieldHighOrder.
+#include "SchlierenEngineInternal.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace schlieren
+{
+
+void Volume::GetBounds(double b[6]) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = Origin[a], hi = Origin[a] + (Dimensions[a] - 1) * Spacing[a];
+    b[2 * a] = std::min(lo, hi);
+    b[2 * a + 1] = std::max(lo, hi);
+  }
+}
+
+void CheckGrid(const int dims[3], const double spacing[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] < 2)
+    {
+      std::ostringstream msg;
+      msg << "The volume is " << dims[0] << " x " << dims[1] << " x " << dims[2]
+          << " points: tracing needs at least 2 points along every axis (axis " << "xyz"[a]
+          << " has " << dims[a]
+          << "). Give the source or reader a 3D extent; a 2D result (planar or axisymmetric) goes "
+             "through RefractiveIndex with Symmetry Planar or Axisymmetric.";
+      throw Error(msg.str());
+    }
+    if (!(spacing[a] > 0) || !std::isfinite(spacing[a]))
+    {
+      std::ostringstream msg;
+      msg << "The grid spacing along " << "xyz"[a] << " is " << spacing[a]
+          << ": it must be positive and finite.";
+      throw Error(msg.str());
+    }
+  }
+}
+
+std::string ValidateIndex(const float* n1, std::size_t count)
+{
+  std::size_t nonfinite = 0, nonpositive = 0, first = count;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const float v = n1[i];
+    if (!std::isfinite(v))
+    {
+      ++nonfinite;
+      first = std::min(first, i);
+    }
+    else if (v <= -1.0f)
+    {
+      ++nonpositive;
+      first = std::min(first, i);
+    }
+  }
+  if (nonfinite == 0 && nonpositive == 0)
+    return std::string();
+  std::ostringstream msg;
+  msg << "n_minus_1 is not usable: ";
+  if (nonfinite)
+    msg << nonfinite << " of " << count << " points are NaN or Inf";
+  if (nonfinite && nonpositive)
+    msg << " and ";
+  if (nonpositive)
+    msg << nonpositive << " of " << count << " points have n <= 0";
+  msg << " (first at point " << first
+      << "). Check the input arrays (density, temperature, pressure) for invalid values, or mask "
+         "them before tracing.";
+  return msg.str();
+}
+
+template <typename Store>
+static void GradientLoop(const int dims[3], const double spacing[3], const float* n1, Store store)
+{
+  const std::size_t sx = 1, sy = dims[0], sz = static_cast<std::size_t>(dims[0]) * dims[1];
+  const std::size_t strides[3] = { sx, sy, sz };
+  auto worker = [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const int ijk[3] = { i, j, k };
+          const std::size_t idx = i * sx + j * sy + k * sz;
+          double g[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            const std::size_t s = strides[a];
+            if (ijk[a] == 0)
+              g[a] = (double(n1[idx + s]) - n1[idx]) / spacing[a];
+            else if (ijk[a] == dims[a] - 1)
+              g[a] = (double(n1[idx]) - n1[idx - s]) / spacing[a];
+            else
+              g[a] = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
+          }
+          store(idx, g);
+        }
+  };
+  const int nt = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> threads;
+  for (int t = 0; t < nt; ++t)
+  {
+    const int k0 = dims[2] * t / nt, k1 = dims[2] * (t + 1) / nt;
+    threads.emplace_back(worker, k0, k1);
+  }
+  for (auto& th : threads)
+    th.join();
+}
+
+void ComputeGradient(const int dims[3], const double spacing[3], const float* n1, float* grad3)
+{
+  CheckGrid(dims, spacing);
+  GradientLoop(dims, spacing, n1, [grad3](std::size_t idx, const double g[3]) {
+    grad3[3 * idx] = static_cast<float>(g[0]);
+    grad3[3 * idx + 1] = static_cast<float>(g[1]);
+    grad3[3 * idx + 2] = static_cast<float>(g[2]);
+  });
+}
+
+void PackField(const int dims[3], const double spacing[3], const float* n1, float* out)
+{
+  CheckGrid(dims, spacing);
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::string bad = ValidateIndex(n1, n);
+  if (!bad.empty())
+    throw Error(bad);
+  GradientLoop(dims, spacing, n1, [out, n1](std::size_t idx, const double g[3]) {
+    out[4 * idx] = n1[idx];
+    out[4 * idx + 1] = static_cast<float>(g[0]);
+    out[4 * idx + 2] = static_cast<float>(g[1]);
+    out[4 * idx + 3] = static_cast<float>(g[2]);
+  });
+}
+
+// Runs body(k0, k1) over z ranges on up to 8 threads (the packing loops).
+template <typename Body>
+static void ParallelSlices(int nz, Body body)
+{
+  const int nt = std::max(1, std::min(std::min(8, nz), static_cast<int>(std::thread::hardware_concurrency())));
+  std::vector<std::thread> threads;
+  for (int t = 1; t < nt; ++t)
+    threads.emplace_back(body, nz * t / nt, nz * (t + 1) / nt);
+  body(0, nz / nt);
+  for (auto& th : threads)
+    th.join();
+}
+
+double PackFieldHighOrder(const int dims[3], const double spacing[3], const float* n1, float* out,
+  unsigned char* smooth, double threshold)
+{
+  CheckGrid(dims, spacing);
+  if (!(threshold > 0) || !std::isfinite(threshold))
+    throw Error("PackFieldHighOrder: the smoothness threshold must be positive and finite.");
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::string bad = ValidateIndex(n1, n);
+  if (!bad.empty())
+    throw Error(bad);
+  const std::size_t strides[3] = { 1, static_cast<std::size_t>(dims[0]),
+    static_cast<std::size_t>(dims[0]) * dims[1] };
+  // structure below this part of the field's range is left to the smooth scheme: its overshoot
+  // there is far below what the tracer resolves (steps are flagged for 1 % of the range)
+  const auto mm = std::minmax_element(n1, n1 + n);
+  const double floor = 1e-4 * (double(*mm.second) - *mm.first) + 1e-30;
+  // 1. the smooth points: two or more points from every border, and along every axis a fourth
+  // difference small against the range of the five points (a jump or a kink makes it of the
+  // order of the range; smooth data makes it O(h^2) smaller)
+  // (near a border the five points are the five nearest inside: jumpFree, what the step length
+  // needs; point adds the two points of margin that the fourth-order stencils need)
+  std::vector<unsigned char> point(n, 0), jumpFree(n, 0);
+  // the loops read the grid's sizes from locals (captured by value): byte and float stores could
+  // alias captured references, which the compiler must then reload at every point
+  const int G[3] = { dims[0], dims[1], dims[2] };
+  const std::size_t St[3] = { strides[0], strides[1], strides[2] };
+  const double H[3] = { spacing[0], spacing[1], spacing[2] };
+  unsigned char* const PT = point.data();
+  unsigned char* const JF = jumpFree.data();
+  ParallelSlices(dims[2], [=](int k0, int k1) {
+    const int dims[3] = { G[0], G[1], G[2] };
+    const std::size_t strides[3] = { St[0], St[1], St[2] };
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const int ijk[3] = { i, j, k };
+          const std::size_t idx = i + j * strides[1] + k * strides[2];
+          bool ok = true, inner = true;
+          for (int a = 0; a < 3 && ok; ++a)
+          {
+            if (dims[a] < 5)
+            {
+              ok = false;
+              break;
+            }
+            inner = inner && ijk[a] >= 2 && ijk[a] <= dims[a] - 3;
+            const int c = std::min(std::max(ijk[a], 2), dims[a] - 3);
+            const std::size_t s = strides[a];
+            const std::size_t m = idx + (static_cast<std::ptrdiff_t>(c) - ijk[a]) * static_cast<std::ptrdiff_t>(s);
+            const double f[5] = { n1[m - 2 * s], n1[m - s], n1[m], n1[m + s], n1[m + 2 * s] };
+            const double lo = std::min({ f[0], f[1], f[2], f[3], f[4] });
+            const double hi = std::max({ f[0], f[1], f[2], f[3], f[4] });
+            const double d4 = f[0] - 4 * f[1] + 6 * f[2] - 4 * f[3] + f[4];
+            ok = std::fabs(d4) <= threshold * (hi - lo + floor);
+          }
+          JF[idx] = ok ? 1 : 0;
+          PT[idx] = ok && inner ? 1 : 0;
+        }
+  });
+  // 2. n - 1 and the gradient: along each axis, fourth order where the five points of the
+  // difference are all smooth (a point beside a jump may pass the test on its own), PackField's
+  // second order elsewhere
+  ParallelSlices(dims[2], [=](int k0, int k1) {
+    const int dims[3] = { G[0], G[1], G[2] };
+    const std::size_t strides[3] = { St[0], St[1], St[2] };
+    const double spacing[3] = { H[0], H[1], H[2] };
+    const unsigned char* const point = PT;
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const int ijk[3] = { i, j, k };
+          const std::size_t idx = i + j * strides[1] + k * strides[2];
+          out[4 * idx] = n1[idx];
+          for (int a = 0; a < 3; ++a)
+          {
+            const std::size_t s = strides[a];
+            double g;
+            if (point[idx] && point[idx - s] && point[idx + s] && point[idx - 2 * s] && point[idx + 2 * s])
+              g = (double(n1[idx - 2 * s]) - 8.0 * n1[idx - s] + 8.0 * n1[idx + s] - n1[idx + 2 * s]) /
+                (12.0 * spacing[a]);
+            else if (ijk[a] == 0)
+              g = (double(n1[idx + s]) - n1[idx]) / spacing[a];
+            else if (ijk[a] == dims[a] - 1)
+              g = (double(n1[idx]) - n1[idx - s]) / spacing[a];
+            else
+              g = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
+            out[4 * idx + 1 + a] = static_cast<float>(g);
+          }
+        }
+  });
+  // 3. the smooth cells, and 4. their levels, by minima along one axis at a time: dst(i) = the
+  // least src(i + d) over the offsets d; beyond the grid, 0 (cells) or the border's value (levels)
+  auto minPass = [&](const std::vector<unsigned char>& src, std::vector<unsigned char>& dst, int a,
+                   std::initializer_list<int> offsets, bool clamp) {
+    // everything the loops read in locals: byte stores may alias any captured value, which kept
+    // the compiler from vectorising (and reloaded the bounds every iteration)
+    int off[4] = { 0, 0, 0, 0 }, no = 0, dlo = 0, dhi = 0;
+    for (int d : offsets)
+    {
+      off[no++] = d;
+      dlo = std::min(dlo, d);
+      dhi = std::max(dhi, d);
+    }
+    const int nx = dims[0], ny = dims[1], na = dims[a];
+    const std::size_t sy = strides[1], sz = strides[2];
+    const unsigned char* const S = src.data();
+    unsigned char* const D = dst.data();
+    ParallelSlices(dims[2], [=](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        for (int j = 0; j < ny; ++j)
+        {
+          unsigned char* __restrict out = D + j * sy + k * sz;
+          if (a == 0)
+          {
+            const unsigned char* __restrict in = S + j * sy + k * sz;
+            // inside the row no offset reaches past it: one sweep per offset (vectorised)
+            const int i0 = std::max(0, -dlo), i1 = nx - std::max(0, dhi);
+            if (i1 > i0)
+            {
+              std::fill(out + i0, out + i1, static_cast<unsigned char>(1));
+              for (int o = 0; o < no; ++o)
+              {
+                const int d = off[o];
+                for (int i = i0; i < i1; ++i)
+                  out[i] = std::min(out[i], in[i + d]);
+              }
+            }
+            for (int i = 0; i < nx; ++i)
+            {
+              if (i >= i0 && i < i1)
+                continue;
+              unsigned char m = 1;
+              for (int o = 0; o < no; ++o)
+              {
+                int c = i + off[o];
+                if (c < 0 || c > nx - 1)
+                {
+                  if (!clamp)
+                  {
+                    m = 0;
+                    break;
+                  }
+                  c = c < 0 ? 0 : nx - 1;
+                }
+                m = std::min(m, in[c]);
+              }
+              out[i] = m;
+            }
+            continue;
+          }
+          std::fill(out, out + nx, static_cast<unsigned char>(1));
+          for (int o = 0; o < no; ++o)
+          {
+            int c = (a == 1 ? j : k) + off[o];
+            if (c < 0 || c > na - 1)
+            {
+              if (!clamp)
+              {
+                std::fill(out, out + nx, static_cast<unsigned char>(0));
+                break;
+              }
+              c = c < 0 ? 0 : na - 1;
+            }
+            const unsigned char* __restrict in = S + (a == 1 ? c : j) * sy + (a == 2 ? c : k) * sz;
+            for (int i = 0; i < nx; ++i)
+              out[i] = std::min(out[i], in[i]);
+          }
+        }
+    });
+  };
+  // cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are, along every axis
+  std::vector<unsigned char> cell = point, next(n, 0);
+  for (int a = 0; a < 3; ++a)
+  {
+    minPass(cell, next, a, { -1, 0, 1, 2 }, false);
+    cell.swap(next);
+  }
+  std::vector<unsigned char>().swap(point);
+  // level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is free of jumps
+  // (its points c - 1 .. c + 2 inside the grid are jumpFree; beyond the grid no step goes). A
+  // cube erosion of radius 1 (offsets -1, 0, 1), then radius r -> 2 r by offsets -r, r.
+  std::vector<unsigned char> ero = jumpFree;
+  for (int a = 0; a < 3; ++a)
+  {
+    minPass(ero, next, a, { -1, 0, 1, 2 }, true);
+    ero.swap(next);
+  }
+  std::vector<unsigned char>().swap(jumpFree);
+  std::vector<unsigned char> level(n, 0);
+  for (int a = 0; a < 3; ++a)
+  {
+    minPass(ero, next, a, { -1, 0, 1 }, true);
+    ero.swap(next);
+  }
+  for (int q = 1, r = 1; q <= 7; ++q, r *= 2)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      minPass(ero, next, a, { -r, r }, true);
+      ero.swap(next);
+    }
+    std::atomic<bool> any(false);
+    ParallelSlices(dims[2], [&, q](int k0, int k1) {
+      bool found = false;
+      for (std::size_t i = k0 * strides[2]; i < k1 * strides[2]; ++i)
+        if (ero[i])
+        {
+          level[i] = static_cast<unsigned char>(q);
+          found = true;
+        }
+      if (found)
+        any = true;
+    });
+    if (!any)
+      break;
+  }
+  std::size_t count = 0, total = 0;
+  for (int k = 0; k + 1 < dims[2]; ++k)
+    for (int j = 0; j + 1 < dims[1]; ++j)
+      for (int i = 0; i + 1 < dims[0]; ++i, ++total)
+        count += cell[i + j * strides[1] + k * strides[2]];
+  for (std::size_t i = 0; i < n; ++i)
+    smooth[i] = static_cast<unsigned char>((cell[i] ? SCH_SMOOTH_CELL : 0) | (level[i] << SCH_SMOOTH_SHIFT));
+  return total ? double(count) / total : 0.0;
+}
+
+void CheckVolume(const Volume& v)
+{
+  CheckGrid(v.Dimensions, v.Spacing);
+  if (!v.Field)
+    throw Error("The volume has no field data.");
+}
+
+} // namespace schlieren

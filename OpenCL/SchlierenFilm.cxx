@@ -1,0 +1,289 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The film: its geometry (MakeFilm), the sums (FilmSums) and the splatter that puts photons on it.
+#include "SchlierenEngineInternal.h"
+#include "SchlierenLimits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace schlieren
+{
+
+static void Normalize(double v[3])
+{
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  for (int a = 0; a < 3; ++a)
+    v[a] /= n;
+}
+
+static void Cross(const double a[3], const double b[3], double c[3])
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void FilmGeometry::GetImageOrigin(double origin[2]) const
+{
+  origin[0] = Dot(Center, Right) + Corner[0] + 0.5 * PixelSize;
+  origin[1] = Dot(Center, Up) + Corner[1] + 0.5 * PixelSize;
+}
+
+// Half the extent of the box of grid points along each axis, from the grid itself: the bounds
+// (origin + extent) lose the extent's digits when the volume sits far from the world origin.
+void HalfExtent(const Volume& v, double h[3])
+{
+  for (int a = 0; a < 3; ++a)
+    h[a] = 0.5 * (v.Dimensions[a] - 1) * v.Spacing[a];
+}
+
+FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
+{
+  CheckGrid(volume.Dimensions, volume.Spacing);
+  CheckSettings(s);
+  FilmGeometry f;
+  const double dlen = std::sqrt(Dot(s.ViewDirection, s.ViewDirection));
+  if (!(dlen > 0) || !std::isfinite(dlen))
+    throw Error("ViewDirection must be a non-zero, finite vector.");
+  for (int a = 0; a < 3; ++a)
+    f.Direction[a] = s.ViewDirection[a] / dlen;
+  double up[3] = { s.ViewUp[0], s.ViewUp[1], s.ViewUp[2] };
+  const double along = Dot(up, f.Direction);
+  for (int a = 0; a < 3; ++a)
+    up[a] -= along * f.Direction[a];
+  const double ulen = std::sqrt(Dot(up, up));
+  if (!(ulen > 1e-6 * std::sqrt(Dot(s.ViewUp, s.ViewUp))) || !std::isfinite(ulen))
+    throw Error("ViewUp is zero or parallel to ViewDirection: choose an up vector across the beam.");
+  Normalize(up);
+  Cross(f.Direction, up, f.Right);
+  Normalize(f.Right);
+  Cross(f.Right, f.Direction, f.Up);
+  Normalize(f.Up);
+
+  if (s.Resolution[0] < 1 || s.Resolution[1] < 1 || s.Resolution[0] > 16384 ||
+    s.Resolution[1] > 16384)
+  {
+    std::ostringstream msg;
+    msg << "Resolution " << s.Resolution[0] << " x " << s.Resolution[1]
+        << " is out of range: each side must be 1 to 16384 pixels.";
+    throw Error(msg.str());
+  }
+  double h[3];
+  HalfExtent(volume, h);
+  for (int a = 0; a < 3; ++a)
+    f.Center[a] = volume.Origin[a] + h[a];
+  double wa = 0, wb = 0, wd = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    wa += h[a] * std::fabs(f.Right[a]);
+    wb += h[a] * std::fabs(f.Up[a]);
+    wd += h[a] * std::fabs(f.Direction[a]);
+  }
+  f.Size[0] = s.Resolution[0];
+  f.Size[1] = s.Resolution[1];
+  f.PixelSize = std::max(2 * wa / f.Size[0], 2 * wb / f.Size[1]);
+  f.Corner[0] = -0.5 * f.Size[0] * f.PixelSize;
+  f.Corner[1] = -0.5 * f.Size[1] * f.PixelSize;
+  f.FrontPlane = -wd * 1.001;
+  if (!std::isfinite(s.FilmDistance))
+    throw Error("FilmDistance must be finite.");
+  // A shadowgraph's film is FilmDistance behind the back of the box. Every other cutoff images
+  // the volume's centre plane, as a schlieren camera focused on the test section does (BOS: the
+  // photons are then referred to the background, see Splatter); FilmDistance defocuses it.
+  f.FilmPlane = s.Mode == Cutoff::Shadowgraph ? wd + s.FilmDistance : s.FilmDistance;
+  return f;
+}
+
+std::vector<std::vector<double>*> FilmSums::PixelChannels()
+{
+  return { &Count, &Weight, &DeflectionX, &DeflectionY, &AbsDeflection, &Red, &Green, &Blue, &Phase,
+    &ShiftX, &ShiftY, &ErrorSum, &Blocked };
+}
+
+std::vector<double*> FilmSums::Totals()
+{
+  return { &Photons, &Samples, &FailedRays, &MissedRays, &UnderresolvedRays, &SideRays, &Steps,
+    &BlockedRays };
+}
+
+std::vector<double*> FilmSums::Maxima()
+{
+  return { &MaxAbsKnife, &MaxAbsDeflection, &MaxDrift, &MaxError };
+}
+
+void FilmSums::Resize(int nx, int ny)
+{
+  Size[0] = nx;
+  Size[1] = ny;
+  const std::size_t n = static_cast<std::size_t>(nx) * ny;
+  for (std::vector<double>* c : PixelChannels())
+    c->assign(n, 0.0);
+  for (double* t : Totals())
+    *t = 0.0;
+  for (double* m : Maxima())
+    *m = 0.0;
+  Passes = 0;
+}
+
+void FilmSums::ToArrays(std::vector<double>& additive, std::vector<double>& maxima)
+{
+  additive.clear();
+  for (std::vector<double>* c : PixelChannels())
+    additive.insert(additive.end(), c->begin(), c->end());
+  for (double* t : Totals())
+    additive.push_back(*t);
+  maxima.clear();
+  for (double* m : Maxima())
+    maxima.push_back(*m);
+}
+
+void FilmSums::FromArrays(const std::vector<double>& additive, const std::vector<double>& maxima)
+{
+  std::size_t pos = 0;
+  for (std::vector<double>* c : PixelChannels())
+  {
+    if (pos + c->size() > additive.size())
+      throw schlieren::Error("FilmSums::FromArrays: the arrays do not match this film.");
+    std::copy(additive.begin() + pos, additive.begin() + pos + c->size(), c->begin());
+    pos += c->size();
+  }
+  for (double* t : Totals())
+    *t = additive.at(pos++);
+  std::size_t m = 0;
+  for (double* x : Maxima())
+    *x = maxima.at(m++);
+}
+
+Splatter::Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f)
+  : P(p)
+  , S(s)
+  , F(f)
+{
+  const double ang = s.KnifeAngle * 3.14159265358979323846 / 180.0;
+  ca = static_cast<float>(std::cos(ang));
+  sa = static_cast<float>(std::sin(ang));
+  k = static_cast<float>(s.CutoffScale);
+  manual = s.CutoffScale > 0;
+  twoPiOverLambda = 2 * 3.14159265358979323846 / (s.Wavelength * 1e-9);
+  tilt = 2 * 3.14159265358979323846 * s.ReferenceTilt;
+  bgPlane = P.sFront - s.BackgroundDistance;
+  period = s.BackgroundPeriod > 0 ? s.BackgroundPeriod : 6.0 * P.pixel;
+}
+
+float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const
+{
+  float w = 1.0f;
+  switch (S.Mode)
+  {
+    case Cutoff::KnifeEdge:
+      w = sch_knife_weight(ex, ey, ca, sa, k);
+      break;
+    case Cutoff::Circular:
+      w = sch_circular_weight(ex, ey, k, 0);
+      break;
+    case Cutoff::ComplementCircular:
+      w = sch_circular_weight(ex, ey, k, 1);
+      break;
+    case Cutoff::Interferometry:
+      w = sch_fringe_weight(static_cast<float>(phase), static_cast<float>(tilt * landA));
+      break;
+    default:
+      w = 1.0f;
+  }
+  if (S.RussianRoulette)
+  {
+    // the photon survives with probability w and then carries all its energy: same mean
+    const sch_uint h = sch_hash(P.seed * 747796405u ^ sch_hash(pix * 2891336453u + static_cast<sch_uint>(P.pass)));
+    w = sch_unit(h) < w ? 1.0f : 0.0f;
+  }
+  return w;
+}
+
+void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
+{
+  for (std::size_t r = 0; r < count; ++r, rec += SCH_RECORD)
+  {
+    const unsigned flags = static_cast<unsigned>(rec[SCH_REC_FLAGS]);
+    F.Photons += 1;
+    F.Samples += rec[SCH_REC_SAMPLES];
+    F.Steps += rec[SCH_REC_STEPS];
+    if (flags & SCH_RAY_MISSED)
+      F.MissedRays += 1;
+    if (flags & SCH_RAY_UNDERRESOLVED)
+      F.UnderresolvedRays += 1;
+    if (flags & SCH_RAY_SIDE)
+      F.SideRays += 1;
+    if (flags & SCH_RAY_BLOCKED)
+    {
+      // stopped by a body: no light; counted in the pixel it was emitted through (the shadow)
+      F.BlockedRays += 1;
+      F.Blocked[static_cast<std::size_t>(P.rayOffset + (first + r) * P.rayStride)] += 1;
+      continue;
+    }
+    if (flags & SCH_RAY_LOST)
+    {
+      F.FailedRays += 1;
+      continue;
+    }
+    F.MaxDrift = std::max(F.MaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
+    F.MaxError = std::max(F.MaxError, double(rec[SCH_REC_ERROR]));
+    const float ex = rec[SCH_REC_EX], ey = rec[SCH_REC_EY];
+    const double absE = std::hypot(double(ex), double(ey));
+    F.MaxAbsKnife = std::max(F.MaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
+    F.MaxAbsDeflection = std::max(F.MaxAbsDeflection, absE);
+    const int pix = static_cast<int>(P.rayOffset + (first + r) * P.rayStride);
+    double la = rec[SCH_REC_A], lb = rec[SCH_REC_B];
+    double bosWeight = 0, shiftX = 0, shiftY = 0;
+    if (S.Mode == Cutoff::BOS)
+    {
+      // the camera sees the background point the photon left from, where the exit ray seems
+      // to come from: back along the exit direction to the background plane
+      float a0, b0;
+      sch_emit(&P, pix, &a0, &b0);
+      bosWeight = sch_bos_pattern(a0, b0, static_cast<float>(period), S.BackgroundPattern, P.seed);
+      la -= (P.sFilm - bgPlane) * ex;
+      lb -= (P.sFilm - bgPlane) * ey;
+      shiftX = la - a0;
+      shiftY = lb - b0;
+    }
+    const double fi = std::floor((la - P.filmA0) / P.pixel);
+    const double fj = std::floor((lb - P.filmB0) / P.pixel);
+    if (fi < 0 || fj < 0 || fi >= P.filmNx || fj >= P.filmNy)
+      continue; // landed off the film
+    const std::size_t idx = static_cast<std::size_t>(fj) * P.filmNx + static_cast<std::size_t>(fi);
+    const double phase = twoPiOverLambda * rec[SCH_REC_OPL];
+    F.Count[idx] += 1;
+    F.DeflectionX[idx] += ex;
+    F.DeflectionY[idx] += ey;
+    F.AbsDeflection[idx] += absE;
+    F.ErrorSum[idx] += rec[SCH_REC_ERROR];
+    F.Phase[idx] += phase;
+    if (S.Mode == Cutoff::ColorFilter)
+    {
+      float cr, cg, cb;
+      sch_hue_rgb(ex, ey, &cr, &cg, &cb);
+      // value k|e| (manual k, clamped) or |e| (automatic: k applied in Finalize)
+      const double v = manual ? std::min(1.0, k * absE) : absE;
+      F.Red[idx] += v * cr;
+      F.Green[idx] += v * cg;
+      F.Blue[idx] += v * cb;
+    }
+    else if (S.Mode == Cutoff::BOS)
+    {
+      F.Weight[idx] += bosWeight;
+      F.ShiftX[idx] += shiftX;
+      F.ShiftY[idx] += shiftY;
+    }
+    else if (manual || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
+      F.Weight[idx] += CutoffWeight(ex, ey, static_cast<float>(la), phase, static_cast<sch_uint>(pix));
+  }
+}
+
+} // namespace schlieren

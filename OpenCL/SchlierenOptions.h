@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenOptions.h
+ * @brief The engine's runtime options: every environment variable it reads, read once.
+ *
+ * The options are read from the environment on first use (GetRuntimeOptions) and then kept for
+ * the life of the process; nothing else in the engine calls getenv. An application (a filter, a
+ * test, the benchmark) may replace them with SetRuntimeOptions. Per-trace settings override them:
+ * TraceSettings::DeviceName overrides OpenCLDevice and TraceSettings::Threads overrides
+ * CpuThreads (the filters' properties set those).
+ */
+#ifndef SchlierenOptions_h
+#define SchlierenOptions_h
+
+#include <cstdint>
+#include <string>
+
+namespace schlieren
+{
+
+struct RuntimeOptions
+{
+  /// SCHLIEREN_OPENCL_DEVICE: a substring of the OpenCL device's name; empty: the first GPU, else
+  /// the first device
+  std::string OpenCLDevice;
+  /// SCHLIEREN_CPU_THREADS: threads of the CPU backend; 0: every hardware thread
+  int CpuThreads = 0;
+  /// SCHLIEREN_CL_USE_HOST_PTR (0 or 1): a CPU OpenCL device traces the caller's field in place
+  /// where it is aligned (1), or always copies it (0, for measuring the copy's memory)
+  bool UseHostPtr = true;
+  /// SCHLIEREN_CL_SPECIALISE (0 or 1): build a program per integrator, octree, reconstruction and
+  /// body setting (1), or one generic program (0)
+  bool Specialise = true;
+  /// SCHLIEREN_CL_OPTIONS: extra OpenCL build options for the kernels (e.g. -cl-mad-enable)
+  std::string BuildOptions;
+  /// SCHLIEREN_CL_MAX_ALLOC: bytes per device buffer at most (the field is split into slabs over
+  /// it); 0: the device's own limit
+  std::uint64_t MaxAlloc = 0;
+  /// SCHLIEREN_CL_LOCKSTEP: 1 the lock-step kernel, 0 the per-item kernel; -1 (unset): lock step
+  /// on CPU devices, per item elsewhere
+  int Lockstep = -1;
+  /// SCHLIEREN_MEMORY_LIMIT: host bytes the engine assumes it may use at most; 0: what the
+  /// machine has available
+  std::uint64_t MemoryLimit = 0;
+
+  /** The options as the environment sets them (unset variables: the defaults above). Throws
+   * schlieren::Error naming the variable where a value cannot be read. */
+  static RuntimeOptions FromEnvironment();
+  /** The OpenCL options that decide a device copy and its kernels: equal keys, same tracer. */
+  std::string OpenCLKey() const;
+};
+
+/** The options in force: the environment's, read on the first call, or those last set. */
+RuntimeOptions GetRuntimeOptions();
+
+/** Replaces the options for the rest of the process; the next trace uses them. */
+void SetRuntimeOptions(const RuntimeOptions& options);
+
+/** Goes back to the environment's options (read again now). */
+void ResetRuntimeOptions();
+
+} // namespace schlieren
+
+#endif

@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Parameters: the settings and the volume as the kernels see them (sch_params), the feature tolerance.
+#include "SchlierenEngineInternal.h"
+#include "SchlierenLimits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace schlieren
+{
+
+sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGeometry& f)
+{
+  if (!(s.StepSize > 0) || !std::isfinite(s.StepSize) || s.StepSize > 1e3)
+  {
+    std::ostringstream msg;
+    msg << "StepSize " << s.StepSize << " voxels is out of range: use a value in (0, 1000].";
+    throw Error(msg.str());
+  }
+  CheckPrecision(volume, s);
+  sch_params P;
+  std::memset(&P, 0, sizeof(P));
+  P.nx = volume.Dimensions[0];
+  P.ny = volume.Dimensions[1];
+  P.nz = volume.Dimensions[2];
+  // the tracer works relative to the volume's centre: only the extent enters, never the origin
+  double h[3];
+  HalfExtent(volume, h);
+  P.isx = static_cast<float>(1.0 / volume.Spacing[0]);
+  P.isy = static_cast<float>(1.0 / volume.Spacing[1]);
+  P.isz = static_cast<float>(1.0 / volume.Spacing[2]);
+  P.hx = static_cast<float>(h[0]);
+  P.hy = static_cast<float>(h[1]);
+  P.hz = static_cast<float>(h[2]);
+  P.dx = static_cast<float>(f.Direction[0]);
+  P.dy = static_cast<float>(f.Direction[1]);
+  P.dz = static_cast<float>(f.Direction[2]);
+  P.rx = static_cast<float>(f.Right[0]);
+  P.ry = static_cast<float>(f.Right[1]);
+  P.rz = static_cast<float>(f.Right[2]);
+  P.tx = static_cast<float>(f.Up[0]);
+  P.ty = static_cast<float>(f.Up[1]);
+  P.tz = static_cast<float>(f.Up[2]);
+  P.sFront = static_cast<float>(f.FrontPlane);
+  P.sFilm = static_cast<float>(f.FilmPlane);
+  P.filmA0 = static_cast<float>(f.Corner[0]);
+  P.filmB0 = static_cast<float>(f.Corner[1]);
+  P.pixel = static_cast<float>(f.PixelSize);
+  P.filmNx = f.Size[0];
+  P.filmNy = f.Size[1];
+  const double step = s.StepSize * MinSpacing(volume);
+  P.step = static_cast<float>(step);
+  const double diag = 2 * std::sqrt(double(P.hx) * P.hx + double(P.hy) * P.hy + double(P.hz) * P.hz);
+  // near a body steps are cut to a cell: the default limit allows for a whole path of them
+  const double shortest = volume.Solid ? std::min(step, MinSpacing(volume)) : step;
+  double maxSteps = s.MaxSteps > 0 ? s.MaxSteps : 8.0 * diag / shortest + 16;
+  P.maxSteps = static_cast<int>(std::min(maxSteps, 1e9));
+  P.seed = s.Seed;
+  P.pass = 0;
+  P.integrator = static_cast<int>(s.Method);
+  P.jitter = s.Jitter ? 1 : 0;
+  if (s.RankCount < 1 || s.RankIndex < 0 || s.RankIndex >= s.RankCount)
+    throw Error("RankIndex must be in [0, RankCount).");
+  P.rayOffset = s.RankIndex;
+  P.rayStride = s.RankCount;
+  P.useLevels = (s.UseOctree && volume.Levels) ? 1 : 0;
+  P.useSolid = volume.Solid ? 1 : 0;
+  P.keepInvariant = s.KeepInvariant ? 1 : 0;
+  P.estimate = s.EstimateError ? 1 : 0;
+  P.featureTol = 0.0f; // see SetFeatureTolerance
+  // steps no longer than the smallest spacing cannot jump over a cell: no need to check them
+  P.cellStep = static_cast<float>(MinSpacing(volume));
+  P.gxMax = std::nextafter(static_cast<float>(P.nx - 1), 0.0f);
+  P.gyMax = std::nextafter(static_cast<float>(P.ny - 1), 0.0f);
+  P.gzMax = std::nextafter(static_cast<float>(P.nz - 1), 0.0f);
+  // the grid coordinate of the centre, (origin - centre) / spacing, exactly
+  P.gx0 = static_cast<float>(0.5 * (P.nx - 1));
+  P.gy0 = static_cast<float>(0.5 * (P.ny - 1));
+  P.gz0 = static_cast<float>(0.5 * (P.nz - 1));
+  if (4.0 * P.nx * P.ny > 2147483647.0)
+    throw Error("A slice of the volume has more than 2^29 points: not supported.");
+  P.rowFloats = 4 * P.nx;
+  P.sliceFloats = 4 * P.nx * P.ny;
+  if (s.Recon == Reconstruction::Auto)
+    throw Error("Reconstruction Auto must be resolved first (ResolveAuto).");
+  if (s.Recon == Reconstruction::Cubic && !volume.Smooth)
+    throw Error("Reconstruction Cubic needs the volume's smoothness (Volume::Smooth): pack the field "
+                "with PackFieldHighOrder, or use Reconstruction Trilinear.");
+  // with a body the levels byte carries its bits where Cubic keeps the smoothness: trilinear
+  P.recon = s.Recon == Reconstruction::Cubic && !volume.Solid ? SCH_CUBIC : SCH_TRILINEAR;
+  // from cells that are not smooth, steps of at most a cell: they cannot jump over a feature
+  P.roughStep = P.recon == SCH_CUBIC ? P.cellStep : 0.0f;
+  return P;
+}
+
+std::mutex KeptMutex;
+
+void SetFeatureTolerance(sch_params& P, const Volume& volume)
+{
+  // the index range of the last stamped volume (kept: finding it is a pass over the whole field)
+  static VolumeIdentity rangeOf;
+  static float rangeLo = 0, rangeHi = 0;
+  float lo = volume.Field[0], hi = volume.Field[0];
+  bool known = false;
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    if (rangeOf == VolumeIdentity(volume))
+    {
+      lo = rangeLo;
+      hi = rangeHi;
+      known = true;
+    }
+  }
+  const std::size_t n = volume.NumberOfPoints();
+  for (std::size_t i = 0; !known && i < n; ++i)
+  {
+    lo = std::min(lo, volume.Field[4 * i]);
+    hi = std::max(hi, volume.Field[4 * i]);
+  }
+  if (!known && volume.Stamp != 0)
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    rangeOf = VolumeIdentity(volume);
+    rangeLo = lo;
+    rangeHi = hi;
+  }
+  P.featureTol = static_cast<float>(std::max(volume.LevelTolerance, 0.01 * (double(hi) - lo)));
+  if (!(P.featureTol > 0))
+    P.featureTol = 1e-30f;
+}
+
+std::size_t RaysForRank(const sch_params& P)
+{
+  const std::size_t pixels = static_cast<std::size_t>(P.filmNx) * P.filmNy;
+  if (pixels <= static_cast<std::size_t>(P.rayOffset))
+    return 0;
+  return (pixels - P.rayOffset + P.rayStride - 1) / P.rayStride;
+}
+
+} // namespace schlieren
