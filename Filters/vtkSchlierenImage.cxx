@@ -2,8 +2,9 @@
 #include "vtkSchlierenImage.h"
 #include "SchlierenGuard.h"
 
-#include "vtkCommunicator.h"
+#include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -12,7 +13,6 @@
 #include "vtkInformationVector.h"
 #include "vtkLogger.h"
 #include "vtkMatrix3x3.h"
-#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -20,12 +20,13 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
+#include "SchlierenArrays.h"
+#include "SchlierenController.h"
 #include "SchlierenEngine.h"
-#include "SchlierenLimits.h"
+#include "SchlierenSession.h"
 
 #include <algorithm>
 #include <cmath>
-#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,9 +35,6 @@ vtkStandardNewMacro(vtkSchlierenImage);
 
 namespace
 {
-const char* const IndexArrayName = "n_minus_1";
-const char* const SolidArrayName = "solid";
-
 /** "a, b, c" for the point arrays of a data set, or "none". */
 std::string PointArrayNames(vtkDataSet* ds)
 {
@@ -59,111 +57,136 @@ std::string NotAnImage(vtkDataObject* input)
     ". Resample the data onto an image and apply RefractiveIndex first.";
 }
 
-bool IsEmpty(const int ext[6])
+/** The whole extent, origin and spacing the information describes. */
+void WholeGridOf(vtkInformation* inInfo, schlieren::VolumePiece& piece)
 {
-  return ext[1] < ext[0] || ext[3] < ext[2] || ext[5] < ext[4];
-}
-
-vtkIdType ExtentPoints(const int ext[6])
-{
-  return IsEmpty(ext) ? 0
-                      : static_cast<vtkIdType>(ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1) *
-      (ext[5] - ext[4] + 1);
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), piece.WholeExtent);
+  if (inInfo->Has(vtkDataObject::ORIGIN()))
+  {
+    inInfo->Get(vtkDataObject::ORIGIN(), piece.Origin);
+  }
+  if (inInfo->Has(vtkDataObject::SPACING()))
+  {
+    inInfo->Get(vtkDataObject::SPACING(), piece.Spacing);
+  }
 }
 
 /** The engine's grid (without its field) of the whole extent described by the information. */
 schlieren::Volume WholeVolume(vtkInformation* inInfo)
 {
-  int whole[6];
-  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  if (inInfo->Has(vtkDataObject::ORIGIN()))
-  {
-    inInfo->Get(vtkDataObject::ORIGIN(), origin);
-  }
-  if (inInfo->Has(vtkDataObject::SPACING()))
-  {
-    inInfo->Get(vtkDataObject::SPACING(), spacing);
-  }
+  schlieren::VolumePiece piece;
+  WholeGridOf(inInfo, piece);
   schlieren::Volume volume;
   for (int a = 0; a < 3; ++a)
   {
-    volume.Dimensions[a] = std::max(whole[2 * a + 1] - whole[2 * a] + 1, 0);
-    volume.Origin[a] = origin[a] + whole[2 * a] * spacing[a];
-    volume.Spacing[a] = spacing[a];
+    volume.Dimensions[a] = std::max(piece.WholeExtent[2 * a + 1] - piece.WholeExtent[2 * a] + 1, 0);
+    volume.Origin[a] = piece.Origin[a] + piece.WholeExtent[2 * a] * piece.Spacing[a];
+    volume.Spacing[a] = piece.Spacing[a];
   }
   return volume;
 }
 
-/** Copies a piece (its extent and x-fastest values) into the whole grid and marks what it covers. */
-void Insert(const int whole[6], const int ext[6], const float* values, std::vector<float>& field,
-  std::vector<unsigned char>& covered)
+/** The values of a one-component array of any type, each converted by `convert` (VTK's typed
+ * dispatch for the common types, the generic vtkDataArray path for the others). */
+template <typename Out, typename Convert>
+void ConvertArray(vtkDataArray* array, std::vector<Out>& out, Convert convert)
 {
-  if (IsEmpty(ext))
+  auto worker = [&out, &convert](auto* a) {
+    const auto values = vtk::DataArrayValueRange<1>(a);
+    out.resize(static_cast<std::size_t>(values.size()));
+    std::transform(values.begin(), values.end(), out.begin(),
+      [&convert](auto v) { return convert(static_cast<double>(v)); });
+  };
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker))
   {
-    return;
-  }
-  const vtkIdType nx = whole[1] - whole[0] + 1, ny = whole[3] - whole[2] + 1;
-  std::size_t src = 0;
-  for (int k = ext[4]; k <= ext[5]; ++k)
-  {
-    for (int j = ext[2]; j <= ext[3]; ++j)
-    {
-      const vtkIdType row = ((k - whole[4]) * ny + (j - whole[2])) * nx + (ext[0] - whole[0]);
-      const int len = ext[1] - ext[0] + 1;
-      std::copy(values + src, values + src + len, field.begin() + row);
-      std::fill(covered.begin() + row, covered.begin() + row + len, 1);
-      src += len;
-    }
+    worker(array);
   }
 }
-}
 
-//------------------------------------------------------------------------------
-struct vtkSchlierenImage::vtkInternals
+/** A number of the field data, or `fallback`. */
+double FieldNumber(vtkDataSet* ds, const char* name, double fallback, bool* found = nullptr)
 {
-  schlieren::FilmSums Sums; // this rank's sums of the passes traced so far
-  std::string Key;          // the photons' settings and the input they were traced from
-  // the whole volume of the last trace (n - 1 and gradient, octree levels) and the input it came
-  // from: kept while only the view, optics or passes change
-  std::string VolumeKey;
-  schlieren::AlignedFloats Packed; // page-aligned: a CPU OpenCL device traces it in place
-  std::vector<unsigned char> Levels;
-  std::vector<unsigned char> Solid; // the input's `solid` points (empty: no body)
-  std::vector<unsigned char> Smooth; // PackFieldHighOrder's smoothness (Reconstruction not trilinear)
-  schlieren::Volume Volume;
-};
-
-//------------------------------------------------------------------------------
-vtkSchlierenImage::vtkSchlierenImage()
-  : Internals(new vtkInternals)
-{
-  this->SetNumberOfInputPorts(1);
-  this->SetNumberOfOutputPorts(1);
-}
-
-//------------------------------------------------------------------------------
-vtkSchlierenImage::~vtkSchlierenImage()
-{
-  // the engine's device copy may be this filter's volume: free it with the filter
-  if (this->Internals->Volume.Stamp != 0)
+  vtkDataArray* a = ds->GetFieldData() ? ds->GetFieldData()->GetArray(name) : nullptr;
+  const bool ok = a && a->GetNumberOfTuples() > 0 && a->GetNumberOfComponents() == 1 &&
+    std::isfinite(a->GetComponent(0, 0));
+  if (found)
   {
-    schlieren::ReleaseKeptVolume();
+    *found = ok;
   }
-  delete this->Internals;
+  return ok ? a->GetComponent(0, 0) : fallback;
 }
 
-//------------------------------------------------------------------------------
-int vtkSchlierenImage::FillInputPortInformation(int port, vtkInformation* info)
+/** The piece's point array `name` if it has one component and a value per point, else null. */
+vtkDataArray* PointScalars(vtkImageData* input, const char* name)
 {
-  // Any data set at the pipeline level, so that a wrong input gets this filter's clear error.
-  this->Superclass::FillInputPortInformation(port, info);
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
-  return 1;
+  vtkDataArray* a = input->GetPointData()->GetArray(name);
+  return a && a->GetNumberOfComponents() == 1 && a->GetNumberOfTuples() == input->GetNumberOfPoints()
+    ? a
+    : nullptr;
 }
 
-namespace
+/**
+ * Reads the input piece's values for the engine: n - 1; the octree levels (vtkRefractionOctree's
+ * `octree_level` and field data) where `octree` is asked for; the solid points (non-zero: in a body).
+ * Returns why it cannot, or an empty string.
+ */
+std::string ReadPiece(vtkImageData* input, bool octree, schlieren::PieceValues& values)
 {
+  namespace arrays = schlieren::arrays;
+  vtkDataArray* array = input->GetPointData()->GetArray(arrays::NMinus1);
+  if (!array)
+  {
+    return std::string("SchlierenImage needs the point array 'n_minus_1' (n - 1); the input "
+                       "has the point arrays: ") +
+      PointArrayNames(input) + ". Apply RefractiveIndex first.";
+  }
+  if (array->GetNumberOfComponents() != 1)
+  {
+    return "The point array 'n_minus_1' must have one component.";
+  }
+  ConvertArray(array, values.NMinus1, [](double v) { return static_cast<float>(v); });
+  vtkDataArray* levels = octree ? PointScalars(input, arrays::OctreeLevel) : nullptr;
+  if (levels)
+  {
+    ConvertArray(levels, values.Levels,
+      [](double v) { return static_cast<unsigned char>(std::max(0.0, std::min(10.0, v))); });
+    values.LevelTolerance =
+      FieldNumber(input, arrays::OctreeTolerance, 0.0, &values.HasLevelTolerance);
+    values.MaxLevel = static_cast<int>(FieldNumber(input, arrays::OctreeMaxLevel, 7.0));
+  }
+  if (vtkDataArray* solid = PointScalars(input, arrays::Solid))
+  {
+    ConvertArray(solid, values.Solid, [](double v) -> unsigned char { return v != 0.0 ? 1 : 0; });
+  }
+  return std::string();
+}
+
+/** This rank's piece of the input, as the engine takes it (its values are read when needed). */
+schlieren::VolumePiece PieceOf(
+  vtkImageData* input, vtkImageData* output, vtkInformation* inInfo, bool octree)
+{
+  schlieren::VolumePiece piece;
+  if (!input || !output)
+  {
+    piece.Problem = NotAnImage(vtkDataObject::GetData(inInfo));
+    return piece;
+  }
+  if (!input->GetDirectionMatrix()->IsIdentity())
+  {
+    piece.Problem = "SchlierenImage traces axis-aligned images only; this one has a direction "
+                    "matrix. Resample it onto an axis-aligned image first.";
+    return piece;
+  }
+  WholeGridOf(inInfo, piece);
+  if (input->GetNumberOfPoints() > 0)
+  {
+    input->GetExtent(piece.Extent);
+  }
+  piece.Version = input->GetMTime();
+  piece.Load = [input, octree](schlieren::PieceValues& v) { return ReadPiece(input, octree, v); };
+  return piece;
+}
+
 /** The engine's settings from the filter's properties. */
 schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
 {
@@ -209,52 +232,9 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
       s.Device = schlieren::Backend::Auto;
       break;
   }
+  s.DeviceName = self->GetDeviceName() ? self->GetDeviceName() : "";
+  s.Threads = self->GetThreads();
   return s;
-}
-
-/** What the input says about its octree (vtkRefractionOctree's array and field data). */
-struct OctreeInfo
-{
-  bool Present = false;      ///< the point array `octree_level` is there
-  bool HasTolerance = false; ///< and the field data `octree_tolerance`
-  double Tolerance = 0.0;
-  int MaxLevel = 7;
-};
-
-/** A number of the field data, or `fallback`. */
-double FieldNumber(vtkDataSet* ds, const char* name, double fallback, bool* found = nullptr)
-{
-  vtkDataArray* a = ds->GetFieldData() ? ds->GetFieldData()->GetArray(name) : nullptr;
-  const bool ok = a && a->GetNumberOfTuples() > 0 && a->GetNumberOfComponents() == 1 &&
-    std::isfinite(a->GetComponent(0, 0));
-  if (found)
-  {
-    *found = ok;
-  }
-  return ok ? a->GetComponent(0, 0) : fallback;
-}
-
-/** The piece's octree levels (as bytes) and what its field data says about them. */
-OctreeInfo ReadOctree(vtkImageData* input, std::vector<unsigned char>& levels)
-{
-  OctreeInfo info;
-  vtkDataArray* array = input->GetPointData()->GetArray("octree_level");
-  if (!array || array->GetNumberOfComponents() != 1 ||
-    array->GetNumberOfTuples() != input->GetNumberOfPoints())
-  {
-    return info;
-  }
-  info.Present = true;
-  levels.resize(static_cast<std::size_t>(array->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-  {
-    const double v = array->GetComponent(i, 0);
-    levels[i] = static_cast<unsigned char>(std::max(0.0, std::min(10.0, v)));
-  }
-  info.Tolerance = FieldNumber(input, "octree_tolerance", 0.0, &info.HasTolerance);
-  info.HasTolerance = info.HasTolerance && info.Tolerance >= 0;
-  info.MaxLevel = static_cast<int>(FieldNumber(input, "octree_max_level", 7.0));
-  return info;
 }
 
 /** A float point array of `pixels` tuples from an engine image, with component names. */
@@ -279,99 +259,129 @@ vtkSmartPointer<vtkFloatArray> FloatArray(const char* name, const std::vector<fl
   return a;
 }
 
-/**
- * Resolves Integrator Auto (settings.Method) into the integrator and step it chooses, and whether
- * the octree pays for it (settings.UseOctree); other integrators come back unchanged. Rank 0 resolves (its pilot traces the same rays as every other
- * rank would; doing it once and broadcasting the choice makes every rank trace with the same
- * setting even if their backends were to round differently) and every rank adopts its choice.
- * Collective under MPI. Returns false (with an error reported) if Auto failed.
- */
-bool ResolveIntegrator(vtkSchlierenImage* self, const schlieren::Volume& volume,
-  schlieren::TraceSettings& settings, schlieren::AutoChoice& choice,
-  vtkMultiProcessController* controller, int ranks, int rank)
+/** The film and its point arrays; false where the engine's image has the wrong size. */
+bool WriteImage(vtkImageData* output, const schlieren::TraceResult& result)
 {
-  if (settings.Method != schlieren::Integrator::Auto &&
-    settings.Recon != schlieren::Reconstruction::Auto)
+  const int nx = result.Film.Size[0], ny = result.Film.Size[1];
+  double origin[2];
+  result.Film.GetImageOrigin(origin);
+  output->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
+  output->SetSpacing(result.Film.PixelSize, result.Film.PixelSize, 1.0);
+  output->SetOrigin(origin[0], origin[1], 0.0);
+  const vtkIdType pixels = static_cast<vtkIdType>(nx) * ny;
+  if (result.Intensity.size() != static_cast<std::size_t>(pixels) ||
+    result.Deflection.size() != 2 * static_cast<std::size_t>(pixels))
   {
-    choice = schlieren::AutoChoice();
-    choice.Method = settings.Method;
-    choice.StepSize = settings.StepSize;
-    choice.Recon = settings.Recon;
-    return true;
-  }
-  std::string error;
-  // ok, method, step, measured error, expected error, landing error, samples per ray,
-  // tolerance, met, octree, reconstruction, the trilinear's estimated error
-  std::vector<double> numbers(12, 0.0);
-  if (rank == 0)
-  {
-    try
-    {
-      schlieren::TraceSettings pilot = settings;
-      pilot.RankIndex = 0;
-      pilot.RankCount = 1;
-      const schlieren::TraceSettings chosen = schlieren::ResolveAuto(volume, pilot, &choice);
-      numbers = { 1.0, double(static_cast<int>(chosen.Method)), chosen.StepSize,
-        chosen.AutoMeasuredError, choice.ExpectedError, choice.ExpectedLandingError,
-        choice.SamplesPerRay, choice.Tolerance, choice.Met ? 1.0 : 0.0,
-        chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), choice.TrilinearError };
-    }
-    catch (const schlieren::Error& e)
-    {
-      error = e.what();
-      numbers.assign(12, 0.0);
-    }
-  }
-  std::string text = error.empty() ? choice.Report : error;
-  if (ranks > 1)
-  {
-    controller->Broadcast(numbers.data(), static_cast<vtkIdType>(numbers.size()), 0);
-    vtkIdType length = static_cast<vtkIdType>(text.size());
-    controller->Broadcast(&length, 1, 0);
-    std::vector<char> chars(text.begin(), text.end());
-    chars.resize(static_cast<std::size_t>(length) + 1, '\0');
-    controller->Broadcast(chars.data(), length + 1, 0);
-    text.assign(chars.data(), static_cast<std::size_t>(length));
-  }
-  if (numbers[0] != 1.0)
-  {
-    if (rank == 0)
-    {
-      vtkErrorWithObjectMacro(self, << text);
-    }
-    else
-    {
-      vtkErrorWithObjectMacro(self, "Integrator Auto failed on rank 0 (see its error); no image.");
-    }
     return false;
   }
-  settings.Method = static_cast<schlieren::Integrator>(static_cast<int>(numbers[1]));
-  settings.StepSize = numbers[2];
-  settings.AutoMeasuredError = numbers[3];
-  settings.UseOctree = numbers[9] == 1.0;
-  settings.Recon = static_cast<schlieren::Reconstruction>(static_cast<int>(numbers[10]));
-  choice.Recon = settings.Recon;
-  choice.TrilinearError = numbers[11];
-  choice.Method = settings.Method;
-  choice.StepSize = settings.StepSize;
-  choice.ExpectedError = numbers[4];
-  choice.ExpectedLandingError = numbers[5];
-  choice.SamplesPerRay = numbers[6];
-  choice.Tolerance = numbers[7];
-  choice.Met = numbers[8] == 1.0;
-  choice.UseOctree = settings.UseOctree;
-  choice.Report = text;
-  if (rank == 0)
+  vtkPointData* pd = output->GetPointData();
+  pd->SetScalars(FloatArray("intensity", result.Intensity, 1, pixels));
+  pd->AddArray(FloatArray("deflection", result.Deflection, 2, pixels, "x", "y"));
+  // the optional images, where the engine made them
+  const struct
   {
-    vtkLog(INFO, << "SchlierenImage: " << choice.Report);
-    if (!choice.Met)
+    const char* Name;
+    const std::vector<float>& Values;
+    int Components;
+    const char *C0, *C1, *C2;
+  } optional[] = { { "rgb", result.RGB, 3, "r", "g", "b" },
+    { "phase", result.Phase, 1, nullptr, nullptr, nullptr },
+    { "bos_displacement", result.Displacement, 2, "x", "y", nullptr },
+    { "error_estimate", result.ErrorEstimate, 1, nullptr, nullptr, nullptr },
+    { "blocked", result.Blocked, 1, nullptr, nullptr, nullptr } };
+  for (const auto& o : optional)
+  {
+    if (!o.Values.empty())
     {
-      vtkWarningWithObjectMacro(self, << choice.Report);
+      pd->AddArray(FloatArray(o.Name, o.Values, o.Components, pixels, o.C0, o.C1, o.C2));
     }
   }
   return true;
 }
 
+/** The field data of the image: what was traced, how, and what the user was warned of. */
+void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
+{
+  auto addNumber = [fd](const char* name, double value) {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fd->AddArray(a);
+  };
+  auto addString = [fd](const char* name, const std::string& value) {
+    vtkNew<vtkStringArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fd->AddArray(a);
+  };
+  const schlieren::TraceResult& result = image.Result;
+  addNumber("cutoff_scale", result.CutoffScaleUsed);
+  // what the user was warned of (empty: nothing), for scripts that check an image is usable
+  addString("warnings", image.Warnings);
+  addString("backend", image.BackendUsed);
+  addString("device", image.DeviceName);
+  addNumber("photons", result.Photons);
+  addNumber("passes", image.Passes);
+  addNumber("passes_traced", image.PassesTraced);
+  addNumber("samples", result.Samples);
+  addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
+  addNumber("failed_rays", result.FailedRays);
+  addNumber("missed_rays", result.MissedRays);
+  // photons that reached the film (0: a blank image, which the warnings explain)
+  addNumber("landed_photons", image.LandedPhotons);
+  addNumber("underresolved_rays", result.UnderresolvedRays);
+  addNumber("side_rays", result.SideRays);
+  addNumber("blocked_rays", result.BlockedRays);
+  addNumber("max_drift", result.MaxDrift);
+  addNumber("max_error", result.MaxError);
+  addString("integrator", schlieren::IntegratorName(image.Traced.Method));
+  addString("reconstruction", schlieren::ReconstructionName(image.Traced.Recon));
+  addNumber("step_size", image.Traced.StepSize);
+  // Auto may have found that the octree does not pay (traced without it)
+  addNumber("octree", image.OctreeUsed ? 1.0 : 0.0);
+  if (image.OctreeUsed)
+  {
+    addNumber("octree_tolerance", image.OctreeTolerance);
+  }
+  if (image.AutoAsked)
+  {
+    addString("auto_report", image.Choice.Report);
+    addNumber("expected_error", image.Choice.ExpectedError);
+    addNumber("auto_tolerance", image.Choice.Tolerance);
+    addNumber("auto_met", image.Choice.Met ? 1.0 : 0.0);
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+struct vtkSchlierenImage::vtkInternals
+{
+  // the packed volume and this rank's film sums, kept between updates
+  schlieren::TraceSession Session;
+};
+
+//------------------------------------------------------------------------------
+vtkSchlierenImage::vtkSchlierenImage()
+  : Internals(new vtkInternals)
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+}
+
+//------------------------------------------------------------------------------
+vtkSchlierenImage::~vtkSchlierenImage()
+{
+  this->SetDeviceName(nullptr);
+  delete this->Internals;
+}
+
+//------------------------------------------------------------------------------
+int vtkSchlierenImage::FillInputPortInformation(int port, vtkInformation* info)
+{
+  // Any data set at the pipeline level, so that a wrong input gets this filter's clear error.
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -439,8 +449,7 @@ int vtkSchlierenImage::RequestUpdateExtent(
   // piece. Under MPI each rank asks for its piece of it (this output's piece of as many pieces:
   // the upstream splits the whole extent with its extent translator), and RequestData gathers
   // the pieces of all ranks.
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  const int ranks = schlieren::ControllerParallel().Size();
   inInfo->Set(SDDP::UPDATE_EXTENT(), whole, 6);
   if (ranks <= 1)
   {
@@ -466,556 +475,51 @@ int vtkSchlierenImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
+  vtkImageData* output = vtkImageData::GetData(outputVector->GetInformationObject(0));
   vtkImageData* input = vtkImageData::GetData(inInfo);
-
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const int ranks = controller ? std::max(controller->GetNumberOfProcesses(), 1) : 1;
-  const int rank = ranks > 1 ? controller->GetLocalProcessId() : 0;
-
-  // Under MPI every step below that can fail on some ranks only is followed by an agreement,
-  // so that no rank waits forever in a collective that another one has left.
-  auto agree = [&](const std::string& localError) -> bool {
-    int ok = localError.empty() ? 1 : 0;
-    if (ranks > 1)
-    {
-      int allOk = 0;
-      controller->AllReduce(&ok, &allOk, 1, vtkCommunicator::MIN_OP);
-      if (allOk == 0 && ok == 1)
-      {
-        vtkErrorMacro("Another MPI rank failed (see its error); no image.");
-      }
-      ok = allOk;
-    }
-    if (!localError.empty())
-    {
-      vtkErrorMacro(<< localError);
-    }
-    return ok == 1;
-  };
-
-  // 0. The packed volume of the last trace, if the input has not changed since (a new camera,
-  // other optics, more passes): steps 1-3 below are skipped, and the engine keeps its device copy
-  // of the volume (Volume::Stamp), so that an interactive view re-traces without re-uploading.
-  vtkInternals& cache = *this->Internals;
-  std::string volumeKey;
-  if (input && output)
-  {
-    int pieceExtent[6], wholeExtent[6];
-    input->GetExtent(pieceExtent);
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
-    std::ostringstream vk;
-    vk << input->GetMTime() << " " << this->UseOctree << " " << ranks << " "
-       << (this->Reconstruction != TRILINEAR);
-    for (int a = 0; a < 6; ++a)
-    {
-      vk << " " << pieceExtent[a] << " " << wholeExtent[a];
-    }
-    volumeKey = vk.str();
-  }
-  int reuseVolume =
-    (!volumeKey.empty() && volumeKey == cache.VolumeKey && this->Passes >= 1) ? 1 : 0;
-  if (ranks > 1)
-  {
-    int all = 0;
-    controller->AllReduce(&reuseVolume, &all, 1, vtkCommunicator::MIN_OP);
-    reuseVolume = all;
-  }
-  std::string problem;
-  schlieren::Volume volume;
-  schlieren::AlignedFloats packed;
-  std::vector<unsigned char> levels, smooth;
-  std::vector<unsigned char> solid;
-  // steps 1-3: the volume from the input; 0 when it failed (reported, agreed by all ranks)
-  auto buildVolume = [&]() -> int {
-    // 1. This rank's piece of n - 1 (and of the octree levels, where asked for and present).
-    int ext[6] = { 0, -1, 0, -1, 0, -1 };
-    std::vector<float> values;
-    std::vector<float> solidValues; // the piece's `solid` array (1 solid, 0 not), if any
-    std::vector<unsigned char> pieceLevels;
-    OctreeInfo octree;
-    if (!input || !output)
-    {
-      problem = NotAnImage(vtkDataObject::GetData(inInfo));
-    }
-    else if (!input->GetDirectionMatrix()->IsIdentity())
-    {
-      problem = "SchlierenImage traces axis-aligned images only; this one has a direction matrix. "
-                "Resample it onto an axis-aligned image first.";
-    }
-    else if (this->Passes < 1)
-    {
-      std::ostringstream msg;
-      msg << "Passes is " << this->Passes << "; it must be at least 1 (one photon per pixel per pass).";
-      problem = msg.str();
-    }
-    else if (input->GetNumberOfPoints() > 0)
-    {
-      vtkDataArray* array = input->GetPointData()->GetArray(IndexArrayName);
-      if (!array)
-      {
-        problem = std::string("SchlierenImage needs the point array 'n_minus_1' (n - 1); the input "
-                              "has the point arrays: ") +
-          PointArrayNames(input) + ". Apply RefractiveIndex first.";
-      }
-      else if (array->GetNumberOfComponents() != 1)
-      {
-        problem = "The point array 'n_minus_1' must have one component.";
-      }
-      else
-      {
-        input->GetExtent(ext);
-        const vtkIdType count = array->GetNumberOfTuples();
-        values.resize(static_cast<std::size_t>(count));
-        for (vtkIdType i = 0; i < count; ++i)
-        {
-          values[i] = static_cast<float>(array->GetComponent(i, 0));
-        }
-        if (this->UseOctree)
-        {
-          octree = ReadOctree(input, pieceLevels);
-        }
-        // solid bodies (RefractiveIndex, RefractiveScene): non-zero points stop the rays
-        vtkDataArray* solidArray = input->GetPointData()->GetArray(SolidArrayName);
-        if (solidArray && solidArray->GetNumberOfComponents() == 1 &&
-          solidArray->GetNumberOfTuples() == count)
-        {
-          solidValues.resize(static_cast<std::size_t>(count));
-          bool any = false;
-          for (vtkIdType i = 0; i < count; ++i)
-          {
-            solidValues[i] = solidArray->GetComponent(i, 0) != 0.0 ? 1.0f : 0.0f;
-            any = any || solidValues[i] != 0.0f;
-          }
-          if (!any)
-          {
-            solidValues.clear();
-          }
-        }
-      }
-    }
-    else if (ranks == 1)
-    {
-      problem = "SchlierenImage: the input image is empty.";
-    }
-    if (!agree(problem))
-    {
-      return 0;
-    }
-
-    // 2. The whole volume on every rank.
-    volume = WholeVolume(inInfo);
-    int whole[6];
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    const std::size_t total = volume.NumberOfPoints();
-    std::vector<float> field;
-    const bool wholePiece = ranks == 1 && std::equal(ext, ext + 6, whole);
-    // the solid points: every rank learns whether any piece has a body, and gathers them as the
-    // field below
-    int hasSolid = solidValues.empty() ? 0 : 1;
-    if (ranks > 1)
-    {
-      int anySolid = 0;
-      controller->AllReduce(&hasSolid, &anySolid, 1, vtkCommunicator::MAX_OP);
-      hasSolid = anySolid;
-      if (hasSolid && solidValues.empty())
-      {
-        solidValues.assign(values.size(), 0.0f);
-      }
-    }
-    // pass 0: n - 1 into `field`; pass 1 (with a body): the solid points into `solid`
-    for (int pass = 0; pass < (hasSolid ? 2 : 1); ++pass)
-    {
-      std::vector<float>& source = pass == 0 ? values : solidValues;
-      std::vector<float> gathered;
-      if (wholePiece)
-      {
-        gathered.swap(source);
-      }
-      else
-      {
-        gathered.assign(total, 0.0f);
-        std::vector<unsigned char> covered(total, 0);
-        if (ranks == 1)
-        {
-          Insert(whole, ext, source.data(), gathered, covered);
-        }
-        else
-        {
-          std::vector<int> extents(6 * static_cast<std::size_t>(ranks));
-          controller->AllGather(ext, extents.data(), 6);
-          std::vector<vtkIdType> counts(ranks), offsets(ranks);
-          vtkIdType sum = 0;
-          for (int r = 0; r < ranks; ++r)
-          {
-            counts[r] = ExtentPoints(&extents[6 * r]);
-            offsets[r] = sum;
-            sum += counts[r];
-          }
-          std::vector<float> all(static_cast<std::size_t>(std::max<vtkIdType>(sum, 1)));
-          controller->AllGatherV(source.data(), all.data(), static_cast<vtkIdType>(source.size()),
-            counts.data(), offsets.data());
-          for (int r = 0; r < ranks; ++r)
-          {
-            Insert(whole, &extents[6 * r], all.data() + offsets[r], gathered, covered);
-          }
-        }
-        // The same answer on every rank: no agreement needed.
-        if (std::find(covered.begin(), covered.end(), 0) != covered.end())
-        {
-          vtkErrorMacro("The input pieces do not cover the input's whole extent; the tracer needs "
-                        "the whole volume.");
-          return 0;
-        }
-      }
-      if (pass == 0)
-      {
-        field.swap(gathered);
-      }
-      else
-      {
-        solid.resize(total);
-        for (std::size_t i = 0; i < total; ++i)
-        {
-          solid[i] = gathered[i] != 0.0f ? 1 : 0;
-        }
-      }
-    }
-    std::vector<float>().swap(values);
-
-    // 2b. The octree levels of the whole volume. One process with the whole volume: the input's
-    // `octree_level` as it is. Otherwise (MPI pieces, whose levels stop at the piece borders): the
-    // levels of the gathered volume, recomputed at the tolerance the octree filter used.
-    if (ranks > 1)
-    {
-      // every rank the same: the octree if any piece has one, the smallest tolerance, the highest level
-      double local[3] = { octree.Present ? 1.0 : 0.0,
-        octree.Present && octree.HasTolerance ? -octree.Tolerance : -VTK_DOUBLE_MAX,
-        octree.Present ? double(octree.MaxLevel) : -1.0 };
-      double global[3];
-      controller->AllReduce(local, global, 3, vtkCommunicator::MAX_OP);
-      octree.Present = global[0] > 0;
-      octree.HasTolerance = global[1] > -VTK_DOUBLE_MAX;
-      octree.Tolerance = octree.HasTolerance ? -global[1] : 0.0;
-      octree.MaxLevel = static_cast<int>(global[2]);
-    }
-    std::string octreeNote;
-    if (this->UseOctree && octree.Present)
-    {
-      if (wholePiece && pieceLevels.size() == total)
-      {
-        levels.swap(pieceLevels);
-      }
-      else if (octree.HasTolerance && volume.Dimensions[0] >= 2 && volume.Dimensions[1] >= 2 &&
-        volume.Dimensions[2] >= 2)
-      {
-        levels.resize(total);
-        // ValidateIndex runs in PackField below; ComputeOctreeLevels itself only reads values
-        schlieren::ComputeOctreeLevels(
-          volume.Dimensions, field.data(), octree.Tolerance, levels.data(), octree.MaxLevel);
-      }
-      else
-      {
-        octreeNote = "The input has the point array 'octree_level' but not the field data "
-                     "'octree_tolerance' it was built for, and the levels of its pieces cannot be "
-                     "joined: tracing without the octree. Apply RefractionOctree right before "
-                     "SchlierenImage.";
-      }
-    }
-    if (!octreeNote.empty() && rank == 0)
-    {
-      vtkWarningMacro(<< octreeNote);
-    }
-    this->UpdateProgress(0.05);
-
-    // 3. n - 1 and its gradient, packed; Auto resolved (on rank 0, broadcast); then this rank's
-    // share of the photons.
-    try
-    {
-      std::ostringstream what;
-      what << "Tracing the " << volume.Dimensions[0] << " x " << volume.Dimensions[1] << " x "
-           << volume.Dimensions[2] << " volume";
-      schlieren::CheckHostMemory(double(total) * (schlieren::VolumeBytesPerPoint() - 4.0),
-        what.str(),
-        "Resample the data to fewer points (RefractiveIndex SamplingDimensions or "
-        "AutomaticDimension), or trace a subset (ExtractSubset).");
-      packed.resize(4 * total);
-      if (this->Reconstruction == TRILINEAR)
-      {
-        schlieren::PackField(volume.Dimensions, volume.Spacing, field.data(), packed.data());
-      }
-      else
-      {
-        // fourth-order gradients where the data is smooth, and the smoothness per cell
-        smooth.resize(total);
-        schlieren::PackFieldHighOrder(
-          volume.Dimensions, volume.Spacing, field.data(), packed.data(), smooth.data());
-      }
-      std::vector<float>().swap(field);
-      volume.Field = packed.data();
-      if (!levels.empty())
-      {
-        volume.Levels = levels.data();
-        volume.LevelTolerance = octree.HasTolerance ? octree.Tolerance : 0.0;
-      }
-      problem.clear();
-    }
-    catch (const schlieren::Error& e)
-    {
-      problem = e.what();
-    }
-    catch (const std::bad_alloc&)
-    {
-      problem = "Out of memory while packing the volume (std::bad_alloc): resample it to fewer "
-                "points.";
-    }
-    if (!agree(problem))
-    {
-      return 0;
-    }
-    return 1;
-  };
-  if (reuseVolume)
-  {
-    volume = cache.Volume;
-    this->UpdateProgress(0.05);
-  }
-  else
-  {
-    cache.VolumeKey.clear();
-    cache.Packed.clear();
-    cache.Levels.clear();
-    cache.Solid.clear();
-    cache.Smooth.clear();
-    if (!buildVolume())
-    {
-      return 0;
-    }
-    cache.Packed.swap(packed);
-    cache.Levels.swap(levels);
-    cache.Solid.swap(solid);
-    volume.Solid = cache.Solid.empty() ? nullptr : cache.Solid.data();
-    cache.Smooth.swap(smooth);
-    volume.Field = cache.Packed.data();
-    volume.Levels = cache.Levels.empty() ? nullptr : cache.Levels.data();
-    volume.Smooth = cache.Smooth.empty() ? nullptr : cache.Smooth.data();
-    volume.Stamp = schlieren::NewVolumeStamp();
-    cache.Volume = volume;
-    cache.VolumeKey = volumeKey;
-  }
-  schlieren::TraceSettings settings = SettingsOf(this);
-  schlieren::AutoChoice choice;
-  schlieren::FilmSums sums;
-  std::string backendUsed, deviceName, warnings;
-  if (!ResolveIntegrator(this, volume, settings, choice, controller, ranks, rank))
-  {
-    return 0;
-  }
-  settings.RankIndex = rank;
-  settings.RankCount = ranks;
-  // Progressive refinement: if only Passes grew since the last trace of the same input with the
-  // same photon settings, continue the cached sums with the new passes (the jitter sequence goes on
-  // where it stopped, so the image equals a trace of all passes at once).
-  std::ostringstream keyStream;
-  keyStream.precision(17);
-  keyStream << settings.PhotonKey() << " | " << input->GetMTime() << ' ' << volume.Dimensions[0]
-            << ' ' << volume.Dimensions[1] << ' ' << volume.Dimensions[2] << ' '
-            << volume.Origin[0] << ' ' << volume.Origin[1] << ' ' << volume.Origin[2] << ' '
-            << volume.Spacing[0] << ' ' << volume.Spacing[1] << ' ' << volume.Spacing[2] << ' '
-            << (volume.Levels ? 1 : 0) << ' ' << volume.LevelTolerance << ' '
-            << (volume.Solid ? 1 : 0);
-  const std::string key = keyStream.str();
-  int reuse = (key == cache.Key && cache.Sums.Passes > 0 && this->Passes >= cache.Sums.Passes) ? 1 : 0;
-  if (ranks > 1)
-  {
-    int all = 0;
-    controller->AllReduce(&reuse, &all, 1, vtkCommunicator::MIN_OP);
-    reuse = all;
-  }
-  int passesTraced = 0;
+  schlieren::ControllerParallel parallel;
+  schlieren::SessionImage image;
+  std::string error;
   try
   {
-    const schlieren::FilmGeometry film = schlieren::MakeFilm(volume, settings);
-    if (!reuse)
-    {
-      cache.Sums.Resize(0, 0); // the old film goes before the new one is checked and made
-      schlieren::CheckFilmMemory(film.Size);
-      cache.Sums.Resize(film.Size[0], film.Size[1]);
-    }
-    cache.Key.clear(); // valid again only once the passes below are all in
-    passesTraced = this->Passes - cache.Sums.Passes;
-    if (passesTraced > 0)
-    {
-      settings.Passes = passesTraced;
-      schlieren::Accumulate(volume, settings, cache.Sums, &backendUsed, &deviceName, &warnings,
-        [this](double progress) {
-          this->UpdateProgress(0.05 + 0.9 * progress);
-          return !this->GetAbortExecute();
-        });
-    }
-    settings.Passes = this->Passes;
-    cache.Key = key;
-    sums = cache.Sums;
-    problem.clear();
+    this->Internals->Session.Update(parallel, PieceOf(input, output, inInfo, this->UseOctree),
+      SettingsOf(this), image, [this](double progress) {
+        this->UpdateProgress(progress);
+        return !this->GetAbortExecute();
+      });
   }
   catch (const schlieren::Error& e)
   {
-    cache.Sums.Resize(0, 0);
-    problem = e.what();
+    error = e.what();
   }
-  catch (const std::bad_alloc&)
+  for (const schlieren::SessionImage::Note& note : image.Notes)
   {
-    // here, not in ProcessRequest's guard: under MPI the other ranks wait in agree() below
-    cache.Sums.Resize(0, 0);
-    problem = "Out of memory while tracing (std::bad_alloc): lower Resolution or resample the "
-              "volume to fewer points.";
-  }
-  if (!agree(problem))
-  {
-    return 0;
-  }
-  if (!warnings.empty())
-  {
-    if (ranks > 1)
+    if (note.Warning)
     {
-      vtkWarningMacro("rank " << rank << ": " << warnings);
+      vtkWarningMacro(<< note.Text);
     }
     else
     {
-      vtkWarningMacro(<< warnings);
+      vtkLog(INFO, << "SchlierenImage: " << note.Text);
     }
   }
-
-  // 4. The film sums of all ranks, on rank 0.
-  if (ranks > 1)
+  if (!error.empty())
   {
-    // every additive part of the sums (all channels and totals) in one reduce, the maxima in
-    // another: the engine lists them, so a new channel needs no change here
-    std::vector<double> additive, maxima;
-    sums.ToArrays(additive, maxima);
-    std::vector<double> summed(additive.size()), maxed(maxima.size());
-    controller->Reduce(additive.data(), summed.data(), static_cast<vtkIdType>(additive.size()),
-      vtkCommunicator::SUM_OP, 0);
-    controller->Reduce(maxima.data(), maxed.data(), static_cast<vtkIdType>(maxima.size()),
-      vtkCommunicator::MAX_OP, 0);
-    if (rank != 0)
-    {
-      output->Initialize(); // rank 0 holds the image
-      return 1;
-    }
-    sums.FromArrays(summed, maxed);
-  }
-
-  // 5. The image (rank 0).
-  schlieren::TraceResult result;
-  try
-  {
-    result = schlieren::Finalize(volume, settings, sums);
-  }
-  catch (const schlieren::Error& e)
-  {
-    vtkErrorMacro(<< e.what());
+    vtkErrorMacro(<< error);
     return 0;
   }
-  if (!result.Warnings.empty() && result.Warnings != warnings)
-  {
-    vtkWarningMacro(<< result.Warnings);
-  }
-
-  const int nx = result.Film.Size[0], ny = result.Film.Size[1];
-  double origin[2];
-  result.Film.GetImageOrigin(origin);
   output->Initialize();
-  output->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
-  output->SetSpacing(result.Film.PixelSize, result.Film.PixelSize, 1.0);
-  output->SetOrigin(origin[0], origin[1], 0.0);
-
-  const vtkIdType pixels = static_cast<vtkIdType>(nx) * ny;
-  if (result.Intensity.size() != static_cast<std::size_t>(pixels) ||
-    result.Deflection.size() != 2 * static_cast<std::size_t>(pixels))
+  if (!image.HasImage)
+  {
+    return 1; // rank 0 holds the image
+  }
+  if (!WriteImage(output, image.Result))
   {
     vtkErrorMacro("The engine returned an image of the wrong size.");
     output->Initialize();
     return 0;
   }
-  vtkPointData* pd = output->GetPointData();
-  pd->SetScalars(FloatArray("intensity", result.Intensity, 1, pixels));
-  pd->AddArray(FloatArray("deflection", result.Deflection, 2, pixels, "x", "y"));
-  if (!result.RGB.empty())
-  {
-    pd->AddArray(FloatArray("rgb", result.RGB, 3, pixels, "r", "g", "b"));
-  }
-  if (!result.Phase.empty())
-  {
-    pd->AddArray(FloatArray("phase", result.Phase, 1, pixels));
-  }
-  if (!result.Displacement.empty())
-  {
-    pd->AddArray(FloatArray("bos_displacement", result.Displacement, 2, pixels, "x", "y"));
-  }
-  if (!result.ErrorEstimate.empty())
-  {
-    pd->AddArray(FloatArray("error_estimate", result.ErrorEstimate, 1, pixels));
-  }
-  if (!result.Blocked.empty())
-  {
-    pd->AddArray(FloatArray("blocked", result.Blocked, 1, pixels));
-  }
-
-  vtkFieldData* fd = output->GetFieldData();
-  auto addNumber = [fd](const char* name, double value) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->InsertNextValue(value);
-    fd->AddArray(a);
-  };
-  auto addString = [fd](const char* name, const std::string& value) {
-    vtkNew<vtkStringArray> a;
-    a->SetName(name);
-    a->InsertNextValue(value);
-    fd->AddArray(a);
-  };
-  addNumber("cutoff_scale", result.CutoffScaleUsed);
-  // what the user was warned of (empty: nothing), for scripts that check an image is usable
-  addString("warnings", warnings + (result.Warnings != warnings ? result.Warnings : std::string()));
-  addString("backend", result.BackendUsed.empty() ? backendUsed : result.BackendUsed);
-  addString("device", result.DeviceName.empty() ? deviceName : result.DeviceName);
-  addNumber("photons", result.Photons);
-  addNumber("passes", sums.Passes);
-  addNumber("passes_traced", passesTraced);
-  addNumber("samples", result.Samples);
-  addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
-  addNumber("failed_rays", result.FailedRays);
-  addNumber("missed_rays", result.MissedRays);
-  double landed = 0; // photons that reached the film (0: a blank image, which the warnings explain)
-  for (double c : sums.Count)
-  {
-    landed += c;
-  }
-  addNumber("landed_photons", landed);
-  addNumber("underresolved_rays", result.UnderresolvedRays);
-  addNumber("side_rays", result.SideRays);
-  addNumber("blocked_rays", result.BlockedRays);
-  addNumber("max_drift", result.MaxDrift);
-  addNumber("max_error", result.MaxError);
-  addString("integrator", schlieren::IntegratorName(settings.Method));
-  addString("reconstruction", schlieren::ReconstructionName(settings.Recon));
-  addNumber("step_size", settings.StepSize);
-  // Auto may have found that the octree does not pay (settings.UseOctree off)
-  const bool octreeUsed = volume.Levels && settings.UseOctree;
-  addNumber("octree", octreeUsed ? 1.0 : 0.0);
-  if (octreeUsed)
-  {
-    addNumber("octree_tolerance", volume.LevelTolerance);
-  }
-  if (this->Integrator == AUTO_INTEGRATOR || this->Reconstruction == AUTO_RECONSTRUCTION)
-  {
-    addString("auto_report", choice.Report);
-    addNumber("expected_error", choice.ExpectedError);
-    addNumber("auto_tolerance", choice.Tolerance);
-    addNumber("auto_met", choice.Met ? 1.0 : 0.0);
-  }
+  WriteFieldData(output->GetFieldData(), image);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -1062,6 +566,9 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Backend: "
      << (this->Backend == OPENCL ? "OpenCL" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";
+  os << indent << "DeviceName: "
+     << (this->DeviceName && *this->DeviceName ? this->DeviceName : "(default)") << "\n";
+  os << indent << "Threads: " << this->Threads << (this->Threads > 0 ? "" : " (default)") << "\n";
 }
 
 //------------------------------------------------------------------------------

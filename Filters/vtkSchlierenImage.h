@@ -77,15 +77,23 @@
  * - Jitter (on: photons start at random points of their pixels; off: at the centres) and
  *   Seed (1) for the jitter; Backend (AUTO: OpenCL if a device works, else the CPU with a warning;
  *   OPENCL: OpenCL or an error; CPU).
+ * - DeviceName (empty): a substring of the OpenCL device's name; empty: SCHLIEREN_OPENCL_DEVICE,
+ *   else the first GPU, else the first device. Threads (0): threads of the CPU backend; 0:
+ *   SCHLIEREN_CPU_THREADS, else all cores.
  *
  * The tracer needs the whole volume. On one process it asks for the whole input extent. Under MPI
  * (the global controller has N > 1 processes) each rank asks for its own piece; the pieces are
  * gathered on every rank, each rank traces the pixels p with p % N == rank, the film sums are
- * reduced to rank 0, and rank 0 outputs the whole image (the others an empty one). The image is
- * that of a single process. Integrator AUTO_INTEGRATOR is resolved once, on rank 0, and its
- * choice broadcast, so that every rank traces with the same setting. The octree levels of the pieces stop at the
- * pieces' borders: under MPI the levels of the gathered volume are recomputed from the field
- * data `octree_tolerance` and `octree_max_level` (see vtkRefractionOctree).
+ * added across the ranks, and rank 0 outputs the whole image (the others an empty one). The image
+ * is that of a single process. Integrator AUTO_INTEGRATOR is resolved once, on rank 0, and its
+ * choice broadcast, so that every rank traces with the same setting. The octree levels of the
+ * pieces stop at the pieces' borders: under MPI the levels of the gathered volume are recomputed
+ * from the field data `octree_tolerance` and `octree_max_level` (see vtkRefractionOctree).
+ *
+ * The filter only adapts (reads the properties and the piece's arrays, writes the image and its
+ * field data): the engine's schlieren::TraceSession does the work and keeps the packed volume and
+ * the film sums between updates, and its collective steps go through
+ * schlieren::ControllerParallel.
  *
  * @sa vtkRefractiveIndex vtkRefractiveScene vtkRefractionOctree
  */
@@ -397,6 +405,25 @@ public:
   vtkGetMacro(Backend, int);
   ///@}
 
+  ///@{
+  /**
+   * The OpenCL device: a substring of its name. Default empty: the environment variable
+   * SCHLIEREN_OPENCL_DEVICE, else the first GPU, else the first device. A name no device has is
+   * an error with Backend OPENCL, and the CPU with a warning with AUTO.
+   */
+  vtkSetStringMacro(DeviceName);
+  vtkGetStringMacro(DeviceName);
+  ///@}
+
+  ///@{
+  /**
+   * Threads of the CPU backend. Default 0: the environment variable SCHLIEREN_CPU_THREADS, else
+   * all cores.
+   */
+  vtkSetClampMacro(Threads, int, 0, 4096);
+  vtkGetMacro(Threads, int);
+  ///@}
+
 protected:
   vtkSchlierenImage();
   ~vtkSchlierenImage() override;
@@ -442,10 +469,12 @@ protected:
   bool Jitter = true;
   int Seed = 1;
   int Backend = AUTO;
+  char* DeviceName = nullptr;
+  int Threads = 0;
 
 private:
-  // progressive refinement: this rank's film sums of the passes traced so far and what they were
-  // traced from; raising Passes traces only the new passes
+  // what is kept between updates: the packed volume, and this rank's film sums of the passes
+  // traced so far (raising Passes traces only the new passes)
   struct vtkInternals;
   vtkInternals* Internals;
 

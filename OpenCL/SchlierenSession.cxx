@@ -1,0 +1,500 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SchlierenSession.h"
+
+#include <algorithm>
+#include <cstring>
+#include <new>
+#include <sstream>
+
+namespace schlieren
+{
+
+namespace
+{
+
+bool IsEmpty(const int ext[6])
+{
+  return ext[1] < ext[0] || ext[3] < ext[2] || ext[5] < ext[4];
+}
+
+std::size_t ExtentPoints(const int ext[6])
+{
+  return IsEmpty(ext) ? 0
+                      : static_cast<std::size_t>(ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1) *
+      (ext[5] - ext[4] + 1);
+}
+
+/** The grid (without its field) of the whole extent. */
+Volume WholeGrid(const VolumePiece& piece)
+{
+  Volume volume;
+  for (int a = 0; a < 3; ++a)
+  {
+    volume.Dimensions[a] = std::max(piece.WholeExtent[2 * a + 1] - piece.WholeExtent[2 * a] + 1, 0);
+    volume.Origin[a] = piece.Origin[a] + piece.WholeExtent[2 * a] * piece.Spacing[a];
+    volume.Spacing[a] = piece.Spacing[a];
+  }
+  return volume;
+}
+
+/** Copies a piece (its extent and x-fastest values) into the whole grid; marks what it covers. */
+template <typename T>
+void Insert(const int whole[6], const int ext[6], const T* values, T* grid, unsigned char* covered)
+{
+  if (IsEmpty(ext))
+    return;
+  const std::size_t nx = whole[1] - whole[0] + 1, ny = whole[3] - whole[2] + 1;
+  const int len = ext[1] - ext[0] + 1;
+  std::size_t src = 0;
+  for (int k = ext[4]; k <= ext[5]; ++k)
+    for (int j = ext[2]; j <= ext[3]; ++j)
+    {
+      const std::size_t row = ((k - whole[4]) * ny + (j - whole[2])) * nx + (ext[0] - whole[0]);
+      std::copy(values + src, values + src + len, grid + row);
+      if (covered)
+        std::fill(covered + row, covered + row + len, 1);
+      src += len;
+    }
+}
+
+bool InsideWhole(const int whole[6], const int ext[6])
+{
+  for (int a = 0; a < 3; ++a)
+    if (ext[2 * a] < whole[2 * a] || ext[2 * a + 1] > whole[2 * a + 1])
+      return false;
+  return true;
+}
+
+/** Throws on every rank where any rank failed (see the file comment for the message). */
+void Agree(Parallel& parallel, const std::string& mine)
+{
+  const std::string failure = parallel.Failure(mine);
+  if (!failure.empty())
+    throw Error(mine.empty() ? failure : mine);
+}
+
+/** The numbers of Auto's choice, in the order rank 0 broadcasts them. */
+std::vector<double> ChoiceNumbers(const TraceSettings& chosen, const AutoChoice& c)
+{
+  return { double(static_cast<int>(chosen.Method)), chosen.StepSize, chosen.AutoMeasuredError,
+    c.ExpectedError, c.ExpectedLandingError, c.SamplesPerRay, c.Tolerance, c.Met ? 1.0 : 0.0,
+    chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), c.TrilinearError };
+}
+
+/**
+ * Resolves Integrator and Reconstruction Auto on rank 0 (its pilot traces the rays every rank
+ * would; resolving once and broadcasting makes every rank trace with the same setting even where
+ * backends round differently) and adopts the choice on every rank. Other settings come back as
+ * they are. Collective.
+ */
+AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSettings& settings)
+{
+  AutoChoice choice;
+  if (settings.Method != Integrator::Auto && settings.Recon != Reconstruction::Auto)
+  {
+    choice.Method = settings.Method;
+    choice.StepSize = settings.StepSize;
+    choice.Recon = settings.Recon;
+    return choice;
+  }
+  std::string problem;
+  std::vector<double> numbers(11, 0.0);
+  if (parallel.Rank() == 0)
+  {
+    try
+    {
+      TraceSettings pilot = settings;
+      pilot.RankIndex = 0;
+      pilot.RankCount = 1;
+      const TraceSettings chosen = ResolveAuto(volume, pilot, &choice);
+      numbers = ChoiceNumbers(chosen, choice);
+    }
+    catch (const Error& e)
+    {
+      problem = e.what();
+    }
+  }
+  Agree(parallel, problem);
+  std::vector<char> bytes(numbers.size() * sizeof(double));
+  std::memcpy(bytes.data(), numbers.data(), bytes.size());
+  parallel.Broadcast(bytes, 0);
+  std::memcpy(numbers.data(), bytes.data(), std::min(bytes.size(), numbers.size() * sizeof(double)));
+  choice.Report = parallel.BroadcastString(choice.Report, 0);
+  settings.Method = static_cast<Integrator>(static_cast<int>(numbers[0]));
+  settings.StepSize = numbers[1];
+  settings.AutoMeasuredError = numbers[2];
+  settings.UseOctree = numbers[8] == 1.0;
+  settings.Recon = static_cast<Reconstruction>(static_cast<int>(numbers[9]));
+  choice.Method = settings.Method;
+  choice.StepSize = settings.StepSize;
+  choice.ExpectedError = numbers[3];
+  choice.ExpectedLandingError = numbers[4];
+  choice.SamplesPerRay = numbers[5];
+  choice.Tolerance = numbers[6];
+  choice.Met = numbers[7] == 1.0;
+  choice.UseOctree = settings.UseOctree;
+  choice.Recon = settings.Recon;
+  choice.TrilinearError = numbers[10];
+  return choice;
+}
+
+/** This rank's piece as one message: extent, whether it has a body, n - 1, the solid points. */
+std::vector<char> PieceMessage(const int ext[6], const PieceValues& values, bool hasSolid)
+{
+  const std::size_t n = values.NMinus1.size();
+  std::vector<char> m(6 * sizeof(int) + 1 + n * sizeof(float) + (hasSolid ? n : 0));
+  char* p = m.data();
+  std::memcpy(p, ext, 6 * sizeof(int));
+  p += 6 * sizeof(int);
+  *p++ = hasSolid ? 1 : 0;
+  if (n)
+    std::memcpy(p, values.NMinus1.data(), n * sizeof(float));
+  p += n * sizeof(float);
+  if (hasSolid)
+    std::memcpy(p, values.Solid.data(), n);
+  return m;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+void AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& values,
+  std::vector<float>& field, std::vector<unsigned char>& solid)
+{
+  const int* whole = piece.WholeExtent;
+  const std::size_t total = ExtentPoints(whole);
+  const std::size_t count = ExtentPoints(piece.Extent);
+  // the solid points, as 0 or 1; a piece without a non-zero one has no body
+  bool hasSolid = values.Solid.size() == count && count > 0 &&
+    std::any_of(values.Solid.begin(), values.Solid.end(), [](unsigned char s) { return s != 0; });
+  if (hasSolid)
+    for (unsigned char& s : values.Solid)
+      s = s != 0 ? 1 : 0;
+  field.clear();
+  solid.clear();
+  if (parallel.Size() == 1 && std::equal(piece.Extent, piece.Extent + 6, whole))
+  {
+    // the whole volume in one piece: taken as it is
+    field.swap(values.NMinus1);
+    if (hasSolid)
+      solid.swap(values.Solid);
+    return;
+  }
+  std::vector<std::vector<char>> all = parallel.AllGather(PieceMessage(piece.Extent, values, hasSolid));
+  std::vector<float>().swap(values.NMinus1);
+  field.assign(total, 0.0f);
+  std::vector<unsigned char> covered(total, 0);
+  bool anySolid = false;
+  bool fits = true;
+  for (const std::vector<char>& m : all)
+  {
+    int ext[6];
+    std::memcpy(ext, m.data(), 6 * sizeof(int));
+    const std::size_t n = ExtentPoints(ext);
+    const bool withSolid = m[6 * sizeof(int)] != 0;
+    anySolid = anySolid || withSolid;
+    fits = fits && (n == 0 || InsideWhole(whole, ext)) &&
+      m.size() == 6 * sizeof(int) + 1 + n * sizeof(float) + (withSolid ? n : 0);
+  }
+  if (fits)
+  {
+    if (anySolid)
+      solid.assign(total, 0);
+    for (const std::vector<char>& m : all)
+    {
+      int ext[6];
+      std::memcpy(ext, m.data(), 6 * sizeof(int));
+      const std::size_t n = ExtentPoints(ext);
+      const char* p = m.data() + 6 * sizeof(int) + 1;
+      std::vector<float> v(n);
+      if (n)
+        std::memcpy(v.data(), p, n * sizeof(float));
+      Insert(whole, ext, v.data(), field.data(), covered.data());
+      if (m[6 * sizeof(int)] != 0)
+        Insert(whole, ext, reinterpret_cast<const unsigned char*>(p + n * sizeof(float)),
+          solid.data(), nullptr);
+    }
+  }
+  // the same answer on every rank: no agreement needed
+  if (!fits || std::find(covered.begin(), covered.end(), 0) != covered.end())
+  {
+    field.clear();
+    solid.clear();
+    throw Error("The input pieces do not cover the input's whole extent; the tracer needs the "
+                "whole volume.");
+  }
+}
+
+//------------------------------------------------------------------------------
+TraceSession::~TraceSession()
+{
+  // the engine's device copy may be this session's volume: free it with the session
+  if (this->Stamped)
+    ReleaseKeptVolume();
+}
+
+void TraceSession::Clear()
+{
+  this->ClearVolume();
+  this->SumsKey.clear();
+  this->Sums.Resize(0, 0);
+}
+
+void TraceSession::ClearVolume()
+{
+  this->VolumeKey.clear();
+  this->Packed.clear();
+  this->Levels.clear();
+  this->Solid.clear();
+  this->Smooth.clear();
+  this->Kept = Volume();
+}
+
+//------------------------------------------------------------------------------
+void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
+  const TraceSettings& settings, SessionImage& out, const ProgressFunction& progress)
+{
+  const int ranks = parallel.Size(), rank = parallel.Rank();
+  auto report = [&](double fraction) {
+    if (progress)
+      progress(fraction);
+  };
+  out = SessionImage();
+
+  // 0. The packed volume of the last update, where the input and the pieces have not changed
+  // since (a new camera, other optics, more passes): steps 1-3 are skipped.
+  std::ostringstream vk;
+  vk.precision(17);
+  vk << piece.Version << ' ' << settings.UseOctree << ' ' << ranks << ' '
+     << (settings.Recon != Reconstruction::Trilinear);
+  for (int a = 0; a < 6; ++a)
+    vk << ' ' << piece.Extent[a] << ' ' << piece.WholeExtent[a];
+  for (int a = 0; a < 3; ++a)
+    vk << ' ' << piece.Origin[a] << ' ' << piece.Spacing[a];
+  const std::string volumeKey = vk.str();
+  const bool reuseVolume = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
+    this->Kept.Field && volumeKey == this->VolumeKey);
+  if (!reuseVolume)
+  {
+    this->ClearVolume();
+    // 1. This rank's piece.
+    std::string problem = piece.Problem;
+    PieceValues values;
+    const std::size_t count = ExtentPoints(piece.Extent);
+    if (problem.empty() && settings.Passes < 1)
+      problem = "Passes is " + std::to_string(settings.Passes) +
+        "; it must be at least 1 (one photon per pixel per pass).";
+    else if (problem.empty() && count > 0)
+    {
+      try
+      {
+        problem = piece.Load ? piece.Load(values) : std::string("no values for the input piece");
+        if (problem.empty() && values.NMinus1.size() != count)
+          problem = "The input piece has " + std::to_string(values.NMinus1.size()) +
+            " values of n - 1 for its " + std::to_string(count) + " points.";
+      }
+      catch (const std::bad_alloc&)
+      {
+        problem = "Out of memory while reading the input (std::bad_alloc): resample it to fewer "
+                  "points.";
+      }
+    }
+    else if (problem.empty() && ranks == 1)
+      problem = "SchlierenImage: the input image is empty.";
+    Agree(parallel, problem);
+
+    // 2. The whole volume on every rank.
+    Volume volume = WholeGrid(piece);
+    const std::size_t total = volume.NumberOfPoints();
+    const bool wholePiece = ranks == 1 && std::equal(piece.Extent, piece.Extent + 6, piece.WholeExtent);
+    // what this piece says of its octree (vtkRefractionOctree: the levels and their tolerance)
+    bool present = settings.UseOctree && count > 0 && values.Levels.size() == count;
+    bool hasTolerance = present && values.HasLevelTolerance && values.LevelTolerance >= 0;
+    double tolerance = hasTolerance ? values.LevelTolerance : 0.0;
+    int maxLevel = present ? values.MaxLevel : 7;
+    std::vector<float> field;
+    AssembleVolume(parallel, piece, values, field, this->Solid);
+
+    // 2b. The octree levels of the whole volume. One rank with the whole volume: the piece's
+    // levels as they are. Otherwise (pieces, whose levels stop at the piece borders): the levels
+    // of the assembled volume, recomputed at the tolerance the octree was built for.
+    if (ranks > 1)
+    {
+      // every rank the same: the octree if any piece has one, the smallest tolerance, the highest
+      // level
+      double octree[3] = { present ? 1.0 : 0.0, hasTolerance ? -tolerance : -1e300,
+        present ? double(maxLevel) : -1.0 };
+      parallel.Max(octree, 3);
+      present = octree[0] > 0;
+      hasTolerance = octree[1] > -1e300;
+      tolerance = hasTolerance ? -octree[1] : 0.0;
+      maxLevel = static_cast<int>(octree[2]);
+    }
+    if (settings.UseOctree && present)
+    {
+      if (wholePiece && values.Levels.size() == total)
+        this->Levels.swap(values.Levels);
+      else if (hasTolerance && volume.Dimensions[0] >= 2 && volume.Dimensions[1] >= 2 &&
+        volume.Dimensions[2] >= 2)
+      {
+        this->Levels.resize(total);
+        // ValidateIndex runs in PackField below; ComputeOctreeLevels itself only reads values
+        ComputeOctreeLevels(
+          volume.Dimensions, field.data(), tolerance, this->Levels.data(), maxLevel);
+      }
+      else if (rank == 0)
+        out.Notes.push_back({ true,
+          "The input has the point array 'octree_level' but not the field data "
+          "'octree_tolerance' it was built for, and the levels of its pieces cannot be joined: "
+          "tracing without the octree. Apply RefractionOctree right before SchlierenImage." });
+    }
+    report(0.05);
+
+    // 3. n - 1 and its gradient, packed.
+    problem.clear();
+    try
+    {
+      std::ostringstream what;
+      what << "Tracing the " << volume.Dimensions[0] << " x " << volume.Dimensions[1] << " x "
+           << volume.Dimensions[2] << " volume";
+      CheckHostMemory(double(total) * (VolumeBytesPerPoint() - 4.0), what.str(),
+        "Resample the data to fewer points (RefractiveIndex SamplingDimensions or "
+        "AutomaticDimension), or trace a subset (ExtractSubset).");
+      this->Packed.resize(4 * total);
+      if (settings.Recon == Reconstruction::Trilinear)
+        PackField(volume.Dimensions, volume.Spacing, field.data(), this->Packed.data());
+      else
+      {
+        // fourth-order gradients where the data is smooth, and the smoothness per cell
+        this->Smooth.resize(total);
+        PackFieldHighOrder(volume.Dimensions, volume.Spacing, field.data(), this->Packed.data(),
+          this->Smooth.data());
+      }
+    }
+    catch (const Error& e)
+    {
+      problem = e.what();
+    }
+    catch (const std::bad_alloc&)
+    {
+      problem = "Out of memory while packing the volume (std::bad_alloc): resample it to fewer "
+                "points.";
+    }
+    std::vector<float>().swap(field);
+    if (!problem.empty())
+      this->ClearVolume();
+    Agree(parallel, problem);
+    volume.Field = this->Packed.data();
+    if (!this->Levels.empty())
+    {
+      volume.Levels = this->Levels.data();
+      volume.LevelTolerance = hasTolerance ? tolerance : 0.0;
+    }
+    volume.Solid = this->Solid.empty() ? nullptr : this->Solid.data();
+    volume.Smooth = this->Smooth.empty() ? nullptr : this->Smooth.data();
+    volume.Stamp = NewVolumeStamp();
+    this->Stamped = true;
+    this->Kept = volume;
+    this->VolumeKey = volumeKey;
+  }
+  else
+    report(0.05);
+  const Volume& volume = this->Kept;
+
+  // 4. Auto resolved on rank 0, then this rank's share of the photons. Progressive refinement:
+  // where only Passes grew since the last trace of the same volume with the same photons, the
+  // kept sums go on with the new passes (the jitter sequence goes on where it stopped, so the
+  // image equals a trace of all passes at once).
+  TraceSettings traced = settings;
+  const AutoChoice choice = ResolveOnRankZero(parallel, volume, traced);
+  if (rank == 0 && (settings.Method == Integrator::Auto || settings.Recon == Reconstruction::Auto))
+  {
+    out.Notes.push_back({ false, choice.Report });
+    if (!choice.Met)
+      out.Notes.push_back({ true, choice.Report });
+  }
+  traced.RankIndex = rank;
+  traced.RankCount = ranks;
+  std::ostringstream keyStream;
+  keyStream.precision(17);
+  keyStream << traced.PhotonKey() << " | " << piece.Version << ' ' << volume.Dimensions[0] << ' '
+            << volume.Dimensions[1] << ' ' << volume.Dimensions[2] << ' ' << volume.Origin[0]
+            << ' ' << volume.Origin[1] << ' ' << volume.Origin[2] << ' ' << volume.Spacing[0]
+            << ' ' << volume.Spacing[1] << ' ' << volume.Spacing[2] << ' '
+            << (volume.Levels ? 1 : 0) << ' ' << volume.LevelTolerance << ' '
+            << (volume.Solid ? 1 : 0);
+  const std::string key = keyStream.str();
+  const bool reuseSums = parallel.AllOk(
+    key == this->SumsKey && this->Sums.Passes > 0 && settings.Passes >= this->Sums.Passes);
+  FilmSums sums;
+  std::string problem, warnings;
+  try
+  {
+    const FilmGeometry film = MakeFilm(volume, traced);
+    if (!reuseSums)
+    {
+      this->Sums.Resize(0, 0); // the old film goes before the new one is checked and made
+      CheckFilmMemory(film.Size);
+      this->Sums.Resize(film.Size[0], film.Size[1]);
+    }
+    this->SumsKey.clear(); // valid again only once the passes below are all in
+    out.PassesTraced = settings.Passes - this->Sums.Passes;
+    if (out.PassesTraced > 0)
+    {
+      traced.Passes = out.PassesTraced;
+      Accumulate(volume, traced, this->Sums, &out.BackendUsed, &out.DeviceName, &warnings,
+        [&progress](double p) { return progress ? progress(0.05 + 0.9 * p) : true; });
+    }
+    traced.Passes = settings.Passes;
+    this->SumsKey = key;
+    sums = this->Sums;
+  }
+  catch (const Error& e)
+  {
+    this->Sums.Resize(0, 0);
+    problem = e.what();
+  }
+  catch (const std::bad_alloc&)
+  {
+    this->Sums.Resize(0, 0);
+    problem = "Out of memory while tracing (std::bad_alloc): lower Resolution or resample the "
+              "volume to fewer points.";
+  }
+  Agree(parallel, problem);
+  if (!warnings.empty())
+    out.Notes.push_back({ true, ranks > 1 ? "rank " + std::to_string(rank) + ": " + warnings : warnings });
+
+  // 5. The film sums of all ranks: every additive part in one sum, the maxima in one max (the
+  // engine lists them, so a new channel needs no change here).
+  if (ranks > 1)
+  {
+    std::vector<double> additive, maxima;
+    sums.ToArrays(additive, maxima);
+    parallel.Sum(additive.data(), additive.size());
+    parallel.Max(maxima.data(), maxima.size());
+    if (rank != 0)
+      return; // rank 0 holds the image
+    sums.FromArrays(additive, maxima);
+  }
+
+  // 6. The image (rank 0; nothing collective from here on).
+  out.Result = Finalize(volume, traced, sums);
+  if (!out.Result.Warnings.empty() && out.Result.Warnings != warnings)
+    out.Notes.push_back({ true, out.Result.Warnings });
+  out.HasImage = true;
+  out.Traced = traced;
+  out.Choice = choice;
+  out.AutoAsked = settings.Method == Integrator::Auto || settings.Recon == Reconstruction::Auto;
+  out.Warnings = warnings + (out.Result.Warnings != warnings ? out.Result.Warnings : std::string());
+  if (!out.Result.BackendUsed.empty())
+    out.BackendUsed = out.Result.BackendUsed;
+  if (!out.Result.DeviceName.empty())
+    out.DeviceName = out.Result.DeviceName;
+  out.Passes = sums.Passes;
+  for (double c : sums.Count)
+    out.LandedPhotons += c;
+  out.OctreeUsed = volume.Levels && traced.UseOctree;
+  out.OctreeTolerance = volume.LevelTolerance;
+}
+
+} // namespace schlieren

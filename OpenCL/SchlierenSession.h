@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenSession.h
+ * @brief One image traced again and again: what a SchlierenImage keeps between updates, and every
+ * step of an update that involves more than one rank. VTK-free.
+ *
+ * A TraceSession takes this rank's piece of the input volume (its point extent within the whole
+ * extent, n - 1 and the optional octree levels and solid points) and the trace settings, and
+ * returns the image on rank 0. Between calls it keeps
+ * - the packed volume of the whole extent (n - 1 and gradient, octree levels, solid points,
+ *   smoothness) and its stamp, while the input's version, the pieces and the settings that shape
+ *   the packing stay the same: a new camera, other optics or more passes do not pack it again, and
+ *   the engine keeps its device copy (Volume::Stamp);
+ * - this rank's film sums of the passes traced so far (progressive refinement): with the same
+ *   photons (TraceSettings::PhotonKey) and volume, raising Passes traces only the new passes.
+ *
+ * Every collective step goes through the Parallel passed in (all ranks call Update together):
+ * assembling the whole volume from the pieces, the octree levels of the whole volume, Auto's choice
+ * (made on rank 0 and broadcast), the trace of this rank's pixels (p % ranks == rank), the
+ * reduction of the film sums, and after every step that can fail on some ranks only, one agreement
+ * (so that no rank waits in a collective another one has left). A failure throws Error on every
+ * rank: on a rank that failed, its own message; on the others the lowest failing rank's, as
+ * Parallel::Failure words it.
+ */
+#ifndef SchlierenSession_h
+#define SchlierenSession_h
+
+#include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
+#include "SchlierenParallel.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace schlieren
+{
+
+/** The values of a piece (what VolumePiece::Load fills). */
+struct PieceValues
+{
+  std::vector<float> NMinus1; ///< n - 1 at the piece's points, x fastest
+  /** Octree levels per point (RefractionOctree); empty: none. Used only with UseOctree. */
+  std::vector<unsigned char> Levels;
+  bool HasLevelTolerance = false; ///< the tolerance the levels were built for is known
+  double LevelTolerance = 0.0;
+  int MaxLevel = 7;
+  /** Non-zero at points in a solid body; empty: no body in this piece. */
+  std::vector<unsigned char> Solid;
+};
+
+/** This rank's piece of the input volume. */
+struct VolumePiece
+{
+  int WholeExtent[6] = { 0, -1, 0, -1, 0, -1 }; ///< point indices of the whole volume
+  int Extent[6] = { 0, -1, 0, -1, 0, -1 };      ///< this piece's (empty: no points on this rank)
+  double Origin[3] = { 0, 0, 0 };  ///< world position of point index (0, 0, 0)
+  double Spacing[3] = { 1, 1, 1 };
+  /** Changes whenever the input's values may have changed (the filter: the input's MTime). */
+  std::uint64_t Version = 0;
+  /** Why this rank's input cannot be traced (a message for the user); empty: it can. */
+  std::string Problem;
+  /**
+   * Fills the piece's values, or returns why they cannot be read (a message for the user).
+   * Called only where the session needs the volume again and the piece has points.
+   */
+  std::function<std::string(PieceValues&)> Load;
+};
+
+/** What a SchlierenImage writes besides the image itself. */
+struct SessionImage
+{
+  bool HasImage = false; ///< true on rank 0 (the others return no image)
+  TraceResult Result;    ///< the image (rank 0)
+  TraceSettings Traced;  ///< the settings traced with (Auto resolved; all passes)
+  bool AutoAsked = false; ///< Integrator or Reconstruction was Auto: Choice says what it chose
+  AutoChoice Choice;     ///< what was traced with (for Auto: what it chose, and its report)
+  std::string Warnings;  ///< this rank's engine warnings, then Finalize's where they differ
+  std::string BackendUsed, DeviceName;
+  int Passes = 0;        ///< passes in the image
+  int PassesTraced = 0;  ///< passes traced by this update (the others were kept)
+  double LandedPhotons = 0; ///< photons that reached the film (0: a blank image)
+  bool OctreeUsed = false;
+  double OctreeTolerance = 0.0;
+  /** What to tell the user, in order: Warning (vtkWarning) or not (an info line for the log). */
+  struct Note
+  {
+    bool Warning;
+    std::string Text;
+  };
+  std::vector<Note> Notes;
+};
+
+class TraceSession
+{
+public:
+  TraceSession() = default;
+  /** Frees the engine's device copy of this session's volume. */
+  ~TraceSession();
+  TraceSession(const TraceSession&) = delete;
+  TraceSession& operator=(const TraceSession&) = delete;
+
+  /**
+   * Traces `settings` (Passes in all; RankIndex/RankCount are set here) through the volume of the
+   * pieces, continuing the kept sums where it can. Collective. `progress` (may be empty) gets the
+   * fraction done; returning false aborts (Error "aborted"). Throws Error on every rank where any
+   * rank failed; `out` then still holds the notes made before the failure.
+   */
+  void Update(Parallel& parallel, const VolumePiece& piece, const TraceSettings& settings,
+    SessionImage& out, const ProgressFunction& progress = nullptr);
+
+  /** The packed volume of the last update (Field null before one). */
+  const Volume& KeptVolume() const { return this->Kept; }
+  /** Drops what is kept (the next update packs and traces afresh). Not collective. */
+  void Clear();
+
+private:
+  void ClearVolume();
+
+  // the whole volume and what it was built from
+  std::string VolumeKey;
+  AlignedFloats Packed; // page-aligned: a CPU OpenCL device traces it in place
+  std::vector<unsigned char> Levels, Solid, Smooth;
+  Volume Kept;
+  bool Stamped = false; // a volume of this session has been stamped (the engine may keep it)
+  // this rank's film sums and the photons and volume they were traced from
+  std::string SumsKey;
+  FilmSums Sums;
+};
+
+/**
+ * The whole volume from every rank's piece, on every rank (collective): n - 1 into `field`, and
+ * where any piece has a body, the solid points into `solid` (else it comes back empty). `values`
+ * is this rank's; its vectors may be taken. Throws Error where the pieces do not cover the whole
+ * extent (on every rank alike).
+ */
+void AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& values,
+  std::vector<float>& field, std::vector<unsigned char>& solid);
+
+} // namespace schlieren
+
+#endif
