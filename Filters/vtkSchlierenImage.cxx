@@ -579,7 +579,8 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Backend: "
      << (this->Backend == OPENCL ? "OpenCL" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";
-  os << indent << "DeviceName: " << (this->DeviceName ? this->DeviceName : "(default)") << "\n";
+  os << indent << "DeviceName: "
+     << (this->DeviceName && *this->DeviceName ? this->DeviceName : "(default)") << "\n";
   os << indent << "Threads: " << this->Threads << (this->Threads > 0 ? "" : " (default)") << "\n";
 }
 

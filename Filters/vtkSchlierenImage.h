@@ -84,13 +84,16 @@
  * The tracer needs the whole volume. On one process it asks for the whole input extent. Under MPI
  * (the global controller has N > 1 processes) each rank asks for its own piece; the pieces are
  * gathered on every rank, each rank traces the pixels p with p % N == rank, the film sums are
- * reduced to rank 0, and rank 0 outputs the whole image (the others an empty one). The image is
- * that of a single process. The filter only adapts: the engine's schlieren::TraceSession does the
- * work (and keeps the packed volume and the film sums between updates), its collective steps
- * through schlieren::ControllerParallel. Integrator AUTO_INTEGRATOR is resolved once, on rank 0, and its
- * choice broadcast, so that every rank traces with the same setting. The octree levels of the pieces stop at the
- * pieces' borders: under MPI the levels of the gathered volume are recomputed from the field
- * data `octree_tolerance` and `octree_max_level` (see vtkRefractionOctree).
+ * added across the ranks, and rank 0 outputs the whole image (the others an empty one). The image
+ * is that of a single process. Integrator AUTO_INTEGRATOR is resolved once, on rank 0, and its
+ * choice broadcast, so that every rank traces with the same setting. The octree levels of the
+ * pieces stop at the pieces' borders: under MPI the levels of the gathered volume are recomputed
+ * from the field data `octree_tolerance` and `octree_max_level` (see vtkRefractionOctree).
+ *
+ * The filter only adapts (reads the properties and the piece's arrays, writes the image and its
+ * field data): the engine's schlieren::TraceSession does the work and keeps the packed volume and
+ * the film sums between updates, and its collective steps go through
+ * schlieren::ControllerParallel.
  *
  * @sa vtkRefractiveIndex vtkRefractiveScene vtkRefractionOctree
  */

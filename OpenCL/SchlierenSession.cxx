@@ -329,7 +329,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     Volume volume = WholeGrid(piece);
     const std::size_t total = volume.NumberOfPoints();
     const bool wholePiece = ranks == 1 && std::equal(piece.Extent, piece.Extent + 6, piece.WholeExtent);
-    // the octree as this piece has it (only its presence can be read before the assembly)
+    // what this piece says of its octree (vtkRefractionOctree: the levels and their tolerance)
     bool present = settings.UseOctree && count > 0 && values.Levels.size() == count;
     bool hasTolerance = present && values.HasLevelTolerance && values.LevelTolerance >= 0;
     double tolerance = hasTolerance ? values.LevelTolerance : 0.0;
