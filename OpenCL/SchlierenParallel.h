@@ -4,7 +4,7 @@
  * @brief The one interface to work spread over ranks (MPI processes under ParaView).
  *
  * The engine and the filters never call MPI: they call a Parallel. The filters implement it with
- * vtkMultiProcessController (Filters/vtkSchlierenParallel); the engine's tests with N in-process
+ * vtkMultiProcessController (Filters/SchlierenController); the engine's tests with N in-process
  * ranks on threads (RunInProcessRanks), so that distributed code is tested without MPI. Every
  * member is collective unless it says otherwise: all ranks call it, in the same order, with
  * arguments of the same shape.
