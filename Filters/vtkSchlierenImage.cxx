@@ -234,6 +234,7 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   }
   s.DeviceName = self->GetDeviceName() ? self->GetDeviceName() : "";
   s.Threads = self->GetThreads();
+  s.InPieces = self->GetTraceInPieces() != 0;
   return s;
 }
 
@@ -582,6 +583,7 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DeviceName: "
      << (this->DeviceName && *this->DeviceName ? this->DeviceName : "(default)") << "\n";
   os << indent << "Threads: " << this->Threads << (this->Threads > 0 ? "" : " (default)") << "\n";
+  os << indent << "TraceInPieces: " << (this->TraceInPieces ? "on" : "off") << "\n";
 }
 
 //------------------------------------------------------------------------------

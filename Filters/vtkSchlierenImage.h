@@ -81,14 +81,16 @@
  *   else the first GPU, else the first device. Threads (0): threads of the CPU backend; 0:
  *   SCHLIEREN_CPU_THREADS, else all cores.
  *
- * The tracer needs the whole volume. On one process it asks for the whole input extent. Under MPI
- * (the global controller has N > 1 processes) each rank asks for its own piece; the pieces are
- * gathered on every rank, each rank traces the pixels p with p % N == rank, the film sums are
- * added across the ranks, and rank 0 outputs the whole image (the others an empty one). The image
- * is that of a single process. Integrator AUTO_INTEGRATOR is resolved once, on rank 0, and its
- * choice broadcast, so that every rank traces with the same setting. The octree levels of the
- * pieces stop at the pieces' borders: under MPI the levels of the gathered volume are recomputed
- * from the field data `octree_tolerance` and `octree_max_level` (see vtkRefractionOctree).
+ * On one process it asks for the whole input extent. Under MPI (the global controller has N > 1
+ * processes) each rank asks for its own piece and, with TraceInPieces (the default), keeps it:
+ * with a few ghost layers from its neighbours it traces the rays in its piece and hands a ray that
+ * leaves it to the rank that owns where it went; rank 0 puts the photons on the film and outputs
+ * the whole image (the others an empty one): the image of a single process (docs/PARALLEL.md).
+ * Where that is not available (Reconstruction CUBIC or AUTO_RECONSTRUCTION, EstimateError, a solid
+ * body) or TraceInPieces is off, the pieces are gathered on every rank, each rank traces the pixels
+ * p with p % N == rank, and the film sums are added across the ranks. The octree levels of the
+ * pieces stop at the pieces' borders: under MPI the levels are recomputed from the field data
+ * `octree_tolerance` and `octree_max_level` (see vtkRefractionOctree); in pieces up to level 3.
  *
  * The filter only adapts (reads the properties and the piece's arrays, writes the image and its
  * field data): the engine's schlieren::TraceSession does the work and keeps the packed volume and
@@ -424,6 +426,16 @@ public:
   vtkGetMacro(Threads, int);
   ///@}
 
+  ///@{
+  /**
+   * Under MPI, keep the volume in pieces and hand rays between ranks (default on): no rank holds
+   * the whole volume. Off: every rank gathers the whole volume (more memory per rank).
+   */
+  vtkSetMacro(TraceInPieces, vtkTypeBool);
+  vtkGetMacro(TraceInPieces, vtkTypeBool);
+  vtkBooleanMacro(TraceInPieces, vtkTypeBool);
+  ///@}
+
 protected:
   vtkSchlierenImage();
   ~vtkSchlierenImage() override;
@@ -471,6 +483,7 @@ protected:
   int Backend = AUTO;
   char* DeviceName = nullptr;
   int Threads = 0;
+  vtkTypeBool TraceInPieces = 1;
 
 private:
   // what is kept between updates: the packed volume, and this rank's film sums of the passes

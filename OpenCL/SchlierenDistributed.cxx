@@ -25,14 +25,9 @@ double SecondsSince(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/** Everything a ray carries from rank to rank: which ray, where it started, its march. */
-struct RayState
-{
-  std::uint32_t Index; // into the caller's film points (or the pixel of a pass)
-  float A, B, S1;
-  sch_v3 O, Entry;
-  sch_walk W;
-};
+/** Everything a ray carries from rank to rank: which ray (into the caller's film points, or the
+ * pixel of a pass), where it started, its march; the devices read the same layout. */
+using RayState = sch_piece_ray;
 
 /** A finished ray's record and which ray it is. */
 struct Finished
@@ -364,6 +359,9 @@ Volume DistributedVolume::Held() const
     v.Origin[d] = this->Origin[d] + this->HeldLo[d] * this->Spacing[d];
   std::copy(this->Spacing, this->Spacing + 3, v.Spacing);
   v.Field = this->Packed.empty() ? nullptr : this->Packed.data();
+  v.Levels = this->Levels.empty() ? nullptr : this->Levels.data();
+  v.LevelTolerance = this->LevelTolerance;
+  v.Stamp = this->Stamp;
   return v;
 }
 
@@ -417,6 +415,12 @@ sch_params PieceParams(const DistributedVolume& dv, const TraceSettings& s, cons
   P.rowFloats = 4 * P.nx;
   P.sliceFloats = 4 * P.nx * P.ny;
   P.featureTol = FeatureTolerance(dv.RangeLo, dv.RangeHi, whole.LevelTolerance);
+  P.ownX0 = dv.Owned[0];
+  P.ownX1 = dv.Owned[1];
+  P.ownY0 = dv.Owned[2];
+  P.ownY1 = dv.Owned[3];
+  P.ownZ0 = dv.Owned[4];
+  P.ownZ1 = dv.Owned[5];
   return P;
 }
 
@@ -431,8 +435,32 @@ void CellOf(const sch_params& P, sch_v3 x, int c[3])
 /** Advances the rays in `live` until each has left the volume (finished) or this rank's cells
  * (handed on, by owner). Rays are split over threads; each ray's steps are its own. */
 void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RayState>& live,
-  std::vector<Finished>& finished, std::vector<std::vector<RayState>>& handOn, int threadCount)
+  std::vector<Finished>& finished, std::vector<std::vector<RayState>>& handOn, int threadCount,
+  OpenCLTracer* cl)
 {
+  if (cl)
+  {
+    // on the device: every ray until it leaves the volume or this rank's cells
+    std::vector<float> rec(live.size() * SCH_RECORD);
+    std::vector<int> status(live.size());
+    WalkPiecesOpenCL(*cl, P, live.data(), live.size(), rec.data(), status.data());
+    for (std::size_t r = 0; r < live.size(); ++r)
+    {
+      if (status[r] == 1)
+      {
+        int c[3];
+        CellOf(P, live[r].w.x, c);
+        handOn[dv.OwnerOfCell(c[0], c[1], c[2])].push_back(live[r]);
+        continue;
+      }
+      Finished f;
+      f.Index = live[r].index;
+      std::memcpy(f.Rec, rec.data() + r * SCH_RECORD, sizeof(f.Rec));
+      finished.push_back(f);
+    }
+    live.clear();
+    return;
+  }
   const float* field = dv.Packed.data();
   const unsigned char* levels = dv.Levels.empty() ? nullptr : dv.Levels.data();
   const unsigned nt = std::max(1u, std::min<unsigned>(CpuThreads(threadCount),
@@ -450,13 +478,13 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
         // the level of the cell it is in, as its owner knows it (a sender's ghost cell may be
         // lower: its block reaches past the sender's ghosts)
         long cell;
-        sch_sample_cell(field, &Pw, st.W.x, &cell);
-        st.W.level = levels[cell];
+        sch_sample_cell(field, &Pw, st.w.x, &cell);
+        st.w.level = levels[cell];
       }
-      while (sch_walk_step(field, levels, &Pw, &st.W))
+      while (sch_walk_step(field, levels, &Pw, &st.w))
       {
         int c[3];
-        CellOf(Pw, st.W.x, c);
+        CellOf(Pw, st.w.x, c);
         if (!dv.OwnsCell(c[0], c[1], c[2]))
         {
           out[t][dv.OwnerOfCell(c[0], c[1], c[2])].push_back(st);
@@ -467,10 +495,10 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
       if (left)
         continue;
       sch_ray R;
-      sch_walk_end(field, &Pw, &st.W, &R);
+      sch_walk_end(field, &Pw, &st.w, &R);
       Finished f;
-      f.Index = st.Index;
-      sch_record(field, levels, &Pw, st.A, st.B, st.O, st.Entry, st.S1, &R, f.Rec);
+      f.Index = st.index;
+      sch_record(field, levels, &Pw, st.a, st.b, st.o, st.entry, st.s1, &R, f.Rec);
       fin[t].push_back(f);
     }
   };
@@ -489,10 +517,6 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
   live.clear();
 }
 
-/**
- * The records of rays 0 .. count-1 whose film points `pointOf(k, &a, &b)` gives, traced on the
- * pieces; in ray order on rank 0 (and every rank with `everywhere`).
- */
 /**
  * A run of consecutive steps of one line-of-sight ray in one rank's cells: its partial integrals.
  * Along the unbent line w is a plain sum of the pieces' parts, and the sideways displacement
@@ -748,10 +772,15 @@ bool StraightSums(const sch_params& P)
   return P.integrator == SCH_STRAIGHT && !P.useLevels && !P.keepInvariant && !P.estimate;
 }
 
+/**
+ * The records of rays 0 .. count-1 whose film points `pointOf(k, &a, &b)` gives, traced on the
+ * pieces (on the device of `cl`, else the CPU); in ray order on rank 0 (and every rank with
+ * `everywhere`).
+ */
 template <typename PointOf>
 std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, std::size_t count,
   PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats, int threads,
-  bool sums = true)
+  OpenCLTracer* cl, bool sums = true)
 {
   if (sums && StraightSums(P))
     return TraceStraightSums(dv, P, count, pointOf, parallel, everywhere, stats);
@@ -765,29 +794,29 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
   for (std::size_t k = 0; k < count; ++k)
   {
     RayState st;
-    st.Index = static_cast<std::uint32_t>(k);
-    pointOf(k, &st.A, &st.B);
-    st.S1 = 0.0f;
-    const int hit = sch_entry(&P, st.A, st.B, &st.O, &st.Entry, &st.S1);
+    st.index = static_cast<std::uint32_t>(k);
+    pointOf(k, &st.a, &st.b);
+    st.s1 = 0.0f;
+    const int hit = sch_entry(&P, st.a, st.b, &st.o, &st.entry, &st.s1);
     if (!hit)
     {
       if (me == 0)
       {
         sch_ray R;
-        sch_missed(st.O, &R);
+        sch_missed(st.o, &R);
         Finished f;
-        f.Index = st.Index;
-        sch_record(dv.Packed.data(), nullptr, &P, st.A, st.B, st.O, st.Entry, st.S1, &R, f.Rec);
+        f.Index = st.index;
+        sch_record(dv.Packed.data(), nullptr, &P, st.a, st.b, st.o, st.entry, st.s1, &R, f.Rec);
         finished.push_back(f);
       }
       continue;
     }
     int c[3];
-    CellOf(P, st.Entry, c);
+    CellOf(P, st.entry, c);
     if (!dv.OwnsCell(c[0], c[1], c[2]))
       continue;
-    sch_walk_begin(dv.Packed.data(), dv.Levels.empty() ? nullptr : dv.Levels.data(), &P, st.Entry,
-      P.step, &st.W);
+    sch_walk_begin(dv.Packed.data(), dv.Levels.empty() ? nullptr : dv.Levels.data(), &P, st.entry,
+      P.step, &st.w);
     fresh.push_back(st);
   }
   // the rays that start here go in batches, a batch a round: while the next rank along the beam
@@ -805,7 +834,7 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
     live.insert(live.end(), fresh.begin() + next, fresh.begin() + next + take);
     next += take;
     std::vector<std::vector<RayState>> handOn(ranks);
-    Advance(dv, P, live, finished, handOn, threads);
+    Advance(dv, P, live, finished, handOn, threads, cl);
     tracing += SecondsSince(ta);
     Clock::time_point tb = Clock::now();
     std::vector<std::vector<char>> out(ranks);
@@ -886,6 +915,52 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
 
 } // namespace
 
+namespace
+{
+/**
+ * The device tracer for this rank's held points, or null for the CPU (asked for, an empty piece,
+ * or OpenCL unusable under Backend Auto, with a warning in stats). Line of sight in sums runs on
+ * the host. Collective: under Backend OpenCL a failure on any rank throws on every rank.
+ */
+std::shared_ptr<OpenCLTracer> PieceBackend(const DistributedVolume& dv, const TraceSettings& s,
+  const sch_params& P, bool sums, Parallel& parallel, DistributedStats* stats)
+{
+  std::shared_ptr<OpenCLTracer> cl;
+  std::string used = "CPU", device = "CPU (" + std::to_string(CpuThreads(s.Threads)) + " threads)";
+  std::string problem, warning;
+  if (s.Device != Backend::CPU && !(sums && StraightSums(P)) && !dv.Packed.empty())
+  {
+    try
+    {
+      cl = AcquireTracer(dv.Held(), dv.Levels.empty() ? nullptr : dv.Levels.data(), nullptr, 1,
+        s.RaysPerWorkItem, GetRuntimeOptions(), s.DeviceName);
+      PreparePiecesKernel(*cl, P);
+      used = "OpenCL";
+      device = TracerDeviceName(*cl);
+    }
+    catch (const Error& e)
+    {
+      cl.reset();
+      if (s.Device == Backend::OpenCL)
+        problem = e.what();
+      else
+        warning = std::string("OpenCL is not usable, tracing on the CPU instead: ") + e.what() + "\n";
+    }
+  }
+  problem = parallel.Failure(problem);
+  if (!problem.empty())
+    throw Error(problem);
+  if (stats)
+  {
+    stats->BackendUsed = used;
+    stats->DeviceName = device;
+    if (stats->Warnings.find(warning) == std::string::npos)
+      stats->Warnings += warning;
+  }
+  return cl;
+}
+} // namespace
+
 std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const TraceSettings& s,
   const std::vector<float>& ab, Parallel& parallel, bool everywhere, DistributedStats* stats,
   bool lineOfSightSums)
@@ -893,13 +968,14 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const T
   const FilmGeometry film = MakeFilm(dv.Whole(), s);
   const sch_params P = PieceParams(dv, s, film);
   const std::size_t count = ab.size() / 2;
+  const std::shared_ptr<OpenCLTracer> cl = PieceBackend(dv, s, P, lineOfSightSums, parallel, stats);
   std::vector<float> rec = TraceAll(
     dv, P, count,
     [&](std::size_t k, float* a, float* b) {
       *a = ab[2 * k];
       *b = ab[2 * k + 1];
     },
-    parallel, everywhere, stats, s.Threads, lineOfSightSums);
+    parallel, everywhere, stats, s.Threads, cl.get(), lineOfSightSums);
   std::vector<RayRecord> out;
   if (rec.empty())
     return out;
@@ -948,13 +1024,14 @@ void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, 
   }
   const std::size_t pixels = static_cast<std::size_t>(film.Size[0]) * film.Size[1];
   Splatter splat(P, s, sums);
+  const std::shared_ptr<OpenCLTracer> cl = PieceBackend(dv, s, P, true, parallel, stats);
   for (int pass = 0; pass < s.Passes; ++pass)
   {
     P.pass = sums.Passes + pass;
     std::vector<float> rec = TraceAll(
       dv, P, pixels,
       [&](std::size_t k, float* a, float* b) { sch_emit(&P, static_cast<int>(k), a, b); },
-      parallel, false, stats, s.Threads);
+      parallel, false, stats, s.Threads, cl.get());
     // in pixel order on rank 0, as one process splats them: the same sums, bit for bit
     if (parallel.Rank() == 0)
       splat.Add(rec.data(), 0, pixels);

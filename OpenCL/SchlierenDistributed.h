@@ -14,8 +14,10 @@
  * those of one process with the whole volume, and the films too (they are splatted on rank 0 in
  * pixel order, as one process does).
  *
- * For now: the CPU backend, trilinear reconstruction, fixed steps (no octree skips), no solid bodies
- * and no step-doubling estimate; other settings are refused with an Error that says so.
+ * On the CPU backend or an OpenCL device (the kernel sch_walk_pieces steps a batch of rays until
+ * each leaves the volume or the rank's cells); trilinear reconstruction, fixed steps or the octree
+ * up to DistributedOctreeMaxLevel, no solid bodies and no step-doubling estimate; other settings
+ * are refused with an Error that says so.
  */
 #ifndef SchlierenDistributed_h
 #define SchlierenDistributed_h
@@ -25,6 +27,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace schlieren
@@ -49,6 +52,9 @@ struct DistributedStats
   double BytesExchanged = 0;  ///< bytes this rank sent (ray states and the records to rank 0)
   double SecondsTracing = 0;  ///< this rank's time stepping rays
   double SecondsExchanging = 0; ///< this rank's time in the exchanges (waiting for others included)
+  std::string BackendUsed;    ///< this rank's: "OpenCL" or "CPU"
+  std::string DeviceName;     ///< this rank's device
+  std::string Warnings;       ///< what this rank's user should know (an OpenCL fallback)
 };
 
 /** The largest octree level distributed tracing builds (blocks of 2^3 cells): every level a rank
@@ -96,6 +102,7 @@ public:
   int Owned[6];               ///< owned cells: [lo, hi) per axis (x, y, z)
   std::vector<std::array<int, 6>> AllOwned; ///< every rank's owned cells
   std::vector<float> Packed;  ///< 4 floats per held point (Volume::Field layout)
+  std::uint64_t Stamp = NewVolumeStamp(); ///< the held points' (a device keeps its copy)
   std::vector<unsigned char> Levels; ///< octree level per held cell (empty: no octree)
   double LevelTolerance = 0;         ///< the tolerance the levels were built for
   int LevelMax = 0;                  ///< the largest level they may hold

@@ -209,6 +209,9 @@ struct TraceSettings
   std::string DeviceName;
   /// CPU backend threads; 0: the runtime options' choice (SCHLIEREN_CPU_THREADS, else all cores)
   int Threads = 0;
+  /// On more than one rank (TraceSession): keep the volume in pieces and hand rays between ranks;
+  /// false: every rank gathers the whole volume
+  bool InPieces = true;
   /// OpenCL per-item kernel: rays each work-item advances in turn; 0: 4 on CPU devices, 1 on
   /// others (GPUs: a ray per work-item). CPU devices trace passes in lock step, which ignores it.
   int RaysPerWorkItem = 0;

@@ -209,6 +209,14 @@ std::string TracerDeviceName(const OpenCLTracer& t);
 /** TraceChunkCPU on the device. */
 void TraceOpenCL(OpenCLTracer& t, const sch_params& P, std::size_t first, std::size_t count, float* out);
 
+/** Builds (or finds) the kernel WalkPiecesOpenCL runs for P; throws Error on a build failure. */
+void PreparePiecesKernel(OpenCLTracer& t, const sch_params& P);
+
+/** Distributed tracing on the device: advances `count` rays in place until each leaves the volume
+ * (status 0, its record in out) or the cells P.own* (status 1). */
+void WalkPiecesOpenCL(OpenCLTracer& t, const sch_params& P, sch_piece_ray* rays, std::size_t count,
+  float* out, int* status);
+
 /** Traces rays that start at the film points ab (pairs) into `out` (SCH_RECORD each). */
 void TracePointsOpenCL(
   OpenCLTracer& t, const sch_params& P, const float* ab, std::size_t count, float* out);

@@ -146,7 +146,8 @@ public:
   {
     Rays,
     Points,
-    Lockstep
+    Lockstep,
+    Pieces
   };
   cl_kernel KernelFor(const sch_params& P, Entry entry)
   {
@@ -172,6 +173,7 @@ public:
       opts << " " << Options.BuildOptions;
     const char* name = entry == Entry::Rays ? "sch_trace_rays"
       : entry == Entry::Points              ? "sch_trace_points"
+      : entry == Entry::Pieces              ? "sch_walk_pieces"
                                             : "sch_trace_lockstep";
     // the kernel is known by its entry point and every build option
     const std::string key = std::string(name) + " " + opts.str();
@@ -250,6 +252,57 @@ public:
         nullptr, nullptr);
     clReleaseMemObject(abBuf);
     ocl::Check(st, "sch_trace_points");
+  }
+
+  // Distributed tracing: advances `count` rays (in place) until each leaves the volume (status 0,
+  // its record in out) or this rank's cells (status 1, its state written back).
+  void WalkPieces(const sch_params& P, sch_piece_ray* rays, std::size_t count, float* out, int* status)
+  {
+    if (count == 0)
+      return;
+    cl_kernel kernel = KernelFor(P, Entry::Pieces);
+    cl_int err = CL_SUCCESS;
+    cl_mem raysBuf = clCreateBuffer(RT.Context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+      count * sizeof(sch_piece_ray), rays, &err);
+    ocl::Check(err, "clCreateBuffer(rays)");
+    cl_mem outBuf = clCreateBuffer(RT.Context, CL_MEM_WRITE_ONLY, count * SCH_RECORD * sizeof(float),
+      nullptr, &err);
+    cl_mem statusBuf = err == CL_SUCCESS
+      ? clCreateBuffer(RT.Context, CL_MEM_WRITE_ONLY, count * sizeof(int), nullptr, &err)
+      : nullptr;
+    const int c = static_cast<int>(count);
+    const sch_params Q = WithSlabs(P);
+    cl_int st = err;
+    if (st == CL_SUCCESS)
+    {
+      SetFieldArgs(kernel);
+      const cl_int args[] = { clSetKernelArg(kernel, 5, sizeof(sch_params), &Q),
+        clSetKernelArg(kernel, 6, sizeof(cl_mem), &raysBuf),
+        clSetKernelArg(kernel, 7, sizeof(int), &c),
+        clSetKernelArg(kernel, 8, sizeof(cl_mem), &outBuf),
+        clSetKernelArg(kernel, 9, sizeof(cl_mem), &statusBuf) };
+      for (cl_int a : args)
+        st = st == CL_SUCCESS ? a : st;
+    }
+    const std::size_t global = count;
+    if (st == CL_SUCCESS)
+      st = clEnqueueNDRangeKernel(RT.Queue, kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
+    if (st == CL_SUCCESS)
+      st = clEnqueueReadBuffer(RT.Queue, raysBuf, CL_TRUE, 0, count * sizeof(sch_piece_ray), rays, 0,
+        nullptr, nullptr);
+    if (st == CL_SUCCESS)
+      st = clEnqueueReadBuffer(RT.Queue, outBuf, CL_TRUE, 0, count * SCH_RECORD * sizeof(float), out,
+        0, nullptr, nullptr);
+    if (st == CL_SUCCESS)
+      st = clEnqueueReadBuffer(RT.Queue, statusBuf, CL_TRUE, 0, count * sizeof(int), status, 0,
+        nullptr, nullptr);
+    // this call's buffers: released however it ends
+    clReleaseMemObject(raysBuf);
+    if (outBuf)
+      clReleaseMemObject(outBuf);
+    if (statusBuf)
+      clReleaseMemObject(statusBuf);
+    ocl::Check(st, "sch_walk_pieces");
   }
 
   // Arguments 0-4 of every kernel: the field's buffers (the first bound again where there are
@@ -395,6 +448,17 @@ void TracePointsOpenCL(
   OpenCLTracer& t, const sch_params& P, const float* ab, std::size_t count, float* out)
 {
   t.TracePoints(P, ab, count, out);
+}
+
+void PreparePiecesKernel(OpenCLTracer& t, const sch_params& P)
+{
+  t.KernelFor(P, OpenCLTracer::Entry::Pieces);
+}
+
+void WalkPiecesOpenCL(OpenCLTracer& t, const sch_params& P, sch_piece_ray* rays, std::size_t count,
+  float* out, int* status)
+{
+  t.WalkPieces(P, rays, count, out, status);
 }
 
 void ReleaseKeptVolume()

@@ -206,6 +206,9 @@ typedef struct
    * what is held (the strides); the grid coordinates (g0, gMax) are the whole volume's, so that a
    * sample, its cell and the octree blocks are the same whichever piece takes it. */
   int ox, oy, oz;
+  /* Distributed tracing: the cells this rank owns, [own?0, own?1) along each axis (whole-grid
+   * indices); a ray that steps out of them goes to the rank that owns where it went. */
+  int ownX0, ownX1, ownY0, ownY1, ownZ0, ownZ1;
 } sch_params;
 
 /* Reconstructions of the packed field between grid points. */
@@ -674,6 +677,28 @@ typedef struct
   sch_uint flags;
   int it;
 } sch_walk;
+
+/* A ray of distributed tracing as it goes from rank to rank: which ray, where it started, its
+ * march (the host and every device lay it out alike: 4-byte members only). */
+typedef struct
+{
+  sch_uint index;
+  float a, b, s1;
+  sch_v3 o, entry;
+  sch_walk w;
+} sch_piece_ray;
+
+/* 1 if x (relative to the centre) is in a cell this rank owns (P->own*), found as the sampler
+ * finds its cell. */
+SCH_FN int sch_owns(const sch_params* P, sch_v3 x)
+{
+  int i, j, k;
+  sch_grid_coord(x.x, P->isx, P->gx0, P->gxMax, &i);
+  sch_grid_coord(x.y, P->isy, P->gy0, P->gyMax, &j);
+  sch_grid_coord(x.z, P->isz, P->gz0, P->gzMax, &k);
+  return i >= P->ownX0 && i < P->ownX1 && j >= P->ownY0 && j < P->ownY1 && k >= P->ownZ0 &&
+    k < P->ownZ1;
+}
 
 SCH_FN void sch_walk_begin(SCH_FIELD field,
   SCH_GLOBAL const sch_uchar* levels,

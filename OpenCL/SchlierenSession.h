@@ -145,6 +145,7 @@ private:
   // distributed tracing: this rank's piece with its ghosts, and what it was built from
   std::shared_ptr<DistributedVolume> Pieces;
   std::string PiecesKey;
+  std::string PiecesBackend, PiecesDevice; // what the kept sums were traced on
 };
 
 /**

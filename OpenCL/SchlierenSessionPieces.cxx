@@ -32,8 +32,8 @@ std::size_t Points(const int e[6])
 
 std::string WhyNotInPieces(const TraceSettings& s)
 {
-  if (s.Device == Backend::OpenCL)
-    return "Backend OpenCL was asked for, and tracing in pieces runs on the CPU backend";
+  if (!s.InPieces)
+    return "TraceInPieces is off";
   if (s.Recon != Reconstruction::Trilinear)
     return std::string("Reconstruction ") + ReconstructionName(s.Recon) +
       " is not available in pieces yet";
@@ -133,7 +133,6 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
   TraceSettings traced = settings;
   traced.RankIndex = 0;
   traced.RankCount = 1;
-  traced.Device = Backend::CPU;
   AutoChoice choice;
   const bool autoAsked = settings.Method == Integrator::Auto;
   traced = ResolveAutoDistributed(dv, traced, parallel, &choice);
@@ -205,9 +204,20 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     return;
 
   // 4. The image (rank 0).
+  if (!stats.BackendUsed.empty())
+  {
+    this->PiecesBackend = stats.BackendUsed;
+    this->PiecesDevice = stats.DeviceName;
+  }
+  stats.BackendUsed = this->PiecesBackend;
+  stats.DeviceName = this->PiecesDevice;
   out.Result = Finalize(grid, traced, this->Sums);
-  out.BackendUsed = "CPU";
-  out.Result.BackendUsed = "CPU";
+  out.BackendUsed = stats.BackendUsed;
+  out.DeviceName = stats.DeviceName;
+  out.Result.BackendUsed = stats.BackendUsed;
+  out.Result.DeviceName = stats.DeviceName;
+  if (!stats.Warnings.empty())
+    out.Result.Warnings = stats.Warnings + out.Result.Warnings;
   std::ostringstream note;
   note << "Traced in pieces on " << ranks << " ranks: the most any rank holds is " << heldMax
        << " of the volume's " << double(grid.NumberOfPoints()) << " points (its piece and "

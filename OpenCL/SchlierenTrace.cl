@@ -74,6 +74,42 @@ __kernel void sch_trace_points(SCH_FIELD_ARGS, __global const uchar* levels,
     out[(long)k * SCH_RECORD + c] = rec[c];
 }
 
+/* Distributed tracing (SchlierenDistributed.cxx): advances ray k of this rank until it leaves the
+ * volume (status 0, its record in out) or the cells this rank owns (P.own*: status 1, its state
+ * written back for the rank that owns where it went). The arithmetic per ray is sch_trace's. */
+__kernel void sch_walk_pieces(SCH_FIELD_ARGS, __global const uchar* levels, const sch_params P,
+  __global sch_piece_ray* rays, const int count, __global float* out, __global int* status)
+{
+  SCH_FIELD field = sch_field_of(field0, field1, field2, field3);
+  int k = (int)get_global_id(0);
+  if (k >= count)
+    return;
+  sch_piece_ray r = rays[k];
+  if (SCH_USE_LEVELS(&P))
+  {
+    /* the level of its cell as this rank (its owner) knows it */
+    long cell;
+    sch_sample_cell(field, &P, r.w.x, &cell);
+    r.w.level = (int)levels[cell];
+  }
+  while (sch_walk_step(field, levels, &P, &r.w))
+  {
+    if (!sch_owns(&P, r.w.x))
+    {
+      rays[k] = r;
+      status[k] = 1;
+      return;
+    }
+  }
+  sch_ray R;
+  sch_walk_end(field, &P, &r.w, &R);
+  float rec[SCH_RECORD];
+  sch_record(field, levels, &P, r.a, r.b, r.o, r.entry, r.s1, &R, rec);
+  for (int c = 0; c < SCH_RECORD; ++c)
+    out[(long)k * SCH_RECORD + c] = rec[c];
+  status[k] = 0;
+}
+
 #else
 
 /* The same rays, one per work-item, advanced in lock step: every work-item of a group takes its

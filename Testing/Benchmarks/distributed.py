@@ -3,14 +3,15 @@
 ranks; prints a table.
 
 Run: /usr/bin/python3 distributed.py --plugin <Schlieren.so> [--size 384] [--resolution 256]
-         [--passes 2] [--ranks 1,2,4] [--integrator Euler] [--pvbatch pvbatch] [--mpiexec mpiexec]
+         [--passes 2] [--ranks 1,2,4] [--integrator Euler] [--backend CPU] [--pvbatch pvbatch]
+         [--mpiexec mpiexec]
 
 Each row is one `mpiexec -n N pvbatch --mpi --symmetric` run of this script (--worker): every rank
 makes its piece of a RefractiveScene of size^3 points (the Gaussian sphere), reads its high-water
 mark of resident memory (VmHWM), traces it with SchlierenImage (Euler, 0.5 voxel, knife edge) and
-reads VmHWM again. "pieces" is the default under MPI (Backend CPU: the volume stays in pieces,
-rays are handed between ranks); "whole" asks for Backend OpenCL, which still gives every rank the
-whole volume (the path every rank took before tracing in pieces). Columns: the largest VmHWM of
+reads VmHWM again. "pieces" is the default under MPI (the volume stays in pieces, rays are handed
+between ranks); "whole" turns TraceInPieces off: every rank gathers the whole volume (the path
+every rank took before tracing in pieces). Both on --backend (CPU by default). Columns: the largest VmHWM of
 any rank and the most the trace added on any rank (after - before), the points the busiest rank
 held (its piece and ghosts), ray traffic per pass, and the time per pass with where the slowest
 rank spent it (stepping rays, exchanging: waiting for the other ranks included). Each rank runs
@@ -55,6 +56,7 @@ def worker():
     before = hwm()
     image = ns["SchlierenImage"](Input=scene, Resolution=[int(argument("--resolution"))] * 2,
                                  Passes=int(argument("--passes")), Backend=argument("--backend"),
+                                 TraceInPieces=int(argument("--pieces")),
                                  Integrator=argument("--integrator", "Euler"), StepSize=0.5)
     t0 = time.time()
     image.UpdatePipeline()
@@ -90,13 +92,14 @@ def main():
     print("%5s %6s %11s %11s %13s %12s %10s %10s %10s" % (
         "ranks", "mode", "peak MB", "trace MB", "held points", "MB/pass", "s/pass", "tracing", "exchange"))
     for n in ranks:
-        for mode, backend in (("pieces", "CPU"), ("whole", "OpenCL")):
+        backend = argument("--backend", "CPU")
+        for mode, pieces in (("pieces", "1"), ("whole", "0")):
             if n == 1 and mode == "whole":
                 continue  # one rank always has the whole volume (its row says "one")
             env = dict(os.environ, SCHLIEREN_CPU_THREADS=str(max(1, cores // n)))
             cmd = [mpiexec, "-n", str(n), "--allow-run-as-root", "--oversubscribe", pvbatch, "--mpi",
                    "--symmetric", os.path.abspath(__file__), "--worker", "--plugin", plugin, "--size", size,
-                   "--resolution", resolution, "--passes", passes, "--backend", backend,
+                   "--resolution", resolution, "--passes", passes, "--backend", backend, "--pieces", pieces,
                    "--integrator", argument("--integrator", "Euler")]
             outdir = tempfile.mkdtemp(prefix="schlieren_distributed_")
             run = subprocess.run(cmd + ["--outdir", outdir], env=env, stdout=subprocess.PIPE,

@@ -246,6 +246,74 @@ int main()
     CHECK(handedLens > 0, std::string(c.Name) + ": rays were handed from rank to rank");
   }
 
+  // on an OpenCL device (the kernel sch_walk_pieces): every rank runs the same kernel, so 2 and 4
+  // ranks give the same film bit for bit; one process traces with another kernel build of the
+  // same physics (the lock-step kernel), whose float rounding may differ: within 1e-5 of the
+  // largest deflection sum, the same photons in all
+  if (schtest::HaveOpenCL())
+  {
+    for (Case& c : cases)
+    {
+      const schtest::SceneVolume& sv = *c.Volume;
+      TraceSettings s = c.Settings;
+      s.Device = Backend::OpenCL;
+      Volume whole = sv.V;
+      std::vector<unsigned char> levels;
+      if (c.OctreeTolerance >= 0)
+      {
+        levels.resize(whole.NumberOfPoints());
+        ComputeOctreeLevels(whole.Dimensions, sv.N1.data(), c.OctreeTolerance, levels.data(),
+          DistributedOctreeMaxLevel);
+        whole.Levels = levels.data();
+        whole.LevelTolerance = c.OctreeTolerance;
+        s.UseOctree = true;
+      }
+      FilmSums expected;
+      Accumulate(whole, s, expected);
+      FilmSums got[2];
+      bool onDevice = true;
+      const Decomposition decos2[2] = { Blocks(n, {}, {}, { 0.5 }), Blocks(n, { 0.4 }, {}, { 0.6 }) };
+      for (int which = 0; which < 2; ++which)
+      {
+        const Decomposition& d = decos2[which];
+        const int ranks = static_cast<int>(d.size());
+        std::vector<std::vector<float>> values(ranks);
+        for (int r = 0; r < ranks; ++r)
+          values[r] = Cut(sv, d[r]);
+        std::mutex m;
+        RunInProcessRanks(ranks, [&](Parallel& p) {
+          const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
+          const Piece piece = PieceOf(sv, d[p.Rank()], values[p.Rank()]);
+          DistributedVolume dv = c.OctreeTolerance >= 0
+            ? DistributedVolume(piece, ghost, p, c.OctreeTolerance)
+            : DistributedVolume(piece, ghost, p);
+          DistributedStats st;
+          FilmSums sums;
+          AccumulateDistributed(dv, s, sums, p, &st);
+          std::lock_guard<std::mutex> lock(m);
+          onDevice = onDevice && st.BackendUsed == "OpenCL";
+          if (p.Rank() == 0)
+            got[which] = sums;
+        });
+      }
+      double dmax = 0, scale = 0;
+      for (std::size_t k = 0; k < expected.Count.size(); ++k)
+      {
+        dmax = std::max(dmax, std::hypot(got[1].DeflectionX[k] - expected.DeflectionX[k],
+                                got[1].DeflectionY[k] - expected.DeflectionY[k]));
+        scale = std::max(scale, std::hypot(expected.DeflectionX[k], expected.DeflectionY[k]));
+      }
+      const std::string what = std::string(c.Name) + ", OpenCL in pieces";
+      CHECK(onDevice, what + ": every rank traced on the device");
+      CHECK(SameSums(got[0], got[1]), what + ": 2 slabs and 4 uneven blocks give the same film, bit for bit");
+      CHECK(got[1].Photons == expected.Photons && dmax <= 1e-5 * scale,
+        what + ": one process on the device within float rounding (deflection sums " +
+          std::to_string(dmax / scale) + " of the largest)");
+      std::printf("%-50s vs one process on the device: %.2e of the largest deflection sum\n",
+        what.c_str(), dmax / scale);
+    }
+  }
+
   // line of sight needs no ray passing: each rank integrates the steps in its cells and the runs
   // add up on rank 0. The sums are reassociated (a ray's w is a sum of a few partial sums instead
   // of one running sum), so the records equal one process's within float rounding, not bit for

@@ -76,6 +76,19 @@ for name, proxy in (("knife", knife), ("shadow", shadow)):
             "%s: rays were handed between ranks (%d rays, %d bytes)"
             % (name, number("rays_handed_on"), number("ray_traffic_bytes")))
 
+# TraceInPieces off: every rank gathers the whole volume; the same image (Backend CPU: the same
+# arithmetic either way)
+knife.TraceInPieces = 0
+with st.CapturedOutput() as out:
+    gathered = sm.Fetch(knife, 0)
+whole = st.image_record("knife", gathered)
+fd = gathered.GetFieldData()
+T.check(fd.GetArray("distributed_ranks").GetValue(0) == 0,
+        "TraceInPieces off: the whole volume on every rank (distributed_ranks 0)")
+T.close(whole["knife_intensity"], record["knife_intensity"], 0.0,
+        "TraceInPieces off: the image of the pieces, bit for bit")
+knife.TraceInPieces = 1
+
 # A sanity check that the traced image is the sphere's: max |deflection| near sqrt(2 pi) A e^-1/2
 # (coarse here: 64^3 and an oblique view; the pixel-exact comparison is test_mpi_compare.py).
 dmax = np.abs(record["knife_deflection"]).max() / st.gaussian_max_deflection(1e-4)
