@@ -23,6 +23,7 @@
 #define SchlierenDistributed_h
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 #include "SchlierenParallel.h"
 
 #include <array>
@@ -101,7 +102,8 @@ public:
   int HeldLo[3], HeldDims[3]; ///< first held point (whole-grid index) and held dimensions
   int Owned[6];               ///< owned cells: [lo, hi) per axis (x, y, z)
   std::vector<std::array<int, 6>> AllOwned; ///< every rank's owned cells
-  std::vector<float> Packed;  ///< 4 floats per held point (Volume::Field layout)
+  AlignedFloats Packed;       ///< 4 floats per held point (Volume::Field layout), page-aligned: a
+                              ///< CPU OpenCL device traces it in place
   std::uint64_t Stamp = NewVolumeStamp(); ///< the held points' (a device keeps its copy)
   std::vector<unsigned char> Levels; ///< octree level per held cell (empty: no octree)
   double LevelTolerance = 0;         ///< the tolerance the levels were built for
