@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The speed-versus-accuracy chart (issue 4): builds, traces every method x step x octree tolerance
+# The speed-versus-accuracy chart: builds, traces every method x step x octree tolerance
 # on four known-answer scenes, prints the table and the Pareto fronts, and draws
 # docs/accuracy_chart.png. About 30 s on 2 cores. Extra arguments go to SchlierenAccuracyChart
 # (--size N --film N --backend CPU|OpenCL).

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Writes the NASA blunt fin (../shared/data, PLOT3D) resampled to an N^3 image of n - 1, for
-SchlierenBenchmark --raw: the real-data case of the speed benchmark (issue 7).
+SchlierenBenchmark --raw: the real-data case of the speed benchmark.
 
     pvpython bluntfin_volume.py --plugin Schlieren.so --output DIR [--size 256] [--data DIR]
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Helpers of the CFD-data tests (issue 3): where the shared data is, images built from numpy
+"""Helpers of the CFD-data tests: where the shared data is, images built from numpy
 arrays, numpy views of RefractiveIndex outputs, and the refractive-index formulas of
 ../../../shared/ORACLES.md restated in numpy for comparisons.
 """

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Tracing accuracy in pvpython (issue 4): RefractionOctree, the integrators, Auto, the
+"""Tracing accuracy in pvpython: RefractionOctree, the integrators, Auto, the
 step-doubling error estimate, the ray invariant, and a shock crossed with long steps.
 
 Run: pvpython test_accuracy.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so

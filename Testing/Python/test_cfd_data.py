@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Real CFD data through RefractiveIndex and SchlierenImage (issue 3), with numbers:
+"""Real CFD data through RefractiveIndex and SchlierenImage, with numbers:
 
 The NASA blunt fin (PLOT3D, Mach 2.95, density non-dimensional with free stream 1), resampled
 (128 x 49 x 34, automatic), Gladstone-Dale air with rho_inf = 1.2 kg/m^3, traced looking down on

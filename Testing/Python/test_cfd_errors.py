@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""RefractiveIndex on bad CFD input (issue 3): every case gives an error (or a warning) that names
+"""RefractiveIndex on bad CFD input: every case gives an error (or a warning) that names
 the array, the number of points and what to do; the output is empty after an error, ParaView
 survives, and fixing the property recovers. The process exits 0.
 

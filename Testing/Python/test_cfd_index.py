@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""RefractiveIndex (issue 3) on synthetic fields with known answers, in pvpython:
+"""RefractiveIndex on synthetic fields with known answers, in pvpython:
 
 1. grad n of a Gaussian on an anisotropic grid with a non-zero origin: equal to the central
    differences of n - 1 in world units (one-sided at the borders) to float precision, and to the

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""RefractiveIndex resampling an unstructured input under MPI (issue 3): the reactor
+"""RefractiveIndex resampling an unstructured input under MPI: the reactor
 (disk_out_ref.ex2) through IdealGas hydrogen on 2 ranks of pvbatch, then the same pipeline on one
 process: the pieces of n - 1 and grad n and the traced image must be the same.
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""The ParaView GUI follows the camera (issue 6); run by run_gui_test.py --script test_gui_follow.py.
+"""The ParaView GUI follows the camera; run by run_gui_test.py --script test_gui_follow.py.
 
 In the GUI: load the plugin, build PLOT3DReader -> RefractiveIndex -> SchlierenImage on the NASA
 blunt fin (../shared/data or $SCHLIEREN_DATA; a built-in off-centre sphere where the data is

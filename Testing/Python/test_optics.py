@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Image formation in pvpython (issue 5): every cutoff, interferometry, BOS, the film filters,
+"""Image formation in pvpython: every cutoff, interferometry, BOS, the film filters,
 passes, seeds and photon killing, against known answers.
 
 Run: pvpython test_optics.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so

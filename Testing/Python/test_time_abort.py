@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Time series and abort (issue 6), in pvpython.
+"""Time series and abort, in pvpython.
 
 1. RefractiveScene's BlastWave is a ParaView time series: it offers TimeSteps times, and the
    schlieren image of each time shows the shock where the Sedov-Taylor law puts it,
@@ -7,7 +7,7 @@
 2. Abort: a long trace (about 20 s uninterrupted) is aborted from a progress observer; the filter
    must return within a second of the request (measured here; the engine checks between chunks of
    about 8 M samples).
-3. Progressive refinement: raising Passes traces only the new passes (issue 5).
+3. Progressive refinement: raising Passes traces only the new passes.
 """
 import math
 import os
