@@ -117,7 +117,7 @@ public:
  * every rank integrates the steps that start in its cells (walking every ray's positions with the
  * same arithmetic as one process, sampling only its own), and rank 0 adds each ray's runs in
  * order. The sums are reassociated, so these records equal one process's within float rounding
- * (TestEngineDistributed: deflections within 1e-5 of the largest), not bit for bit; with
+ * (docs/PARALLEL.md has the measured differences), not bit for bit; with
  * lineOfSightSums false such rays are handed on like the others (bit for bit).
  *
  * Traces rays that start at the film points ab (pairs; the same on every rank) through the
