@@ -535,6 +535,8 @@ struct StraightRun
   float N1;             // n - 1 at the run's first point (at the entry: the background index)
   float ExitN1;         // n - 1 where the ray left the box (the run that ends there), else 0
   std::uint32_t Last;   // 1: the run ends where the ray leaves the box
+  float X[3];           // (Last) where the ray left the box
+  std::uint32_t Steps;  // (Last) the ray's steps, as sch_walk_step counts them
 };
 
 /** Line of sight without ray passing: every rank walks every ray's positions (the same float
@@ -605,16 +607,9 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
         break;
       // the step of sch_walk_step along the unbent line
       float ds = base;
-      int whole = 1;
-      if (!sch_inside(&P, sch_axpy(ds, d0, x)))
-      {
-        float tex = sch_exit_distance(&P, x, d0);
-        if (it > 0 && tex < 1e-3f * base)
-          break;
-        tex += 1e-4f * base;
-        ds = ds < tex ? ds : tex;
-        whole = 0;
-      }
+      const int fit = sch_box_step(&P, x, d0, it, base, &ds);
+      if (!fit)
+        break;
       if (mine)
       {
         // ddev = w ds / n with the run's own w (the runs before add theirs in the sum)
@@ -628,10 +623,11 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
         run.Ds += ds;
       }
       x = sch_axpy(ds, d0, x);
-      if (!whole)
+      if (fit == 2)
         break;
     }
-    // where it left: the owner of that (clamped) cell samples the index there
+    // where it left: the owner of that (clamped) cell samples the index there, and says where
+    // and after how many steps
     int c[3];
     CellOf(P, x, c);
     if (dv.OwnsCell(c[0], c[1], c[2]))
@@ -645,6 +641,10 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
       }
       run.Last = 1;
       run.ExitN1 = sch_sample_field(field, &P, x).n1;
+      run.X[0] = x.x;
+      run.X[1] = x.y;
+      run.X[2] = x.z;
+      run.Steps = static_cast<std::uint32_t>(it);
     }
     if (open)
       runs.push_back(run);
@@ -692,6 +692,7 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
       {
         // the runs of ray k, in the order of their first step
         float w[3] = { 0, 0, 0 }, dev[3] = { 0, 0, 0 }, nds = 0, len = 0, ne1 = 0, exitN1 = 0;
+        sch_v3 x = E[k];
         std::uint32_t steps = 0;
         bool first = true;
         for (; at < all.size() && all[at].Index == k; ++at)
@@ -708,31 +709,12 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
           nds += r.NDs;
           len += r.Ds;
           if (r.Last)
-            exitN1 = r.ExitN1;
-        }
-        // the march's end as sch_walk_end sees it: the position is replayed here too
-        sch_v3 x = E[k];
-        int it = 0;
-        for (;; ++it)
-        {
-          if (it >= P.maxSteps)
-            break;
-          float ds = P.step;
-          int whole = 1;
-          if (!sch_inside(&P, sch_axpy(ds, d0, x)))
           {
-            float tex = sch_exit_distance(&P, x, d0);
-            if (it > 0 && tex < 1e-3f * P.step)
-              break;
-            tex += 1e-4f * P.step;
-            ds = ds < tex ? ds : tex;
-            whole = 0;
+            exitN1 = r.ExitN1;
+            x = sch_make(r.X[0], r.X[1], r.X[2]);
+            steps = r.Steps;
           }
-          x = sch_axpy(ds, d0, x);
-          if (!whole)
-            break;
         }
-        steps = static_cast<std::uint32_t>(it);
         R.x = x;
         R.w = sch_make(w[0], w[1], w[2]);
         R.dev = sch_make(dev[0], dev[1], dev[2]);
@@ -747,7 +729,7 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
         if (!(sch_isfinite(x.x) && sch_isfinite(x.y) && sch_isfinite(x.z) && sch_isfinite(w[0]) &&
               sch_isfinite(w[1]) && sch_isfinite(w[2])))
           R.flags |= SCH_RAY_NONFINITE;
-        if (it >= P.maxSteps)
+        if (static_cast<int>(steps) >= P.maxSteps)
           R.flags |= SCH_RAY_MAXSTEPS;
         else if (!(R.flags & SCH_RAY_NONFINITE) && (1.0f + ne1) + sch_dot(d0, R.w) <= 0.0f)
           R.flags |= SCH_RAY_TURNED;

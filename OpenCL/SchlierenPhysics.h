@@ -652,6 +652,23 @@ SCH_FN float sch_exit_distance(const sch_params* P, sch_v3 x, sch_v3 d)
   return t > 0.0f ? t : 0.0f;
 }
 
+/* The step ds from x along dir, cut at the box: the last step ends on the box (a hair past it),
+ * so no gradient is integrated beyond the data, and a ray on the boundary heading out (a grazing
+ * ray on a face) has left. Only a step whose straight end point is outside pays for the exact
+ * distance. Returns 1 where the step stays inside (ds unchanged), 2 where it was cut (the last
+ * step), 0 where the ray has left (after its first step, `it` > 0). */
+SCH_FN int sch_box_step(const sch_params* P, sch_v3 x, sch_v3 dir, int it, float base, float* ds)
+{
+  if (sch_inside(P, sch_axpy(*ds, dir, x)))
+    return 1;
+  float tex = sch_exit_distance(P, x, dir);
+  if (it > 0 && tex < 1e-3f * base)
+    return 0;
+  tex += 1e-4f * base;
+  *ds = *ds < tex ? *ds : tex;
+  return 2;
+}
+
 typedef struct
 {
   sch_v3 x;   /* where the ray left the volume (on the box, a hair outside) */
@@ -765,19 +782,10 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   /* next to a body no step is longer than a cell: a longer one could pass over a thin body */
   if (SCH_USE_SOLID(P) && W->nearSolid)
     ds = ds < P->cellStep ? ds : P->cellStep;
-  /* the last step ends on the box: no gradient is integrated beyond the data; a ray that is on
-   * the boundary and heading out (a grazing ray on a face) has left. Only a step whose straight
-   * end point is outside pays for the exact distance. */
-  int whole = 1; /* the straight end point is inside: not the last step */
-  if (!sch_inside(P, sch_axpy(ds, dir, W->x)))
-  {
-    float tex = sch_exit_distance(P, W->x, dir);
-    if (W->it > 0 && tex < 1e-3f * W->base)
-      return 0;
-    tex += 1e-4f * W->base;
-    ds = ds < tex ? ds : tex;
-    whole = 0;
-  }
+  const int fit = sch_box_step(P, W->x, dir, W->it, W->base, &ds);
+  if (!fit)
+    return 0;
+  const int whole = fit == 1; /* the straight end point is inside: not the last step */
   /* ddev: the step's part across the beam, w / n, summed apart from x so that the sideways
    * displacement keeps its digits next to coordinates of order one */
   sch_v3 xn, dw, ddev;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenSession.h"
+#include "SchlierenSessionInternal.h"
 
 #include <algorithm>
 #include <cstring>
@@ -11,11 +12,11 @@ namespace schlieren
 
 namespace
 {
-
 bool IsEmpty(const int ext[6])
 {
   return ext[1] < ext[0] || ext[3] < ext[2] || ext[5] < ext[4];
 }
+} // namespace
 
 std::size_t ExtentPoints(const int ext[6])
 {
@@ -23,6 +24,44 @@ std::size_t ExtentPoints(const int ext[6])
                       : static_cast<std::size_t>(ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1) *
       (ext[5] - ext[4] + 1);
 }
+
+void AgreeOrThrow(Parallel& parallel, const std::string& mine)
+{
+  const std::string failure = parallel.Failure(mine);
+  if (!failure.empty())
+    throw Error(mine.empty() ? failure : mine);
+}
+
+std::string LoadPiece(
+  const VolumePiece& piece, const TraceSettings& settings, int ranks, PieceValues& values)
+{
+  std::string problem = piece.Problem;
+  const std::size_t count = ExtentPoints(piece.Extent);
+  if (problem.empty() && settings.Passes < 1)
+    problem = "Passes is " + std::to_string(settings.Passes) +
+      "; it must be at least 1 (one photon per pixel per pass).";
+  else if (problem.empty() && count > 0)
+  {
+    try
+    {
+      problem = piece.Load ? piece.Load(values) : std::string("no values for the input piece");
+      if (problem.empty() && values.NMinus1.size() != count)
+        problem = "The input piece has " + std::to_string(values.NMinus1.size()) +
+          " values of n - 1 for its " + std::to_string(count) + " points.";
+    }
+    catch (const std::bad_alloc&)
+    {
+      problem = "Out of memory while reading the input (std::bad_alloc): resample it to fewer "
+                "points.";
+    }
+  }
+  else if (problem.empty() && ranks == 1)
+    problem = "SchlierenImage: the input image is empty.";
+  return problem;
+}
+
+namespace
+{
 
 /** The grid (without its field) of the whole extent. */
 Volume WholeGrid(const VolumePiece& piece)
@@ -63,14 +102,6 @@ bool InsideWhole(const int whole[6], const int ext[6])
     if (ext[2 * a] < whole[2 * a] || ext[2 * a + 1] > whole[2 * a + 1])
       return false;
   return true;
-}
-
-/** Throws on every rank where any rank failed (see the file comment for the message). */
-void Agree(Parallel& parallel, const std::string& mine)
-{
-  const std::string failure = parallel.Failure(mine);
-  if (!failure.empty())
-    throw Error(mine.empty() ? failure : mine);
 }
 
 /** The numbers of Auto's choice, in the order rank 0 broadcasts them. */
@@ -114,7 +145,7 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
       problem = e.what();
     }
   }
-  Agree(parallel, problem);
+  AgreeOrThrow(parallel, problem);
   std::vector<char> bytes(numbers.size() * sizeof(double));
   std::memcpy(bytes.data(), numbers.data(), bytes.size());
   parallel.Broadcast(bytes, 0);
@@ -300,30 +331,10 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   {
     this->ClearVolume();
     // 1. This rank's piece.
-    std::string problem = piece.Problem;
     PieceValues values;
     const std::size_t count = ExtentPoints(piece.Extent);
-    if (problem.empty() && settings.Passes < 1)
-      problem = "Passes is " + std::to_string(settings.Passes) +
-        "; it must be at least 1 (one photon per pixel per pass).";
-    else if (problem.empty() && count > 0)
-    {
-      try
-      {
-        problem = piece.Load ? piece.Load(values) : std::string("no values for the input piece");
-        if (problem.empty() && values.NMinus1.size() != count)
-          problem = "The input piece has " + std::to_string(values.NMinus1.size()) +
-            " values of n - 1 for its " + std::to_string(count) + " points.";
-      }
-      catch (const std::bad_alloc&)
-      {
-        problem = "Out of memory while reading the input (std::bad_alloc): resample it to fewer "
-                  "points.";
-      }
-    }
-    else if (problem.empty() && ranks == 1)
-      problem = "SchlierenImage: the input image is empty.";
-    Agree(parallel, problem);
+    std::string problem = LoadPiece(piece, settings, ranks, values);
+    AgreeOrThrow(parallel, problem);
 
     // 2. The whole volume on every rank.
     Volume volume = WholeGrid(piece);
@@ -405,7 +416,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     std::vector<float>().swap(field);
     if (!problem.empty())
       this->ClearVolume();
-    Agree(parallel, problem);
+    AgreeOrThrow(parallel, problem);
     volume.Field = this->Packed.data();
     if (!this->Levels.empty())
     {
@@ -482,7 +493,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     problem = "Out of memory while tracing (std::bad_alloc): lower Resolution or resample the "
               "volume to fewer points.";
   }
-  Agree(parallel, problem);
+  AgreeOrThrow(parallel, problem);
   if (!warnings.empty())
     out.Notes.push_back({ true, ranks > 1 ? "rank " + std::to_string(rank) + ": " + warnings : warnings });
 

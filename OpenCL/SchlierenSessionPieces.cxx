@@ -3,32 +3,13 @@
 // handed between ranks (SchlierenDistributed.h); the other path, every rank with the whole volume,
 // is in SchlierenSession.cxx.
 #include "SchlierenSession.h"
+#include "SchlierenSessionInternal.h"
 
 #include <algorithm>
 #include <sstream>
 
 namespace schlieren
 {
-
-namespace
-{
-
-/** Throws on every rank where any rank failed: its own message on a rank that failed. */
-void AgreeOn(Parallel& parallel, const std::string& mine)
-{
-  const std::string failure = parallel.Failure(mine);
-  if (!failure.empty())
-    throw Error(mine.empty() ? failure : mine);
-}
-
-std::size_t Points(const int e[6])
-{
-  if (e[1] < e[0] || e[3] < e[2] || e[5] < e[4])
-    return 0;
-  return static_cast<std::size_t>(e[1] - e[0] + 1) * (e[3] - e[2] + 1) * (e[5] - e[4] + 1);
-}
-
-} // namespace
 
 std::string WhyNotInPieces(const TraceSettings& s)
 {
@@ -78,28 +59,9 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
   {
     this->Pieces.reset();
     this->PiecesKey.clear();
-    std::string problem = piece.Problem;
     PieceValues values;
-    const std::size_t count = Points(piece.Extent);
-    if (problem.empty() && settings.Passes < 1)
-      problem = "Passes is " + std::to_string(settings.Passes) +
-        "; it must be at least 1 (one photon per pixel per pass).";
-    else if (problem.empty() && count > 0)
-    {
-      try
-      {
-        problem = piece.Load ? piece.Load(values) : std::string("no values for the input piece");
-        if (problem.empty() && values.NMinus1.size() != count)
-          problem = "The input piece has " + std::to_string(values.NMinus1.size()) +
-            " values of n - 1 for its " + std::to_string(count) + " points.";
-      }
-      catch (const std::bad_alloc&)
-      {
-        problem = "Out of memory while reading the input (std::bad_alloc): resample it to fewer "
-                  "points.";
-      }
-    }
-    AgreeOn(parallel, problem);
+    const std::size_t count = ExtentPoints(piece.Extent);
+    AgreeOrThrow(parallel, LoadPiece(piece, settings, ranks, values));
     // a body is not traced in pieces yet: the caller traces the whole volume on every rank
     const bool body = std::any_of(values.Solid.begin(), values.Solid.end(),
       [](unsigned char c) { return c != 0; });

@@ -69,6 +69,21 @@ Piece PieceOf(const schtest::SceneVolume& sv, const std::array<int, 6>& e, const
   return p;
 }
 
+/** One process's volume of `sv`, with the whole grid's octree (levels up to the distributed
+ * maximum, into `levels`) where tol >= 0. */
+Volume WholeVolume(const schtest::SceneVolume& sv, double tol, std::vector<unsigned char>& levels)
+{
+  Volume whole = sv.V;
+  if (tol >= 0)
+  {
+    levels.resize(whole.NumberOfPoints());
+    ComputeOctreeLevels(whole.Dimensions, sv.N1.data(), tol, levels.data(), DistributedOctreeMaxLevel);
+    whole.Levels = levels.data();
+    whole.LevelTolerance = tol;
+  }
+  return whole;
+}
+
 bool SameRecords(const std::vector<RayRecord>& a, const std::vector<RayRecord>& b)
 {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(RayRecord)) == 0;
@@ -99,17 +114,10 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   TraceSettings s = c.Settings;
   s.Device = Backend::CPU;
   // one process's volume, with the whole grid's octree where the case has one
-  Volume whole = sv.V;
   std::vector<unsigned char> levels;
+  const Volume whole = WholeVolume(sv, c.OctreeTolerance, levels);
   if (c.OctreeTolerance >= 0)
-  {
-    levels.resize(whole.NumberOfPoints());
-    ComputeOctreeLevels(whole.Dimensions, sv.N1.data(), c.OctreeTolerance, levels.data(),
-      DistributedOctreeMaxLevel);
-    whole.Levels = levels.data();
-    whole.LevelTolerance = c.OctreeTolerance;
     s.UseOctree = true;
-  }
   const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
   // the known answer: one process, the whole volume, the CPU backend
   std::vector<float> ab;
@@ -257,17 +265,10 @@ int main()
       const schtest::SceneVolume& sv = *c.Volume;
       TraceSettings s = c.Settings;
       s.Device = Backend::OpenCL;
-      Volume whole = sv.V;
       std::vector<unsigned char> levels;
+      const Volume whole = WholeVolume(sv, c.OctreeTolerance, levels);
       if (c.OctreeTolerance >= 0)
-      {
-        levels.resize(whole.NumberOfPoints());
-        ComputeOctreeLevels(whole.Dimensions, sv.N1.data(), c.OctreeTolerance, levels.data(),
-          DistributedOctreeMaxLevel);
-        whole.Levels = levels.data();
-        whole.LevelTolerance = c.OctreeTolerance;
         s.UseOctree = true;
-      }
       FilmSums expected;
       Accumulate(whole, s, expected);
       FilmSums got[2];
@@ -435,16 +436,8 @@ int main()
     s.Resolution[0] = s.Resolution[1] = 24;
     s.ViewDirection[0] = 0.6;
     s.ViewDirection[2] = -0.8;
-    Volume whole = gauss.V;
     std::vector<unsigned char> levels;
-    if (tol >= 0)
-    {
-      levels.resize(whole.NumberOfPoints());
-      ComputeOctreeLevels(whole.Dimensions, gauss.N1.data(), tol, levels.data(),
-        DistributedOctreeMaxLevel);
-      whole.Levels = levels.data();
-      whole.LevelTolerance = tol;
-    }
+    const Volume whole = WholeVolume(gauss, tol, levels);
     AutoChoice one;
     const TraceSettings expected = ResolveAuto(whole, s, &one);
     const Decomposition d = Blocks(n, { 0.4 }, {}, { 0.6 });
