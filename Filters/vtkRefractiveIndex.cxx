@@ -1031,6 +1031,13 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
   // A 2D input without Symmetry is one clear error (vtkRefractiveIndexInputs.cxx); the model and
   // the arrays left automatic are resolved by name; ids and integer arrays are refused; cell
   // arrays become point arrays.
+  // an OpenFOAM case: its internal mesh (the patches are surfaces of it, with no volume to probe)
+  std::string meshNote;
+  w.Input = InternalMesh(w.Input, &meshNote);
+  if (!meshNote.empty())
+  {
+    w.Notes.push_back(meshNote);
+  }
   int outWhole[6];
   w.OutInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), outWhole);
   if (!w.Resampled || (!IsEmpty(outWhole) && w.OutInfo->Has(vtkDataObject::ORIGIN())))

@@ -607,6 +607,12 @@ private:
     const std::vector<std::string>& names, std::vector<std::string>& notes, std::string& error);
   /** "" or the error of a NO_SYMMETRY input that is 2D (one message, naming Symmetry). */
   std::string FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input);
+  /**
+   * An OpenFOAM reader's multiblock (a top-level block named internalMesh): that block, the
+   * cells; the patches and zones beside it are ignored (`note`, if given, says so). Any other
+   * input as it is.
+   */
+  static vtkDataObject* InternalMesh(vtkDataObject* input, std::string* note);
 
   int ResolvedModel = PASSTHROUGH;
   bool ResolvedHoldsN = false;

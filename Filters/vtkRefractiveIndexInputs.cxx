@@ -17,6 +17,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -599,6 +600,51 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
 }
 
 //------------------------------------------------------------------------------
+vtkDataObject* vtkRefractiveIndex::InternalMesh(vtkDataObject* input, std::string* note)
+{
+  auto* blocks = vtkMultiBlockDataSet::SafeDownCast(input);
+  if (!blocks)
+  {
+    return input;
+  }
+  vtkDataSet* mesh = nullptr;
+  std::vector<std::string> others;
+  for (unsigned int b = 0; b < blocks->GetNumberOfBlocks(); ++b)
+  {
+    const char* name = blocks->HasMetaData(b)
+      ? blocks->GetMetaData(b)->Get(vtkCompositeDataSet::NAME())
+      : nullptr;
+    auto* ds = vtkDataSet::SafeDownCast(blocks->GetBlock(b));
+    if (!mesh && ds && name && std::string(name) == "internalMesh")
+    {
+      mesh = ds;
+    }
+    else if (blocks->GetBlock(b))
+    {
+      others.emplace_back(name ? name : "block " + std::to_string(b));
+    }
+  }
+  if (!mesh)
+  {
+    return input;
+  }
+  if (note)
+  {
+    std::ostringstream m;
+    m << "RefractiveIndex: the OpenFOAM case's internalMesh is read (" << mesh->GetNumberOfCells()
+      << " cells)";
+    if (!others.empty())
+    {
+      m << "; the other blocks (" << List(others)
+        << ": patches, zones) are ignored, since the field lives in the cells";
+    }
+    m << ".";
+    *note = m.str();
+  }
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
 std::string vtkRefractiveIndex::FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input)
 {
   if (this->Symmetry != NO_SYMMETRY)
@@ -687,7 +733,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
     }
     producer->Update(producerPort);
   }
-  vtkDataObject* input = vtkDataObject::GetData(inInfo);
+  vtkDataObject* input = InternalMesh(vtkDataObject::GetData(inInfo), nullptr);
   double b[6];
   auto fail = [this](const std::string& message) {
     this->SamplingError = message;
