@@ -579,6 +579,12 @@ private:
    * `note` gets what the user should know.
    */
   std::string ComputeSolid(Work& w, std::string& note);
+  /**
+   * Marks in `solid` the void regions of the resampled `grid` that lie beside the walls of
+   * `mesh` (schlieren::walls; vtkRefractiveIndexInputs.cxx); `note` says what was found.
+   */
+  bool BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid, const unsigned char* valid,
+    unsigned char* solid, std::string& note);
   /** The requested extent of the grid, with the new arrays and the field data. */
   void WriteOutput(Work& w);
   vtkSmartPointer<vtkFieldData> OutputFieldData(Work& w);

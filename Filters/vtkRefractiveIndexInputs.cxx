@@ -25,6 +25,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "SchlierenArrays.h"
+#include "SchlierenBodies.h"
+#include "SchlierenWalls.h"
 #include "SchlierenEngine.h"
 #include "SchlierenParallel.h"
 #include "SchlierenValues.h"
@@ -1091,4 +1093,49 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     grid->GetPointData()->AddArray(copy);
   }
   return grid;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
+  const unsigned char* valid, unsigned char* solid, std::string& note)
+{
+  int dims[3];
+  grid->GetDimensions(dims);
+  const int thin = this->PlaneAxis;
+  const int axial = this->SymmetryAxis;
+  const int radial = 3 - axial - thin;
+  const int symmetry = this->Symmetry;
+  const double plane = this->PlaneCoordinate, sign = this->RadialSign;
+  // where the grid sampled the mesh: the point itself, on the mid-plane (Planar), or at its
+  // axial coordinate and distance to the axis in the r-z plane (Axisymmetric)
+  auto toMesh = [&](const double* x, double* at) {
+    std::copy(x, x + 3, at);
+    if (symmetry == PLANAR)
+    {
+      at[thin] = plane;
+    }
+    else if (symmetry == AXISYMMETRIC)
+    {
+      const double dt = x[thin] - plane;
+      at[radial] = sign * std::sqrt(x[radial] * x[radial] + dt * dt);
+      at[thin] = plane;
+    }
+  };
+  std::vector<unsigned char> rim;
+  schlieren::walls::RimReport report;
+  if (!schlieren::walls::ClassifyRim(mesh, dims, grid->GetOrigin(), grid->GetSpacing(), valid,
+        symmetry == NO_SYMMETRY ? -1 : thin, toMesh, rim, report))
+  {
+    return false;
+  }
+  const std::size_t marked = schlieren::InvalidRegionsBesideWalls(dims, valid, rim.data(), solid);
+  std::ostringstream m;
+  m << "RefractiveIndex: BodyFromGrid: of the mesh's " << report.WallFaces + report.FlowFaces
+    << " boundary faces, " << report.WallFaces << " are walls (the flow does not cross them: |"
+    << report.Velocity << ".n| < " << 100 * schlieren::walls::WallFlux << " % of the largest |"
+    << report.Velocity << "|); " << marked
+    << " grid points of the voids beside them (not enclosed by the flow, on the domain's edge) "
+       "are taken as a body.";
+  note = m.str();
+  return marked > 0;
 }

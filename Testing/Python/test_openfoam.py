@@ -14,6 +14,11 @@ with the reason.
    0.015 in slope, 0.72 deg in angle after cos^2(beta); asserted 0.75 deg. The same angle from
    cell data only (the reader's CreateCellToPoint off, as ParaView 6 reads by default) within
    0.25 deg of it (the two differ by the cell-to-point averaging only); the internalMesh note.
+2. The wedge's silhouette from its wall: the void under the ramp reaches the box's faces, so only
+   the mesh's boundary faces tell it from the outside (BodyFromGrid, schlieren::walls: the flow
+   does not cross the ramp); it is black in the image, its edge on y = x tan 15 deg within a
+   grid spacing (the silhouette is the half-level of the interpolated solid points), nothing
+   blocked upstream of the apex.
 """
 import math
 import os
@@ -134,6 +139,29 @@ for c2p in (True, False):
         T.close(measured, beta, 0.75, "wedge15Ma5 (%s): the oblique shock's angle in the image against "
                 "theta-beta-M, deg" % tag)
         T.close(a, 0.0, 0.0038, "wedge15Ma5: the fitted shock passes within a cell (3.8 mm) of the apex")
+        # 2. the wedge from its wall: black, its edge on y = x tan 15 deg
+        T.check("are walls" in text and "taken as a body" in text, "wedge15Ma5: the log says the body "
+                "comes from the walls: %s" % [l for l in text.splitlines() if "walls" in l][:1])
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        blocked = vtk_to_numpy(out.GetPointData().GetArray("blocked")).reshape(X.shape).astype(float)
+        edges, expected = [], []
+        for j in range(X.shape[1]):
+            x = X[0, j]
+            if not (0.01 <= x <= 0.30):
+                continue
+            col = blocked[:, j]
+            i = int(np.argmax(col < 0.5))  # the first row (from y = 0 up) that light passes
+            if i == 0:
+                continue
+            y0, y1 = Y[i - 1, j], Y[i, j]
+            edges.append(y0 + (col[i - 1] - 0.5) / (col[i - 1] - col[i]) * (y1 - y0))
+            expected.append(x * math.tan(math.radians(15.0)))
+        h = grid.GetSpacing()[1]
+        T.check(len(edges) > 250, "wedge15Ma5: the wedge is black in %d film columns over x = 0.01-0.30" % len(edges))
+        T.close(edges, expected, h, "wedge15Ma5: the wedge's edge in the image against y = x tan 15 deg, within "
+                "a grid spacing (%.4f m), m" % h)
+        T.check(float(blocked[X < -0.002].max()) == 0.0 and float(blocked[Y > 0.09].max()) == 0.0,
+                "wedge15Ma5: nothing blocked upstream of the apex or above the wedge's top")
         import schlieren_view  # embedded in the plugin
         schlieren_view.write_png(schlieren_view.film_array(out, "intensity"),
                                  os.path.join(OUTPUT, "wedge15Ma5_knife.png"))
