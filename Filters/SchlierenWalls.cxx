@@ -125,9 +125,12 @@ bool ClassifyRim(vtkDataSet* mesh, const int dims[3], const double origin[3],
         }
       }
     }
-    const bool wall = std::abs(u[0] * n[0] + u[1] * n[1] + u[2] * n[2]) < WallFlux * umax;
-    (wall ? report.WallFaces : report.FlowFaces) += 1;
-    kind.push_back(wall ? 1 : 2);
+    // fluid at rest says nothing (a quiescent far field as much as a wall): neither
+    const double speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    const bool moving = speed >= MovingFluid * umax;
+    const bool wall = moving && std::abs(u[0] * n[0] + u[1] * n[1] + u[2] * n[2]) < WallFlux * speed;
+    (wall ? report.WallFaces : moving ? report.FlowFaces : report.StillFaces) += 1;
+    kind.push_back(wall ? 1 : moving ? 2 : 0);
     polys->InsertNextCell(ids);
   }
   if (kind.empty())

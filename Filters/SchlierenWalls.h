@@ -7,7 +7,7 @@
  * is not, and its void reaches the resampling box, so the enclosed-hole rule cannot tell it from
  * the outside beyond a far-field boundary. The mesh's own boundary faces can: the flow does not
  * cross a wall (slip or no-slip, |U.n| small next to it), it does cross an inlet, an outlet or a
- * far field. Each invalid grid point next to a valid one takes the kind of its nearest boundary
+ * far field (fluid at rest next to a face tells neither). Each invalid grid point next to a valid one takes the kind of its nearest boundary
  * face; schlieren::InvalidRegionsBesideWalls then decides per void region.
  */
 #ifndef SchlierenWalls_h
@@ -25,14 +25,16 @@ namespace schlieren
 namespace walls
 {
 
-/** The fraction of the largest |U| under which |U.n| next to a boundary face makes it a wall. */
+/** The fraction of the speed |U| next to a boundary face under which |U.n| makes it a wall. */
 constexpr double WallFlux = 0.05;
+/** Under this fraction of the largest |U| the fluid next to a face is at rest: neither kind. */
+constexpr double MovingFluid = 0.01;
 
 /** What ClassifyRim found (for the log). */
 struct RimReport
 {
   std::string Velocity; // the velocity array's name ("" if the mesh has none)
-  std::size_t WallFaces = 0, FlowFaces = 0, RimPoints = 0;
+  std::size_t WallFaces = 0, FlowFaces = 0, StillFaces = 0, RimPoints = 0;
 };
 
 /**

@@ -1036,6 +1036,10 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
   std::string meshNote;
   w.Input = InternalMesh(w.Input, &meshNote);
   w.Mesh = vtkDataSet::SafeDownCast(w.Input);
+  if (w.Symmetric && !this->WedgeNote.empty())
+  {
+    w.Notes.push_back(this->WedgeNote);
+  }
   if (!meshNote.empty())
   {
     w.Notes.push_back(meshNote);
