@@ -931,6 +931,7 @@ struct vtkRefractiveIndex::Work
   vtkDataObject* Input = nullptr; // the input, or its copy with cell arrays made point arrays
   vtkImageData* InputImage = nullptr;
   vtkSmartPointer<vtkDataObject> PointInput;
+  vtkDataSet* Mesh = nullptr; // the input mesh as read (its velocity tells its walls)
   vtkImageData* Output = nullptr;
   bool Symmetric = false;
   bool Resampled = false; // the grid is this filter's (a non-image or a symmetric input)
@@ -1031,6 +1032,18 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
   // A 2D input without Symmetry is one clear error (vtkRefractiveIndexInputs.cxx); the model and
   // the arrays left automatic are resolved by name; ids and integer arrays are refused; cell
   // arrays become point arrays.
+  // an OpenFOAM case: its internal mesh (the patches are surfaces of it, with no volume to probe)
+  std::string meshNote;
+  w.Input = InternalMesh(w.Input, &meshNote);
+  w.Mesh = vtkDataSet::SafeDownCast(w.Input);
+  if (w.Symmetric && !this->WedgeNote.empty())
+  {
+    w.Notes.push_back(this->WedgeNote);
+  }
+  if (!meshNote.empty())
+  {
+    w.Notes.push_back(meshNote);
+  }
   int outWhole[6];
   w.OutInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), outWhole);
   if (!w.Resampled || (!IsEmpty(outWhole) && w.OutInfo->Has(vtkDataObject::ORIGIN())))
@@ -1548,6 +1561,17 @@ std::string vtkRefractiveIndex::ComputeSolid(Work& w, std::string& note)
       note = "BodyFromGrid: the invalid points of an image split over MPI ranks cannot be told "
              "apart (body or outside) piece by piece; no body is taken from them. Give the body "
              "as a SolidArray or a surface instead.";
+    }
+  }
+  // the voids beside the mesh's walls (a body on the domain's edge), where the mesh has a velocity
+  if (this->BodyFromGrid && w.AnyInvalid && resampled && w.Ranks.Size() == 1)
+  {
+    std::string wallNote;
+    any = this->BodiesBesideWalls(w.Mesh, grid, valid.data(), solid.data(), wallNote) || any;
+    if (!wallNote.empty())
+    {
+      vtkOutputWindowDisplayText((wallNote + "\n").c_str());
+      w.Notes.push_back(wallNote);
     }
   }
   // a body the input already carries (RefractiveScene's Body, an upstream RefractiveIndex's): kept

@@ -90,6 +90,7 @@ class vtkImageData;
 namespace schlieren
 {
 class Parallel; // OpenCL/SchlierenParallel.h: the one interface to the ranks
+struct Wedge;   // OpenCL/SchlierenWedge.h: an axisymmetric wedge found from its points
 }
 
 class SCHLIERENFILTERS_EXPORT vtkRefractiveIndex : public vtkImageAlgorithm
@@ -256,6 +257,19 @@ public:
    */
   vtkSetClampMacro(SymmetryAxis, int, 0, 2);
   vtkGetMacro(SymmetryAxis, int);
+  ///@}
+
+  ///@{
+  /**
+   * AXISYMMETRIC: on (default), an input that is a wedge (one cell across, every point on one of
+   * two planes through a common line parallel to a coordinate axis, at most
+   * schlieren::WedgeMaxAngleDegrees apart: OpenFOAM's axisymmetric cases) is revolved about
+   * that line, found from its points (schlieren::DetectWedge), and SymmetryAxis is ignored; the
+   * note says what was found, or why a 3D input was not taken as a wedge. Off: SymmetryAxis.
+   */
+  vtkSetMacro(AxisFromWedge, bool);
+  vtkGetMacro(AxisFromWedge, bool);
+  vtkBooleanMacro(AxisFromWedge, bool);
   ///@}
 
   ///@{
@@ -514,6 +528,7 @@ protected:
   int Symmetry = NO_SYMMETRY;
   double Span = 1.0;
   int SymmetryAxis = 0;
+  bool AxisFromWedge = true;
   bool PassthroughHoldsN = false;
   int Gas = CUSTOM_GAS;
   double GladstoneDaleConstant = 2.256e-4;
@@ -579,6 +594,12 @@ private:
    * `note` gets what the user should know.
    */
   std::string ComputeSolid(Work& w, std::string& note);
+  /**
+   * Marks in `solid` the void regions of the resampled `grid` that lie beside the walls of
+   * `mesh` (schlieren::walls; vtkRefractiveIndexInputs.cxx); `note` says what was found.
+   */
+  bool BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid, const unsigned char* valid,
+    unsigned char* solid, std::string& note);
   /** The requested extent of the grid, with the new arrays and the field data. */
   void WriteOutput(Work& w);
   vtkSmartPointer<vtkFieldData> OutputFieldData(Work& w);
@@ -605,8 +626,19 @@ private:
    */
   vtkSmartPointer<vtkDataObject> PointFields(schlieren::Parallel& parallel, vtkDataObject* input,
     const std::vector<std::string>& names, std::vector<std::string>& notes, std::string& error);
+  /**
+   * AXISYMMETRIC: the wedge of the input's points (none for a null input or AxisFromWedge off);
+   * sets the axis in use, its crossing and the sampled half plane's tilt, and WedgeNote.
+   */
+  schlieren::Wedge FindWedge(vtkDataObject* input);
   /** "" or the error of a NO_SYMMETRY input that is 2D (one message, naming Symmetry). */
   std::string FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input);
+  /**
+   * An OpenFOAM reader's multiblock (a top-level block named internalMesh): that block, the
+   * cells; the patches and zones beside it are ignored (`note`, if given, says so). Any other
+   * input as it is.
+   */
+  static vtkDataObject* InternalMesh(vtkDataObject* input, std::string* note);
 
   int ResolvedModel = PASSTHROUGH;
   bool ResolvedHoldsN = false;
@@ -617,6 +649,12 @@ private:
   double PlaneCoordinate = 0.0;
   double RadialSign = 1.0;
   double RadialExtent = 0.0; // the input's largest r
+  // the axis in use (SymmetryAxis, or a wedge's), where it crosses the radial axis, and the
+  // angle of the half plane sampled (a wedge's mid-plane) from the radial axis towards PlaneAxis
+  int AxisInUse = 0;
+  double AxisRadial = 0.0;
+  double MidTilt = 0.0;
+  std::string WedgeNote; // what the wedge detection found, for the log
 };
 
 #endif

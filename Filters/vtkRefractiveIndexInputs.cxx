@@ -17,6 +17,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -24,9 +25,12 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "SchlierenArrays.h"
+#include "SchlierenBodies.h"
+#include "SchlierenWalls.h"
 #include "SchlierenEngine.h"
 #include "SchlierenParallel.h"
 #include "SchlierenValues.h"
+#include "SchlierenWedge.h"
 #include "SchlierenIndexModels.h"
 
 #include <algorithm>
@@ -599,6 +603,51 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
 }
 
 //------------------------------------------------------------------------------
+vtkDataObject* vtkRefractiveIndex::InternalMesh(vtkDataObject* input, std::string* note)
+{
+  auto* blocks = vtkMultiBlockDataSet::SafeDownCast(input);
+  if (!blocks)
+  {
+    return input;
+  }
+  vtkDataSet* mesh = nullptr;
+  std::vector<std::string> others;
+  for (unsigned int b = 0; b < blocks->GetNumberOfBlocks(); ++b)
+  {
+    const char* name = blocks->HasMetaData(b)
+      ? blocks->GetMetaData(b)->Get(vtkCompositeDataSet::NAME())
+      : nullptr;
+    auto* ds = vtkDataSet::SafeDownCast(blocks->GetBlock(b));
+    if (!mesh && ds && name && std::string(name) == "internalMesh")
+    {
+      mesh = ds;
+    }
+    else if (blocks->GetBlock(b))
+    {
+      others.emplace_back(name ? name : "block " + std::to_string(b));
+    }
+  }
+  if (!mesh)
+  {
+    return input;
+  }
+  if (note)
+  {
+    std::ostringstream m;
+    m << "RefractiveIndex: the OpenFOAM case's internalMesh is read (" << mesh->GetNumberOfCells()
+      << " cells)";
+    if (!others.empty())
+    {
+      m << "; the other blocks (" << List(others)
+        << ": patches, zones) are ignored, since the field lives in the cells";
+    }
+    m << ".";
+    *note = m.str();
+  }
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
 std::string vtkRefractiveIndex::FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input)
 {
   if (this->Symmetry != NO_SYMMETRY)
@@ -687,7 +736,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
     }
     producer->Update(producerPort);
   }
-  vtkDataObject* input = vtkDataObject::GetData(inInfo);
+  vtkDataObject* input = InternalMesh(vtkDataObject::GetData(inInfo), nullptr);
   double b[6];
   auto fail = [this](const std::string& message) {
     this->SamplingError = message;
@@ -713,10 +762,11 @@ bool vtkRefractiveIndex::SymmetricGrid(
   // The axis normal to the input's plane: an image's axis of fewest points, else the thinnest
   // side of the bounds (ties: the later axis, z before y before x).
   const bool axisym = this->Symmetry == AXISYMMETRIC;
-  int thin = -1;
-  for (int a = 2; a >= 0; --a)
+  const schlieren::Wedge wedge = this->FindWedge(axisym && !image ? input : nullptr);
+  int thin = wedge.Found ? wedge.Thin : -1;
+  for (int a = 2; a >= 0 && !wedge.Found; --a)
   {
-    if (axisym && a == this->SymmetryAxis)
+    if (axisym && a == this->AxisInUse)
     {
       continue;
     }
@@ -735,7 +785,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
   if (axisym)
   {
     // The axis must lie in the input's plane: the thinnest side overall must not be along it.
-    const double axisSize = b[2 * this->SymmetryAxis + 1] - b[2 * this->SymmetryAxis];
+    const double axisSize = b[2 * this->AxisInUse + 1] - b[2 * this->AxisInUse];
     const double thinSize = b[2 * thin + 1] - b[2 * thin];
     if (axisSize < thinSize || axisSize <= 1e-9 * largest)
     {
@@ -747,7 +797,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
     }
   }
   this->PlaneAxis = thin;
-  this->PlaneCoordinate = 0.5 * (b[2 * thin] + b[2 * thin + 1]);
+  this->PlaneCoordinate = wedge.Found ? wedge.AxisThin : 0.5 * (b[2 * thin] + b[2 * thin + 1]);
   const bool automatic = this->SamplingDimensions[0] <= 0 || this->SamplingDimensions[1] <= 0 ||
     this->SamplingDimensions[2] <= 0;
   int dims[3];
@@ -829,11 +879,11 @@ bool vtkRefractiveIndex::SymmetricGrid(
   }
   else
   {
-    const int axial = this->SymmetryAxis;
+    const int axial = this->AxisInUse;
     const int radial = 3 - axial - thin;
     const double rmax = b[2 * radial + 1], rmin = b[2 * radial];
-    this->RadialSign = rmax >= -rmin ? 1.0 : -1.0;
-    const double R = this->RadialSign > 0 ? rmax : -rmin;
+    this->RadialSign = wedge.Found ? wedge.Sign : (rmax >= -rmin ? 1.0 : -1.0);
+    const double R = wedge.Found ? wedge.Reach : (this->RadialSign > 0 ? rmax : -rmin);
     this->RadialExtent = R;
     if (!(R > 0))
     {
@@ -853,8 +903,8 @@ bool vtkRefractiveIndex::SymmetricGrid(
       const double half = 0.5 * (b[2 * axial + 1] - b[2 * axial]) * (1.0 - 1e-6);
       box[2 * axial] = c - half;
       box[2 * axial + 1] = c + half;
-      box[2 * radial] = -R;
-      box[2 * radial + 1] = R;
+      box[2 * radial] = this->AxisRadial - R;
+      box[2 * radial + 1] = this->AxisRadial + R;
       box[2 * thin] = this->PlaneCoordinate - R;
       box[2 * thin + 1] = this->PlaneCoordinate + R;
     }
@@ -939,7 +989,7 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     // Axisymmetric: a grid point at axial coordinate x_a and distance r from the axis takes the
     // 2D value at (x_a, r). The distances repeat over the transverse plane (its symmetries), so
     // each distinct r is probed once per axial position.
-    const int axial = this->SymmetryAxis;
+    const int axial = this->AxisInUse;
     const int radial = 3 - axial - thin;
     const double hmin = std::min(h[radial], h[thin]);
     const double outer = this->RadialExtent * (1.0 - 1e-6); // a hair inside the outermost cells
@@ -950,7 +1000,7 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     {
       for (int ir = 0; ir < dims[radial]; ++ir)
       {
-        const double dr = o[radial] + ir * h[radial];
+        const double dr = o[radial] + ir * h[radial] - this->AxisRadial;
         const double dt = o[thin] + it * h[thin] - this->PlaneCoordinate;
         // Beyond the input's largest radius (the box's corners) the field is carried outward
         // at its value there (zero gradient in r, as at a CFD outflow boundary), rather than
@@ -980,8 +1030,9 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
       {
         double x[3];
         x[axial] = o[axial] + ia * h[axial];
-        x[radial] = this->RadialSign * radii[u];
-        x[thin] = this->PlaneCoordinate;
+        // on the half plane sampled: the radial axis, or a wedge's mid-plane
+        x[radial] = this->AxisRadial + this->RadialSign * radii[u] * std::cos(this->MidTilt);
+        x[thin] = this->PlaneCoordinate + this->RadialSign * radii[u] * std::sin(this->MidTilt);
         points->SetPoint(ia * U + u, x);
       }
     }
@@ -1045,4 +1096,98 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     grid->GetPointData()->AddArray(copy);
   }
   return grid;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
+  const unsigned char* valid, unsigned char* solid, std::string& note)
+{
+  int dims[3];
+  grid->GetDimensions(dims);
+  const int thin = this->PlaneAxis;
+  const int axial = this->AxisInUse;
+  const int radial = 3 - axial - thin;
+  const int symmetry = this->Symmetry;
+  const double plane = this->PlaneCoordinate, sign = this->RadialSign;
+  const double axis = this->AxisRadial, tilt = this->MidTilt;
+  // where the grid sampled the mesh: the point itself, on the mid-plane (Planar), or at its
+  // axial coordinate and distance to the axis in the r-z plane (Axisymmetric)
+  auto toMesh = [&](const double* x, double* at) {
+    std::copy(x, x + 3, at);
+    if (symmetry == PLANAR)
+    {
+      at[thin] = plane;
+    }
+    else if (symmetry == AXISYMMETRIC)
+    {
+      const double dr = x[radial] - axis, dt = x[thin] - plane;
+      const double r = std::sqrt(dr * dr + dt * dt);
+      at[radial] = axis + sign * r * std::cos(tilt);
+      at[thin] = plane + sign * r * std::sin(tilt);
+    }
+  };
+  std::vector<unsigned char> rim;
+  schlieren::walls::RimReport report;
+  if (!schlieren::walls::ClassifyRim(mesh, dims, grid->GetOrigin(), grid->GetSpacing(), valid,
+        symmetry == NO_SYMMETRY ? -1 : thin, toMesh, rim, report))
+  {
+    return false;
+  }
+  const std::size_t marked = schlieren::InvalidRegionsBesideWalls(dims, valid, rim.data(), solid);
+  std::ostringstream m;
+  m << "RefractiveIndex: BodyFromGrid: of the mesh's "
+    << report.WallFaces + report.FlowFaces + report.StillFaces << " boundary faces, "
+    << report.WallFaces << " are walls (the flow runs along them: |" << report.Velocity
+    << ".n| < " << 100 * schlieren::walls::WallFlux << " % of |" << report.Velocity << "| there), "
+    << report.FlowFaces << " are crossed by the flow, " << report.StillFaces
+    << " have fluid at rest beside them; " << marked
+    << " grid points of the voids beside them (not enclosed by the flow, on the domain's edge) "
+       "are taken as a body.";
+  note = m.str();
+  return marked > 0;
+}
+
+//------------------------------------------------------------------------------
+schlieren::Wedge vtkRefractiveIndex::FindWedge(vtkDataObject* input)
+{
+  this->AxisInUse = this->SymmetryAxis;
+  this->AxisRadial = 0.0;
+  this->MidTilt = 0.0;
+  this->WedgeNote.clear();
+  schlieren::Wedge wedge;
+  if (!input || !this->AxisFromWedge)
+  {
+    return wedge;
+  }
+  std::vector<double> xyz;
+  ForEachLeaf(input, [&](vtkDataSet* ds) {
+    for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      ds->GetPoint(i, p);
+      xyz.insert(xyz.end(), p, p + 3);
+    }
+  });
+  wedge = schlieren::DetectWedge(xyz.data(), xyz.size() / 3);
+  std::ostringstream m;
+  const double deg = 180.0 / 3.14159265358979323846;
+  if (wedge.Found)
+  {
+    this->AxisInUse = wedge.Axial;
+    this->AxisRadial = wedge.AxisRadial;
+    this->MidTilt = wedge.MidTilt;
+    m << "RefractiveIndex: the input is an axisymmetric wedge (AxisFromWedge): two planes "
+      << wedge.Angle * deg << " deg apart through the line along " << AxisNames[wedge.Axial]
+      << " at " << AxisNames[wedge.Radial] << " = " << wedge.AxisRadial << ", "
+      << AxisNames[wedge.Thin] << " = " << wedge.AxisThin
+      << "; its mid-plane is revolved about that line (SymmetryAxis is not used).";
+  }
+  else if (wedge.Why.find("flat") == std::string::npos)
+  {
+    m << "RefractiveIndex: the input is not taken as a wedge (AxisFromWedge): " << wedge.Why
+      << ". It is revolved about SymmetryAxis " << AxisNames[this->SymmetryAxis]
+      << ", its mid-plane taken as the r-z plane.";
+  }
+  this->WedgeNote = m.str();
+  return wedge;
 }

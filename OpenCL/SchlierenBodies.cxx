@@ -62,4 +62,61 @@ std::size_t EnclosedInvalidPoints(
   return count;
 }
 
+std::size_t InvalidRegionsBesideWalls(
+  const int dims[3], const unsigned char* valid, const unsigned char* rim, unsigned char* solid)
+{
+  const std::int64_t nx = dims[0], ny = dims[1], nz = dims[2];
+  const std::size_t n = static_cast<std::size_t>(nx * ny * nz);
+  std::vector<std::int64_t> region(n, -1);
+  std::vector<std::int64_t> stack, members;
+  std::size_t count = 0;
+  std::int64_t label = 0;
+  for (std::size_t start = 0; start < n; ++start)
+  {
+    if (valid[start] || region[start] >= 0)
+    {
+      continue;
+    }
+    // flood fill one region, counting its wall and flow rim points
+    std::size_t walls = 0, flows = 0;
+    members.clear();
+    region[start] = label;
+    stack.push_back(static_cast<std::int64_t>(start));
+    while (!stack.empty())
+    {
+      const std::int64_t p = stack.back();
+      stack.pop_back();
+      members.push_back(p);
+      walls += rim[p] == 1;
+      flows += rim[p] == 2;
+      const std::int64_t i = p % nx, j = (p / nx) % ny, k = p / (nx * ny);
+      const std::int64_t next[6][3] = { { i - 1, j, k }, { i + 1, j, k }, { i, j - 1, k },
+        { i, j + 1, k }, { i, j, k - 1 }, { i, j, k + 1 } };
+      for (const auto& q : next)
+      {
+        if (q[0] < 0 || q[0] >= nx || q[1] < 0 || q[1] >= ny || q[2] < 0 || q[2] >= nz)
+        {
+          continue;
+        }
+        const std::int64_t r = (q[2] * ny + q[1]) * nx + q[0];
+        if (!valid[r] && region[r] < 0)
+        {
+          region[r] = label;
+          stack.push_back(r);
+        }
+      }
+    }
+    ++label;
+    if (walls > flows)
+    {
+      for (std::int64_t p : members)
+      {
+        count += solid[p] == 0;
+        solid[p] = 1;
+      }
+    }
+  }
+  return count;
+}
+
 } // namespace schlieren

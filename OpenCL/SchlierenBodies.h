@@ -28,6 +28,17 @@ namespace schlieren
 std::size_t EnclosedInvalidPoints(
   const int dims[3], const unsigned char* valid, const int* wallFaces, unsigned char* solid);
 
+/**
+ * The bodies a CFD mesh leaves out beside its walls (a wedge or a step on the domain's edge,
+ * which reach the grid's boundary and so are not enclosed). `rim` holds, for the invalid points
+ * next to a valid one, which boundary face of the mesh is nearest: 1 a wall (a face the flow
+ * does not cross), 2 a face the flow crosses (an inlet, an outlet, a far field); 0 elsewhere.
+ * Every connected region of invalid points (6 neighbours) whose rim has more wall points than
+ * flow points is marked in `solid` (added to what is there). Returns the number of points marked.
+ */
+std::size_t InvalidRegionsBesideWalls(
+  const int dims[3], const unsigned char* valid, const unsigned char* rim, unsigned char* solid);
+
 } // namespace schlieren
 
 #endif

@@ -20,7 +20,7 @@ SCHLIEREN_BUILD_PACKAGES=(
 # Only the tests need these: an X server for rendering tests; a window manager, xdotool (real mouse
 # and key events) and ImageMagick (screenshots) for the GUI tests.
 # python3-numpy: the GUI tests' checks run under Debian's Python (it also comes with paraview)
-SCHLIEREN_TEST_PACKAGES=(xvfb openbox xdotool x11-utils imagemagick python3-numpy)
+SCHLIEREN_TEST_PACKAGES=(xvfb openbox xdotool x11-utils imagemagick python3-numpy openfoam openfoam-examples)
 
 schlieren_install() {
   local missing=()

@@ -1,0 +1,227 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Real OpenFOAM solver results read as a user reads them: a `case.foam` through ParaView's
+OpenFOAM reader (a multiblock: internalMesh, and patches when asked for), into RefractiveIndex and
+SchlierenImage. The cases are run once into the build tree by openfoam_cases.py (the ctest fixture
+python.openfoam_cases; here too, cached, when run by hand); without OpenFOAM the test is skipped
+with the reason.
+
+1. wedge15Ma5 (rhoCentralFoam, Mach 5 over a 15 deg wedge, planar; 120 x 40 cells, one thick):
+   Symmetry Planar, seen along z. The oblique shock's angle in the image (the line fitted to
+   the largest |deflection| of each film column over x = 0.05-0.30 m from the apex) against the
+   theta-beta-M relation (gamma 1.4): beta = 24.32 deg. The tolerance from the grid: a captured
+   shock sits within about one cell of the exact one in each column, so the fitted slope over a
+   run L is good to h / L; h = 3.8 mm (the largest cell side near the shock), L = 0.25 m:
+   0.015 in slope, 0.72 deg in angle after cos^2(beta); asserted 0.75 deg. The same angle from
+   cell data only (the reader's CreateCellToPoint off, as ParaView 6 reads by default) within
+   0.25 deg of it (the two differ by the cell-to-point averaging only); the internalMesh note.
+2. The wedge's silhouette from its wall: the void under the ramp reaches the box's faces, so only
+   the mesh's boundary faces tell it from the outside (BodyFromGrid, schlieren::walls: the flow
+   does not cross the ramp); it is black in the image, its edge on y = x tan 15 deg within a
+   grid spacing (the silhouette is the half-level of the interpolated solid points), nothing
+   blocked upstream of the apex.
+3. LadenburgJet60psi (an under-expanded jet, an axisymmetric wedge of 0.2 deg, 60 x 20 cells; its
+   time-0 fields are the converged solution): Symmetry Axisymmetric with no axis given is found a
+   wedge (the note: 0.2 deg, the axis along x through y = z = 0 within 1e-9 m) and revolved;
+   across the axis the |deflection| image is mirror-symmetric about the axis, along it
+   |deflection| is unchanged by a quarter turn (both within 1e-4 of its largest: the revolved
+   grid is symmetric by construction when the axis is found where it is; 1e-6 measured).
+   wedge15Ma5 given as Axisymmetric is refused as a wedge with the reason (parallel sides).
+"""
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+import numpy as np
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager as sm
+
+import cfd_testing as ct
+import openfoam_cases
+import schlieren_testing as st
+
+st.load_plugin(globals())
+T = st.Checker("test_openfoam")
+CASES = st.argument("--cases", os.path.join(os.getcwd(), "openfoam"))
+OUTPUT = st.argument("--output-dir", CASES)
+
+
+def case_file(name):
+    """The case.foam of a prepared case; skips the test where OpenFOAM is not there."""
+    why = openfoam_cases.available()
+    if why:
+        print("SKIP: %s" % why)
+        sys.stdout.flush()
+        sys.exit(ct.SKIP)
+    if not openfoam_cases.run_case(CASES, name):
+        raise RuntimeError("the OpenFOAM case %s could not be prepared (see its logs in %s)" % (name, CASES))
+    return os.path.join(CASES, name, "case.foam")
+
+
+def fetch(proxy, time):
+    with st.CapturedOutput() as out:
+        proxy.UpdatePipeline(time)
+        data = sm.Fetch(proxy)
+    T.check("ERROR" not in out.text, "%s: no error%s" % (
+        proxy.GetXMLName(), "" if "ERROR" not in out.text else ": " + out.text.strip()[:600]))
+    return data, out.text
+
+
+def theta_beta_mach(theta, mach, gamma=1.4):
+    """The weak oblique shock angle (rad) of a wedge of half-angle theta (rad) at Mach `mach`."""
+    def f(b):
+        return math.atan(2.0 / math.tan(b) * (mach ** 2 * math.sin(b) ** 2 - 1.0)
+                         / (mach ** 2 * (gamma + math.cos(2 * b)) + 2.0)) - theta
+    lo, hi = math.asin(1.0 / mach) + 1e-9, math.radians(64.0)  # the weak branch lies below ~64 deg
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if f(lo) * f(mid) <= 0:
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)
+
+
+def shock_line(X, Y, magnitude, x0, x1, ymin=0.0):
+    """The line y = a + b x through the largest `magnitude` of each film column in [x0, x1]
+    (parabolic sub-pixel peak), above ymin; returns a, b and the peaks."""
+    xs, ys = [], []
+    for j in range(X.shape[1]):
+        x = X[0, j]
+        if not (x0 <= x <= x1):
+            continue
+        col = magnitude[:, j].copy()
+        col[Y[:, j] < ymin] = 0
+        i = int(np.argmax(col))
+        if 0 < i < len(col) - 1:
+            a, b, c = col[i - 1], col[i], col[i + 1]
+            d = 0.5 * (a - c) / (a - 2 * b + c) if (a - 2 * b + c) != 0 else 0.0
+        else:
+            d = 0.0
+        xs.append(x)
+        ys.append(Y[i, j] + d * (Y[1, j] - Y[0, j]))
+    b, a = np.polyfit(xs, ys, 1)
+    return a, b, np.array(xs), np.array(ys)
+
+
+def wedge_image(foam, time, cell_to_point=True, tag=""):
+    reader = OpenFOAMReader(FileName=foam)
+    reader.Createcelltopointfiltereddata = 1 if cell_to_point else 0
+    index = RefractiveIndex(Input=reader, Symmetry="Planar", Span=0.1, SamplingDimensions=[458, 153, 3])
+    image = SchlierenImage(Input=index, Cutoff="KnifeEdge", Resolution=[458, 153], Passes=1, Jitter=0,
+                           ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+    grid, text = fetch(index, time)
+    out, _ = fetch(image, time)
+    for p in (image, index, reader):
+        Delete(p)
+    return grid, out, text
+
+
+# 1. wedge15Ma5: the oblique shock's angle.
+foam = case_file("wedge15Ma5")
+probe = OpenFOAMReader(FileName=foam)
+probe.UpdatePipelineInformation()
+t_end = max(probe.TimestepValues)
+Delete(probe)
+beta = math.degrees(theta_beta_mach(math.radians(15.0), 5.0))
+T.close(beta, 24.32, 0.01, "theta-beta-M: beta of a 15 deg wedge at Mach 5 (gamma 1.4)")
+results = {}
+for c2p in (True, False):
+    grid, out, text = wedge_image(foam, t_end, c2p)
+    tag = "point data" if c2p else "cell data only"
+    T.check("internalMesh is read (4800 cells)" in text, "%s: the note says the internalMesh is read" % tag)
+    if not c2p:
+        T.check("converted to point data" in text, "cell data only: the conversion to point data is said")
+    X, Y, intensity, deflection, fields = st.image_arrays(out)
+    mag = np.hypot(deflection[..., 0], deflection[..., 1])
+    a, b, xs, ys = shock_line(X, Y, mag, 0.05, 0.30, ymin=0.0)
+    measured = math.degrees(math.atan(b))
+    residual = float(np.max(np.abs(ys - (a + b * xs))))
+    results[c2p] = measured
+    print("%s: shock angle %.3f deg (theta-beta-M %.3f), through y = %.4f m at the apex x = 0, "
+          "largest residual %.4f m over %d columns" % (tag, measured, beta, a, residual, len(xs)))
+    if c2p:
+        T.close(measured, beta, 0.75, "wedge15Ma5 (%s): the oblique shock's angle in the image against "
+                "theta-beta-M, deg" % tag)
+        T.close(a, 0.0, 0.0038, "wedge15Ma5: the fitted shock passes within a cell (3.8 mm) of the apex")
+        # 2. the wedge from its wall: black, its edge on y = x tan 15 deg
+        T.check("are walls" in text and "taken as a body" in text, "wedge15Ma5: the log says the body "
+                "comes from the walls: %s" % [l for l in text.splitlines() if "walls" in l][:1])
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        blocked = vtk_to_numpy(out.GetPointData().GetArray("blocked")).reshape(X.shape).astype(float)
+        edges, expected = [], []
+        for j in range(X.shape[1]):
+            x = X[0, j]
+            if not (0.01 <= x <= 0.30):
+                continue
+            col = blocked[:, j]
+            i = int(np.argmax(col < 0.5))  # the first row (from y = 0 up) that light passes
+            if i == 0:
+                continue
+            y0, y1 = Y[i - 1, j], Y[i, j]
+            edges.append(y0 + (col[i - 1] - 0.5) / (col[i - 1] - col[i]) * (y1 - y0))
+            expected.append(x * math.tan(math.radians(15.0)))
+        h = grid.GetSpacing()[1]
+        T.check(len(edges) > 250, "wedge15Ma5: the wedge is black in %d film columns over x = 0.01-0.30" % len(edges))
+        T.close(edges, expected, h, "wedge15Ma5: the wedge's edge in the image against y = x tan 15 deg, within "
+                "a grid spacing (%.4f m), m" % h)
+        T.check(float(blocked[X < -0.002].max()) == 0.0 and float(blocked[Y > 0.09].max()) == 0.0,
+                "wedge15Ma5: nothing blocked upstream of the apex or above the wedge's top")
+        import schlieren_view  # embedded in the plugin
+        schlieren_view.write_png(schlieren_view.film_array(out, "intensity"),
+                                 os.path.join(OUTPUT, "wedge15Ma5_knife.png"))
+T.close(results[False], results[True], 0.25, "wedge15Ma5: the angle from cell data only against point data, deg")
+
+
+# 3. LadenburgJet60psi: the wedge found and revolved, no axis typed.
+foam = case_file("LadenburgJet60psi")
+reader = OpenFOAMReader(FileName=foam)
+reader.SkipZeroTime = 0  # the converged solution is the case's time 0
+reader.Refresh()
+reader.UpdatePipelineInformation()
+reader.CellArrays = ["T", "U", "p"]
+index = RefractiveIndex(Input=reader, Symmetry="Axisymmetric", SamplingDimensions=[240, 80, 80])
+grid, text = fetch(index, 0.0)
+note = [l for l in text.splitlines() if "axisymmetric wedge" in l]
+T.check(len(note) == 1, "LadenburgJet60psi: detected as a wedge: %s" % note)
+if note:
+    import re
+    nums = re.findall(r"two planes ([0-9.e+-]+) deg apart through the line along x at y = ([0-9.e+-]+), z = ([0-9.e+-]+)", note[0])
+    T.check(bool(nums), "LadenburgJet60psi: the note gives the angle and the axis along x")
+    if nums:
+        ang, y0, z0 = (float(v) for v in nums[0])
+        T.close(ang, 2 * math.degrees(math.atan(0.008726655121 / 5.0)), 1e-4,
+                "LadenburgJet60psi: the wedge's angle against its blockMeshDict's, deg")
+        T.close([y0, z0], [0.0, 0.0], 1e-9, "LadenburgJet60psi: the axis through y = z = 0, m")
+views = {}
+for tag, vd, res in (("across", [0, 0, -1], [240, 80]), ("along", [-1, 0, 0], [80, 80])):
+    image = SchlierenImage(Input=index, Cutoff="KnifeEdge", Resolution=res, Passes=1, Jitter=0,
+                           ViewDirection=vd, ViewUp=[0, 1, 0])
+    out, _ = fetch(image, 0.0)
+    X, Y, intensity, deflection, fields = st.image_arrays(out)
+    views[tag] = np.hypot(deflection[..., 0], deflection[..., 1])
+    import schlieren_view  # embedded in the plugin
+    schlieren_view.write_png(schlieren_view.film_array(out, "intensity"),
+                             os.path.join(OUTPUT, "LadenburgJet60psi_%s.png" % tag))
+    Delete(image)
+across, along = views["across"], views["along"]
+T.close(across / across.max(), across[::-1] / across.max(), 1e-4,
+        "LadenburgJet60psi across the axis: |deflection| mirror-symmetric about the axis (of its largest)")
+T.close(along / along.max(), np.rot90(along) / along.max(), 1e-4,
+        "LadenburgJet60psi along the axis: |deflection| unchanged by a quarter turn (of its largest)")
+Delete(index)
+Delete(reader)
+
+# The refusal: a planar slab given as Axisymmetric.
+reader = OpenFOAMReader(FileName=case_file("wedge15Ma5"))
+index = RefractiveIndex(Input=reader, Symmetry="Axisymmetric", SamplingDimensions=[40, 20, 20])
+_, text = fetch(index, t_end)
+T.check("not taken as a wedge" in text and "parallel" in text,
+        "wedge15Ma5 as Axisymmetric: refused as a wedge, saying why: %s"
+        % [l for l in text.splitlines() if "wedge" in l][:1])
+Delete(index)
+Delete(reader)
+
+T.finish()
