@@ -601,12 +601,15 @@ void pqSchlierenFollower::onPassesModified()
 //------------------------------------------------------------------------------
 void pqSchlierenFollower::onPropertyModified(vtkObject* property)
 {
-  // Follow Camera off: a property set by the panel (Apply) or a script. ParaView runs the trace
-  // that follows as one pipeline update that blocks the GUI's input to the end, so the update
-  // traces the interactive passes only, and the passes asked for are added afterwards in chunks
-  // between which the event loop runs (Stop Refinement acts within one chunk and keeps the passes
-  // done). Following, the camera's and Passes' handlers do the same.
-  if (this->Guard || this->Busy || !this->Image || this->following())
+  // Follow Camera off: a property pushed by the Properties panel's Apply (the proxy is modified
+  // or not yet applied while the panel pushes; a script's change to an applied proxy is left
+  // alone). ParaView runs the trace that follows as one pipeline update that blocks the GUI's
+  // input to its end, so that update traces the interactive passes only, and the passes asked
+  // for are added afterwards in chunks between which the event loop runs (Stop Refinement acts
+  // within one chunk and keeps the passes done). Following, the camera's and Passes' handlers do
+  // the same.
+  if (this->Guard || this->Busy || !this->Image || this->following() ||
+    this->Image->modifiedState() == pqProxy::UNMODIFIED)
   {
     return;
   }
