@@ -218,10 +218,31 @@ void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int
     {
       return;
     }
+    // a loaded state (or a script) brings its own views: the image shown in a 2D view is the image
+    // view, a view where it is hidden the 3D view; only an image newly shown in a 3D view (Apply)
+    // opens a view of its own
+    vtkSMProxy* viewProxy = view->getViewProxy();
+    const bool twoD = vtkSMPropertyHelper(viewProxy, "InteractionMode", true).GetAsInt() == 1;
+    const bool visible = added->isVisible();
+    if (twoD && visible)
+    {
+      if (!this->ImageView)
+      {
+        this->ImageView = view;
+        this->ImageView->widget()->installEventFilter(this);
+        this->fitImageView();
+        this->log("adopted");
+      }
+      return;
+    }
     if (!this->View3D)
     {
       this->View3D = view;
       this->watchCamera(view);
+    }
+    if (!visible)
+    {
+      return;
     }
     if (!this->ImageView &&
       vtkSMPropertyHelper(this->Image->getProxy(), "OpenImageView").GetAsInt() != 0)
