@@ -550,6 +550,14 @@ void pqSchlierenFollower::update(const char* what)
   {
     this->ImageView->render();
   }
+  if (std::strcmp(what, "refine") == 0)
+  {
+    // the Passes field shows the passes done while refining: the target is said here
+    StatusMessage(QString("%1: %2 of %3 passes (Stop Refinement: Ctrl+Alt+S)")
+                    .arg(this->Image->getSMName())
+                    .arg(now)
+                    .arg(this->Target));
+  }
   this->log(what);
 }
 
