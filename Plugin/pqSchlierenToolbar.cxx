@@ -553,7 +553,7 @@ void pqSchlierenFollower::update(const char* what)
   if (std::strcmp(what, "refine") == 0)
   {
     // the Passes field shows the passes done while refining: the target is said here
-    StatusMessage(QString("%1: %2 of %3 passes (Stop Refinement: Ctrl+Alt+S)")
+    StatusMessage(QString("%1: %2 of %3 passes, Ctrl+Alt+S stops")
                     .arg(this->Image->getSMName())
                     .arg(now)
                     .arg(this->Target));
