@@ -22,6 +22,8 @@
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
+#include "vtkSMPropertyIterator.h"
+#include "vtkSmartPointer.h"
 #include "vtkSMRenderViewProxy.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionProxy.h"
@@ -89,6 +91,10 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
     if (!this->Busy)
     {
       this->LastPasses = this->passes();
+      if (this->Progressive && !this->Stopped && this->LastPasses < this->Target)
+      {
+        this->RestTimer.start(0); // the rest of an applied trace, in chunks
+      }
     }
   });
   vtkSMProxy* proxy = image->getProxy();
@@ -98,6 +104,13 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
     SLOT(onFollowModified()));
   pqCoreUtilities::connect(proxy->GetProperty("Resolution"), vtkCommand::ModifiedEvent, this,
     SLOT(onResolutionModified()));
+  vtkSmartPointer<vtkSMPropertyIterator> it;
+  it.TakeReference(proxy->NewPropertyIterator());
+  for (it->Begin(); !it->IsAtEnd(); it->Next())
+  {
+    pqCoreUtilities::connect(
+      it->GetProperty(), vtkCommand::ModifiedEvent, this, SLOT(onPropertyModified(vtkObject*)));
+  }
   vtkSMPropertyHelper(proxy, "Resolution").Get(this->FullResolution, 2);
   this->RestTimer.setSingleShot(true);
   QObject::connect(&this->RestTimer, &QTimer::timeout, this, [this]() {
@@ -105,7 +118,7 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
     {
       this->restoreResolution(); // the refinement is on the full film
     }
-    if (this->following() && !this->Stopped && this->LastPasses < this->Target)
+    if (this->refinable() && !this->Stopped && this->LastPasses < this->Target)
     {
       this->RefineTimer.start();
       Q_EMIT this->stateChanged();
@@ -205,10 +218,31 @@ void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int
     {
       return;
     }
+    // a loaded state (or a script) brings its own views: the image shown in a 2D view is the image
+    // view, a view where it is hidden the 3D view; only an image newly shown in a 3D view (Apply)
+    // opens a view of its own
+    vtkSMProxy* viewProxy = view->getViewProxy();
+    const bool twoD = vtkSMPropertyHelper(viewProxy, "InteractionMode", true).GetAsInt() == 1;
+    const bool visible = added->isVisible();
+    if (twoD && visible)
+    {
+      if (!this->ImageView)
+      {
+        this->ImageView = view;
+        this->ImageView->widget()->installEventFilter(this);
+        this->fitImageView();
+        this->log("adopted");
+      }
+      return;
+    }
     if (!this->View3D)
     {
       this->View3D = view;
       this->watchCamera(view);
+    }
+    if (!visible)
+    {
+      return;
     }
     if (!this->ImageView &&
       vtkSMPropertyHelper(this->Image->getProxy(), "OpenImageView").GetAsInt() != 0)
@@ -516,15 +550,24 @@ void pqSchlierenFollower::update(const char* what)
   {
     this->ImageView->render();
   }
+  if (std::strcmp(what, "refine") == 0)
+  {
+    // the Passes field shows the passes done while refining: the target is said here
+    StatusMessage(QString("%1: %2 of %3 passes, Ctrl+Alt+S stops")
+                    .arg(this->Image->getSMName())
+                    .arg(now)
+                    .arg(this->Target));
+  }
   this->log(what);
 }
 
 //------------------------------------------------------------------------------
 void pqSchlierenFollower::refineStep()
 {
-  if (!this->Image || !this->following() || this->Stopped)
+  if (!this->Image || !this->refinable() || this->Stopped)
   {
     this->RefineTimer.stop();
+    this->Progressive = false;
     return;
   }
   if (this->Busy || !Idle())
@@ -535,6 +578,7 @@ void pqSchlierenFollower::refineStep()
   if (now >= this->Target)
   {
     this->RefineTimer.stop();
+    this->Progressive = false;
     this->log("converged");
     Q_EMIT this->stateChanged();
     return;
@@ -559,6 +603,11 @@ void pqSchlierenFollower::onPassesModified()
     return;
   }
   const int asked = this->passes();
+  if (!this->following() && this->Progressive && this->Target > asked &&
+    asked == std::max(1, vtkSMPropertyHelper(this->Image->getProxy(), "InteractivePasses").GetAsInt()))
+  {
+    return; // onPropertyModified's own start passes, seen through the same change
+  }
   this->Target = std::max(1, asked);
   this->Stopped = false;
   if (!this->following())
@@ -576,6 +625,59 @@ void pqSchlierenFollower::onPassesModified()
     this->RestTimer.start(0);
   }
   this->log("target");
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onPropertyModified(vtkObject* property)
+{
+  // Follow Camera off: a property pushed by the Properties panel's Apply (the proxy is modified
+  // or not yet applied while the panel pushes; a script's change to an applied proxy is left
+  // alone). ParaView runs the trace that follows as one pipeline update that blocks the GUI's
+  // input to its end, so that update traces the interactive passes only, and the passes asked
+  // for are added afterwards in chunks between which the event loop runs (Stop Refinement acts
+  // within one chunk and keeps the passes done). Following, the camera's and Passes' handlers do
+  // the same.
+  if (this->Guard || this->Busy || !this->Image || this->following() ||
+    this->Image->modifiedState() == pqProxy::UNMODIFIED)
+  {
+    return;
+  }
+  const char* name =
+    this->Image->getProxy()->GetPropertyName(vtkSMProperty::SafeDownCast(property));
+  if (!name)
+  {
+    return;
+  }
+  static const char* const ignored[] = { "FollowCamera", "OpenImageView", "InteractivePasses",
+    "InteractiveScale" };
+  for (const char* other : ignored)
+  {
+    if (std::strcmp(name, other) == 0)
+    {
+      return;
+    }
+  }
+  vtkSMProxy* proxy = this->Image->getProxy();
+  if (std::strcmp(name, "Passes") == 0)
+  {
+    this->Target = std::max(1, this->passes());
+  }
+  const int start =
+    std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt());
+  if (this->Target <= start)
+  {
+    this->Progressive = false;
+    return;
+  }
+  this->Stopped = false;
+  this->Progressive = true;
+  this->RefineTimer.stop();
+  this->LastChunk = 1;
+  if (this->passes() != start)
+  {
+    this->setPasses(start);
+  }
+  this->log("progressive");
 }
 
 //------------------------------------------------------------------------------
@@ -661,6 +763,7 @@ void pqSchlierenFollower::stop()
   this->RefineTimer.stop();
   this->RestTimer.stop();
   this->Stopped = true;
+  this->Progressive = false;
   if (was && this->Image)
   {
     StatusMessage(QString("%1: refinement stopped at %2 of %3 passes")

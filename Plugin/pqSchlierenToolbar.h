@@ -68,6 +68,7 @@ private Q_SLOTS:
   void onPassesModified();
   void onFollowModified();
   void onResolutionModified();
+  void onPropertyModified(vtkObject* property);
   void retrace();
   void refineStep();
   void fitImageView();
@@ -79,6 +80,8 @@ private:
   void restoreResolution();
   int passes() const;
   void update(const char* what);
+  /// Following the camera, or reaching an applied Passes in chunks.
+  bool refinable() const { return this->following() || this->Progressive; }
 
   QPointer<pqPipelineSource> Image;
   QPointer<pqRenderView> View3D;
@@ -89,6 +92,7 @@ private:
   bool Guard = false;    // set while this object changes Passes itself
   bool Stopped = false;  // Stop pressed: no refinement until the next camera change
   bool RetracePending = false;
+  bool Progressive = false; // an applied trace (Follow Camera off) is reached in chunks
   bool Busy = false; // inside our own pipeline update
   double SecondsPerPass = 0; // measured on the last update
   int LastPasses = 0;        // the passes of the image shown

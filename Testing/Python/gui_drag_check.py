@@ -25,7 +25,9 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--plugin", required=True)
 parser.add_argument("--work", required=True)
 parser.add_argument("--scene", required=True)
-parser.add_argument("--baseline", required=True)
+parser.add_argument("--baseline", default=None)
+parser.add_argument("--only", default=None, help="compare this one dump with a pvpython trace, nothing else")
+parser.add_argument("--settings", default=None, help="unused: the settings are <work>/settings.json")
 args = parser.parse_args()
 
 from paraview.simple import *  # noqa: E402,F401,F403
@@ -47,7 +49,7 @@ def check(condition, message):
 
 settings = json.load(open(os.path.join(args.work, "settings.json")))["image"]
 for gui_only in ("InteractivePasses", "InteractiveScale", "FollowCamera"):
-    settings.pop(gui_only)
+    settings.pop(gui_only, None)
 volume, scene = gui_drag_scene.volume(types.SimpleNamespace(**globals()), os.environ.get("SCHLIEREN_DATA", ""))
 check(scene == args.scene, "pvpython builds the same scene as the GUI (%s)" % scene)
 
@@ -61,6 +63,14 @@ def trace(direction, up, passes):
     Delete(image)
     return I
 
+
+if args.only:
+    d = np.load(os.path.join(args.work, args.only + ".npz"))
+    ref = trace(d["direction"], d["up"], d["passes"])
+    check(np.array_equal(ref, d["intensity"]),
+          "the GUI's %s image (%d passes) equals a pvpython trace of that many passes, bit for bit "
+          "(max |diff| %.3g)" % (args.only, int(d["passes"]), np.abs(ref - d["intensity"]).max()))
+    sys.exit(1 if failures else 0)
 
 dumps = {}
 for name in ("initial", "before_drag", "after_drag", "stopped"):

@@ -8,7 +8,7 @@ ParaView's quick launch and press Apply, as a user would (it gives the new image
 settings before Apply), and then answers the driver through files in
 $SCHLIEREN_GUI_WORK: a repeating timer of the 3D view's interactor (it runs in the GUI's event
 loop, between the plugin's refinement chunks) records every image the GUI shows (its passes and
-intensity) and executes the driver's commands (cmd-<n>.txt: `sizes`, `dump <name>`, `quit`).
+intensity) and executes the driver's commands (cmd-<n>.txt: `sizes`, `dump <name>`, `index`, `quit`).
 Nothing here moves the camera or updates the image: the plugin's toolbar does that.
 Connected to a pvserver (test_gui_drag.py --pvserver), the images are fetched from the server.
 """
@@ -116,10 +116,28 @@ try:
     def on_render(caller, event):
         state["renders"] += 1
 
+    def command(words):
+        if words[0] == "index":
+            # what the panel set on the RefractiveIndex and the solid points it found
+            volume.UpdatePipeline()
+            fd = volume.GetDataInformation().DataInformation.GetFieldDataInformation()
+            solid = fd.GetArrayInformation("solid_points")
+            write_json("index.json", {"faces": [int(v) for v in volume.BodyWallFaces],
+                                      "from_grid": int(volume.BodyFromGrid),
+                                      "solid_points": solid.GetComponentRange(0)[0] if solid else None})
+        elif words[0] == "quit":
+            note("quit")
+            os._exit(0)
+
     def poll(caller, event):
         try:
-            if image is None:
-                configure()
+            if image is None and not configure():
+                # before the user's Schlieren Image: only the commands about the index
+                path = os.path.join(work, "cmd-%d.txt" % state["cmd"])
+                words = open(path).read().split() if os.path.exists(path) else []
+                if words and words[0] in ("index", "quit"):
+                    state["cmd"] += 1
+                    command(words)
                 return
             if state["image_view"] is None:
                 others = [v for v in GetViews() if v.GetGlobalIDAsString() != view.GetGlobalIDAsString()]
@@ -165,9 +183,8 @@ try:
                          step_images=np.array([s[4] for s in steps]))
                 state["steps"] = steps[-1:]
                 write_json("dumped-%s.json" % words[1], {"passes": got[1]})
-            elif words[0] == "quit":
-                note("quit")
-                os._exit(0)
+            else:
+                command(words)
         except BaseException:
             note("poll failed: " + traceback.format_exc())
             os._exit(3)
