@@ -746,6 +746,34 @@ bool vtkRefractiveIndex::SymmetricGrid(
       return fail(m.str());
     }
   }
+  {
+    // A plane normal to an axis: one point (an image: at most two, a one-cell-thick 2D mesh)
+    // across it, or bounds thin next to the plane's own sides. Anything thicker is a 3D volume
+    // or a tilted plane, which cutting at one plane would quietly turn into a wrong volume.
+    double sides[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
+    double inPlane = largest;
+    for (int a = 0; a < 3; ++a)
+      if (a != thin)
+        inPlane = std::min(inPlane, sides[a]);
+    const bool thick = image ? imageDims[thin] > 2 : sides[thin] > 0.05 * inPlane;
+    if (thick)
+    {
+      std::ostringstream m;
+      m << "Symmetry " << (axisym ? "Axisymmetric" : "Planar") << " expects a 2D plane normal to "
+        << "x, y or z" << (axisym ? " (an r-" + std::string(1, AxisNames[this->SymmetryAxis]) +
+                                      " half plane holding SymmetryAxis)"
+                                  : "")
+        << "; the input spans " << sides[0] << " x " << sides[1] << " x " << sides[2];
+      if (image)
+        m << " world units with " << imageDims[0] << " x " << imageDims[1] << " x " << imageDims[2]
+          << " points: a 3D volume. Use Symmetry None for a volume.";
+      else
+        m << " world units along all three axes: a 3D volume, or a plane that is not "
+          << "axis-aligned. Use Symmetry None for a volume; rotate a tilted plane onto an axis "
+          << "plane (Transform) first.";
+      return fail(m.str());
+    }
+  }
   this->PlaneAxis = thin;
   this->PlaneCoordinate = 0.5 * (b[2 * thin] + b[2 * thin + 1]);
   const bool automatic = this->SamplingDimensions[0] <= 0 || this->SamplingDimensions[1] <= 0 ||

@@ -204,7 +204,8 @@ public:
 
   ///@{
   /** The body's radius, world units (> 0). Default 0.25. */
-  vtkSetClampMacro(BodyRadius, double, 1e-12, VTK_DOUBLE_MAX);
+  // not clamped: a radius <= 0 is refused with its value (a clamp made an invisible body)
+  vtkSetMacro(BodyRadius, double);
   vtkGetMacro(BodyRadius, double);
   ///@}
 
