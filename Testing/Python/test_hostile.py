@@ -11,6 +11,8 @@ naming what was expected, with an empty output.
   SamplingBounds): an error saying the plane must be axis-aligned.
 - Two overlapping closed spheres on RefractiveIndex's Body (the overlap was left transparent:
   an even-odd inside rule over both): every point inside either is solid, none outside.
+- A body over the whole beam: the warning says it blocked N of M rays (it spoke of photons off
+  the film, with advice about FilmDistance).
 Controls: BodyRadius 0.25 makes solid points; a 2D image (16 x 16 x 1) under Planar and a
 one-cell-thick image (16 x 16 x 2) make a volume with no error.
 
@@ -118,4 +120,15 @@ else:
             "two overlapping shells: the overlap is solid (%d of %d overlap points), the union "
             "too (%d of %d), nothing outside (%d)" % (s_[overlap].sum(), overlap.sum(),
                                                       s_[union].sum(), union.sum(), s_[outside].sum()))
+
+# 5. A body that blocks the whole beam: the warning says the body blocked the rays (all of them),
+# not that photons landed off the film, and gives no advice about FilmDistance or CutoffScale
+wall = RefractiveScene(Scene="GaussianSphere", Dimensions=[24] * 3, Body="Sphere", BodyRadius=2.0)
+image = SchlierenImage(Input=wall, Resolution=[16, 16], Passes=1, Backend="CPU")
+data, points, text = fetch(image)
+F = st.image_arrays(data)[4] if points else {}
+warn = F.get("warnings", "")
+T.check(points > 0 and "A solid body blocked 256 of 256 rays" in warn and "off the film" not in warn
+        and "FilmDistance" not in warn,
+        "a body over the whole beam: 'blocked 256 of 256 rays', no word of the film (%r)" % warn[:300])
 sys.exit(T.finish())
