@@ -4,7 +4,10 @@ Plugin/Schlieren.xml set at its domain's ends and just past them; prints for eac
 filter gave an error and whether the error named the property. BAD: an error inside the domain,
 or no error naming the property outside it (a clamp, or a value the code takes silently).
 
-Run: pvpython domain_survey.py --plugin <Schlieren.so>
+Run: pvpython domain_survey.py --plugin <Schlieren.so> [--proxies A,B] [--strict]
+
+--proxies: only these proxies; --strict: exit 1 where any row is BAD (python.domains runs it
+strict on the proxies whose domains and code agree: RefractiveScene).
 """
 import sys, math
 import xml.etree.ElementTree as ET
@@ -18,8 +21,12 @@ st.load_plugin(globals())
 
 root = ET.parse(os.path.join(HERE, "..", "..", "Plugin", "Schlieren.xml")).getroot()
 rows = []
+only = st.argument("--proxies")
+only = only.split(",") if only else None
 for proxy in root.iter("SourceProxy"):
     pname = proxy.get("name")
+    if only and pname not in only:
+        continue
     for prop in proxy:
         if prop.tag not in ("IntVectorProperty", "DoubleVectorProperty"):
             continue
@@ -74,3 +81,10 @@ for r in rows:
     bad = (label == "at" and err is True) or (label == "past" and not (err is True and named))
     print("%-4s %-17s %-24s %s %-4s %-14s err=%-5s named=%-5s actual=%s" % (
         "BAD" if bad else "ok", pname, name, which, label, str(val)[:14], err, named, str(actual)[:40]))
+nbad = 0
+for r in rows:
+    label, err, named = r[3], r[5], r[6]
+    nbad += (label == "at" and err is True) or (label == "past" and not (err is True and named))
+print("domain_survey: %d settings, %d BAD" % (len(rows), nbad))
+if "--strict" in sys.argv and (nbad or not rows):
+    sys.exit(1)
