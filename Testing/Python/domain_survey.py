@@ -7,7 +7,7 @@ or no error naming the property outside it (a clamp, or a value the code takes s
 Run: pvpython domain_survey.py --plugin <Schlieren.so> [--proxies A,B] [--strict]
 
 --proxies: only these proxies; --strict: exit 1 where any row is BAD (python.domains runs it
-strict on the proxies whose domains and code agree: RefractiveScene).
+strict on the proxies whose domains and code agree: RefractiveScene, RefractionOctree).
 """
 import sys, math
 import xml.etree.ElementTree as ET
