@@ -15,6 +15,7 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -863,6 +864,16 @@ bool vtkRefractiveIndex::SymmetricGrid(
     this->RadialSign = rmax >= -rmin ? 1.0 : -1.0;
     const double R = this->RadialSign > 0 ? rmax : -rmin;
     this->RadialExtent = R;
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    if (rmin < -0.01 * R && rmax > 0.01 * R && (!controller || controller->GetLocalProcessId() == 0))
+    {
+      // data on both sides of the axis: one side is revolved, the other would vanish unsaid
+      vtkWarningMacro(<< "Symmetry Axisymmetric: the input crosses the axis (" << AxisNames[radial]
+                      << " from " << rmin << " to " << rmax << "); only the side "
+                      << AxisNames[radial] << (this->RadialSign > 0 ? " > 0" : " < 0")
+                      << " (the wider) is revolved and the other is not used. Clip the input at "
+                      << AxisNames[radial] << " = 0 to choose the side.");
+    }
     if (!(R > 0))
     {
       std::ostringstream m;

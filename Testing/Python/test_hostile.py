@@ -13,6 +13,8 @@ naming what was expected, with an empty output.
   an even-odd inside rule over both): every point inside either is solid, none outside.
 - A body over the whole beam: the warning says it blocked N of M rays (it spoke of photons off
   the film, with advice about FilmDistance).
+- Axisymmetric data crossing the axis (different values on its two sides): a warning naming the
+  side revolved (it lost the other without a word).
 Controls: BodyRadius 0.25 makes solid points; a 2D image (16 x 16 x 1) under Planar and a
 one-cell-thick image (16 x 16 x 2) make a volume with no error.
 
@@ -131,4 +133,28 @@ warn = F.get("warnings", "")
 T.check(points > 0 and "A solid body blocked 256 of 256 rays" in warn and "off the film" not in warn
         and "FilmDistance" not in warn,
         "a body over the whole beam: 'blocked 256 of 256 rays', no word of the film (%r)" % warn[:300])
+
+# 6. Axisymmetric data crossing the axis, with different values on its two sides: a warning that
+# says which side is revolved; a half plane (r >= 0) gives none
+def half_plane(y0):
+    plane = Plane(Origin=[-1, y0, 0], Point1=[1, y0, 0], Point2=[-1, 1, 0], XResolution=16,
+                  YResolution=16)
+    return Calculator(Input=plane, ResultArrayName="n_minus_1",
+                      Function="1e-4*exp(-(coordsX^2+coordsY^2)/0.1)*(1+(coordsY<0))")
+
+
+for y0, crosses in ((-0.5, True), (0.0, False)):
+    src = half_plane(y0)
+    # the grid, and so the warning, is made when the proxy's information is first updated
+    with st.CapturedOutput() as made:
+        index = RefractiveIndex(Input=src, Symmetry="Axisymmetric", SymmetryAxis="X",
+                                SamplingDimensions=[16, 16, 16], Model="Passthrough")
+    _, points, text = fetch(index)
+    text = made.text + text
+    said = "crosses the axis" in text and "only the side y > 0" in text
+    T.check(points > 0 and said == crosses,
+            "axisymmetric data from y = %g: %s (%d points; %s)"
+            % (y0, "a warning naming the side revolved" if crosses else "no axis warning", points,
+               text.strip()[-300:]))
+    Delete(index)
 sys.exit(T.finish())
