@@ -139,7 +139,16 @@ int vtkRefractionOctree::RequestData(
   // for another that has given up.
   std::vector<float> n1;
   int dims[3] = { 0, 0, 0 };
-  const std::string problem = ReadPiece(this->Tolerance, input, output, parallel.Size(), n1, dims);
+  std::string problem;
+  if (this->MaxLevel < 0 || this->MaxLevel > 10)
+  {
+    // the same on every rank: still agreed below, like any other failure
+    problem = "MaxLevel is " + std::to_string(this->MaxLevel) + ": it must be in [0, 10].";
+  }
+  else
+  {
+    problem = ReadPiece(this->Tolerance, input, output, parallel.Size(), n1, dims);
+  }
   const std::string failure = parallel.Failure(problem);
   if (!failure.empty())
   {

@@ -59,10 +59,10 @@ public:
 
   ///@{
   /**
-   * The highest level: blocks of at most 2^MaxLevel cells along each axis. Clamped to [0, 10].
-   * Default 7.
+   * The highest level: blocks of at most 2^MaxLevel cells along each axis, in [0, 10] (outside:
+   * an error naming it). Default 7.
    */
-  vtkSetClampMacro(MaxLevel, int, 0, 10);
+  vtkSetMacro(MaxLevel, int);
   vtkGetMacro(MaxLevel, int);
   ///@}
 

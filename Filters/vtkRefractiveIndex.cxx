@@ -22,6 +22,7 @@
 #include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataConnectivityFilter.h"
 #include "vtkSelectEnclosedPoints.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -1444,6 +1445,72 @@ vtkSmartPointer<vtkFieldData> vtkRefractiveIndex::OutputFieldData(Work& w)
 namespace
 {
 /**
+ * Marks `solid` at the points of `grid` inside the one closed shell `shell` (tested only within its
+ * bounds); `any` is set where it marked one. False where the inside test gave no result.
+ */
+bool MarkInsideShell(vtkPolyData* shell, vtkImageData* grid, const int dims[3],
+  std::vector<unsigned char>& solid, bool& any, bool& overlapsAny)
+{
+  double b[6];
+  shell->GetBounds(b);
+  const double* origin = grid->GetOrigin();
+  const double* spacing = grid->GetSpacing();
+  int ext[6];
+  grid->GetExtent(ext);
+  int sub[6];
+  bool overlaps = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    sub[2 * a] =
+      std::max(ext[2 * a], static_cast<int>(std::floor((b[2 * a] - origin[a]) / spacing[a])));
+    sub[2 * a + 1] = std::min(
+      ext[2 * a + 1], static_cast<int>(std::ceil((b[2 * a + 1] - origin[a]) / spacing[a])));
+    overlaps = overlaps && sub[2 * a] <= sub[2 * a + 1];
+  }
+  if (overlaps)
+  {
+    vtkNew<vtkImageData> box;
+    box->SetExtent(sub);
+    box->SetOrigin(grid->GetOrigin());
+    box->SetSpacing(grid->GetSpacing());
+    vtkNew<vtkSelectEnclosedPoints> inside;
+    inside->SetInputData(box);
+    inside->SetSurfaceData(shell);
+    inside->CheckSurfaceOff(); // checked above, with a message of our own
+    inside->Update();
+    vtkDataArray* selected =
+      inside->GetOutput()->GetPointData()->GetArray("SelectedPoints");
+    if (!selected)
+    {
+      return false;
+    }
+    std::vector<unsigned char> enclosed(static_cast<std::size_t>(selected->GetNumberOfTuples()));
+    schlieren::values::ForEachFirstComponent(
+      selected, [&](vtkIdType i, double v) { enclosed[i] = v != 0.0 ? 1 : 0; });
+    vtkIdType p = 0;
+    for (int k = sub[4]; k <= sub[5]; ++k)
+    {
+      for (int j = sub[2]; j <= sub[3]; ++j)
+      {
+        for (int i = sub[0]; i <= sub[1]; ++i, ++p)
+        {
+          if (enclosed[p])
+          {
+            const vtkIdType g =
+              (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] +
+              (i - ext[0]);
+            solid[g] = 1;
+            any = true;
+          }
+        }
+      }
+    }
+  }
+  overlapsAny = overlapsAny || overlaps;
+  return true;
+}
+
+/**
  * Marks `solid` at the points of `grid` inside the closed `surface` (tested only within the
  * surface's bounds); `any` is set where it marked one. "" or the error for the user; `note` gets
  * a surface that encloses no point.
@@ -1470,60 +1537,33 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
            "its inside is not defined. Close it (e.g. Fill Holes, or export the model as a "
            "watertight STL).";
   }
-  double b[6];
-  closed->GetBounds(b);
-  const double* origin = grid->GetOrigin();
-  const double* spacing = grid->GetSpacing();
-  int ext[6];
-  grid->GetExtent(ext);
-  int sub[6];
-  bool overlaps = true;
-  for (int a = 0; a < 3; ++a)
+  // Each connected shell is tested alone and the results are ORed: one inside test over
+  // overlapping shells counts crossings of both (even-odd) and leaves their overlap empty. (A
+  // sealed cavity inside a body is filled: no light reaches it either way.)
+  vtkNew<vtkPolyDataConnectivityFilter> shells;
+  shells->SetInputData(closed);
+  shells->SetExtractionModeToAllRegions();
+  shells->Update();
+  const int regions = shells->GetNumberOfExtractedRegions();
+  bool overlaps = false;
+  if (regions <= 1)
   {
-    sub[2 * a] =
-      std::max(ext[2 * a], static_cast<int>(std::floor((b[2 * a] - origin[a]) / spacing[a])));
-    sub[2 * a + 1] = std::min(
-      ext[2 * a + 1], static_cast<int>(std::ceil((b[2 * a + 1] - origin[a]) / spacing[a])));
-    overlaps = overlaps && sub[2 * a] <= sub[2 * a + 1];
-  }
-  if (overlaps)
-  {
-    vtkNew<vtkImageData> box;
-    box->SetExtent(sub);
-    box->SetOrigin(grid->GetOrigin());
-    box->SetSpacing(grid->GetSpacing());
-    vtkNew<vtkSelectEnclosedPoints> inside;
-    inside->SetInputData(box);
-    inside->SetSurfaceData(closed);
-    inside->CheckSurfaceOff(); // checked above, with a message of our own
-    inside->Update();
-    vtkDataArray* selected =
-      inside->GetOutput()->GetPointData()->GetArray("SelectedPoints");
-    if (!selected)
-    {
+    if (!MarkInsideShell(closed, grid, dims, solid, any, overlaps))
       return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
              "result).";
-    }
-    std::vector<unsigned char> enclosed(static_cast<std::size_t>(selected->GetNumberOfTuples()));
-    schlieren::values::ForEachFirstComponent(
-      selected, [&](vtkIdType i, double v) { enclosed[i] = v != 0.0 ? 1 : 0; });
-    vtkIdType p = 0;
-    for (int k = sub[4]; k <= sub[5]; ++k)
+  }
+  else
+  {
+    for (int r = 0; r < regions; ++r)
     {
-      for (int j = sub[2]; j <= sub[3]; ++j)
-      {
-        for (int i = sub[0]; i <= sub[1]; ++i, ++p)
-        {
-          if (enclosed[p])
-          {
-            const vtkIdType g =
-              (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] +
-              (i - ext[0]);
-            solid[g] = 1;
-            any = true;
-          }
-        }
-      }
+      vtkNew<vtkPolyDataConnectivityFilter> one;
+      one->SetInputData(closed);
+      one->SetExtractionModeToSpecifiedRegions();
+      one->AddSpecifiedRegion(r);
+      one->Update();
+      if (!MarkInsideShell(one->GetOutput(), grid, dims, solid, any, overlaps))
+        return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
+               "result).";
     }
   }
   if (!overlaps || !any)

@@ -15,6 +15,7 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiBlockDataSet.h"
@@ -796,6 +797,34 @@ bool vtkRefractiveIndex::SymmetricGrid(
       return fail(m.str());
     }
   }
+  {
+    // A plane normal to an axis: one point (an image: at most two, a one-cell-thick 2D mesh)
+    // across it, or bounds thin next to the plane's own sides. Anything thicker is a 3D volume
+    // or a tilted plane, which cutting at one plane would quietly turn into a wrong volume.
+    double sides[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
+    double inPlane = largest;
+    for (int a = 0; a < 3; ++a)
+      if (a != thin)
+        inPlane = std::min(inPlane, sides[a]);
+    const bool thick = image ? imageDims[thin] > 2 : sides[thin] > 0.05 * inPlane;
+    if (thick)
+    {
+      std::ostringstream m;
+      m << "Symmetry " << (axisym ? "Axisymmetric" : "Planar") << " expects a 2D plane normal to "
+        << "x, y or z" << (axisym ? " (an r-" + std::string(1, AxisNames[this->SymmetryAxis]) +
+                                      " half plane holding SymmetryAxis)"
+                                  : "")
+        << "; the input spans " << sides[0] << " x " << sides[1] << " x " << sides[2];
+      if (image)
+        m << " world units with " << imageDims[0] << " x " << imageDims[1] << " x " << imageDims[2]
+          << " points: a 3D volume. Use Symmetry None for a volume.";
+      else
+        m << " world units along all three axes: a 3D volume, or a plane that is not "
+          << "axis-aligned. Use Symmetry None for a volume; rotate a tilted plane onto an axis "
+          << "plane (Transform) first.";
+      return fail(m.str());
+    }
+  }
   this->PlaneAxis = thin;
   this->PlaneCoordinate = wedge.Found ? wedge.AxisThin : 0.5 * (b[2 * thin] + b[2 * thin + 1]);
   const bool automatic = this->SamplingDimensions[0] <= 0 || this->SamplingDimensions[1] <= 0 ||
@@ -885,6 +914,16 @@ bool vtkRefractiveIndex::SymmetricGrid(
     this->RadialSign = wedge.Found ? wedge.Sign : (rmax >= -rmin ? 1.0 : -1.0);
     const double R = wedge.Found ? wedge.Reach : (this->RadialSign > 0 ? rmax : -rmin);
     this->RadialExtent = R;
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    if (rmin < -0.01 * R && rmax > 0.01 * R && (!controller || controller->GetLocalProcessId() == 0))
+    {
+      // data on both sides of the axis: one side is revolved, the other would vanish unsaid
+      vtkWarningMacro(<< "Symmetry Axisymmetric: the input crosses the axis (" << AxisNames[radial]
+                      << " from " << rmin << " to " << rmax << "); only the side "
+                      << AxisNames[radial] << (this->RadialSign > 0 ? " > 0" : " < 0")
+                      << " (the wider) is revolved and the other is not used. Clip the input at "
+                      << AxisNames[radial] << " = 0 to choose the side.");
+    }
     if (!(R > 0))
     {
       std::ostringstream m;

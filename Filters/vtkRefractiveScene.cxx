@@ -17,6 +17,8 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "SchlierenArrays.h"
@@ -38,6 +40,32 @@ vtkRefractiveScene::~vtkRefractiveScene() = default;
 //------------------------------------------------------------------------------
 bool vtkRefractiveScene::ComputeGrid(double origin[3], double spacing[3])
 {
+  // the numeric properties' ranges, those of their domains in Schlieren.xml: outside, an error
+  // naming the property, the value and the range (a clamp would change the scene silently)
+  const double inf = std::numeric_limits<double>::infinity();
+  const struct
+  {
+    const char* Name;
+    double Value, Min, Max;
+  } ranges[] = { { "Amplitude", this->Amplitude, -0.9, 10.0 }, { "Width", this->Width, 1e-12, inf },
+    { "Radius", this->Radius, 1e-12, inf }, { "Mach", this->Mach, 1.0, 100.0 },
+    { "Density", this->Density, 1e-12, 1e6 }, { "Time", this->Time, 1e-6, 1e6 },
+    { "TimeSteps", double(this->TimeSteps), 0, 10000 },
+    { "BodyRadius", this->BodyRadius, 1e-12, inf } };
+  for (const auto& r : ranges)
+  {
+    if (!(r.Value >= r.Min && r.Value <= r.Max) || std::isinf(r.Value))
+    {
+      std::ostringstream range;
+      range << "[" << r.Min << ", ";
+      if (std::isinf(r.Max))
+        range << "a finite value]";
+      else
+        range << r.Max << "]";
+      vtkErrorMacro(<< r.Name << " is " << r.Value << ": it must be in " << range.str() << ".");
+      return false;
+    }
+  }
   for (int a = 0; a < 3; ++a)
   {
     const double lo = this->Bounds[2 * a], hi = this->Bounds[2 * a + 1];

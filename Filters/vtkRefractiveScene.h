@@ -106,7 +106,7 @@ public:
    * n - 1 of the uniform scene, or at the centre of the Gaussian sphere (dimensionless); for
    * HELIUM_PLUME the helium mass fraction at the nozzle (0 to 1). Default 1e-4.
    */
-  vtkSetClampMacro(Amplitude, double, -0.9, 10.0);
+  vtkSetMacro(Amplitude, double); // outside the range: an error naming it (ComputeGrid)
   vtkGetMacro(Amplitude, double);
   ///@}
 
@@ -115,7 +115,7 @@ public:
    * The Gaussian sphere's 1/e radius, or the tanh thickness of the normal shock and of the blast
    * wave's front, world units (> 0). Default 0.25.
    */
-  vtkSetClampMacro(Width, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkSetMacro(Width, double); // outside the range: an error naming it (ComputeGrid)
   vtkGetMacro(Width, double);
   ///@}
 
@@ -124,7 +124,7 @@ public:
    * The Luneburg lens radius, the helium plume's nozzle half-width, or the blast wave's radius at
    * Time 1; world units (> 0). Default 1.
    */
-  vtkSetClampMacro(Radius, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkSetMacro(Radius, double); // outside the range: an error naming it (ComputeGrid)
   vtkGetMacro(Radius, double);
   ///@}
 
@@ -151,7 +151,7 @@ public:
   /**
    * NORMAL_SHOCK: the upstream Mach number (>= 1; clamped to [1, 100]). Default 2.
    */
-  vtkSetClampMacro(Mach, double, 1.0, 100.0);
+  vtkSetMacro(Mach, double); // outside the range: an error naming it (ComputeGrid)
   vtkGetMacro(Mach, double);
   ///@}
 
@@ -160,7 +160,7 @@ public:
    * NORMAL_SHOCK: the upstream density; BLAST_WAVE: the ambient density; kg/m^3 (> 0; clamped to
    * [1e-12, 1e6]). Default 1.2.
    */
-  vtkSetClampMacro(Density, double, 1e-12, 1e6);
+  vtkSetMacro(Density, double); // outside the range: an error naming it (ComputeGrid)
   vtkGetMacro(Density, double);
   ///@}
 
@@ -169,7 +169,7 @@ public:
    * BLAST_WAVE: the time, in units of the time the shock takes to reach Radius (> 0; clamped to
    * [1e-6, 1e6]). Default 1.
    */
-  vtkSetClampMacro(Time, double, 1e-6, 1e6);
+  vtkSetMacro(Time, double); // outside the range: an error naming it (ComputeGrid)
   vtkGetMacro(Time, double);
   ///@}
 
@@ -179,7 +179,7 @@ public:
    * ParaView's animation plays the blast growing); 0 makes it a single, static scene at Time.
    * Default 10.
    */
-  vtkSetClampMacro(TimeSteps, int, 0, 10000);
+  vtkSetMacro(TimeSteps, int); // outside the range: an error naming it (ComputeGrid)
   vtkGetMacro(TimeSteps, int);
   ///@}
 
@@ -204,7 +204,8 @@ public:
 
   ///@{
   /** The body's radius, world units (> 0). Default 0.25. */
-  vtkSetClampMacro(BodyRadius, double, 1e-12, VTK_DOUBLE_MAX);
+  // not clamped: a radius <= 0 is refused with its value (a clamp made an invisible body)
+  vtkSetMacro(BodyRadius, double);
   vtkGetMacro(BodyRadius, double);
   ///@}
 

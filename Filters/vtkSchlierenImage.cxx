@@ -26,6 +26,7 @@
 #include "SchlierenSession.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -494,17 +495,44 @@ int vtkSchlierenImage::RequestData(
   schlieren::ControllerParallel parallel;
   schlieren::SessionImage image;
   std::string error;
+  // The progress text: once some tracing is done (the engine's tracing runs from 0.05 to 0.95 of
+  // the progress), the time left at the rate so far.
+  const auto start = std::chrono::steady_clock::now();
+  double startProgress = -1;
+  std::string text;
+  auto report = [&](double progress) {
+    const double now =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (startProgress < 0 && progress >= 0.05)
+      startProgress = progress;
+    const double done = progress - startProgress;
+    // after about one pass's share of the tracing (at least 1 %) and a tenth of a second
+    const double share = std::max(0.01, 0.9 / std::max(1, this->Passes));
+    if (startProgress >= 0 && done >= share && now > 0.1 && progress < 0.95)
+    {
+      std::ostringstream t;
+      const double left = now * (0.95 - progress) / done;
+      t << "SchlierenImage: " << static_cast<int>(100 * (progress - 0.05) / 0.9)
+        << " % traced, about " << (left < 10 ? std::round(left * 10) / 10 : std::round(left))
+        << " s left";
+      text = t.str();
+      this->SetProgressText(text.c_str());
+    }
+    this->UpdateProgress(progress);
+    return !this->GetAbortExecute();
+  };
   try
   {
     this->Internals->Session.Update(parallel, PieceOf(input, output, inInfo, this->UseOctree),
-      SettingsOf(this), image, [this](double progress) {
-        this->UpdateProgress(progress);
-        return !this->GetAbortExecute();
-      });
+      SettingsOf(this), image, report);
   }
   catch (const schlieren::Error& e)
   {
     error = e.what();
+  }
+  if (!text.empty())
+  {
+    this->SetProgressText(nullptr);
   }
   for (const schlieren::SessionImage::Note& note : image.Notes)
   {

@@ -422,7 +422,8 @@ public:
    * Threads of the CPU backend. Default 0: the environment variable SCHLIEREN_CPU_THREADS, else
    * all cores.
    */
-  vtkSetClampMacro(Threads, int, 0, 4096);
+  // not clamped: a value outside 0..4096 is refused by the engine with the range
+  vtkSetMacro(Threads, int);
   vtkGetMacro(Threads, int);
   ///@}
 

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <exception>
+#include <new>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -15,19 +18,65 @@ namespace schlieren
 // instance 1 per MPI rank, or to measure scaling), else every hardware thread.
 unsigned CpuThreads(int requested)
 {
+  unsigned n = std::max(1u, std::thread::hardware_concurrency());
   if (requested > 0)
-    return static_cast<unsigned>(requested);
-  const int n = GetRuntimeOptions().CpuThreads;
-  if (n > 0)
-    return static_cast<unsigned>(n);
-  return std::max(1u, std::thread::hardware_concurrency());
+    n = static_cast<unsigned>(requested);
+  else if (GetRuntimeOptions().CpuThreads > 0)
+    n = static_cast<unsigned>(GetRuntimeOptions().CpuThreads);
+  return std::min(n, MaxCpuThreads());
+}
+
+unsigned MaxCpuThreads()
+{
+  return 16 * std::max(1u, std::thread::hardware_concurrency());
+}
+
+void RunOnThreads(unsigned n, const std::function<void(unsigned)>& work)
+{
+  n = std::max(1u, n);
+  std::vector<std::exception_ptr> errors(n);
+  auto guarded = [&](unsigned t) {
+    try
+    {
+      work(t);
+    }
+    catch (...)
+    {
+      errors[t] = std::current_exception();
+    }
+  };
+  // a std::thread that failed to start leaves the earlier ones joinable: they are joined below,
+  // never destroyed joinable (that is std::terminate, "terminate called without an active
+  // exception")
+  std::vector<std::thread> threads;
+  unsigned started = 1;
+  try
+  {
+    threads.reserve(n - 1);
+    for (; started < n; ++started)
+      threads.emplace_back(guarded, started);
+  }
+  catch (const std::system_error&)
+  {
+  }
+  catch (const std::bad_alloc&)
+  {
+  }
+  guarded(0);
+  for (unsigned t = started; t < n; ++t)
+    guarded(t);
+  for (auto& th : threads)
+    th.join();
+  for (const std::exception_ptr& e : errors)
+    if (e)
+      std::rethrow_exception(e);
 }
 
 // The CPU backend: the C++ build of SchlierenPhysics.h on std::thread.
 void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_params& P,
   std::size_t first, std::size_t count, float* out, unsigned threadCount)
 {
-  const unsigned nt = threadCount > 0 ? threadCount : CpuThreads();
+  const unsigned nt = threadCount > 0 ? std::min(threadCount, MaxCpuThreads()) : CpuThreads();
   std::atomic<std::size_t> next(0);
   // blocks of 256 rays, smaller where a chunk has fewer rays than that for each thread
   const std::size_t block = std::max<std::size_t>(1, std::min<std::size_t>(256, (count + nt - 1) / nt));
@@ -50,12 +99,9 @@ void TraceChunkCPU(const float* field, const unsigned char* levels, const sch_pa
       }
     }
   };
-  std::vector<std::thread> threads;
-  for (unsigned t = 0; t + 1 < nt; ++t)
-    threads.emplace_back(worker);
-  worker();
-  for (auto& th : threads)
-    th.join();
+  // no more threads than blocks of rays: the others would find no work
+  const std::size_t blocks = (count + block - 1) / block;
+  RunOnThreads(static_cast<unsigned>(std::min<std::size_t>(nt, blocks)), [&](unsigned) { worker(); });
 }
 
 } // namespace schlieren

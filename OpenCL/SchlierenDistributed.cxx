@@ -502,12 +502,7 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
       fin[t].push_back(f);
     }
   };
-  std::vector<std::thread> threads;
-  for (unsigned t = 1; t < nt; ++t)
-    threads.emplace_back(work, t);
-  work(0);
-  for (std::thread& th : threads)
-    th.join();
+  RunOnThreads(nt, work);
   for (unsigned t = 0; t < nt; ++t)
   {
     finished.insert(finished.end(), fin[t].begin(), fin[t].end());

@@ -175,8 +175,21 @@ Volume TraceVolume(const Volume& v, std::shared_ptr<std::vector<unsigned char>>&
 // ------------------------------------------------------------------ CPU backend (SchlierenCpuBackend.cxx)
 
 /** Threads the CPU backend runs on: `requested` (TraceSettings::Threads) where positive, else the
- * runtime options' CpuThreads where positive, else every hardware thread. */
+ * runtime options' CpuThreads where positive, else every hardware thread; at most
+ * MaxCpuThreads(). */
 unsigned CpuThreads(int requested = 0);
+
+/** The most threads the CPU backend starts: 16 per hardware thread (more only share the cores
+ * and each reserves a stack of address space). Threads up to 4096 are accepted and capped here. */
+unsigned MaxCpuThreads();
+
+/**
+ * Runs work(0) .. work(n - 1), each index on its own thread where the system gives one (work(0)
+ * on the calling thread). Where it refuses a thread (the address-space limit, the process limit),
+ * the indices left run on the calling thread after work(0): the result is the same, only slower.
+ * An exception thrown by any work(t) is rethrown here after every thread has been joined.
+ */
+void RunOnThreads(unsigned n, const std::function<void(unsigned)>& work);
 
 /** Traces rays first .. first + count - 1 of this rank's pass P.pass into `out` (SCH_RECORD each),
  * on `threadCount` threads (0: CpuThreads()). The records do not depend on the thread count. */

@@ -107,14 +107,8 @@ static void GradientLoop(const int dims[3], const double spacing[3], const float
         }
   };
   const int nt = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> threads;
-  for (int t = 0; t < nt; ++t)
-  {
-    const int k0 = dims[2] * t / nt, k1 = dims[2] * (t + 1) / nt;
-    threads.emplace_back(worker, k0, k1);
-  }
-  for (auto& th : threads)
-    th.join();
+  RunOnThreads(static_cast<unsigned>(nt),
+    [&](unsigned t) { worker(dims[2] * int(t) / nt, dims[2] * (int(t) + 1) / nt); });
 }
 
 void ComputeGradient(const int dims[3], const double spacing[3], const float* n1, float* grad3)
@@ -147,12 +141,8 @@ template <typename Body>
 static void ParallelSlices(int nz, Body body)
 {
   const int nt = std::max(1, std::min(std::min(8, nz), static_cast<int>(std::thread::hardware_concurrency())));
-  std::vector<std::thread> threads;
-  for (int t = 1; t < nt; ++t)
-    threads.emplace_back(body, nz * t / nt, nz * (t + 1) / nt);
-  body(0, nz / nt);
-  for (auto& th : threads)
-    th.join();
+  RunOnThreads(static_cast<unsigned>(nt),
+    [&](unsigned t) { body(nz * int(t) / nt, nz * (int(t) + 1) / nt); });
 }
 
 double PackFieldHighOrder(const int dims[3], const double spacing[3], const float* n1, float* out,

@@ -23,7 +23,10 @@ static std::string PhotonWarnings(const Volume& volume, const FilmGeometry& film
     landed += c;
   const double entered = raw.Photons - raw.MissedRays;
   const double kept = raw.Photons - raw.FailedRays;
-  const double off = std::max(0.0, kept - landed);
+  // a ray a body stopped is dark on the film, not off it
+  const double blocked = std::min(kept, std::max(0.0, raw.BlockedRays));
+  const double left = kept - blocked;
+  const double off = std::max(0.0, left - landed);
   std::ostringstream msg;
   if (!(entered > 0))
   {
@@ -36,14 +39,18 @@ static std::string PhotonWarnings(const Volume& volume, const FilmGeometry& film
         << "volume thinner than that across the beam is missed by the rays through the pixel "
         << "centres. Raise Resolution, view the volume face-on, or resample it thicker.\n";
   }
+  else if (!(landed > 0) && blocked > 0 && !(left >= 1))
+    msg << "A solid body blocked " << blocked << " of " << kept << " rays: it covers the whole "
+        << "beam, so no light passed it and the image is dark. View it along a direction where it "
+        << "does not fill the film, or give the volume room around the body.\n";
   else if (!(landed > 0))
-    msg << "No photon reached the film: all " << kept << " photons that left the volume landed "
+    msg << "No photon reached the film: all " << left << " photons that left the volume landed "
         << "off the film (it is " << film.Size[0] * film.PixelSize << " world units wide and "
         << "images the plane " << film.FilmPlane << " from the volume's centre). The image is "
         << "blank: lower FilmDistance (or CutoffScale) so that the deflected light stays on the "
         << "film.\n";
-  else if (off > 0.5 * kept)
-    msg << off << " of " << kept << " photons landed off the film (the film images the plane "
+  else if (off > 0.5 * left)
+    msg << off << " of " << left << " photons landed off the film (the film images the plane "
         << film.FilmPlane << " from the volume's centre): the image shows only the rest. Lower "
         << "FilmDistance to keep more of the light on the film.\n";
   return msg.str();

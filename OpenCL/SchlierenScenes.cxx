@@ -167,7 +167,12 @@ std::size_t FillBody(const BodyParameters& b, const int dims[3], const double or
   if (b.Shape == Body::None)
     return 0;
   if (!(b.Radius > 0) || !std::isfinite(b.Radius))
-    throw Error("The body's radius must be positive and finite.");
+  {
+    std::ostringstream msg;
+    msg << "BodyRadius is " << b.Radius << ": the body's radius must be positive and finite "
+        << "(world units, > 0).";
+    throw Error(msg.str());
+  }
   double axis[3] = { b.Axis[0], b.Axis[1], b.Axis[2] };
   const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
   if (b.Shape == Body::Cylinder && !(len > 0 && std::isfinite(len)))

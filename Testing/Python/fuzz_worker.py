@@ -104,7 +104,15 @@ def build(case):
     if "index" in case:
         props = dict(case["index"])
         arrays = {k: props.pop(k) for k in list(props) if k.endswith("Array")}
-        p = RefractiveIndex(Input=p, **props)
+        body = None
+        if case.get("body"):
+            # closed spheres (x, y, z, radius), overlapping where they do, as one surface
+            spheres = [Sphere(Center=b[:3], Radius=b[3], ThetaResolution=16, PhiResolution=16)
+                       for b in case["body"]]
+            made.extend(spheres)
+            body = AppendGeometry(Input=spheres)
+            made.append(body)
+        p = RefractiveIndex(Input=p, **props) if body is None else RefractiveIndex(Input=p, Body=body, **props)
         for k, v in arrays.items():
             setattr(p, k, v)
         made.append(p)

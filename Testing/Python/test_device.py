@@ -10,6 +10,9 @@ Run: pvpython test_device.py --plugin <Schlieren.so>
 - Threads 1 and 2 on Backend CPU: the same image bit for bit (each ray is traced alone and the
   film sums are added in ray order whatever thread traced the ray), and the `device` field data
   says how many threads ran.
+- Threads -5 and 100000: refused naming Threads, the value and the range 0..4096.
+- Threads 1000 and 4096 under an address-space limit that leaves room for only a few thread
+  stacks: Threads 1's image, no abort (threads the system refuses are not needed).
 """
 import os
 import sys
@@ -69,4 +72,42 @@ T.check("(1 thread" in F1.get("device", ""), "Threads 1: device %r" % F1.get("de
 T.check("(2 threads" in F2.get("device", ""), "Threads 2: device %r" % F2.get("device"))
 T.check(I1 is not None and float(np.ptp(I1)) > 0.1, "the image is not flat (range %.3g)"
         % (float(np.ptp(I1)) if I1 is not None else 0.0))
+
+# 4. Threads outside 0..4096: an error naming Threads, the value and the range, no image
+for bad in (-5, 100000):
+    I, _, _, text = trace(Backend="CPU", Threads=bad)
+    T.check(I is None and "Threads is %d" % bad in text and "[0, 4096]" in text,
+            "Threads %d: refused naming the property, value and range (got: %s)"
+            % (bad, text.strip()[:300]))
+
+# 5. Threads 1000 and 4096 (inside the range) under an address-space limit too small for the
+# stacks of that many threads: the engine starts at most 16 per hardware thread and, where the
+# system refuses one, traces on those it has. The image is Threads 1's, no abort, no error.
+import resource  # noqa: E402
+
+
+def vm_size():
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmSize:"):
+                return int(line.split()[1]) * 1024
+    return 0
+
+
+soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+# room for the film and a handful of thread stacks (8 MiB each by default), not for 16 per core
+limit = vm_size() + (96 << 20)
+if hard == resource.RLIM_INFINITY or hard >= limit:
+    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+    try:
+        for many in (1000, 4096):
+            I, D, F, text = trace(Backend="CPU", Threads=many)
+            T.check(I is not None and "ERROR" not in text and np.array_equal(I, I1)
+                    and np.array_equal(D, D1),
+                    "Threads %d under a %d MiB address-space margin: Threads 1's image (device %r, %s)"
+                    % (many, 96, F.get("device"), text.strip()[:300]))
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+else:
+    print("test_device: the hard address-space limit is below the test's; part 5 skipped")
 sys.exit(T.finish())

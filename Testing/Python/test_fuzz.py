@@ -14,6 +14,14 @@ child). Each case is classified as image, warned image or clear error; the test 
 that no photon reached without a warning, non-finite output, or (fixed cases) an outcome or
 message other than the one expected. A summary table is printed.
 
+The second round's cases are fixed cases too: Threads 1000 and 4096 (an image: the 4 GiB limit
+holds fewer thread stacks), -5 and 100000 (errors naming Threads and its range), BodyRadius < 0,
+a 3D volume under Symmetry Planar and Axisymmetric (errors naming what was expected), two
+overlapping closed shells on Body (an image), a body over the whole beam (warned: it blocked the
+rays). The random part also draws Threads (in range and out), DeviceName, Reconstruction, closed
+spheres on RefractiveIndex's Body (overlapping or not) and Symmetry with its axis, Span and
+SamplingDimensions.
+
 The random cases are sized to at most about 2e8 ray samples (a second or two): long but
 legitimate traces are the benchmark's business; abort is tested by test_time_abort.py.
 """
@@ -160,6 +168,33 @@ def fixed_cases():
         dict(source=dict(GAUSS, array="density", cells=True),
              index=dict(Model="GladstoneDale", InputArray=["CELLS", "density"])),
         dict(outcome=["error", "image"], not_phrases=["no point array of that name"]))
+    # the second round: threads, bodies, symmetry (each child has a 4 GiB address space: 1000
+    # threads' stacks do not fit, and must not abort)
+    for threads in (1000, 4096):
+        add("Threads %d" % threads, dict(source=GAUSS, image=img(Threads=threads)),
+            dict(outcome=["image"]), solo=True)
+    for threads in (100000, -5):
+        add("Threads %d" % threads, dict(source=GAUSS, image=img(Threads=threads)),
+            error_naming("Threads is %d" % threads, "[0, 4096]"))
+    add("BodyRadius -0.1",
+        dict(source=dict(kind="scene", properties=dict(Dimensions=[16] * 3, Body="Sphere",
+                                                       BodyRadius=-0.1)), image=img()),
+        error_naming("BodyRadius is -0.1"))
+    for sym, phrase in (("Planar", "expects a 2D plane"), ("Axisymmetric", "an r-x half plane")):
+        add("3D volume under Symmetry %s" % sym,
+            dict(source=dict(kind="scene", properties=dict(Dimensions=[16] * 3)),
+                 index=dict(Model="Passthrough", Symmetry=sym, SymmetryAxis="X", Span=1.0),
+                 image=img()),
+            error_naming(phrase, "a 3D volume"))
+    add("two overlapping closed shells on Body",
+        dict(source=dict(kind="scene", properties=dict(Dimensions=[24] * 3, Scene="GaussianSphere")),
+             index=dict(Model="Passthrough"), body=[[-0.15, 0, 0, 0.4], [0.15, 0, 0, 0.4]],
+             image=img()),
+        dict(outcome=["image", "warned"]))
+    add("a body over the whole beam",
+        dict(source=dict(kind="scene", properties=dict(Dimensions=[24] * 3, Body="Sphere",
+                                                       BodyRadius=2.0)), image=img()),
+        dict(outcome=["warned"], phrases=["A solid body blocked"], not_phrases=["off the film"]))
     return c
 
 
@@ -238,9 +273,30 @@ def random_case(rng, k):
             image["StepSize"] = min(64.0, image["StepSize"] * 2)
         else:
             image["Resolution"] = [max(1, n // 2) for n in image["Resolution"]]
+    # threads and device names (out of range about one in six), reconstruction
+    if rng.random() < 0.3:
+        image["Threads"] = pick(0, 1, 3, 64, 1000, 4096, -1, 5000)
+    if rng.random() < 0.15:
+        image["DeviceName"] = pick("", "no-such-device", "cpu", "pthread", "\u00e9\u00e8 ;")
+    if rng.random() < 0.3:
+        image["Reconstruction"] = pick("Trilinear", "Cubic", "Auto")
     case = dict(id="random:%d" % k, group="random", source=src, image=image, solo=False)
     if rng.random() < 0.25:
         case["octree"] = dict(Tolerance=pick(0.0, lograng(-8, -2)), MaxLevel=rng.randint(0, 10))
+    # bodies (closed spheres, overlapping or not, a SolidArray mask, grid holes are the CFD tests')
+    # and symmetry with its parameters, through RefractiveIndex
+    r = rng.random()
+    if r < 0.15:
+        case["index"] = dict(Model="Passthrough", InputArray=["POINTS", src.get("array", "n_minus_1")])
+        centre = [o + (d - 1) * sp / 2 for o, d, sp in zip(origin, dims, spacing)]
+        case["body"] = [[c0 + rng.uniform(-1, 1) * hmax for c0 in centre] + [lograng(-1.5, 0.3) * hmax]
+                        for _ in range(rng.randint(1, 3))]
+    elif r < 0.25:
+        case["index"] = dict(Model="Passthrough", InputArray=["POINTS", src.get("array", "n_minus_1")],
+                             Symmetry=pick("Planar", "Axisymmetric"), SymmetryAxis=pick("X", "Y", "Z"),
+                             Span=pick(1.0, lograng(-3, 2), 0.0, -1.0),
+                             SamplingDimensions=pick([0, 0, 0], [16, 16, 16], [24, 8, 1]))
+    return case
     return case
 
 
