@@ -718,6 +718,40 @@ std::string vtkRefractiveIndex::FlatInputError(schlieren::Parallel& parallel, vt
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Whether every point of `data` has one of at most two coordinates along `axis` (within `tol`).
+bool OnTwoPlanes(vtkDataSet* data, int axis, double tol)
+{
+  if (!data || data->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  double planes[2];
+  int found = 0;
+  double x[3];
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+  {
+    data->GetPoint(i, x);
+    bool known = false;
+    for (int k = 0; k < found && !known; ++k)
+    {
+      known = std::abs(x[axis] - planes[k]) <= tol;
+    }
+    if (!known)
+    {
+      if (found == 2)
+      {
+        return false;
+      }
+      planes[found++] = x[axis];
+    }
+  }
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkRefractiveIndex::SymmetricGrid(
   vtkInformation* inInfo, int whole[6], double origin[3], double spacing[3])
 {
@@ -806,8 +840,14 @@ bool vtkRefractiveIndex::SymmetricGrid(
     for (int a = 0; a < 3; ++a)
       if (a != thin)
         inPlane = std::min(inPlane, sides[a]);
-    const bool thick = image ? imageDims[thin] > 2 : sides[thin] > 0.05 * inPlane;
-    if (thick)
+    bool thick = image ? imageDims[thin] > 2 : sides[thin] > 0.05 * inPlane;
+    if (thick && !image)
+    {
+      // A mesh one cell thick (OpenFOAM's 2D cases: every point on one of two planes) is a
+      // plane whatever its thickness next to its sides.
+      thick = !OnTwoPlanes(vtkDataSet::SafeDownCast(input), thin, 1e-6 * largest);
+    }
+    if (thick && !wedge.Found)
     {
       std::ostringstream m;
       m << "Symmetry " << (axisym ? "Axisymmetric" : "Planar") << " expects a 2D plane normal to "
