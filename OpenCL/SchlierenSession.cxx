@@ -109,7 +109,8 @@ std::vector<double> ChoiceNumbers(const TraceSettings& chosen, const AutoChoice&
 {
   return { double(static_cast<int>(chosen.Method)), chosen.StepSize, chosen.AutoMeasuredError,
     c.ExpectedError, c.ExpectedLandingError, c.SamplesPerRay, c.Tolerance, c.Met ? 1.0 : 0.0,
-    chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), c.TrilinearError };
+    chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), c.TrilinearError,
+    c.Floor, c.AtFloor ? 1.0 : 0.0 };
 }
 
 /**
@@ -129,7 +130,7 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
     return choice;
   }
   std::string problem;
-  std::vector<double> numbers(11, 0.0);
+  std::vector<double> numbers(13, 0.0);
   if (parallel.Rank() == 0)
   {
     try
@@ -166,6 +167,8 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
   choice.UseOctree = settings.UseOctree;
   choice.Recon = settings.Recon;
   choice.TrilinearError = numbers[10];
+  choice.Floor = numbers[11];
+  choice.AtFloor = numbers[12] == 1.0;
   return choice;
 }
 
