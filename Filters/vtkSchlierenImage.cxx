@@ -364,6 +364,10 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
     addNumber("expected_error", image.Choice.ExpectedError);
     addNumber("auto_tolerance", image.Choice.Tolerance);
     addNumber("auto_met", image.Choice.Met ? 1.0 : 0.0);
+    // the tolerance was below what the volume allows: the floor the choice was made at (radians)
+    addNumber("auto_floor", image.Choice.AtFloor ? image.Choice.Floor : 0.0);
+    // 1: a camera move kept the previous view's choice (no pilot this update)
+    addNumber("auto_reused", image.Choice.Reused ? 1.0 : 0.0);
   }
 }
 }

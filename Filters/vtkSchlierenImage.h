@@ -34,8 +34,10 @@
  * `octree` (1 if the octree levels were used, else 0) and, for Integrator AUTO_INTEGRATOR (or
  * Reconstruction AUTO_RECONSTRUCTION),
  * `auto_report` (string: what Auto chose and why), `expected_error` (radians: the chosen setting's
- * error on the pilot rays), `auto_tolerance` (radians, as applied) and `auto_met` (1 if a
- * candidate met it).
+ * error on the pilot rays), `auto_tolerance` (radians, as applied), `auto_met` (1 if a
+ * candidate met it) and `auto_floor` (radians: where the tolerance was below the smallest error the
+ * pilot can tell apart, that floor, at which the cheapest candidate was taken; else 0) and
+ * `auto_reused` (1: only the view changed since the last pilot, whose choice was kept).
  * What the user should know (fallbacks, failed or under-resolved rays, Auto that found no setting
  * within its tolerance) is reported with vtkWarningMacro; Auto's choice is logged (vtkLog INFO).
  *

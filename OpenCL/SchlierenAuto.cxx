@@ -17,6 +17,14 @@ namespace schlieren
 
 namespace
 {
+std::string ToText(double v)
+{
+  std::ostringstream o;
+  o.precision(3);
+  o << v;
+  return o.str();
+}
+
 // What a tricubic sample costs against a trilinear one when Auto weighs the two reconstructions:
 // it reads 64 points instead of 8, mostly from the same cache lines (docs/PERFORMANCE.md has the
 // measured ratio).
@@ -162,9 +170,38 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
         candidates.push_back({ m, st, rc });
     }
   }
+  // The floor: the smallest error the pilot can tell apart. The reference traced again at twice
+  // its step (RK4 at 1/4 voxel, also a candidate) differs from it by what the reference itself is
+  // uncertain by; a candidate within 1.5 times that is as accurate as the pilot can tell, and a
+  // finer step only costs more. Where the tolerance is below the floor, the floor is the
+  // tolerance applied: the cheapest candidate within it is taken, and the report says that the
+  // tolerance asked is below what this volume allows, and why.
+  const bool reuseFloorTrace = !(in.UseOctree && grid.HasLevels); // candidates skip, the floor not
+  std::map<int, std::vector<RayRecord>> floorTrace;
+  std::map<int, double> floorOf, floorDiff;
+  for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
+  {
+    if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
+      continue;
+    TraceSettings t = ref;
+    t.StepSize = 0.25;
+    t.Recon = rc;
+    std::vector<RayRecord>& F = floorTrace[static_cast<int>(rc)];
+    F = traceRays(t, ab);
+    const std::vector<RayRecord>& R = rc == Reconstruction::Cubic ? refCubic : refTri;
+    double d = 0;
+    for (std::size_t k = 0; k < F.size(); ++k)
+      if (Comparable(F[k], R[k]) && !((F[k].Flags | R[k].Flags) & RayBlocked))
+        d = std::max(d, double(std::hypot(F[k].DeflX - R[k].DeflX, F[k].DeflY - R[k].DeflY)));
+    floorDiff[static_cast<int>(rc)] = d;
+    floorOf[static_cast<int>(rc)] = 1.5 * d;
+  }
   bool found = false;
   double bestCost = 1e300, bestErr = 1e300;
   AutoChoice fallback;
+  // the smallest error of an RK4 candidate at a step of a voxel or more, per reconstruction: if
+  // it is about the floor, the floor does not fall with the step
+  std::map<int, double> coarseRK4;
   // each integrator's steps come longest first: once one meets the tolerance, the shorter ones of
   // that integrator and reconstruction only cost more
   std::map<int, bool> met;
@@ -178,10 +215,13 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     t.StepSize = cand.Step;
     t.Recon = cand.Rc;
     t.EstimateError = false;
-    const std::vector<RayRecord> T = traceRays(t, ab);
+    const bool isFloorTrace = reuseFloorTrace && cand.M == Integrator::RK4 && cand.Step == 0.25;
+    const std::vector<RayRecord> T =
+      isFloorTrace ? floorTrace[static_cast<int>(cand.Rc)] : traceRays(t, ab);
     const std::vector<RayRecord>& R = cand.Rc == Reconstruction::Cubic ? refCubic : refTri;
     // a trilinear candidate answers for the trilinear's own error too (Reconstruction Auto)
     const double base = cand.Rc == Reconstruction::Trilinear && tryCubic ? triError : 0.0;
+    const double allowed = std::max(tol, floorOf[static_cast<int>(cand.Rc)]);
     double err = 0, land = 0, samples = 0;
     bool lost = false;
     // rays the candidate loses where the reference does not disqualify it; steps over structure
@@ -204,10 +244,16 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     land /= film.PixelSize;
     if (lost)
       continue;
+    if (cand.M == Integrator::RK4 && cand.Step >= 1.0)
+    {
+      auto it = coarseRK4.find(static_cast<int>(cand.Rc));
+      if (it == coarseRK4.end() || err < it->second)
+        coarseRK4[static_cast<int>(cand.Rc)] = err;
+    }
     const double cost = samples * (cand.Rc == Reconstruction::Cubic ? CubicSampleCost : 1.0);
-    if (err + base <= tol && land <= 0.5)
+    if (err + base <= allowed && land <= 0.5)
       met[group] = true;
-    if (err + base <= tol && land <= 0.5 && cost < bestCost)
+    if (err + base <= allowed && land <= 0.5 && cost < bestCost)
     {
       found = true;
       bestCost = cost;
@@ -235,6 +281,28 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     c = fallback;
     c.TrilinearError = keep;
     c.Met = false;
+  }
+  c.Floor = floorOf[static_cast<int>(c.Recon)];
+  c.AtFloor = found && tol < c.Floor;
+  if (c.AtFloor)
+    c.Met = false;
+  std::string floorWhy;
+  if (c.AtFloor)
+  {
+    const double d = floorDiff[static_cast<int>(c.Recon)];
+    auto it = coarseRK4.find(static_cast<int>(c.Recon));
+    // RK4 at 4 times the step would be 256 times worse if the difference were its truncation
+    // error: an error that does not fall with the step is rounding
+    floorWhy = "the reference (RK4 at 1/8 voxel) and RK4 at 1/4 voxel differ by " + ToText(d) + " rad";
+    if (it != coarseRK4.end() && it->second <= 2 * d)
+      floorWhy += ", RK4 at a voxel or more by " + ToText(it->second) +
+        " rad: an error that does not fall with the step, the float rounding of the ray "
+        "positions summed over the reference's steps (it grows as the steps get shorter, and "
+        "most where the beam is oblique to the grid, so that every coordinate of a position is "
+        "rounded at every step)";
+    else
+      floorWhy += ": the reference itself is still converging (structure finer than its step, "
+                  "or data the grid does not resolve for this tolerance)";
   }
   c.Tolerance = tol;
   // the octree is a cost too: a skipping step costs more than a plain one. Kept
@@ -265,7 +333,12 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     rep << "; reconstruction " << ReconstructionName(c.Recon);
   if (autoRecon && tryCubic)
     rep << " (the trilinear's estimated error " << c.TrilinearError << " rad)";
-  if (!c.Met)
+  if (c.AtFloor)
+    rep << "; no candidate met the tolerance: it is below what this volume allows, a floor of "
+        << c.Floor << " rad (" << floorWhy
+        << "); using the cheapest candidate within the floor (a Tolerance of at least " << c.Floor
+        << " rad asks no more than the pilot can measure)";
+  else if (!c.Met)
     rep << "; no candidate met the tolerance: using the most accurate one";
   if (in.UseOctree && grid.HasLevels)
     rep << "; octree " << (c.UseOctree ? "on" : "off") << ": it skips "

@@ -296,6 +296,17 @@ struct AutoChoice
    * reference traces, radians: the second-order reconstruction's estimated error (-1: not measured). */
   double TrilinearError = -1;
   std::string Report;           ///< one line for the user
+  /** The smallest error the pilot can tell apart for the chosen reconstruction, radians (0: not
+   * measured; it is only where no candidate met the tolerance): 1.5 times the largest pilot
+   * difference between the reference (RK4 at 1/8 voxel) and RK4 at 1/4 voxel. Below it a
+   * candidate's measured error says nothing about its real one. */
+  double Floor = 0;
+  /** The tolerance was below Floor: the cheapest candidate within the floor was taken (Met is
+   * false, the report and a warning say so). */
+  bool AtFloor = false;
+  /** The pilot was not traced for this choice: it is the previous update's (a camera move of a
+   * TraceSession, see TraceSession::Update). */
+  bool Reused = false;
 };
 
 /** The finished image. */

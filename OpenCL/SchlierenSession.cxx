@@ -109,7 +109,8 @@ std::vector<double> ChoiceNumbers(const TraceSettings& chosen, const AutoChoice&
 {
   return { double(static_cast<int>(chosen.Method)), chosen.StepSize, chosen.AutoMeasuredError,
     c.ExpectedError, c.ExpectedLandingError, c.SamplesPerRay, c.Tolerance, c.Met ? 1.0 : 0.0,
-    chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), c.TrilinearError };
+    chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), c.TrilinearError,
+    c.Floor, c.AtFloor ? 1.0 : 0.0 };
 }
 
 /**
@@ -129,7 +130,7 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
     return choice;
   }
   std::string problem;
-  std::vector<double> numbers(11, 0.0);
+  std::vector<double> numbers(13, 0.0);
   if (parallel.Rank() == 0)
   {
     try
@@ -166,6 +167,8 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
   choice.UseOctree = settings.UseOctree;
   choice.Recon = settings.Recon;
   choice.TrilinearError = numbers[10];
+  choice.Floor = numbers[11];
+  choice.AtFloor = numbers[12] == 1.0;
   return choice;
 }
 
@@ -275,12 +278,83 @@ void TraceSession::Clear()
 
 void TraceSession::ClearVolume()
 {
+  this->AutoKey.clear();
   this->VolumeKey.clear();
   this->Packed.clear();
   this->Levels.clear();
   this->Solid.clear();
   this->Smooth.clear();
   this->Kept = Volume();
+}
+
+//------------------------------------------------------------------------------
+AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings)
+{
+  if (settings.Method != Integrator::Auto && settings.Recon != Reconstruction::Auto)
+    return ResolveOnRankZero(parallel, volume, settings);
+  // what the choice depends on besides the view and the film's size: the volume and every other
+  // setting
+  TraceSettings k = settings;
+  for (int a = 0; a < 3; ++a)
+    k.ViewDirection[a] = k.ViewUp[a] = 0;
+  k.Resolution[0] = k.Resolution[1] = 0;
+  k.RankIndex = k.RankCount = 0;
+  std::ostringstream key;
+  key << k.PhotonKey() << " | " << volume.Stamp;
+  // the view of the last pilot, and of the last update
+  bool pilotView = true, lastView = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    pilotView = pilotView && settings.ViewDirection[a] == this->AutoView[a] &&
+      settings.ViewUp[a] == this->AutoView[3 + a];
+    lastView = lastView && settings.ViewDirection[a] == this->LastView[a] &&
+      settings.ViewUp[a] == this->LastView[3 + a];
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    this->LastView[a] = settings.ViewDirection[a];
+    this->LastView[3 + a] = settings.ViewUp[a];
+  }
+  // a finer film than the kept choice was made for asks for a tighter landing (half a pixel)
+  const bool finer = settings.Resolution[0] > this->AutoResolution[0] ||
+    settings.Resolution[1] > this->AutoResolution[1];
+  // the camera moved: keep the choice. It came to rest (the same view again after a kept
+  // choice) or the film got finer (the refinement at full resolution): pilot again, for this view
+  const bool keep = parallel.AllOk(!this->AutoKey.empty() && key.str() == this->AutoKey && !finer &&
+    !(lastView && this->AutoChoiceKept));
+  if (keep)
+  {
+    settings.Method = this->AutoTraced.Method;
+    settings.StepSize = this->AutoTraced.StepSize;
+    settings.Recon = this->AutoTraced.Recon;
+    settings.UseOctree = this->AutoTraced.UseOctree;
+    settings.AutoMeasuredError = this->AutoTraced.AutoMeasuredError;
+    AutoChoice c = this->AutoKept;
+    // the same view and film as the pilot's: the choice is what the pilot would make again
+    if (!pilotView)
+    {
+      c.Reused = true;
+      c.Report += "; kept from the previous update (only the view changed): the pilot runs again "
+                  "when the camera rests";
+    }
+    this->AutoChoiceKept = c.Reused;
+    return c;
+  }
+  const TraceSettings asked = settings;
+  AutoChoice c = ResolveOnRankZero(parallel, volume, settings);
+  ++this->PilotsRun;
+  this->AutoKey = key.str();
+  this->AutoTraced = settings;
+  this->AutoKept = c;
+  this->AutoChoiceKept = false;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->AutoView[a] = asked.ViewDirection[a];
+    this->AutoView[3 + a] = asked.ViewUp[a];
+  }
+  this->AutoResolution[0] = asked.Resolution[0];
+  this->AutoResolution[1] = asked.Resolution[1];
+  return c;
 }
 
 //------------------------------------------------------------------------------
@@ -439,7 +513,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   // kept sums go on with the new passes (the jitter sequence goes on where it stopped, so the
   // image equals a trace of all passes at once).
   TraceSettings traced = settings;
-  const AutoChoice choice = ResolveOnRankZero(parallel, volume, traced);
+  const AutoChoice choice = this->ResolveKept(parallel, volume, traced);
   if (rank == 0 && (settings.Method == Integrator::Auto || settings.Recon == Reconstruction::Auto))
   {
     out.Notes.push_back({ false, choice.Report });

@@ -126,6 +126,8 @@ public:
   const Volume& KeptVolume() const { return this->Kept; }
   /** Drops what is kept (the next update packs and traces afresh). Not collective. */
   void Clear();
+  /** How many times an update of this session has run Auto's pilot (the others kept a choice). */
+  int Pilots() const { return this->PilotsRun; }
 
 private:
   void ClearVolume();
@@ -146,6 +148,23 @@ private:
   std::shared_ptr<DistributedVolume> Pieces;
   std::string PiecesKey;
   std::string PiecesBackend, PiecesDevice; // what the kept sums were traced on
+  /**
+   * Auto's choice kept between camera moves (the whole-volume path). An update whose volume and
+   * settings other than ViewDirection, ViewUp and Resolution are the last pilot's, on a film no
+   * finer than the pilot's, keeps its choice: a camera move costs the trace, not the pilot. The
+   * pilot runs again where the camera has come to rest (an update with the same view as the last
+   * one, which kept a choice: the refinement's passes) or the film got finer (the refinement at
+   * full resolution after interactive half-size films), and for any other change.
+   */
+  AutoChoice ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings);
+  std::string AutoKey; // empty: no choice kept
+  TraceSettings AutoTraced;
+  AutoChoice AutoKept;
+  double AutoView[6] = { 0, 0, 0, 0, 0, 0 }; // the last pilot's view
+  double LastView[6] = { 0, 0, 0, 0, 0, 0 }; // the last update's
+  int AutoResolution[2] = { 0, 0 };
+  bool AutoChoiceKept = false; // the last update kept the choice for another view
+  int PilotsRun = 0;
 };
 
 /**

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 using namespace schlieren;
 
@@ -474,6 +475,103 @@ void TestAuto()
 }
 } // namespace
 
+// Auto where the tolerance is below what the pilot can measure. Seen obliquely (every coordinate
+// of a ray's position rounded at every step), the pilot's reference (RK4 at 1/8 voxel, over a
+// thousand steps) differs from itself at 1/4 voxel by more than on axis: no candidate can be shown
+// more accurate than that floor, and before the floor was measured Auto took the finest step for
+// nothing. The sphere looks the same from every side: its oblique views must cost what the axis
+// view costs, a tolerance below the floor must be reported with the floor, and the estimate must
+// hold against the closed form on rays the pilot did not trace.
+void TestAutoFloor()
+{
+  const double A = 2e-4, w = 0.25;
+  SceneParameters p;
+  p.Amplitude = A;
+  p.Width = w;
+  // a box of +-4 s: the field at its faces (e^-16) leaves the closed form exact for every view
+  schtest::SceneVolume sv(Scene::GaussianSphere, p, 128, 1.0);
+  std::vector<unsigned char> smooth(sv.N1.size());
+  PackFieldHighOrder(sv.V.Dimensions, sv.V.Spacing, sv.N1.data(), sv.Field.data(), smooth.data());
+  sv.V.Smooth = smooth.data();
+  // rays off the pilot's 16 x 16 grid, within the sphere's deflection
+  std::vector<float> ab;
+  for (int j = -15; j <= 15; ++j)
+    for (int i = -15; i <= 15; ++i)
+    {
+      ab.push_back(static_cast<float>(0.041 * i + 0.003));
+      ab.push_back(static_cast<float>(0.041 * j - 0.002));
+    }
+  auto closedError = [&](const std::vector<RayRecord>& r) {
+    double e = 0;
+    for (std::size_t k = 0; k < r.size(); ++k)
+    {
+      double g[2];
+      schtest::GaussianDeflection(A, w, ab[2 * k], ab[2 * k + 1], g);
+      e = std::max(e, std::hypot(r[k].DeflX - g[0], r[k].DeflY - g[1]));
+    }
+    return e;
+  };
+  const double views[3][6] = { { 0, 0, -1, 0, 1, 0 }, { 1, 0.7, -0.4, 0, 0, 1 }, { 0.3, 0, -1, 0, 1, 0 } };
+  const char* names[3] = { "axis", "oblique (1, 0.7, -0.4)", "oblique (0.3, 0, -1)" };
+  const double tol = 1e-8;
+  double sprAxis = 0, refAxis = 0;
+  for (int v = 0; v < 3; ++v)
+  {
+    TraceSettings s = Beam(views[v][0], views[v][1], views[v][2], views[v][3], views[v][4], views[v][5]);
+    s.Resolution[0] = s.Resolution[1] = 256;
+    s.Passes = 1;
+    s.Method = Integrator::Auto;
+    s.Recon = Reconstruction::Cubic;
+    s.Tolerance = tol;
+    AutoChoice c;
+    const TraceSettings chosen = ResolveAuto(sv.V, s, &c);
+    TraceSettings ref = s;
+    ref.Method = Integrator::RK4;
+    ref.StepSize = 0.125;
+    const double eRef = closedError(TraceRays(sv.V, ref, ab));
+    const double eChosen = closedError(TraceRays(sv.V, chosen, ab));
+    std::printf("Auto at %.3g rad, %s: %s at %g voxel, %.1f samples per ray, estimate %.3g, floor "
+                "%.3g%s; against the closed form: chosen %.3g, reference %.3g rad\n",
+      tol, names[v], IntegratorName(c.Method), c.StepSize, c.SamplesPerRay, c.ExpectedError,
+      c.Floor, c.AtFloor ? " (at the floor)" : "", eChosen, eRef);
+    if (v == 0)
+    {
+      sprAxis = c.SamplesPerRay;
+      refAxis = eRef;
+      CHECK(c.Met && !c.AtFloor && c.Floor < tol, "on axis the floor is below the tolerance: met");
+    }
+    else
+    {
+      CHECK(c.SamplesPerRay <= 1.5 * sprAxis,
+        std::string(names[v]) + ": Auto's choice costs no more than 1.5 x the axis view's samples per ray");
+      // the reference the estimate is measured against is as right seen obliquely as on axis
+      CHECK(eRef <= 1.5 * refAxis, std::string(names[v]) + ": the reference holds to the closed form as on axis");
+    }
+    // the estimate carries over to rays the pilot did not trace: the chosen setting is off the
+    // closed form by at most the reference's own error (the grid's) and twice what was applied
+    CHECK(eChosen <= eRef + 2 * std::max(tol, c.Floor),
+      std::string(names[v]) + ": the chosen setting against the closed form within its estimate");
+    if (v == 1)
+    {
+      CHECK(c.AtFloor && !c.Met && c.Floor > tol, "oblique: the tolerance is below the floor, and reported so");
+      std::ostringstream floorText;
+      floorText << "a floor of " << c.Floor << " rad";
+      CHECK(c.Report.find("below what this volume allows") != std::string::npos &&
+          c.Report.find(floorText.str()) != std::string::npos &&
+          c.Report.find("float rounding") != std::string::npos,
+        "oblique: the report names the floor in radians and why: " + c.Report);
+      const TraceResult r = Trace(sv.V, s);
+      CHECK(r.Warnings.find(floorText.str()) != std::string::npos, "oblique: a warning names the floor");
+      CHECK(r.Choice.AtFloor && r.Choice.Floor == c.Floor, "oblique: the result's choice is at the floor");
+      // at a tolerance above the floor the tolerance is met as asked
+      s.Tolerance = 2 * c.Floor;
+      AutoChoice above;
+      ResolveAuto(sv.V, s, &above);
+      CHECK(above.Met && !above.AtFloor, "oblique: a tolerance above the floor is met");
+    }
+  }
+}
+
 int main()
 {
   TestConvergence();
@@ -484,5 +582,6 @@ int main()
   TestStraightLine();
   TestErrorEstimate();
   TestAuto();
+  TestAutoFloor();
   return schtest::Finish();
 }

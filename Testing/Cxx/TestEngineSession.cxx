@@ -341,5 +341,54 @@ int main()
     CHECK(empty.Errors[0] == "SchlierenImage: the input image is empty.",
       "one rank, no points: " + empty.Errors[0]);
   }
+  // Auto's choice kept across a camera move: only the view changed, so the pilot does not run and
+  // the image is that of the kept setting traced for the new view; at rest (the same view again)
+  // and on a finer film it runs again
+  {
+    VolumePiece piece = Slab(0, 1, 2, true);
+    piece.Load = [&w, piece](PieceValues& v) {
+      Cut(w, piece, v, true);
+      return std::string();
+    };
+    Parallel& p = SerialParallel();
+    TraceSession session;
+    TraceSettings s = Settings(1, true);
+    SessionImage a, b, c, d, e;
+    session.Update(p, piece, s, a);
+    CHECK(session.Pilots() == 1 && !a.Choice.Reused, "Auto: the first update runs the pilot");
+    s.ViewDirection[0] = -0.3;
+    s.ViewDirection[1] = 0.25;
+    session.Update(p, piece, s, b);
+    CHECK(session.Pilots() == 1 && b.Choice.Reused &&
+        b.Choice.Report.find("kept from the previous update") != std::string::npos,
+      "Auto: a camera move keeps the choice, no pilot: " + b.Choice.Report);
+    CHECK(b.Traced.Method == a.Traced.Method && b.Traced.StepSize == a.Traced.StepSize,
+      "Auto: the kept choice is traced");
+    TraceSettings fixed = s;
+    fixed.Method = b.Traced.Method;
+    fixed.StepSize = b.Traced.StepSize;
+    fixed.Recon = b.Traced.Recon;
+    fixed.UseOctree = b.Traced.UseOctree;
+    TraceSession fresh;
+    SessionImage f;
+    fresh.Update(p, piece, fixed, f);
+    CHECK(SameImage(b.Result, f.Result), "Auto, kept choice: the image of the same fixed settings, bit for bit");
+    // at rest: the refinement's passes at the same view pilot again, for this view
+    s.Passes = 3;
+    session.Update(p, piece, s, c);
+    CHECK(session.Pilots() == 2 && !c.Choice.Reused, "Auto: the camera at rest pilots again");
+    // the same view and film as that pilot's: kept (a pilot would choose the same)
+    s.Passes = 4;
+    session.Update(p, piece, s, d);
+    CHECK(session.Pilots() == 2 && !d.Choice.Reused && d.PassesTraced == 1,
+      "Auto: more passes at rest keep the choice and the passes");
+    // a finer film (the refinement at full resolution) and another tolerance pilot again
+    s.Resolution[0] *= 2;
+    session.Update(p, piece, s, e);
+    CHECK(session.Pilots() == 3, "Auto: a finer film pilots again");
+    s.Tolerance = 1e-5;
+    session.Update(p, piece, s, e);
+    CHECK(session.Pilots() == 4, "Auto: another tolerance pilots again");
+  }
   return schtest::Finish();
 }
