@@ -160,6 +160,16 @@ enum class Cutoff
   BOS = 6                 ///< background-oriented schlieren: a dot/stripe background seen through the flow
 };
 
+/** The bench's light source (docs/BENCH.md); values match SCH_SOURCE_* in SchlierenPhysics.h. */
+enum class BenchSource
+{
+  Point = 0,     ///< the idealised point source: clamp(0.5 - k e.a), k automatic or CutoffScale
+  Slit = 1,      ///< a slit of height SourceSize[0] across the knife (along it: no effect)
+  Rectangle = 2, ///< a rectangle SourceSize[0] x SourceSize[1], sides along the knife
+  Disc = 3,      ///< a pinhole of diameter SourceSize[0]
+  Gaussian = 4   ///< a Gaussian spot of 1/e^2 diameter SourceSize[0] (sigma = diameter / 4)
+};
+
 enum class FilmFilter
 {
   None = 0,     ///< each photon in the pixel it lands in
@@ -217,6 +227,14 @@ struct TraceSettings
   int RaysPerWorkItem = 0;
   int RankIndex = 0;         ///< trace only pixels p with p % RankCount == RankIndex (MPI split)
   int RankCount = 1;
+  /// The bench (KnifeEdge only; docs/BENCH.md): the light source whose image the knife cuts.
+  /// Point: today's idealised knife, I = clamp(0.5 - k e.a); the others give the closed-form
+  /// response of their image and ignore CutoffScale.
+  BenchSource Source = BenchSource::Point;
+  double SourceSize[2] = { 1.0, 1.0 };  ///< mm: across the knife, along it (Gaussian: 1/e^2 diameter)
+  double CollimatorFocalLength = 1.0;   ///< f1, m
+  double SchlierenFocalLength = 1.0;    ///< f2, m
+  double KnifeCut = 0.5;                ///< fraction of the source image's light the knife covers, [0, 1)
 
   /** Every setting that changes which photons are traced or how they land and weigh: all but
    * Passes and the film filter (applied in Finalize). Equal keys, same volume: FilmSums of the
@@ -331,6 +349,10 @@ struct TraceResult
   double BlockedRays = 0; ///< stopped by a solid body: dark on the film, not failed
   AutoChoice Choice; ///< what was traced with (for Auto: what it chose)
   double Seconds = 0; ///< tracing time
+  /// The bench (finite Source only): dI/I per radian of deflection toward the open side at eps = 0
+  /// (f2/a for a slit), and the deflections (radians) at full dark and at saturation
+  double BenchSensitivity = 0, BenchRange[2] = { 0, 0 };
+  std::string BenchModel; ///< how the response was computed; empty for Point
 };
 
 /**
@@ -371,6 +393,21 @@ void Accumulate(const Volume& volume, const TraceSettings& settings, FilmSums& s
   std::string* warnings = nullptr, const ProgressFunction& progress = nullptr);
 
 /** Turns sums into the image: intensity per the cutoff, mean deflection. */
+/** What a finite source implies (docs/BENCH.md), from the settings alone. */
+struct BenchResponse
+{
+  bool Finite = false; ///< a finite source with KnifeEdge: the closed-form weights apply
+  int Source = 0;      ///< SCH_SOURCE_*
+  double ImageHeight = 0; ///< a0 = h f2 / f1, m
+  double Size = 0;     ///< sch_bench_weight's size: a0 (slit, rectangle), R' (disc), sigma (Gaussian)
+  double Edge = 0;     ///< d: the knife edge from the image's centre, m
+  double Open = 0;     ///< 1 - KnifeCut: the share of the undisturbed beam that passes
+  double Sensitivity = 0; ///< dI/I per radian at eps = 0
+  double Dark = 0, Saturation = 0; ///< eps (radians) at full dark and at saturation
+  std::string Model;
+};
+BenchResponse ComputeBench(const TraceSettings& settings);
+
 TraceResult Finalize(const Volume& volume, const TraceSettings& settings, const FilmSums& sums);
 
 /** Accumulate + Finalize. */

@@ -178,7 +178,8 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     else
       k = sums.MaxAbsDeflection > 0 ? 1.0 / sums.MaxAbsDeflection : 0.0;
   }
-  const bool weighted = manual || s.RussianRoulette;
+  const BenchResponse bench = ComputeBench(s);
+  const bool weighted = manual || s.RussianRoulette || bench.Finite;
   for (std::size_t i = 0; i < n; ++i)
   {
     const double c = sums.Count[i];
@@ -237,6 +238,13 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     r.Intensity[i] = static_cast<float>(I);
   }
   r.CutoffScaleUsed = (s.Mode == Cutoff::Shadowgraph || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::BOS) ? 0.0 : k;
+  if (bench.Finite)
+  {
+    r.BenchSensitivity = bench.Sensitivity;
+    r.BenchRange[0] = bench.Dark;
+    r.BenchRange[1] = bench.Saturation;
+    r.BenchModel = bench.Model;
+  }
   r.Photons = sums.Photons;
   r.Samples = sums.Samples;
   r.FailedRays = sums.FailedRays;
