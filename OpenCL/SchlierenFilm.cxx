@@ -285,7 +285,7 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
       F.ShiftX[idx] += shiftX;
       F.ShiftY[idx] += shiftY;
     }
-    else if (manual || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
+    else if (manual || Bench.Finite || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
       F.Weight[idx] += CutoffWeight(ex, ey, static_cast<float>(la), phase, static_cast<sch_uint>(pix));
   }
 }

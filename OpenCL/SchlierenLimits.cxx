@@ -171,6 +171,21 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("CutoffScale", s.CutoffScale, "in [0, 1e12] (0: automatic)");
   if (!std::isfinite(s.KnifeAngle))
     OutOfRange("KnifeAngle", s.KnifeAngle, "a finite angle in degrees");
+  // the bench (checked whatever the source: a typed value is kept for when it is used)
+  const int source = static_cast<int>(s.Source);
+  if (source < 0 || source > static_cast<int>(BenchSource::Gaussian))
+    OutOfRange("Source", source, "0 (Point), 1 (Slit), 2 (Rectangle), 3 (Disc) or 4 (Gaussian)");
+  for (int i = 0; i < 2; ++i)
+    if (!(s.SourceSize[i] > 0 && s.SourceSize[i] <= 1e4))
+      OutOfRange(i == 0 ? "SourceSize[0] (across the knife)" : "SourceSize[1] (along the knife)",
+        s.SourceSize[i], "in (0, 1e4] mm");
+  if (!(s.CollimatorFocalLength > 0 && s.CollimatorFocalLength <= 1e3))
+    OutOfRange("CollimatorFocalLength", s.CollimatorFocalLength, "in (0, 1000] m");
+  if (!(s.SchlierenFocalLength > 0 && s.SchlierenFocalLength <= 1e3))
+    OutOfRange("SchlierenFocalLength", s.SchlierenFocalLength, "in (0, 1000] m");
+  if (!(s.KnifeCut >= 0 && s.KnifeCut < 1))
+    OutOfRange("KnifeCut", s.KnifeCut, "in [0, 1): the share of the source's image the knife covers "
+      "(1 would leave no light)");
   if (!(s.FilmDistance >= 0 && std::isfinite(s.FilmDistance)))
     OutOfRange("FilmDistance", s.FilmDistance, "a finite distance >= 0 (world units behind the volume)");
   if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))
