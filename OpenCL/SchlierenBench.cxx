@@ -85,6 +85,8 @@ BenchResponse ComputeBench(const TraceSettings& s)
       // no finite edge: full dark and saturation where the passing share is 0.1 % and 99.9 %
       b.Dark = (b.Edge - sigma * r2 * InverseErfc(0.002)) / f2;
       b.Saturation = (b.Edge - sigma * r2 * InverseErfc(1.998)) / f2;
+      b.DarkWeight = 0.001;
+      b.SaturatedWeight = 0.999;
       m << "Gaussian: closed form (erfc((d - s) / (sigma sqrt 2)) / 2 per photon; not sampled); image "
            "sigma = "
         << sigma * 1e3 << " mm (1/e^2 diameter " << a0 * 1e3 << " mm); range at 0.1 % and 99.9 %";
@@ -103,6 +105,10 @@ BenchResponse ComputeBench(const TraceSettings& s)
         << " mm, uncovered a = " << a * 1e3 << " mm";
     }
   }
+  // one grey level of the film, full scale at the uncut source image (I = 1), is 1 / (2^bits - 1)
+  // of I; the response's slope at eps = 0 is Open * Sensitivity per radian
+  const double levels = std::ldexp(1.0, std::max(1, std::min(32, s.BitDepth))) - 1;
+  b.Resolvable = b.Sensitivity > 0 ? 1 / (levels * b.Open * b.Sensitivity) : 0;
   b.Model = m.str();
   return b;
 }

@@ -235,6 +235,10 @@ struct TraceSettings
   double CollimatorFocalLength = 1.0;   ///< f1, m
   double SchlierenFocalLength = 1.0;    ///< f2, m
   double KnifeCut = 0.5;                ///< fraction of the source image's light the knife covers, [0, 1)
+  /// Read-outs only (applied in Finalize): the camera's bit depth, for the smallest deflection one
+  /// grey level resolves, and the share of lit pixels at saturation above which a warning is given.
+  int BitDepth = 8;
+  double SaturationWarning = 0.01;
 
   /** Every setting that changes which photons are traced or how they land and weigh: all but
    * Passes and the film filter (applied in Finalize). Equal keys, same volume: FilmSums of the
@@ -352,6 +356,10 @@ struct TraceResult
   /// The bench (finite Source only): dI/I per radian of deflection toward the open side at eps = 0
   /// (f2/a for a slit), and the deflections (radians) at full dark and at saturation
   double BenchSensitivity = 0, BenchRange[2] = { 0, 0 };
+  /// the deflection (radians) that moves I by one grey level of BitDepth, full scale at I = 1
+  double BenchResolvable = 0;
+  /// shares of the lit pixels at saturation and at full dark (the weights at BenchRange's ends)
+  double BenchSaturated = 0, BenchDark = 0;
   std::string BenchModel; ///< how the response was computed; empty for Point
 };
 
@@ -404,6 +412,8 @@ struct BenchResponse
   double Open = 0;     ///< 1 - KnifeCut: the share of the undisturbed beam that passes
   double Sensitivity = 0; ///< dI/I per radian at eps = 0
   double Dark = 0, Saturation = 0; ///< eps (radians) at full dark and at saturation
+  double DarkWeight = 0, SaturatedWeight = 1; ///< the passing share at those ends
+  double Resolvable = 0; ///< eps of one grey level of BitDepth: 1 / ((2^bits - 1) Open Sensitivity)
   std::string Model;
 };
 BenchResponse ComputeBench(const TraceSettings& settings);

@@ -186,6 +186,10 @@ void CheckSettings(const TraceSettings& s)
   if (!(s.KnifeCut >= 0 && s.KnifeCut < 1))
     OutOfRange("KnifeCut", s.KnifeCut, "in [0, 1): the share of the source's image the knife covers "
       "(1 would leave no light)");
+  if (s.BitDepth < 1 || s.BitDepth > 32)
+    OutOfRange("BitDepth", s.BitDepth, "in [1, 32] bits");
+  if (!(s.SaturationWarning >= 0 && s.SaturationWarning <= 1))
+    OutOfRange("SaturationWarning", s.SaturationWarning, "in [0, 1] (a share of the lit film)");
   if (!(s.FilmDistance >= 0 && std::isfinite(s.FilmDistance)))
     OutOfRange("FilmDistance", s.FilmDistance, "a finite distance >= 0 (world units behind the volume)");
   if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))

@@ -197,6 +197,16 @@ void CheckSlab(BenchSource src, double h, double f1, double f2, double cut, doub
             std::to_string(want) + " at eps " + std::to_string(-ey));
         if (src == BenchSource::Slit || src == BenchSource::Rectangle)
         {
+          // every pixel has the same deflection: the film is all saturated, all dark, or neither
+          const double eOpen0 = -ey, a0open = X.open * X.a0;
+          const bool allSat = eOpen0 >= (X.a0 - a0open) / f2 * (1 + 1e-3);
+          const bool inside = eOpen0 < (X.a0 - a0open) / f2 * (1 - 1e-3);
+          if (allSat || inside)
+          {
+            CHECK(r.BenchSaturated == (allSat ? 1.0 : 0.0), std::string(label) + ": share saturated");
+            CHECK((r.Warnings.find("saturated") != std::string::npos) == allSat,
+              std::string(label) + ": the saturation warning: " + r.Warnings);
+          }
           const double eOpen = -ey, a = X.open * X.a0;
           if (eOpen <= -a / f2)
           {
@@ -231,6 +241,8 @@ void CheckSlab(BenchSource src, double h, double f1, double f2, double cut, doub
         CHECK_NEAR(r.BenchSensitivity, f2 / a, 1e-9 * f2 / a, std::string(label) + ": sensitivity f2 / a");
         CHECK_NEAR(r.BenchRange[0], -a / f2, 1e-12, std::string(label) + ": full dark at -a / f2");
         CHECK_NEAR(r.BenchRange[1], (X.a0 - a) / f2, 1e-12, std::string(label) + ": saturation at (a0 - a) / f2");
+        // one grey level of 8 bits, full scale at I = 1, is a shift of a0 / 255
+        CHECK_NEAR(r.BenchResolvable, X.a0 / (255 * f2), 1e-9 * X.a0 / f2, std::string(label) + ": 8-bit resolvable eps");
       }
       else
       {
@@ -401,6 +413,9 @@ void TestErrors()
     { "SchlierenFocalLength", "-2" });
   schtest::ExpectError("KnifeCut 1", run([](TraceSettings& s) { s.KnifeCut = 1; }), { "KnifeCut", "[0, 1)" });
   schtest::ExpectError("KnifeCut -0.1", run([](TraceSettings& s) { s.KnifeCut = -0.1; }), { "KnifeCut", "-0.1" });
+  schtest::ExpectError("BitDepth 0", run([](TraceSettings& s) { s.BitDepth = 0; }), { "BitDepth", "[1, 32]" });
+  schtest::ExpectError("SaturationWarning 2", run([](TraceSettings& s) { s.SaturationWarning = 2; }),
+    { "SaturationWarning", "[0, 1]" });
   schtest::ExpectError("Source 7", run([](TraceSettings& s) { s.Source = static_cast<BenchSource>(7); }),
     { "Source", "Gaussian" });
 }
