@@ -234,7 +234,7 @@ struct TraceSettings
   double SourceSize[2] = { 1.0, 1.0 };  ///< mm: across the knife, along it (Gaussian: 1/e^2 diameter)
   double CollimatorFocalLength = 1.0;   ///< f1, m
   double SchlierenFocalLength = 1.0;    ///< f2, m
-  double KnifeCut = 0.5;                ///< fraction of the source image's light the knife covers, [0, 1)
+  double KnifeCut = 0.5;                ///< fraction of the source image's light the knife covers, [0, 0.999]
   /// Read-outs only (applied in Finalize): the camera's bit depth, for the smallest deflection one
   /// grey level resolves, and the share of lit pixels at saturation above which a warning is given.
   int BitDepth = 8;

@@ -176,16 +176,16 @@ void CheckSettings(const TraceSettings& s)
   if (source < 0 || source > static_cast<int>(BenchSource::Gaussian))
     OutOfRange("Source", source, "0 (Point), 1 (Slit), 2 (Rectangle), 3 (Disc) or 4 (Gaussian)");
   for (int i = 0; i < 2; ++i)
-    if (!(s.SourceSize[i] > 0 && s.SourceSize[i] <= 1e4))
+    if (!(s.SourceSize[i] >= 1e-3 && s.SourceSize[i] <= 1e4))
       OutOfRange(i == 0 ? "SourceSize[0] (across the knife)" : "SourceSize[1] (along the knife)",
-        s.SourceSize[i], "in (0, 1e4] mm");
-  if (!(s.CollimatorFocalLength > 0 && s.CollimatorFocalLength <= 1e3))
-    OutOfRange("CollimatorFocalLength", s.CollimatorFocalLength, "in (0, 1000] m");
-  if (!(s.SchlierenFocalLength > 0 && s.SchlierenFocalLength <= 1e3))
-    OutOfRange("SchlierenFocalLength", s.SchlierenFocalLength, "in (0, 1000] m");
-  if (!(s.KnifeCut >= 0 && s.KnifeCut < 1))
-    OutOfRange("KnifeCut", s.KnifeCut, "in [0, 1): the share of the source's image the knife covers "
-      "(1 would leave no light)");
+        s.SourceSize[i], "in [0.001, 10000] mm");
+  if (!(s.CollimatorFocalLength >= 1e-3 && s.CollimatorFocalLength <= 1e3))
+    OutOfRange("CollimatorFocalLength", s.CollimatorFocalLength, "in [0.001, 1000] m");
+  if (!(s.SchlierenFocalLength >= 1e-3 && s.SchlierenFocalLength <= 1e3))
+    OutOfRange("SchlierenFocalLength", s.SchlierenFocalLength, "in [0.001, 1000] m");
+  if (!(s.KnifeCut >= 0 && s.KnifeCut <= 0.999))
+    OutOfRange("KnifeCut", s.KnifeCut, "in [0, 0.999]: the share of the source's image the knife "
+      "covers (all of it would leave no light)");
   if (s.BitDepth < 1 || s.BitDepth > 32)
     OutOfRange("BitDepth", s.BitDepth, "in [1, 32] bits");
   if (!(s.SaturationWarning >= 0 && s.SaturationWarning <= 1))

@@ -402,16 +402,16 @@ void TestErrors()
     };
   };
   schtest::ExpectError("SourceSize 0", run([](TraceSettings& s) { s.SourceSize[0] = 0; }),
-    { "SourceSize[0]", "(0, 1e4] mm" });
+    { "SourceSize[0]", "[0.001, 10000] mm" });
   schtest::ExpectError("SourceSize[1] -1", run([](TraceSettings& s) { s.SourceSize[1] = -1; }),
     { "SourceSize[1]", "-1" });
   schtest::ExpectError("SourceSize NaN", run([](TraceSettings& s) { s.SourceSize[0] = std::nan(""); }),
     { "SourceSize[0]", "nan" });
   schtest::ExpectError("CollimatorFocalLength 0", run([](TraceSettings& s) { s.CollimatorFocalLength = 0; }),
-    { "CollimatorFocalLength", "(0, 1000] m" });
+    { "CollimatorFocalLength", "[0.001, 1000] m" });
   schtest::ExpectError("SchlierenFocalLength -2", run([](TraceSettings& s) { s.SchlierenFocalLength = -2; }),
     { "SchlierenFocalLength", "-2" });
-  schtest::ExpectError("KnifeCut 1", run([](TraceSettings& s) { s.KnifeCut = 1; }), { "KnifeCut", "[0, 1)" });
+  schtest::ExpectError("KnifeCut 1", run([](TraceSettings& s) { s.KnifeCut = 1; }), { "KnifeCut", "[0, 0.999]" });
   schtest::ExpectError("KnifeCut -0.1", run([](TraceSettings& s) { s.KnifeCut = -0.1; }), { "KnifeCut", "-0.1" });
   schtest::ExpectError("BitDepth 0", run([](TraceSettings& s) { s.BitDepth = 0; }), { "BitDepth", "[1, 32]" });
   schtest::ExpectError("SaturationWarning 2", run([](TraceSettings& s) { s.SaturationWarning = 2; }),
