@@ -38,6 +38,9 @@
  * candidate met it) and `auto_floor` (radians: where the tolerance was below the smallest error the
  * pilot can tell apart, that floor, at which the cheapest candidate was taken; else 0) and
  * `auto_reused` (1: only the view changed since the last pilot, whose choice was kept).
+ * With a finite Source under KnifeEdge (docs/BENCH.md): `bench_sensitivity` (dI/I per radian),
+ * `bench_range` (2 values, radians: full dark, saturation), `bench_resolvable_deflection` (radians
+ * per grey level of BitDepth), `bench_saturated_share`, `bench_dark_share` and `bench_model`.
  * What the user should know (fallbacks, failed or under-resolved rays, Auto that found no setting
  * within its tolerance) is reported with vtkWarningMacro; Auto's choice is logged (vtkLog INFO).
  *

@@ -333,6 +333,31 @@ void TestGaussian()
   }
 }
 
+// every integrator hands the same deflection to the bench: a slit at 50 % in its linear range
+void TestIntegrators()
+{
+  const double eo = 2e-4, n0m1 = 3e-4, G = -eo * (1 + n0m1) / W;
+  Slab slab(n0m1, G);
+  for (Integrator m : { Integrator::Midpoint, Integrator::RK4, Integrator::Straight, Integrator::Auto })
+  {
+    TraceSettings s = BenchSettings(BenchSource::Slit, 1.0, 1.0, 1.0, 0.5);
+    s.Method = m;
+    const TraceResult r = Trace(slab.V, s);
+    double worst = 0;
+    for (int j = 0; j < kFilm; ++j)
+    {
+      const double y = r.Film.Center[1] + r.Film.Corner[1] + (j + 0.5) * r.Film.PixelSize;
+      const double want = 0.5 - 1.0 * G * W / (1 + n0m1 + G * y) / 1e-3; // (a + s) / a0, s = -f2 eps
+      for (int i = 0; i < kFilm; ++i)
+        worst = std::max(worst, std::fabs(r.Intensity[static_cast<std::size_t>(j) * kFilm + i] - want));
+    }
+    // the deflection's tolerance moved through the slit's slope f2 / a0, plus the weight's roundings
+    const double tol = 16 * kFloatEps + (DeflectionTolerance() * eo + 1e-9) * 1.0 / 1e-3;
+    CHECK(worst <= tol, std::string("slit at 50 % under ") + IntegratorName(m) + ": I == (a + f2 eps) / a0");
+    std::printf("slit at 50 %% under %-8s max |I - closed form| %.2g (tolerance %.2g)\n", IntegratorName(m), worst, tol);
+  }
+}
+
 // the physics header's closed forms at the values ORACLES.md lists
 void TestWeights()
 {
@@ -427,6 +452,7 @@ int main()
   TestSlit();
   TestDisc();
   TestGaussian();
+  TestIntegrators();
   TestErrors();
   TestPointUnchanged(false);
   if (schtest::HaveOpenCL())
