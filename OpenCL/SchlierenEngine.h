@@ -400,7 +400,6 @@ void Accumulate(const Volume& volume, const TraceSettings& settings, FilmSums& s
   std::string* backendUsed = nullptr, std::string* deviceName = nullptr,
   std::string* warnings = nullptr, const ProgressFunction& progress = nullptr);
 
-/** Turns sums into the image: intensity per the cutoff, mean deflection. */
 /** What a finite source implies (docs/BENCH.md), from the settings alone. */
 struct BenchResponse
 {
@@ -418,6 +417,7 @@ struct BenchResponse
 };
 BenchResponse ComputeBench(const TraceSettings& settings);
 
+/** Turns sums into the image: intensity per the cutoff, mean deflection. */
 TraceResult Finalize(const Volume& volume, const TraceSettings& settings, const FilmSums& sums);
 
 /** Accumulate + Finalize. */
