@@ -210,6 +210,14 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.Mode = static_cast<schlieren::Cutoff>(self->GetCutoff());
   s.KnifeAngle = self->GetKnifeAngle();
   s.CutoffScale = self->GetCutoffScale();
+  s.Source = static_cast<schlieren::BenchSource>(self->GetSource());
+  s.SourceSize[0] = self->GetSourceSize()[0];
+  s.SourceSize[1] = self->GetSourceSize()[1];
+  s.CollimatorFocalLength = self->GetCollimatorFocalLength();
+  s.SchlierenFocalLength = self->GetSchlierenFocalLength();
+  s.KnifeCut = self->GetKnifeCut();
+  s.BitDepth = self->GetBitDepth();
+  s.SaturationWarning = self->GetSaturationWarning();
   s.FilmDistance = self->GetFilmDistance();
   s.Wavelength = self->GetWavelength();
   s.ReferenceTilt = self->GetReferenceTilt();
@@ -318,6 +326,21 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
   };
   const schlieren::TraceResult& result = image.Result;
   addNumber("cutoff_scale", result.CutoffScaleUsed);
+  if (!result.BenchModel.empty())
+  {
+    // what a finite source implies (docs/BENCH.md): dI/I per radian, eps at full dark and at
+    // saturation, eps of one grey level, the film's shares at either end, how it was computed
+    addNumber("bench_sensitivity", result.BenchSensitivity);
+    vtkNew<vtkDoubleArray> range;
+    range->SetName("bench_range");
+    range->InsertNextValue(result.BenchRange[0]);
+    range->InsertNextValue(result.BenchRange[1]);
+    fd->AddArray(range);
+    addNumber("bench_resolvable_deflection", result.BenchResolvable);
+    addNumber("bench_saturated_share", result.BenchSaturated);
+    addNumber("bench_dark_share", result.BenchDark);
+    addString("bench_model", result.BenchModel);
+  }
   // what the user was warned of (empty: nothing), for scripts that check an image is usable
   addString("warnings", image.Warnings);
   addString("backend", image.BackendUsed);
@@ -594,6 +617,10 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Cutoff: " << schlieren::CutoffName(static_cast<schlieren::Cutoff>(this->Cutoff))
      << "\n";
   os << indent << "KnifeAngle: " << this->KnifeAngle << " degrees\n";
+  os << indent << "Source: " << this->Source << ", SourceSize: " << this->SourceSize[0] << " x "
+     << this->SourceSize[1] << " mm, f1: " << this->CollimatorFocalLength
+     << " m, f2: " << this->SchlierenFocalLength << " m, KnifeCut: " << this->KnifeCut
+     << ", BitDepth: " << this->BitDepth << ", SaturationWarning: " << this->SaturationWarning << "\n";
   os << indent << "CutoffScale: " << this->CutoffScale << (this->CutoffScale == 0 ? " (automatic)" : "")
      << "\n";
   os << indent << "FilmDistance: " << this->FilmDistance << "\n";

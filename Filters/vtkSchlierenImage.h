@@ -38,6 +38,9 @@
  * candidate met it) and `auto_floor` (radians: where the tolerance was below the smallest error the
  * pilot can tell apart, that floor, at which the cheapest candidate was taken; else 0) and
  * `auto_reused` (1: only the view changed since the last pilot, whose choice was kept).
+ * With a finite Source under KnifeEdge (docs/BENCH.md): `bench_sensitivity` (dI/I per radian),
+ * `bench_range` (2 values, radians: full dark, saturation), `bench_resolvable_deflection` (radians
+ * per grey level of BitDepth), `bench_saturated_share`, `bench_dark_share` and `bench_model`.
  * What the user should know (fallbacks, failed or under-resolved rays, Auto that found no setting
  * within its tolerance) is reported with vtkWarningMacro; Auto's choice is logged (vtkLog INFO).
  *
@@ -301,6 +304,39 @@ public:
 
   ///@{
   /**
+   * The bench (KnifeEdge; docs/BENCH.md): the light source whose image the knife cuts. Source
+   * POINT_SOURCE (default: the idealised knife, CutoffScale's I = 0.5 - k e.a), SLIT, RECTANGLE, DISC,
+   * GAUSSIAN_SPOT. SourceSize (mm, [0.001, 10000]): across the knife (a disc's diameter, a Gaussian's
+   * 1/e^2 diameter) and along it. CollimatorFocalLength and SchlierenFocalLength (f1, f2; m,
+   * [0.001, 1000]). KnifeCut: the share of the source's image the knife covers, [0, 0.999].
+   * BitDepth ([1, 32]) and SaturationWarning ([0, 1]) only shape the read-outs. Out of range: an error.
+   */
+  enum SourceType
+  {
+    POINT_SOURCE = 0,
+    SLIT = 1,
+    RECTANGLE = 2,
+    DISC = 3,
+    GAUSSIAN_SPOT = 4
+  };
+  vtkSetMacro(Source, int);
+  vtkGetMacro(Source, int);
+  vtkSetVector2Macro(SourceSize, double);
+  vtkGetVector2Macro(SourceSize, double);
+  vtkSetMacro(CollimatorFocalLength, double);
+  vtkGetMacro(CollimatorFocalLength, double);
+  vtkSetMacro(SchlierenFocalLength, double);
+  vtkGetMacro(SchlierenFocalLength, double);
+  vtkSetMacro(KnifeCut, double);
+  vtkGetMacro(KnifeCut, double);
+  vtkSetMacro(BitDepth, int);
+  vtkGetMacro(BitDepth, int);
+  vtkSetMacro(SaturationWarning, double);
+  vtkGetMacro(SaturationWarning, double);
+  ///@}
+
+  ///@{
+  /**
    * Distance of the film behind the back of the volume's box, world units (>= 0 and finite,
    * else an error). Default 0.
    */
@@ -472,6 +508,13 @@ protected:
   int Cutoff = KNIFE_EDGE;
   double KnifeAngle = 0.0;
   double CutoffScale = 0.0;
+  int Source = POINT_SOURCE;
+  double SourceSize[2] = { 1.0, 1.0 };
+  double CollimatorFocalLength = 1.0;
+  double SchlierenFocalLength = 1.0;
+  double KnifeCut = 0.5;
+  int BitDepth = 8;
+  double SaturationWarning = 0.01;
   double FilmDistance = 0.0;
   double Wavelength = 632.8;
   double ReferenceTilt = 0.0;

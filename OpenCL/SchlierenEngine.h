@@ -160,6 +160,16 @@ enum class Cutoff
   BOS = 6                 ///< background-oriented schlieren: a dot/stripe background seen through the flow
 };
 
+/** The bench's light source (docs/BENCH.md); values match SCH_SOURCE_* in SchlierenPhysics.h. */
+enum class BenchSource
+{
+  Point = 0,     ///< the idealised point source: clamp(0.5 - k e.a), k automatic or CutoffScale
+  Slit = 1,      ///< a slit of height SourceSize[0] across the knife (along it: no effect)
+  Rectangle = 2, ///< a rectangle SourceSize[0] x SourceSize[1], sides along the knife
+  Disc = 3,      ///< a pinhole of diameter SourceSize[0]
+  Gaussian = 4   ///< a Gaussian spot of 1/e^2 diameter SourceSize[0] (sigma = diameter / 4)
+};
+
 enum class FilmFilter
 {
   None = 0,     ///< each photon in the pixel it lands in
@@ -217,6 +227,18 @@ struct TraceSettings
   int RaysPerWorkItem = 0;
   int RankIndex = 0;         ///< trace only pixels p with p % RankCount == RankIndex (MPI split)
   int RankCount = 1;
+  /// The bench (KnifeEdge only; docs/BENCH.md): the light source whose image the knife cuts.
+  /// Point: today's idealised knife, I = clamp(0.5 - k e.a); the others give the closed-form
+  /// response of their image and ignore CutoffScale.
+  BenchSource Source = BenchSource::Point;
+  double SourceSize[2] = { 1.0, 1.0 };  ///< mm: across the knife, along it (Gaussian: 1/e^2 diameter)
+  double CollimatorFocalLength = 1.0;   ///< f1, m
+  double SchlierenFocalLength = 1.0;    ///< f2, m
+  double KnifeCut = 0.5;                ///< fraction of the source image's light the knife covers, [0, 0.999]
+  /// Read-outs only (applied in Finalize): the camera's bit depth, for the smallest deflection one
+  /// grey level resolves, and the share of lit pixels at saturation above which a warning is given.
+  int BitDepth = 8;
+  double SaturationWarning = 0.01;
 
   /** Every setting that changes which photons are traced or how they land and weigh: all but
    * Passes and the film filter (applied in Finalize). Equal keys, same volume: FilmSums of the
@@ -331,6 +353,14 @@ struct TraceResult
   double BlockedRays = 0; ///< stopped by a solid body: dark on the film, not failed
   AutoChoice Choice; ///< what was traced with (for Auto: what it chose)
   double Seconds = 0; ///< tracing time
+  /// The bench (finite Source only): dI/I per radian of deflection toward the open side at eps = 0
+  /// (f2/a for a slit), and the deflections (radians) at full dark and at saturation
+  double BenchSensitivity = 0, BenchRange[2] = { 0, 0 };
+  /// the deflection (radians) that moves I by one grey level of BitDepth, full scale at I = 1
+  double BenchResolvable = 0;
+  /// shares of the lit pixels at saturation and at full dark (the weights at BenchRange's ends)
+  double BenchSaturated = 0, BenchDark = 0;
+  std::string BenchModel; ///< how the response was computed; empty for Point
 };
 
 /**
@@ -369,6 +399,23 @@ using ProgressFunction = std::function<bool(double)>;
 void Accumulate(const Volume& volume, const TraceSettings& settings, FilmSums& sums,
   std::string* backendUsed = nullptr, std::string* deviceName = nullptr,
   std::string* warnings = nullptr, const ProgressFunction& progress = nullptr);
+
+/** What a finite source implies (docs/BENCH.md), from the settings alone. */
+struct BenchResponse
+{
+  bool Finite = false; ///< a finite source with KnifeEdge: the closed-form weights apply
+  int Source = 0;      ///< SCH_SOURCE_*
+  double ImageHeight = 0; ///< a0 = h f2 / f1, m
+  double Size = 0;     ///< sch_bench_weight's size: a0 (slit, rectangle), R' (disc), sigma (Gaussian)
+  double Edge = 0;     ///< d: the knife edge from the image's centre, m
+  double Open = 0;     ///< 1 - KnifeCut: the share of the undisturbed beam that passes
+  double Sensitivity = 0; ///< dI/I per radian at eps = 0
+  double Dark = 0, Saturation = 0; ///< eps (radians) at full dark and at saturation
+  double DarkWeight = 0, SaturatedWeight = 1; ///< the passing share at those ends
+  double Resolvable = 0; ///< eps of one grey level of BitDepth: 1 / ((2^bits - 1) Open Sensitivity)
+  std::string Model;
+};
+BenchResponse ComputeBench(const TraceSettings& settings);
 
 /** Turns sums into the image: intensity per the cutoff, mean deflection. */
 TraceResult Finalize(const Volume& volume, const TraceSettings& settings, const FilmSums& sums);

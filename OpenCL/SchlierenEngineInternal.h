@@ -96,6 +96,7 @@ struct Splatter
   FilmSums& F;
   float ca, sa, k;
   bool manual;
+  BenchResponse Bench; ///< a finite source's closed-form knife (Finite false: the point source)
   double twoPiOverLambda, tilt, bgPlane, period;
 
   Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f);

@@ -171,6 +171,7 @@ Splatter::Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f)
   sa = static_cast<float>(std::sin(ang));
   k = static_cast<float>(s.CutoffScale);
   manual = s.CutoffScale > 0;
+  Bench = ComputeBench(s);
   twoPiOverLambda = 2 * 3.14159265358979323846 / (s.Wavelength * 1e-9);
   tilt = 2 * 3.14159265358979323846 * s.ReferenceTilt;
   bgPlane = P.sFront - s.BackgroundDistance;
@@ -183,7 +184,10 @@ float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_
   switch (S.Mode)
   {
     case Cutoff::KnifeEdge:
-      w = sch_knife_weight(ex, ey, ca, sa, k);
+      // a finite source: its image shifted by f2 eps toward the open side, eps = -(e . a)
+      w = Bench.Finite ? sch_bench_weight(Bench.Source, static_cast<float>(-S.SchlierenFocalLength * (ex * ca + ey * sa)),
+                           static_cast<float>(Bench.Edge), static_cast<float>(Bench.Size))
+                       : sch_knife_weight(ex, ey, ca, sa, k);
       break;
     case Cutoff::Circular:
       w = sch_circular_weight(ex, ey, k, 0);
@@ -281,7 +285,7 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
       F.ShiftX[idx] += shiftX;
       F.ShiftY[idx] += shiftY;
     }
-    else if (manual || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
+    else if (manual || Bench.Finite || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
       F.Weight[idx] += CutoffWeight(ex, ey, static_cast<float>(la), phase, static_cast<sch_uint>(pix));
   }
 }

@@ -178,7 +178,8 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     else
       k = sums.MaxAbsDeflection > 0 ? 1.0 / sums.MaxAbsDeflection : 0.0;
   }
-  const bool weighted = manual || s.RussianRoulette;
+  const BenchResponse bench = ComputeBench(s);
+  const bool weighted = manual || s.RussianRoulette || bench.Finite;
   for (std::size_t i = 0; i < n; ++i)
   {
     const double c = sums.Count[i];
@@ -237,6 +238,38 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     r.Intensity[i] = static_cast<float>(I);
   }
   r.CutoffScaleUsed = (s.Mode == Cutoff::Shadowgraph || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::BOS) ? 0.0 : k;
+  if (bench.Finite)
+  {
+    r.BenchSensitivity = bench.Sensitivity;
+    r.BenchRange[0] = bench.Dark;
+    r.BenchRange[1] = bench.Saturation;
+    r.BenchResolvable = bench.Resolvable;
+    r.BenchModel = bench.Model;
+    // a pixel is saturated (dark) where every photon's share reached the end of the response; the
+    // float weights are compared with a margin of a few roundings
+    double lit = 0, saturated = 0, dark = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (sums.Count[i] > 0)
+      {
+        const double w = sums.Weight[i] / sums.Count[i];
+        lit += 1;
+        saturated += w >= bench.SaturatedWeight - 1e-6;
+        dark += w <= bench.DarkWeight + 1e-6;
+      }
+    r.BenchSaturated = lit > 0 ? saturated / lit : 0;
+    r.BenchDark = lit > 0 ? dark / lit : 0;
+    if (r.BenchSaturated > s.SaturationWarning)
+    {
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << 100 * r.BenchSaturated << " % of the lit film is saturated (more than SaturationWarning, "
+          << 100 * s.SaturationWarning << " %): deflections beyond " << bench.Saturation
+          << " rad toward the open side pass the whole source image. Cut more of the source's image "
+             "(KnifeCut), or use a larger source or a shorter SchlierenFocalLength, for a wider "
+             "range on that side.\n";
+      r.Warnings += msg.str();
+    }
+  }
   r.Photons = sums.Photons;
   r.Samples = sums.Samples;
   r.FailedRays = sums.FailedRays;

@@ -171,6 +171,25 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("CutoffScale", s.CutoffScale, "in [0, 1e12] (0: automatic)");
   if (!std::isfinite(s.KnifeAngle))
     OutOfRange("KnifeAngle", s.KnifeAngle, "a finite angle in degrees");
+  // the bench (checked whatever the source: a typed value is kept for when it is used)
+  const int source = static_cast<int>(s.Source);
+  if (source < 0 || source > static_cast<int>(BenchSource::Gaussian))
+    OutOfRange("Source", source, "0 (Point), 1 (Slit), 2 (Rectangle), 3 (Disc) or 4 (Gaussian)");
+  for (int i = 0; i < 2; ++i)
+    if (!(s.SourceSize[i] >= 1e-3 && s.SourceSize[i] <= 1e4))
+      OutOfRange(i == 0 ? "SourceSize[0] (across the knife)" : "SourceSize[1] (along the knife)",
+        s.SourceSize[i], "in [0.001, 10000] mm");
+  if (!(s.CollimatorFocalLength >= 1e-3 && s.CollimatorFocalLength <= 1e3))
+    OutOfRange("CollimatorFocalLength", s.CollimatorFocalLength, "in [0.001, 1000] m");
+  if (!(s.SchlierenFocalLength >= 1e-3 && s.SchlierenFocalLength <= 1e3))
+    OutOfRange("SchlierenFocalLength", s.SchlierenFocalLength, "in [0.001, 1000] m");
+  if (!(s.KnifeCut >= 0 && s.KnifeCut <= 0.999))
+    OutOfRange("KnifeCut", s.KnifeCut, "in [0, 0.999]: the share of the source's image the knife "
+      "covers (all of it would leave no light)");
+  if (s.BitDepth < 1 || s.BitDepth > 32)
+    OutOfRange("BitDepth", s.BitDepth, "in [1, 32] bits");
+  if (!(s.SaturationWarning >= 0 && s.SaturationWarning <= 1))
+    OutOfRange("SaturationWarning", s.SaturationWarning, "in [0, 1] (a share of the lit film)");
   if (!(s.FilmDistance >= 0 && std::isfinite(s.FilmDistance)))
     OutOfRange("FilmDistance", s.FilmDistance, "a finite distance >= 0 (world units behind the volume)");
   if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))

@@ -68,7 +68,9 @@ std::string TraceSettings::PhotonKey() const
     << BackgroundPattern << ' ' << BackgroundPeriod << ' ' << RussianRoulette << ' ' << Jitter
     << ' ' << Seed << ' ' << MaxSteps << ' ' << static_cast<int>(Device) << ' ' << DeviceName.size()
     << ':' << DeviceName << ' ' << RaysPerWorkItem
-    << ' ' << RankIndex << ' ' << RankCount;
+    << ' ' << RankIndex << ' ' << RankCount
+    << ' ' << static_cast<int>(Source) << ' ' << SourceSize[0] << ' ' << SourceSize[1] << ' '
+    << CollimatorFocalLength << ' ' << SchlierenFocalLength << ' ' << KnifeCut;
   return k.str();
 }
 

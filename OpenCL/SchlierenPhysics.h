@@ -41,6 +41,8 @@ typedef uchar sch_uchar;
 #define sch_fmin fmin
 #define sch_atan2 atan2
 #define sch_exp exp
+#define sch_acos acos
+#define sch_erfc erfc
 /* the 4 floats of one grid point (n - 1, grad n) as one vector: loaded and blended at once */
 typedef float4 sch_f4;
 #define sch_f4_load(p) vload4(0, (p))
@@ -63,6 +65,8 @@ typedef unsigned char sch_uchar;
 #define sch_fmin fminf
 #define sch_atan2 atan2f
 #define sch_exp expf
+#define sch_acos acosf
+#define sch_erfc erfcf
 typedef struct
 {
   float x, y, z, w;
@@ -1160,6 +1164,34 @@ SCH_FN float sch_knife_weight(float ex, float ey, float ca, float sa, float k)
 {
   float I = 0.5f - k * (ex * ca + ey * sa);
   return I < 0.0f ? 0.0f : (I > 1.0f ? 1.0f : I);
+}
+
+/* A finite source's image at the knife (the bench): the fraction of the uncut source image's light
+ * that passes the knife when the image is shifted by s toward the knife's open side (s = f2 eps,
+ * eps = -(e . a): light bent toward -a passes, as for the point source). The knife covers the image
+ * below the edge at d, measured from the image's centre across the knife; size is the image's height
+ * a0 (slit, rectangle), its radius R' (disc) or its standard deviation (Gaussian). Closed forms:
+ * slit: clamp((a0/2 - d + s) / a0); disc: [acos t - t sqrt(1 - t^2)] / pi, t = (d - s) / R'
+ * clamped to [-1, 1]; Gaussian: erfc((d - s) / (sigma sqrt 2)) / 2. */
+#define SCH_SOURCE_POINT 0
+#define SCH_SOURCE_SLIT 1
+#define SCH_SOURCE_RECTANGLE 2
+#define SCH_SOURCE_DISC 3
+#define SCH_SOURCE_GAUSSIAN 4
+SCH_FN float sch_bench_weight(int source, float s, float d, float size)
+{
+  if (source == SCH_SOURCE_DISC)
+  {
+    float t = (d - s) / size;
+    t = t < -1.0f ? -1.0f : (t > 1.0f ? 1.0f : t);
+    return (sch_acos(t) - t * sch_sqrt(1.0f - t * t)) * (1.0f / 3.14159265358979f);
+  }
+  if (source == SCH_SOURCE_GAUSSIAN)
+    return 0.5f * sch_erfc((d - s) * (0.70710678118654752f / size));
+  {
+    float I = (0.5f * size - d + s) / size;
+    return I < 0.0f ? 0.0f : (I > 1.0f ? 1.0f : I);
+  }
 }
 
 /* circular (pinhole) stop: I = 1 - k |e|; complement (a dot in the focal plane): I = k |e| */

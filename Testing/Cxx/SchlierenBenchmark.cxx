@@ -16,6 +16,8 @@
 //             (Reconstruction Trilinear, Integrator Auto, the same tolerance); rays/s with the RMS
 //             and largest deflection error against the closed form over the film's pixel centres
 //             within |x|, |y| < 2.2 s
+//   sources   the bench's sources (Point, Slit, Disc, Gaussian) on the Gaussian sphere: rays/s, the
+//             passes for an RMS of 1 %, a camera move
 //
 //   SchlierenBenchmark [--cases gaussian,plume,bluntfin] [--size N] [--film N] [--passes N]
 //     [--step voxels] [--backends OpenCL,CPU] [--rays-per-item N] [--raw bluntfin_256 (no suffix)]
@@ -403,6 +405,77 @@ void Grids(const std::string& grids, const std::string& backends, int film, int 
 
 } // namespace
 
+// The bench's sources on one case (the Gaussian sphere, size^3): rays/s of each, the passes each
+// needs for an RMS of 1 % of the image's contrast against its own 32-pass image, and a camera
+// move (8 views, 1 pass on a half-size film) per source. Slit, disc and Gaussian of 0.5 mm with
+// f1 = f2 = 1 m at 50 % cut keep the sphere's deflections in their linear range.
+void Sources(const std::string& backends, int film, int size)
+{
+  Case c;
+  Gaussian(c, size);
+  std::printf("## bench sources: %s, film %d^2\n\n", c.Name.c_str(), film);
+  std::printf("| backend | source | rays/s (8 passes) | RMS at 1, 4, 16 passes (of contrast) | passes for 1 %% | camera move ms/view |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  std::stringstream bs(backends);
+  std::string b;
+  while (std::getline(bs, b, ','))
+  {
+    const Backend dev = b == "CPU" ? Backend::CPU : Backend::OpenCL;
+    if (dev == Backend::OpenCL && !QueryOpenCLDevice().Available)
+      continue;
+    for (BenchSource src : { BenchSource::Point, BenchSource::Slit, BenchSource::Disc, BenchSource::Gaussian })
+    {
+      TraceSettings s;
+      s.Device = dev;
+      s.Mode = Cutoff::KnifeEdge;
+      s.Resolution[0] = s.Resolution[1] = film;
+      s.Source = src;
+      s.SourceSize[0] = s.SourceSize[1] = 0.5;
+      s.Passes = 32;
+      const TraceResult ref = Trace(c.V, s);
+      double lo = 1e30, hi = -1e30;
+      for (float v : ref.Intensity)
+        lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
+      double rms[5];
+      int need = 0;
+      const int counts[5] = { 1, 2, 4, 8, 16 };
+      double rate = 0;
+      for (int q = 0; q < 5; ++q)
+      {
+        s.Passes = counts[q];
+        s.Seed = 7; // not the reference's passes
+        const auto t0 = Clock::now();
+        const TraceResult r = Trace(c.V, s);
+        if (counts[q] == 8)
+          rate = r.Photons / Since(t0);
+        double sum = 0;
+        for (std::size_t i = 0; i < r.Intensity.size(); ++i)
+          sum += (double(r.Intensity[i]) - ref.Intensity[i]) * (double(r.Intensity[i]) - ref.Intensity[i]);
+        rms[q] = std::sqrt(sum / r.Intensity.size()) / std::max(hi - lo, 1e-30);
+        if (!need && rms[q] < 0.01)
+          need = counts[q];
+      }
+      // a camera move: 8 views 2 degrees apart, 1 pass on half the film, as Follow Camera does
+      s.Passes = 1;
+      s.Resolution[0] = s.Resolution[1] = film / 2;
+      const auto t1 = Clock::now();
+      for (int v = 0; v < 8; ++v)
+      {
+        const double ang = v * 2 * 3.14159265358979 / 180;
+        s.ViewDirection[0] = std::sin(ang);
+        s.ViewDirection[2] = -std::cos(ang);
+        Trace(c.V, s);
+      }
+      const double msView = 1e3 * Since(t1) / 8;
+      const char* names[] = { "Point", "Slit", "Rectangle", "Disc", "Gaussian" };
+      std::printf("| %s | %s | %.3g | %.3g, %.3g, %.3g | %s | %.1f |\n", b.c_str(), names[static_cast<int>(src)],
+        rate, rms[0], rms[2], rms[4], need ? std::to_string(need).c_str() : "> 16", msView);
+      std::fflush(stdout);
+    }
+  }
+  std::printf("\n");
+}
+
 int main(int argc, char** argv)
 {
   int size = 256, film = 512, passes = 3, rpi = 0;
@@ -451,6 +524,8 @@ int main(int argc, char** argv)
     {
       if (name == "grids")
         Grids(grids, backends, film, passes, tolFrac);
+      else if (name == "sources")
+        Sources(backends, film, size);
       else if (name == "gaussian")
         ok = Gaussian(c, size);
       else if (name == "plume")
@@ -458,7 +533,7 @@ int main(int argc, char** argv)
       else if (name == "bluntfin")
         ok = BluntFin(c, raw);
       else
-        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids)\n", name.c_str());
+        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, sources)\n", name.c_str());
     }
     catch (const Error& e)
     {
