@@ -118,7 +118,7 @@ rc = np.array([R.ravel()[idx == b].mean() for b in range(1, len(bins))])
 qc = np.array([q.ravel()[idx == b].mean() for b in range(1, len(bins))])
 c2, c1_, _ = np.polyfit(rc, qc, 2)
 peak = -c1_ / (2 * c2)
-T.close(peak / s, 1 / math.sqrt(2.0), 0.01, "sphere slice: the largest |grad rho| at r = s/sqrt(2) (in s)")
+T.close(peak / s, 1 / math.sqrt(2.0), 0.01, "sphere slice: the largest |grad rho| at r = %.4f s against s/sqrt(2)" % (peak / s))
 qm = float(fields["gradient_maximum"])
 for rr in (2.3, 2.5, 2.8):
     j, i = np.unravel_index(np.argmin(np.abs(R - rr * s)), R.shape)

@@ -14,6 +14,8 @@ with the reason.
    0.015 in slope, 0.72 deg in angle after cos^2(beta); asserted 0.75 deg. The same angle from
    cell data only (the reader's CreateCellToPoint off, as ParaView 6 reads by default) within
    0.25 deg of it (the two differ by the cell-to-point averaging only); the internalMesh note.
+   NumericalSchlieren on the same film: the shock from the largest |grad rho| of each column at the
+   same angle within the same tolerance, its body where the physical image is blocked.
 2. The wedge's silhouette from its wall: the void under the ramp reaches the box's faces, so only
    the mesh's boundary faces tell it from the outside (BodyFromGrid, schlieren::walls: the flow
    does not cross the ramp); it is black in the image, its edge on y = x tan 15 deg within a
@@ -114,9 +116,16 @@ def wedge_image(foam, time, cell_to_point=True, tag=""):
                            ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
     grid, text = fetch(index, time)
     out, _ = fetch(image, time)
+    numerical = {}
+    if cell_to_point:
+        for mode in ("Slice", "LineOfSight"):
+            ns = NumericalSchlieren(Input=index, Mode=mode, Resolution=[458, 153], ViewDirection=[0, 0, -1],
+                                    ViewUp=[0, 1, 0])
+            numerical[mode], _ = fetch(ns, time)
+            Delete(ns)
     for p in (image, index, reader):
         Delete(p)
-    return grid, out, text
+    return grid, out, text, numerical
 
 
 # 1. wedge15Ma5: the oblique shock's angle.
@@ -129,7 +138,7 @@ beta = math.degrees(theta_beta_mach(math.radians(15.0), 5.0))
 T.close(beta, 24.32, 0.01, "theta-beta-M: beta of a 15 deg wedge at Mach 5 (gamma 1.4)")
 results = {}
 for c2p in (True, False):
-    grid, out, text = wedge_image(foam, t_end, c2p)
+    grid, out, text, numerical = wedge_image(foam, t_end, c2p)
     tag = "point data" if c2p else "cell data only"
     T.check("internalMesh is read (4800 cells)" in text, "%s: the note says the internalMesh is read" % tag)
     if not c2p:
@@ -172,6 +181,30 @@ for c2p in (True, False):
         import schlieren_view  # embedded in the plugin
         schlieren_view.write_png(schlieren_view.film_array(out, "intensity"),
                                  os.path.join(OUTPUT, "wedge15Ma5_knife.png"))
+        # The numerical schlieren of the same case on the same film: its shock (the largest
+        # |grad rho| of each column) at the same angle within the same tolerance, its body the
+        # physical image's blocked pixels (the same solid points and the same one-half test: only
+        # pixels on the silhouette's edge may differ), the slice equal to the average along z
+        # (an extruded planar case is uniform across its span).
+        for mode, data in numerical.items():
+            q = schlieren_view.film_array(data, "numerical_gradient").astype(float)
+            nb = schlieren_view.film_array(data, "blocked").astype(float)
+            field = data.GetFieldData().GetAbstractArray("numerical_field").GetValue(0)
+            T.check(field == "rho", "wedge15Ma5 numerical (%s): the density rho is used: %s" % (mode, field))
+            an, bn, xn, yn = shock_line(X, Y, q, 0.05, 0.30, ymin=0.0)
+            angle_n = math.degrees(math.atan(bn))
+            print("numerical schlieren (%s): shock angle %.3f deg, through y = %.4f m at x = 0" % (mode, angle_n, an))
+            T.close(angle_n, beta, 0.75, "wedge15Ma5 numerical schlieren (%s): the shock's angle against "
+                    "theta-beta-M, deg" % mode)
+            differ = float(np.mean(nb != blocked))
+            T.check(differ < 0.005, "wedge15Ma5 numerical (%s): blocked where the physical image is, but for "
+                    "%.4f of the pixels (the silhouette's edge)" % (mode, differ))
+            schlieren_view.write_png(schlieren_view.film_array(data, "intensity"),
+                                     os.path.join(OUTPUT, "wedge15Ma5_numerical_%s.png" % mode.lower()))
+        qs = schlieren_view.film_array(numerical["Slice"], "numerical_gradient").astype(float)
+        ql = schlieren_view.film_array(numerical["LineOfSight"], "numerical_gradient").astype(float)
+        T.close(ql / qs.max(), qs / qs.max(), 1e-5, "wedge15Ma5: the line-of-sight average equals the slice "
+                "on an extruded planar case (of the largest)")
 T.close(results[False], results[True], 0.25, "wedge15Ma5: the angle from cell data only against point data, deg")
 
 
