@@ -27,6 +27,9 @@ with the reason.
    across the axis the |deflection| image is mirror-symmetric about the axis, along it
    |deflection| is unchanged by a quarter turn (both within 1e-4 of its largest: the revolved
    grid is symmetric by construction when the axis is found where it is; 1e-6 measured).
+   The Mach disc across the axis: its position on the axis in the image (the largest |deflection|
+   past the expansion) against the solver's (the largest rise of p / T between cells along the
+   axis) within a cell (0.5 mm), at least 10 times the expanded core's |deflection|.
    wedge15Ma5 given as Axisymmetric is refused as a wedge with the reason (parallel sides).
 4. forwardStep (rhoCentralFoam, Mach 3 in a channel over a step 0.2 m high, planar, 12.5 mm
    cells, solved to t = 2): the step from its walls is black, its top and face in the image on
@@ -246,6 +249,8 @@ for tag, vd, res in (("across", [0, 0, -1], [240, 80]), ("along", [-1, 0, 0], [8
     out, _ = fetch(image, 0.0)
     X, Y, intensity, deflection, fields = st.image_arrays(out)
     views[tag] = np.hypot(deflection[..., 0], deflection[..., 1])
+    if tag == "across":
+        across_x, across_y, across_dx = X, Y, np.abs(deflection[..., 0])
     import schlieren_view  # embedded in the plugin
     schlieren_view.write_png(schlieren_view.film_array(out, "intensity"),
                              os.path.join(OUTPUT, "LadenburgJet60psi_%s.png" % tag))
@@ -255,6 +260,40 @@ T.close(across / across.max(), across[::-1] / across.max(), 1e-4,
         "LadenburgJet60psi across the axis: |deflection| mirror-symmetric about the axis (of its largest)")
 T.close(along / along.max(), np.rot90(along) / along.max(), 1e-4,
         "LadenburgJet60psi along the axis: |deflection| unchanged by a quarter turn (of its largest)")
+# The Mach disc across the axis: on the film rows beside the axis the largest |deflection| along
+# the axis (x) past the expansion, against the solver's own disc: the largest jump of p / T (the
+# density's ideal-gas shape) between neighbouring cells along the axis (0.5 mm cells); within a
+# cell. Its contrast: the disc's |deflection| over the least along the axis upstream of it (the
+# expanded jet's core, nearly uniform), at least 10.
+centres = CellCenters(Input=MergeBlocks(Input=reader))
+centres.UpdatePipeline(0.0)
+cd = sm.Fetch(centres)
+from vtkmodules.util.numpy_support import vtk_to_numpy
+C = vtk_to_numpy(cd.GetPoints().GetData()).astype(float)
+shape = (vtk_to_numpy(cd.GetPointData().GetArray("p")) / vtk_to_numpy(cd.GetPointData().GetArray("T"))).astype(float)
+Delete(centres)
+radius = np.hypot(C[:, 1], C[:, 2])
+on_axis = radius < radius.min() + 1e-9
+order = np.argsort(C[on_axis, 0])
+cx, cv = C[on_axis, 0][order], shape[on_axis][order]
+rise = np.diff(cv)
+k = int(np.argmax(rise))
+disc_solver = 0.5 * (cx[k] + cx[k + 1])
+rows = np.argsort(np.abs(across_y[:, 0]))[:2]
+profile = across_dx[rows].mean(axis=0)
+xs = across_x[0]
+window = (xs > disc_solver - 0.004) & (xs < disc_solver + 0.004)
+j = int(np.argmax(np.where(window, profile, 0)))
+disc_image = xs[j]
+upstream = (xs > 0.002) & (xs < disc_image - 0.002)
+contrast = profile[j] / max(float(profile[upstream].min()), 1e-30)
+print("LadenburgJet60psi: the Mach disc on the axis at x = %.5f m in the image, %.5f m in the solver's field "
+      "(cells %.4f m); |deflection| there %.3g, %.0f times the least upstream" % (
+          disc_image, disc_solver, cx[1] - cx[0], profile[j], contrast))
+T.close(disc_image, disc_solver, cx[1] - cx[0], "LadenburgJet60psi: the Mach disc's position in the image across "
+        "the axis against the solver's, within a cell, m")
+T.check(contrast >= 10, "LadenburgJet60psi: the Mach disc stands out on the axis (%.0f times the expanded core's "
+        "|deflection|)" % contrast)
 Delete(index)
 Delete(reader)
 
