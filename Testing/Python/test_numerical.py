@@ -27,6 +27,7 @@
    accepted, just past them an error naming the property (Resolution's upper end, 16384 x 16384
    pixels, is MakeFilm's check shared with SchlierenImage and left out: minutes and GiBs; the
    whole survey: domain_survey.py --proxies NumericalSchlieren).
+5. Plain VTK Python (`from schlieren import vtkNumericalSchlieren`) gives the proxy's image.
 """
 import math
 import os
@@ -214,4 +215,23 @@ for prop in proxy:
             surveyed += 1
             Delete(p)
 T.check(surveyed >= 20, "domain: %d settings of the XML's range domains tried" % surveyed)
+
+# 5. Plain VTK Python: vtkNumericalSchlieren from the schlieren package, the same image as the proxy's.
+from schlieren import vtkNumericalSchlieren, vtkRefractiveScene  # noqa: E402
+
+vscene = vtkRefractiveScene()
+vscene.SetSceneToGaussianSphere()
+vscene.SetDimensions(40, 40, 40)
+vns = vtkNumericalSchlieren()
+vns.SetInputConnection(vscene.GetOutputPort())
+vns.SetResolution(30, 30)
+vns.SetMode(vtkNumericalSchlieren.LINE_OF_SIGHT)
+vns.Update()
+proxy = NumericalSchlieren(Input=RefractiveScene(Scene="GaussianSphere", Dimensions=[40] * 3), Resolution=[30, 30],
+                           Mode="LineOfSight")
+_, _, Ip, qp, _ = arrays(fetch(proxy)[0])
+_, _, Iv, qv, fv = arrays(vns.GetOutput())
+T.check(qp.max() > 0, "VTK Python: the sphere's gradient is seen")
+T.close(qv, qp, 0.0, "VTK Python: vtkNumericalSchlieren's numerical_gradient equals the proxy's")
+T.close(Iv, Ip, 0.0, "VTK Python: and its intensity")
 T.finish()
