@@ -94,6 +94,7 @@ bool ClassifyRim(vtkDataSet* mesh, const int dims[3], const double origin[3],
   kept->SetPoints(faces->GetPoints());
   vtkNew<vtkCellArray> polys;
   std::vector<unsigned char> kind;
+  std::vector<std::vector<vtkIdType>> facePoints; // each kept face's points (of `faces`)
   vtkNew<vtkIdList> ids;
   for (vtkIdType c = 0; c < faces->GetNumberOfCells(); ++c)
   {
@@ -131,11 +132,50 @@ bool ClassifyRim(vtkDataSet* mesh, const int dims[3], const double origin[3],
     const bool wall = moving && std::abs(u[0] * n[0] + u[1] * n[1] + u[2] * n[2]) < WallFlux * speed;
     (wall ? report.WallFaces : moving ? report.FlowFaces : report.StillFaces) += 1;
     kind.push_back(wall ? 1 : moving ? 2 : 0);
+    facePoints.emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
     polys->InsertNextCell(ids);
   }
   if (kind.empty())
   {
     return false;
+  }
+  // A few faces the flow crosses with only walls (or fluid at rest) beside them are a wall
+  // where the flow turns onto it (a reattachment, a stagnation point): the velocity of the cell
+  // beside the face is not along the face there. An inlet or an outlet is a patch of its own.
+  {
+    std::vector<std::vector<std::size_t>> facesOf(static_cast<std::size_t>(faces->GetNumberOfPoints()));
+    for (std::size_t f = 0; f < facePoints.size(); ++f)
+      for (vtkIdType q : facePoints[f])
+        facesOf[static_cast<std::size_t>(q)].push_back(f);
+    std::vector<char> seen(kind.size(), 0);
+    std::vector<std::size_t> cluster;
+    for (std::size_t f0 = 0; f0 < kind.size(); ++f0)
+    {
+      if (kind[f0] != 2 || seen[f0])
+        continue;
+      cluster.assign(1, f0);
+      seen[f0] = 1;
+      bool besideWall = false;
+      for (std::size_t c = 0; c < cluster.size(); ++c)
+        for (vtkIdType q : facePoints[cluster[c]])
+          for (std::size_t g : facesOf[static_cast<std::size_t>(q)])
+          {
+            if (kind[g] == 2 && !seen[g])
+            {
+              seen[g] = 1;
+              cluster.push_back(g);
+            }
+            besideWall = besideWall || kind[g] == 1;
+          }
+      if (besideWall && cluster.size() <= FewFaces)
+      {
+        for (std::size_t g : cluster)
+          kind[g] = 1;
+        report.FlowFaces -= cluster.size();
+        report.WallFaces += cluster.size();
+        report.TurnedFaces += cluster.size();
+      }
+    }
   }
   kept->SetPolys(polys);
   vtkNew<vtkStaticCellLocator> locator;

@@ -29,12 +29,21 @@ namespace walls
 constexpr double WallFlux = 0.05;
 /** Under this fraction of the largest |U| the fluid next to a face is at rest: neither kind. */
 constexpr double MovingFluid = 0.01;
+/**
+ * A connected group of at most this many faces the flow crosses, with walls beside it and
+ * nothing else but fluid at rest, is taken as walls: the flow turning onto a wall (a
+ * reattachment, a stagnation point), where the velocity of the cell beside the face is not
+ * along it.
+ */
+constexpr std::size_t FewFaces = 8;
 
 /** What ClassifyRim found (for the log). */
 struct RimReport
 {
   std::string Velocity; // the velocity array's name ("" if the mesh has none)
   std::size_t WallFaces = 0, FlowFaces = 0, StillFaces = 0, RimPoints = 0;
+  std::size_t TurnedFaces = 0; // of WallFaces: few flow faces between walls (see FewFaces)
+
 };
 
 /**

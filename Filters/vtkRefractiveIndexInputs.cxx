@@ -11,6 +11,7 @@
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
+#include "vtkStaticCellLocator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -1132,6 +1133,11 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
   probe->SetInputData(samples);
   probe->SetSourceData(input);
   probe->SetValidPointMaskArrayName(ValidMask);
+  // A cell locator finds the cell of each sample: the default (closest mesh point, then its cells)
+  // searches far for each sample outside the mesh, and a revolved body-fitted mesh (a thin shock
+  // layer around a cone) leaves most samples outside it.
+  vtkNew<vtkStaticCellLocator> cellLocator;
+  probe->SetCellLocatorPrototype(cellLocator);
   probe->Update();
   vtkDataSet* probed = vtkDataSet::SafeDownCast(probe->GetOutputDataObject(0));
 
@@ -1217,7 +1223,11 @@ bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
   m << "RefractiveIndex: BodyFromGrid: of the mesh's "
     << report.WallFaces + report.FlowFaces + report.StillFaces << " boundary faces, "
     << report.WallFaces << " are walls (the flow runs along them: |" << report.Velocity
-    << ".n| < " << 100 * schlieren::walls::WallFlux << " % of |" << report.Velocity << "| there), "
+    << ".n| < " << 100 * schlieren::walls::WallFlux << " % of |" << report.Velocity << "| there"
+    << (report.TurnedFaces ? ", or " + std::to_string(report.TurnedFaces) +
+           " in groups of a few between walls, where the flow turns onto a wall"
+                           : std::string())
+    << "), "
     << report.FlowFaces << " are crossed by the flow, " << report.StillFaces
     << " have fluid at rest beside them; " << marked
     << " grid points of the voids beside them (not enclosed by the flow, on the domain's edge) "

@@ -68,6 +68,7 @@ std::size_t InvalidRegionsBesideWalls(
   const std::int64_t nx = dims[0], ny = dims[1], nz = dims[2];
   const std::size_t n = static_cast<std::size_t>(nx * ny * nz);
   std::vector<std::int64_t> region(n, -1);
+  std::vector<unsigned char> kind(n, 0); // a shared void's points: the nearest rim's kind
   std::vector<std::int64_t> stack, members;
   std::size_t count = 0;
   std::int64_t label = 0;
@@ -113,6 +114,50 @@ std::size_t InvalidRegionsBesideWalls(
       {
         count += solid[p] == 0;
         solid[p] = 1;
+      }
+    }
+    else if (walls > 0)
+    {
+      // A void that walls and flow faces share (the inside of a cone joined to the far field
+      // beyond a thin body-fitted mesh, past its outlet): each point goes with the rim nearest
+      // to it, by a breadth-first front from every wall and flow rim point at once; the points
+      // the walls' front reaches first are the body.
+      std::vector<std::int64_t> front;
+      for (std::int64_t p : members)
+      {
+        if (rim[p] == 1 || rim[p] == 2)
+        {
+          kind[p] = rim[p];
+          front.push_back(p);
+        }
+      }
+      for (std::size_t head = 0; head < front.size(); ++head)
+      {
+        const std::int64_t p = front[head];
+        const std::int64_t i = p % nx, j = (p / nx) % ny, k = p / (nx * ny);
+        const std::int64_t next[6][3] = { { i - 1, j, k }, { i + 1, j, k }, { i, j - 1, k },
+          { i, j + 1, k }, { i, j, k - 1 }, { i, j, k + 1 } };
+        for (const auto& q : next)
+        {
+          if (q[0] < 0 || q[0] >= nx || q[1] < 0 || q[1] >= ny || q[2] < 0 || q[2] >= nz)
+          {
+            continue;
+          }
+          const std::int64_t r = (q[2] * ny + q[1]) * nx + q[0];
+          if (!valid[r] && kind[r] == 0)
+          {
+            kind[r] = kind[p];
+            front.push_back(r);
+          }
+        }
+      }
+      for (std::int64_t p : members)
+      {
+        if (kind[p] == 1)
+        {
+          count += solid[p] == 0;
+          solid[p] = 1;
+        }
       }
     }
   }

@@ -34,7 +34,9 @@ std::size_t EnclosedInvalidPoints(
  * next to a valid one, which boundary face of the mesh is nearest: 1 a wall (a face the flow
  * does not cross), 2 a face the flow crosses (an inlet, an outlet, a far field); 0 elsewhere.
  * Every connected region of invalid points (6 neighbours) whose rim has more wall points than
- * flow points is marked in `solid` (added to what is there). Returns the number of points marked.
+ * flow points is marked in `solid` (added to what is there); in a region with wall points but no
+ * more of them than flow points, the points nearer (in steps between neighbours) to a wall rim
+ * point than to a flow rim point are marked. Returns the number of points marked.
  */
 std::size_t InvalidRegionsBesideWalls(
   const int dims[3], const unsigned char* valid, const unsigned char* rim, unsigned char* solid);

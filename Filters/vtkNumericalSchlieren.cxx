@@ -1,0 +1,297 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkNumericalSchlieren.h"
+#include "SchlierenGuard.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "SchlierenArrays.h"
+#include "SchlierenNumerical.h"
+#include "SchlierenValues.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkNumericalSchlieren);
+
+vtkNumericalSchlieren::vtkNumericalSchlieren()
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+}
+
+vtkNumericalSchlieren::~vtkNumericalSchlieren() = default;
+
+namespace
+{
+/** The engine's settings of the filter's properties; throws schlieren::Error naming a bad one. */
+schlieren::NumericalSettings SettingsOf(vtkNumericalSchlieren* f)
+{
+  schlieren::NumericalSettings s;
+  for (int a = 0; a < 3; ++a)
+  {
+    s.ViewDirection[a] = f->GetViewDirection()[a];
+    s.ViewUp[a] = f->GetViewUp()[a];
+  }
+  s.Resolution[0] = f->GetResolution()[0];
+  s.Resolution[1] = f->GetResolution()[1];
+  if (f->GetMode() != 0 && f->GetMode() != 1)
+    throw schlieren::Error(
+      "Mode is " + std::to_string(f->GetMode()) + ": it must be 0 (Slice) or 1 (LineOfSight).");
+  if (f->GetGradient() != 0 && f->GetGradient() != 1)
+    throw schlieren::Error("Gradient is " + std::to_string(f->GetGradient()) +
+      ": it must be 0 (Magnitude) or 1 (KnifeComponent).");
+  s.Mode = static_cast<schlieren::NumericalMode>(f->GetMode());
+  s.Quantity = static_cast<schlieren::NumericalQuantity>(f->GetGradient());
+  s.KnifeAngle = f->GetKnifeAngle();
+  s.SliceOffset = f->GetSliceOffset();
+  s.StepSize = f->GetStepSize();
+  s.C0 = f->GetC0();
+  s.C1 = f->GetC1();
+  s.K = f->GetK();
+  s.Maximum = f->GetGradientMaximum();
+  schlieren::CheckNumericalSettings(s);
+  return s;
+}
+
+/** The grid (without values) the input's whole extent describes. */
+schlieren::ScalarGrid WholeGrid(vtkInformation* inInfo)
+{
+  schlieren::ScalarGrid g;
+  int whole[6] = { 0, -1, 0, -1, 0, -1 };
+  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  if (inInfo->Has(vtkDataObject::ORIGIN()))
+    inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  if (inInfo->Has(vtkDataObject::SPACING()))
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  for (int a = 0; a < 3; ++a)
+  {
+    g.Dimensions[a] = std::max(whole[2 * a + 1] - whole[2 * a] + 1, 0);
+    g.Origin[a] = origin[a] + whole[2 * a] * spacing[a];
+    g.Spacing[a] = spacing[a];
+  }
+  return g;
+}
+
+vtkDataArray* Scalars(vtkImageData* input, const std::string& name)
+{
+  vtkDataArray* a = input->GetPointData()->GetArray(name.c_str());
+  return a && a->GetNumberOfComponents() == 1 && a->GetNumberOfTuples() == input->GetNumberOfPoints()
+    ? a
+    : nullptr;
+}
+
+void AddNumber(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+void AddString(vtkFieldData* fd, const char* name, const std::string& value)
+{
+  vtkNew<vtkStringArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+} // namespace
+
+int vtkNumericalSchlieren::FillInputPortInformation(int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkNumericalSchlieren::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+  const schlieren::ScalarGrid grid = WholeGrid(inInfo);
+  if (grid.Dimensions[0] < 1 || grid.Dimensions[1] < 1 || grid.Dimensions[2] < 1)
+  {
+    vtkErrorMacro(<< "The input volume is empty: nothing to image. If a filter upstream reported "
+                     "an error, that is the cause; fix it there.");
+    return 0;
+  }
+  try
+  {
+    const schlieren::FilmGeometry film = schlieren::NumericalFilm(grid, SettingsOf(this));
+    double origin[2];
+    film.GetImageOrigin(origin);
+    const int whole[6] = { 0, film.Size[0] - 1, 0, film.Size[1] - 1, 0, 0 };
+    const double spacing[3] = { film.PixelSize, film.PixelSize, 1.0 };
+    const double origin3[3] = { origin[0], origin[1], 0.0 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+    outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
+  }
+  catch (const schlieren::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  return 1;
+}
+
+int vtkNumericalSchlieren::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The film's extent is no extent of the input: ask for the whole volume.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  return 1;
+}
+
+int vtkNumericalSchlieren::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    vtkErrorMacro(<< "NumericalSchlieren runs on one process; under MPI ("
+                  << controller->GetNumberOfProcesses()
+                  << " ranks) use SchlierenImage, or pvpython without MPI.");
+    return 0;
+  }
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro(<< "NumericalSchlieren needs a non-empty image (vtkImageData), for example the "
+                     "output of RefractiveIndex or RefractiveScene.");
+    return 0;
+  }
+
+  // The density: the array named, else the first density-like array, else n - 1.
+  std::string name = this->DensityArray;
+  vtkDataArray* values = nullptr;
+  if (!name.empty())
+  {
+    values = Scalars(input, name);
+    if (!values)
+    {
+      vtkErrorMacro(<< "DensityArray is '" << name
+                    << "': the input has no one-component point array of that name.");
+      return 0;
+    }
+  }
+  else
+  {
+    for (const char* candidate : { "density", "rho", "Density", schlieren::arrays::NMinus1 })
+    {
+      if ((values = Scalars(input, candidate)))
+      {
+        name = candidate;
+        break;
+      }
+    }
+    if (!values)
+    {
+      vtkErrorMacro(<< "NumericalSchlieren needs a density (point array 'density', 'rho' or "
+                       "'Density', or one named in DensityArray) or 'n_minus_1'; the input has none.");
+      return 0;
+    }
+  }
+
+  std::vector<float> field = schlieren::values::Values<float>(values);
+  std::vector<unsigned char> solid, excluded;
+  if (vtkDataArray* s = Scalars(input, schlieren::arrays::Solid))
+    solid = schlieren::values::Values<unsigned char>(s);
+  if (vtkDataArray* m = Scalars(input, "vtkValidPointMask"))
+  {
+    excluded = schlieren::values::Values<unsigned char>(m);
+    for (unsigned char& e : excluded)
+      e = e ? 0 : 1;
+  }
+  schlieren::ScalarGrid grid;
+  input->GetDimensions(grid.Dimensions);
+  input->GetOrigin(grid.Origin);
+  input->GetSpacing(grid.Spacing);
+  const int* ext = input->GetExtent();
+  for (int a = 0; a < 3; ++a)
+    grid.Origin[a] += ext[2 * a] * grid.Spacing[a];
+  grid.Values = field.data();
+  grid.Solid = solid.empty() ? nullptr : solid.data();
+  grid.Excluded = excluded.empty() ? nullptr : excluded.data();
+
+  schlieren::NumericalImage image;
+  try
+  {
+    image = schlieren::NumericalSchlieren(grid, SettingsOf(this));
+  }
+  catch (const schlieren::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+
+  const int nx = image.Film.Size[0], ny = image.Film.Size[1];
+  double origin[2];
+  image.Film.GetImageOrigin(origin);
+  output->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
+  output->SetSpacing(image.Film.PixelSize, image.Film.PixelSize, 1.0);
+  output->SetOrigin(origin[0], origin[1], 0.0);
+  const vtkIdType n = static_cast<vtkIdType>(nx) * ny;
+  vtkNew<vtkFloatArray> intensity, gradient;
+  vtkNew<vtkUnsignedCharArray> blocked;
+  intensity->SetName("intensity");
+  gradient->SetName("numerical_gradient");
+  blocked->SetName("blocked");
+  intensity->SetNumberOfTuples(n);
+  gradient->SetNumberOfTuples(n);
+  blocked->SetNumberOfTuples(n);
+  std::copy(image.Intensity.begin(), image.Intensity.end(), intensity->GetPointer(0));
+  std::copy(image.Gradient.begin(), image.Gradient.end(), gradient->GetPointer(0));
+  std::copy(image.Blocked.begin(), image.Blocked.end(), blocked->GetPointer(0));
+  output->GetPointData()->SetScalars(intensity);
+  output->GetPointData()->AddArray(gradient);
+  output->GetPointData()->AddArray(blocked);
+  vtkFieldData* fd = output->GetFieldData();
+  AddString(fd, "numerical_field", name);
+  AddString(fd, "numerical_mode", schlieren::NumericalModeName(static_cast<schlieren::NumericalMode>(this->Mode)));
+  AddString(fd, "numerical_gradient_kind",
+    schlieren::NumericalQuantityName(static_cast<schlieren::NumericalQuantity>(this->Gradient)));
+  AddNumber(fd, "gradient_maximum", image.Maximum);
+  AddNumber(fd, "gradient_largest", image.Largest);
+  return 1;
+}
+
+void vtkNumericalSchlieren::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << this->Mode << "\n";
+  os << indent << "Gradient: " << this->Gradient << "\n";
+  os << indent << "C0, C1, K: " << this->C0 << ", " << this->C1 << ", " << this->K << "\n";
+  os << indent << "GradientMaximum: " << this->GradientMaximum << "\n";
+  os << indent << "DensityArray: " << this->DensityArray << "\n";
+}
+
+vtkTypeBool vtkNumericalSchlieren::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return SchlierenGuarded(this,
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); });
+}

@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SchlierenNumerical.h
+ * @brief "Numerical schlieren", the image CFD users know: a grey scale of the density gradient.
+ *
+ * Quirk's grey scale (Quirk 1994; the form most CFD papers print): I = exp(-k S), with
+ * S = (q - c0 qmax) / ((c1 - c0) qmax) clamped to [0, 1], q the gradient's magnitude |grad rho|
+ * (or the magnitude of its component normal to a knife edge), qmax its largest value over the
+ * image. Nothing here traces light: q is read on a plane through the volume normal to the view
+ * (Slice) or averaged along the view (LineOfSight), on the film SchlierenImage would make for the
+ * same view and resolution (MakeFilm), so the two images line up pixel for pixel.
+ *
+ * The gradient is taken at the grid points by central differences in world units (one-sided
+ * beside a solid point or the box's faces, 0 along an axis one point thick) and interpolated
+ * trilinearly at the sample points. Solid points (Solid non-zero) are no part of the flow: a
+ * pixel whose plane point (Slice) or any of whose line's samples (LineOfSight) falls in a body
+ * (interpolated solid at least one half, as the tracer's test) is black and marked blocked.
+ */
+#ifndef SchlierenNumerical_h
+#define SchlierenNumerical_h
+
+#include "SchlierenEngine.h"
+
+#include <string>
+#include <vector>
+
+namespace schlieren
+{
+
+/** Where the gradient is read. */
+enum class NumericalMode
+{
+  Slice = 0,      ///< on the plane normal to the view at SliceOffset from the volume's centre
+  LineOfSight = 1 ///< averaged over the samples along each pixel's line through the volume
+};
+
+/** Which gradient the grey scale shows. */
+enum class NumericalQuantity
+{
+  Magnitude = 0,     ///< |grad rho| (all three components)
+  KnifeComponent = 1 ///< grad rho . a, a the knife normal in the film plane (grey from |.|)
+};
+
+struct NumericalSettings
+{
+  double ViewDirection[3] = { 0, 0, -1 };
+  double ViewUp[3] = { 0, 1, 0 };
+  int Resolution[2] = { 512, 512 };
+  NumericalMode Mode = NumericalMode::Slice;
+  NumericalQuantity Quantity = NumericalQuantity::Magnitude;
+  double KnifeAngle = 0.0;  ///< degrees; 0: knife normal along film x (as SchlierenImage)
+  double SliceOffset = 0.0; ///< world units along ViewDirection from the volume's centre
+  double StepSize = 0.5;    ///< LineOfSight: samples this many voxels (smallest spacing) apart
+  double C0 = -0.001;       ///< low end of the scale, a fraction of qmax, in [-1, 0]
+  double C1 = 0.05;         ///< high end (full dark), a fraction of qmax, in [0.001, 1]
+  double K = 5.0;           ///< the exponent's scale, in [0.001, 100]
+  double Maximum = 0.0;     ///< qmax; 0: automatic, the largest q over the image's flow pixels
+};
+
+/** A scalar field on a regular grid (non-owning), x fastest, and its optional solid points. */
+struct ScalarGrid
+{
+  int Dimensions[3] = { 0, 0, 0 };
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  const float* Values = nullptr;
+  const unsigned char* Solid = nullptr;
+  /** Optional: non-zero at points without data (outside the CFD mesh, not a body): no part of
+   * the differences, as solid points, but they block nothing. */
+  const unsigned char* Excluded = nullptr;
+};
+
+struct NumericalImage
+{
+  FilmGeometry Film;
+  std::vector<float> Intensity;     ///< exp(-k S); 0 where blocked
+  std::vector<float> Gradient;      ///< q (Magnitude) or the signed component (KnifeComponent),
+                                    ///< field units per world unit; 0 where blocked
+  std::vector<unsigned char> Blocked; ///< 1 where a body is on the plane or the line
+  double Maximum = 0.0;             ///< the qmax used
+  double Largest = 0.0;             ///< the largest q over the flow pixels
+};
+
+/** Throws Error naming the setting where one is out of its range (the XML domains' ranges). */
+void CheckNumericalSettings(const NumericalSettings& s);
+
+/** The film SchlierenImage makes for this grid, view and resolution. */
+FilmGeometry NumericalFilm(const ScalarGrid& grid, const NumericalSettings& s);
+
+/** The numerical-schlieren image of `grid` (see the file's comment). */
+NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSettings& s);
+
+/** Quirk's grey of q for the largest qmax: exp(-k clamp((q - c0 qmax) / ((c1 - c0) qmax), 0, 1)). */
+double QuirkGrey(double q, double qmax, double c0, double c1, double k);
+
+const char* NumericalModeName(NumericalMode m);
+const char* NumericalQuantityName(NumericalQuantity q);
+
+} // namespace schlieren
+
+#endif
