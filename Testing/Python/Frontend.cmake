@@ -1,0 +1,29 @@
+# The Python front end (Python/schlieren over libschlieren_engine) in venvs with PyPI's vtk: the
+# newest 9.x and the oldest the package claims (9.2), each against the C++ plugin's images.
+# Included by Testing/Python/CMakeLists.txt (it defines _pvpython, _plugin, _python, _env).
+#   ctest -R python.frontend
+# The venvs and the pip cache stay in <build>/python-venvs: the wheels are downloaded once per
+# build tree. Skipped (77) where PyPI cannot be reached.
+set(SCHLIEREN_FRONTEND_VTK_NEWEST "vtk==9.7.2 numpy" CACHE STRING
+  "Requirements of the newest-vtk venv of the python.frontend tests")
+set(SCHLIEREN_FRONTEND_VTK_OLDEST "vtk==9.2.6 numpy<2" CACHE STRING
+  "Requirements of the oldest-vtk venv of the python.frontend tests")
+set(_frontend_ref "${CMAKE_CURRENT_BINARY_DIR}/Temporary/frontend_reference")
+set(_venvs "${CMAKE_BINARY_DIR}/python-venvs")
+schlieren_python_test(frontend_reference
+  COMMAND "${_pvpython}" "${_here}/frontend_reference.py" --plugin "${_plugin}"
+    --output "${_frontend_ref}"
+  PROPERTIES FIXTURES_SETUP frontend_reference)
+foreach(_which NEWEST OLDEST)
+  string(TOLOWER "${_which}" _lower)
+  schlieren_python_test(frontend_vtk_${_lower}
+    COMMAND "${_python}" "${_here}/frontend_venv.py" --venv "${_venvs}/vtk-${_lower}"
+      --requirements "${SCHLIEREN_FRONTEND_VTK_${_which}}"
+      --pythonpath "${PROJECT_SOURCE_DIR}/Python"
+      -- "${_here}/test_frontend.py" --reference "${_frontend_ref}"
+    TIMEOUT 900
+    PROPERTIES FIXTURES_REQUIRED frontend_reference SKIP_RETURN_CODE 77
+      RESOURCE_LOCK python_venvs)
+  set_property(TEST python.frontend_vtk_${_lower} APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+endforeach()
