@@ -16,3 +16,7 @@ set_property(TARGET schlieren_engine APPEND PROPERTY LINK_DEPENDS "${_schlieren_
 if(SCHLIEREN_STATIC_LIBSTDCXX)
   target_link_options(schlieren_engine PRIVATE -static-libstdc++ -static-libgcc)
 endif()
+# a Python wheel (scikit-build-core, pyproject.toml): the library beside the package's modules
+if(SKBUILD)
+  install(TARGETS schlieren_engine LIBRARY DESTINATION schlieren NAMELINK_SKIP COMPONENT python)
+endif()
