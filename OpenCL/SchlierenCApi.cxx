@@ -767,4 +767,25 @@ int schlieren_field_index(const char* model, const float* input, int64_t count, 
   });
 }
 
+int schlieren_extend_into_invalid(
+  const int dims[3], const unsigned char* valid, float* n_minus_1, int64_t* filled)
+{
+  return Guard(LastError, [&] {
+    if (!dims || !valid || !n_minus_1)
+      throw schlieren::Error("schlieren_extend_into_invalid: no argument may be NULL.");
+    const std::size_t n = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
+    if (filled)
+      *filled = static_cast<int64_t>(n);
+  });
+}
+
+int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3])
+{
+  return Guard(LastError, [&] {
+    if (!bounds || !dims)
+      throw schlieren::Error("schlieren_automatic_dimensions: no argument may be NULL.");
+    schlieren::AutomaticDimensions(bounds, longest, dims);
+  });
+}
+
 } // extern "C"

@@ -143,6 +143,14 @@ SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input,
   int index_is_n, double density_reference, const char* gas, float* n_minus_1,
   const char** report);
 
+/** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
+ * RefractiveIndex filter's AmbientMode Extend); `filled` (may be NULL) gets how many. */
+SCHLIEREN_C_API int schlieren_extend_into_invalid(
+  const int dims[3], const unsigned char* valid, float* n_minus_1, int64_t* filled);
+/** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
+ * side, about the same spacing along the others. */
+SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);
+
 #ifdef __cplusplus
 }
 #endif

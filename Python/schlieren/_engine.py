@@ -81,6 +81,10 @@ _sig("schlieren_gradient", ctypes.c_int, _c_int3, _c_double3, _f32p, _f32p)
 _sig("schlieren_field_index", ctypes.c_int, ctypes.c_char_p, _f32p, ctypes.c_int64, ctypes.c_int,
      ctypes.c_double, ctypes.c_char_p, _f32p, ctypes.POINTER(ctypes.c_char_p))
 
+_sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _f32p,
+     ctypes.POINTER(ctypes.c_int64))
+_sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
+
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
                       % (_lib.schlieren_api_version(), API_VERSION))
@@ -175,6 +179,26 @@ def field_index(model, values, index_is_n=False, density_reference=1.0, gas=None
                                       float(density_reference), gas.encode() if gas else None,
                                       out.ctypes.data_as(_f32p), ctypes.byref(report)))
     return out, [w for w in _text(report.value).split("\n") if w]
+
+
+def extend_into_invalid(dims, valid, n_minus_1):
+    """Fills n - 1 (float32, changed in place) where valid == 0 by the engine's smooth
+    continuation of the flow; returns how many points were filled."""
+    if n_minus_1.dtype != np.float32 or not n_minus_1.flags.c_contiguous:
+        raise TypeError("n_minus_1 must be a contiguous float32 array (it is filled in place)")
+    v, vp = _bytes(valid)
+    filled = ctypes.c_int64(0)
+    _check(_lib.schlieren_extend_into_invalid(_c_int3(*dims), vp,
+                                              n_minus_1.ctypes.data_as(_f32p),
+                                              ctypes.byref(filled)))
+    return filled.value
+
+
+def automatic_dimensions(bounds, longest):
+    """RefractiveIndex's automatic sampling dimensions of a box."""
+    dims = _c_int3()
+    _check(_lib.schlieren_automatic_dimensions((ctypes.c_double * 6)(*bounds), int(longest), dims))
+    return list(dims)
 
 
 def _value_text(v):

@@ -73,6 +73,10 @@ class _Properties(VTKPythonAlgorithmBase):
         """The output data object (vtkImageData), as vtkImageAlgorithm::GetOutput gives it."""
         return self.GetOutputDataObject(port)
 
+    def SetInputData(self, *args):
+        """SetInputData(data) or SetInputData(port, data), as on VTK's C++ algorithms."""
+        self.SetInputDataObject(*args)
+
     def ListProperties(self):
         return list(self._defaults)
 
@@ -87,17 +91,22 @@ class _Properties(VTKPythonAlgorithmBase):
 
 
 def _image_input(data, dims=None):
-    """`data` as an axis-aligned vtkImageData: itself, or resampled (vtkResampleToImage)."""
+    """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
+    or resampled with vtkResampleToImage onto `dims` points over its bounds."""
     if isinstance(data, vtkImageData):
-        return data
+        return data, None
     from vtkmodules.vtkFiltersCore import vtkResampleToImage
     r = vtkResampleToImage()
     r.SetInputDataObject(data)
-    r.SetSamplingDimensions(*(dims or [128, 128, 128]))
+    if dims is None:
+        dims = _engine.automatic_dimensions(data.GetBounds(), 128)
+    r.SetSamplingDimensions(*dims)
     r.Update()
     out = vtkImageData()
     out.ShallowCopy(r.GetOutput())
-    return out
+    mask = _point_array(out, r.GetMaskArrayName())
+    out.GetPointData().RemoveArray(r.GetMaskArrayName())
+    return out, (None if mask is None or mask.all() else np.ascontiguousarray(mask, np.uint8))
 
 
 def _point_array(image, name):
@@ -220,17 +229,14 @@ class RefractiveIndex(_Properties):
         dims = [int(d) for d in self.SamplingDimensions]
         if min(dims) > 0:
             return dims
-        b = data.GetBounds()
-        ext = [b[1] - b[0], b[3] - b[2], b[5] - b[4]]
-        big = max(ext) or 1.0
-        return [max(2, int(round(self.AutomaticDimension * e / big)) or 2) for e in ext]
+        return _engine.automatic_dimensions(data.GetBounds(), int(self.AutomaticDimension))
 
     def RequestData(self, request, inInfo, outInfo):
         data = vtkDataSet.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
         try:
-            image = _image_input(data, None if isinstance(data, vtkImageData)
-                                 else self._dims(data))
+            image, valid = _image_input(data, None if isinstance(data, vtkImageData)
+                                        else self._dims(data))
             pd = image.GetPointData()
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
             model, name = self.Model, self.InputArray
@@ -248,11 +254,19 @@ class RefractiveIndex(_Properties):
             if values is None or values.ndim != 1:
                 raise EngineError("RefractiveIndex needs the one-component point array %r; the "
                                   "input has: %s" % (name, ", ".join(names) or "none"))
+            if valid is not None:
+                if not valid.any():
+                    raise EngineError("RefractiveIndex: no point of the sampling grid lies inside "
+                                      "the input's cells.")
+                # the points outside the input's cells are filled below: not checked as flow
+                values = np.where(valid != 0, values, values[np.argmax(valid)])
             n1, warnings = _engine.field_index(model, values,
                                                index_is_n=bool(self.PassthroughHoldsN),
                                                density_reference=self.DensityReference,
                                                gas=self.Gas)
             dims = list(image.GetDimensions())
+            if valid is not None:
+                _engine.extend_into_invalid(dims, valid, n1)
             grad = _engine.gradient(dims, image.GetSpacing(), n1)
         except EngineError as e:
             return self._fail(str(e))
@@ -339,7 +353,7 @@ class SchlierenImage(_Properties):
         out = vtkImageData.GetData(outInfo)
         s = self._session
         try:
-            image = _image_input(data)
+            image, _ = _image_input(data)
             n1 = _point_array(image, "n_minus_1")
             if n1 is None:
                 pd = image.GetPointData()
