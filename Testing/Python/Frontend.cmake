@@ -4,7 +4,7 @@
 #   ctest -R python.frontend
 # The venvs and the pip cache stay in <build>/python-venvs: the wheels are downloaded once per
 # build tree. Skipped (77) where PyPI cannot be reached.
-set(SCHLIEREN_FRONTEND_VTK_NEWEST "vtk==9.7.2 numpy" CACHE STRING
+set(SCHLIEREN_FRONTEND_VTK_NEWEST "vtk==9.7.2 numpy pyvista" CACHE STRING
   "Requirements of the newest-vtk venv of the python.frontend tests")
 set(SCHLIEREN_FRONTEND_VTK_OLDEST "vtk==9.2.6 numpy<2" CACHE STRING
   "Requirements of the oldest-vtk venv of the python.frontend tests")
@@ -27,3 +27,23 @@ foreach(_which NEWEST OLDEST)
   set_property(TEST python.frontend_vtk_${_lower} APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endforeach()
+
+# the examples, in the newest venv (PyVista from PyPI there)
+foreach(_example pyvista_jet numpy_lens)
+  schlieren_python_test(frontend_example_${_example}
+    COMMAND "${_python}" "${_here}/frontend_venv.py" --venv "${_venvs}/vtk-newest"
+      --requirements "${SCHLIEREN_FRONTEND_VTK_NEWEST}"
+      --pythonpath "${PROJECT_SOURCE_DIR}/Python"
+      -- "${PROJECT_SOURCE_DIR}/Examples/${_example}.py" --output "${_temp}/${_example}.png"
+    TIMEOUT 900
+    PROPERTIES SKIP_RETURN_CODE 77 RESOURCE_LOCK python_venvs)
+  set_property(TEST python.frontend_example_${_example} APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+endforeach()
+
+# pip wheel . -> auditwheel -> a fresh venv with no build tree: imports, demo, the same image
+schlieren_python_test(frontend_wheel
+  COMMAND "${_python}" "${_here}/test_wheel.py" --source "${PROJECT_SOURCE_DIR}"
+    --work "${_venvs}/wheel" --reference-library "$<TARGET_FILE:schlieren_engine>"
+  TIMEOUT 1500
+  PROPERTIES SKIP_RETURN_CODE 77 PROCESSORS 2)
