@@ -5,7 +5,7 @@
 # The venvs and the pip cache stay in <build>/python-venvs: the wheels are downloaded once per
 # build tree. Skipped (77) where PyPI cannot be reached.
 set(SCHLIEREN_FRONTEND_VTK_NEWEST "vtk==9.7.2 numpy pyvista" CACHE STRING
-  "Requirements of the newest-vtk venv of the python.frontend tests")
+  "Requirements of the newest-vtk venv of the python.frontend tests (PyVista: the example)")
 set(SCHLIEREN_FRONTEND_VTK_OLDEST "vtk==9.2.6 numpy<2" CACHE STRING
   "Requirements of the oldest-vtk venv of the python.frontend tests")
 set(_frontend_ref "${CMAKE_CURRENT_BINARY_DIR}/Temporary/frontend_reference")
