@@ -47,3 +47,14 @@ schlieren_python_test(frontend_wheel
     --work "${_venvs}/wheel" --reference-library "$<TARGET_FILE:schlieren_engine>"
   TIMEOUT 1500
   PROPERTIES SKIP_RETURN_CODE 77 PROCESSORS 2)
+
+# the C interface's property table (the Python package's keywords and defaults) against
+# Plugin/Schlieren.xml: names, sizes, defaults, entries (Debian's Python with NumPy, no venv)
+schlieren_python_test(frontend_properties
+  COMMAND "${_python}" "${_here}/test_frontend_properties.py"
+    --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml")
+set_property(TEST python.frontend_properties APPEND PROPERTY ENVIRONMENT
+  "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+set_property(TEST python.frontend_properties PROPERTY ENVIRONMENT
+  "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>"
+  "PYTHONPATH=${PROJECT_SOURCE_DIR}/Python")
