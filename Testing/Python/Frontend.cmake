@@ -53,8 +53,7 @@ schlieren_python_test(frontend_wheel
 schlieren_python_test(frontend_properties
   COMMAND "${_python}" "${_here}/test_frontend_properties.py"
     --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml")
-set_property(TEST python.frontend_properties APPEND PROPERTY ENVIRONMENT
-  "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+# the package from the source tree (not the plugin's compiled `schlieren` of the other tests)
 set_property(TEST python.frontend_properties PROPERTY ENVIRONMENT
   "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>"
   "PYTHONPATH=${PROJECT_SOURCE_DIR}/Python")
