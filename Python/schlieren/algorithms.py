@@ -13,7 +13,6 @@ attributes (setting one marks the algorithm modified). Inputs may be any vtkData
 an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first.
 """
 import numpy as np
-from vtkmodules.numpy_interface import dataset_adapter as dsa  # noqa: F401 (numpy support)
 from vtkmodules.util import numpy_support
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.vtkCommonDataModel import vtkDataSet, vtkImageData
@@ -31,6 +30,7 @@ class _Properties(VTKPythonAlgorithmBase):
 
     def __init__(self, nInputPorts, outputType="vtkImageData", **kwargs):
         object.__setattr__(self, "_values", dict(self._defaults))
+        object.__setattr__(self, "LastError", "")  # the message of the last failed request
         VTKPythonAlgorithmBase.__init__(self, nInputPorts=nInputPorts, nOutputPorts=1,
                                         outputType=outputType)
         object.__setattr__(self, "_ready", True)
@@ -81,11 +81,11 @@ class _Properties(VTKPythonAlgorithmBase):
         return list(self._defaults)
 
     def _fail(self, message):
-        # a VTK error (the pipeline's usual way) and the message kept for scripts
+        """A VTK error (the output window, as vtkErrorMacro writes) and the message kept in
+        LastError for scripts; returns 0 for the pipeline (the request failed)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
         object.__setattr__(self, "LastError", message)
-        self.GetExecutive()  # keeps the pipeline alive for the error event
-        import vtkmodules.vtkCommonCore as cc
-        cc.vtkOutputWindow.GetInstance().DisplayErrorText(
+        vtkOutputWindow.GetInstance().DisplayErrorText(
             "ERROR: In %s: %s\n" % (type(self).__name__, message))
         return 0
 
