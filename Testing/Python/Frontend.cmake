@@ -57,3 +57,12 @@ schlieren_python_test(frontend_properties
 set_property(TEST python.frontend_properties PROPERTY ENVIRONMENT
   "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>"
   "PYTHONPATH=${PROJECT_SOURCE_DIR}/Python")
+
+# the ParaView Python plugin (generated SchlierenPython.py) in Debian's pvpython: property lists
+# and defaults against Schlieren.xml, images against the C++ plugin's
+if(SCHLIEREN_PYTHON_PLUGIN)
+  schlieren_python_test(python_plugin
+    COMMAND "${_pvpython}" "${_here}/test_python_plugin.py" --plugin "${SCHLIEREN_PYTHON_PLUGIN}"
+      --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml" --reference "${_frontend_ref}"
+    PROPERTIES FIXTURES_REQUIRED frontend_reference)
+endif()
