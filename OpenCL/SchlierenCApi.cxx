@@ -353,6 +353,12 @@ void MakeReport(schlieren_session* s, const std::string& error)
 
 } // namespace
 
+namespace
+{
+const std::string& PropertiesJson();
+const std::string& DeviceJson(const char* device_name);
+}
+
 extern "C"
 {
 
@@ -372,6 +378,36 @@ const char* schlieren_last_error(void)
 }
 
 const char* schlieren_properties(void)
+{
+  try
+  {
+    return PropertiesJson().c_str();
+  }
+  catch (...)
+  {
+    LastError = "Out of memory.";
+    return "[]";
+  }
+}
+
+const char* schlieren_opencl_device(const char* device_name)
+{
+  try
+  {
+    return DeviceJson(device_name).c_str();
+  }
+  catch (...)
+  {
+    LastError = "Out of memory.";
+    return "{}";
+  }
+}
+
+} // extern "C"
+
+namespace
+{
+const std::string& PropertiesJson()
 {
   static const std::string text = [] {
     const TraceSettings d = Defaults();
@@ -405,10 +441,10 @@ const char* schlieren_properties(void)
     o << "]";
     return o.str();
   }();
-  return text.c_str();
+  return text;
 }
 
-const char* schlieren_opencl_device(const char* device_name)
+const std::string& DeviceJson(const char* device_name)
 {
   schlieren::DeviceInfo info;
   if (Guard(LastError, [&] { info = schlieren::QueryOpenCLDevice(device_name ? device_name : ""); }))
@@ -418,8 +454,12 @@ const char* schlieren_opencl_device(const char* device_name)
     << ", \"platform\": " << Json(info.Platform) << ", \"version\": " << Json(info.Version)
     << ", \"reason\": " << Json(info.Reason) << "}";
   Returned = o.str();
-  return Returned.c_str();
+  return Returned;
 }
+} // namespace
+
+extern "C"
+{
 
 schlieren_session* schlieren_session_new(void)
 {
