@@ -144,6 +144,9 @@ std::string PlatformString(cl_platform_id p, cl_platform_info what)
 std::vector<Candidate> EnumerateDevices()
 {
   cl_uint np = 0;
+  std::string noLoader;
+  if (!LoadOpenCL(&noLoader))
+    throw Error(noLoader);
   cl_int st = clGetPlatformIDs(0, nullptr, &np);
   if (st != CL_SUCCESS || np == 0)
   {

@@ -14,6 +14,8 @@
 #define CL_TARGET_OPENCL_VERSION 120
 #endif
 #include <CL/cl.h>
+// the cl* entry points through the run-time loaded table
+#include "SchlierenCLLoad.h"
 
 #include <cstdint>
 #include <string>

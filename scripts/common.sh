@@ -20,7 +20,8 @@ SCHLIEREN_BUILD_PACKAGES=(
 # Only the tests need these: an X server for rendering tests; a window manager, xdotool (real mouse
 # and key events) and ImageMagick (screenshots) for the GUI tests.
 # python3-numpy: the GUI tests' checks run under Debian's Python (it also comes with paraview)
-SCHLIEREN_TEST_PACKAGES=(xvfb openbox xdotool x11-utils imagemagick python3-numpy openfoam openfoam-examples)
+SCHLIEREN_TEST_PACKAGES=(xvfb openbox xdotool x11-utils imagemagick python3-numpy openfoam openfoam-examples
+  python3-venv)  # python3-venv: the python.frontend tests make venvs with PyPI's vtk
 
 schlieren_install() {
   local missing=()

@@ -1,0 +1,831 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The C interface (schlieren_c.h) over the engine: a TraceSession per handle on one process, the
+// SchlierenImage properties by name, and the report as JSON. Every entry point catches what the
+// engine throws and turns it into a message.
+#define SCHLIEREN_C_BUILDING
+#include "schlieren_c.h"
+
+#include "SchlierenEngine.h"
+#include "SchlierenIndexModels.h"
+#include "SchlierenParallel.h"
+#include "SchlierenScenes.h"
+#include "SchlierenSession.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <new>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using schlieren::TraceSettings;
+
+thread_local std::string LastError;
+thread_local std::string Returned;
+
+std::string Json(const std::string& s)
+{
+  std::string out = "\"";
+  for (unsigned char c : s)
+  {
+    switch (c)
+    {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (c < 0x20)
+        {
+          char buf[8];
+          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
+          out += buf;
+        }
+        else
+          out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+std::string Number(double v)
+{
+  if (!std::isfinite(v))
+    return v != v ? "NaN" : (v > 0 ? "Infinity" : "-Infinity"); // Python's json reads these
+  char buf[40];
+  std::snprintf(buf, sizeof(buf), "%.17g", v);
+  return buf;
+}
+
+/** The numbers of a text value ("0 0 -1", "512,512"); false where one does not parse. */
+bool ParseNumbers(const char* text, std::vector<double>& out)
+{
+  out.clear();
+  const char* p = text;
+  while (*p)
+  {
+    while (*p == ' ' || *p == ',' || *p == '\t' || *p == '\n' || *p == '[' || *p == ']' || *p == '(' || *p == ')')
+      ++p;
+    if (!*p)
+      break;
+    char* end = nullptr;
+    const double v = std::strtod(p, &end);
+    if (end == p)
+      return false;
+    out.push_back(v);
+    p = end;
+  }
+  return true;
+}
+
+/** A property of SchlierenImage as the interface takes it. */
+struct Property
+{
+  const char* Name;
+  const char* Kind; // int, double, bool, enum, string
+  int Size;
+  std::vector<const char*> Entries; // enum: the entry texts, value = index
+  std::function<void(TraceSettings&, const std::vector<double>&)> SetNumbers;
+  std::function<std::vector<double>(const TraceSettings&)> GetNumbers;
+  std::function<void(TraceSettings&, const std::string&)> SetText; // string kind
+  std::function<std::string(const TraceSettings&)> GetText;
+};
+
+#define SCH_NUM(name, kind, field, type)                                                           \
+  Property{ #name, kind, 1, {},                                                                    \
+    [](TraceSettings& s, const std::vector<double>& v) { s.field = static_cast<type>(v[0]); },     \
+    [](const TraceSettings& s) { return std::vector<double>{ static_cast<double>(s.field) }; },    \
+    nullptr, nullptr }
+#define SCH_ENUM(name, field, type, ...)                                                           \
+  Property{ #name, "enum", 1, { __VA_ARGS__ },                                                     \
+    [](TraceSettings& s, const std::vector<double>& v) { s.field = static_cast<type>(int(v[0])); }, \
+    [](const TraceSettings& s) { return std::vector<double>{ static_cast<double>(int(s.field)) }; }, \
+    nullptr, nullptr }
+
+/** The SchlierenImage properties the engine takes (the GUI's Follow group is not the engine's). */
+const std::vector<Property>& Properties()
+{
+  static const std::vector<Property> properties = {
+    Property{ "ViewDirection", "double", 3, {},
+      [](TraceSettings& s, const std::vector<double>& v) { std::copy(v.begin(), v.end(), s.ViewDirection); },
+      [](const TraceSettings& s) { return std::vector<double>(s.ViewDirection, s.ViewDirection + 3); },
+      nullptr, nullptr },
+    Property{ "ViewUp", "double", 3, {},
+      [](TraceSettings& s, const std::vector<double>& v) { std::copy(v.begin(), v.end(), s.ViewUp); },
+      [](const TraceSettings& s) { return std::vector<double>(s.ViewUp, s.ViewUp + 3); }, nullptr,
+      nullptr },
+    Property{ "Resolution", "int", 2, {},
+      [](TraceSettings& s, const std::vector<double>& v) {
+        s.Resolution[0] = static_cast<int>(v[0]);
+        s.Resolution[1] = static_cast<int>(v[1]);
+      },
+      [](const TraceSettings& s) { return std::vector<double>{ double(s.Resolution[0]), double(s.Resolution[1]) }; },
+      nullptr, nullptr },
+    SCH_NUM(Passes, "int", Passes, int),
+    SCH_NUM(StepSize, "double", StepSize, double),
+    SCH_ENUM(Integrator, Method, schlieren::Integrator, "Euler", "Midpoint", "RK4", "Straight", "Auto"),
+    SCH_ENUM(Reconstruction, Recon, schlieren::Reconstruction, "Trilinear", "Cubic", "Auto"),
+    SCH_NUM(Tolerance, "double", Tolerance, double),
+    SCH_NUM(KeepInvariant, "bool", KeepInvariant, bool),
+    SCH_NUM(EstimateError, "bool", EstimateError, bool),
+    SCH_NUM(UseOctree, "bool", UseOctree, bool),
+    SCH_ENUM(Cutoff, Mode, schlieren::Cutoff, "KnifeEdge", "Shadowgraph", "Circular",
+      "ComplementCircular", "ColorFilter", "Interferometry", "BOS"),
+    SCH_NUM(KnifeAngle, "double", KnifeAngle, double),
+    SCH_NUM(CutoffScale, "double", CutoffScale, double),
+    SCH_NUM(FilmDistance, "double", FilmDistance, double),
+    SCH_NUM(Wavelength, "double", Wavelength, double),
+    SCH_NUM(ReferenceTilt, "double", ReferenceTilt, double),
+    SCH_NUM(BackgroundDistance, "double", BackgroundDistance, double),
+    SCH_ENUM(BackgroundPattern, BackgroundPattern, int, "Dots", "Stripes"),
+    SCH_NUM(BackgroundPeriod, "double", BackgroundPeriod, double),
+    SCH_ENUM(Filter, Filter, schlieren::FilmFilter, "None", "Gaussian", "Cone"),
+    SCH_NUM(FilterWidth, "double", FilterWidth, double),
+    SCH_NUM(RussianRoulette, "bool", RussianRoulette, bool),
+    SCH_NUM(Jitter, "bool", Jitter, bool),
+    SCH_NUM(Seed, "int", Seed, std::uint32_t),
+    SCH_ENUM(Backend, Device, schlieren::Backend, "Auto", "OpenCL", "CPU"),
+    Property{ "DeviceName", "string", 1, {}, nullptr, nullptr,
+      [](TraceSettings& s, const std::string& t) { s.DeviceName = t; },
+      [](const TraceSettings& s) { return s.DeviceName; } },
+    SCH_NUM(Threads, "int", Threads, int),
+    SCH_NUM(TraceInPieces, "bool", InPieces, bool),
+  };
+  return properties;
+}
+
+/** SchlierenImage's defaults where they differ from TraceSettings' (vtkSchlierenImage.h). */
+TraceSettings Defaults()
+{
+  TraceSettings s;
+  s.Passes = 4;
+  return s;
+}
+
+const Property* FindProperty(const char* name)
+{
+  if (!name)
+    return nullptr;
+  for (const Property& p : Properties())
+    if (std::strcmp(p.Name, name) == 0)
+      return &p;
+  return nullptr;
+}
+
+std::string ValueText(const Property& p, const TraceSettings& s)
+{
+  if (p.GetText)
+    return p.GetText(s);
+  const std::vector<double> v = p.GetNumbers(s);
+  if (std::strcmp(p.Kind, "enum") == 0)
+  {
+    const int i = static_cast<int>(v[0]);
+    return i >= 0 && i < static_cast<int>(p.Entries.size()) ? p.Entries[i] : std::to_string(i);
+  }
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    out += (i ? " " : "") + Number(v[i]);
+  return out;
+}
+
+/** Sets `p` from text; returns an empty string or why not. */
+std::string SetProperty(const Property& p, TraceSettings& s, const char* text)
+{
+  if (!text)
+    return std::string(p.Name) + ": no value given.";
+  if (p.SetText)
+  {
+    p.SetText(s, text);
+    return std::string();
+  }
+  if (std::strcmp(p.Kind, "enum") == 0)
+  {
+    for (std::size_t i = 0; i < p.Entries.size(); ++i)
+      if (std::strcmp(p.Entries[i], text) == 0)
+      {
+        p.SetNumbers(s, { double(i) });
+        return std::string();
+      }
+    std::vector<double> v;
+    if (ParseNumbers(text, v) && v.size() == 1 && v[0] == std::floor(v[0]) && v[0] >= 0 &&
+      v[0] < p.Entries.size())
+    {
+      p.SetNumbers(s, v);
+      return std::string();
+    }
+    std::string list;
+    for (const char* e : p.Entries)
+      list += std::string(list.empty() ? "" : ", ") + e;
+    return std::string(p.Name) + " '" + text + "' is not one of: " + list + ".";
+  }
+  std::vector<double> v;
+  if (!ParseNumbers(text, v) || static_cast<int>(v.size()) != p.Size)
+    return std::string(p.Name) + " '" + text + "': expected " + std::to_string(p.Size) + " " +
+      (p.Size == 1 ? "number" : "numbers") + ".";
+  for (double x : v)
+  {
+    if (!std::isfinite(x) && std::strcmp(p.Kind, "double") != 0)
+      return std::string(p.Name) + " '" + text + "': not a finite number.";
+    if (std::strcmp(p.Kind, "double") != 0 &&
+      (x != std::floor(x) || x < std::numeric_limits<int>::min() || x > std::numeric_limits<unsigned>::max()))
+      return std::string(p.Name) + " '" + text + "': expected an integer.";
+  }
+  p.SetNumbers(s, v);
+  return std::string();
+}
+
+} // namespace
+
+struct schlieren_session
+{
+  schlieren::TraceSession Session;
+  TraceSettings Settings = Defaults();
+  schlieren::VolumePiece Piece;
+  std::vector<float> NMinus1;
+  std::vector<unsigned char> Solid, Levels;
+  double LevelTolerance = -1;
+  int MaxLevel = 7;
+  bool HasVolume = false;
+  std::uint64_t Version = 0;
+  schlieren::SessionImage Image;
+  bool HasImage = false;
+  std::string Error, Report, Text;
+};
+
+namespace
+{
+
+/** Runs `f`, turning every exception into a message; returns 0 or 1. */
+template <typename F>
+int Guard(std::string& error, F&& f)
+{
+  try
+  {
+    error.clear();
+    f();
+    return 0;
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "Out of memory.";
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    if (error.empty())
+      error = "Unknown engine error.";
+  }
+  catch (...)
+  {
+    error = "Unknown engine error.";
+  }
+  return 1;
+}
+
+void MakeReport(schlieren_session* s, const std::string& error)
+{
+  const schlieren::SessionImage& image = s->Image;
+  std::ostringstream o;
+  o << "{\"field_data\": {";
+  bool first = true;
+  auto num = [&](const char* name, double v) {
+    o << (first ? "" : ", ") << Json(name) << ": " << Number(v);
+    first = false;
+  };
+  auto str = [&](const char* name, const std::string& v) {
+    o << (first ? "" : ", ") << Json(name) << ": " << Json(v);
+    first = false;
+  };
+  if (error.empty() && image.HasImage)
+  {
+    // the names and order of vtkSchlierenImage's field data
+    const schlieren::TraceResult& result = image.Result;
+    num("cutoff_scale", result.CutoffScaleUsed);
+    str("warnings", image.Warnings);
+    str("backend", image.BackendUsed);
+    str("device", image.DeviceName);
+    num("photons", result.Photons);
+    num("passes", image.Passes);
+    num("passes_traced", image.PassesTraced);
+    num("samples", result.Samples);
+    num("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
+    num("failed_rays", result.FailedRays);
+    num("missed_rays", result.MissedRays);
+    num("landed_photons", image.LandedPhotons);
+    num("underresolved_rays", result.UnderresolvedRays);
+    num("side_rays", result.SideRays);
+    num("blocked_rays", result.BlockedRays);
+    num("max_drift", result.MaxDrift);
+    num("max_error", result.MaxError);
+    str("integrator", schlieren::IntegratorName(image.Traced.Method));
+    str("reconstruction", schlieren::ReconstructionName(image.Traced.Recon));
+    num("step_size", image.Traced.StepSize);
+    num("octree", image.OctreeUsed ? 1.0 : 0.0);
+    if (image.OctreeUsed)
+      num("octree_tolerance", image.OctreeTolerance);
+    num("distributed_ranks", image.DistributedRanks);
+    if (image.AutoAsked)
+    {
+      str("auto_report", image.Choice.Report);
+      num("expected_error", image.Choice.ExpectedError);
+      num("auto_tolerance", image.Choice.Tolerance);
+      num("auto_met", image.Choice.Met ? 1.0 : 0.0);
+      num("auto_floor", image.Choice.AtFloor ? image.Choice.Floor : 0.0);
+      num("auto_reused", image.Choice.Reused ? 1.0 : 0.0);
+    }
+  }
+  o << "}, \"notes\": [";
+  for (std::size_t i = 0; i < image.Notes.size(); ++i)
+    o << (i ? ", " : "") << "{\"warning\": " << (image.Notes[i].Warning ? "true" : "false")
+      << ", \"text\": " << Json(image.Notes[i].Text) << "}";
+  o << "], \"error\": " << Json(error) << "}";
+  s->Report = o.str();
+}
+
+} // namespace
+
+namespace
+{
+const std::string& PropertiesJson();
+const std::string& DeviceJson(const char* device_name);
+}
+
+extern "C"
+{
+
+int schlieren_api_version(void)
+{
+  return SCHLIEREN_C_API_VERSION;
+}
+
+const char* schlieren_version(void)
+{
+  return "0.1.0";
+}
+
+const char* schlieren_last_error(void)
+{
+  return LastError.c_str();
+}
+
+const char* schlieren_properties(void)
+{
+  try
+  {
+    return PropertiesJson().c_str();
+  }
+  catch (...)
+  {
+    LastError = "Out of memory.";
+    return "[]";
+  }
+}
+
+const char* schlieren_opencl_device(const char* device_name)
+{
+  try
+  {
+    return DeviceJson(device_name).c_str();
+  }
+  catch (...)
+  {
+    LastError = "Out of memory.";
+    return "{}";
+  }
+}
+
+} // extern "C"
+
+namespace
+{
+const std::string& PropertiesJson()
+{
+  static const std::string text = [] {
+    const TraceSettings d = Defaults();
+    std::ostringstream o;
+    o << "[";
+    bool first = true;
+    for (const Property& p : Properties())
+    {
+      o << (first ? "" : ", ") << "{\"name\": " << Json(p.Name) << ", \"kind\": " << Json(p.Kind)
+        << ", \"size\": " << p.Size << ", \"default\": ";
+      first = false;
+      if (p.GetText)
+        o << Json(p.GetText(d));
+      else if (std::strcmp(p.Kind, "enum") == 0)
+        o << Json(ValueText(p, d));
+      else
+      {
+        const std::vector<double> v = p.GetNumbers(d);
+        if (p.Size > 1)
+          o << "[";
+        for (std::size_t i = 0; i < v.size(); ++i)
+          o << (i ? ", " : "") << Number(v[i]);
+        if (p.Size > 1)
+          o << "]";
+      }
+      o << ", \"entries\": [";
+      for (std::size_t i = 0; i < p.Entries.size(); ++i)
+        o << (i ? ", " : "") << Json(p.Entries[i]);
+      o << "]}";
+    }
+    o << "]";
+    return o.str();
+  }();
+  return text;
+}
+
+const std::string& DeviceJson(const char* device_name)
+{
+  schlieren::DeviceInfo info;
+  if (Guard(LastError, [&] { info = schlieren::QueryOpenCLDevice(device_name ? device_name : ""); }))
+    info.Reason = LastError;
+  std::ostringstream o;
+  o << "{\"available\": " << (info.Available ? "true" : "false") << ", \"name\": " << Json(info.Name)
+    << ", \"platform\": " << Json(info.Platform) << ", \"version\": " << Json(info.Version)
+    << ", \"reason\": " << Json(info.Reason) << "}";
+  Returned = o.str();
+  return Returned;
+}
+} // namespace
+
+extern "C"
+{
+
+schlieren_session* schlieren_session_new(void)
+{
+  try
+  {
+    return new schlieren_session;
+  }
+  catch (...)
+  {
+    LastError = "Out of memory.";
+    return nullptr;
+  }
+}
+
+void schlieren_session_free(schlieren_session* s)
+{
+  try
+  {
+    delete s;
+  }
+  catch (...)
+  {
+  }
+}
+
+const char* schlieren_session_error(const schlieren_session* s)
+{
+  return s ? s->Error.c_str() : "no session (NULL)";
+}
+
+int schlieren_session_set(schlieren_session* s, const char* name, const char* value)
+{
+  if (!s)
+    return 1;
+  return Guard(s->Error, [&] {
+    const Property* p = FindProperty(name);
+    if (!p)
+    {
+      std::string list;
+      for (const Property& q : Properties())
+        list += std::string(list.empty() ? "" : ", ") + q.Name;
+      throw schlieren::Error(std::string("SchlierenImage has no property '") + (name ? name : "") +
+        "'; it has: " + list + ".");
+    }
+    const std::string why = SetProperty(*p, s->Settings, value);
+    if (!why.empty())
+      throw schlieren::Error(why);
+  });
+}
+
+const char* schlieren_session_get(schlieren_session* s, const char* name)
+{
+  if (!s)
+    return nullptr;
+  const Property* p = FindProperty(name);
+  if (!p)
+    return nullptr;
+  if (Guard(s->Error, [&] { s->Text = ValueText(*p, s->Settings); }))
+    return nullptr;
+  return s->Text.c_str();
+}
+
+int schlieren_session_set_volume(schlieren_session* s, const int dims[3], const double origin[3],
+  const double spacing[3], const float* n_minus_1, const unsigned char* solid,
+  const unsigned char* levels, double level_tolerance, int max_level)
+{
+  if (!s)
+    return 1;
+  return Guard(s->Error, [&] {
+    if (!dims || !origin || !spacing || !n_minus_1)
+      throw schlieren::Error("schlieren_session_set_volume: dims, origin, spacing and n_minus_1 "
+                             "must not be NULL.");
+    for (int a = 0; a < 3; ++a)
+      if (dims[a] < 1)
+        throw schlieren::Error("The volume's dimensions must be at least 1; got " +
+          std::to_string(dims[0]) + " " + std::to_string(dims[1]) + " " + std::to_string(dims[2]) + ".");
+    const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+    s->NMinus1.assign(n_minus_1, n_minus_1 + n);
+    if (solid)
+      s->Solid.assign(solid, solid + n);
+    else
+      s->Solid.clear();
+    if (levels)
+      s->Levels.assign(levels, levels + n);
+    else
+      s->Levels.clear();
+    s->LevelTolerance = level_tolerance;
+    s->MaxLevel = max_level;
+    schlieren::VolumePiece& piece = s->Piece;
+    for (int a = 0; a < 3; ++a)
+    {
+      piece.WholeExtent[2 * a] = piece.Extent[2 * a] = 0;
+      piece.WholeExtent[2 * a + 1] = piece.Extent[2 * a + 1] = dims[a] - 1;
+      piece.Origin[a] = origin[a];
+      piece.Spacing[a] = spacing[a];
+    }
+    piece.Version = ++s->Version;
+    piece.Problem.clear();
+    piece.Load = [s](schlieren::PieceValues& v) {
+      v.NMinus1 = s->NMinus1;
+      v.Solid = s->Solid;
+      if (s->Settings.UseOctree && !s->Levels.empty())
+      {
+        v.Levels = s->Levels;
+        v.HasLevelTolerance = s->LevelTolerance >= 0;
+        v.LevelTolerance = s->LevelTolerance >= 0 ? s->LevelTolerance : 0.0;
+        v.MaxLevel = s->MaxLevel;
+      }
+      return std::string();
+    };
+    s->HasVolume = true;
+  });
+}
+
+int schlieren_session_trace(schlieren_session* s)
+{
+  if (!s)
+    return 1;
+  s->Image = schlieren::SessionImage();
+  s->HasImage = false;
+  const int rc = Guard(s->Error, [&] {
+    if (!s->HasVolume)
+      throw schlieren::Error("No volume: call schlieren_session_set_volume before tracing.");
+    // the octree levels take part only with UseOctree (the filter reads them only then): a
+    // change of UseOctree is a new volume for the session
+    s->Piece.Version = s->Version * 2 + (s->Settings.UseOctree ? 1 : 0);
+    s->Session.Update(schlieren::SerialParallel(), s->Piece, s->Settings, s->Image);
+    s->HasImage = s->Image.HasImage;
+  });
+  MakeReport(s, s->Error);
+  return rc;
+}
+
+const float* schlieren_session_array(
+  const schlieren_session* s, const char* name, int* components, int64_t* pixels)
+{
+  if (!s || !s->HasImage || !name)
+    return nullptr;
+  const schlieren::TraceResult& r = s->Image.Result;
+  const struct
+  {
+    const char* Name;
+    const std::vector<float>* Values;
+    int Components;
+  } arrays[] = { { "intensity", &r.Intensity, 1 }, { "deflection", &r.Deflection, 2 },
+    { "rgb", &r.RGB, 3 }, { "phase", &r.Phase, 1 }, { "bos_displacement", &r.Displacement, 2 },
+    { "error_estimate", &r.ErrorEstimate, 1 }, { "blocked", &r.Blocked, 1 } };
+  const std::int64_t count = static_cast<std::int64_t>(r.Film.Size[0]) * r.Film.Size[1];
+  for (const auto& a : arrays)
+  {
+    if (std::strcmp(a.Name, name) == 0)
+    {
+      if (a.Values->empty() || static_cast<std::int64_t>(a.Values->size()) != count * a.Components)
+        return nullptr;
+      if (components)
+        *components = a.Components;
+      if (pixels)
+        *pixels = count;
+      return a.Values->data();
+    }
+  }
+  return nullptr;
+}
+
+int schlieren_session_film(
+  const schlieren_session* s, int size[2], double origin[2], double* pixel_size)
+{
+  if (!s || !s->HasImage)
+    return 1;
+  const schlieren::FilmGeometry& f = s->Image.Result.Film;
+  if (size)
+  {
+    size[0] = f.Size[0];
+    size[1] = f.Size[1];
+  }
+  if (origin)
+    f.GetImageOrigin(origin);
+  if (pixel_size)
+    *pixel_size = f.PixelSize;
+  return 0;
+}
+
+int schlieren_session_plan_film(schlieren_session* s, const int dims[3], const double origin[3],
+  const double spacing[3], int size[2], double film_origin[2], double* pixel_size)
+{
+  if (!s)
+    return 1;
+  return Guard(s->Error, [&] {
+    if (!dims || !origin || !spacing)
+      throw schlieren::Error("schlieren_session_plan_film: dims, origin and spacing must be given.");
+    schlieren::Volume v;
+    for (int a = 0; a < 3; ++a)
+    {
+      v.Dimensions[a] = dims[a];
+      v.Origin[a] = origin[a];
+      v.Spacing[a] = spacing[a];
+    }
+    const schlieren::FilmGeometry f = schlieren::MakeFilm(v, s->Settings);
+    if (size)
+    {
+      size[0] = f.Size[0];
+      size[1] = f.Size[1];
+    }
+    if (film_origin)
+      f.GetImageOrigin(film_origin);
+    if (pixel_size)
+      *pixel_size = f.PixelSize;
+  });
+}
+
+const char* schlieren_session_report(const schlieren_session* s)
+{
+  return s ? s->Report.c_str() : "";
+}
+
+int schlieren_fill_scene(const char* settings, const int dims[3], const double origin[3],
+  const double spacing[3], float* n_minus_1, float* density, float* mixture_fraction,
+  unsigned char* solid)
+{
+  return Guard(LastError, [&] {
+    if (!dims || !origin || !spacing || !n_minus_1)
+      throw schlieren::Error("schlieren_fill_scene: dims, origin, spacing and n_minus_1 must not be NULL.");
+    static const char* scenes[] = { "Uniform", "GaussianSphere", "LuneburgLens", "LinearGradient",
+      "NormalShock", "HeliumPlume", "BlastWave" };
+    static const char* bodies[] = { "None", "Sphere", "Cylinder" };
+    schlieren::Scene scene = schlieren::Scene::GaussianSphere;
+    schlieren::SceneParameters p;
+    schlieren::BodyParameters b;
+    std::istringstream lines(settings ? settings : "");
+    std::string line;
+    while (std::getline(lines, line))
+    {
+      if (line.find_first_not_of(" \t\r") == std::string::npos)
+        continue;
+      const std::size_t eq = line.find('=');
+      if (eq == std::string::npos)
+        throw schlieren::Error("RefractiveScene setting '" + line + "': expected Name=value.");
+      const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
+      auto pick = [&](const char* const* names, int count) {
+        for (int i = 0; i < count; ++i)
+          if (value == names[i])
+            return i;
+        std::string list;
+        for (int i = 0; i < count; ++i)
+          list += std::string(i ? ", " : "") + names[i];
+        throw schlieren::Error(key + " '" + value + "' is not one of: " + list + ".");
+      };
+      std::vector<double> v;
+      auto numbers = [&](int n) {
+        if (!ParseNumbers(value.c_str(), v) || static_cast<int>(v.size()) != n)
+          throw schlieren::Error(key + " '" + value + "': expected " + std::to_string(n) +
+            (n == 1 ? " number." : " numbers."));
+      };
+      if (key == "Scene")
+        scene = static_cast<schlieren::Scene>(pick(scenes, 7));
+      else if (key == "Body")
+        b.Shape = static_cast<schlieren::Body>(pick(bodies, 3));
+      else if (key == "Center" || key == "BodyCenter" || key == "BodyAxis")
+      {
+        numbers(3);
+        double* to = key == "Center" ? p.Center : (key == "BodyCenter" ? b.Center : b.Axis);
+        std::copy(v.begin(), v.end(), to);
+      }
+      else
+      {
+        double* to = key == "Amplitude" ? &p.Amplitude
+          : key == "Width"               ? &p.Width
+          : key == "Radius"              ? &p.Radius
+          : key == "GradientA"           ? &p.GradientA
+          : key == "GradientB"           ? &p.GradientB
+          : key == "Mach"                ? &p.Mach
+          : key == "Density"             ? &p.Density
+          : key == "Time"                ? &p.Time
+          : key == "BodyRadius"          ? &b.Radius
+                                         : nullptr;
+        if (!to)
+          throw schlieren::Error("RefractiveScene has no engine setting '" + key + "'.");
+        numbers(1);
+        *to = v[0];
+      }
+    }
+    schlieren::FillScene(scene, p, dims, origin, spacing, n_minus_1, density, mixture_fraction);
+    if (solid && b.Shape != schlieren::Body::None)
+      schlieren::FillBody(b, dims, origin, spacing, solid);
+  });
+}
+
+int schlieren_octree_levels(const int dims[3], const float* n_minus_1, double tolerance,
+  int max_level, unsigned char* levels, double* fraction)
+{
+  return Guard(LastError, [&] {
+    if (!dims || !n_minus_1 || !levels)
+      throw schlieren::Error("schlieren_octree_levels: dims, n_minus_1 and levels must not be NULL.");
+    const double f = schlieren::ComputeOctreeLevels(dims, n_minus_1, tolerance, levels, max_level);
+    if (fraction)
+      *fraction = f;
+  });
+}
+
+int schlieren_gradient(const int dims[3], const double spacing[3], const float* n_minus_1, float* grad3)
+{
+  return Guard(LastError, [&] {
+    if (!dims || !spacing || !n_minus_1 || !grad3)
+      throw schlieren::Error("schlieren_gradient: no argument may be NULL.");
+    schlieren::ComputeGradient(dims, spacing, n_minus_1, grad3);
+  });
+}
+
+int schlieren_field_index(const char* model, const float* input, int64_t count, int index_is_n,
+  double density_reference, const char* gas, float* n_minus_1, const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    if (!model || !input || !n_minus_1 || count < 0)
+      throw schlieren::Error("schlieren_field_index: model, input and n_minus_1 must be given.");
+    schlieren::FieldModel m;
+    schlieren::FieldArrays a;
+    a.Count = static_cast<std::size_t>(count);
+    const std::string name = model;
+    if (name == "Passthrough")
+    {
+      m.Model = schlieren::IndexModel::Passthrough;
+      m.IndexIsN = index_is_n != 0;
+      a.Index.Data = input;
+      a.Index.Name = index_is_n ? "n" : "n_minus_1";
+    }
+    else if (name == "GladstoneDale")
+    {
+      m.Model = schlieren::IndexModel::GladstoneDale;
+      m.DensityReference = density_reference;
+      if (gas && *gas)
+        m.SingleGas = schlieren::GasChoice::Table(schlieren::ParseGas(gas));
+      a.Density.Data = input;
+      a.Density.Name = "density";
+    }
+    else
+      throw schlieren::Error("Model '" + name + "': this interface takes Passthrough or GladstoneDale.");
+    const schlieren::FieldReport r = schlieren::ComputeFieldIndex(a, m, n_minus_1);
+    Returned.clear();
+    for (const std::string& w : r.Warnings)
+      Returned += w + "\n";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
+int schlieren_extend_into_invalid(
+  const int dims[3], const unsigned char* valid, float* n_minus_1, int64_t* filled)
+{
+  return Guard(LastError, [&] {
+    if (!dims || !valid || !n_minus_1)
+      throw schlieren::Error("schlieren_extend_into_invalid: no argument may be NULL.");
+    const std::size_t n = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
+    if (filled)
+      *filled = static_cast<int64_t>(n);
+  });
+}
+
+int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3])
+{
+  return Guard(LastError, [&] {
+    if (!bounds || !dims)
+      throw schlieren::Error("schlieren_automatic_dimensions: no argument may be NULL.");
+    schlieren::AutomaticDimensions(bounds, longest, dims);
+  });
+}
+
+} // extern "C"

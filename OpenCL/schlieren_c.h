@@ -1,0 +1,158 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/**
+ * @file schlieren_c.h
+ * @brief The engine's stable C interface (libschlieren_engine.so): plain arrays in, arrays and a
+ * report out. Every front end that is not the C++ plugin (Python through ctypes, C, Fortran) goes
+ * through it.
+ *
+ * Rules of the interface:
+ * - No C++ exception crosses it. A function that can fail returns 0 on success and non-zero on
+ *   failure; the message is then schlieren_session_error() (per session) or
+ *   schlieren_last_error() (per thread, for the functions without a session).
+ * - Arrays are x fastest (VTK's point order). Inputs are copied: the caller may free them after
+ *   the call. Outputs belong to the session and stay valid until its next trace or its free.
+ * - Settings are the SchlierenImage proxy's properties, by name, as text: enumerations by their
+ *   entry ("KnifeEdge", "RK4"), vectors as numbers separated by blanks ("0 0 -1"), booleans as
+ *   0/1. schlieren_properties() lists them (JSON) with their kinds, defaults and entries.
+ * - OpenCL is opened at run time (libOpenCL.so.1): without it the library loads and traces on the
+ *   CPU backend (Backend Auto falls back with a warning).
+ * - Strings returned are UTF-8, NUL-terminated, and owned by the library.
+ *
+ * SCHLIEREN_C_API_VERSION changes only when an existing function changes; functions are added
+ * without changing it.
+ */
+#ifndef schlieren_c_h
+#define schlieren_c_h
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#if defined(SCHLIEREN_C_BUILDING)
+#define SCHLIEREN_C_API __declspec(dllexport)
+#else
+#define SCHLIEREN_C_API __declspec(dllimport)
+#endif
+#else
+#define SCHLIEREN_C_API __attribute__((visibility("default")))
+#endif
+
+#define SCHLIEREN_C_API_VERSION 1
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** SCHLIEREN_C_API_VERSION of the library loaded (compare with the header's). */
+SCHLIEREN_C_API int schlieren_api_version(void);
+/** The project version, "0.1.0". */
+SCHLIEREN_C_API const char* schlieren_version(void);
+/** This thread's last error of a session-less function ("" if none). */
+SCHLIEREN_C_API const char* schlieren_last_error(void);
+/**
+ * The SchlierenImage properties this interface takes, as JSON:
+ * [{"name": "Cutoff", "kind": "enum", "size": 1, "default": "KnifeEdge",
+ *   "entries": ["KnifeEdge", ...]}, ...]; kinds: "int", "double", "bool", "enum", "string".
+ */
+SCHLIEREN_C_API const char* schlieren_properties(void);
+/** The OpenCL device the OpenCL backend would use, as JSON {"available", "name", "platform",
+ * "version", "reason"}; `device_name` a part of a device name or NULL/"" (the default choice). */
+SCHLIEREN_C_API const char* schlieren_opencl_device(const char* device_name);
+
+/** A trace session: one image traced again and again (the volume and the passes kept). */
+typedef struct schlieren_session schlieren_session;
+
+/** A new session with the SchlierenImage defaults; NULL only where memory is exhausted. */
+SCHLIEREN_C_API schlieren_session* schlieren_session_new(void);
+/** Frees the session and what the engine keeps for it (NULL: nothing). */
+SCHLIEREN_C_API void schlieren_session_free(schlieren_session* s);
+/** The message of the session's last failure ("" if its last call succeeded). */
+SCHLIEREN_C_API const char* schlieren_session_error(const schlieren_session* s);
+
+/** Sets a property (see schlieren_properties) from text. Non-zero: an unknown name or a value
+ * that does not parse (the message names the property and what it takes). Ranges are checked by
+ * the trace, as the C++ plugin does. */
+SCHLIEREN_C_API int schlieren_session_set(schlieren_session* s, const char* name, const char* value);
+/** A property's value as text (owned by the session until the next call); NULL: unknown name. */
+SCHLIEREN_C_API const char* schlieren_session_get(schlieren_session* s, const char* name);
+
+/**
+ * The volume to trace: a regular grid of dims[0] x dims[1] x dims[2] points at `origin` with
+ * `spacing`, n - 1 per point (float). Optional (NULL: none): `solid`, a byte per point, non-zero in
+ * a solid body; `levels`, RefractionOctree's level per point, built for `level_tolerance` (< 0:
+ * unknown) with at most `max_level` levels. The arrays are copied; every call counts as a new
+ * volume (packed again on the next trace), so call it only when the data changed.
+ */
+SCHLIEREN_C_API int schlieren_session_set_volume(schlieren_session* s, const int dims[3],
+  const double origin[3], const double spacing[3], const float* n_minus_1,
+  const unsigned char* solid, const unsigned char* levels, double level_tolerance, int max_level);
+
+/** Traces the volume with the settings (continuing the kept passes where it can). 0: done. */
+SCHLIEREN_C_API int schlieren_session_trace(schlieren_session* s);
+
+/**
+ * An image array of the last trace: "intensity" (1 component), "deflection" (2, radians),
+ * "rgb" (3), "phase" (1), "bos_displacement" (2), "error_estimate" (1), "blocked" (1). NULL where
+ * the last trace did not make it. `components` and `pixels` (may be NULL) get its shape.
+ */
+SCHLIEREN_C_API const float* schlieren_session_array(
+  const schlieren_session* s, const char* name, int* components, int64_t* pixels);
+/** The film of the last trace as an image: size in pixels, the world origin of pixel (0, 0)'s
+ * centre on the film plane, and the pixel size. Non-zero: no trace yet. */
+SCHLIEREN_C_API int schlieren_session_film(
+  const schlieren_session* s, int size[2], double origin[2], double* pixel_size);
+/** The film a trace of a volume with this grid would make with the session's settings (what
+ * schlieren_session_film gives after the trace), without tracing: for a pipeline's information
+ * pass. Non-zero: the settings or the grid are refused (the message says why). */
+SCHLIEREN_C_API int schlieren_session_plan_film(schlieren_session* s, const int dims[3],
+  const double origin[3], const double spacing[3], int size[2], double film_origin[2],
+  double* pixel_size);
+/**
+ * The report of the last trace (or of its failure), JSON: {"field_data": {name: number or
+ * string, ...} (the same names and values as the C++ SchlierenImage's field data),
+ * "notes": [{"warning": true/false, "text": "..."}], "error": "..."}.
+ */
+SCHLIEREN_C_API const char* schlieren_session_report(const schlieren_session* s);
+
+/* The other stages' engine functions, for front ends that make their own volumes. */
+
+/**
+ * RefractiveScene's analytic scenes: `settings` is text of "Name=value" lines with the proxy's
+ * property names (Scene, Amplitude, Width, Radius, Center, GradientA, GradientB, Mach, Density,
+ * Time; Body, BodyRadius, BodyCenter, BodyAxis). Writes n - 1 (and where not NULL the density,
+ * the mixture fraction and, where a Body is set, the solid points) at the grid's points.
+ * Returns 0, or non-zero with schlieren_last_error().
+ */
+SCHLIEREN_C_API int schlieren_fill_scene(const char* settings, const int dims[3],
+  const double origin[3], const double spacing[3], float* n_minus_1, float* density,
+  float* mixture_fraction, unsigned char* solid);
+/** RefractionOctree: a level per point for `tolerance` (see ComputeOctreeLevels); `fraction` (may
+ * be NULL) gets the fraction of cells at level >= 1. */
+SCHLIEREN_C_API int schlieren_octree_levels(const int dims[3], const float* n_minus_1,
+  double tolerance, int max_level, unsigned char* levels, double* fraction);
+/** The gradient of n - 1 in world units, 3 floats per point (RefractiveIndex's grad_n). */
+SCHLIEREN_C_API int schlieren_gradient(
+  const int dims[3], const double spacing[3], const float* n_minus_1, float* grad3);
+/**
+ * RefractiveIndex's models on arrays of `count` points: `model` "Passthrough" (`input` is n - 1,
+ * or n where `index_is_n`) or "GladstoneDale" (`input` is density, times `density_reference`,
+ * gas `gas` by its table name, NULL: Air). Writes n - 1. `report` (may be NULL) gets the warnings
+ * as lines (owned by the library until this thread's next call).
+ */
+SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input, int64_t count,
+  int index_is_n, double density_reference, const char* gas, float* n_minus_1,
+  const char** report);
+
+/** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
+ * RefractiveIndex filter's AmbientMode Extend); `filled` (may be NULL) gets how many. */
+SCHLIEREN_C_API int schlieren_extend_into_invalid(
+  const int dims[3], const unsigned char* valid, float* n_minus_1, int64_t* filled);
+/** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
+ * side, about the same spacing along the others. */
+SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,31 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Schlieren for plain VTK, PyVista and NumPy: no compiler, no ParaView.
+
+    import schlieren
+    scene = schlieren.RefractiveScene(Scene="GaussianSphere", Dimensions=[128] * 3)
+    image = schlieren.SchlierenImage(Cutoff="KnifeEdge", Resolution=[512, 512])
+    image.SetInputConnection(scene.GetOutputPort())
+    image.Update()
+    intensity = schlieren.image_to_numpy(image.GetOutput())   # (ny, nx) float32
+
+The engine is libschlieren_engine.so (its C interface, schlieren_c.h) through ctypes; the VTK
+algorithms need the `vtk` package (PyPI's wheels 9.2 and later), the engine functions only NumPy
+(schlieren.engine: Session, fill_scene, ...). OpenCL is used where a driver is installed, else the
+CPU (Backend Auto warns; Backend CPU is silent).
+"""
+from . import _engine as engine  # noqa: F401
+from ._engine import EngineError, properties, version  # noqa: F401
+
+__version__ = "0.1.0"
+
+try:
+    from .algorithms import (RefractionOctree, RefractiveIndex, RefractiveScene,  # noqa: F401
+                             SchlierenImage, image_to_numpy)
+except ImportError as _e:  # no VTK: the engine functions still work
+    _vtk_error = _e
+
+    def __getattr__(name):
+        if name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage",
+                    "image_to_numpy"):
+            raise ImportError("schlieren.%s needs VTK (pip install vtk): %s" % (name, _vtk_error))
+        raise AttributeError(name)

@@ -1,0 +1,64 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""python -m schlieren demo [--output schlieren.png] [--backend Auto|OpenCL|CPU] [--resolution N]
+python -m schlieren info
+
+demo: the project's demo image (README): a knife-edge schlieren of a Gaussian sphere of denser
+air, n = 1 + 1e-4 exp(-r^2/s^2), s = 0.25, on a 128^3 grid; engine and NumPy only (no VTK).
+info: the version, the library loaded and the OpenCL device the engine would use."""
+import argparse
+import os
+import sys
+
+from . import _engine
+from .png import write_png
+
+
+def demo(args):
+    dims, origin = [128, 128, 128], [-1.0, -1.0, -1.0]
+    spacing = [2.0 / 127] * 3
+    scene = _engine.fill_scene(dict(Scene="GaussianSphere", Amplitude=1e-4, Width=0.25), dims,
+                               origin, spacing)
+    s = _engine.Session()
+    s.set_volume(dims, origin, spacing, scene["n_minus_1"])
+    for k, v in dict(Cutoff="KnifeEdge", KnifeAngle=0.0, Resolution=[args.resolution] * 2,
+                     Passes=args.passes, Backend=args.backend).items():
+        s.set(k, v)
+    report = s.trace()
+    for note in report["notes"]:
+        if note["warning"]:
+            print("warning: " + note["text"], file=sys.stderr)
+    size, _, _ = s.film()
+    intensity = s.array("intensity").reshape(size[1], size[0])
+    write_png(intensity, args.output)
+    f = report["field_data"]
+    print("wrote %s: %dx%d knife-edge schlieren of a Gaussian sphere, intensity %.3f..%.3f, "
+          "k = %.4g, traced on %s (%s)" % (os.path.abspath(args.output), size[0], size[1],
+                                           intensity.min(), intensity.max(), f["cutoff_scale"],
+                                           f["backend"], f["device"] or "all cores"))
+    return 0
+
+
+def info(args):
+    print("schlieren %s (C API %d) from %s" % (_engine.version(), _engine.API_VERSION,
+                                               _engine._lib._name))
+    d = _engine.opencl_device()
+    print("OpenCL: " + (d["name"] + " (" + d["platform"] + ")" if d["available"]
+                        else "none: " + d["reason"]))
+    return 0
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python -m schlieren", description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+    d = sub.add_parser("demo", help="write the demo image")
+    d.add_argument("--output", default="schlieren.png")
+    d.add_argument("--backend", default="Auto", choices=["Auto", "OpenCL", "CPU"])
+    d.add_argument("--resolution", type=int, default=512)
+    d.add_argument("--passes", type=int, default=8)
+    sub.add_parser("info", help="the library and the OpenCL device")
+    args = ap.parse_args(argv)
+    return demo(args) if args.command == "demo" else info(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

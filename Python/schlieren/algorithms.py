@@ -1,0 +1,444 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The four stages as VTK algorithms (VTKPythonAlgorithmBase) over the engine's C interface.
+
+    import schlieren
+    scene = schlieren.RefractiveScene(Scene="GaussianSphere", Dimensions=[128] * 3)
+    image = schlieren.SchlierenImage(Cutoff="KnifeEdge", Resolution=[512, 512])
+    image.SetInputConnection(scene.GetOutputPort())
+    image.Update()
+    out = image.GetOutput()          # vtkImageData: intensity, deflection, ...
+
+Property names, defaults and entries are the ParaView proxies'; they are keyword arguments and
+attributes (setting one marks the algorithm modified). Inputs may be any vtkDataSet: what is not
+an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first.
+"""
+import numpy as np
+from vtkmodules.util import numpy_support
+from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
+from vtkmodules.vtkCommonDataModel import vtkDataSet, vtkImageData
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
+
+from . import _engine
+from ._engine import EngineError
+
+
+class _Properties(VTKPythonAlgorithmBase):
+    """Proxy properties as attributes and keyword arguments."""
+
+    _defaults = {}   # name -> default
+    _entries = {}    # name -> allowed texts (enumerations)
+
+    def __init__(self, nInputPorts, outputType="vtkImageData", **kwargs):
+        object.__setattr__(self, "_values", dict(self._defaults))
+        object.__setattr__(self, "LastError", "")  # the message of the last failed request
+        VTKPythonAlgorithmBase.__init__(self, nInputPorts=nInputPorts, nOutputPorts=1,
+                                        outputType=outputType)
+        object.__setattr__(self, "_ready", True)
+        for k, v in kwargs.items():
+            setattr(self, k, v)
+
+    def __getattr__(self, name):
+        values = self.__dict__.get("_values")
+        if values is not None and name in values:
+            return values[name]
+        raise AttributeError("%s has no attribute or property %r" % (type(self).__name__, name))
+
+    def __setattr__(self, name, value):
+        if name in self._defaults:
+            self._values[name] = self._check(name, value)
+            self.Modified()
+        elif not self.__dict__.get("_ready") or not name[:1].isupper() or \
+                hasattr(type(self), name):
+            # the base class's own attributes (InputType, ...) and private state
+            object.__setattr__(self, name, value)
+        else:
+            raise AttributeError("%s has no property %r; its properties: %s"
+                                 % (type(self).__name__, name, ", ".join(self._defaults)))
+
+    def _check(self, name, value):
+        default = self._defaults[name]
+        if name in self._entries:
+            if value not in self._entries[name]:
+                raise ValueError("%s %r is not one of: %s" % (name, value,
+                                                             ", ".join(self._entries[name])))
+            return value
+        if isinstance(default, (list, tuple)):
+            value = list(np.asarray(value).ravel().tolist())
+            if len(value) != len(default):
+                raise ValueError("%s takes %d values, got %d" % (name, len(default), len(value)))
+            return value
+        return value
+
+    def GetOutput(self, port=0):
+        """The output data object (vtkImageData), as vtkImageAlgorithm::GetOutput gives it."""
+        return self.GetOutputDataObject(port)
+
+    def SetInputData(self, *args):
+        """SetInputData(data) or SetInputData(port, data), as on VTK's C++ algorithms."""
+        self.SetInputDataObject(*args)
+
+    def ListProperties(self):
+        return list(self._defaults)
+
+    def _fail(self, message):
+        """A VTK error (the output window, as vtkErrorMacro writes) and the message kept in
+        LastError for scripts; returns 0 for the pipeline (the request failed)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        object.__setattr__(self, "LastError", message)
+        vtkOutputWindow.GetInstance().DisplayErrorText(
+            "ERROR: In %s: %s\n" % (type(self).__name__, message))
+        return 0
+
+
+def _image_input(data, dims=None):
+    """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
+    or resampled with vtkResampleToImage onto `dims` points over its bounds."""
+    if isinstance(data, vtkImageData):
+        return data, None
+    from vtkmodules.vtkFiltersCore import vtkResampleToImage
+    r = vtkResampleToImage()
+    r.SetInputDataObject(data)
+    if dims is None:
+        dims = _engine.automatic_dimensions(data.GetBounds(), 128)
+    r.SetSamplingDimensions(*dims)
+    r.Update()
+    out = vtkImageData()
+    out.ShallowCopy(r.GetOutput())
+    mask = _point_array(out, r.GetMaskArrayName())
+    out.GetPointData().RemoveArray(r.GetMaskArrayName())
+    return out, (None if mask is None or mask.all() else np.ascontiguousarray(mask, np.uint8))
+
+
+def _point_array(image, name):
+    a = image.GetPointData().GetArray(name)
+    return None if a is None else numpy_support.vtk_to_numpy(a)
+
+
+def _add(image, name, values, components=None):
+    a = numpy_support.numpy_to_vtk(np.ascontiguousarray(values), deep=1)
+    a.SetName(name)
+    image.GetPointData().AddArray(a)
+    return a
+
+
+def _field_number(image, name, value):
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    a = vtkDoubleArray()
+    a.SetName(name)
+    a.InsertNextValue(value)
+    image.GetFieldData().AddArray(a)
+
+
+def _field_string(image, name, value):
+    from vtkmodules.vtkCommonCore import vtkStringArray
+    a = vtkStringArray()
+    a.SetName(name)
+    a.InsertNextValue(value)
+    image.GetFieldData().AddArray(a)
+
+
+class RefractiveScene(_Properties):
+    """Analytic scenes with known answers (the RefractiveScene proxy), as vtkImageData."""
+
+    _defaults = dict(Scene="GaussianSphere", Dimensions=[64, 64, 64],
+                     Bounds=[-1.0, 1.0, -1.0, 1.0, -1.0, 1.0], Amplitude=1e-4, Width=0.25,
+                     Radius=1.0, Center=[0.0, 0.0, 0.0], GradientA=1.0, GradientB=0.01, Mach=2.0,
+                     Density=1.2, Time=1.0, Body="None", BodyRadius=0.25,
+                     BodyCenter=[0.0, 0.0, 0.0], BodyAxis=[1.0, 0.0, 0.0])
+    _entries = dict(Scene=["Uniform", "GaussianSphere", "LuneburgLens", "LinearGradient",
+                           "NormalShock", "HeliumPlume", "BlastWave"],
+                    Body=["None", "Sphere", "Cylinder"])
+    _ranges = dict(Amplitude=(-0.9, 10.0), Width=(1e-12, np.inf), Radius=(1e-12, np.inf),
+                   Mach=(1.0, 100.0), Density=(1e-12, 1e6), Time=(1e-6, 1e6),
+                   BodyRadius=(1e-12, np.inf))
+
+    def __init__(self, **kwargs):
+        _Properties.__init__(self, 0, **kwargs)
+
+    def _grid(self):
+        for name, (lo, hi) in self._ranges.items():
+            v = float(getattr(self, name))
+            if not (lo <= v <= hi) or np.isinf(v):
+                raise EngineError("%s is %g: it must be in [%g, %s]." % (
+                    name, v, lo, "a finite value" if np.isinf(hi) else "%g" % hi))
+        dims = [int(d) for d in self.Dimensions]
+        origin, spacing = [0.0] * 3, [0.0] * 3
+        for a in range(3):
+            lo, hi = float(self.Bounds[2 * a]), float(self.Bounds[2 * a + 1])
+            if dims[a] < 1:
+                raise EngineError("Dimensions must be at least 1 along each axis; got %s." % dims)
+            if dims[a] > 1 and not hi > lo:
+                raise EngineError("Bounds along axis %d are [%g, %g]: the max must exceed the "
+                                  "min." % (a, lo, hi))
+            origin[a] = lo
+            spacing[a] = (hi - lo) / (dims[a] - 1) if dims[a] > 1 else (hi - lo if hi > lo
+                                                                       else 1.0)
+        return dims, origin, spacing
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        try:
+            dims, origin, spacing = self._grid()
+        except EngineError as e:
+            return self._fail(str(e))
+        info = outInfo.GetInformationObject(0)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
+        info.Set(vtkImageData.ORIGIN(), *origin)
+        info.Set(vtkImageData.SPACING(), *spacing)
+        return 1
+
+    def RequestData(self, request, inInfo, outInfo):
+        out = vtkImageData.GetData(outInfo)
+        try:
+            dims, origin, spacing = self._grid()
+            settings = {k: self._values[k] for k in self._defaults
+                        if k not in ("Dimensions", "Bounds")}
+            arrays = _engine.fill_scene(settings, dims, origin, spacing)
+        except EngineError as e:
+            return self._fail(str(e))
+        out.SetDimensions(*dims)
+        out.SetOrigin(*origin)
+        out.SetSpacing(*spacing)
+        n1 = _add(out, "n_minus_1", arrays["n_minus_1"])
+        out.GetPointData().SetScalars(n1)
+        _add(out, "density", arrays["density"])
+        if "mixture_fraction" in arrays:
+            _add(out, "mixture_fraction", arrays["mixture_fraction"])
+        if "solid" in arrays:
+            _add(out, "solid", arrays["solid"])
+        return 1
+
+
+class RefractiveIndex(_Properties):
+    """n - 1 from CFD fields (Passthrough, GladstoneDale), resampled onto an image as needed.
+
+    Model Automatic takes GladstoneDale on an array named like density (density, rho, Density),
+    else Passthrough on n_minus_1. InputArray names the array (empty: the automatic choice)."""
+
+    _defaults = dict(Model="Automatic", InputArray="", PassthroughHoldsN=0, Gas="Air",
+                     DensityReference=1.0, SamplingDimensions=[0, 0, 0], AutomaticDimension=128)
+    _entries = dict(Model=["Automatic", "Passthrough", "GladstoneDale"])
+
+    def __init__(self, **kwargs):
+        _Properties.__init__(self, 1, **kwargs)
+
+    def FillInputPortInformation(self, port, info):
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet")
+        return 1
+
+    def _dims(self, data):
+        dims = [int(d) for d in self.SamplingDimensions]
+        if min(dims) > 0:
+            return dims
+        return _engine.automatic_dimensions(data.GetBounds(), int(self.AutomaticDimension))
+
+    def RequestData(self, request, inInfo, outInfo):
+        data = vtkDataSet.GetData(inInfo[0])
+        out = vtkImageData.GetData(outInfo)
+        try:
+            image, valid = _image_input(data, None if isinstance(data, vtkImageData)
+                                        else self._dims(data))
+            pd = image.GetPointData()
+            names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
+            model, name = self.Model, self.InputArray
+            if model == "Automatic":
+                density = [n for n in names if n in ("density", "rho", "Density", "Rho")]
+                if name:
+                    model = "Passthrough" if name in ("n_minus_1", "n") else "GladstoneDale"
+                elif density:
+                    model, name = "GladstoneDale", density[0]
+                else:
+                    model = "Passthrough"
+            if not name:
+                name = "n_minus_1" if model == "Passthrough" else "density"
+            values = _point_array(image, name)
+            if values is None or values.ndim != 1:
+                raise EngineError("RefractiveIndex needs the one-component point array %r; the "
+                                  "input has: %s" % (name, ", ".join(names) or "none"))
+            if valid is not None:
+                if not valid.any():
+                    raise EngineError("RefractiveIndex: no point of the sampling grid lies inside "
+                                      "the input's cells.")
+                # the points outside the input's cells are filled below: not checked as flow
+                values = np.where(valid != 0, values, values[np.argmax(valid)])
+            n1, warnings = _engine.field_index(model, values,
+                                               index_is_n=bool(self.PassthroughHoldsN),
+                                               density_reference=self.DensityReference,
+                                               gas=self.Gas)
+            dims = list(image.GetDimensions())
+            if valid is not None:
+                _engine.extend_into_invalid(dims, valid, n1)
+            grad = _engine.gradient(dims, image.GetSpacing(), n1)
+        except EngineError as e:
+            return self._fail(str(e))
+        out.ShallowCopy(image)
+        a = _add(out, "n_minus_1", n1)
+        out.GetPointData().SetScalars(a)
+        _add(out, "grad_n", grad)
+        _field_string(out, "index_model", model)
+        for w in warnings:
+            import warnings as _w
+            _w.warn("RefractiveIndex: " + w)
+        return 1
+
+
+class RefractionOctree(_Properties):
+    """The paper's min-max octree as a level per point (`octree_level`) for a tolerance."""
+
+    _defaults = dict(Tolerance=0.0, MaxLevel=7)
+    AutomaticToleranceFraction = 1e-4
+
+    def __init__(self, **kwargs):
+        _Properties.__init__(self, 1, **kwargs)
+
+    def FillInputPortInformation(self, port, info):
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        return 1
+
+    def RequestData(self, request, inInfo, outInfo):
+        image = vtkImageData.GetData(inInfo[0])
+        out = vtkImageData.GetData(outInfo)
+        if not 0 <= int(self.MaxLevel) <= 10:
+            return self._fail("MaxLevel is %d: it must be in [0, 10]." % int(self.MaxLevel))
+        n1 = _point_array(image, "n_minus_1")
+        if n1 is None:
+            return self._fail("RefractionOctree needs the point array 'n_minus_1'.")
+        n1 = np.ascontiguousarray(n1, np.float32)
+        rng = float(n1.max()) - float(n1.min()) if n1.size else 0.0
+        tol = float(self.Tolerance)
+        if not tol > 0:
+            tol = self.AutomaticToleranceFraction * rng if rng > 0 else 0.0
+        dims = list(image.GetDimensions())
+        out.ShallowCopy(image)
+        fraction = 0.0
+        if min(dims) >= 2:
+            try:
+                levels, fraction = _engine.octree_levels(dims, n1, tol, int(self.MaxLevel))
+            except EngineError as e:
+                return self._fail(str(e))
+            _add(out, "octree_level", levels)
+        _field_number(out, "octree_tolerance", tol)
+        _field_number(out, "octree_max_level", int(self.MaxLevel))
+        _field_number(out, "octree_skippable_fraction", fraction)
+        return 1
+
+
+def _image_properties():
+    props = _engine.properties()
+    return ({p["name"]: p["default"] for p in props},
+            {p["name"]: p["entries"] for p in props if p["kind"] == "enum"})
+
+
+class SchlierenImage(_Properties):
+    """Traces a collimated beam through n - 1 and forms the film image (vtkImageData).
+
+    The properties are the SchlierenImage proxy's engine properties (schlieren.properties()).
+    The last trace's report is `LastReport` (field_data, notes, error); the field data is also
+    on the output, as the C++ filter writes it."""
+
+    _defaults, _entries = _image_properties()
+
+    def __init__(self, **kwargs):
+        object.__setattr__(self, "_session", _engine.Session())
+        object.__setattr__(self, "_volume_key", None)
+        object.__setattr__(self, "LastReport", None)
+        object.__setattr__(self, "LastError", "")
+        _Properties.__init__(self, 1, **kwargs)
+
+    def FillInputPortInformation(self, port, info):
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet")
+        return 1
+
+    def RequestData(self, request, inInfo, outInfo):
+        data = vtkDataSet.GetData(inInfo[0])
+        out = vtkImageData.GetData(outInfo)
+        s = self._session
+        try:
+            image, _ = _image_input(data)
+            n1 = _point_array(image, "n_minus_1")
+            if n1 is None:
+                pd = image.GetPointData()
+                raise EngineError(
+                    "SchlierenImage needs the point array 'n_minus_1' (n - 1); the input has "
+                    "the point arrays: %s. Apply RefractiveIndex first." % ", ".join(
+                        pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())))
+            if n1.ndim != 1:
+                raise EngineError("The point array 'n_minus_1' must have one component.")
+            key = (image.GetMTime(), data.GetMTime(), id(data))
+            if key != self._volume_key:
+                solid = _point_array(image, "solid")
+                levels = _point_array(image, "octree_level")
+                fd = image.GetFieldData()
+                tol = fd.GetArray("octree_tolerance")
+                maxl = fd.GetArray("octree_max_level")
+                s.set_volume(image.GetDimensions(), image.GetOrigin(), image.GetSpacing(), n1,
+                             None if solid is None else (solid != 0).astype(np.uint8),
+                             None if levels is None else np.clip(levels, 0, 10).astype(np.uint8),
+                             tol.GetValue(0) if tol is not None else -1.0,
+                             int(maxl.GetValue(0)) if maxl is not None else 7)
+                object.__setattr__(self, "_volume_key", key)
+            for name, value in self._values.items():
+                s.set(name, value)
+            report = s.trace()
+        except EngineError as e:
+            object.__setattr__(self, "LastReport", getattr(e, "report", None))
+            return self._fail(str(e))
+        object.__setattr__(self, "LastReport", report)
+        object.__setattr__(self, "LastError", "")
+        import warnings
+        for note in report["notes"]:
+            if note["warning"]:
+                warnings.warn("SchlierenImage: " + note["text"])
+        size, origin, pixel = s.film()
+        out.SetExtent(0, size[0] - 1, 0, size[1] - 1, 0, 0)
+        out.SetSpacing(pixel, pixel, 1.0)
+        out.SetOrigin(origin[0], origin[1], 0.0)
+        out.GetPointData().SetScalars(_add(out, "intensity", s.array("intensity")))
+        for name, comps in (("deflection", ("x", "y")), ("rgb", ("r", "g", "b")),
+                            ("phase", ()), ("bos_displacement", ("x", "y")),
+                            ("error_estimate", ()), ("blocked", ())):
+            a = s.array(name)
+            if a is not None:
+                arr = _add(out, name, a)
+                for i, c in enumerate(comps):
+                    arr.SetComponentName(i, c)
+        for k, v in report["field_data"].items():
+            (_field_string if isinstance(v, str) else _field_number)(out, k, v)
+        return 1
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        # the film's extent, as the C++ filter gives it: from the input's grid and the settings
+        # (a non-image input is resampled in RequestData; its film is known only then)
+        src = inInfo[0].GetInformationObject(0)
+        info = outInfo.GetInformationObject(0)
+        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING())):
+            return 1
+        e = src.Get(SDDP.WHOLE_EXTENT())
+        dims = [e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1]
+        if min(dims) < 1:
+            return self._fail("The input volume is empty: nothing to trace. If a filter upstream "
+                              "reported an error, that is the cause; fix it there.")
+        try:
+            for name, value in self._values.items():
+                self._session.set(name, value)
+            size, origin, pixel = self._session.plan_film(dims, src.Get(vtkImageData.ORIGIN()),
+                                                          src.Get(vtkImageData.SPACING()))
+        except EngineError as err:
+            return self._fail(str(err))
+        info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
+        info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
+        info.Set(vtkImageData.ORIGIN(), origin[0], origin[1], 0.0)
+        return 1
+
+    def RequestUpdateExtent(self, request, inInfo, outInfo):
+        # the tracer needs the whole volume
+        src = inInfo[0].GetInformationObject(0)
+        if src.Has(SDDP.WHOLE_EXTENT()):
+            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        return 1
+
+
+def image_to_numpy(image, name="intensity"):
+    """A point array of a 2D vtkImageData as a NumPy array of shape (ny, nx[, components])."""
+    a = _point_array(image, name)
+    nx, ny, _ = image.GetDimensions()
+    return a.reshape((ny, nx) + a.shape[1:])

@@ -1,0 +1,68 @@
+# The Python front end (Python/schlieren over libschlieren_engine) in venvs with PyPI's vtk: the
+# newest 9.x and the oldest the package claims (9.2), each against the C++ plugin's images.
+# Included by Testing/Python/CMakeLists.txt (it defines _pvpython, _plugin, _python, _env).
+#   ctest -R python.frontend
+# The venvs and the pip cache stay in <build>/python-venvs: the wheels are downloaded once per
+# build tree. Skipped (77) where PyPI cannot be reached.
+set(SCHLIEREN_FRONTEND_VTK_NEWEST "vtk==9.7.2 numpy pyvista" CACHE STRING
+  "Requirements of the newest-vtk venv of the python.frontend tests (PyVista: the example)")
+set(SCHLIEREN_FRONTEND_VTK_OLDEST "vtk==9.2.6 numpy<2" CACHE STRING
+  "Requirements of the oldest-vtk venv of the python.frontend tests")
+set(_frontend_ref "${CMAKE_CURRENT_BINARY_DIR}/Temporary/frontend_reference")
+set(_venvs "${CMAKE_BINARY_DIR}/python-venvs")
+schlieren_python_test(frontend_reference
+  COMMAND "${_pvpython}" "${_here}/frontend_reference.py" --plugin "${_plugin}"
+    --output "${_frontend_ref}"
+  PROPERTIES FIXTURES_SETUP frontend_reference)
+foreach(_which NEWEST OLDEST)
+  string(TOLOWER "${_which}" _lower)
+  schlieren_python_test(frontend_vtk_${_lower}
+    COMMAND "${_python}" "${_here}/frontend_venv.py" --venv "${_venvs}/vtk-${_lower}"
+      --requirements "${SCHLIEREN_FRONTEND_VTK_${_which}}"
+      --pythonpath "${PROJECT_SOURCE_DIR}/Python"
+      -- "${_here}/test_frontend.py" --reference "${_frontend_ref}"
+    TIMEOUT 900
+    PROPERTIES FIXTURES_REQUIRED frontend_reference SKIP_RETURN_CODE 77
+      RESOURCE_LOCK python_venvs)
+  set_property(TEST python.frontend_vtk_${_lower} APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+endforeach()
+
+# the examples, in the newest venv (PyVista from PyPI there)
+foreach(_example pyvista_jet numpy_lens)
+  schlieren_python_test(frontend_example_${_example}
+    COMMAND "${_python}" "${_here}/frontend_venv.py" --venv "${_venvs}/vtk-newest"
+      --requirements "${SCHLIEREN_FRONTEND_VTK_NEWEST}"
+      --pythonpath "${PROJECT_SOURCE_DIR}/Python"
+      -- "${PROJECT_SOURCE_DIR}/Examples/${_example}.py" --output "${_temp}/${_example}.png"
+    TIMEOUT 900
+    PROPERTIES SKIP_RETURN_CODE 77 RESOURCE_LOCK python_venvs)
+  set_property(TEST python.frontend_example_${_example} APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+endforeach()
+
+# pip wheel . -> auditwheel -> a fresh venv with no build tree: imports, demo, the same image
+schlieren_python_test(frontend_wheel
+  COMMAND "${_python}" "${_here}/test_wheel.py" --source "${PROJECT_SOURCE_DIR}"
+    --work "${_venvs}/wheel" --reference-library "$<TARGET_FILE:schlieren_engine>"
+  TIMEOUT 1500
+  PROPERTIES SKIP_RETURN_CODE 77 PROCESSORS 2)
+
+# the C interface's property table (the Python package's keywords and defaults) against
+# Plugin/Schlieren.xml: names, sizes, defaults, entries (Debian's Python with NumPy, no venv)
+schlieren_python_test(frontend_properties
+  COMMAND "${_python}" "${_here}/test_frontend_properties.py"
+    --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml")
+# the package from the source tree (not the plugin's compiled `schlieren` of the other tests)
+set_property(TEST python.frontend_properties PROPERTY ENVIRONMENT
+  "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>"
+  "PYTHONPATH=${PROJECT_SOURCE_DIR}/Python")
+
+# the ParaView Python plugin (generated SchlierenPython.py) in Debian's pvpython: property lists
+# and defaults against Schlieren.xml, images against the C++ plugin's
+if(SCHLIEREN_PYTHON_PLUGIN)
+  schlieren_python_test(python_plugin
+    COMMAND "${_pvpython}" "${_here}/test_python_plugin.py" --plugin "${SCHLIEREN_PYTHON_PLUGIN}"
+      --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml" --reference "${_frontend_ref}"
+    PROPERTIES FIXTURES_REQUIRED frontend_reference)
+endif()

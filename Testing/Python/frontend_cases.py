@@ -1,0 +1,33 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The cases on which the Python front end (Python/schlieren) must give the C++ plugin's image bit
+for bit: what both sides build and trace. Imported by frontend_reference.py (pvpython, the C++
+plugin) and test_frontend.py (a venv with PyPI's vtk and the package); no ParaView or VTK here."""
+
+# RefractiveScene properties of the scene cases (the blunt fin is RefractiveIndex's grid of the
+# PLOT3D result, written by the reference run as a .vti that both sides trace)
+SCENES = {
+    "gaussian_sphere": dict(Scene="GaussianSphere", Dimensions=[48, 48, 48],
+                            Bounds=[-1.0, 1.0, -1.0, 1.0, -1.0, 1.0], Amplitude=1e-4, Width=0.25),
+    "solid_sphere": dict(Scene="GaussianSphere", Dimensions=[48, 40, 44],
+                         Bounds=[-1.0, 1.0, -0.8, 0.9, -1.0, 1.0], Amplitude=2e-4, Width=0.4,
+                         Body="Sphere", BodyRadius=0.3, BodyCenter=[0.1, 0.0, 0.0]),
+}
+
+# SchlierenImage properties per case (a few away from the defaults, so that they are all passed)
+IMAGES = {
+    "gaussian_sphere": dict(Cutoff="KnifeEdge", KnifeAngle=30.0, Resolution=[96, 80], Passes=2,
+                            Integrator="RK4", StepSize=0.5, ViewDirection=[0.2, 0.1, -1.0]),
+    "solid_sphere": dict(Cutoff="Shadowgraph", FilmDistance=0.5, Resolution=[80, 80], Passes=2,
+                         Seed=7),
+    "bluntfin": dict(Cutoff="KnifeEdge", Resolution=[96, 64], Passes=2, ViewDirection=[0, -1, 0],
+                     ViewUp=[0, 0, 1]),
+}
+
+BACKENDS = ["CPU", "OpenCL"]
+
+# the arrays compared (those an image has)
+ARRAYS = ["intensity", "deflection", "blocked", "rgb", "phase", "bos_displacement"]
+
+# field data compared exactly (numbers and strings); timings and devices are not in the report
+FIELDS = ["cutoff_scale", "photons", "passes", "samples", "failed_rays", "missed_rays",
+          "landed_photons", "blocked_rays", "integrator", "reconstruction", "step_size", "backend"]

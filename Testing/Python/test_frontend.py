@@ -1,0 +1,129 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The Python front end (Python/schlieren: ctypes over libschlieren_engine, VTK algorithms) against
+the C++ plugin's images of frontend_cases.py, bit for bit, on the CPU backend and on OpenCL (PoCL
+here): the same engine, the same settings, the same image.
+
+    python test_frontend.py --reference DIR     (DIR: what frontend_reference.py wrote)
+
+Run in a venv with PyPI's vtk and NumPy, the package on PYTHONPATH and SCHLIEREN_ENGINE_LIBRARY
+naming the build's libschlieren_engine.so. Also checks the keyword/attribute interface, an error
+naming a bad property value, and that the library traces on the CPU with no OpenCL loader at all
+(SCHLIEREN_OPENCL_LIBRARY pointing nowhere, in a child process)."""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import frontend_cases as cases  # noqa: E402
+
+import schlieren  # noqa: E402
+import vtkmodules  # noqa: E402
+from vtkmodules.util import numpy_support  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader  # noqa: E402
+
+ap = argparse.ArgumentParser()
+ap.add_argument("--reference", required=True)
+args = ap.parse_args()
+print("vtk %s, numpy %s, engine %s" % (vtkmodules.__version__ if hasattr(vtkmodules, "__version__")
+                                       else "?", np.__version__, schlieren.version()))
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+# 1. the interface: keywords, attributes, defaults, errors
+img = schlieren.SchlierenImage(Cutoff="KnifeEdge", Resolution=[512, 512])
+check(img.Cutoff == "KnifeEdge" and img.Resolution == [512, 512] and img.Passes == 4,
+      "keywords and the proxy's defaults (Passes 4)")
+t0 = img.GetMTime()
+img.Passes = 8
+check(img.GetMTime() > t0 and img.Passes == 8, "an attribute set marks the algorithm modified")
+try:
+    img.Cutoff = "Knife"
+    check(False, "a bad enumeration is refused")
+except ValueError as e:
+    check("KnifeEdge" in str(e) and "Cutoff" in str(e), "a bad enumeration names the entries: %s" % e)
+try:
+    schlieren.SchlierenImage(Resolutoin=[4, 4])
+    check(False, "a misspelt property is refused")
+except AttributeError as e:
+    check("Resolution" in str(e), "a misspelt property lists the properties")
+bad = schlieren.SchlierenImage(StepSize=-1.0, Backend="CPU", Resolution=[8, 8])
+small = schlieren.RefractiveScene(Dimensions=[8, 8, 8])  # kept: VTK's Python algorithms must be
+bad.SetInputConnection(small.GetOutputPort())           # referenced while the pipeline runs
+bad.Update()
+check("StepSize" in bad.LastError, "an out-of-range value is the engine's error: %s" % bad.LastError)
+
+# 2. the images against the C++ plugin's
+sources = {}
+for name, props in cases.SCENES.items():
+    sources[name] = schlieren.RefractiveScene(**props)
+vti = os.path.join(args.reference, "bluntfin_index.vti")
+if os.path.exists(vti):
+    r = vtkXMLImageDataReader()
+    r.SetFileName(vti)
+    sources["bluntfin"] = r
+else:
+    print("skip blunt fin: no %s (the reference run found no data)" % vti)
+with open(os.path.join(args.reference, "opencl.txt")) as f:
+    opencl = f.read().strip()
+compared = 0
+for backend in cases.BACKENDS:
+    for name, source in sources.items():
+        tag = "%s_%s" % (name, backend)
+        ref = np.load(os.path.join(args.reference, tag + ".npz"))
+        if "array_intensity" not in ref:
+            print("skip %s: the C++ plugin made no image there (OpenCL: %s)" % (tag, opencl))
+            continue
+        image = schlieren.SchlierenImage(Backend=backend, **cases.IMAGES[name])
+        image.SetInputConnection(source.GetOutputPort())
+        image.Update()
+        out = image.GetOutput()
+        check(np.array_equal(np.array(out.GetExtent()), ref["extent"]) and
+              np.array_equal(np.array(out.GetOrigin()), ref["origin"]) and
+              np.array_equal(np.array(out.GetSpacing()), ref["spacing"]),
+              "%s: the film's extent, origin and spacing" % tag)
+        for a in cases.ARRAYS:
+            mine = out.GetPointData().GetArray(a)
+            theirs = ref["array_" + a] if "array_" + a in ref else None
+            if mine is None or theirs is None:
+                check(mine is None and theirs is None, "%s: %s on both sides or neither" % (tag, a))
+                continue
+            m = numpy_support.vtk_to_numpy(mine)
+            same = m.shape == theirs.shape and m.dtype == theirs.dtype and \
+                np.array_equal(m.view(np.uint32), theirs.view(np.uint32))
+            check(same, "%s: %s bit for bit (%s, mean %.6g)" % (tag, a, theirs.shape,
+                                                                 float(theirs.mean())))
+        fields = json.loads(str(ref["fields"]))
+        report = image.LastReport["field_data"]
+        for k, v in fields.items():
+            check(report.get(k) == v, "%s: field %s = %r (C++: %r)" % (tag, k, report.get(k), v))
+        if name == "solid_sphere":
+            check(fields["blocked_rays"] > 0, "%s: the body blocks rays (%d)" %
+                  (tag, fields["blocked_rays"]))
+        compared += 1
+check(compared >= 4, "images compared: %d" % compared)
+
+# 3. no OpenCL loader at all: Backend Auto traces on the CPU with a warning naming why
+code = ("import schlieren\n"
+        "s = schlieren.RefractiveScene(Dimensions=[16, 16, 16], Amplitude=1e-3)\n"
+        "i = schlieren.SchlierenImage(Resolution=[16, 16], Passes=1)\n"
+        "i.SetInputConnection(s.GetOutputPort()); i.Update()\n"
+        "f = i.LastReport['field_data']\n"
+        "print(f['backend'] + '|' + f['warnings'])\n")
+env = dict(os.environ, SCHLIEREN_OPENCL_LIBRARY="/nonexistent/libOpenCL.so.1")
+p = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+line = p.stdout.strip().splitlines()[-1] if p.stdout.strip() else ""
+check(p.returncode == 0 and line.startswith("CPU|") and "OpenCL loader" in line,
+      "no OpenCL loader: CPU with a warning (%s)" % (line or p.stderr[-300:]))
+
+print("%d failures" % len(failures))
+sys.exit(1 if failures else 0)
