@@ -159,6 +159,16 @@ const std::vector<Property>& Properties()
       [](const TraceSettings& s) { return s.DeviceName; } },
     SCH_NUM(Threads, "int", Threads, int),
     SCH_NUM(TraceInPieces, "bool", InPieces, bool),
+    SCH_ENUM(Source, Source, schlieren::BenchSource, "Point", "Slit", "Rectangle", "Disc", "Gaussian"),
+    Property{ "SourceSize", "double", 2, {},
+      [](TraceSettings& s, const std::vector<double>& v) { std::copy(v.begin(), v.end(), s.SourceSize); },
+      [](const TraceSettings& s) { return std::vector<double>(s.SourceSize, s.SourceSize + 2); },
+      nullptr, nullptr },
+    SCH_NUM(CollimatorFocalLength, "double", CollimatorFocalLength, double),
+    SCH_NUM(SchlierenFocalLength, "double", SchlierenFocalLength, double),
+    SCH_NUM(KnifeCut, "double", KnifeCut, double),
+    SCH_NUM(BitDepth, "int", BitDepth, int),
+    SCH_NUM(SaturationWarning, "double", SaturationWarning, double),
   };
   return properties;
 }
@@ -310,6 +320,16 @@ void MakeReport(schlieren_session* s, const std::string& error)
     // the names and order of vtkSchlierenImage's field data
     const schlieren::TraceResult& result = image.Result;
     num("cutoff_scale", result.CutoffScaleUsed);
+    if (!result.BenchModel.empty())
+    {
+      num("bench_sensitivity", result.BenchSensitivity);
+      o << ", " << Json("bench_range") << ": [" << Number(result.BenchRange[0]) << ", "
+        << Number(result.BenchRange[1]) << "]";
+      num("bench_resolvable_deflection", result.BenchResolvable);
+      num("bench_saturated_share", result.BenchSaturated);
+      num("bench_dark_share", result.BenchDark);
+      str("bench_model", result.BenchModel);
+    }
     str("warnings", image.Warnings);
     str("backend", image.BackendUsed);
     str("device", image.DeviceName);
