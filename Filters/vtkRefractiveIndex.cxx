@@ -428,7 +428,7 @@ int vtkRefractiveIndex::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkDataObject* input = vtkDataObject::GetData(inInfo);
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-  schlieren::ControllerParallel parallel;
+  schlieren::ControllerParallel parallel("RefractiveIndex");
   if (this->Symmetry != NO_SYMMETRY &&
     (vtkDataSet::SafeDownCast(input) || vtkCompositeDataSet::SafeDownCast(input)))
   {
@@ -960,7 +960,7 @@ struct vtkRefractiveIndex::Work
 int vtkRefractiveIndex::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  schlieren::ControllerParallel parallel;
+  schlieren::ControllerParallel parallel("RefractiveIndex");
   Work w(parallel);
   w.InputVector = inputVector;
   w.InInfo = inputVector[0]->GetInformationObject(0);

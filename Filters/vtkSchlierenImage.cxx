@@ -496,7 +496,7 @@ int vtkSchlierenImage::RequestData(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector->GetInformationObject(0));
   vtkImageData* input = vtkImageData::GetData(inInfo);
-  schlieren::ControllerParallel parallel;
+  schlieren::ControllerParallel parallel("SchlierenImage");
   schlieren::SessionImage image;
   std::string error;
   // The progress text: once some tracing is done (the engine's tracing runs from 0.05 to 0.95 of
