@@ -414,6 +414,12 @@ int vtkSchlierenImage::RequestInformation(
   // extent (copied here by the executive) as the film's.
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+  // the XML domain's range (the engine takes any finite angle): outside it, an error, not a wrap
+  if (!(this->KnifeAngle >= -180 && this->KnifeAngle <= 180))
+  {
+    vtkErrorMacro(<< "KnifeAngle is " << this->KnifeAngle << ": it must be in [-180, 180] degrees.");
+    return 0;
+  }
   if (!vtkImageData::SafeDownCast(input))
   {
     vtkErrorMacro(<< NotAnImage(input));

@@ -238,7 +238,7 @@ def random_case(rng, k):
         Integrator=pick("Euler", "Midpoint", "RK4", "Straight", "Auto"),
         Cutoff=pick("KnifeEdge", "Circular", "ComplementCircular", "ColorFilter", "Shadowgraph",
                     "Interferometry", "BOS"),
-        KnifeAngle=rng.uniform(-360, 360),
+        KnifeAngle=rng.uniform(-180, 180),
         CutoffScale=pick(0.0, lograng(0, 5)),
         FilmDistance=pick(0.0, lograng(-2, 4), lograng(4, 8)),
         Wavelength=pick(632.8, rng.uniform(100, 1e5)),
