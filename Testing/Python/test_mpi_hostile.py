@@ -25,6 +25,7 @@ each says one error (no second one from a filter downstream).
 """
 import os
 import sys
+import tempfile
 import time
 
 # the guard's wait, read on the plugin's first collective (before that: no collective yet)
@@ -106,8 +107,7 @@ T.check(rank != 0 or points > 0 or errors_of(out.text),
         "(%d points; %s)" % (rank, points, "; ".join(m[:120] for _, m in errors_of(out.text))))
 
 # 3. An upstream that fails on some ranks only: a reader of a file that is missing there
-tmp = os.environ.get("SCHLIEREN_TEST_TMP") or os.path.join(
-    os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "Testing", "Temporary")
+tmp = st.argument("--tmp") or tempfile.gettempdir()  # this rank's files, rank in their names
 os.makedirs(tmp, exist_ok=True)
 good = os.path.join(tmp, "mpi_hostile_rank%d.vti" % rank)
 
