@@ -469,6 +469,8 @@ std::string PropertyProblem(vtkRefractiveIndex* self)
         msg << "a finite value]";
       else
         msg << r.Max << "]";
+      if (r.Name.find("Reference") != std::string::npos)
+        msg << " (a reference value is positive: 1 for dimensional data)";
       msg << ".";
       return msg.str();
     }
