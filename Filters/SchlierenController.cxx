@@ -2,12 +2,24 @@
 #include "SchlierenController.h"
 
 #include "SchlierenEngine.h"
+#include "SchlierenOptions.h"
 
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
+#if VTK_MODULE_ENABLE_VTK_ParallelMPI
+#include "vtkMPICommunicator.h"
+#endif
 
 #include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <list>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <numeric>
+#include <sstream>
+#include <thread>
 
 namespace schlieren
 {
@@ -32,10 +44,302 @@ ControllerParallel::ControllerParallel(vtkMultiProcessController* controller)
     this->Controller = nullptr;
 }
 
+ControllerParallel::ControllerParallel(const char* who, vtkMultiProcessController* controller)
+  : ControllerParallel(controller)
+{
+  this->Who = who;
+}
+
+// ------------------------------------------------------------------ the guard
+//
+// Before each collective, every rank tells rank 0 (the coordinator) that it is there (Arrived)
+// and waits for its answer: Go once all ranks are there, Abort (with the error to report) where
+// some are not within the timeout. Only point-to-point messages that never block are used, so
+// that a rank that never comes leaves no collective half done: nothing but these small messages
+// is outstanding, and each carries the sender's own count of arrivals (its epoch) so that an
+// answer to an earlier, failed arrival is told from the answer to this one. A rank that hears
+// nothing gives up (Withdrawn) and then waits a little more for the coordinator's last word; the
+// coordinator drops an arrival withdrawn before it was answered.
+#if VTK_MODULE_ENABLE_VTK_ParallelMPI
+namespace
+{
+const int GuardTag = 51208;
+/** The coordinator's answer to a withdrawal. */
+const char* const WithdrawnReply = "withdrawn";
+
+enum Kind : std::int64_t
+{
+  Arrived = 1,
+  Withdrawn = 2,
+  Go = 3,
+  Abort = 4
+};
+
+/** One guard message: fixed size, the step's name or the error to report in Text. */
+struct Message
+{
+  std::int64_t Type = 0;
+  std::int64_t Epoch = 0;
+  char Text[496] = {};
+
+  void SetText(const std::string& s)
+  {
+    const std::size_t n = std::min(s.size(), sizeof(this->Text) - 1);
+    std::copy(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(n), this->Text);
+    this->Text[n] = '\0';
+  }
+};
+
+/** A send in flight, kept until MPI is done with its buffer. */
+struct Sending
+{
+  Message Buffer;
+  vtkMPICommunicator::Request Request;
+};
+
+/** What one process knows of the guard on one communicator. */
+struct GuardState
+{
+  std::int64_t Epoch = 0;                  // this rank's arrivals so far
+  std::vector<std::int64_t> Live;          // coordinator: each rank's unanswered arrival, or 0
+  std::vector<std::string> LiveStep;       // ... and the step it arrived at
+  std::list<std::unique_ptr<Sending>> Out; // sends in flight
+};
+
+std::mutex GuardMutex;
+std::map<vtkMPICommunicator*, GuardState> Guards;
+
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/** A pause between polls: short at first (the other ranks are usually there), then longer. */
+void Pause(int& polls)
+{
+  ++polls;
+  if (polls < 200)
+    std::this_thread::yield();
+  else
+    std::this_thread::sleep_for(std::chrono::microseconds(polls < 2000 ? 100 : 2000));
+}
+
+std::string Seconds(double s)
+{
+  std::ostringstream o;
+  o << s << " s";
+  return o.str();
+}
+
+std::string RankList(const std::vector<int>& ranks)
+{
+  std::string s = ranks.size() == 1 ? "rank " : "ranks ";
+  for (std::size_t i = 0; i < ranks.size(); ++i)
+    s += (i ? ", " : "") + std::to_string(ranks[i]);
+  return s;
+}
+
+class Guard
+{
+public:
+  Guard(vtkMPICommunicator* comm, GuardState& state, int me, int ranks)
+    : Comm(comm)
+    , State(state)
+    , Me(me)
+    , Ranks(ranks)
+  {
+    if (this->State.Live.size() != static_cast<std::size_t>(ranks))
+    {
+      this->State.Live.assign(ranks, 0);
+      this->State.LiveStep.assign(ranks, std::string());
+    }
+    // forget the sends MPI is done with
+    for (auto it = this->State.Out.begin(); it != this->State.Out.end();)
+      it = (*it)->Request.Test() ? this->State.Out.erase(it) : std::next(it);
+  }
+
+  void Send(int to, Kind type, std::int64_t epoch, const std::string& text)
+  {
+    auto s = std::make_unique<Sending>();
+    s->Buffer.Type = type;
+    s->Buffer.Epoch = epoch;
+    s->Buffer.SetText(text);
+    if (!this->Comm->NoBlockSend(reinterpret_cast<const char*>(&s->Buffer),
+          static_cast<int>(sizeof(Message)), to, GuardTag, s->Request))
+      throw schlieren::Error("MPI: the collective guard could not send to rank " +
+        std::to_string(to));
+    this->State.Out.push_back(std::move(s));
+  }
+
+  /** The next guard message from `from`, where one has come. */
+  bool Poll(int from, Message& m)
+  {
+    int flag = 0, source = 0;
+    if (!this->Comm->Iprobe(from, GuardTag, &flag, &source) || !flag)
+      return false;
+    if (!this->Comm->Receive(reinterpret_cast<char*>(&m), static_cast<vtkIdType>(sizeof(Message)),
+          from, GuardTag))
+      throw schlieren::Error("MPI: the collective guard could not receive from rank " +
+        std::to_string(from));
+    m.Text[sizeof(m.Text) - 1] = '\0';
+    return true;
+  }
+
+  /** A rank but the coordinator: arrive, and wait for Go (return) or Abort (throw). */
+  void Follow(const std::string& step, double timeout)
+  {
+    const std::int64_t epoch = ++this->State.Epoch;
+    this->Send(0, Arrived, epoch, step);
+    // the coordinator answers within `timeout` of its own arrival; a rank that hears nothing a
+    // while after that gives up, then waits as long again for the coordinator's last word
+    const double grace = std::min(10.0, std::max(1.0, 0.25 * timeout));
+    const Clock::time_point t0 = Clock::now();
+    bool withdrawn = false;
+    int polls = 0;
+    auto gaveUp = [&] {
+      return schlieren::Error("rank 0 did not reach " + step + " within " + Seconds(timeout) +
+        ": its upstream probably failed (see its error). SCHLIEREN_MPI_TIMEOUT sets the wait.");
+    };
+    for (;;)
+    {
+      Message m;
+      while (this->Poll(0, m))
+      {
+        if (m.Epoch != epoch)
+          continue; // the answer to an earlier arrival, given up
+        if (m.Type == Go)
+          return;
+        if (m.Type == Abort)
+        {
+          if (std::string(m.Text) == WithdrawnReply)
+            throw gaveUp(); // rank 0 was elsewhere when it read our withdrawal
+          throw schlieren::Error(m.Text);
+        }
+      }
+      const double waited = Since(t0);
+      if (!withdrawn && waited > timeout + grace)
+      {
+        this->Send(0, Withdrawn, epoch, step);
+        withdrawn = true;
+      }
+      else if (withdrawn && waited > timeout + 2 * grace)
+        throw gaveUp();
+      Pause(polls);
+    }
+  }
+
+  /** Rank 0: gather the arrivals; Go to all once every rank is there at the same step, else
+   * Abort (and throw) after `timeout`. */
+  void Coordinate(const std::string& step, double timeout)
+  {
+    ++this->State.Epoch;
+    std::vector<std::int64_t>& live = this->State.Live;
+    std::vector<std::string>& at = this->State.LiveStep;
+    const Clock::time_point t0 = Clock::now();
+    int polls = 0;
+    bool first = true;
+    auto abortAll = [&](const std::string& why) {
+      for (int r = 1; r < this->Ranks; ++r)
+        if (live[r])
+        {
+          this->Send(r, Abort, live[r], why);
+          live[r] = 0;
+        }
+      throw schlieren::Error(why);
+    };
+    for (;;)
+    {
+      for (int r = 1; r < this->Ranks; ++r)
+      {
+        Message m;
+        while (this->Poll(r, m))
+        {
+          if (m.Type == Arrived)
+          {
+            live[r] = m.Epoch;
+            at[r] = m.Text;
+          }
+          else if (m.Type == Withdrawn)
+          {
+            this->Send(r, Abort, m.Epoch, WithdrawnReply);
+            if (live[r] == m.Epoch)
+            {
+              live[r] = 0;
+              // given up while this round waited: it will not come back to this step
+              if (!first)
+                abortAll("rank " + std::to_string(r) + " stopped waiting at " + m.Text +
+                  " before rank 0 reached " + step + ": the ranks are out of step (an upstream "
+                  "failure or a rank slower than SCHLIEREN_MPI_TIMEOUT = " + Seconds(timeout) +
+                  ")");
+            }
+          }
+        }
+      }
+      first = false;
+      std::vector<int> missing;
+      for (int r = 1; r < this->Ranks; ++r)
+        if (!live[r])
+          missing.push_back(r);
+      if (missing.empty())
+      {
+        for (int r = 1; r < this->Ranks; ++r)
+          if (at[r] != step)
+            abortAll("the ranks are at different collectives: rank 0 at " + step + ", rank " +
+              std::to_string(r) + " at " + at[r] +
+              " (an upstream failure on some ranks put them out of step)");
+        for (int r = 1; r < this->Ranks; ++r)
+        {
+          this->Send(r, Go, live[r], step);
+          live[r] = 0;
+        }
+        return;
+      }
+      if (Since(t0) > timeout)
+        abortAll(RankList(missing) + " did not reach " + step + " within " + Seconds(timeout) +
+          (missing.size() == 1 ? ": its upstream probably failed (see its error)"
+                               : ": their upstream probably failed (see their errors)") +
+          ". SCHLIEREN_MPI_TIMEOUT sets the wait.");
+      Pause(polls);
+    }
+  }
+
+private:
+  vtkMPICommunicator* Comm;
+  GuardState& State;
+  int Me, Ranks;
+};
+} // namespace
+#endif
+
+void ControllerParallel::Arrive(const char* what)
+{
+  const int number = ++this->Collectives;
+#if VTK_MODULE_ENABLE_VTK_ParallelMPI
+  auto* comm = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator());
+  if (!comm)
+    return; // not MPI (a socket or threaded controller): no guard
+  const std::string step =
+    this->Who + "'s collective " + std::to_string(number) + " (" + what + ")";
+  const double timeout = GetRuntimeOptions().MpiTimeout;
+  std::lock_guard<std::mutex> lock(GuardMutex);
+  Guard guard(comm, Guards[comm], this->Me, this->Ranks);
+  if (this->Me == 0)
+    guard.Coordinate(step, timeout);
+  else
+    guard.Follow(step, timeout);
+#else
+  (void)what;
+  (void)number;
+#endif
+}
+
 void ControllerParallel::Reduce(double* values, std::size_t count, ReduceOp op)
 {
   if (!this->Controller || count == 0)
     return;
+  this->Arrive("an all-reduce");
   std::vector<double> mine(values, values + count);
   const int vop = op == ReduceOp::Sum ? vtkCommunicator::SUM_OP
                                       : (op == ReduceOp::Min ? vtkCommunicator::MIN_OP
@@ -48,6 +352,7 @@ void ControllerParallel::Broadcast(std::vector<char>& bytes, int root)
 {
   if (!this->Controller)
     return;
+  this->Arrive("a broadcast");
   vtkIdType length = static_cast<vtkIdType>(bytes.size());
   this->Controller->Broadcast(&length, 1, root);
   bytes.resize(static_cast<std::size_t>(length));
@@ -59,6 +364,7 @@ std::vector<std::vector<char>> ControllerParallel::AllGather(const std::vector<c
 {
   if (!this->Controller)
     return { mine };
+  this->Arrive("an all-gather");
   vtkIdType length = static_cast<vtkIdType>(mine.size());
   std::vector<vtkIdType> lengths(this->Ranks), offsets(this->Ranks, 0);
   this->Controller->AllGather(&length, lengths.data(), 1);
@@ -83,6 +389,7 @@ std::vector<std::vector<char>> ControllerParallel::Exchange(
     throw Error("Parallel::Exchange: one message per rank expected");
   if (!this->Controller)
     return outgoing;
+  this->Arrive("an exchange");
   const int n = this->Ranks;
   // every rank learns every message's length, so that no empty message is sent
   std::vector<vtkIdType> mine(n), lengths(static_cast<std::size_t>(n) * n);

@@ -133,7 +133,7 @@ int vtkRefractionOctree::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  schlieren::ControllerParallel parallel;
+  schlieren::ControllerParallel parallel("RefractionOctree");
 
   // 1. This rank's piece of n - 1; every rank learns whether one failed, so that no rank waits
   // for another that has given up.

@@ -420,6 +420,65 @@ bool vtkRefractiveIndex::SamplingGrid(schlieren::Parallel& parallel, vtkInformat
   return true;
 }
 
+namespace
+{
+/**
+ * The numeric properties outside their ranges, those of their domains in Schlieren.xml: an error
+ * naming the property, the value and the range (empty where all are in range). Checked whatever
+ * the model, so that a value is never clamped or taken silently.
+ */
+std::string PropertyProblem(vtkRefractiveIndex* self)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Range
+  {
+    std::string Name;
+    double Value, Min, Max;
+  };
+  std::vector<Range> ranges = { { "GladstoneDaleConstant", self->GetGladstoneDaleConstant(), 0, 1 },
+    { "MolarMass", self->GetMolarMass(), 0, 10 },
+    { "NumberOfSpecies", double(self->GetNumberOfSpecies()), 0, 4 },
+    { "BalanceGladstoneDale", self->GetBalanceGladstoneDale(), 0, inf },
+    { "BalanceMolarMass", self->GetBalanceMolarMass(), 0, inf },
+    { "DensityReference", self->GetDensityReference(), 1e-12, inf },
+    { "TemperatureReference", self->GetTemperatureReference(), 1e-12, inf },
+    { "PressureReference", self->GetPressureReference(), 1e-12, inf },
+    { "Humidity", self->GetHumidity(), 0, 1 }, { "CO2", self->GetCO2(), 0, 1e6 },
+    { "Wavelength", self->GetWavelength(), 100, 20000 }, { "Span", self->GetSpan(), 0, inf },
+    { "AutomaticDimension", double(self->GetAutomaticDimension()), 2, 4096 } };
+  for (int i = 0; i < 4; ++i)
+  {
+    const std::string at = "[" + std::to_string(i) + "]";
+    ranges.push_back({ "SpeciesGases" + at, double(self->GetSpeciesGases()[i]), -1, 9 });
+    ranges.push_back({ "SpeciesGladstoneDale" + at, self->GetSpeciesGladstoneDale()[i], 0, inf });
+    ranges.push_back({ "SpeciesMolarMass" + at, self->GetSpeciesMolarMass()[i], 0, inf });
+  }
+  for (int i = 0; i < 3; ++i)
+    ranges.push_back({ "SamplingDimensions[" + std::to_string(i) + "]",
+      double(self->GetSamplingDimensions()[i]), 0, 65536 });
+  for (int i = 0; i < 6; ++i)
+    ranges.push_back(
+      { "BodyWallFaces[" + std::to_string(i) + "]", double(self->GetBodyWallFaces()[i]), 0, 1 });
+  for (const Range& r : ranges)
+  {
+    if (!(r.Value >= r.Min && r.Value <= r.Max) || std::isinf(r.Value))
+    {
+      std::ostringstream msg;
+      msg << r.Name << " is " << r.Value << ": it must be in [" << r.Min << ", ";
+      if (std::isinf(r.Max))
+        msg << "a finite value]";
+      else
+        msg << r.Max << "]";
+      if (r.Name.find("Reference") != std::string::npos)
+        msg << " (a reference value is positive: 1 for dimensional data)";
+      msg << ".";
+      return msg.str();
+    }
+  }
+  return std::string();
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 int vtkRefractiveIndex::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -428,7 +487,13 @@ int vtkRefractiveIndex::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkDataObject* input = vtkDataObject::GetData(inInfo);
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-  schlieren::ControllerParallel parallel;
+  const std::string badValue = PropertyProblem(this);
+  if (!badValue.empty())
+  {
+    vtkErrorMacro(<< badValue);
+    return 0;
+  }
+  schlieren::ControllerParallel parallel("RefractiveIndex");
   if (this->Symmetry != NO_SYMMETRY &&
     (vtkDataSet::SafeDownCast(input) || vtkCompositeDataSet::SafeDownCast(input)))
   {
@@ -960,7 +1025,13 @@ struct vtkRefractiveIndex::Work
 int vtkRefractiveIndex::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  schlieren::ControllerParallel parallel;
+  const std::string badValue = PropertyProblem(this);
+  if (!badValue.empty())
+  {
+    vtkErrorMacro(<< badValue);
+    return 0;
+  }
+  schlieren::ControllerParallel parallel("RefractiveIndex");
   Work w(parallel);
   w.InputVector = inputVector;
   w.InInfo = inputVector[0]->GetInformationObject(0);

@@ -292,15 +292,15 @@ public:
   ///@{
   /**
    * The typed Gladstone-Dale constant K, m^3/kg (1 cm^3/g = 1e-3 m^3/kg), used with CUSTOM_GAS.
-   * Default 2.256e-4 (air at 632.8 nm). Clamped to [0, 1]; 0 is reported as an error.
+   * Default 2.256e-4 (air at 632.8 nm). Outside [0, 1] an error naming it.
    */
-  vtkSetClampMacro(GladstoneDaleConstant, double, 0.0, 1.0);
+  vtkSetMacro(GladstoneDaleConstant, double);
   vtkGetMacro(GladstoneDaleConstant, double);
   ///@}
 
   ///@{
   /** The typed molar mass, kg/mol, used with CUSTOM_GAS. Default 0.0289641 (air). */
-  vtkSetClampMacro(MolarMass, double, 0.0, 10.0);
+  vtkSetMacro(MolarMass, double);
   vtkGetMacro(MolarMass, double);
   ///@}
 
@@ -329,7 +329,7 @@ public:
 
   ///@{
   /** How many species mass-fraction arrays (indices 4 to 3 + NumberOfSpecies) are read: 0-4. Default 1. */
-  vtkSetClampMacro(NumberOfSpecies, int, 0, 4);
+  vtkSetMacro(NumberOfSpecies, int);
   vtkGetMacro(NumberOfSpecies, int);
   ///@}
 
@@ -397,7 +397,7 @@ public:
 
   ///@{
   /** Ciddor: the humidity where no array is read, a fraction in [0, 1]. Default 0 (dry air). */
-  vtkSetClampMacro(Humidity, double, 0.0, 1.0);
+  vtkSetMacro(Humidity, double);
   vtkGetMacro(Humidity, double);
   /** Ciddor: read the humidity from the array of index 8. Default off. */
   vtkSetMacro(HumidityFromArray, bool);
@@ -410,7 +410,7 @@ public:
 
   ///@{
   /** Ciddor: CO2 in umol/mol where no array is read. Default 450 (Ciddor's standard air). */
-  vtkSetClampMacro(CO2, double, 0.0, 1e6);
+  vtkSetMacro(CO2, double);
   vtkGetMacro(CO2, double);
   /** Ciddor: read CO2 (umol/mol) from the array of index 9. Default off. */
   vtkSetMacro(CO2FromArray, bool);
@@ -439,7 +439,7 @@ public:
 
   ///@{
   /** Resampling: points along the longest side when SamplingDimensions is automatic. Default 128. */
-  vtkSetClampMacro(AutomaticDimension, int, 2, 4096);
+  vtkSetMacro(AutomaticDimension, int);
   vtkGetMacro(AutomaticDimension, int);
   ///@}
 

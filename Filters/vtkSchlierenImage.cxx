@@ -437,6 +437,12 @@ int vtkSchlierenImage::RequestInformation(
   // extent (copied here by the executive) as the film's.
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+  // the XML domain's range (the engine takes any finite angle): outside it, an error, not a wrap
+  if (!(this->KnifeAngle >= -180 && this->KnifeAngle <= 180))
+  {
+    vtkErrorMacro(<< "KnifeAngle is " << this->KnifeAngle << ": it must be in [-180, 180] degrees.");
+    return 0;
+  }
   if (!vtkImageData::SafeDownCast(input))
   {
     vtkErrorMacro(<< NotAnImage(input));
@@ -519,7 +525,7 @@ int vtkSchlierenImage::RequestData(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector->GetInformationObject(0));
   vtkImageData* input = vtkImageData::GetData(inInfo);
-  schlieren::ControllerParallel parallel;
+  schlieren::ControllerParallel parallel("SchlierenImage");
   schlieren::SessionImage image;
   std::string error;
   // The progress text: once some tracing is done (the engine's tracing runs from 0.05 to 0.95 of

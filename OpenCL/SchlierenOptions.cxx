@@ -42,6 +42,16 @@ std::uint64_t Unsigned(const char* name, const char* v, std::uint64_t max)
   return n;
 }
 
+double Seconds(const char* name, const char* v)
+{
+  char* end = nullptr;
+  errno = 0;
+  const double s = std::strtod(v, &end);
+  if (errno != 0 || end == v || *end != '\0' || !(s > 0.0) || !(s <= 1e7))
+    Bad(name, v, "a number of seconds in (0, 1e7]");
+  return s;
+}
+
 bool Flag(const char* name, const char* v)
 {
   const std::string s(v);
@@ -72,6 +82,8 @@ RuntimeOptions RuntimeOptions::FromEnvironment()
     o.Lockstep = Flag("SCHLIEREN_CL_LOCKSTEP", v) ? 1 : 0;
   if (const char* v = Value("SCHLIEREN_MEMORY_LIMIT"))
     o.MemoryLimit = Unsigned("SCHLIEREN_MEMORY_LIMIT", v, ~std::uint64_t(0));
+  if (const char* v = Value("SCHLIEREN_MPI_TIMEOUT"))
+    o.MpiTimeout = Seconds("SCHLIEREN_MPI_TIMEOUT", v);
   return o;
 }
 

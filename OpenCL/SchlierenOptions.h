@@ -42,6 +42,10 @@ struct RuntimeOptions
   /// SCHLIEREN_MEMORY_LIMIT: host bytes the engine assumes it may use at most; 0: what the
   /// machine has available
   std::uint64_t MemoryLimit = 0;
+  /// SCHLIEREN_MPI_TIMEOUT: seconds a rank waits at one of the filters' collectives for the other
+  /// ranks to reach it before every rank there stops with an error naming the missing ranks (a
+  /// rank whose upstream failed never comes); more than 0
+  double MpiTimeout = 120.0;
 
   /** The options as the environment sets them (unset variables: the defaults above). Throws
    * schlieren::Error naming the variable where a value cannot be read. */

@@ -66,6 +66,13 @@ int main()
   ExpectError("SCHLIEREN_CL_LOCKSTEP=yes", [] { RuntimeOptions::FromEnvironment(); },
     { "SCHLIEREN_CL_LOCKSTEP", "0 or 1" });
   unsetenv("SCHLIEREN_CL_LOCKSTEP");
+  CHECK(RuntimeOptions::FromEnvironment().MpiTimeout == 120.0, "SCHLIEREN_MPI_TIMEOUT: 120 s unset");
+  setenv("SCHLIEREN_MPI_TIMEOUT", "2.5", 1);
+  CHECK(RuntimeOptions::FromEnvironment().MpiTimeout == 2.5, "SCHLIEREN_MPI_TIMEOUT=2.5 is read");
+  setenv("SCHLIEREN_MPI_TIMEOUT", "0", 1);
+  ExpectError("SCHLIEREN_MPI_TIMEOUT=0", [] { RuntimeOptions::FromEnvironment(); },
+    { "SCHLIEREN_MPI_TIMEOUT", "'0'", "seconds in (0, 1e7]" });
+  unsetenv("SCHLIEREN_MPI_TIMEOUT");
 
   const bool haveCL = schtest::HaveOpenCL();
   SceneParameters p;

@@ -8,7 +8,12 @@ Run: pvpython fuzz_worker.py --plugin <Schlieren.so> --cases cases.json
 A case is a dict: `source` (a volume made here with numpy: dims, spacing, origin, field; or a
 RefractiveScene; or an unstructured grid for RefractiveIndex), optional `index` (RefractiveIndex
 properties) and `octree` (RefractionOctree properties), `image` (SchlierenImage properties;
-absent: the last filter's output is the result). Outcomes:
+absent: the last filter's output is the result). A source may carry a `mask` (a
+point array 'solid' for RefractiveIndex's SolidArray: a ball, all or none) or be `holes` (an
+unstructured grid with the cells in a box removed, for BodyFromGrid); `time` updates at that
+time (BlastWave's steps); `repeat` is a list of property changes to the last filter, each
+updated and classified in turn on the same pipeline (the first failure is the case's outcome).
+Outcomes:
   image    an image, no warning
   warned   an image with a warning (output window or field data 'warnings')
   error    no output and an error message that says more than "returned failure"
@@ -79,6 +84,32 @@ def image_source(src):
         img.GetCellData().AddArray(c)
     else:
         img.GetPointData().AddArray(a)
+    mask = src.get("mask")
+    if mask:
+        nx, ny, nz = src["dims"]
+        z, y, x = np.meshgrid(np.linspace(-1, 1, max(nz, 1)), np.linspace(-1, 1, max(ny, 1)),
+                              np.linspace(-1, 1, max(nx, 1)), indexing="ij")
+        if mask == "all":
+            solid = np.ones_like(x)
+        elif mask == "none":
+            solid = np.zeros_like(x)
+        else:  # a ball: [cx, cy, cz, r] in the volume's [-1, 1] coordinates
+            cx, cy, cz, r = mask
+            solid = ((x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2 < r * r).astype(float)
+        m = numpy_to_vtk(np.ascontiguousarray(solid.astype(np.uint8)).ravel(), deep=1)
+        m.SetName("solid")
+        img.GetPointData().AddArray(m)
+    if src.get("holes"):
+        # a cell array 'keep': 0 in the box [x0, x1, y0, y1, z0, z1] (of [-1, 1]), else 1
+        nx, ny, nz = src["dims"]
+        b = src["holes"]
+        cz, cy, cx = np.meshgrid(*(np.linspace(-1, 1, max(n - 1, 1)) for n in (nz, ny, nx)),
+                                 indexing="ij")
+        inside = ((cx > b[0]) & (cx < b[1]) & (cy > b[2]) & (cy < b[3]) & (cz > b[4]) &
+                  (cz < b[5]))
+        k = numpy_to_vtk(np.ascontiguousarray((~inside).astype(np.float32)).ravel(), deep=1)
+        k.SetName("keep")
+        img.GetCellData().AddArray(k)
     tp = TrivialProducer()
     tp.GetClientSideObject().SetOutput(img)
     return tp, img
@@ -89,9 +120,13 @@ def build(case):
     src = case["source"]
     keep = []
     made = []
-    if src["kind"] == "image":
-        p, img = image_source(src)
+    if src["kind"] in ("image", "holes"):
+        p, img = image_source(dict(src, holes=src.get("box")) if src["kind"] == "holes" else src)
         keep.append(img)
+        if src["kind"] == "holes":
+            made.append(p)
+            p = Threshold(Input=p, Scalars=["CELLS", "keep"], LowerThreshold=0.5,
+                          UpperThreshold=2.0)
     elif src["kind"] == "scene":
         p = RefractiveScene(**src["properties"])
     elif src["kind"] == "unstructured":
@@ -195,6 +230,17 @@ def classify(case, data, text, pyerror):
     return r
 
 
+def update(proxy, case):
+    """The proxy's output: fetched, or at the case's time."""
+    if "time" in case:
+        proxy.UpdatePipeline(case["time"])
+        out = proxy.GetClientSideObject().GetOutputDataObject(0)
+        copy = out.NewInstance()
+        copy.ShallowCopy(out)
+        return copy
+    return sm.Fetch(proxy)
+
+
 def run(case):
     pyerror = None
     data = None
@@ -202,10 +248,25 @@ def run(case):
     with st.CapturedOutput() as out:
         try:
             proxy, made, keep = build(case)
-            data = sm.Fetch(proxy)
+            data = update(proxy, case)
         except Exception as e:  # reported, never swallowed
             pyerror = "%s: %s" % (type(e).__name__, e)
     r = classify(case, data, out.text, pyerror)
+    # the same pipeline updated again with changed properties: each update classified
+    for i, change in enumerate(case.get("repeat", [])):
+        if r["outcome"].startswith("FAIL") or not made:
+            break
+        pyerror, data = None, None
+        with st.CapturedOutput() as out:
+            try:
+                for k, v in change.items():
+                    setattr(made[-1], k, v)
+                data = update(made[-1], case)
+            except Exception as e:
+                pyerror = "%s: %s" % (type(e).__name__, e)
+        r2 = classify(dict(case, expect=None), data, out.text, pyerror)
+        r2["detail"] = "update %d (%s): %s" % (i + 2, json.dumps(change), r2.get("detail", ""))
+        r = r2 if r2["outcome"].startswith("FAIL") or i == len(case["repeat"]) - 1 else r
     for p in reversed(made):
         Delete(p)
     return r

@@ -20,7 +20,10 @@ a 3D volume under Symmetry Planar and Axisymmetric (errors naming what was expec
 overlapping closed shells on Body (an image), a body over the whole beam (warned: it blocked the
 rays). The random part also draws Threads (in range and out), DeviceName, Reconstruction, closed
 spheres on RefractiveIndex's Body (overlapping or not) and Symmetry with its axis, Span and
-SamplingDimensions.
+SamplingDimensions; SolidArray masks (a ball, all, none) and grid holes for BodyFromGrid,
+BlastWave's time steps (at, between, before and after them) and repeated updates of one pipeline
+with changed properties; five fixed cases cover them too. The MPI part is python.fuzz_mpi
+(fuzz_mpi.py).
 
 The random cases are sized to at most about 2e8 ray samples (a second or two): long but
 legitimate traces are the benchmark's business; abort is tested by test_time_abort.py.
@@ -195,6 +198,28 @@ def fixed_cases():
         dict(source=dict(kind="scene", properties=dict(Dimensions=[24] * 3, Body="Sphere",
                                                        BodyRadius=2.0)), image=img()),
         dict(outcome=["warned"], phrases=["A solid body blocked"], not_phrases=["off the film"]))
+    # bodies from masks and grid holes, time steps, one pipeline updated again
+    add("a SolidArray mask over the whole volume",
+        dict(source=dict(GAUSS, mask="all"), index=dict(Model="Passthrough", SolidArray="solid"),
+             image=img()),
+        dict(outcome=["warned"], phrases=["A solid body blocked"]))
+    add("a SolidArray ball in the middle",
+        dict(source=dict(GAUSS, mask=[0, 0, 0, 0.4]),
+             index=dict(Model="Passthrough", SolidArray="solid"), image=img()),
+        dict(outcome=["image", "warned"]))
+    add("a grid hole enclosed in the volume, BodyFromGrid",
+        dict(source=dict(GAUSS, kind="holes", box=[-0.3, 0.3] * 3),
+             index=dict(Model="Passthrough", SamplingDimensions=[16, 16, 16]), image=img()),
+        dict(outcome=["image", "warned"]))
+    add("BlastWave at a time between its steps",
+        dict(source=dict(kind="scene", properties=dict(Scene="BlastWave", Dimensions=[16] * 3,
+                                                       TimeSteps=4)),
+             time=0.4, image=img()),
+        dict(outcome=["image", "warned"]))
+    add("one pipeline updated four times with changed properties",
+        dict(source=GAUSS, image=img(),
+             repeat=[dict(Resolution=[16, 24]), dict(Cutoff="Shadowgraph"), dict(Passes=2)]),
+        dict(outcome=["image", "warned"]))
     return c
 
 
@@ -238,7 +263,7 @@ def random_case(rng, k):
         Integrator=pick("Euler", "Midpoint", "RK4", "Straight", "Auto"),
         Cutoff=pick("KnifeEdge", "Circular", "ComplementCircular", "ColorFilter", "Shadowgraph",
                     "Interferometry", "BOS"),
-        KnifeAngle=rng.uniform(-360, 360),
+        KnifeAngle=rng.uniform(-180, 180),
         CutoffScale=pick(0.0, lograng(0, 5)),
         FilmDistance=pick(0.0, lograng(-2, 4), lograng(4, 8)),
         Wavelength=pick(632.8, rng.uniform(100, 1e5)),
@@ -296,7 +321,40 @@ def random_case(rng, k):
                              Symmetry=pick("Planar", "Axisymmetric"), SymmetryAxis=pick("X", "Y", "Z"),
                              Span=pick(1.0, lograng(-3, 2), 0.0, -1.0),
                              SamplingDimensions=pick([0, 0, 0], [16, 16, 16], [24, 8, 1]))
-    return case
+    elif r < 0.32:
+        # a SolidArray mask: a ball (anywhere, any size), the whole volume or nothing
+        src["mask"] = pick("all", "none", [rng.uniform(-1, 1) for _ in range(3)] +
+                           [rng.uniform(0.05, 1.2)])
+        case["index"] = dict(Model="Passthrough", InputArray=["POINTS", src.get("array", "n_minus_1")],
+                             SolidArray="solid")
+    elif r < 0.39:
+        # grid holes: the cells in a box removed (enclosed, or reaching the boundary)
+        lo = [rng.uniform(-1.2, 0.6) for _ in range(3)]
+        src.update(kind="holes", box=sum(([a, a + rng.uniform(0.1, 1.0)] for a in lo), []))
+        case["index"] = dict(Model="Passthrough", InputArray=["POINTS", src.get("array", "n_minus_1")],
+                             BodyFromGrid=rng.random() < 0.8,
+                             SamplingDimensions=pick([0, 0, 0], [16, 16, 16]))
+    # time steps: BlastWave's, at a step, between, before or after them
+    if rng.random() < 0.06:
+        case["source"] = dict(kind="scene", properties=dict(
+            Scene="BlastWave", Dimensions=[rng.randint(8, 24)] * 3, TimeSteps=rng.randint(0, 5),
+            Time=pick(1.0, lograng(-1, 1))))
+        case.pop("index", None)
+        case.pop("body", None)
+        case["time"] = pick(0.0, 0.25, 0.5, 1.0, 3.0, -1.0, 1e9)
+        image["Resolution"] = [min(n, 32) for n in image["Resolution"]]
+        image["StepSize"] = max(image["StepSize"], 0.5)
+        image.pop("ViewDirection", None)
+        image.pop("ViewUp", None)
+    # the same pipeline updated again with changed properties
+    if rng.random() < 0.1:
+        case["repeat"] = [pick(dict(Resolution=[rng.randint(1, 32), rng.randint(1, 32)]),
+                               dict(Passes=rng.randint(1, 3)),
+                               dict(Cutoff=pick("KnifeEdge", "Shadowgraph", "BOS")),
+                               dict(KnifeAngle=rng.uniform(-180, 180)),
+                               dict(Integrator=pick("Euler", "RK4", "Straight")),
+                               dict(StepSize=pick(-1.0, image["StepSize"] * 2)))
+                          for _ in range(rng.randint(1, 3))]
     return case
 
 

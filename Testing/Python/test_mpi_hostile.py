@@ -9,11 +9,27 @@ each says one error (no second one from a filter downstream).
    ranks 1 and 2 "another rank (0) failed: ...", and no rank has an error from SchlierenImage.
 2. A PythonCalculator that raises on rank 0 only feeds SchlierenImage; its sources are deleted; a
    second pipeline, PythonCalculator (raising on rank 0) -> RefractiveIndex -> SchlierenImage, is
-   updated: every rank returns (the ctest timeout catches a hang), rank 0 with the image or an
-   error.
+   updated: every rank returns, rank 0 with the image or an error. (A PythonCalculator that
+   raises passes its input on: every rank still reaches our filters.)
+3. The hang: an upstream that really fails on some ranks (a reader of a missing file: the
+   executive then never calls our filters there) while the others reach a collective of ours.
+   a. rank 0's reader fails; it feeds SchlierenImage; deleted; then reader -> RefractiveIndex ->
+      SchlierenImage, rank 0's reader failing again. Every rank returns from every update (no
+      hang: the guard's timeout, SCHLIEREN_MPI_TIMEOUT = 2 s here), ranks 1 and 2 each with the
+      guard's error naming rank 0 and the step it did not reach.
+   b. rank 1's reader fails: ranks 0 and 2 each say that rank 1 did not reach RefractiveIndex's
+      first collective within 2 s.
+   After each, the ranks meet (a barrier: the script is in step again) and a good pipeline gives
+   its image on every rank with no error: a stale guard message of a failed update does not pair
+   with a later one.
 """
 import os
 import sys
+import tempfile
+import time
+
+# the guard's wait, read on the plugin's first collective (before that: no collective yet)
+os.environ["SCHLIEREN_MPI_TIMEOUT"] = "2"
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -89,5 +105,113 @@ points = i2.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
 T.check(rank != 0 or points > 0 or errors_of(out.text),
         "rank %d: the second pipeline after a failing first one returned an image or an error "
         "(%d points; %s)" % (rank, points, "; ".join(m[:120] for _, m in errors_of(out.text))))
+
+# 3. An upstream that fails on some ranks only: a reader of a file that is missing there
+tmp = st.argument("--tmp") or tempfile.gettempdir()  # this rank's files, rank in their names
+os.makedirs(tmp, exist_ok=True)
+good = os.path.join(tmp, "mpi_hostile_rank%d.vti" % rank)
+
+
+def write_volume(path):
+    """A 21^3 volume with n_minus_1 and density (rank-local: no MPI in this writer)."""
+    from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+    from vtkmodules.vtkFiltersCore import vtkArrayCalculator
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+
+    src = vtkRTAnalyticSource()
+    src.SetWholeExtent(-10, 10, -10, 10, -10, 10)
+    calcs = []
+    last = src
+    for name, fn in (("n_minus_1", "RTData*1e-7"), ("density", "1.2+RTData*1e-4")):
+        c = vtkArrayCalculator()
+        c.SetInputConnection(last.GetOutputPort())
+        c.AddScalarArrayName("RTData")
+        c.SetFunction(fn)
+        c.SetResultArrayName(name)
+        calcs.append(c)
+        last = c
+    w = vtkXMLImageDataWriter()
+    w.SetInputConnection(last.GetOutputPort())
+    w.SetFileName(path)
+    w.Write()
+
+
+write_volume(good)
+
+
+def reader(failing_ranks):
+    name = os.path.join(tmp, "no_such_file.vti") if rank in failing_ranks else good
+    return XMLImageDataReader(FileName=[name])
+
+
+def update(proxy):
+    """Updates `proxy`; (seconds, errors) on this rank."""
+    t0 = time.time()
+    with st.CapturedOutput() as out:
+        proxy.UpdatePipeline()
+    return time.time() - t0, errors_of(out.text)
+
+
+def guard_errors(errs):
+    return [m for _, m in errs if "did not reach" in m or "different collectives" in m]
+
+
+def good_pipeline(label):
+    """After the ranks meet again, every rank traces, rank 0 gets the image, nobody errs."""
+    controller.Barrier()
+    r = reader(())
+    ri = RefractiveIndex(Input=r, Model="GladstoneDale")
+    im = SchlierenImage(Input=ri, Resolution=[16, 16], Backend="CPU")
+    _, errs = update(im)
+    pts = im.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
+    T.check(not errs and (rank != 0 or pts == 256),
+            "rank %d: %s: the good pipeline after it gives the image (%d points; errors: %s)"
+            % (rank, label, pts, "; ".join(m[:150] for _, m in errs)))
+    for p in (im, ri, r):
+        Delete(p)
+
+
+# a. rank 0 fails upstream twice: SchlierenImage, then RefractiveIndex, wait at their collectives
+ra = reader((0,))
+ia = SchlierenImage(Input=ra, Resolution=[16, 16], Backend="CPU")
+ta, errs_a = update(ia)
+for p in (ia, ra):
+    Delete(p)
+rb = reader((0,))
+rib = RefractiveIndex(Input=rb, Model="GladstoneDale")
+ib = SchlierenImage(Input=rib, Resolution=[16, 16], Backend="CPU")
+tb, errs_b = update(ib)
+for p in (ib, rib, rb):
+    Delete(p)
+if rank == 0:
+    ok = not guard_errors(errs_a + errs_b) and errs_a
+else:
+    ga, gb = guard_errors(errs_a), guard_errors(errs_b)
+    ok = (len(ga) == 1 and ga[0].startswith("rank 0 did not reach SchlierenImage's collective 1")
+          and len(gb) == 1
+          and gb[0].startswith("rank 0 did not reach RefractiveIndex's collective 1")
+          and "within 2 s: its upstream probably failed" in gb[0])
+T.check(ok, "rank %d: 3a: rank 0's upstream failing: %.1f s, %.1f s; %s | %s"
+        % (rank, ta, tb, "; ".join(m[:160] for _, m in errs_a),
+           "; ".join(m[:160] for _, m in errs_b)))
+good_pipeline("3a")
+
+# b. rank 1 fails upstream: ranks 0 and 2 wait at RefractiveIndex's first collective
+rc = reader((1,))
+ric = RefractiveIndex(Input=rc, Model="GladstoneDale")
+ic = SchlierenImage(Input=ric, Resolution=[16, 16], Backend="CPU")
+tc, errs_c = update(ic)
+for p in (ic, ric, rc):
+    Delete(p)
+gc = guard_errors(errs_c)
+if rank == 1:
+    ok = not gc and errs_c
+else:
+    ok = (len(gc) == 1 and gc[0].startswith(
+        "rank 1 did not reach RefractiveIndex's collective 1 (an all-gather) within 2 s"))
+T.check(ok, "rank %d: 3b: rank 1's upstream failing: %.1f s; %s"
+        % (rank, tc, "; ".join(m[:160] for _, m in errs_c)))
+good_pipeline("3b")
+
 controller.Barrier()
 T.finish()
