@@ -12,7 +12,10 @@
  *    digits when the data sits far from the world origin.
  *  - The ray state is x and v = n dx/ds. v is kept as n_e d0 + w, where n_e is the index at entry
  *    and w = integral of grad n ds: w is small and summed in float without cancellation, and the
- *    deflection on the film axes is exactly (w . axis) / |v|.
+ *    deflection on the film axes is exactly (w . axis) / |v|. x itself is put together at every
+ *    step from the entry point, the distance along d0 and the displacement across it, each summed
+ *    apart (sch_walk), so that seen obliquely to the grid its coordinates are not rounded anew at
+ *    every step.
  *  - Film coordinates (a, b) are measured from c along the film's right (r) and top (t) axes.
  */
 #ifndef SCHLIEREN_PHYSICS_H
