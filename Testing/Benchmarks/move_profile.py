@@ -60,8 +60,9 @@ def number(data, name):
 
 
 print("| %d^3 Gaussian, %d^2 film, 1 pass, %s | first update s | move: update s | move: Fetch s "
-      "| samples/ray | M samples/s (update + Fetch) | choice |" % (args.size, args.film, args.backend))
-print("|---|---|---|---|---|---|---|")
+      "| move: CPU s (all threads) | samples/ray | M samples/s (update + Fetch) | M samples per CPU s "
+      "| choice |" % (args.size, args.film, args.backend))
+print("|---|---|---|---|---|---|---|---|---|")
 for key, name, kw in settings:
     if args.only and key not in args.only.split(","):
         continue
@@ -72,23 +73,28 @@ for key, name, kw in settings:
     image.UpdatePipeline()
     first = time.perf_counter() - t0
     sm.Fetch(image)
-    up, fe, spr, rate = [], [], [], []
+    up, fe, cpu, spr, rate, cpuRate = [], [], [], [], [], []
     choice = ""
     perf("enable")
     for v in views:
         image.ViewDirection = list(v)
+        c0 = time.process_time()  # this process's CPU time, every thread (PoCL's too)
         t0 = time.perf_counter()
         image.UpdatePipeline()
         t1 = time.perf_counter()
         data = sm.Fetch(image)
         t2 = time.perf_counter()
+        c2 = time.process_time()
         up.append(t1 - t0)
         fe.append(t2 - t1)
+        cpu.append(c2 - c0)
         spr.append(number(data, "samples_per_ray"))
         rate.append(number(data, "samples") / (t2 - t0) / 1e6)
+        cpuRate.append(number(data, "samples") / (c2 - c0) / 1e6)
         r = data.GetFieldData().GetAbstractArray("auto_report")
         choice = r.GetValue(0)[:60] if r is not None else name
     perf("disable")
-    print("| %s | %.2f | %.3f | %.3f | %.1f | %.1f | %s |" % (name, first, np.mean(up), np.mean(fe),
-                                                            np.mean(spr), np.mean(rate), choice))
+    print("| %s | %.2f | %.3f | %.3f | %.3f | %.1f | %.1f | %.1f | %s |" % (
+        name, first, np.mean(up), np.mean(fe), np.mean(cpu), np.mean(spr), np.mean(rate),
+        np.mean(cpuRate), choice))
     Delete(image)
