@@ -296,10 +296,8 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     floorWhy = "the reference (RK4 at 1/8 voxel) and RK4 at 1/4 voxel differ by " + ToText(d) + " rad";
     if (it != coarseRK4.end() && it->second <= 2 * d)
       floorWhy += ", RK4 at a voxel or more by " + ToText(it->second) +
-        " rad: an error that does not fall with the step, the float rounding of the ray "
-        "positions summed over the reference's steps (it grows as the steps get shorter, and "
-        "most where the beam is oblique to the grid, so that every coordinate of a position is "
-        "rounded at every step)";
+        " rad: an error that does not fall with the step, float rounding (each sample's position "
+        "and the sums along the ray are single precision; it grows as the steps get shorter)";
     else
       floorWhy += ": the reference itself is still converging (structure finer than its step, "
                   "or data the grid does not resolve for this tolerance)";

@@ -569,6 +569,7 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
       continue;
     const float ne1 = static_cast<float>(entryN1[k]);
     sch_v3 x = E[k];
+    float along = 0.0f; // x as sch_walk_step keeps it: E[k] + along d0
     const float base = P.step;
     bool open = false; // a run of this rank is open
     StraightRun run;
@@ -617,7 +618,8 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
         run.NDs += ds * (smp.n1 - ne1);
         run.Ds += ds;
       }
-      x = sch_axpy(ds, d0, x);
+      along += ds;
+      x = sch_walk_at(E[k], along, d0, sch_make(0.0f, 0.0f, 0.0f));
       if (fit == 2)
         break;
     }

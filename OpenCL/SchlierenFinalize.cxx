@@ -151,8 +151,15 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   const std::size_t n = static_cast<std::size_t>(r.Film.Size[0]) * r.Film.Size[1];
   if (raw.Count.size() != n || raw.Passes < 1)
     throw Error("Finalize: the sums do not belong to this film, or hold no pass.");
-  FilmSums sums = raw;
-  FilterSums(sums, s);
+  // the sums are copied only to be filtered: unfiltered, the image reads them where they are (a
+  // copy of every channel is the largest part of Finalize on a large film)
+  FilmSums filtered;
+  if (s.Filter != FilmFilter::None)
+  {
+    filtered = raw;
+    FilterSums(filtered, s);
+  }
+  const FilmSums& sums = s.Filter != FilmFilter::None ? filtered : raw;
   r.Intensity.assign(n, 0.f);
   r.Deflection.assign(2 * n, 0.f);
   if (s.EstimateError)

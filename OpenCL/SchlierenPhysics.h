@@ -12,7 +12,10 @@
  *    digits when the data sits far from the world origin.
  *  - The ray state is x and v = n dx/ds. v is kept as n_e d0 + w, where n_e is the index at entry
  *    and w = integral of grad n ds: w is small and summed in float without cancellation, and the
- *    deflection on the film axes is exactly (w . axis) / |v|.
+ *    deflection on the film axes is exactly (w . axis) / |v|. x itself is put together at every
+ *    step from the entry point, the distance along d0 and the displacement across it, each summed
+ *    apart (sch_walk), so that seen obliquely to the grid its coordinates are not rounded anew at
+ *    every step.
  *  - Film coordinates (a, b) are measured from c along the film's right (r) and top (t) axes.
  */
 #ifndef SCHLIEREN_PHYSICS_H
@@ -259,6 +262,12 @@ SCH_FN sch_v3 sch_axpy(float s, sch_v3 a, sch_v3 y)
 SCH_FN float sch_dot(sch_v3 a, sch_v3 b)
 {
   return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+/* A ray's position from the parts a walk keeps apart: where it entered (x0), the distance covered
+ * along the beam d0, and the displacement across it (dev; zero for line of sight) */
+SCH_FN sch_v3 sch_walk_at(sch_v3 x0, float along, sch_v3 d0, sch_v3 dev)
+{
+  return sch_add(sch_axpy(along, d0, x0), dev);
 }
 
 /* ---------------------------------------------------------------- hashing and jitter */
@@ -688,7 +697,13 @@ typedef struct
  * work-item can advance several rays in turn (their memory accesses then overlap). */
 typedef struct
 {
-  sch_v3 x, w, dev;
+  /* x is kept as x0 + along d0 + dev (x0 where the ray entered, along the distance covered along
+   * the beam, dev the displacement that w turns it by): each position is rounded once, from
+   * parts that keep their digits, instead of every step's rounding of x summed across the beam.
+   * along is summed with its rounding carried (alongLo, compensated summation): its error would
+   * otherwise move the ray along the beam, and across it where the ray is strongly bent */
+  sch_v3 x, w, dev, x0;
+  float along, alongLo;
   sch_sample s;
   float ne1, ne, base;
   float invn; /* 1 / n at x */
@@ -729,6 +744,8 @@ SCH_FN void sch_walk_begin(SCH_FIELD field,
   SCH_WALK_AS sch_walk* W)
 {
   W->x = x;
+  W->x0 = x;
+  W->along = W->alongLo = 0.0f;
   W->w = sch_make(0.0f, 0.0f, 0.0f);
   W->dev = sch_make(0.0f, 0.0f, 0.0f);
   W->flags = 0u;
@@ -792,11 +809,13 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
   const int whole = fit == 1; /* the straight end point is inside: not the last step */
   /* ddev: the step's part across the beam, w / n, summed apart from x so that the sideways
    * displacement keeps its digits next to coordinates of order one */
-  sch_v3 xn, dw, ddev;
-  float dopl;
+  /* dal: the step's part along d0 (ne / n of ds, the d0 part of v / n); the end point is then
+   * put together from the walk's parts (sch_walk_at), not summed into x */
+  sch_v3 dw, ddev;
+  float dopl, dal;
   if (SCH_INTEGRATOR(P) == SCH_STRAIGHT)
   {
-    xn = sch_axpy(ds, d0, W->x);
+    dal = ds;
     dw = sch_scale(sch_grad(W->s), ds);
     /* sampled along the unbent line, but the photon lands where the first-order (weak-field)
      * deflection takes it, as with the curved schemes */
@@ -810,9 +829,10 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
     sch_v3 vm = sch_axpy(0.5f * ds, sch_grad(W->s), v);
     sch_sample sm = sch_sample_pt(field, levels, P, xm);
     W->samples += 1.0f;
-    xn = sch_axpy(ds / (1.0f + sm.n1), vm, W->x);
+    const float dsm = ds / (1.0f + sm.n1);
+    dal = W->ne * dsm;
     dw = sch_scale(sch_grad(sm), ds);
-    ddev = sch_scale(sch_axpy(0.5f * ds, sch_grad(W->s), W->w), ds / (1.0f + sm.n1));
+    ddev = sch_scale(sch_axpy(0.5f * ds, sch_grad(W->s), W->w), dsm);
     dopl = ds * (sm.n1 - W->ne1);
   }
   else if (SCH_INTEGRATOR(P) == SCH_RK4)
@@ -820,40 +840,48 @@ SCH_FN int sch_walk_step(SCH_FIELD field,
     /* classical RK4 on dx/ds = v / n, dv/ds = grad n */
     sch_v3 k1x = sch_scale(v, invn);
     sch_sample sa = sch_sample_pt(field, levels, P, sch_axpy(0.5f * ds, k1x, W->x));
+    const float ia = 1.0f / (1.0f + sa.n1);
     sch_v3 v2 = sch_axpy(0.5f * ds, sch_grad(W->s), v);
-    sch_v3 k2x = sch_scale(v2, 1.0f / (1.0f + sa.n1));
+    sch_v3 k2x = sch_scale(v2, ia);
     sch_sample sb = sch_sample_pt(field, levels, P, sch_axpy(0.5f * ds, k2x, W->x));
+    const float ib = 1.0f / (1.0f + sb.n1);
     sch_v3 v3 = sch_axpy(0.5f * ds, sch_grad(sa), v);
-    sch_v3 k3x = sch_scale(v3, 1.0f / (1.0f + sb.n1));
+    sch_v3 k3x = sch_scale(v3, ib);
     sch_sample sc = sch_sample_pt(field, levels, P, sch_axpy(ds, k3x, W->x));
-    sch_v3 v4 = sch_axpy(ds, sch_grad(sb), v);
-    sch_v3 k4x = sch_scale(v4, 1.0f / (1.0f + sc.n1));
+    const float ic = 1.0f / (1.0f + sc.n1);
     W->samples += 3.0f;
-    sch_v3 kx = sch_add(sch_add(k1x, k4x), sch_scale(sch_add(k2x, k3x), 2.0f));
     sch_v3 kw = sch_add(
       sch_add(sch_grad(W->s), sch_grad(sc)), sch_scale(sch_add(sch_grad(sa), sch_grad(sb)), 2.0f));
-    xn = sch_axpy(ds / 6.0f, kx, W->x);
     dw = sch_scale(kw, ds / 6.0f);
-    /* the same stages with v_i = ne d0 + w_i: only the w_i / n_i parts */
+    /* the same stages with v_i = ne d0 + w_i: the d0 parts ne / n_i and the w_i / n_i parts */
+    dal = ds / 6.0f * W->ne * (invn + ic + 2.0f * (ia + ib));
     sch_v3 d1 = sch_scale(W->w, invn);
-    sch_v3 d2 = sch_scale(sch_axpy(0.5f * ds, sch_grad(W->s), W->w), 1.0f / (1.0f + sa.n1));
-    sch_v3 d3 = sch_scale(sch_axpy(0.5f * ds, sch_grad(sa), W->w), 1.0f / (1.0f + sb.n1));
-    sch_v3 d4 = sch_scale(sch_axpy(ds, sch_grad(sb), W->w), 1.0f / (1.0f + sc.n1));
+    sch_v3 d2 = sch_scale(sch_axpy(0.5f * ds, sch_grad(W->s), W->w), ia);
+    sch_v3 d3 = sch_scale(sch_axpy(0.5f * ds, sch_grad(sa), W->w), ib);
+    sch_v3 d4 = sch_scale(sch_axpy(ds, sch_grad(sb), W->w), ic);
     ddev = sch_scale(sch_add(sch_add(d1, d4), sch_scale(sch_add(d2, d3), 2.0f)), ds / 6.0f);
     dopl = ds / 6.0f * (W->s.n1 + sc.n1 + 2.0f * (sa.n1 + sb.n1) - 6.0f * W->ne1);
   }
   else
   {
     /* the paper's explicit Euler: x += ds v / n, v += ds grad n (v / n is dir: the end point is
-     * the one checked above) */
-    xn = sch_axpy(ds, dir, W->x);
+     * the one checked above, to rounding) */
+    dal = ds * invn * W->ne;
     dw = sch_scale(sch_grad(W->s), ds);
     ddev = sch_scale(W->w, ds * invn);
     dopl = ds * (W->s.n1 - W->ne1);
   }
+  {
+    const float y = dal - W->alongLo;
+    const float t = W->along + y;
+    W->alongLo = (t - W->along) - y;
+    W->along = t;
+  }
+  W->dev = sch_add(W->dev, ddev);
+  const sch_v3 xn = sch_walk_at(W->x0, W->along, d0,
+    SCH_INTEGRATOR(P) == SCH_STRAIGHT ? sch_make(0.0f, 0.0f, 0.0f) : W->dev);
   sch_v3 dx = sch_add(xn, sch_scale(W->x, -1.0f));
   W->x = xn;
-  W->dev = sch_add(W->dev, ddev);
   W->w = sch_add(W->w, dw);
   W->opl += dopl;
   W->path += ds;

@@ -533,7 +533,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   const std::string key = keyStream.str();
   const bool reuseSums = parallel.AllOk(
     key == this->SumsKey && this->Sums.Passes > 0 && settings.Passes >= this->Sums.Passes);
-  FilmSums sums;
+  FilmSums reduced; // on more than one rank: the sums of all ranks (one rank reads this->Sums)
   std::string problem, warnings;
   try
   {
@@ -554,7 +554,6 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     }
     traced.Passes = settings.Passes;
     this->SumsKey = key;
-    sums = this->Sums;
   }
   catch (const Error& e)
   {
@@ -575,14 +574,16 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   // engine lists them, so a new channel needs no change here).
   if (ranks > 1)
   {
+    reduced = this->Sums;
     std::vector<double> additive, maxima;
-    sums.ToArrays(additive, maxima);
+    reduced.ToArrays(additive, maxima);
     parallel.Sum(additive.data(), additive.size());
     parallel.Max(maxima.data(), maxima.size());
     if (rank != 0)
       return; // rank 0 holds the image
-    sums.FromArrays(additive, maxima);
+    reduced.FromArrays(additive, maxima);
   }
+  const FilmSums& sums = ranks > 1 ? reduced : this->Sums;
 
   // 6. The image (rank 0; nothing collective from here on).
   out.Result = Finalize(volume, traced, sums);
