@@ -7,6 +7,7 @@
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
+#include "vtkOverlappingAMR.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -30,6 +31,7 @@
 #include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "SchlierenAMR.h"
 #include "SchlierenArrays.h"
 #include "SchlierenBodies.h"
 #include "SchlierenController.h"
@@ -396,6 +398,15 @@ bool vtkRefractiveIndex::SamplingGrid(schlieren::Parallel& parallel, vtkInformat
     else
     {
       perPoint += 64.0; // a composite input: a few double arrays
+    }
+    this->SamplingNote.clear();
+    double finest[3];
+    if (automatic)
+    {
+      // an AMR input: its finest level's spacing rather than AutomaticDimension
+      schlieren::amr::Dimensions(parallel, vtkDataObject::GetData(inInfo), bounds,
+        perPoint + schlieren::VolumeBytesPerPoint(), dims, finest, this->SamplingCapped,
+        this->SamplingNote);
     }
     std::ostringstream what;
     what << "Resampling onto " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points";
@@ -954,6 +965,7 @@ struct vtkRefractiveIndex::Work
   vtkIdType InvalidPoints = 0;
   vtkNew<vtkFloatArray> Gradient;
   std::vector<unsigned char> Solid;
+  std::vector<std::pair<std::string, double>> Numbers; // more field data (an AMR input's levels)
 };
 
 //------------------------------------------------------------------------------
@@ -1167,8 +1179,35 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
         return missing;
       }
     }
-    w.Grid = w.Symmetric ? this->SymmetricResample(w.Input, structure, names)
-                         : Resample(w.Ranks, w.Input, structure, names);
+    auto* amr = vtkOverlappingAMR::SafeDownCast(w.Input);
+    if (amr && !w.Symmetric)
+    {
+      std::vector<std::string> notes;
+      if (!this->SamplingNote.empty())
+      {
+        notes.push_back(this->SamplingNote);
+      }
+      w.Grid = schlieren::amr::Resample(w.Ranks, amr, structure, names, notes);
+      double finest[3];
+      int level = 0, levels = 0;
+      schlieren::amr::FinestSpacing(w.Ranks, amr, finest, level, levels);
+      w.Numbers = { { "amr_levels", levels }, { "amr_finest_level", level },
+        { "amr_finest_spacing", finest[0] }, { "sampling_spacing", structure->GetSpacing()[0] },
+        { "sampling_capped", this->SamplingCapped && !this->SamplingNote.empty() ? 1 : 0 } };
+      for (const std::string& note : notes)
+      {
+        if (w.Ranks.Rank() == 0)
+        {
+          vtkOutputWindowDisplayText((note + "\n").c_str());
+        }
+        w.Notes.push_back(note);
+      }
+    }
+    else
+    {
+      w.Grid = w.Symmetric ? this->SymmetricResample(w.Input, structure, names)
+                           : Resample(w.Ranks, w.Input, structure, names);
+    }
     this->UpdateProgress(0.4);
   }
   w.Count = w.Grid->GetNumberOfPoints();
@@ -1438,6 +1477,10 @@ vtkSmartPointer<vtkFieldData> vtkRefractiveIndex::OutputFieldData(Work& w)
   addNumber("valid_point_fraction",
     w.Count ? 1.0 - static_cast<double>(w.InvalidPoints) / w.Count : 0.0);
   addNumber("solid_points", static_cast<double>(std::count(w.Solid.begin(), w.Solid.end(), 1)));
+  for (const auto& number : w.Numbers)
+  {
+    addNumber(number.first.c_str(), number.second);
+  }
   return fieldData;
 }
 

@@ -605,6 +605,9 @@ private:
   vtkSmartPointer<vtkFieldData> OutputFieldData(Work& w);
   /** Why the last RequestInformation could not set up the resampling grid (for RequestData). */
   std::string SamplingError;
+  // the automatic grid of an AMR input: what it was chosen from, and whether memory capped it
+  std::string SamplingNote;
+  bool SamplingCapped = false;
 
   // Planar and axisymmetric inputs, automatic choices and the checks of the arrays read: defined
   // in vtkRefractiveIndexInputs.cxx.
