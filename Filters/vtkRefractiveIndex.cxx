@@ -38,6 +38,7 @@
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
+#include "SchlierenTimeCache.h"
 #include "SchlierenValues.h"
 
 #include <algorithm>
@@ -268,6 +269,7 @@ vtkRefractiveIndex::vtkRefractiveIndex()
   // port 1: an optional closed surface of a solid body
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(1);
+  this->TimeCache = std::make_shared<schlieren::TimeStepCache>();
   // Default: the active point scalars.
   this->SetInputArrayToProcess(
     INPUT_ARRAY, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
@@ -507,12 +509,68 @@ int vtkRefractiveIndex::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/**
+ * The key of this update in the per-time-step cache: false where the output is not cached (the
+ * input has no time steps, no time is asked for, or more than one process runs).
+ */
+bool CacheKey(vtkRefractiveIndex* self, vtkInformation* inInfo, vtkInformation* outInfo,
+  schlieren::TimeStepCache::Key& key)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  auto* executive = vtkDemandDrivenPipeline::SafeDownCast(self->GetExecutive());
+  if (!executive || !inInfo || !outInfo || !inInfo->Has(SDDP::TIME_STEPS()) ||
+    !outInfo->Has(SDDP::UPDATE_TIME_STEP()) || schlieren::ControllerParallel().Size() > 1)
+  {
+    return false;
+  }
+  key.Time = outInfo->Get(SDDP::UPDATE_TIME_STEP());
+  key.Pipeline = executive->GetPipelineMTime();
+  if (outInfo->Has(SDDP::UPDATE_EXTENT()))
+  {
+    outInfo->Get(SDDP::UPDATE_EXTENT(), key.Extent);
+  }
+  return true;
+}
+
+/** The cache's counters in the output's field data (its own copy: the kept entry shares it). */
+void CacheFields(vtkDataObject* output, const schlieren::TimeStepCache& cache, bool served)
+{
+  vtkNew<vtkFieldData> fd;
+  if (output->GetFieldData())
+  {
+    fd->ShallowCopy(output->GetFieldData());
+  }
+  const std::pair<const char*, double> numbers[] = { { "index_computed", cache.Computed },
+    { "index_from_cache", served ? 1.0 : 0.0 }, { "index_cache_entries", double(cache.Size()) },
+    { "index_cache_bytes", cache.Held() }, { "index_cache_budget", cache.Budget() } };
+  for (const auto& n : numbers)
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(n.first);
+    a->InsertNextValue(n.second);
+    fd->AddArray(a);
+  }
+  output->SetFieldData(fd);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 int vtkRefractiveIndex::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   using SDDP = vtkStreamingDemandDrivenPipeline;
+  schlieren::TimeStepCache::Key key;
+  vtkDataObject* held = vtkDataObject::GetData(inInfo);
+  if (CacheKey(this, inInfo, outInfo, key) && this->TimeCache->Find(key) && held &&
+    held->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP()))
+  {
+    // a time step kept: the input stays at the time it holds (it does not execute again)
+    inInfo->Set(SDDP::UPDATE_TIME_STEP(), held->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
+  }
   if (vtkInformation* bodyInfo = inputVector[1]->GetInformationObject(0))
   {
     // the whole body surface on every rank: the inside test needs all of it
@@ -988,6 +1046,17 @@ int vtkRefractiveIndex::RequestData(
     return 0;
   }
   w.Resampled = w.InputImage == nullptr || w.Symmetric;
+  schlieren::TimeStepCache::Key key;
+  const bool cached = CacheKey(this, w.InInfo, w.OutInfo, key);
+  if (vtkDataObject* kept = cached ? this->TimeCache->Find(key) : nullptr)
+  {
+    // a time step computed before, with the same pipeline: not resampled again
+    w.Output->ShallowCopy(kept);
+    w.Output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), key.Time);
+    ++this->TimeCache->Served;
+    CacheFields(w.Output, *this->TimeCache, true);
+    return 1;
+  }
 
   // 0. What to read; 1. the grid the model runs on.
   std::string problem = this->ReadInputs(w);
@@ -1036,6 +1105,12 @@ int vtkRefractiveIndex::RequestData(
 
   // 5. The output: the requested extent of the grid, with the new arrays.
   this->WriteOutput(w);
+  ++this->TimeCache->Computed;
+  if (cached)
+  {
+    this->TimeCache->Insert(key, w.Output);
+  }
+  CacheFields(w.Output, *this->TimeCache, false);
   return 1;
 }
 

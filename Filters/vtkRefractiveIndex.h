@@ -82,10 +82,15 @@
 
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
+#include <memory> // for std::shared_ptr
 #include <string> // for std::string
 #include <vector> // for std::vector
 
 class vtkFieldData;
+namespace schlieren
+{
+class TimeStepCache;
+}
 class vtkImageData;
 namespace schlieren
 {
@@ -608,6 +613,8 @@ private:
   // the automatic grid of an AMR input: what it was chosen from, and whether memory capped it
   std::string SamplingNote;
   bool SamplingCapped = false;
+  // outputs kept per time step (SchlierenTimeCache.h)
+  std::shared_ptr<schlieren::TimeStepCache> TimeCache;
 
   // Planar and axisymmetric inputs, automatic choices and the checks of the arrays read: defined
   // in vtkRefractiveIndexInputs.cxx.
