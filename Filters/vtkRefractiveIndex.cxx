@@ -38,6 +38,7 @@
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
+#include "SchlierenResample.h"
 #include "SchlierenTimeCache.h"
 #include "SchlierenValues.h"
 
@@ -774,12 +775,21 @@ schlieren::FieldModel ModelOf(vtkRefractiveIndex* self)
 vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObject* input,
   vtkImageData* structure, const std::vector<std::string>& names)
 {
-  vtkNew<vtkCompositeDataProbeFilter> probe;
-  probe->SetInputData(structure);
-  probe->SetSourceData(input);
-  probe->SetValidPointMaskArrayName(MaskName);
-  probe->Update();
-  vtkSmartPointer<vtkImageData> grid = vtkImageData::SafeDownCast(probe->GetOutputDataObject(0));
+  vtkSmartPointer<vtkImageData> grid;
+  auto* mesh = vtkDataSet::SafeDownCast(input);
+  if (mesh && mesh->GetNumberOfCells() > 0 && !vtkImageData::SafeDownCast(mesh))
+  {
+    grid = schlieren::SampleCells(mesh, structure); // cell by cell: the probe's values, faster
+  }
+  else
+  {
+    vtkNew<vtkCompositeDataProbeFilter> probe;
+    probe->SetInputData(structure);
+    probe->SetSourceData(input);
+    probe->SetValidPointMaskArrayName(MaskName);
+    probe->Update();
+    grid = vtkImageData::SafeDownCast(probe->GetOutputDataObject(0));
+  }
   if (!grid || grid->GetNumberOfPoints() != structure->GetNumberOfPoints())
   {
     // An empty piece of the input (MPI): nothing found here.
