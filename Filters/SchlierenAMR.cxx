@@ -402,7 +402,7 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkOverlap
     m << ") sampled as cells: trilinear between each box's cell centres, not converted to points.";
   }
   notes.push_back(m.str());
-  // levels the metadata lists but no rank holds (a reader's DefaultNumberOfLevels, MaxLevel)
+  // levels the metadata lists but no rank holds (a reader's MaxLevel)
   if (parallel.Size() > 1 && !loaded.empty())
   {
     std::vector<double> any(loaded.begin(), loaded.end());
@@ -422,8 +422,8 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkOverlap
     std::ostringstream u;
     u << "RefractiveIndex: the AMR input lists " << levels << " levels but only "
       << (levels - unloaded)
-      << " hold data: the finer ones were not loaded (an AMR reader loads only its "
-         "DefaultNumberOfLevels, 1 unless raised; raise it, or MaxLevel, to sample them).";
+      << " hold data: the finer ones were not loaded (an AMR reader loads the levels up to its "
+         "MaxLevel, the Level property of ParaView's AMR readers: raise it to sample them).";
     notes.push_back(u.str());
   }
   return grid;

@@ -27,13 +27,16 @@ Known answers:
   (h1/2) |grad f| at the patch's faces (the half cell where no fine centre lies beyond).
 - SCHLIEREN_MEMORY_LIMIT below the fine grid's needs: the grid is capped (sampling_capped = 1,
   the note says so) and still covers the whole input.
-- Read through ParaView's AMReX plotfile reader (vtkAMReXGridReader), a plotfile of the same two
-  levels written here: the same n - 1 as the in-memory AMR.
+- Read through ParaView's AMReX plotfile reader (AMReXBoxLibGridReader), a plotfile of the same
+  two levels (cell data) written here: the same n - 1 as the in-memory AMR with cell data, to
+  float rounding; with the reader's Level = 0 the grid follows level 0 and a note names the level
+  not loaded.
 """
 import os
 import shutil
 import subprocess
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -230,6 +233,58 @@ T.check(cerr[patch_face].max() <= bound_face, "cell data at the patch's faces wi
         "cell's h1/2 |grad f|")
 T.check(cerr[~inside].max() <= bound_out, "cell data outside the patch within the coarse level's "
         "error")
+
+# an AMReX plotfile of the same two levels (cell data), read through ParaView's reader
+def write_plotfile(path, name="n_minus_1"):
+    """Level 0: 32^3 cells on [-1, 1]^3; level 1: the patch refined by 2; f at the cell centres
+    (little-endian doubles, AMReX's FAB layout: x fastest)."""
+    levels = [(-1.0, H0, N0, (0, 0, 0)), (-PATCH, H1, N1, (N1 // 2,) * 3)]
+    domains = [((0, 0, 0), (N0 - 1,) * 3), ((0, 0, 0), (2 * N0 - 1,) * 3)]
+    os.makedirs(path, exist_ok=True)
+    h = ["HyperCLaw-V1.1", "1", name, "3", "0.0", "1", "-1 -1 -1", "1 1 1", "2",
+         " ".join("((%d,%d,%d) (%d,%d,%d) (0,0,0))" % (lo + hi) for lo, hi in domains), "0 0",
+         "%r %r %r" % ((H0,) * 3), "%r %r %r" % ((H1,) * 3), "0", "0"]
+    for level, (lo, h_cell, n, start) in enumerate(levels):
+        h += ["%d 1 0.0" % level, "0"] + ["%r %r" % (lo, lo + n * h_cell)] * 3
+        h.append("Level_%d/Cell" % level)
+        d = os.path.join(path, "Level_%d" % level)
+        os.makedirs(d, exist_ok=True)
+        xc = lo + h_cell * (np.arange(n) + 0.5)
+        Zc, Yc, Xc = np.meshgrid(xc, xc, xc, indexing="ij")
+        v = f(Xc, Yc, Zc).astype("<f8")
+        box = "((%d,%d,%d) (%d,%d,%d) (0,0,0))" % (start + tuple(s + n - 1 for s in start))
+        with open(os.path.join(d, "Cell_D_00000"), "wb") as fab:
+            fab.write(("FAB ((8, (64 11 52 0 1 12 0 1023)),(8, (8 7 6 5 4 3 2 1)))%s 1\n"
+                       % box).encode())
+            fab.write(v.tobytes())
+        with open(os.path.join(d, "Cell_H"), "w") as ch:
+            ch.write("1\n0\n1\n0\n(1 0\n%s\n)\n1\nFabOnDisk: Cell_D_00000 0\n\n1,1\n%r,\n\n"
+                     "1,1\n%r,\n" % (box, float(v.min()), float(v.max())))
+    with open(os.path.join(path, "Header"), "w") as hf:
+        hf.write("\n".join(h) + "\n")
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    plotfile = os.path.join(tmp, "plt00000")
+    write_plotfile(plotfile)
+    reader = AMReXBoxLibGridReader(FileNames=[plotfile])
+    reader.UpdatePipelineInformation()
+    reader.CellArrayStatus = ["n_minus_1"]
+    _, read_out, _ = index_of(reader)
+    r1, _, _, _ = n1_and_points(read_out)
+    d_read = np.abs(r1 - c1).max()
+    T.check(read_out.GetDimensions() == cell_out.GetDimensions() and d_read <= 1e-6 * A,
+            "the plotfile through AMReXBoxLibGridReader: the in-memory AMR's n - 1 (largest "
+            "difference %.2g, float rounding)" % d_read)
+    reader.Level = 0
+    with st.CapturedOutput() as log0:
+        ri0 = RefractiveIndex(Input=reader, Model="Passthrough")
+        out0 = sm.Fetch(ri0)
+    T.check(out0.GetDimensions() == (N0 + 1,) * 3 and "were not loaded" in log0.text,
+            "the reader's Level = 0: the grid follows level 0 (%s) and the note names the level "
+            "not loaded" % (out0.GetDimensions(),))
+    Delete(ri0)
+    Delete(reader)
 
 # the memory cap, in a child process with SCHLIEREN_MEMORY_LIMIT below the fine grid's needs
 env = dict(os.environ, SCHLIEREN_MEMORY_LIMIT=str(30 * 1024 * 1024))
