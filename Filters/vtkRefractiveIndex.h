@@ -87,15 +87,12 @@
 #include <vector> // for std::vector
 
 class vtkFieldData;
-namespace schlieren
-{
-class TimeStepCache;
-}
 class vtkImageData;
 namespace schlieren
 {
 class Parallel; // OpenCL/SchlierenParallel.h: the one interface to the ranks
 struct Wedge;   // OpenCL/SchlierenWedge.h: an axisymmetric wedge found from its points
+class TimeStepCache; // SchlierenTimeCache.h: outputs kept per time step
 }
 
 class SCHLIERENFILTERS_EXPORT vtkRefractiveIndex : public vtkImageAlgorithm
