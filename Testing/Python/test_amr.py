@@ -222,7 +222,7 @@ bound_face = bound_in + H1 / 2 * 1.01 * gradient_norm(X, Y, Z)[patch_face].max()
 # outside the patch: coarse interpolation between centres, and its half cell at the domain's edge
 edge = (np.abs(X) > 1 - H0 / 2 - 1e-9) | (np.abs(Y) > 1 - H0 / 2 - 1e-9) | (np.abs(Z) > 1 - H0 / 2 - 1e-9)
 bound_out = H0 ** 2 / 8 * d2[~inside].max() + H0 / 2 * gradient_norm(X, Y, Z)[edge].max() + ROUND
-print("cell data: max error inside %.3g (bound %.3g), at the patch's faces %.3g (bound %.3g), "
+print("cell data: max error inside %.6g (bound %.6g), at the patch's faces %.3g (bound %.3g), "
       "outside %.3g (bound %.3g)" % (cerr[inside & ~patch_face].max(), bound_in,
                                      cerr[patch_face].max(), bound_face, cerr[~inside].max(),
                                      bound_out))
