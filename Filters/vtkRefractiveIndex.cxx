@@ -7,6 +7,7 @@
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
+#include "vtkOverlappingAMR.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -30,12 +31,15 @@
 #include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "SchlierenAMR.h"
 #include "SchlierenArrays.h"
 #include "SchlierenBodies.h"
 #include "SchlierenController.h"
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
+#include "SchlierenResample.h"
+#include "SchlierenTimeCache.h"
 #include "SchlierenValues.h"
 
 #include <algorithm>
@@ -266,6 +270,7 @@ vtkRefractiveIndex::vtkRefractiveIndex()
   // port 1: an optional closed surface of a solid body
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(1);
+  this->TimeCache = std::make_shared<schlieren::TimeStepCache>();
   // Default: the active point scalars.
   this->SetInputArrayToProcess(
     INPUT_ARRAY, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
@@ -396,6 +401,15 @@ bool vtkRefractiveIndex::SamplingGrid(schlieren::Parallel& parallel, vtkInformat
     else
     {
       perPoint += 64.0; // a composite input: a few double arrays
+    }
+    this->SamplingNote.clear();
+    double finest[3];
+    if (automatic)
+    {
+      // an AMR input: its finest level's spacing rather than AutomaticDimension
+      schlieren::amr::Dimensions(parallel, vtkDataObject::GetData(inInfo), bounds,
+        perPoint + schlieren::VolumeBytesPerPoint(), dims, finest, this->SamplingCapped,
+        this->SamplingNote);
     }
     std::ostringstream what;
     what << "Resampling onto " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points";
@@ -561,12 +575,68 @@ int vtkRefractiveIndex::RequestInformation(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/**
+ * The key of this update in the per-time-step cache: false where the output is not cached (the
+ * input has no time steps, no time is asked for, or more than one process runs).
+ */
+bool CacheKey(vtkRefractiveIndex* self, vtkInformation* inInfo, vtkInformation* outInfo,
+  schlieren::TimeStepCache::Key& key)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  auto* executive = vtkDemandDrivenPipeline::SafeDownCast(self->GetExecutive());
+  if (!executive || !inInfo || !outInfo || !inInfo->Has(SDDP::TIME_STEPS()) ||
+    !outInfo->Has(SDDP::UPDATE_TIME_STEP()) || schlieren::ControllerParallel().Size() > 1)
+  {
+    return false;
+  }
+  key.Time = outInfo->Get(SDDP::UPDATE_TIME_STEP());
+  key.Pipeline = executive->GetPipelineMTime();
+  if (outInfo->Has(SDDP::UPDATE_EXTENT()))
+  {
+    outInfo->Get(SDDP::UPDATE_EXTENT(), key.Extent);
+  }
+  return true;
+}
+
+/** The cache's counters in the output's field data (its own copy: the kept entry shares it). */
+void CacheFields(vtkDataObject* output, const schlieren::TimeStepCache& cache, bool served)
+{
+  vtkNew<vtkFieldData> fd;
+  if (output->GetFieldData())
+  {
+    fd->ShallowCopy(output->GetFieldData());
+  }
+  const std::pair<const char*, double> numbers[] = { { "index_computed", cache.Computed },
+    { "index_from_cache", served ? 1.0 : 0.0 }, { "index_cache_entries", double(cache.Size()) },
+    { "index_cache_bytes", cache.Held() }, { "index_cache_budget", cache.Budget() } };
+  for (const auto& n : numbers)
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(n.first);
+    a->InsertNextValue(n.second);
+    fd->AddArray(a);
+  }
+  output->SetFieldData(fd);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 int vtkRefractiveIndex::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   using SDDP = vtkStreamingDemandDrivenPipeline;
+  schlieren::TimeStepCache::Key key;
+  vtkDataObject* held = vtkDataObject::GetData(inInfo);
+  if (CacheKey(this, inInfo, outInfo, key) && this->TimeCache->Find(key) && held &&
+    held->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP()))
+  {
+    // a time step kept: the input stays at the time it holds (it does not execute again)
+    inInfo->Set(SDDP::UPDATE_TIME_STEP(), held->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
+  }
   if (vtkInformation* bodyInfo = inputVector[1]->GetInformationObject(0))
   {
     // the whole body surface on every rank: the inside test needs all of it
@@ -770,12 +840,21 @@ schlieren::FieldModel ModelOf(vtkRefractiveIndex* self)
 vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObject* input,
   vtkImageData* structure, const std::vector<std::string>& names)
 {
-  vtkNew<vtkCompositeDataProbeFilter> probe;
-  probe->SetInputData(structure);
-  probe->SetSourceData(input);
-  probe->SetValidPointMaskArrayName(MaskName);
-  probe->Update();
-  vtkSmartPointer<vtkImageData> grid = vtkImageData::SafeDownCast(probe->GetOutputDataObject(0));
+  vtkSmartPointer<vtkImageData> grid;
+  auto* mesh = vtkDataSet::SafeDownCast(input);
+  if (mesh && mesh->GetNumberOfCells() > 0 && !vtkImageData::SafeDownCast(mesh))
+  {
+    grid = schlieren::SampleCells(mesh, structure); // cell by cell: the probe's values, faster
+  }
+  else
+  {
+    vtkNew<vtkCompositeDataProbeFilter> probe;
+    probe->SetInputData(structure);
+    probe->SetSourceData(input);
+    probe->SetValidPointMaskArrayName(MaskName);
+    probe->Update();
+    grid = vtkImageData::SafeDownCast(probe->GetOutputDataObject(0));
+  }
   if (!grid || grid->GetNumberOfPoints() != structure->GetNumberOfPoints())
   {
     // An empty piece of the input (MPI): nothing found here.
@@ -1019,6 +1098,7 @@ struct vtkRefractiveIndex::Work
   vtkIdType InvalidPoints = 0;
   vtkNew<vtkFloatArray> Gradient;
   std::vector<unsigned char> Solid;
+  std::vector<std::pair<std::string, double>> Numbers; // more field data (an AMR input's levels)
 };
 
 //------------------------------------------------------------------------------
@@ -1047,6 +1127,17 @@ int vtkRefractiveIndex::RequestData(
     return 0;
   }
   w.Resampled = w.InputImage == nullptr || w.Symmetric;
+  schlieren::TimeStepCache::Key key;
+  const bool cached = CacheKey(this, w.InInfo, w.OutInfo, key);
+  if (vtkDataObject* kept = cached ? this->TimeCache->Find(key) : nullptr)
+  {
+    // a time step computed before, with the same pipeline: not resampled again
+    w.Output->ShallowCopy(kept);
+    w.Output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), key.Time);
+    ++this->TimeCache->Served;
+    CacheFields(w.Output, *this->TimeCache, true);
+    return 1;
+  }
 
   // 0. What to read; 1. the grid the model runs on.
   std::string problem = this->ReadInputs(w);
@@ -1095,6 +1186,12 @@ int vtkRefractiveIndex::RequestData(
 
   // 5. The output: the requested extent of the grid, with the new arrays.
   this->WriteOutput(w);
+  ++this->TimeCache->Computed;
+  if (cached)
+  {
+    this->TimeCache->Insert(key, w.Output);
+  }
+  CacheFields(w.Output, *this->TimeCache, false);
   return 1;
 }
 
@@ -1238,8 +1335,35 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
         return missing;
       }
     }
-    w.Grid = w.Symmetric ? this->SymmetricResample(w.Input, structure, names)
-                         : Resample(w.Ranks, w.Input, structure, names);
+    auto* amr = vtkOverlappingAMR::SafeDownCast(w.Input);
+    if (amr && !w.Symmetric)
+    {
+      std::vector<std::string> notes;
+      if (!this->SamplingNote.empty())
+      {
+        notes.push_back(this->SamplingNote);
+      }
+      w.Grid = schlieren::amr::Resample(w.Ranks, amr, structure, names, notes);
+      double finest[3];
+      int level = 0, levels = 0;
+      schlieren::amr::FinestSpacing(w.Ranks, amr, finest, level, levels);
+      w.Numbers = { { "amr_levels", levels }, { "amr_finest_level", level },
+        { "amr_finest_spacing", finest[0] }, { "sampling_spacing", structure->GetSpacing()[0] },
+        { "sampling_capped", this->SamplingCapped && !this->SamplingNote.empty() ? 1 : 0 } };
+      for (const std::string& note : notes)
+      {
+        if (w.Ranks.Rank() == 0)
+        {
+          vtkOutputWindowDisplayText((note + "\n").c_str());
+        }
+        w.Notes.push_back(note);
+      }
+    }
+    else
+    {
+      w.Grid = w.Symmetric ? this->SymmetricResample(w.Input, structure, names)
+                           : Resample(w.Ranks, w.Input, structure, names);
+    }
     this->UpdateProgress(0.4);
   }
   w.Count = w.Grid->GetNumberOfPoints();
@@ -1509,6 +1633,10 @@ vtkSmartPointer<vtkFieldData> vtkRefractiveIndex::OutputFieldData(Work& w)
   addNumber("valid_point_fraction",
     w.Count ? 1.0 - static_cast<double>(w.InvalidPoints) / w.Count : 0.0);
   addNumber("solid_points", static_cast<double>(std::count(w.Solid.begin(), w.Solid.end(), 1)));
+  for (const auto& number : w.Numbers)
+  {
+    addNumber(number.first.c_str(), number.second);
+  }
   return fieldData;
 }
 

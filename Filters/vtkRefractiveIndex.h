@@ -82,6 +82,7 @@
 
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
+#include <memory> // for std::shared_ptr
 #include <string> // for std::string
 #include <vector> // for std::vector
 
@@ -91,6 +92,7 @@ namespace schlieren
 {
 class Parallel; // OpenCL/SchlierenParallel.h: the one interface to the ranks
 struct Wedge;   // OpenCL/SchlierenWedge.h: an axisymmetric wedge found from its points
+class TimeStepCache; // SchlierenTimeCache.h: outputs kept per time step
 }
 
 class SCHLIERENFILTERS_EXPORT vtkRefractiveIndex : public vtkImageAlgorithm
@@ -605,6 +607,11 @@ private:
   vtkSmartPointer<vtkFieldData> OutputFieldData(Work& w);
   /** Why the last RequestInformation could not set up the resampling grid (for RequestData). */
   std::string SamplingError;
+  // the automatic grid of an AMR input: what it was chosen from, and whether memory capped it
+  std::string SamplingNote;
+  bool SamplingCapped = false;
+  // outputs kept per time step (SchlierenTimeCache.h)
+  std::shared_ptr<schlieren::TimeStepCache> TimeCache;
 
   // Planar and axisymmetric inputs, automatic choices and the checks of the arrays read: defined
   // in vtkRefractiveIndexInputs.cxx.

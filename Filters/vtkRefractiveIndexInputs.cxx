@@ -20,6 +20,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiBlockDataSet.h"
+#include "vtkOverlappingAMR.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -575,9 +576,9 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
       fromCells.push_back(name);
     }
   }
-  if (fromCells.empty())
+  if (fromCells.empty() || vtkOverlappingAMR::SafeDownCast(input))
   {
-    return input;
+    return input; // (AMR cell data is sampled as cells: SchlierenAMR.h)
   }
   vtkNew<vtkCellDataToPointData> toPoints;
   toPoints->SetInputData(input);

@@ -27,7 +27,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -186,6 +188,43 @@ schlieren::VolumePiece PieceOf(
   piece.Version = input->GetMTime();
   piece.Load = [input, octree](schlieren::PieceValues& v) { return ReadPiece(input, octree, v); };
   return piece;
+}
+
+/** Versions handed out to time steps (by every SchlierenImage: none is handed out twice). */
+std::uint64_t& Counter()
+{
+  static std::uint64_t n = 0;
+  return n;
+}
+
+/**
+ * A time step's input named by its time and the upstream pipeline's MTime rather than by the data
+ * object's MTime (new whenever the upstream executes, even for a time it gave before), so that
+ * the session finds the volume it packed for that time (TraceSession's earlier volumes).
+ */
+void TimeVersion(vtkAlgorithm* self, vtkImageData* input, vtkInformation* inInfo,
+  schlieren::VolumePiece& piece, std::map<std::pair<vtkMTimeType, double>, std::uint64_t>& versions)
+{
+  auto* upstream = vtkDemandDrivenPipeline::SafeDownCast(self->GetInputExecutive(0, 0));
+  if (!input || !upstream || !inInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()) ||
+    !input->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP()))
+  {
+    return;
+  }
+  const std::pair<vtkMTimeType, double> key(upstream->GetPipelineMTime(),
+    input->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
+  for (auto it = versions.begin(); it != versions.end();)
+  {
+    it = it->first.first != key.first ? versions.erase(it) : std::next(it); // another pipeline
+  }
+  auto found = versions.find(key);
+  if (found == versions.end())
+  {
+    // a number of its own, apart from any data object's MTime (the top bit)
+    const std::uint64_t next = (std::uint64_t(1) << 63) + 1 + Counter()++;
+    found = versions.emplace(key, next).first;
+  }
+  piece.Version = found->second;
 }
 
 /** The engine's settings from the filter's properties. */
@@ -348,6 +387,9 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
   addNumber("photons", result.Photons);
   addNumber("passes", image.Passes);
   addNumber("passes_traced", image.PassesTraced);
+  addString("volume_from", image.VolumeFrom);
+  addNumber("volumes_cached", image.VolumesCached);
+  addNumber("volumes_packed", image.VolumesPacked);
   addNumber("samples", result.Samples);
   addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
   addNumber("failed_rays", result.FailedRays);
@@ -400,6 +442,8 @@ struct vtkSchlierenImage::vtkInternals
 {
   // the packed volume and this rank's film sums, kept between updates
   schlieren::TraceSession Session;
+  // the Version of each time step of the input (its time and upstream pipeline MTime)
+  std::map<std::pair<vtkMTimeType, double>, std::uint64_t> TimeVersions;
 };
 
 //------------------------------------------------------------------------------
@@ -556,8 +600,9 @@ int vtkSchlierenImage::RequestData(
   };
   try
   {
-    this->Internals->Session.Update(parallel, PieceOf(input, output, inInfo, this->UseOctree),
-      SettingsOf(this), image, report);
+    schlieren::VolumePiece piece = PieceOf(input, output, inInfo, this->UseOctree);
+    TimeVersion(this, input, inInfo, piece, this->Internals->TimeVersions);
+    this->Internals->Session.Update(parallel, piece, SettingsOf(this), image, report);
   }
   catch (const schlieren::Error& e)
   {

@@ -276,6 +276,55 @@ void TraceSession::Clear()
   this->PiecesKey.clear();
 }
 
+void TraceSession::StashVolume()
+{
+  if (this->Kept.Field && !this->VolumeKey.empty())
+  {
+    EarlierVolume e;
+    e.Key = this->VolumeKey;
+    e.Packed.swap(this->Packed);
+    e.Levels.swap(this->Levels);
+    e.Solid.swap(this->Solid);
+    e.Smooth.swap(this->Smooth);
+    e.Kept = this->Kept;
+    e.Bytes = 4.0 * e.Packed.size() + e.Levels.size() + e.Solid.size() + e.Smooth.size();
+    double held = 0.0;
+    for (const EarlierVolume& v : this->Earlier)
+      held += v.Bytes;
+    const double budget = 0.25 * (double(AvailableMemory()) + held);
+    while (!this->Earlier.empty() && held + e.Bytes > budget)
+    {
+      held -= this->Earlier.front().Bytes;
+      this->Earlier.pop_front();
+    }
+    if (held + e.Bytes <= budget)
+      this->Earlier.push_back(std::move(e));
+  }
+  this->ClearVolume();
+}
+
+bool TraceSession::RestoreVolume(const std::string& key, bool restore)
+{
+  for (auto it = this->Earlier.begin(); it != this->Earlier.end(); ++it)
+  {
+    if (it->Key != key)
+      continue;
+    if (restore)
+    {
+      this->ClearVolume();
+      this->Packed.swap(it->Packed);
+      this->Levels.swap(it->Levels);
+      this->Solid.swap(it->Solid);
+      this->Smooth.swap(it->Smooth);
+      this->Kept = it->Kept;
+      this->VolumeKey = key;
+      this->Earlier.erase(it);
+    }
+    return true;
+  }
+  return false;
+}
+
 void TraceSession::ClearVolume()
 {
   this->AutoKey.clear();
@@ -401,8 +450,20 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   const std::string volumeKey = vk.str();
   const bool reuseVolume = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
     this->Kept.Field && volumeKey == this->VolumeKey);
+  // 0b. An earlier input's packed volume (a time step traced before), where every rank has it.
+  bool fromEarlier = false;
   if (!reuseVolume)
   {
+    this->StashVolume();
+    fromEarlier = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
+      this->RestoreVolume(volumeKey, false));
+    if (fromEarlier)
+      this->RestoreVolume(volumeKey, true);
+  }
+  out.VolumeFrom = reuseVolume ? "kept" : fromEarlier ? "cache" : "packed";
+  if (!reuseVolume && !fromEarlier)
+  {
+    ++this->PacksRun;
     this->ClearVolume();
     // 1. This rank's piece.
     PieceValues values;
@@ -506,6 +567,8 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   }
   else
     report(0.05);
+  out.VolumesCached = static_cast<int>(this->Earlier.size());
+  out.VolumesPacked = this->PacksRun;
   const Volume& volume = this->Kept;
 
   // 4. Auto resolved on rank 0, then this rank's share of the photons. Progressive refinement:

@@ -11,6 +11,10 @@
  *   smoothness) and its stamp, while the input's version, the pieces and the settings that shape
  *   the packing stay the same: a new camera, other optics or more passes do not pack it again, and
  *   the engine keeps its device copy (Volume::Stamp);
+ * - the packed volumes of earlier inputs (the time steps of an animation: VolumePiece::Version
+ *   names the input's time and pipeline), newest last, while they take at most a quarter of the
+ *   memory the process could have (AvailableMemory() plus what they hold), the oldest evicted
+ *   first: an animation played again traces its frames without packing them again;
  * - this rank's film sums of the passes traced so far (progressive refinement): with the same
  *   photons (TraceSettings::PhotonKey) and volume, raising Passes traces only the new passes.
  *
@@ -31,6 +35,7 @@
 #include "SchlierenParallel.h"
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -92,6 +97,12 @@ struct SessionImage
   double SecondsExchanging = 0; ///< the longest any rank spent in the exchanges, waiting included
   int Passes = 0;        ///< passes in the image
   int PassesTraced = 0;  ///< passes traced by this update (the others were kept)
+  /** Where the packed volume came from: "packed" (by this update), "kept" (the last update's),
+   * "cache" (an earlier input's, e.g. a time step traced before); VolumesCached: how many the
+   * session holds besides the current one, VolumesPacked: how many it has packed in all. */
+  std::string VolumeFrom;
+  int VolumesCached = 0;
+  int VolumesPacked = 0;
   double LandedPhotons = 0; ///< photons that reached the film (0: a blank image)
   bool OctreeUsed = false;
   double OctreeTolerance = 0.0;
@@ -131,6 +142,10 @@ public:
 
 private:
   void ClearVolume();
+  /** Moves the current volume among the earlier ones (evicting the oldest beyond the budget). */
+  void StashVolume();
+  /** Makes the earlier volume of `key` the current one; false where there is none. */
+  bool RestoreVolume(const std::string& key, bool restore);
   /** Update with the volume in pieces (SchlierenSessionPieces.cxx): no rank holds the whole. */
   void UpdatePieces(Parallel& parallel, const VolumePiece& piece, const TraceSettings& settings,
     SessionImage& out, const ProgressFunction& progress);
@@ -140,6 +155,16 @@ private:
   AlignedFloats Packed; // page-aligned: a CPU OpenCL device traces it in place
   std::vector<unsigned char> Levels, Solid, Smooth;
   Volume Kept;
+  struct EarlierVolume
+  {
+    std::string Key;
+    AlignedFloats Packed;
+    std::vector<unsigned char> Levels, Solid, Smooth;
+    Volume Kept;
+    double Bytes = 0.0;
+  };
+  std::deque<EarlierVolume> Earlier; // oldest first
+  int PacksRun = 0;
   bool Stamped = false; // a volume of this session has been stamped (the engine may keep it)
   // this rank's film sums and the photons and volume they were traced from
   std::string SumsKey;

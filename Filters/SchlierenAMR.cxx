@@ -1,0 +1,432 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Overlapping AMR sampled onto an image grid, finest level first (SchlierenAMR.h).
+#include "SchlierenAMR.h"
+
+#include "vtkCellData.h"
+#include "vtkCharArray.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkPointData.h"
+#include "vtkUniformGrid.h"
+
+#include "SchlierenLimits.h"
+#include "SchlierenParallel.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <sstream>
+
+namespace
+{
+const char* const MaskName = "vtkValidPointMask";
+
+/** One axis of a trilinear stencil: the lower index and the weight of the upper one. */
+struct Stencil
+{
+  int Index;
+  float Weight;
+};
+
+/**
+ * Where `u` (a coordinate in units of the samples, 0 at the first) falls between `count`
+ * samples: clamped to the first and last sample, so that a point beyond them takes the nearest.
+ */
+Stencil Between(double u, int count)
+{
+  if (count <= 1)
+  {
+    return { 0, 0.0f };
+  }
+  u = std::min(std::max(u, 0.0), double(count - 1));
+  const int i = std::min(static_cast<int>(std::floor(u)), count - 2);
+  return { i, static_cast<float>(u - i) };
+}
+
+/** A box's array as floats (its components kept), read in place where it is float already. */
+const float* AsFloats(vtkDataArray* a, std::vector<float>& copy)
+{
+  if (auto* f = vtkFloatArray::SafeDownCast(a))
+  {
+    return f->GetPointer(0);
+  }
+  const vtkIdType n = a->GetNumberOfValues();
+  copy.resize(static_cast<std::size_t>(n));
+  if (auto* d = vtkDoubleArray::SafeDownCast(a))
+  {
+    const double* v = d->GetPointer(0);
+    std::transform(v, v + n, copy.begin(), [](double x) { return static_cast<float>(x); });
+  }
+  else
+  {
+    const int nc = a->GetNumberOfComponents();
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      copy[i] = static_cast<float>(a->GetComponent(i / nc, static_cast<int>(i % nc)));
+    }
+  }
+  return copy.data();
+}
+} // namespace
+
+namespace schlieren
+{
+namespace amr
+{
+
+//------------------------------------------------------------------------------
+bool FinestSpacing(
+  schlieren::Parallel& parallel, vtkDataObject* data, double spacing[3], int& level, int& levels)
+{
+  auto* amr = vtkOverlappingAMR::SafeDownCast(data);
+  double found[4] = { -1.0, 0.0, 0.0, 0.0 }; // level, then levels listed
+  double h[3] = { DBL_MAX, DBL_MAX, DBL_MAX };
+  if (amr)
+  {
+    found[1] = amr->GetNumberOfLevels();
+    for (int l = static_cast<int>(amr->GetNumberOfLevels()) - 1; l >= 0 && found[0] < 0; --l)
+    {
+      for (unsigned int b = 0; b < amr->GetNumberOfDataSets(l); ++b)
+      {
+        if (vtkUniformGrid* g = amr->GetDataSet(l, b))
+        {
+          found[0] = l;
+          g->GetSpacing(h);
+          break;
+        }
+      }
+    }
+  }
+  double any[2] = { found[0], found[1] };
+  parallel.Max(any, 2);
+  if (any[0] < 0.0)
+  {
+    return false;
+  }
+  if (found[0] != any[0])
+  {
+    h[0] = h[1] = h[2] = DBL_MAX; // a coarser level here: the finest rank's spacing decides
+  }
+  parallel.Min(h, 3);
+  std::copy(h, h + 3, spacing);
+  level = static_cast<int>(any[0]);
+  levels = static_cast<int>(any[1]);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool Dimensions(schlieren::Parallel& parallel, vtkDataObject* data, const double bounds[6],
+  double bytesPerPoint, int dims[3], double finest[3], bool& capped, std::string& note)
+{
+  int level = 0, levels = 0;
+  if (!FinestSpacing(parallel, data, finest, level, levels))
+  {
+    return false;
+  }
+  double wanted = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double cells = (bounds[2 * a + 1] - bounds[2 * a]) / finest[a];
+    dims[a] = std::max(1, static_cast<int>(std::min(std::floor(cells + 0.5), 1e6)) + 1);
+    wanted *= dims[a];
+  }
+  const double budget = parallel.Min(0.5 * static_cast<double>(schlieren::AvailableMemory()));
+  const int full[3] = { dims[0], dims[1], dims[2] };
+  capped = false;
+  double scale = std::cbrt(wanted * bytesPerPoint / budget);
+  while (double(dims[0]) * dims[1] * dims[2] * bytesPerPoint > budget)
+  {
+    capped = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      dims[a] = full[a] > 1 ? std::max(2, static_cast<int>((full[a] - 1) / scale) + 1) : 1;
+    }
+    if (dims[0] * dims[1] * dims[2] <= 8)
+    {
+      break; // nothing smaller: CheckHostMemory refuses it with its message
+    }
+    scale *= 1.01;
+  }
+  std::ostringstream m;
+  m << "RefractiveIndex: AMR input: the grid's spacing from its finest level (level " << level
+    << " of " << levels << ", spacing " << finest[0] << ")";
+  if (capped)
+  {
+    m << " would need " << full[0] << " x " << full[1] << " x " << full[2] << " points ("
+      << schlieren::FormatBytes(wanted * bytesPerPoint) << "); capped to " << dims[0] << " x "
+      << dims[1] << " x " << dims[2] << " by the memory budget (half the memory available, "
+      << schlieren::FormatBytes(budget) << "). Set SamplingDimensions to choose another grid.";
+  }
+  else
+  {
+    m << ": " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points.";
+  }
+  note = m.str();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkOverlappingAMR* data,
+  vtkImageData* structure, const std::vector<std::string>& names, std::vector<std::string>& notes)
+{
+  int D[3];
+  double O[3], H[3];
+  structure->GetDimensions(D);
+  structure->GetOrigin(O);
+  structure->GetSpacing(H);
+  const vtkIdType count = structure->GetNumberOfPoints();
+  std::vector<int> levelOf(static_cast<std::size_t>(count), -1);
+  std::vector<std::vector<float>> values(names.size());
+  std::vector<int> components(names.size(), 0);
+  std::vector<int> fromCells(names.size(), 0);
+  const int levels = data ? static_cast<int>(data->GetNumberOfLevels()) : 0;
+  std::vector<int> loaded(static_cast<std::size_t>(levels), 0);
+  std::vector<float> copy;
+  for (int l = 0; l < levels; ++l)
+  {
+    for (unsigned int b = 0; b < data->GetNumberOfDataSets(l); ++b)
+    {
+      vtkUniformGrid* g = data->GetDataSet(l, b);
+      if (!g || g->GetNumberOfPoints() == 0)
+      {
+        continue;
+      }
+      loaded[l] = 1;
+      int ext[6], np[3];
+      double o[3], h[3], lo[3];
+      g->GetExtent(ext);
+      g->GetOrigin(o);
+      g->GetSpacing(h);
+      // the grid points this box covers, and the stencils along each axis
+      int first[3], last[3];
+      std::vector<Stencil> atPoints[3], atCells[3];
+      bool empty = false;
+      for (int a = 0; a < 3; ++a)
+      {
+        np[a] = ext[2 * a + 1] - ext[2 * a] + 1;
+        lo[a] = o[a] + ext[2 * a] * h[a];
+        const double hi = o[a] + ext[2 * a + 1] * h[a];
+        const double eps = 1e-9 * std::max(std::fabs(H[a]), std::fabs(hi - lo[a]));
+        first[a] = std::max(0, static_cast<int>(std::ceil((lo[a] - eps - O[a]) / H[a])));
+        last[a] = std::min(D[a] - 1, static_cast<int>(std::floor((hi + eps - O[a]) / H[a])));
+        if (D[a] == 1)
+        {
+          first[a] = last[a] = (O[a] >= lo[a] - eps && O[a] <= hi + eps) ? 0 : 1;
+        }
+        empty = empty || last[a] < first[a];
+        for (int i = first[a]; i <= last[a]; ++i)
+        {
+          const double u = (O[a] + i * H[a] - lo[a]) / h[a];
+          atPoints[a].push_back(Between(u, np[a]));
+          atCells[a].push_back(Between(u - 0.5, std::max(np[a] - 1, 1)));
+        }
+      }
+      if (empty)
+      {
+        continue;
+      }
+      for (std::size_t k = 0; k < names.size(); ++k)
+      {
+        vtkDataArray* a = g->GetPointData()->GetArray(names[k].c_str());
+        const bool cells = a == nullptr;
+        if (cells)
+        {
+          a = g->GetCellData()->GetArray(names[k].c_str());
+        }
+        if (!a)
+        {
+          continue;
+        }
+        const int nc = a->GetNumberOfComponents();
+        if (components[k] == 0)
+        {
+          components[k] = nc;
+          values[k].assign(static_cast<std::size_t>(count) * nc, 0.0f);
+        }
+        if (components[k] != nc)
+        {
+          continue; // a box that disagrees on the components: not read
+        }
+        fromCells[k] = fromCells[k] || cells;
+        const float* v = AsFloats(a, copy);
+        const std::vector<Stencil>* s = cells ? atCells : atPoints;
+        vtkIdType n[3] = { np[0], np[1], np[2] };
+        if (cells)
+        {
+          for (int ax = 0; ax < 3; ++ax)
+          {
+            n[ax] = std::max(np[ax] - 1, 1);
+          }
+        }
+        const vtkIdType sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? n[0] : 0,
+                        sz = n[2] > 1 ? n[0] * n[1] : 0;
+        float* out = values[k].data();
+        for (int z = first[2]; z <= last[2]; ++z)
+        {
+          const Stencil& cz = s[2][z - first[2]];
+          for (int y = first[1]; y <= last[1]; ++y)
+          {
+            const Stencil& cy = s[1][y - first[1]];
+            const vtkIdType row = (vtkIdType(z) * D[1] + y) * D[0];
+            for (int x = first[0]; x <= last[0]; ++x)
+            {
+              const Stencil& cx = s[0][x - first[0]];
+              const vtkIdType base = (vtkIdType(cz.Index) * n[1] + cy.Index) * n[0] + cx.Index;
+              const float wx = cx.Weight, wy = cy.Weight, wz = cz.Weight;
+              for (int c = 0; c < nc; ++c)
+              {
+                auto at = [&](vtkIdType offset) { return v[(base + offset) * nc + c]; };
+                const float c00 = at(0) + wx * (at(sx) - at(0));
+                const float c10 = at(sy) + wx * (at(sy + sx) - at(sy));
+                const float c01 = at(sz) + wx * (at(sz + sx) - at(sz));
+                const float c11 = at(sz + sy) + wx * (at(sz + sy + sx) - at(sz + sy));
+                const float c0 = c00 + wy * (c10 - c00), c1 = c01 + wy * (c11 - c01);
+                out[(row + x) * nc + c] = c0 + wz * (c1 - c0);
+              }
+            }
+          }
+        }
+      }
+      for (int z = first[2]; z <= last[2]; ++z)
+      {
+        for (int y = first[1]; y <= last[1]; ++y)
+        {
+          const vtkIdType row = (vtkIdType(z) * D[1] + y) * D[0];
+          std::fill(levelOf.begin() + row + first[0], levelOf.begin() + row + last[0] + 1, l);
+        }
+      }
+    }
+  }
+
+  // under MPI: the finest level found on any rank wins (the mean where two ranks hold it)
+  if (parallel.Size() > 1)
+  {
+    std::vector<double> finest(levelOf.begin(), levelOf.end());
+    parallel.Max(finest.data(), finest.size());
+    std::vector<char> mine(levelOf.size(), 0); // this rank holds the winning level there
+    std::vector<double> hits(levelOf.size(), 0.0);
+    for (std::size_t i = 0; i < finest.size(); ++i)
+    {
+      mine[i] = levelOf[i] >= 0 && levelOf[i] == static_cast<int>(finest[i]) ? 1 : 0;
+      hits[i] = mine[i];
+      levelOf[i] = static_cast<int>(finest[i]);
+    }
+    parallel.Sum(hits.data(), hits.size());
+    for (std::size_t k = 0; k < names.size(); ++k)
+    {
+      components[k] = static_cast<int>(parallel.Max(double(components[k])));
+      fromCells[k] = static_cast<int>(parallel.Max(double(fromCells[k])));
+      if (components[k] == 0)
+      {
+        continue;
+      }
+      const int nc = components[k];
+      std::vector<double> sum(static_cast<std::size_t>(count) * nc, 0.0);
+      if (!values[k].empty())
+      {
+        for (std::size_t i = 0; i < sum.size(); ++i)
+        {
+          sum[i] = mine[i / nc] ? values[k][i] : 0.0;
+        }
+      }
+      parallel.Sum(sum.data(), sum.size());
+      values[k].assign(sum.size(), 0.0f);
+      for (std::size_t i = 0; i < sum.size(); ++i)
+      {
+        const double h = hits[i / nc];
+        values[k][i] = h > 0.0 ? static_cast<float>(sum[i] / h) : 0.0f;
+      }
+    }
+  }
+
+  vtkNew<vtkImageData> grid;
+  grid->CopyStructure(structure);
+  vtkNew<vtkCharArray> mask;
+  mask->SetName(MaskName);
+  mask->SetNumberOfTuples(count);
+  std::vector<vtkIdType> perLevel(static_cast<std::size_t>(std::max(levels, 1)), 0);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    mask->SetValue(i, levelOf[i] >= 0 ? 1 : 0);
+    if (levelOf[i] >= 0 && levelOf[i] < static_cast<int>(perLevel.size()))
+    {
+      ++perLevel[levelOf[i]];
+    }
+  }
+  grid->GetPointData()->AddArray(mask);
+  std::vector<std::string> asCells;
+  for (std::size_t k = 0; k < names.size(); ++k)
+  {
+    if (components[k] == 0)
+    {
+      continue; // reported as missing by the caller
+    }
+    vtkNew<vtkFloatArray> a;
+    a->SetName(names[k].c_str());
+    a->SetNumberOfComponents(components[k]);
+    a->SetNumberOfTuples(count);
+    if (!values[k].empty())
+    {
+      std::copy(values[k].begin(), values[k].end(), a->GetPointer(0));
+    }
+    else
+    {
+      a->FillValue(0.0f);
+    }
+    grid->GetPointData()->AddArray(a);
+    if (fromCells[k])
+    {
+      asCells.push_back(names[k]);
+    }
+  }
+
+  std::ostringstream m;
+  m << "RefractiveIndex: AMR input (" << levels << " level" << (levels == 1 ? "" : "s")
+    << "): each grid point sampled from the finest level covering it (points per level:";
+  for (std::size_t l = 0; l < perLevel.size(); ++l)
+  {
+    m << (l ? ", " : " ") << "L" << l << " " << perLevel[l];
+  }
+  m << ").";
+  if (!asCells.empty())
+  {
+    m << " Cell data (";
+    for (std::size_t i = 0; i < asCells.size(); ++i)
+    {
+      m << (i ? ", " : "") << asCells[i];
+    }
+    m << ") sampled as cells: trilinear between each box's cell centres, not converted to points.";
+  }
+  notes.push_back(m.str());
+  // levels the metadata lists but no rank holds (a reader's MaxLevel)
+  if (parallel.Size() > 1 && !loaded.empty())
+  {
+    std::vector<double> any(loaded.begin(), loaded.end());
+    parallel.Max(any.data(), any.size());
+    for (std::size_t l = 0; l < any.size(); ++l)
+    {
+      loaded[l] = any[l] > 0.5 ? 1 : 0;
+    }
+  }
+  int unloaded = 0;
+  for (int l = 0; l < levels; ++l)
+  {
+    unloaded += loaded[l] ? 0 : 1;
+  }
+  if (unloaded > 0)
+  {
+    std::ostringstream u;
+    u << "RefractiveIndex: the AMR input lists " << levels << " levels but only "
+      << (levels - unloaded)
+      << " hold data: the finer ones were not loaded (an AMR reader loads the levels up to its "
+         "MaxLevel, the Level property of ParaView's AMR readers: raise it to sample them).";
+    notes.push_back(u.str());
+  }
+  return grid;
+}
+} // namespace amr
+} // namespace schlieren
