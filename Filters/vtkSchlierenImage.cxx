@@ -318,6 +318,9 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
   };
   const schlieren::TraceResult& result = image.Result;
   addNumber("cutoff_scale", result.CutoffScaleUsed);
+  // the deflection (rad) the scale maps to full contrast, and the largest one traced
+  addNumber("full_contrast_deflection", result.FullContrastDeflection);
+  addNumber("max_deflection", result.MaxDeflection);
   // what the user was warned of (empty: nothing), for scripts that check an image is usable
   addString("warnings", image.Warnings);
   addString("backend", image.BackendUsed);
@@ -377,6 +380,18 @@ struct vtkSchlierenImage::vtkInternals
 {
   // the packed volume and this rank's film sums, kept between updates
   schlieren::TraceSession Session;
+  // The last error reported and the filter's modification time then. ParaView asks again for
+  // the information and the data of a filter that failed: the same error of the same settings
+  // is reported once, not once per request.
+  std::string LastError;
+  vtkMTimeType LastErrorTime = 0;
+  bool Fresh(const std::string& error, vtkMTimeType now)
+  {
+    const bool fresh = error != this->LastError || now != this->LastErrorTime;
+    this->LastError = error;
+    this->LastErrorTime = now;
+    return fresh;
+  }
 };
 
 //------------------------------------------------------------------------------
@@ -416,7 +431,10 @@ int vtkSchlierenImage::RequestInformation(
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
   if (!vtkImageData::SafeDownCast(input))
   {
-    vtkErrorMacro(<< NotAnImage(input));
+    if (this->Internals->Fresh(NotAnImage(input), this->GetMTime()))
+    {
+      vtkErrorMacro(<< NotAnImage(input));
+    }
     return 0;
   }
   int inWhole[6] = { 0, -1, 0, -1, 0, -1 };
@@ -427,8 +445,12 @@ int vtkSchlierenImage::RequestInformation(
   if (inWhole[1] < inWhole[0] || inWhole[3] < inWhole[2] || inWhole[5] < inWhole[4])
   {
     // Not a grid with too few points: nothing came (a filter upstream that failed said why).
-    vtkErrorMacro(<< "The input volume is empty: nothing to trace. If a filter upstream reported "
-                     "an error, that is the cause; fix it there.");
+    const std::string empty = "The input volume is empty: nothing to trace. If a filter upstream "
+                              "reported an error, that is the cause; fix it there.";
+    if (this->Internals->Fresh(empty, this->GetMTime()))
+    {
+      vtkErrorMacro(<< empty);
+    }
     return 0;
   }
   try
@@ -446,7 +468,10 @@ int vtkSchlierenImage::RequestInformation(
   }
   catch (const schlieren::Error& e)
   {
-    vtkErrorMacro(<< e.what());
+    if (this->Internals->Fresh(e.what(), this->GetMTime()))
+    {
+      vtkErrorMacro(<< e.what());
+    }
     return 0;
   }
   // Every rank must execute (the tracing is collective under MPI); rank 0 produces the image.
@@ -551,9 +576,13 @@ int vtkSchlierenImage::RequestData(
   }
   if (!error.empty())
   {
-    vtkErrorMacro(<< error);
+    if (this->Internals->Fresh(error, this->GetMTime()))
+    {
+      vtkErrorMacro(<< error);
+    }
     return 0;
   }
+  this->Internals->Fresh(std::string(), this->GetMTime());
   output->Initialize();
   if (!image.HasImage)
   {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pqSchlierenToolbar.h"
+#include "pqSchlierenMessages.h"
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
@@ -11,6 +12,7 @@
 #include "pqProgressManager.h"
 #include "pqRenderView.h"
 #include "pqServerManagerModel.h"
+#include "pqRepresentation.h"
 #include "pqView.h"
 
 #include "vtkCamera.h"
@@ -28,6 +30,7 @@
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionProxy.h"
 #include "vtkSMViewLayoutProxy.h"
+#include "vtkSMViewProxy.h"
 
 #include <QAction>
 #include <QDateTime>
@@ -88,6 +91,13 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
   // an update made elsewhere (Apply, a script): the image shown has the passes asked for
   QObject::connect(image, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
     [this](pqPipelineSource*) {
+    if (this->PendingView && !this->ImageView && this->hasImage())
+    {
+      // the first update that made an image: open the view the failed Apply did not
+      QPointer<pqRenderView> view = this->PendingView;
+      this->PendingView = nullptr;
+      QTimer::singleShot(0, this, [this, view]() { this->openImageView(view); });
+    }
     if (!this->Busy)
     {
       this->LastPasses = this->passes();
@@ -135,6 +145,50 @@ pqSchlierenFollower::~pqSchlierenFollower()
   {
     this->Camera->RemoveObserver(this->CameraTag);
   }
+}
+
+//------------------------------------------------------------------------------
+bool pqSchlierenFollower::hasImage() const
+{
+  vtkPVDataInformation* info =
+    this->Image ? this->Image->getOutputPort(0)->getDataInformation() : nullptr;
+  return info && info->GetNumberOfPoints() > 0;
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::closeImageView()
+{
+  // the image view shows this image alone: it goes with it, and its cell of the layout too
+  QPointer<pqRenderView> view = this->ImageView;
+  this->ImageView = nullptr;
+  this->PendingView = nullptr;
+  if (!view)
+  {
+    return;
+  }
+  QTimer::singleShot(0, [view]() {
+    if (!view)
+    {
+      return;
+    }
+    for (pqRepresentation* repr : view->getRepresentations())
+    {
+      if (repr && repr->isVisible())
+      {
+        return; // the user showed something else there: the view stays
+      }
+    }
+    vtkSMViewProxy* viewProxy = vtkSMViewProxy::SafeDownCast(view->getViewProxy());
+    if (vtkSMViewLayoutProxy* layout = vtkSMViewLayoutProxy::FindLayout(viewProxy))
+    {
+      const int location = layout->RemoveView(viewProxy);
+      if (location >= 0)
+      {
+        layout->Collapse(location);
+      }
+    }
+    pqApplicationCore::instance()->getObjectBuilder()->destroy(view);
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -247,6 +301,14 @@ void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int
     if (!this->ImageView &&
       vtkSMPropertyHelper(this->Image->getProxy(), "OpenImageView").GetAsInt() != 0)
     {
+      if (!this->hasImage())
+      {
+        // the trace failed (its error is in the Output Messages): no empty view; the view
+        // opens with the first image
+        this->PendingView = view;
+        this->log("not-opened");
+        return;
+      }
       this->openImageView(view);
     }
   });
@@ -780,6 +842,7 @@ pqSchlierenToolbar::pqSchlierenToolbar(QWidget* parent)
   : QToolBar("Schlieren", parent)
 {
   this->setObjectName("SchlierenToolbar");
+  new pqSchlierenMessages(this);
   if (std::getenv("SCHLIEREN_GUI_TRACE"))
   {
     std::fprintf(stderr, "schlieren-gui %.6f toolbar created\n", QDateTime::currentMSecsSinceEpoch() / 1000.0);
@@ -843,6 +906,7 @@ void pqSchlierenToolbar::onSourceRemoved(pqPipelineSource* source)
 {
   if (auto follower = this->Followers.take(source))
   {
+    follower->closeImageView();
     delete follower;
   }
   this->updateActions();

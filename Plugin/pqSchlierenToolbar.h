@@ -53,6 +53,10 @@ public:
   void openImageView(pqRenderView* view3D);
   /// Stops the refinement in progress; the image keeps the passes done.
   void stop();
+  /// The filter goes: its image view (if it shows nothing else) goes too.
+  void closeImageView();
+  /// The image has data (its last update did not fail).
+  bool hasImage() const;
   /// SCHLIEREN_GUI_TRACE=1: one line on stderr per event (for tests and timing).
   void log(const char* event) const;
 
@@ -86,6 +90,7 @@ private:
   QPointer<pqPipelineSource> Image;
   QPointer<pqRenderView> View3D;
   QPointer<pqRenderView> ImageView;
+  QPointer<pqRenderView> PendingView; // the 3D view of an Apply that failed: open on success
   vtkWeakPointer<vtkObject> Camera;
   unsigned long CameraTag = 0;
   int Target = 1;        // the passes the user asked for

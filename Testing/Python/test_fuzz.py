@@ -232,7 +232,7 @@ def random_case(rng, k):
     bad = rng.random() < 0.15
     image = dict(
         ViewDirection=view, ViewUp=up,
-        Resolution=[rng.randint(1, 48), rng.randint(1, 48)],
+        Resolution=[rng.randint(2, 48), rng.randint(2, 48)],
         Passes=rng.randint(1, 3),
         StepSize=lograng(-2, 1.8),
         Integrator=pick("Euler", "Midpoint", "RK4", "Straight", "Auto"),
@@ -272,7 +272,7 @@ def random_case(rng, k):
         if image["StepSize"] < 64:
             image["StepSize"] = min(64.0, image["StepSize"] * 2)
         else:
-            image["Resolution"] = [max(1, n // 2) for n in image["Resolution"]]
+            image["Resolution"] = [max(2, n // 2) for n in image["Resolution"]]
     # threads and device names (out of range about one in six), reconstruction
     if rng.random() < 0.3:
         image["Threads"] = pick(0, 1, 3, 64, 1000, 4096, -1, 5000)
