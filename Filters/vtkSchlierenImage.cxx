@@ -26,6 +26,7 @@
 #include "SchlierenSession.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -385,11 +386,27 @@ struct vtkSchlierenImage::vtkInternals
   // is reported once, not once per request.
   std::string LastError;
   vtkMTimeType LastErrorTime = 0;
-  bool Fresh(const std::string& error, vtkMTimeType now)
+  bool Fresh(const std::string& error, vtkMTimeType)
   {
-    const bool fresh = error != this->LastError || now != this->LastErrorTime;
+    const bool fresh = error != this->LastError;
     this->LastError = error;
-    this->LastErrorTime = now;
+    return fresh;
+  }
+  // The warnings of the last update without their numbers: passes added to the same image
+  // (the GUI's refinement, chunk by chunk) repeat a warning only when it changes in words.
+  std::string LastWarnings;
+  bool FreshWarnings(const std::string& warnings, bool addedPasses)
+  {
+    std::string words;
+    for (char c : warnings)
+    {
+      if (!std::isdigit(static_cast<unsigned char>(c)))
+      {
+        words += c;
+      }
+    }
+    const bool fresh = !addedPasses || words != this->LastWarnings;
+    this->LastWarnings = words;
     return fresh;
   }
 };
@@ -563,11 +580,16 @@ int vtkSchlierenImage::RequestData(
   {
     this->SetProgressText(nullptr);
   }
+  const bool freshWarnings =
+    this->Internals->FreshWarnings(image.Warnings, image.PassesTraced < image.Passes);
   for (const schlieren::SessionImage::Note& note : image.Notes)
   {
     if (note.Warning)
     {
-      vtkWarningMacro(<< note.Text);
+      if (freshWarnings)
+      {
+        vtkWarningMacro(<< note.Text);
+      }
     }
     else
     {

@@ -56,7 +56,9 @@ void pqSchlierenMessages::hookOutput(int tries)
   this->OutputHooked = true;
   output->suppress(QStringList() << "Algorithm vtkSchlierenImage" << "Algorithm vtkRefractiveIndex"
                                  << "Algorithm vtkRefractionOctree"
-                                 << "Algorithm vtkRefractiveScene");
+                                 << "Algorithm vtkRefractiveScene"
+                                 // the representation of an image that failed: the same again
+                                 << "Algorithm vtkPVGeometryFilter");
   if (std::getenv("SCHLIEREN_GUI_TRACE"))
   {
     QObject::connect(output, &pqOutputWidget::messageDisplayed, this,
@@ -103,8 +105,22 @@ void pqSchlierenMessages::hint(QAction* action)
 {
   // ParaView's tip for an input of the wrong type; it is set again whenever the state changes
   const QString tip = action->statusTip();
+  if (std::getenv("SCHLIEREN_GUI_DEBUG"))
+  {
+    std::fprintf(stderr, "schlieren-debug action %s enabled=%d tip=%s data=%s\n",
+      action->text().toLocal8Bit().constData(), int(action->isEnabled()),
+      tip.toLocal8Bit().constData(), action->data().toStringList().join(",").toLocal8Bit().constData());
+  }
   if (!action->isEnabled() && tip.startsWith("Input must be") && !tip.contains("RefractiveIndex"))
   {
     action->setStatusTip(tip + ImageHint);
+    if (std::getenv("SCHLIEREN_GUI_TRACE"))
+    {
+      std::fprintf(stderr, "schlieren-gui %.6f hint %s %s\n",
+        QDateTime::currentMSecsSinceEpoch() / 1000.0,
+        QUrl::toPercentEncoding(action->text()).constData(),
+        QUrl::toPercentEncoding(action->statusTip()).constData());
+      std::fflush(stderr);
+    }
   }
 }

@@ -91,13 +91,6 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
   // an update made elsewhere (Apply, a script): the image shown has the passes asked for
   QObject::connect(image, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
     [this](pqPipelineSource*) {
-    if (this->PendingView && !this->ImageView && this->hasImage())
-    {
-      // the first update that made an image: open the view the failed Apply did not
-      QPointer<pqRenderView> view = this->PendingView;
-      this->PendingView = nullptr;
-      QTimer::singleShot(0, this, [this, view]() { this->openImageView(view); });
-    }
     if (!this->Busy)
     {
       this->LastPasses = this->passes();
@@ -161,7 +154,6 @@ void pqSchlierenFollower::closeImageView()
   // the image view shows this image alone: it goes with it, and its cell of the layout too
   QPointer<pqRenderView> view = this->ImageView;
   this->ImageView = nullptr;
-  this->PendingView = nullptr;
   if (!view)
   {
     return;
@@ -301,14 +293,6 @@ void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int
     if (!this->ImageView &&
       vtkSMPropertyHelper(this->Image->getProxy(), "OpenImageView").GetAsInt() != 0)
     {
-      if (!this->hasImage())
-      {
-        // the trace failed (its error is in the Output Messages): no empty view; the view
-        // opens with the first image
-        this->PendingView = view;
-        this->log("not-opened");
-        return;
-      }
       this->openImageView(view);
     }
   });

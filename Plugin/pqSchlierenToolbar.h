@@ -90,7 +90,6 @@ private:
   QPointer<pqPipelineSource> Image;
   QPointer<pqRenderView> View3D;
   QPointer<pqRenderView> ImageView;
-  QPointer<pqRenderView> PendingView; // the 3D view of an Apply that failed: open on success
   vtkWeakPointer<vtkObject> Camera;
   unsigned long CameraTag = 0;
   int Target = 1;        // the passes the user asked for
