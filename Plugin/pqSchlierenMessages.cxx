@@ -105,12 +105,6 @@ void pqSchlierenMessages::hint(QAction* action)
 {
   // ParaView's tip for an input of the wrong type; it is set again whenever the state changes
   const QString tip = action->statusTip();
-  if (std::getenv("SCHLIEREN_GUI_DEBUG"))
-  {
-    std::fprintf(stderr, "schlieren-debug action %s enabled=%d tip=%s data=%s\n",
-      action->text().toLocal8Bit().constData(), int(action->isEnabled()),
-      tip.toLocal8Bit().constData(), action->data().toStringList().join(",").toLocal8Bit().constData());
-  }
   if (!action->isEnabled() && tip.startsWith("Input must be") && !tip.contains("RefractiveIndex"))
   {
     action->setStatusTip(tip + ImageHint);

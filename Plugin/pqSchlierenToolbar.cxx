@@ -141,14 +141,6 @@ pqSchlierenFollower::~pqSchlierenFollower()
 }
 
 //------------------------------------------------------------------------------
-bool pqSchlierenFollower::hasImage() const
-{
-  vtkPVDataInformation* info =
-    this->Image ? this->Image->getOutputPort(0)->getDataInformation() : nullptr;
-  return info && info->GetNumberOfPoints() > 0;
-}
-
-//------------------------------------------------------------------------------
 void pqSchlierenFollower::closeImageView()
 {
   // the image view shows this image alone: it goes with it, and its cell of the layout too

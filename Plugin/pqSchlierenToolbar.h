@@ -55,8 +55,6 @@ public:
   void stop();
   /// The filter goes: its image view (if it shows nothing else) goes too.
   void closeImageView();
-  /// The image has data (its last update did not fail).
-  bool hasImage() const;
   /// SCHLIEREN_GUI_TRACE=1: one line on stderr per event (for tests and timing).
   void log(const char* event) const;
 
