@@ -7,6 +7,7 @@
 
 #include <QAction>
 #include <QDateTime>
+#include <QDockWidget>
 #include <QStringList>
 #include <QTimer>
 #include <QUrl>
@@ -59,6 +60,32 @@ void pqSchlierenMessages::hookOutput(int tries)
                                  << "Algorithm vtkRefractiveScene"
                                  // the representation of an image that failed: the same again
                                  << "Algorithm vtkPVGeometryFilter");
+  // Model Automatic's choice decides the whole image: the Output Messages open to show it (once
+  // per new choice; ParaView opens them by itself only for warnings and errors)
+  QObject::connect(output, &pqOutputWidget::messageDisplayed, this,
+    [this, output](const QString& message, int) {
+      const int at = message.indexOf("RefractiveIndex: Model Automatic chose");
+      if (at < 0 || message.mid(at) == this->LastChoice)
+      {
+        return;
+      }
+      this->LastChoice = message.mid(at);
+      for (QWidget* w = output->parentWidget(); w; w = w->parentWidget())
+      {
+        if (auto* dock = qobject_cast<QDockWidget*>(w))
+        {
+          dock->show();
+          dock->raise();
+          if (std::getenv("SCHLIEREN_GUI_TRACE"))
+          {
+            std::fprintf(stderr, "schlieren-gui %.6f output-shown\n",
+              QDateTime::currentMSecsSinceEpoch() / 1000.0);
+            std::fflush(stderr);
+          }
+          break;
+        }
+      }
+    });
   if (std::getenv("SCHLIEREN_GUI_TRACE"))
   {
     QObject::connect(output, &pqOutputWidget::messageDisplayed, this,

@@ -9,6 +9,9 @@
  * - A greyed menu entry of SchlierenImage or RefractionOctree (their input must be an image) says
  *   in its status tip what to do: apply RefractiveIndex first, which resamples any grid onto an
  *   image and computes n - 1 (ParaView's own tip says only "Input must be vtkImageData").
+ * - Model Automatic's choice (RefractiveIndex's note: the model, the gas, the units) opens the
+ *   Output Messages, once per new choice: ParaView opens them by itself only for warnings and
+ *   errors, and a wrong choice makes a wrong image.
  * - SCHLIEREN_GUI_TRACE=1: every message the Output Messages show is also written to stderr as
  *   one line "schlieren-gui <seconds> message <type> <text, percent-encoded>", for the GUI tests.
  */
@@ -16,6 +19,7 @@
 #define pqSchlierenMessages_h
 
 #include <QObject>
+#include <QString>
 
 class QAction;
 
@@ -33,6 +37,7 @@ private:
   void hint(QAction* action);
 
   bool OutputHooked = false;
+  QString LastChoice; // the last Model Automatic note the Output Messages were opened for
 };
 
 #endif

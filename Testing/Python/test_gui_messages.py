@@ -377,6 +377,10 @@ xdo("windowsize", "--sync", window, 1280, 1000)
 xdo("windowactivate", "--sync", window)
 time.sleep(1.0)
 first = state("start")
+with lock:
+    shown = [e for e in events if e[1] == "output-shown"]
+check(len(shown) == 1, "Model Automatic's choice opened the Output Messages (%d time(s))" % len(shown))
+screenshot("gui_messages_choice")
 check(first["index_model"] == "Automatic", "RefractiveIndex1's Model is Automatic (%s)" % first["index_model"])
 notes = first["index_notes"] or ""
 check("Gas: air (Gas Custom, whose defaults are air's" in notes and "unless set otherwise" not in notes
