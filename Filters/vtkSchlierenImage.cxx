@@ -381,11 +381,9 @@ struct vtkSchlierenImage::vtkInternals
 {
   // the packed volume and this rank's film sums, kept between updates
   schlieren::TraceSession Session;
-  // The last error reported and the filter's modification time then. ParaView asks again for
-  // the information and the data of a filter that failed: the same error of the same settings
-  // is reported once, not once per request.
+  // The last error reported. ParaView (the GUI's refinement too) asks again for the data of a
+  // filter that failed: an error is reported once until an update succeeds or the error changes.
   std::string LastError;
-  vtkMTimeType LastErrorTime = 0;
   bool Fresh(const std::string& error, vtkMTimeType)
   {
     const bool fresh = error != this->LastError;
@@ -446,12 +444,10 @@ int vtkSchlierenImage::RequestInformation(
   // extent (copied here by the executive) as the film's.
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+  // The errors found here are RequestData's to report (it finds them again): ParaView asks for
+  // the information more often than for the data, and each error is said once.
   if (!vtkImageData::SafeDownCast(input))
   {
-    if (this->Internals->Fresh(NotAnImage(input), this->GetMTime()))
-    {
-      vtkErrorMacro(<< NotAnImage(input));
-    }
     return 0;
   }
   int inWhole[6] = { 0, -1, 0, -1, 0, -1 };
@@ -483,13 +479,9 @@ int vtkSchlierenImage::RequestInformation(
     outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
     outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
   }
-  catch (const schlieren::Error& e)
+  catch (const schlieren::Error&)
   {
-    if (this->Internals->Fresh(e.what(), this->GetMTime()))
-    {
-      vtkErrorMacro(<< e.what());
-    }
-    return 0;
+    return 0; // RequestData reports it
   }
   // Every rank must execute (the tracing is collective under MPI); rank 0 produces the image.
   outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
