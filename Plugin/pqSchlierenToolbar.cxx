@@ -100,6 +100,7 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
       }
     }
   });
+  QObject::connect(image, &pqProxy::modifiedStateChanged, this, [this]() { this->onApplied(); });
   vtkSMProxy* proxy = image->getProxy();
   pqCoreUtilities::connect(
     proxy->GetProperty("Passes"), vtkCommand::ModifiedEvent, this, SLOT(onPassesModified()));
@@ -285,6 +286,44 @@ void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int
     if (!this->ImageView &&
       vtkSMPropertyHelper(this->Image->getProxy(), "OpenImageView").GetAsInt() != 0)
     {
+      vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+      if (!info || info->GetNumberOfPoints() == 0)
+      {
+        // the trace failed (its error is in the Output Messages): no empty view; the image is
+        // hidden in the 3D view and the view opens after the next Apply that makes an image
+        vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+        controller->Hide(vtkSMSourceProxy::SafeDownCast(this->Image->getProxy()), 0,
+          vtkSMViewProxy::SafeDownCast(view->getViewProxy()));
+        view->render();
+        this->PendingView = view;
+        this->log("not-opened");
+        return;
+      }
+      this->openImageView(view);
+    }
+  });
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onApplied()
+{
+  // an Apply of the image whose first trace failed: shown nowhere, nothing else updates it
+  if (!this->PendingView || this->ImageView || !this->Image ||
+    this->Image->modifiedState() != pqProxy::UNMODIFIED)
+  {
+    return;
+  }
+  QTimer::singleShot(0, this, [this]() {
+    if (!this->PendingView || this->ImageView || !this->Image)
+    {
+      return;
+    }
+    vtkSMSourceProxy::SafeDownCast(this->Image->getProxy())->UpdatePipeline();
+    vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+    if (info && info->GetNumberOfPoints() > 0)
+    {
+      QPointer<pqRenderView> view = this->PendingView;
+      this->PendingView = nullptr;
       this->openImageView(view);
     }
   });
