@@ -167,7 +167,8 @@ def fixed_cases():
     add("cell-only input, InputArray CELLS",
         dict(source=dict(GAUSS, array="density", cells=True),
              index=dict(Model="GladstoneDale", InputArray=["CELLS", "density"])),
-        dict(outcome=["error", "image"], not_phrases=["no point array of that name"]))
+        # density 1e-4 kg/m^3 bends light by about 1e-9 rad: the weak-field warning is right
+        dict(outcome=["error", "image", "warned"], not_phrases=["no point array of that name"]))
     # the second round: threads, bodies, symmetry (each child has a 4 GiB address space: 1000
     # threads' stacks do not fit, and must not abort)
     for threads in (1000, 4096):
