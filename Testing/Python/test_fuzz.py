@@ -124,8 +124,11 @@ def fixed_cases():
     add("spacing ratio 3e4 seen along a long axis",
         dict(source=thin, image=img(ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1])),
         error_naming("StepSize", "float position"))
+    # traced (no float-precision refusal); the sheet is thin along the beam, so its bending
+    # (about 4e-9 rad) is below what a bench resolves and says so
     add("spacing ratio 3e4 seen along the thin axis",
-        dict(source=thin, image=img()), dict(outcome=["image"]))
+        dict(source=thin, image=img()),
+        dict(outcome=["warned"], phrases=["The largest deflection over the film is", "below the about 1e-07 rad"]))
     add("spacing ratio 3e4 oblique",
         dict(source=thin, image=img(ViewDirection=[1, 1, 1], ViewUp=[0, 0, 1])),
         dict(outcome=["image", "warned"]))  # the beam advances along z by many float units
