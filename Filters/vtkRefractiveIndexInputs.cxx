@@ -393,29 +393,67 @@ std::string ChooseModel(const std::vector<std::string>& present, std::vector<std
   return std::string();
 }
 
+const char* PressureUnitLabel(int unit)
+{
+  static const char* const names[] = { "Pa", "kPa", "atm", "bar" };
+  return unit >= 0 && unit <= 3 ? names[unit] : "Pa";
+}
+
+/** The gas the chosen model takes, in words: "air (the default Custom gas: ...)", "He (the table)". */
+std::string GasWords(Filter* self, int model)
+{
+  std::ostringstream g;
+  if (model == Filter::IDEAL_GAS && self->GetIdealGasComposition() != Filter::SINGLE_GAS)
+  {
+    g << (self->GetIdealGasComposition() == Filter::MIXTURE_FRACTION
+        ? "a mixture fraction between Mixture Gas 0 and 1"
+        : "species mass fractions");
+    return g.str();
+  }
+  const int gas = self->GetGas();
+  if (gas >= 0)
+  {
+    const schlieren::GasProperties& p = schlieren::GetGasProperties(static_cast<schlieren::Gas>(gas));
+    g << p.Name << " from the gas table (K = " << p.GladstoneDale << " m^3/kg)";
+    return g.str();
+  }
+  const schlieren::GasProperties& air = schlieren::GetGasProperties(schlieren::Gas::Air);
+  const double K = self->GetGladstoneDaleConstant(), M = self->GetMolarMass();
+  const bool isAir = K == air.GladstoneDale && (model != Filter::IDEAL_GAS || M == air.MolarMass);
+  if (isAir)
+  {
+    g << "air (Gas Custom, whose defaults are air's: K = " << K << " m^3/kg";
+    if (model == Filter::IDEAL_GAS)
+    {
+      g << ", M = " << M << " kg/mol";
+    }
+    g << "; set Gas for another gas)";
+  }
+  else
+  {
+    g << "the Custom gas, K = " << K << " m^3/kg";
+    if (model == Filter::IDEAL_GAS)
+    {
+      g << ", M = " << M << " kg/mol";
+    }
+  }
+  return g.str();
+}
+
 /** The note that says what Model Automatic chose, and why. */
-std::string ChoiceNote(int model, bool holdsN, bool customGas, double K, const std::string& why)
+std::string ChoiceNote(Filter* self, int model, bool holdsN, const std::string& why)
 {
   std::ostringstream note;
   note << "RefractiveIndex: Model Automatic chose " << Label(model);
-  if (model == Filter::GLADSTONE_DALE || model == Filter::IDEAL_GAS)
-  {
-    note << " (Gas ";
-    if (customGas)
-    {
-      note << "Custom, K = " << K << " m^3/kg: air unless set otherwise";
-    }
-    else
-    {
-      note << "from the table";
-    }
-    note << ")";
-  }
   if (model == Filter::PASSTHROUGH && holdsN)
   {
     note << " of n";
   }
   note << ": " << why << ".";
+  if (model == Filter::GLADSTONE_DALE || model == Filter::IDEAL_GAS)
+  {
+    note << " Gas: " << GasWords(self, model) << ".";
+  }
   return note.str();
 }
 } // namespace
@@ -448,8 +486,7 @@ std::string vtkRefractiveIndex::ResolveChoices(
     {
       return problem;
     }
-    notes.push_back(ChoiceNote(
-      model, holdsN, this->Gas == CUSTOM_GAS, this->GladstoneDaleConstant, why.str()));
+    notes.push_back(ChoiceNote(this, model, holdsN, why.str()));
   }
   this->ResolvedModel = model;
   this->ResolvedHoldsN = holdsN;
@@ -519,8 +556,23 @@ std::string vtkRefractiveIndex::ResolveChoices(
   }
   if (this->Model == AUTOMATIC && model == IDEAL_GAS)
   {
-    notes.back() += " Temperature '" + arrays[TEMPERATURE_ARRAY] + "', pressure '" +
-      arrays[PRESSURE_ARRAY] + "' (in K and Pa unless the units and references say otherwise).";
+    std::ostringstream units;
+    units << " Temperature '" << arrays[TEMPERATURE_ARRAY] << "' read in "
+          << (this->TemperatureUnit == CELSIUS ? "C" : "K") << " times TemperatureReference ("
+          << this->TemperatureReference << "), pressure '" << arrays[PRESSURE_ARRAY] << "' in "
+          << PressureUnitLabel(this->PressureUnit) << " times PressureReference ("
+          << this->PressureReference << ") plus PressureOffset (" << this->PressureOffset
+          << "): an absolute pressure (a gauge one needs the operating pressure as PressureOffset).";
+    notes.back() += units.str();
+  }
+  if (this->Model == AUTOMATIC && model == GLADSTONE_DALE)
+  {
+    std::ostringstream units;
+    units << " Density '" << arrays[INPUT_ARRAY] << "' read in kg/m^3 times DensityReference ("
+          << this->DensityReference
+          << "): a non-dimensional density (PLOT3D's is rho / rho_inf) needs the free-stream "
+             "density in kg/m^3 as DensityReference.";
+    notes.back() += units.str();
   }
   return std::string();
 }

@@ -26,6 +26,7 @@
 #include "SchlierenSession.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdint>
 #include <cmath>
@@ -380,6 +381,9 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
     addNumber("bench_dark_share", result.BenchDark);
     addString("bench_model", result.BenchModel);
   }
+  // the deflection (rad) the scale maps to full contrast, and the largest one traced
+  addNumber("full_contrast_deflection", result.FullContrastDeflection);
+  addNumber("max_deflection", result.MaxDeflection);
   // what the user was warned of (empty: nothing), for scripts that check an image is usable
   addString("warnings", image.Warnings);
   addString("backend", image.BackendUsed);
@@ -444,6 +448,32 @@ struct vtkSchlierenImage::vtkInternals
   schlieren::TraceSession Session;
   // the Version of each time step of the input (its time and upstream pipeline MTime)
   std::map<std::pair<vtkMTimeType, double>, std::uint64_t> TimeVersions;
+  // The last error reported. ParaView (the GUI's refinement too) asks again for the data of a
+  // filter that failed: an error is reported once until an update succeeds or the error changes.
+  std::string LastError;
+  bool Fresh(const std::string& error, vtkMTimeType)
+  {
+    const bool fresh = error != this->LastError;
+    this->LastError = error;
+    return fresh;
+  }
+  // The warnings of the last update without their numbers: passes added to the same image
+  // (the GUI's refinement, chunk by chunk) repeat a warning only when it changes in words.
+  std::string LastWarnings;
+  bool FreshWarnings(const std::string& warnings, bool addedPasses)
+  {
+    std::string words;
+    for (char c : warnings)
+    {
+      if (!std::isdigit(static_cast<unsigned char>(c)))
+      {
+        words += c;
+      }
+    }
+    const bool fresh = !addedPasses || words != this->LastWarnings;
+    this->LastWarnings = words;
+    return fresh;
+  }
 };
 
 //------------------------------------------------------------------------------
@@ -481,15 +511,21 @@ int vtkSchlierenImage::RequestInformation(
   // extent (copied here by the executive) as the film's.
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
-  // the XML domain's range (the engine takes any finite angle): outside it, an error, not a wrap
+  // The errors found here are RequestData's to report (it finds them again): ParaView asks for
+  // the information more often than for the data, and each error is said once.
+  // The XML domain's range (the engine takes any finite angle): outside it, an error, not a wrap.
   if (!(this->KnifeAngle >= -180 && this->KnifeAngle <= 180))
   {
-    vtkErrorMacro(<< "KnifeAngle is " << this->KnifeAngle << ": it must be in [-180, 180] degrees.");
+    std::ostringstream msg;
+    msg << "KnifeAngle is " << this->KnifeAngle << ": it must be in [-180, 180] degrees.";
+    if (this->Internals->Fresh(msg.str(), this->GetMTime()))
+    {
+      vtkErrorMacro(<< msg.str());
+    }
     return 0;
   }
   if (!vtkImageData::SafeDownCast(input))
   {
-    vtkErrorMacro(<< NotAnImage(input));
     return 0;
   }
   int inWhole[6] = { 0, -1, 0, -1, 0, -1 };
@@ -500,8 +536,12 @@ int vtkSchlierenImage::RequestInformation(
   if (inWhole[1] < inWhole[0] || inWhole[3] < inWhole[2] || inWhole[5] < inWhole[4])
   {
     // Not a grid with too few points: nothing came (a filter upstream that failed said why).
-    vtkErrorMacro(<< "The input volume is empty: nothing to trace. If a filter upstream reported "
-                     "an error, that is the cause; fix it there.");
+    const std::string empty = "The input volume is empty: nothing to trace. If a filter upstream "
+                              "reported an error, that is the cause; fix it there.";
+    if (this->Internals->Fresh(empty, this->GetMTime()))
+    {
+      vtkErrorMacro(<< empty);
+    }
     return 0;
   }
   try
@@ -517,10 +557,9 @@ int vtkSchlierenImage::RequestInformation(
     outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
     outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
   }
-  catch (const schlieren::Error& e)
+  catch (const schlieren::Error&)
   {
-    vtkErrorMacro(<< e.what());
-    return 0;
+    return 0; // RequestData reports it
   }
   // Every rank must execute (the tracing is collective under MPI); rank 0 produces the image.
   outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
@@ -612,11 +651,16 @@ int vtkSchlierenImage::RequestData(
   {
     this->SetProgressText(nullptr);
   }
+  const bool freshWarnings =
+    this->Internals->FreshWarnings(image.Warnings, image.PassesTraced < image.Passes);
   for (const schlieren::SessionImage::Note& note : image.Notes)
   {
     if (note.Warning)
     {
-      vtkWarningMacro(<< note.Text);
+      if (freshWarnings)
+      {
+        vtkWarningMacro(<< note.Text);
+      }
     }
     else
     {
@@ -625,9 +669,13 @@ int vtkSchlierenImage::RequestData(
   }
   if (!error.empty())
   {
-    vtkErrorMacro(<< error);
+    if (this->Internals->Fresh(error, this->GetMTime()))
+    {
+      vtkErrorMacro(<< error);
+    }
     return 0;
   }
+  this->Internals->Fresh(std::string(), this->GetMTime());
   output->Initialize();
   if (!image.HasImage)
   {

@@ -345,6 +345,11 @@ struct TraceResult
   /// body's shadow, as the beam sees it before any deflection); only when the volume has Solid
   std::vector<float> Blocked;
   double CutoffScaleUsed = 0.0;
+  /// the deflection (rad) that CutoffScaleUsed maps to full contrast: of the knife's component
+  /// for KnifeEdge (0.5 / k), of |e| for the other stops (1 / k); 0 where no scale applies
+  double FullContrastDeflection = 0.0;
+  /// the largest |e| of any photon (rad)
+  double MaxDeflection = 0.0;
   std::string BackendUsed;  ///< "OpenCL" or "CPU"
   std::string DeviceName;
   std::string Warnings;     ///< what the user should know (fallbacks, failed rays)

@@ -67,12 +67,12 @@ FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
   Cross(f.Right, f.Direction, f.Up);
   Normalize(f.Up);
 
-  if (s.Resolution[0] < 1 || s.Resolution[1] < 1 || s.Resolution[0] > 16384 ||
+  if (s.Resolution[0] < 2 || s.Resolution[1] < 2 || s.Resolution[0] > 16384 ||
     s.Resolution[1] > 16384)
   {
     std::ostringstream msg;
-    msg << "Resolution " << s.Resolution[0] << " x " << s.Resolution[1]
-        << " is out of range: each side must be 1 to 16384 pixels.";
+    msg << "Resolution is " << s.Resolution[0] << " x " << s.Resolution[1]
+        << " pixels: each side must be 2 to 16384 pixels (at least 2 x 2).";
     throw Error(msg.str());
   }
   double h[3];

@@ -11,6 +11,38 @@
 namespace schlieren
 {
 
+// The smallest deflection a sensitive laboratory schlieren bench resolves, rad (a long-focus
+// system with a sharp knife edge; ordinary benches need about ten times more).
+static double BenchResolvableDeflection()
+{
+  return 1e-7;
+}
+
+// A field that bends light less than a laboratory bench can see: the image is contrast made by the
+// automatic scale, not a picture of anything a real schlieren system would show. Such a field is
+// nearly always an input read in the wrong units. An exactly uniform field (no deflection at all)
+// is not warned of: its image is honest (uniform, or a body's shadow).
+static std::string WeakFieldWarning(const TraceSettings& s, const TraceResult& r)
+{
+  if (s.Mode == Cutoff::Interferometry || !(r.MaxDeflection > 0) ||
+    !(r.MaxDeflection < BenchResolvableDeflection()))
+    return std::string();
+  std::ostringstream msg;
+  msg << "The largest deflection over the film is " << r.MaxDeflection << " rad, below the about "
+      << BenchResolvableDeflection()
+      << " rad that a sensitive laboratory schlieren bench resolves: a real bench would show "
+         "nothing here";
+  if (!(s.CutoffScale > 0) && r.CutoffScaleUsed > 0)
+    msg << ", and the automatic CutoffScale (" << r.CutoffScaleUsed << ") stretched "
+        << r.FullContrastDeflection << " rad to full contrast";
+  msg << ". n - 1 is likely far too small for the flow: check RefractiveIndex's units "
+         "(PressureUnit, TemperatureUnit), an absolute pressure against a gauge one (PressureOffset "
+         "is the operating pressure a gauge pressure is added to), a non-dimensional density such "
+         "as PLOT3D's rho / rho_inf (DensityReference: the free-stream density in kg/m^3) or "
+         "pressure (PressureReference), and the Gas (its Gladstone-Dale constant).\n";
+  return msg.str();
+}
+
 // What the user must be told when the photons did not make a picture: no ray entered the volume
 // (a uniform image), or the photons that did landed off the film (a blank image). Uses the raw
 // (unfiltered) sums: a landed photon is counted once there.
@@ -277,6 +309,9 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
       r.Warnings += msg.str();
     }
   }
+  r.FullContrastDeflection =
+    r.CutoffScaleUsed > 0 ? (s.Mode == Cutoff::KnifeEdge ? 0.5 : 1.0) / r.CutoffScaleUsed : 0.0;
+  r.MaxDeflection = sums.MaxAbsDeflection;
   r.Photons = sums.Photons;
   r.Samples = sums.Samples;
   r.FailedRays = sums.FailedRays;
@@ -314,6 +349,7 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     r.Warnings += msg.str();
   }
   r.Warnings += PhotonWarnings(volume, r.Film, raw);
+  r.Warnings += WeakFieldWarning(s, r);
   return r;
 }
 

@@ -149,12 +149,13 @@ void CheckSettings(const TraceSettings& s)
 {
   CheckFinite("ViewDirection", s.ViewDirection, 3);
   CheckFinite("ViewUp", s.ViewUp, 3);
-  if (s.Resolution[0] < 1 || s.Resolution[1] < 1 || s.Resolution[0] > 16384 ||
+  // a film one pixel wide is a line or a point, which ParaView cannot show as an image
+  if (s.Resolution[0] < 2 || s.Resolution[1] < 2 || s.Resolution[0] > 16384 ||
     s.Resolution[1] > 16384)
   {
     std::ostringstream msg;
-    msg << "Resolution " << s.Resolution[0] << " x " << s.Resolution[1]
-        << " is out of range: each side must be 1 to 16384 pixels.";
+    msg << "Resolution is " << s.Resolution[0] << " x " << s.Resolution[1]
+        << " pixels: each side must be 2 to 16384 pixels (at least 2 x 2).";
     throw Error(msg.str());
   }
   if (s.Passes < 1 || s.Passes > 1000000)

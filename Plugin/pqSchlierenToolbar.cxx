@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pqSchlierenToolbar.h"
+#include "pqSchlierenMessages.h"
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
@@ -11,6 +12,7 @@
 #include "pqProgressManager.h"
 #include "pqRenderView.h"
 #include "pqServerManagerModel.h"
+#include "pqRepresentation.h"
 #include "pqView.h"
 
 #include "vtkCamera.h"
@@ -28,6 +30,7 @@
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionProxy.h"
 #include "vtkSMViewLayoutProxy.h"
+#include "vtkSMViewProxy.h"
 
 #include <QAction>
 #include <QDateTime>
@@ -97,6 +100,7 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
       }
     }
   });
+  QObject::connect(image, &pqProxy::modifiedStateChanged, this, [this]() { this->onApplied(); });
   vtkSMProxy* proxy = image->getProxy();
   pqCoreUtilities::connect(
     proxy->GetProperty("Passes"), vtkCommand::ModifiedEvent, this, SLOT(onPassesModified()));
@@ -135,6 +139,41 @@ pqSchlierenFollower::~pqSchlierenFollower()
   {
     this->Camera->RemoveObserver(this->CameraTag);
   }
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::closeImageView()
+{
+  // the image view shows this image alone: it goes with it, and its cell of the layout too
+  QPointer<pqRenderView> view = this->ImageView;
+  this->ImageView = nullptr;
+  if (!view)
+  {
+    return;
+  }
+  QTimer::singleShot(0, [view]() {
+    if (!view)
+    {
+      return;
+    }
+    for (pqRepresentation* repr : view->getRepresentations())
+    {
+      if (repr && repr->isVisible())
+      {
+        return; // the user showed something else there: the view stays
+      }
+    }
+    vtkSMViewProxy* viewProxy = vtkSMViewProxy::SafeDownCast(view->getViewProxy());
+    if (vtkSMViewLayoutProxy* layout = vtkSMViewLayoutProxy::FindLayout(viewProxy))
+    {
+      const int location = layout->RemoveView(viewProxy);
+      if (location >= 0)
+      {
+        layout->Collapse(location);
+      }
+    }
+    pqApplicationCore::instance()->getObjectBuilder()->destroy(view);
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -247,6 +286,44 @@ void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int
     if (!this->ImageView &&
       vtkSMPropertyHelper(this->Image->getProxy(), "OpenImageView").GetAsInt() != 0)
     {
+      vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+      if (!info || info->GetNumberOfPoints() == 0)
+      {
+        // the trace failed (its error is in the Output Messages): no empty view; the image is
+        // hidden in the 3D view and the view opens after the next Apply that makes an image
+        vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+        controller->Hide(vtkSMSourceProxy::SafeDownCast(this->Image->getProxy()), 0,
+          vtkSMViewProxy::SafeDownCast(view->getViewProxy()));
+        view->render();
+        this->PendingView = view;
+        this->log("not-opened");
+        return;
+      }
+      this->openImageView(view);
+    }
+  });
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onApplied()
+{
+  // an Apply of the image whose first trace failed: shown nowhere, nothing else updates it
+  if (!this->PendingView || this->ImageView || !this->Image ||
+    this->Image->modifiedState() != pqProxy::UNMODIFIED)
+  {
+    return;
+  }
+  QTimer::singleShot(0, this, [this]() {
+    if (!this->PendingView || this->ImageView || !this->Image)
+    {
+      return;
+    }
+    vtkSMSourceProxy::SafeDownCast(this->Image->getProxy())->UpdatePipeline();
+    vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+    if (info && info->GetNumberOfPoints() > 0)
+    {
+      QPointer<pqRenderView> view = this->PendingView;
+      this->PendingView = nullptr;
       this->openImageView(view);
     }
   });
@@ -780,6 +857,7 @@ pqSchlierenToolbar::pqSchlierenToolbar(QWidget* parent)
   : QToolBar("Schlieren", parent)
 {
   this->setObjectName("SchlierenToolbar");
+  new pqSchlierenMessages(this);
   if (std::getenv("SCHLIEREN_GUI_TRACE"))
   {
     std::fprintf(stderr, "schlieren-gui %.6f toolbar created\n", QDateTime::currentMSecsSinceEpoch() / 1000.0);
@@ -843,6 +921,7 @@ void pqSchlierenToolbar::onSourceRemoved(pqPipelineSource* source)
 {
   if (auto follower = this->Followers.take(source))
   {
+    follower->closeImageView();
     delete follower;
   }
   this->updateActions();

@@ -53,6 +53,8 @@ public:
   void openImageView(pqRenderView* view3D);
   /// Stops the refinement in progress; the image keeps the passes done.
   void stop();
+  /// The filter goes: its image view (if it shows nothing else) goes too.
+  void closeImageView();
   /// SCHLIEREN_GUI_TRACE=1: one line on stderr per event (for tests and timing).
   void log(const char* event) const;
 
@@ -76,6 +78,8 @@ private Q_SLOTS:
 private:
   void watchCamera(pqRenderView* view);
   void openWhenIdle(QPointer<pqDataRepresentation> added, int tries);
+  /// After an Apply: opens the view a failed first trace did not, if the image is there now.
+  void onApplied();
   void setPasses(int passes);
   void restoreResolution();
   int passes() const;
@@ -86,6 +90,7 @@ private:
   QPointer<pqPipelineSource> Image;
   QPointer<pqRenderView> View3D;
   QPointer<pqRenderView> ImageView;
+  QPointer<pqRenderView> PendingView; // the 3D view of an Apply whose trace failed
   vtkWeakPointer<vtkObject> Camera;
   unsigned long CameraTag = 0;
   int Target = 1;        // the passes the user asked for

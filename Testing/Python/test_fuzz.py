@@ -127,8 +127,11 @@ def fixed_cases():
     add("spacing ratio 3e4 seen along a long axis",
         dict(source=thin, image=img(ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1])),
         error_naming("StepSize", "float position"))
+    # traced (no float-precision refusal); the sheet is thin along the beam, so its bending
+    # (about 4e-9 rad) is below what a bench resolves and says so
     add("spacing ratio 3e4 seen along the thin axis",
-        dict(source=thin, image=img()), dict(outcome=["image"]))
+        dict(source=thin, image=img()),
+        dict(outcome=["warned"], phrases=["The largest deflection over the film is", "below the about 1e-07 rad"]))
     add("spacing ratio 3e4 oblique",
         dict(source=thin, image=img(ViewDirection=[1, 1, 1], ViewUp=[0, 0, 1])),
         dict(outcome=["image", "warned"]))  # the beam advances along z by many float units
@@ -170,7 +173,8 @@ def fixed_cases():
     add("cell-only input, InputArray CELLS",
         dict(source=dict(GAUSS, array="density", cells=True),
              index=dict(Model="GladstoneDale", InputArray=["CELLS", "density"])),
-        dict(outcome=["error", "image"], not_phrases=["no point array of that name"]))
+        # density 1e-4 kg/m^3 bends light by about 1e-9 rad: the weak-field warning is right
+        dict(outcome=["error", "image", "warned"], not_phrases=["no point array of that name"]))
     # the second round: threads, bodies, symmetry (each child has a 4 GiB address space: 1000
     # threads' stacks do not fit, and must not abort)
     for threads in (1000, 4096):
@@ -257,7 +261,7 @@ def random_case(rng, k):
     bad = rng.random() < 0.15
     image = dict(
         ViewDirection=view, ViewUp=up,
-        Resolution=[rng.randint(1, 48), rng.randint(1, 48)],
+        Resolution=[rng.randint(2, 48), rng.randint(2, 48)],
         Passes=rng.randint(1, 3),
         StepSize=lograng(-2, 1.8),
         Integrator=pick("Euler", "Midpoint", "RK4", "Straight", "Auto"),
@@ -297,7 +301,7 @@ def random_case(rng, k):
         if image["StepSize"] < 64:
             image["StepSize"] = min(64.0, image["StepSize"] * 2)
         else:
-            image["Resolution"] = [max(1, n // 2) for n in image["Resolution"]]
+            image["Resolution"] = [max(2, n // 2) for n in image["Resolution"]]
     # threads and device names (out of range about one in six), reconstruction
     if rng.random() < 0.3:
         image["Threads"] = pick(0, 1, 3, 64, 1000, 4096, -1, 5000)
