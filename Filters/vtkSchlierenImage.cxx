@@ -200,6 +200,10 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.Resolution[0] = self->GetResolution()[0];
   s.Resolution[1] = self->GetResolution()[1];
   s.Passes = self->GetPasses();
+  if (self->GetPassLimit() > 0)
+  {
+    s.Passes = std::min(s.Passes, self->GetPassLimit());
+  }
   s.StepSize = self->GetStepSize();
   s.Method = static_cast<schlieren::Integrator>(self->GetIntegrator());
   s.Recon = static_cast<schlieren::Reconstruction>(self->GetReconstruction());

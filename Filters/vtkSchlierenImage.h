@@ -203,6 +203,15 @@ public:
 
   ///@{
   /**
+   * At most this many of Passes are traced (0: no limit, the default). The GUI's refinement
+   * raises it in steps up to Passes, so that Passes stays the user's target.
+   */
+  vtkSetMacro(PassLimit, int);
+  vtkGetMacro(PassLimit, int);
+  ///@}
+
+  ///@{
+  /**
    * The base integration step, in voxels (of the smallest spacing). Valid range [0.01, 64]:
    * a value outside it is an error when the filter runs (never clamped). Default 0.5.
    */
@@ -462,6 +471,7 @@ protected:
   double ViewUp[3] = { 0, 1, 0 };
   int Resolution[2] = { 512, 512 };
   int Passes = 4;
+  int PassLimit = 0;
   double StepSize = 0.5;
   int Integrator = EULER;
   int Reconstruction = TRILINEAR;
