@@ -17,6 +17,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "vtkTimeStamp.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
@@ -381,7 +382,23 @@ struct vtkSchlierenImage::vtkInternals
 {
   // the packed volume and this rank's film sums, kept between updates
   schlieren::TraceSession Session;
+  // the last image written: what an update aborted within a pass leaves in the output
+  vtkSmartPointer<vtkImageData> Shown;
+  // the output is that previous image: the next update must trace, whatever changed
+  bool Stale = false;
+  vtkTimeStamp StaleTime;
 };
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkSchlierenImage::GetMTime()
+{
+  if (this->Internals && this->Internals->Stale)
+  {
+    this->Internals->StaleTime.Modified();
+    return this->Internals->StaleTime.GetMTime();
+  }
+  return this->Superclass::GetMTime();
+}
 
 //------------------------------------------------------------------------------
 vtkSchlierenImage::vtkSchlierenImage()
@@ -503,12 +520,15 @@ int vtkSchlierenImage::RequestData(
   schlieren::ControllerParallel parallel;
   schlieren::SessionImage image;
   std::string error;
+  this->Internals->Stale = false;
   // The progress text: once some tracing is done (the engine's tracing runs from 0.05 to 0.95 of
   // the progress), the time left at the rate so far.
   const auto start = std::chrono::steady_clock::now();
   double startProgress = -1;
+  double reached = 0;
   std::string text;
   auto report = [&](double progress) {
+    reached = progress;
     const double now =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (startProgress < 0 && progress >= 0.05)
@@ -553,6 +573,22 @@ int vtkSchlierenImage::RequestData(
       vtkLog(INFO, << "SchlierenImage: " << note.Text);
     }
   }
+  const bool aborted = !error.empty() && this->GetAbortExecute();
+  if (aborted)
+  {
+    this->SetAbortExecute(0); // the abort is spent: the next update traces
+  }
+  if (aborted && this->Internals->Shown)
+  {
+    // aborted, within a pass or between passes: the previous image stays (the kept passes are
+    // dropped with the unfinished one, so the next update traces afresh)
+    output->ShallowCopy(this->Internals->Shown);
+    this->Internals->Stale = true;
+    vtkWarningMacro(<< "aborted at " << static_cast<int>(100 * std::max(0.0, reached - 0.05) / 0.9)
+                    << " % of the trace: the image shown is the previous one; the next update "
+                       "traces all its passes again");
+    return 1;
+  }
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
@@ -570,6 +606,11 @@ int vtkSchlierenImage::RequestData(
     return 0;
   }
   WriteFieldData(output->GetFieldData(), image);
+  if (!this->Internals->Shown)
+  {
+    this->Internals->Shown = vtkSmartPointer<vtkImageData>::New();
+  }
+  this->Internals->Shown->ShallowCopy(output);
   this->UpdateProgress(1.0);
   return 1;
 }

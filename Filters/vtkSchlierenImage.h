@@ -113,6 +113,8 @@ public:
   static vtkSchlierenImage* New();
   vtkTypeMacro(vtkSchlierenImage, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+  /** Newer than any output while the image shown is one an aborted update left (traced again). */
+  vtkMTimeType GetMTime() override;
 
   /** Reconstructions of the field between grid points; the values are those of
    * schlieren::Reconstruction. */
