@@ -578,16 +578,21 @@ int vtkSchlierenImage::RequestData(
   {
     this->SetAbortExecute(0); // the abort is spent: the next update traces
   }
+  const int percent = static_cast<int>(100 * std::max(0.0, reached - 0.05) / 0.9);
   if (aborted && this->Internals->Shown)
   {
     // aborted, within a pass or between passes: the previous image stays (the kept passes are
     // dropped with the unfinished one, so the next update traces afresh)
     output->ShallowCopy(this->Internals->Shown);
     this->Internals->Stale = true;
-    vtkWarningMacro(<< "aborted at " << static_cast<int>(100 * std::max(0.0, reached - 0.05) / 0.9)
+    vtkWarningMacro(<< "aborted at " << percent
                     << " % of the trace: the image shown is the previous one; the next update "
                        "traces all its passes again");
     return 1;
+  }
+  if (aborted)
+  {
+    error = "aborted at " + std::to_string(percent) + " % of the trace: no image yet";
   }
   if (!error.empty())
   {

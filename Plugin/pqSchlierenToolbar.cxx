@@ -13,7 +13,6 @@
 #include "pqServerManagerModel.h"
 #include "pqView.h"
 
-#include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
@@ -565,20 +564,11 @@ void pqSchlierenFollower::update(const char* what)
   // our chunks are short: no progress bar for them, so that ParaView neither blocks the mouse
   // (a new drag) nor processes events inside the trace
   pqProgressManager* progress = pqApplicationCore::instance()->getProgressManager();
-  // a pass longer than a second (a large film, RK4) shows the progress bar instead, whose abort
-  // ends the trace within an engine chunk
-  const bool quick = this->SecondsPerPass < 1.0;
-  if (quick)
-  {
-    progress->lockProgress(this);
-  }
+  progress->lockProgress(this);
   this->Busy = true;
   this->Image->updatePipeline();
   this->Busy = false;
-  if (quick)
-  {
-    progress->unlockProgress(this);
-  }
+  progress->unlockProgress(this);
   const double seconds = clock.nsecsElapsed() * 1e-9;
   const int now = this->passes();
   // the filter traced only the passes it did not have (all of them after a new view)
@@ -820,32 +810,6 @@ void pqSchlierenFollower::stop()
   Q_EMIT this->stateChanged();
 }
 
-//------------------------------------------------------------------------------
-void pqSchlierenFollower::abort()
-{
-  if (!this->Image)
-  {
-    return;
-  }
-  // the filter's own abort flag (a builtin session: on a pvserver the trace runs there and
-  // ParaView 5.11 sends no abort to it); the filter keeps the image it had
-  auto* proxy = vtkSMSourceProxy::SafeDownCast(this->Image->getProxy());
-  auto* algorithm = proxy ? vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject()) : nullptr;
-  if (algorithm && this->Busy + UpdatesInProgress > 0)
-  {
-    algorithm->SetAbortExecute(1);
-  }
-  this->stop();
-  this->LastPasses = 0; // the aborted trace dropped the kept passes
-  if (this->Image->modifiedState() == pqProxy::UNMODIFIED)
-  {
-    this->Image->setModifiedState(pqProxy::MODIFIED); // Apply traces it again
-  }
-  this->log("aborted");
-  StatusMessage(QString("%1: trace aborted, the image shown is the previous one")
-                  .arg(this->Image->getSMName()));
-}
-
 //==============================================================================
 pqSchlierenToolbar::pqSchlierenToolbar(QWidget* parent)
   : QToolBar("Schlieren", parent)
@@ -886,14 +850,7 @@ pqSchlierenToolbar::pqSchlierenToolbar(QWidget* parent)
   QObject::connect(&pqActiveObjects::instance(), SIGNAL(sourceChanged(pqPipelineSource*)), this,
     SLOT(updateActions()));
   pqProgressManager* progress = pqApplicationCore::instance()->getProgressManager();
-  QObject::connect(progress, &pqProgressManager::progressStartEvent, this, [this, progress]() {
-    ++UpdatesInProgress;
-    if (!this->Followers.isEmpty())
-    {
-      progress->setEnableAbort(true); // a trace can be aborted within a pass
-    }
-  });
-  QObject::connect(progress, &pqProgressManager::abort, this, &pqSchlierenToolbar::abortTraces);
+  QObject::connect(progress, &pqProgressManager::progressStartEvent, this, []() { ++UpdatesInProgress; });
   QObject::connect(progress, &pqProgressManager::progressEndEvent, this,
     []() { UpdatesInProgress = std::max(0, UpdatesInProgress - 1); });
   this->updateActions();
@@ -968,18 +925,6 @@ void pqSchlierenToolbar::stopRefinement()
     if (f)
     {
       f->stop();
-    }
-  }
-}
-
-//------------------------------------------------------------------------------
-void pqSchlierenToolbar::abortTraces()
-{
-  for (const auto& f : this->Followers)
-  {
-    if (f)
-    {
-      f->abort();
     }
   }
 }

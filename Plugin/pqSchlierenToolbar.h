@@ -53,8 +53,6 @@ public:
   void openImageView(pqRenderView* view3D);
   /// Stops the refinement in progress; the image keeps the passes done.
   void stop();
-  /// ParaView's progress abort: the trace in progress ends within an engine chunk.
-  void abort();
   /// SCHLIEREN_GUI_TRACE=1: one line on stderr per event (for tests and timing).
   void log(const char* event) const;
 
@@ -120,7 +118,6 @@ private Q_SLOTS:
   void updateActions();
   void toggleFollow(bool);
   void stopRefinement();
-  void abortTraces();
   void showImageView();
 
 private:
