@@ -17,6 +17,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "vtkTimeStamp.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
@@ -240,6 +241,10 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.Resolution[0] = self->GetResolution()[0];
   s.Resolution[1] = self->GetResolution()[1];
   s.Passes = self->GetPasses();
+  if (self->GetPassLimit() > 0)
+  {
+    s.Passes = std::min(s.Passes, self->GetPassLimit());
+  }
   s.StepSize = self->GetStepSize();
   s.Method = static_cast<schlieren::Integrator>(self->GetIntegrator());
   s.Recon = static_cast<schlieren::Reconstruction>(self->GetReconstruction());
@@ -474,7 +479,23 @@ struct vtkSchlierenImage::vtkInternals
     this->LastWarnings = words;
     return fresh;
   }
+  // the last image written: what an update aborted within a pass leaves in the output
+  vtkSmartPointer<vtkImageData> Shown;
+  // the output is that previous image: the next update must trace, whatever changed
+  bool Stale = false;
+  vtkTimeStamp StaleTime;
 };
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkSchlierenImage::GetMTime()
+{
+  if (this->Internals && this->Internals->Stale)
+  {
+    this->Internals->StaleTime.Modified();
+    return this->Internals->StaleTime.GetMTime();
+  }
+  return this->Superclass::GetMTime();
+}
 
 //------------------------------------------------------------------------------
 vtkSchlierenImage::vtkSchlierenImage()
@@ -611,12 +632,15 @@ int vtkSchlierenImage::RequestData(
   schlieren::ControllerParallel parallel("SchlierenImage");
   schlieren::SessionImage image;
   std::string error;
+  this->Internals->Stale = false;
   // The progress text: once some tracing is done (the engine's tracing runs from 0.05 to 0.95 of
   // the progress), the time left at the rate so far.
   const auto start = std::chrono::steady_clock::now();
   double startProgress = -1;
+  double reached = 0;
   std::string text;
   auto report = [&](double progress) {
+    reached = progress;
     const double now =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (startProgress < 0 && progress >= 0.05)
@@ -667,6 +691,27 @@ int vtkSchlierenImage::RequestData(
       vtkLog(INFO, << "SchlierenImage: " << note.Text);
     }
   }
+  const bool aborted = !error.empty() && this->GetAbortExecute();
+  if (aborted)
+  {
+    this->SetAbortExecute(0); // the abort is spent: the next update traces
+  }
+  const int percent = static_cast<int>(100 * std::max(0.0, reached - 0.05) / 0.9);
+  if (aborted && this->Internals->Shown)
+  {
+    // aborted, within a pass or between passes: the previous image stays (the kept passes are
+    // dropped with the unfinished one, so the next update traces afresh)
+    output->ShallowCopy(this->Internals->Shown);
+    this->Internals->Stale = true;
+    vtkWarningMacro(<< "aborted at " << percent
+                    << " % of the trace: the image shown is the previous one; the next update "
+                       "traces all its passes again");
+    return 1;
+  }
+  if (aborted)
+  {
+    error = "aborted at " + std::to_string(percent) + " % of the trace: no image yet";
+  }
   if (!error.empty())
   {
     if (this->Internals->Fresh(error, this->GetMTime()))
@@ -688,6 +733,11 @@ int vtkSchlierenImage::RequestData(
     return 0;
   }
   WriteFieldData(output->GetFieldData(), image);
+  if (!this->Internals->Shown)
+  {
+    this->Internals->Shown = vtkSmartPointer<vtkImageData>::New();
+  }
+  this->Internals->Shown->ShallowCopy(output);
   this->UpdateProgress(1.0);
   return 1;
 }

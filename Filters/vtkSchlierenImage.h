@@ -116,6 +116,8 @@ public:
   static vtkSchlierenImage* New();
   vtkTypeMacro(vtkSchlierenImage, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+  /** Newer than any output while the image shown is one an aborted update left (traced again). */
+  vtkMTimeType GetMTime() override;
 
   /** Reconstructions of the field between grid points; the values are those of
    * schlieren::Reconstruction. */
@@ -202,6 +204,15 @@ public:
    */
   vtkSetMacro(Passes, int);
   vtkGetMacro(Passes, int);
+  ///@}
+
+  ///@{
+  /**
+   * At most this many of Passes are traced (0: no limit, the default). The GUI's refinement
+   * raises it in steps up to Passes, so that Passes stays the user's target.
+   */
+  vtkSetMacro(PassLimit, int);
+  vtkGetMacro(PassLimit, int);
   ///@}
 
   ///@{
@@ -498,6 +509,7 @@ protected:
   double ViewUp[3] = { 0, 1, 0 };
   int Resolution[2] = { 512, 512 };
   int Passes = 4;
+  int PassLimit = 0;
   double StepSize = 0.5;
   int Integrator = EULER;
   int Reconstruction = TRILINEAR;

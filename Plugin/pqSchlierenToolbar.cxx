@@ -37,6 +37,7 @@
 #include <QElapsedTimer>
 #include <QEvent>
 #include <QIcon>
+#include <QLineEdit>
 #include <QMainWindow>
 #include <QStatusBar>
 
@@ -84,7 +85,7 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
   : QObject(parent)
   , Image(image)
 {
-  this->Target = std::max(1, this->passes());
+  this->Target = std::max(1, this->askedPasses());
   QObject::connect(image,
     SIGNAL(representationAdded(pqPipelineSource*, pqDataRepresentation*, int)), this,
     SLOT(onRepresentationAdded(pqPipelineSource*, pqDataRepresentation*, int)));
@@ -183,16 +184,32 @@ bool pqSchlierenFollower::following() const
 }
 
 //------------------------------------------------------------------------------
-int pqSchlierenFollower::passes() const
+int pqSchlierenFollower::askedPasses() const
 {
   return this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "Passes").GetAsInt() : 0;
 }
 
 //------------------------------------------------------------------------------
+int pqSchlierenFollower::passes() const
+{
+  // the passes the filter traces: Passes, at most PassLimit where that is set
+  const int asked = this->askedPasses();
+  const int limit =
+    this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() : 0;
+  return limit > 0 ? std::min(asked, limit) : asked;
+}
+
+//------------------------------------------------------------------------------
 void pqSchlierenFollower::setPasses(int passes)
 {
+  // the refinement's steps go to PassLimit: the Passes field keeps the user's target
+  // (0: no limit)
+  if (vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() == passes)
+  {
+    return;
+  }
   this->Guard = true;
-  vtkSMPropertyHelper(this->Image->getProxy(), "Passes").Set(passes);
+  vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").Set(passes);
   this->Guard = false;
 }
 
@@ -212,12 +229,31 @@ void pqSchlierenFollower::log(const char* event) const
   vtkSMPropertyHelper(p, "ViewUp").Get(u, 3);
   int r[2];
   vtkSMPropertyHelper(p, "Resolution").Get(r, 2);
+  // what the Properties panel's Passes field shows (its widget is named after the property)
+  QString field = "-";
+  QPoint at(-1, -1);
+  if (QWidget* main = pqCoreUtilities::mainWidget())
+  {
+    for (QWidget* w : main->findChildren<QWidget*>("Passes"))
+    {
+      if (auto* edit = w->findChild<QLineEdit*>())
+      {
+        field = edit->text().isEmpty() ? "-" : edit->text();
+        if (edit->isVisible())
+        {
+          at = edit->mapToGlobal(edit->rect().center());
+        }
+        break;
+      }
+    }
+  }
   std::fprintf(stderr,
     "schlieren-gui %.6f %s %s passes=%d target=%d resolution=%dx%d seconds_per_pass=%.4f "
-    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g\n",
+    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g passes_property=%d passes_field=%s field_at=%d,%d\n",
     QDateTime::currentMSecsSinceEpoch() / 1000.0, event,
     this->Image->getSMName().toLocal8Bit().constData(), this->passes(), this->Target, r[0], r[1],
-    this->SecondsPerPass, d[0], d[1], d[2], u[0], u[1], u[2]);
+    this->SecondsPerPass, d[0], d[1], d[2], u[0], u[1], u[2], this->askedPasses(),
+    field.toLocal8Bit().constData(), at.x(), at.y());
   std::fflush(stderr);
 }
 
@@ -629,7 +665,7 @@ void pqSchlierenFollower::update(const char* what)
   }
   if (std::strcmp(what, "refine") == 0)
   {
-    // the Passes field shows the passes done while refining: the target is said here
+    // the Passes field keeps the target; the passes done are said here
     StatusMessage(QString("%1: %2 of %3 passes, Ctrl+Alt+S stops")
                     .arg(this->Image->getSMName())
                     .arg(now)
@@ -679,16 +715,14 @@ void pqSchlierenFollower::onPassesModified()
   {
     return;
   }
-  const int asked = this->passes();
-  if (!this->following() && this->Progressive && this->Target > asked &&
-    asked == std::max(1, vtkSMPropertyHelper(this->Image->getProxy(), "InteractivePasses").GetAsInt()))
-  {
-    return; // onPropertyModified's own start passes, seen through the same change
-  }
+  const int asked = this->askedPasses();
   this->Target = std::max(1, asked);
   this->Stopped = false;
   if (!this->following())
   {
+    // a script's Passes is traced as it is; the panel's Apply sets its own limit next
+    // (onPropertyModified)
+    this->setPasses(0);
     return;
   }
   // following: the new target is reached in chunks (so that it can be stopped), starting from
@@ -737,13 +771,14 @@ void pqSchlierenFollower::onPropertyModified(vtkObject* property)
   vtkSMProxy* proxy = this->Image->getProxy();
   if (std::strcmp(name, "Passes") == 0)
   {
-    this->Target = std::max(1, this->passes());
+    this->Target = std::max(1, this->askedPasses());
   }
   const int start =
     std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt());
   if (this->Target <= start)
   {
     this->Progressive = false;
+    this->setPasses(0);
     return;
   }
   this->Stopped = false;
@@ -766,7 +801,7 @@ void pqSchlierenFollower::onFollowModified()
   }
   if (this->following())
   {
-    this->Target = std::max(this->Target, this->passes());
+    this->Target = std::max(1, this->askedPasses());
     if (!this->View3D)
     {
       auto* view = qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView());

@@ -83,6 +83,7 @@ private:
   void setPasses(int passes);
   void restoreResolution();
   int passes() const;
+  int askedPasses() const;
   void update(const char* what);
   /// Following the camera, or reaching an applied Passes in chunks.
   bool refinable() const { return this->following() || this->Progressive; }
@@ -94,7 +95,7 @@ private:
   vtkWeakPointer<vtkObject> Camera;
   unsigned long CameraTag = 0;
   int Target = 1;        // the passes the user asked for
-  bool Guard = false;    // set while this object changes Passes itself
+  bool Guard = false;    // set while this object changes PassLimit or Resolution itself
   bool Stopped = false;  // Stop pressed: no refinement until the next camera change
   bool RetracePending = false;
   bool Progressive = false; // an applied trace (Follow Camera off) is reached in chunks

@@ -106,12 +106,18 @@ try:
             return fetched["got"]
         e = info.GetExtent()
         key = (int(passes.GetRange()[0]), e[1] - e[0] + 1, e[3] - e[2] + 1)
-        if key[0] != int(image.Passes) or list(key[1:]) != list(image.Resolution):
+        if key[0] != traced_passes() or list(key[1:]) != list(image.Resolution):
             return fetched["got"]
         key = key + (tuple(image.ViewDirection), tuple(image.ViewUp), info.GetMTime())
         if key != fetched["key"]:
             fetched["key"], fetched["got"] = key, read(servermanager.Fetch(image))
         return fetched["got"]
+
+    def traced_passes():
+        """The passes the filter traces: Passes (the user's target, as the panel shows it), at
+        most the plugin's PassLimit while it refines."""
+        limit = image.SMProxy.GetProperty("PassLimit").GetElement(0)
+        return min(int(image.Passes), limit) if limit > 0 else int(image.Passes)
 
     def on_render(caller, event):
         state["renders"] += 1

@@ -177,7 +177,7 @@ vimage.AddObserver("ProgressEvent", on_progress)
 with st.CapturedOutput() as out:
     vimage.Update()
 T.check(len(progress) >= 2 and 0 < progress[1] < 1, "VTK Python: progress reported (%s)" % progress[:4])
-T.check("aborted" in out.text and vimage.GetOutput().GetNumberOfPoints() == 0,
-        "VTK Python: an abort from the progress observer stops the trace with an error")
+T.check("aborted" in out.text and vimage.GetOutput().GetDimensions() == (8, 8, 1),
+        "VTK Python: an abort from the progress observer stops the trace, said, the image of before kept")
 
 T.finish()
