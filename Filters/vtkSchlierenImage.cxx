@@ -292,6 +292,13 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   return s;
 }
 
+/** The settings an error is said again for when they change (all but the GUI's PassLimit). */
+std::string ErrorKey(vtkSchlierenImage* self)
+{
+  return SettingsOf(self).PhotonKey() + " | passes " + std::to_string(self->GetPasses()) +
+    " | filter " + std::to_string(self->GetFilter());
+}
+
 /** A float point array of `pixels` tuples from an engine image, with component names. */
 vtkSmartPointer<vtkFloatArray> FloatArray(const char* name, const std::vector<float>& values,
   int components, vtkIdType pixels, const char* c0 = nullptr, const char* c1 = nullptr,
@@ -454,12 +461,16 @@ struct vtkSchlierenImage::vtkInternals
   // the Version of each time step of the input (its time and upstream pipeline MTime)
   std::map<std::pair<vtkMTimeType, double>, std::uint64_t> TimeVersions;
   // The last error reported. ParaView (the GUI's refinement too) asks again for the data of a
-  // filter that failed: an error is reported once until an update succeeds or the error changes.
+  // filter that failed: an error is reported once until an update succeeds, the error changes or
+  // a setting does (a new update with changed settings is told again why it fails). The GUI's own
+  // PassLimit is not a setting here: its refinement steps do not repeat an error.
   std::string LastError;
-  bool Fresh(const std::string& error, vtkMTimeType)
+  std::string LastErrorKey;
+  bool Fresh(const std::string& error, const std::string& key)
   {
-    const bool fresh = error != this->LastError;
+    const bool fresh = error != this->LastError || key != this->LastErrorKey;
     this->LastError = error;
+    this->LastErrorKey = key;
     return fresh;
   }
   // The warnings of the last update without their numbers: passes added to the same image
@@ -539,7 +550,7 @@ int vtkSchlierenImage::RequestInformation(
   {
     std::ostringstream msg;
     msg << "KnifeAngle is " << this->KnifeAngle << ": it must be in [-180, 180] degrees.";
-    if (this->Internals->Fresh(msg.str(), this->GetMTime()))
+    if (this->Internals->Fresh(msg.str(), ErrorKey(this)))
     {
       vtkErrorMacro(<< msg.str());
     }
@@ -559,7 +570,7 @@ int vtkSchlierenImage::RequestInformation(
     // Not a grid with too few points: nothing came (a filter upstream that failed said why).
     const std::string empty = "The input volume is empty: nothing to trace. If a filter upstream "
                               "reported an error, that is the cause; fix it there.";
-    if (this->Internals->Fresh(empty, this->GetMTime()))
+    if (this->Internals->Fresh(empty, ErrorKey(this)))
     {
       vtkErrorMacro(<< empty);
     }
@@ -714,13 +725,13 @@ int vtkSchlierenImage::RequestData(
   }
   if (!error.empty())
   {
-    if (this->Internals->Fresh(error, this->GetMTime()))
+    if (this->Internals->Fresh(error, ErrorKey(this)))
     {
       vtkErrorMacro(<< error);
     }
     return 0;
   }
-  this->Internals->Fresh(std::string(), this->GetMTime());
+  this->Internals->Fresh(std::string(), std::string());
   output->Initialize();
   if (!image.HasImage)
   {

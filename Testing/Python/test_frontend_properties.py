@@ -12,7 +12,7 @@ import xml.etree.ElementTree as ET
 
 import schlieren
 
-GUI_ONLY = {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView"}
+GUI_ONLY = {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView", "PassLimit"}
 
 ap = argparse.ArgumentParser()
 ap.add_argument("--xml", required=True)

@@ -39,7 +39,7 @@ args = ap.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ns = globals()
 failures = []
-GUI_ONLY = {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView"}
+GUI_ONLY = {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView", "PassLimit"}
 
 
 def check(ok, what):
