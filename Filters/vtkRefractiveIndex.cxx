@@ -35,6 +35,7 @@
 #include "SchlierenArrays.h"
 #include "SchlierenBodies.h"
 #include "SchlierenController.h"
+#include "SchlierenEnums.h"
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
@@ -488,6 +489,48 @@ std::string PropertyProblem(vtkRefractiveIndex* self)
       msg << ".";
       return msg.str();
     }
+  }
+  // the enumerations' and booleans' entries, those of their domains in Schlieren.xml
+  const std::initializer_list<SchlierenEntry> gas = { { 0, "Air" }, { 1, "He" }, { 2, "N2" },
+    { 3, "O2" }, { 4, "Ar" }, { 5, "CO2" }, { 6, "H2" }, { 7, "H2O" }, { 8, "CH4" }, { 9, "CO" } };
+  const std::string problems[] = {
+    SchlierenEnumProblem("Model", self->GetModel(),
+      { { -1, "Automatic" }, { 0, "Passthrough" }, { 1, "GladstoneDale" },
+        { 2, "GladstoneDaleMixture" }, { 3, "IdealGas" }, { 4, "Ciddor" } }),
+    SchlierenEnumProblem("Gas", self->GetGas(),
+      { { -1, "Custom" }, { 0, "Air" }, { 1, "He" }, { 2, "N2" }, { 3, "O2" }, { 4, "Ar" },
+        { 5, "CO2" }, { 6, "H2" }, { 7, "H2O" }, { 8, "CH4" }, { 9, "CO" } }),
+    SchlierenEnumProblem("MixtureComposition", self->GetMixtureComposition(),
+      { { 1, "MixtureFraction" }, { 2, "Species" } }),
+    SchlierenEnumProblem("IdealGasComposition", self->GetIdealGasComposition(),
+      { { 0, "Gas" }, { 1, "MixtureFraction" }, { 2, "Species" } }),
+    SchlierenEnumProblem("MixtureGas0", self->GetMixtureGas0(), gas),
+    SchlierenEnumProblem("MixtureGas1", self->GetMixtureGas1(), gas),
+    SchlierenEnumProblem("BalanceGas", self->GetBalanceGas(),
+      { { -2, "None" }, { -1, "Custom" }, { 0, "Air" }, { 1, "He" }, { 2, "N2" }, { 3, "O2" }, { 4, "Ar" },
+        { 5, "CO2" }, { 6, "H2" }, { 7, "H2O" }, { 8, "CH4" }, { 9, "CO" } }),
+    SchlierenEnumProblem(
+      "TemperatureUnit", self->GetTemperatureUnit(), { { 0, "Kelvin" }, { 1, "Celsius" } }),
+    SchlierenEnumProblem("PressureUnit", self->GetPressureUnit(),
+      { { 0, "Pa" }, { 1, "kPa" }, { 2, "atm" }, { 3, "bar" } }),
+    SchlierenEnumProblem("HumidityMeasure", self->GetHumidityMeasure(),
+      { { 0, "RelativeHumidity" }, { 1, "WaterMoleFraction" } }),
+    SchlierenEnumProblem(
+      "Symmetry", self->GetSymmetry(), { { 0, "None" }, { 1, "Planar" }, { 2, "Axisymmetric" } }),
+    SchlierenEnumProblem(
+      "SymmetryAxis", self->GetSymmetryAxis(), { { 0, "X" }, { 1, "Y" }, { 2, "Z" } }),
+    SchlierenEnumProblem("AmbientMode", self->GetAmbientMode(),
+      { { 0, "Extend" }, { 1, "DomainEdgeMedian" }, { 2, "Value" } }),
+    SchlierenBoolProblem("PassthroughHoldsN", self->GetPassthroughHoldsN()),
+    SchlierenBoolProblem("HumidityFromArray", self->GetHumidityFromArray()),
+    SchlierenBoolProblem("CO2FromArray", self->GetCO2FromArray()),
+    SchlierenBoolProblem("AxisFromWedge", self->GetAxisFromWedge()),
+    SchlierenBoolProblem("UseSamplingBounds", self->GetUseSamplingBounds()),
+    SchlierenBoolProblem("BodyFromGrid", self->GetBodyFromGrid()) };
+  for (const std::string& problem : problems)
+  {
+    if (!problem.empty())
+      return problem;
   }
   return std::string();
 }

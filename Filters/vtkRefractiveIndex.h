@@ -198,7 +198,7 @@ public:
    * them is an error that lists the arrays. The choice is reported as text and in the field data
    * `index_model` (see GetModelInUse).
    */
-  vtkSetClampMacro(Model, int, AUTOMATIC, CIDDOR);
+  vtkSetMacro(Model, int);
   vtkGetMacro(Model, int);
   void SetModelToAutomatic() { this->SetModel(AUTOMATIC); }
   void SetModelToPassthrough() { this->SetModel(PASSTHROUGH); }
@@ -241,7 +241,7 @@ public:
    * distance to the axis), probed in the 2D input, so that memory and time follow the 3D grid
    * and no 3D copy of the input is made. Any view direction works.
    */
-  vtkSetClampMacro(Symmetry, int, NO_SYMMETRY, AXISYMMETRIC);
+  vtkSetMacro(Symmetry, int);
   vtkGetMacro(Symmetry, int);
   ///@}
 
@@ -257,7 +257,7 @@ public:
    * input's plane, and r is measured along the plane's other axis. Default 0 (x: r along y for
    * data in the x-y plane).
    */
-  vtkSetClampMacro(SymmetryAxis, int, 0, 2);
+  vtkSetMacro(SymmetryAxis, int);
   vtkGetMacro(SymmetryAxis, int);
   ///@}
 
@@ -269,16 +269,16 @@ public:
    * that line, found from its points (schlieren::DetectWedge), and SymmetryAxis is ignored; the
    * note says what was found, or why a 3D input was not taken as a wedge. Off: SymmetryAxis.
    */
-  vtkSetMacro(AxisFromWedge, bool);
-  vtkGetMacro(AxisFromWedge, bool);
-  vtkBooleanMacro(AxisFromWedge, bool);
+  vtkSetMacro(AxisFromWedge, int);
+  vtkGetMacro(AxisFromWedge, int);
+  vtkBooleanMacro(AxisFromWedge, int);
   ///@}
 
   ///@{
   /** Passthrough: on, the input array holds n (n - 1 = value - 1); off (default), n - 1. */
-  vtkSetMacro(PassthroughHoldsN, bool);
-  vtkGetMacro(PassthroughHoldsN, bool);
-  vtkBooleanMacro(PassthroughHoldsN, bool);
+  vtkSetMacro(PassthroughHoldsN, int);
+  vtkGetMacro(PassthroughHoldsN, int);
+  vtkBooleanMacro(PassthroughHoldsN, int);
   ///@}
 
   ///@{
@@ -287,7 +287,7 @@ public:
    * CARBON_MONOXIDE, or CUSTOM_GAS (the default) for GladstoneDaleConstant and MolarMass, whose
    * defaults are air's.
    */
-  vtkSetClampMacro(Gas, int, CUSTOM_GAS, CARBON_MONOXIDE);
+  vtkSetMacro(Gas, int);
   vtkGetMacro(Gas, int);
   ///@}
 
@@ -308,13 +308,13 @@ public:
 
   ///@{
   /** GladstoneDaleMixture: MIXTURE_FRACTION (default) or SPECIES. */
-  vtkSetClampMacro(MixtureComposition, int, MIXTURE_FRACTION, SPECIES);
+  vtkSetMacro(MixtureComposition, int);
   vtkGetMacro(MixtureComposition, int);
   ///@}
 
   ///@{
   /** IdealGas: SINGLE_GAS (Gas; the default), MIXTURE_FRACTION or SPECIES. */
-  vtkSetClampMacro(IdealGasComposition, int, SINGLE_GAS, SPECIES);
+  vtkSetMacro(IdealGasComposition, int);
   vtkGetMacro(IdealGasComposition, int);
   ///@}
 
@@ -323,9 +323,9 @@ public:
    * The gases at mixture fraction 0 and 1 (GasType, table rows only). Defaults AIR and HELIUM: the
    * paper's eq. 2, K = (1 - f) K_air + f K_He.
    */
-  vtkSetClampMacro(MixtureGas0, int, AIR, CARBON_MONOXIDE);
+  vtkSetMacro(MixtureGas0, int);
   vtkGetMacro(MixtureGas0, int);
-  vtkSetClampMacro(MixtureGas1, int, AIR, CARBON_MONOXIDE);
+  vtkSetMacro(MixtureGas1, int);
   vtkGetMacro(MixtureGas1, int);
   ///@}
 
@@ -357,7 +357,7 @@ public:
    * The gas that takes 1 - sum Y (GasType; CUSTOM_GAS: BalanceGladstoneDale and BalanceMolarMass;
    * NO_GAS: none, the species must sum to 1 within 1e-3). Default AIR.
    */
-  vtkSetClampMacro(BalanceGas, int, NO_GAS, CARBON_MONOXIDE);
+  vtkSetMacro(BalanceGas, int);
   vtkGetMacro(BalanceGas, int);
   vtkSetMacro(BalanceGladstoneDale, double);
   vtkGetMacro(BalanceGladstoneDale, double);
@@ -367,13 +367,13 @@ public:
 
   ///@{
   /** The unit of the temperature array (after TemperatureReference): KELVIN (default) or CELSIUS. */
-  vtkSetClampMacro(TemperatureUnit, int, KELVIN, CELSIUS);
+  vtkSetMacro(TemperatureUnit, int);
   vtkGetMacro(TemperatureUnit, int);
   ///@}
 
   ///@{
   /** The unit of the pressure array: PASCAL (default), KILOPASCAL, ATMOSPHERE or BAR. */
-  vtkSetClampMacro(PressureUnit, int, PASCAL, BAR);
+  vtkSetMacro(PressureUnit, int);
   vtkGetMacro(PressureUnit, int);
   ///@}
 
@@ -402,11 +402,11 @@ public:
   vtkSetMacro(Humidity, double);
   vtkGetMacro(Humidity, double);
   /** Ciddor: read the humidity from the array of index 8. Default off. */
-  vtkSetMacro(HumidityFromArray, bool);
-  vtkGetMacro(HumidityFromArray, bool);
-  vtkBooleanMacro(HumidityFromArray, bool);
+  vtkSetMacro(HumidityFromArray, int);
+  vtkGetMacro(HumidityFromArray, int);
+  vtkBooleanMacro(HumidityFromArray, int);
   /** Ciddor: RELATIVE_HUMIDITY (default) or WATER_MOLE_FRACTION. */
-  vtkSetClampMacro(HumidityMeasure, int, RELATIVE_HUMIDITY, WATER_MOLE_FRACTION);
+  vtkSetMacro(HumidityMeasure, int);
   vtkGetMacro(HumidityMeasure, int);
   ///@}
 
@@ -415,9 +415,9 @@ public:
   vtkSetMacro(CO2, double);
   vtkGetMacro(CO2, double);
   /** Ciddor: read CO2 (umol/mol) from the array of index 9. Default off. */
-  vtkSetMacro(CO2FromArray, bool);
-  vtkGetMacro(CO2FromArray, bool);
-  vtkBooleanMacro(CO2FromArray, bool);
+  vtkSetMacro(CO2FromArray, int);
+  vtkGetMacro(CO2FromArray, int);
+  vtkBooleanMacro(CO2FromArray, int);
   ///@}
 
   ///@{
@@ -447,16 +447,16 @@ public:
 
   ///@{
   /** Resampling: use SamplingBounds (world units) instead of the input's bounds. Default off. */
-  vtkSetMacro(UseSamplingBounds, bool);
-  vtkGetMacro(UseSamplingBounds, bool);
-  vtkBooleanMacro(UseSamplingBounds, bool);
+  vtkSetMacro(UseSamplingBounds, int);
+  vtkGetMacro(UseSamplingBounds, int);
+  vtkBooleanMacro(UseSamplingBounds, int);
   vtkSetVector6Macro(SamplingBounds, double);
   vtkGetVector6Macro(SamplingBounds, double);
   ///@}
 
   ///@{
   /** n - 1 outside the flow domain: EXTEND (default), DOMAIN_EDGE_MEDIAN or AMBIENT_VALUE. */
-  vtkSetClampMacro(AmbientMode, int, EXTEND, AMBIENT_VALUE);
+  vtkSetMacro(AmbientMode, int);
   vtkGetMacro(AmbientMode, int);
   /** The ambient n - 1 of AMBIENT_VALUE. Default 2.7164e-4 (air at 20 C and 1 atm, 632.8 nm). */
   vtkSetMacro(AmbientValue, double);
@@ -483,9 +483,9 @@ public:
    *    model, in the data's coordinates); the grid points inside it are solid. A surface that is
    *    not closed is an error.
    */
-  vtkSetMacro(BodyFromGrid, bool);
-  vtkGetMacro(BodyFromGrid, bool);
-  vtkBooleanMacro(BodyFromGrid, bool);
+  vtkSetMacro(BodyFromGrid, int);
+  vtkGetMacro(BodyFromGrid, int);
+  vtkBooleanMacro(BodyFromGrid, int);
   vtkSetVector6Macro(BodyWallFaces, int);
   vtkGetVector6Macro(BodyWallFaces, int);
   void SetSolidArray(const char* name)
@@ -530,8 +530,8 @@ protected:
   int Symmetry = NO_SYMMETRY;
   double Span = 1.0;
   int SymmetryAxis = 0;
-  bool AxisFromWedge = true;
-  bool PassthroughHoldsN = false;
+  int AxisFromWedge = 1;
+  int PassthroughHoldsN = 0;
   int Gas = CUSTOM_GAS;
   double GladstoneDaleConstant = 2.256e-4;
   double MolarMass = 0.0289641;
@@ -553,18 +553,18 @@ protected:
   double PressureReference = 1.0;
   double PressureOffset = 0.0;
   double Humidity = 0.0;
-  bool HumidityFromArray = false;
+  int HumidityFromArray = 0;
   int HumidityMeasure = RELATIVE_HUMIDITY;
   double CO2 = 450.0;
-  bool CO2FromArray = false;
+  int CO2FromArray = 0;
   double Wavelength = 632.8;
   int SamplingDimensions[3] = { 0, 0, 0 };
   int AutomaticDimension = 128;
-  bool UseSamplingBounds = false;
+  int UseSamplingBounds = 0;
   double SamplingBounds[6] = { 0, 1, 0, 1, 0, 1 };
   int AmbientMode = EXTEND;
   double AmbientValue = 2.7164e-4;
-  bool BodyFromGrid = true;
+  int BodyFromGrid = 1;
   int BodyWallFaces[6] = { 0, 0, 0, 0, 0, 0 };
   std::string SolidArray;
 

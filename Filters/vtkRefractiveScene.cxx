@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkRefractiveScene.h"
+#include "SchlierenEnums.h"
 #include "SchlierenGuard.h"
 #include "SchlierenLimits.h"
 
@@ -63,6 +64,21 @@ bool vtkRefractiveScene::ComputeGrid(double origin[3], double spacing[3])
       else
         range << r.Max << "]";
       vtkErrorMacro(<< r.Name << " is " << r.Value << ": it must be in " << range.str() << ".");
+      return false;
+    }
+  }
+  // the enumerations' entries, those of their domains in Schlieren.xml
+  for (const std::string& problem : { SchlierenEnumProblem("Scene", this->Scene,
+                                        { { 0, "Uniform" }, { 1, "GaussianSphere" },
+                                          { 2, "LuneburgLens" }, { 3, "LinearGradient" },
+                                          { 4, "NormalShock" }, { 5, "HeliumPlume" },
+                                          { 6, "BlastWave" } }),
+         SchlierenEnumProblem(
+           "Body", this->Body, { { 0, "None" }, { 1, "Sphere" }, { 2, "Cylinder" } }) })
+  {
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< problem);
       return false;
     }
   }

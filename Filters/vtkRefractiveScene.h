@@ -73,7 +73,7 @@ public:
   /**
    * The scene to fill (a SceneType). Default GAUSSIAN_SPHERE.
    */
-  vtkSetClampMacro(Scene, int, UNIFORM, BLAST_WAVE);
+  vtkSetMacro(Scene, int);
   vtkGetMacro(Scene, int);
   void SetSceneToUniform() { this->SetScene(UNIFORM); }
   void SetSceneToGaussianSphere() { this->SetScene(GAUSSIAN_SPHERE); }
@@ -198,7 +198,7 @@ public:
    * its shadow is dark under every cutoff. The index field is left as the scene makes it (the
    * body does not change the flow). Default NO_BODY (no `solid` array).
    */
-  vtkSetClampMacro(Body, int, NO_BODY, CYLINDER_BODY);
+  vtkSetMacro(Body, int);
   vtkGetMacro(Body, int);
   ///@}
 

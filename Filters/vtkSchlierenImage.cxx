@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSchlierenImage.h"
+#include "SchlierenEnums.h"
 #include "SchlierenGuard.h"
 
 #include "vtkArrayDispatch.h"
@@ -533,6 +534,44 @@ int vtkSchlierenImage::FillInputPortInformation(int port, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+std::string EnumerationProblem(vtkSchlierenImage* f)
+{
+  // The enumerations' and booleans' entries, those of their domains in Schlieren.xml: another
+  // value is an error, not a clamp to another choice (empty where all are entries).
+  for (const std::string& problem :
+    { SchlierenEnumProblem("Integrator", f->GetIntegrator(),
+        { { 0, "Euler" }, { 1, "Midpoint" }, { 2, "RK4" }, { 3, "Straight" }, { 4, "Auto" } }),
+      SchlierenEnumProblem("Reconstruction", f->GetReconstruction(),
+        { { 0, "Trilinear" }, { 1, "Cubic" }, { 2, "Auto" } }),
+      SchlierenEnumProblem("Cutoff", f->GetCutoff(),
+        { { 0, "KnifeEdge" }, { 1, "Shadowgraph" }, { 2, "Circular" },
+          { 3, "ComplementCircular" }, { 4, "ColorFilter" }, { 5, "Interferometry" },
+          { 6, "BOS" } }),
+      SchlierenEnumProblem("Source", f->GetSource(),
+        { { 0, "Point" }, { 1, "Slit" }, { 2, "Rectangle" }, { 3, "Disc" }, { 4, "Gaussian" } }),
+      SchlierenEnumProblem(
+        "BackgroundPattern", f->GetBackgroundPattern(), { { 0, "Dots" }, { 1, "Stripes" } }),
+      SchlierenEnumProblem(
+        "Filter", f->GetFilter(), { { 0, "None" }, { 1, "Gaussian" }, { 2, "Cone" } }),
+      SchlierenEnumProblem(
+        "Backend", f->GetBackend(), { { 0, "Auto" }, { 1, "OpenCL" }, { 2, "CPU" } }),
+      SchlierenBoolProblem("UseOctree", f->GetUseOctree()),
+      SchlierenBoolProblem("KeepInvariant", f->GetKeepInvariant()),
+      SchlierenBoolProblem("EstimateError", f->GetEstimateError()),
+      SchlierenBoolProblem("Jitter", f->GetJitter()),
+      SchlierenBoolProblem("RussianRoulette", f->GetRussianRoulette()),
+      SchlierenBoolProblem("TraceInPieces", f->GetTraceInPieces()) })
+  {
+    if (!problem.empty())
+      return problem;
+  }
+  return std::string();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 int vtkSchlierenImage::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -545,6 +584,15 @@ int vtkSchlierenImage::RequestInformation(
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
   // The errors found here are RequestData's to report (it finds them again): ParaView asks for
   // the information more often than for the data, and each error is said once.
+  if (!EnumerationProblem(this).empty())
+  {
+    const std::string problem = EnumerationProblem(this);
+    if (this->Internals->Fresh(problem, this->GetMTime()))
+    {
+      vtkErrorMacro(<< problem);
+    }
+    return 0;
+  }
   // The XML domain's range (the engine takes any finite angle): outside it, an error, not a wrap.
   if (!(this->KnifeAngle >= -180 && this->KnifeAngle <= 180))
   {
@@ -640,6 +688,17 @@ int vtkSchlierenImage::RequestData(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector->GetInformationObject(0));
   vtkImageData* input = vtkImageData::GetData(inInfo);
+  // found again, said once (RequestInformation said it): the same on every rank
+  const std::string badChoice = EnumerationProblem(this);
+  if (!badChoice.empty())
+  {
+    if (this->Internals->Fresh(badChoice, this->GetMTime()))
+    {
+      vtkErrorMacro(<< badChoice);
+    }
+    output->Initialize();
+    return 0;
+  }
   schlieren::ControllerParallel parallel("SchlierenImage");
   schlieren::SessionImage image;
   std::string error;

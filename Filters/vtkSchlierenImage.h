@@ -229,7 +229,7 @@ public:
    * The ray integrator (an IntegratorType). Default EULER. AUTO_INTEGRATOR picks the cheapest
    * integrator and step that meet Tolerance (StepSize is then ignored).
    */
-  vtkSetClampMacro(Integrator, int, EULER, AUTO_INTEGRATOR);
+  vtkSetMacro(Integrator, int);
   vtkGetMacro(Integrator, int);
   ///@}
 
@@ -243,7 +243,7 @@ public:
    * CUBIC where the trilinear scheme's error, estimated on Auto's pilot rays, would exceed half the
    * tolerance, or where it is cheaper at the tolerance (with Integrator AUTO_INTEGRATOR).
    */
-  vtkSetClampMacro(Reconstruction, int, TRILINEAR, AUTO_RECONSTRUCTION);
+  vtkSetMacro(Reconstruction, int);
   vtkGetMacro(Reconstruction, int);
   ///@}
 
@@ -263,9 +263,9 @@ public:
    * linear medium Euler's deflection error grew from 4.4e-6 to 2.1e-4 rad with it (2-voxel steps);
    * Midpoint and RK4 were unchanged.
    */
-  vtkSetMacro(KeepInvariant, bool);
-  vtkGetMacro(KeepInvariant, bool);
-  vtkBooleanMacro(KeepInvariant, bool);
+  vtkSetMacro(KeepInvariant, int);
+  vtkGetMacro(KeepInvariant, int);
+  vtkBooleanMacro(KeepInvariant, int);
   ///@}
 
   ///@{
@@ -273,9 +273,9 @@ public:
    * Trace every ray a second time at twice the step and output the per-pixel difference
    * (scaled by the integrator's order) as the point array `error_estimate`, radians. Default off.
    */
-  vtkSetMacro(EstimateError, bool);
-  vtkGetMacro(EstimateError, bool);
-  vtkBooleanMacro(EstimateError, bool);
+  vtkSetMacro(EstimateError, int);
+  vtkGetMacro(EstimateError, int);
+  vtkBooleanMacro(EstimateError, int);
   ///@}
 
   ///@{
@@ -283,16 +283,16 @@ public:
    * Use the input's point array `octree_level` (vtkRefractionOctree), when there is one, to step
    * across uniform blocks. Default on.
    */
-  vtkSetMacro(UseOctree, bool);
-  vtkGetMacro(UseOctree, bool);
-  vtkBooleanMacro(UseOctree, bool);
+  vtkSetMacro(UseOctree, int);
+  vtkGetMacro(UseOctree, int);
+  vtkBooleanMacro(UseOctree, int);
   ///@}
 
   ///@{
   /**
    * The cutoff that forms the image (a CutoffType). Default KNIFE_EDGE.
    */
-  vtkSetClampMacro(Cutoff, int, KNIFE_EDGE, BOS);
+  vtkSetMacro(Cutoff, int);
   vtkGetMacro(Cutoff, int);
   ///@}
 
@@ -388,7 +388,7 @@ public:
    * BOS: the background (a BackgroundPatternType): DOTS (random dots, one per period cell,
    * seeded) or STRIPES (a cosine along film x). Default DOTS.
    */
-  vtkSetClampMacro(BackgroundPattern, int, DOTS, STRIPES);
+  vtkSetMacro(BackgroundPattern, int);
   vtkGetMacro(BackgroundPattern, int);
   ///@}
 
@@ -404,7 +404,7 @@ public:
   /**
    * The film filter (a FilterType). Default NO_FILTER.
    */
-  vtkSetClampMacro(Filter, int, NO_FILTER, CONE);
+  vtkSetMacro(Filter, int);
   vtkGetMacro(Filter, int);
   ///@}
 
@@ -424,9 +424,9 @@ public:
    * whole or not at all, with the probability of its weight. Same mean, more noise; the knife and
    * circular cutoffs then need a CutoffScale. Default off.
    */
-  vtkSetMacro(RussianRoulette, bool);
-  vtkGetMacro(RussianRoulette, bool);
-  vtkBooleanMacro(RussianRoulette, bool);
+  vtkSetMacro(RussianRoulette, int);
+  vtkGetMacro(RussianRoulette, int);
+  vtkBooleanMacro(RussianRoulette, int);
   ///@}
 
   ///@{
@@ -435,9 +435,9 @@ public:
    * sample the pixel's area) or at the pixel centres (off: every pass is the same; for tests and
    * pixel-exact comparisons).
    */
-  vtkSetMacro(Jitter, bool);
-  vtkGetMacro(Jitter, bool);
-  vtkBooleanMacro(Jitter, bool);
+  vtkSetMacro(Jitter, int);
+  vtkGetMacro(Jitter, int);
+  vtkBooleanMacro(Jitter, int);
   ///@}
 
   ///@{
@@ -452,7 +452,7 @@ public:
   /**
    * Where to trace (a BackendType). Default AUTO.
    */
-  vtkSetClampMacro(Backend, int, AUTO, CPU);
+  vtkSetMacro(Backend, int);
   vtkGetMacro(Backend, int);
   ///@}
 
@@ -514,9 +514,9 @@ protected:
   int Integrator = EULER;
   int Reconstruction = TRILINEAR;
   double Tolerance = 0.0;
-  bool KeepInvariant = false;
-  bool EstimateError = false;
-  bool UseOctree = true;
+  int KeepInvariant = 0;
+  int EstimateError = 0;
+  int UseOctree = 1;
   int Cutoff = KNIFE_EDGE;
   double KnifeAngle = 0.0;
   double CutoffScale = 0.0;
@@ -535,8 +535,8 @@ protected:
   double BackgroundPeriod = 0.0;
   int Filter = NO_FILTER;
   double FilterWidth = 1.0;
-  bool RussianRoulette = false;
-  bool Jitter = true;
+  int RussianRoulette = 0;
+  int Jitter = 1;
   int Seed = 1;
   int Backend = AUTO;
   char* DeviceName = nullptr;

@@ -19,12 +19,14 @@
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
 #include "vtkNew.h"
+#include "vtkOutputWindow.h"
 #include "vtkPVDataInformation.h"
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMPropertyIterator.h"
+#include "vtkSetGet.h"
 #include "vtkSmartPointer.h"
 #include "vtkSMRenderViewProxy.h"
 #include "vtkSMSourceProxy.h"
@@ -56,6 +58,39 @@ constexpr double ChunkSeconds = 0.25;
 constexpr int RestMilliseconds = 300;
 // ViewDirection/ViewUp differences below this are not a rotation (a zoom or a pan).
 constexpr double SameDirection = 1e-9;
+
+// The GUI's own InteractivePasses and InteractiveScale (no command: the filter never sees them,
+// so nothing refuses them there): a value outside the XML domain is said once in the Output
+// Messages with the range, rather than changed in silence; the passes then use the nearest end.
+int InteractivePassesOf(vtkSMProxy* proxy)
+{
+  static int said = 1; // the last value warned about (1: none)
+  const int passes = vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt();
+  const int used = std::min(256, std::max(1, passes));
+  if (used != passes && passes != said)
+  {
+    vtkGenericWarningMacro("InteractivePasses is " << passes << ": it must be in [1, 256]; the "
+                           "toolbar uses " << used << " while the view turns.");
+  }
+  said = used != passes ? passes : 1;
+  return used;
+}
+
+double InteractiveScaleOf(vtkSMProxy* proxy)
+{
+  static double said = 1; // the last value warned about (1: none)
+  const double scale = vtkSMPropertyHelper(proxy, "InteractiveScale").GetAsDouble();
+  const bool outside = !(scale >= 0.1 && scale <= 1);
+  if (outside && scale != said)
+  {
+    vtkGenericWarningMacro("InteractiveScale is " << scale << ": it must be in [0.1, 1]; "
+                           << (scale > 0 && scale < 1 ? "the film is coarsened by it anyway"
+                                                      : "the film is not coarsened")
+                           << " while the view turns.");
+  }
+  said = outside ? scale : 1;
+  return scale;
+}
 
 bool IsSchlierenImage(pqPipelineSource* source)
 {
@@ -582,8 +617,8 @@ void pqSchlierenFollower::onCameraModified()
   vtkSMPropertyHelper(proxy, "ViewDirection").Set(direction, 3);
   vtkSMPropertyHelper(proxy, "ViewUp").Set(up, 3);
   this->setPasses(
-    std::min(this->Target, std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt())));
-  const double scale = vtkSMPropertyHelper(proxy, "InteractiveScale").GetAsDouble();
+    std::min(this->Target, InteractivePassesOf(proxy)));
+  const double scale = InteractiveScaleOf(proxy);
   if (scale > 0 && scale < 1)
   {
     // a coarser film while the view turns: fewer rays per pass
@@ -728,7 +763,7 @@ void pqSchlierenFollower::onPassesModified()
   // following: the new target is reached in chunks (so that it can be stopped), starting from
   // the passes the image has
   const int start = std::max(
-    std::max(1, vtkSMPropertyHelper(this->Image->getProxy(), "InteractivePasses").GetAsInt()),
+    InteractivePassesOf(this->Image->getProxy()),
     this->LastPasses);
   if (asked > start)
   {
@@ -774,7 +809,7 @@ void pqSchlierenFollower::onPropertyModified(vtkObject* property)
     this->Target = std::max(1, this->askedPasses());
   }
   const int start =
-    std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt());
+    InteractivePassesOf(proxy);
   if (this->Target <= start)
   {
     this->Progressive = false;
@@ -853,7 +888,7 @@ void pqSchlierenFollower::restoreResolution()
   }
   this->LastPasses = 0;
   this->setPasses(
-    std::min(this->Target, std::max(1, vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt())));
+    std::min(this->Target, InteractivePassesOf(proxy)));
   proxy->UpdateVTKObjects();
   this->LastPasses = 0;
 }

@@ -146,6 +146,64 @@ for proxy in root.iter("SourceProxy"):
         for q in pipeline[1]:
             Delete(q)
 
+# The enumeration and boolean properties: each entry taken (an image, or an error that is not
+# the domain's: a memory refusal, or a model needing arrays the small pipeline lacks, which
+# names neither the property nor "must be one of"), and just below the smallest / above the
+# largest entry (booleans: -1 and 2) refused with an error naming the property.
+enum_counts = dict(walked=0, client_side=0)
+for proxy in root.iter("SourceProxy"):
+    pname = proxy.get("name")
+    if only and pname not in only:
+        continue
+    pipeline = None
+    for prop in proxy:
+        if prop.tag != "IntVectorProperty" or prop.get("information_only") == "1":
+            continue
+        enum, boolean = prop.find("EnumerationDomain"), prop.find("BooleanDomain")
+        if enum is None and boolean is None:
+            continue
+        name = prop.get("name")
+        if prop.get("command") is None:
+            enum_counts["client_side"] += 1
+            continue
+        enum_counts["walked"] += 1
+        values = [int(e.get("value")) for e in enum.findall("Entry")] if enum is not None else [0, 1]
+        default = int(prop.get("default_values", "0").split()[0])
+        if pipeline is None:
+            pipeline = make(pname)
+        p = pipeline[0]
+        tries = [("entry", v) for v in values] + [("below", min(values) - 1), ("above", max(values) + 1)]
+        for label, v in tries:
+            try:
+                p.SetPropertyWithName(name, v)
+                with st.CapturedOutput() as out:
+                    fetch(p)
+                aborted = "): aborted" in out.text
+                err = ("ERROR" in out.text or "ERR|" in out.text) and not aborted
+                named = name + " is %d" % v in out.text
+                memory = "memory" in out.text or ("must be one of" not in out.text and
+                                                  "must be 0 (off)" not in out.text)
+                text = out.text
+            except Exception as e:
+                err, named, memory, text = "EXC", False, False, str(e)
+            finally:
+                p.SetPropertyWithName(name, default)
+            if err:
+                for q in pipeline[1]:
+                    Delete(q)
+                pipeline = make(pname)
+                p = pipeline[0]
+            line = ""
+            for ln in text.splitlines():
+                if name in ln or ("ERR" in ln and not line):
+                    line = ln.split("): ", 1)[-1].strip()
+            which = "entry" if label == "entry" else label
+            rows.append((pname, name, which, "at" if label == "entry" else "past", v, err,
+                         named, memory, line, text))
+    if pipeline is not None:
+        for q in pipeline[1]:
+            Delete(q)
+
 
 def is_bad(label, err, named, memory):
     if label == "at":
@@ -167,5 +225,7 @@ print("domain_survey: %d numeric properties: %d walked, %d without a range domai
       "(no command); %d settings, %d BAD" % (
           counts["numeric"], counts["walked"], counts["no_range"], counts["client_side"],
           len(rows), nbad))
+print("domain_survey: %d enumeration/boolean properties walked (every entry, and just past "
+      "the ends), %d the GUI's (no command)" % (enum_counts["walked"], enum_counts["client_side"]))
 if "--strict" in sys.argv and (nbad or not rows):
     sys.exit(1)
