@@ -587,7 +587,7 @@ int vtkSchlierenImage::RequestInformation(
   if (!EnumerationProblem(this).empty())
   {
     const std::string problem = EnumerationProblem(this);
-    if (this->Internals->Fresh(problem, this->GetMTime()))
+    if (this->Internals->Fresh(problem, ErrorKey(this)))
     {
       vtkErrorMacro(<< problem);
     }
@@ -692,7 +692,7 @@ int vtkSchlierenImage::RequestData(
   const std::string badChoice = EnumerationProblem(this);
   if (!badChoice.empty())
   {
-    if (this->Internals->Fresh(badChoice, this->GetMTime()))
+    if (this->Internals->Fresh(badChoice, ErrorKey(this)))
     {
       vtkErrorMacro(<< badChoice);
     }
