@@ -30,6 +30,15 @@ with the reason.
    The Mach disc across the axis: its position on the axis in the image (the largest |deflection|
    past the expansion) against the solver's (the largest rise of p / T between cells along the
    axis) within a cell (0.5 mm), at least 10 times the expanded core's |deflection|.
+   The barrel shock across the axis: at x = 6.25-14.25 mm the largest deflection away from the
+   axis below the nozzle's radius (the revolved shock's tangent rays) against the solver's field
+   projected the same way (p / T linear between its cell rows, integrated along straight rays,
+   differentiated across them), within a cell; within two cells of the solver's largest radial
+   rise itself (the shock it spreads over two or three cells), which closes in toward the axis.
+   Along the axis: every pixel's radial deflection (r = 0.5-9.5 mm) is the solver's own integral
+   of d(n - 1)/dr along x at a radius within a cell of the pixel's (radially symmetric, and the
+   right size); its ring (the jet's boundary) at the radius the view across the axis puts the
+   boundary at (x = 5-15 mm), within a cell.
    wedge15Ma5 given as Axisymmetric is refused as a wedge with the reason (parallel sides).
 4. forwardStep (rhoCentralFoam, Mach 3 in a channel over a step 0.2 m high, planar, 12.5 mm
    cells, solved to t = 2): the step from its walls is black, its top and face in the image on
