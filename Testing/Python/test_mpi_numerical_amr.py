@@ -13,11 +13,11 @@
    - an unstructured input (a Wavelet tetrahedralized, density = RTData / 100) resampled by
      RefractiveIndex (GladstoneDale), read as `density`.
    Known answer: the one-process image of the same pipeline, bit for bit: the gathered grid is the
-   one process's grid point for point (the image pieces are computed as one process computes them,
-   the resampled grid is summed from pieces that hold each point on one rank only:
-   python.cfd_mpi), and the image is then computed by the same code on the same numbers. Also: the
-   2 pieces are proper pieces (each rank's input holds fewer points than the whole), so the gather
-   is exercised, and only rank 0 holds the image.
+   one process's grid point for point (the scene's pieces are computed as one process computes
+   them; the resampled grid on 2 ranks is the one-process grid, python.cfd_mpi), and the image is
+   then computed by the same code on the same numbers. Also: the scene's 2 pieces are proper
+   pieces (each rank's holds fewer points than the whole), so the gather is exercised, and only
+   rank 0 holds the image. (engine.TestEngineNumericalPieces: uneven pieces, an empty rank.)
 2. AMR (the two-level Gaussian of python.amr: n - 1 = 1e-4 exp(-r^2 / 0.25^2) on [-1, 1]^3, level
    0 at h0 = 1/16, a patch [-0.5, 0.5]^3 at h1 = h0 / 2), each level split in two boxes along x,
    rank 0 holding level 0's x < 0 box and level 1's x > 0 box, rank 1 the other two (so each
