@@ -13,6 +13,7 @@ installed.
     OpenFOAMReader -> RefractiveIndex (Symmetry Axisymmetric; the wedge found, AxisFromWedge)
         -> SchlierenImage (knife edge across the axis, knife normal along it; _radial: knife normal
            across it; _along: seen along the axis)
+        -> NumericalSchlieren (_numerical: |grad rho| on the plane through the axis, the same film)
 """
 import argparse
 import os
@@ -78,6 +79,17 @@ def main():
             sys.exit("openfoam_wedge: the trace produced no image (see the errors above)")
         schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), path)
         print("wrote %s" % path)
+    # the numerical schlieren CFD papers print, on the across view's film: |grad rho| on the plane
+    # through the axis (Quirk's grey scale, C0 -0.001, C1 0.05, K 5), no light traced
+    path = root + "_numerical" + (ext or ".png")
+    numerical = NumericalSchlieren(Input=index, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0],  # noqa: F821
+                                   Resolution=[2 * r for r in args.dimensions[:2]])
+    numerical.UpdatePipeline(time)
+    out = servermanager.Fetch(numerical)
+    if out is None or out.GetPointData().GetArray("intensity") is None:
+        sys.exit("openfoam_wedge: the numerical schlieren produced no image (see the errors above)")
+    schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), path)
+    print("wrote %s" % path)
 
 
 if __name__ == "__main__":
