@@ -11,7 +11,9 @@ the output, with Testing/Python/openfoam_cases.py, and exits 125 (skipped) where
 installed.
 
     OpenFOAMReader -> RefractiveIndex (Symmetry Axisymmetric; the wedge found, AxisFromWedge)
-        -> SchlierenImage (knife edge across the axis; and along it, _along before the extension)
+        -> SchlierenImage (knife edge across the axis, knife normal along it; _radial: knife normal
+           across it; _along: seen along the axis)
+        -> NumericalSchlieren (_numerical: |grad rho| on the plane through the axis, the same film)
 """
 import argparse
 import os
@@ -28,7 +30,8 @@ def main():
     ap.add_argument("--case", default=None, help="an OpenFOAM case's .foam file (default: LadenburgJet60psi)")
     ap.add_argument("--time", type=float, default=None, help="the time to read (default: the last; 0 included)")
     ap.add_argument("--output", default="openfoam_wedge.png")
-    ap.add_argument("--passes", type=int, default=2)
+    # 8: the photon-counting speckle of 1-2 passes on a film finer than the grid is gone (docs/GUI.md)
+    ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--dimensions", type=int, nargs=3, default=[240, 80, 80])
     args = ap.parse_args()
 
@@ -62,16 +65,31 @@ def main():
     index = RefractiveIndex(Input=reader, Symmetry="Axisymmetric",  # noqa: F821
                             SamplingDimensions=args.dimensions)
     root, ext = os.path.splitext(args.output)
-    for path, view, res in ((args.output, [0, 0, -1], args.dimensions[:2]),
-                            (root + "_along" + (ext or ".png"), [-1, 0, 0], args.dimensions[1:])):
+    # across the axis with the knife normal along it (the Mach disc, the expansion) and across it
+    # (the barrel shocks and the jet's boundary, which bend light away from the axis); along it
+    for path, view, res, knife in ((args.output, [0, 0, -1], args.dimensions[:2], 0.0),
+                                   (root + "_radial" + (ext or ".png"), [0, 0, -1], args.dimensions[:2], 90.0),
+                                   (root + "_along" + (ext or ".png"), [-1, 0, 0], args.dimensions[1:], 0.0)):
         image = SchlierenImage(Input=index, ViewDirection=view, ViewUp=[0, 1, 0],  # noqa: F821
-                               Resolution=[2 * r for r in res], Passes=args.passes, Cutoff="KnifeEdge")
+                               Resolution=[2 * r for r in res], Passes=args.passes, Cutoff="KnifeEdge",
+                               KnifeAngle=knife)
         image.UpdatePipeline(time)
         out = servermanager.Fetch(image)
         if out is None or out.GetPointData().GetArray("intensity") is None:
             sys.exit("openfoam_wedge: the trace produced no image (see the errors above)")
         schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), path)
         print("wrote %s" % path)
+    # the numerical schlieren CFD papers print, on the across view's film: |grad rho| on the plane
+    # through the axis (Quirk's grey scale, C0 -0.001, C1 0.05, K 5), no light traced
+    path = root + "_numerical" + (ext or ".png")
+    numerical = NumericalSchlieren(Input=index, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0],  # noqa: F821
+                                   Resolution=[2 * r for r in args.dimensions[:2]])
+    numerical.UpdatePipeline(time)
+    out = servermanager.Fetch(numerical)
+    if out is None or out.GetPointData().GetArray("intensity") is None:
+        sys.exit("openfoam_wedge: the numerical schlieren produced no image (see the errors above)")
+    schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), path)
+    print("wrote %s" % path)
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "SchlierenArrays.h"
+#include "SchlierenController.h"
 #include "SchlierenNumerical.h"
 #include "SchlierenValues.h"
 
@@ -150,55 +151,68 @@ int vtkNumericalSchlieren::RequestInformation(
     vtkErrorMacro(<< e.what());
     return 0;
   }
+  // Every rank executes (the pieces are gathered under MPI); rank 0 produces the image.
+  outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
   return 1;
 }
 
 int vtkNumericalSchlieren::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // The film's extent is no extent of the input: ask for the whole volume.
+  // The film's extent is no extent of the input: ask for the whole volume; under MPI each rank
+  // for its piece of it (the upstream splits the whole extent), gathered in RequestData.
+  using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int whole[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  inInfo->Set(SDDP::UPDATE_EXTENT(), whole, 6);
+  int piece = 0, pieces = 1;
+  if (schlieren::ControllerParallel().Size() > 1)
+  {
+    piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+    pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES())
+      ? std::max(outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()), 1)
+      : 1;
+  }
+  inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), piece);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), pieces);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   return 1;
 }
 
 int vtkNumericalSchlieren::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (controller && controller->GetNumberOfProcesses() > 1)
+  output->Initialize();
+  schlieren::ControllerParallel parallel("NumericalSchlieren");
+  const bool split = parallel.Size() > 1;
+  // Under MPI a rank's piece may be empty (more ranks than the upstream splits the volume into);
+  // it sends nothing. Every rank's failure is agreed on before the pieces are gathered.
+  const bool empty = !input || input->GetNumberOfPoints() == 0;
+  std::string error;
+  if (empty && !split)
   {
-    vtkErrorMacro(<< "NumericalSchlieren runs on one process; under MPI ("
-                  << controller->GetNumberOfProcesses()
-                  << " ranks) use SchlierenImage, or pvpython without MPI.");
-    return 0;
-  }
-  if (!input || input->GetNumberOfPoints() == 0)
-  {
-    vtkErrorMacro(<< "NumericalSchlieren needs a non-empty image (vtkImageData), for example the "
-                     "output of RefractiveIndex or RefractiveScene.");
-    return 0;
+    error = "NumericalSchlieren needs a non-empty image (vtkImageData), for example the output of "
+            "RefractiveIndex or RefractiveScene.";
   }
 
   // The density: the array named, else the first density-like array, else n - 1.
   std::string name = this->DensityArray;
   vtkDataArray* values = nullptr;
-  if (!name.empty())
+  if (!empty && !name.empty())
   {
     values = Scalars(input, name);
     if (!values)
     {
-      vtkErrorMacro(<< "DensityArray is '" << name
-                    << "': the input has no one-component point array of that name.");
-      return 0;
+      error = "DensityArray is '" + name + "': the input has no one-component point array of that name.";
     }
   }
-  else
+  else if (!empty)
   {
     for (const char* candidate : { "density", "rho", "Density", schlieren::arrays::NMinus1 })
     {
@@ -210,37 +224,106 @@ int vtkNumericalSchlieren::RequestData(
     }
     if (!values)
     {
-      vtkErrorMacro(<< "NumericalSchlieren needs a density (point array 'density', 'rho' or "
-                       "'Density', or one named in DensityArray) or 'n_minus_1'; the input has none.");
-      return 0;
+      error = "NumericalSchlieren needs a density (point array 'density', 'rho' or 'Density', or "
+              "one named in DensityArray) or 'n_minus_1'; the input has none.";
     }
   }
-
-  std::vector<float> field = schlieren::values::Values<float>(values);
-  std::vector<unsigned char> solid, excluded;
-  if (vtkDataArray* s = Scalars(input, schlieren::arrays::Solid))
-    solid = schlieren::values::Values<unsigned char>(s);
-  if (vtkDataArray* m = Scalars(input, "vtkValidPointMask"))
+  try
   {
-    excluded = schlieren::values::Values<unsigned char>(m);
-    for (unsigned char& e : excluded)
-      e = e ? 0 : 1;
+    error = parallel.Failure(error);
+    if (error.empty() && split)
+    {
+      // the same array on every rank that holds a piece (the first such rank's name is used)
+      std::string agreed;
+      for (const std::string& other : parallel.AllGatherStrings(empty ? std::string() : name))
+      {
+        if (!other.empty() && agreed.empty())
+          agreed = other;
+        else if (!other.empty() && other != agreed)
+          error = "NumericalSchlieren: the ranks' pieces carry different density arrays ('" +
+            agreed + "', '" + other + "'): name one in DensityArray.";
+      }
+      if (agreed.empty())
+        error = "NumericalSchlieren needs a non-empty image (vtkImageData): every rank's piece "
+                "of the input is empty.";
+      name = agreed;
+    }
   }
+  catch (const schlieren::Error& e)
+  {
+    error = e.what();
+  }
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+
+  std::vector<float> field;
+  std::vector<unsigned char> solid, excluded;
   schlieren::ScalarGrid grid;
-  input->GetDimensions(grid.Dimensions);
-  input->GetOrigin(grid.Origin);
-  input->GetSpacing(grid.Spacing);
-  const int* ext = input->GetExtent();
-  for (int a = 0; a < 3; ++a)
-    grid.Origin[a] += ext[2 * a] * grid.Spacing[a];
-  grid.Values = field.data();
-  grid.Solid = solid.empty() ? nullptr : solid.data();
-  grid.Excluded = excluded.empty() ? nullptr : excluded.data();
+  int offset[3] = { 0, 0, 0 };
+  if (!empty)
+  {
+    field = schlieren::values::Values<float>(values);
+    if (vtkDataArray* so = Scalars(input, schlieren::arrays::Solid))
+      solid = schlieren::values::Values<unsigned char>(so);
+    if (vtkDataArray* m = Scalars(input, "vtkValidPointMask"))
+    {
+      excluded = schlieren::values::Values<unsigned char>(m);
+      for (unsigned char& e : excluded)
+        e = e ? 0 : 1;
+    }
+    input->GetDimensions(grid.Dimensions);
+    input->GetOrigin(grid.Origin);
+    input->GetSpacing(grid.Spacing);
+    const int* ext = input->GetExtent();
+    for (int a = 0; a < 3; ++a)
+      grid.Origin[a] += ext[2 * a] * grid.Spacing[a];
+    grid.Values = field.data();
+    grid.Solid = solid.empty() ? nullptr : solid.data();
+    grid.Excluded = excluded.empty() ? nullptr : excluded.data();
+  }
+  // The whole volume's grid, on the same origin and spacing as this rank's piece (one process:
+  // the piece is the whole), so that rank 0 computes the sample points as one process does.
+  schlieren::ScalarGrid whole = grid;
+  if (split)
+  {
+    int wholeExt[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExt);
+    // an empty piece: the pipeline's origin and spacing of the whole volume
+    const schlieren::ScalarGrid info = WholeGrid(inInfo);
+    double o[3], h[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      o[a] = info.Origin[a] - wholeExt[2 * a] * info.Spacing[a];
+      h[a] = info.Spacing[a];
+    }
+    if (!empty)
+    {
+      input->GetOrigin(o);
+      input->GetSpacing(h);
+      const int* ext = input->GetExtent();
+      for (int a = 0; a < 3; ++a)
+        offset[a] = ext[2 * a] - wholeExt[2 * a];
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      whole.Dimensions[a] = wholeExt[2 * a + 1] - wholeExt[2 * a] + 1;
+      whole.Origin[a] = o[a] + wholeExt[2 * a] * h[a];
+      whole.Spacing[a] = h[a];
+    }
+    whole.Values = nullptr;
+    whole.Solid = whole.Excluded = nullptr;
+  }
 
   schlieren::NumericalImage image;
   try
   {
-    image = schlieren::NumericalSchlieren(grid, SettingsOf(this));
+    if (!schlieren::NumericalSchlierenOfPieces(parallel, grid, offset, whole, SettingsOf(this), image))
+    {
+      return 1; // rank 0 holds the image
+    }
   }
   catch (const schlieren::Error& e)
   {

@@ -22,7 +22,8 @@
  * field data `numerical_field` (the array used), `numerical_mode`, `numerical_gradient_kind`,
  * `gradient_maximum` (the qmax used) and `gradient_largest` (the largest q over the image).
  *
- * One process: under MPI with more than one rank it refuses with an error.
+ * Under MPI each rank reads its piece of the volume; the pieces are gathered on rank 0, which makes
+ * the image as one process does (schlieren::NumericalSchlierenOfPieces) and holds it.
  */
 #ifndef vtkNumericalSchlieren_h
 #define vtkNumericalSchlieren_h

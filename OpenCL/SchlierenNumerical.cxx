@@ -297,6 +297,127 @@ NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSetting
   return out;
 }
 
+namespace
+{
+template <typename T>
+void Put(std::vector<char>& b, const T* v, std::size_t n)
+{
+  const char* c = reinterpret_cast<const char*>(v);
+  b.insert(b.end(), c, c + n * sizeof(T));
+}
+
+template <typename T>
+void Take(const std::vector<char>& b, std::size_t& at, T* v, std::size_t n)
+{
+  if (at + n * sizeof(T) > b.size())
+    throw Error("NumericalSchlieren: a rank's piece arrived short (an internal error).");
+  std::copy(b.begin() + at, b.begin() + at + n * sizeof(T), reinterpret_cast<char*>(v));
+  at += n * sizeof(T);
+}
+} // namespace
+
+bool NumericalSchlierenOfPieces(Parallel& parallel, const ScalarGrid& piece, const int offset[3],
+  const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image)
+{
+  image = NumericalImage();
+  if (parallel.Size() <= 1)
+  {
+    image = NumericalSchlieren(piece, s);
+    return true;
+  }
+  // This rank's piece for rank 0: its index range, flags, values, solid and excluded points.
+  const std::size_t mine =
+    std::size_t(piece.Dimensions[0]) * piece.Dimensions[1] * piece.Dimensions[2];
+  std::vector<std::vector<char>> out(parallel.Size());
+  if (mine > 0 && piece.Values)
+  {
+    std::vector<char>& b = out[0];
+    const int head[8] = { offset[0], offset[1], offset[2], piece.Dimensions[0],
+      piece.Dimensions[1], piece.Dimensions[2], piece.Solid ? 1 : 0, piece.Excluded ? 1 : 0 };
+    Put(b, head, 8);
+    Put(b, piece.Values, mine);
+    if (piece.Solid)
+      Put(b, piece.Solid, mine);
+    if (piece.Excluded)
+      Put(b, piece.Excluded, mine);
+  }
+  const std::vector<std::vector<char>> in = parallel.Exchange(out);
+
+  std::string error;
+  if (parallel.Rank() == 0)
+  {
+    try
+    {
+      const int* D = whole.Dimensions;
+      const std::size_t n = std::size_t(D[0]) * D[1] * D[2];
+      std::vector<float> values(n, 0.0f);
+      std::vector<unsigned char> solid, excluded, held(n, 0);
+      for (const std::vector<char>& b : in)
+      {
+        if (b.empty())
+          continue;
+        std::size_t at = 0;
+        int head[8];
+        Take(b, at, head, 8);
+        for (int a = 0; a < 3; ++a)
+          if (head[a] < 0 || head[3 + a] < 0 || head[a] + head[3 + a] > D[a])
+            throw Error("NumericalSchlieren: a rank's piece lies outside the whole extent.");
+        const std::size_t m = std::size_t(head[3]) * head[4] * head[5];
+        std::vector<float> v(m);
+        std::vector<unsigned char> so, ex;
+        Take(b, at, v.data(), m);
+        if (head[6])
+        {
+          so.resize(m);
+          Take(b, at, so.data(), m);
+          solid.resize(n, 0);
+        }
+        if (head[7])
+        {
+          ex.resize(m);
+          Take(b, at, ex.data(), m);
+          excluded.resize(n, 0);
+        }
+        std::size_t k = 0;
+        for (int z = 0; z < head[5]; ++z)
+          for (int y = 0; y < head[4]; ++y)
+            for (int x = 0; x < head[3]; ++x, ++k)
+            {
+              const std::size_t p =
+                (std::size_t(z + head[2]) * D[1] + (y + head[1])) * D[0] + (x + head[0]);
+              values[p] = v[k];
+              held[p] = 1;
+              if (head[6])
+                solid[p] = so[k];
+              if (head[7])
+                excluded[p] = ex[k];
+            }
+      }
+      const std::size_t missing = n - std::size_t(std::count(held.begin(), held.end(), 1));
+      if (missing > 0)
+      {
+        std::ostringstream msg;
+        msg << "NumericalSchlieren: the ranks' pieces leave " << missing << " of the volume's "
+            << n << " points out (the input's pieces must cover its whole extent).";
+        throw Error(msg.str());
+      }
+      ScalarGrid g = whole;
+      g.Values = values.data();
+      g.Solid = solid.empty() ? nullptr : solid.data();
+      g.Excluded = excluded.empty() ? nullptr : excluded.data();
+      image = NumericalSchlieren(g, s);
+    }
+    catch (const Error& e)
+    {
+      error = e.what();
+    }
+  }
+  error = parallel.Failure(error);
+  if (!error.empty())
+    throw Error(error);
+  return parallel.Rank() == 0;
+}
+
 const char* NumericalModeName(NumericalMode m)
 {
   return m == NumericalMode::Slice ? "Slice" : "LineOfSight";

@@ -20,6 +20,7 @@
 #define SchlierenNumerical_h
 
 #include "SchlierenEngine.h"
+#include "SchlierenParallel.h"
 
 #include <string>
 #include <vector>
@@ -89,6 +90,18 @@ FilmGeometry NumericalFilm(const ScalarGrid& grid, const NumericalSettings& s);
 
 /** The numerical-schlieren image of `grid` (see the file's comment). */
 NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSettings& s);
+
+/**
+ * The same image from a volume split over ranks (collective): `piece` is this rank's part of the
+ * grid, `offset` its first point's index in the whole grid (`whole`: dimensions, origin and
+ * spacing, no values). The pieces (values, solid and excluded points) are gathered on rank 0,
+ * which makes the image from the whole grid exactly as one process does; the other ranks return
+ * false and an empty image. A piece with no points sends nothing. Points no piece holds, or an
+ * error on any rank, throw Error on every rank (the same message: Parallel::Failure). With one
+ * rank this is NumericalSchlieren(piece, s).
+ */
+bool NumericalSchlierenOfPieces(Parallel& parallel, const ScalarGrid& piece, const int offset[3],
+  const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image);
 
 /** Quirk's grey of q for the largest qmax: exp(-k clamp((q - c0 qmax) / ((c1 - c0) qmax), 0, 1)). */
 double QuirkGrey(double q, double qmax, double c0, double c1, double k);
