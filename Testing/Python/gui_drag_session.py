@@ -175,7 +175,10 @@ try:
                                           "image_in_3d": [int(r.Visibility) for r in view.Representations
                                                           if r.GetProperty("Input") is not None
                                                           and r.Input == image],
-                                          "follow": int(image.FollowCamera)})
+                                          "follow": int(image.FollowCamera),
+                                          # the ranks the last trace ran on (its field data)
+                                          "distributed_ranks": int(image.FieldData["distributed_ranks"].GetRange()[0])
+                                          if "distributed_ranks" in image.FieldData.keys() else None})
             elif words[0] == "dump":
                 got = current()
                 # the images of this film (the coarse ones while the view turned are smaller)
@@ -198,7 +201,8 @@ try:
     interactor = view.GetRenderWindow().GetInteractor()
     interactor.CreateRepeatingTimer(50)
     poll_tag = interactor.AddObserver("TimerEvent", poll)
-    write_json("ready.json", {"scene": scene, "view3d": list(view.ViewSize), "remote": bool(remote)})
+    write_json("ready.json", {"scene": scene, "view3d": list(view.ViewSize), "remote": bool(remote),
+                              "ranks": int(servermanager.ActiveConnection.GetNumberOfDataPartitions())})
 except BaseException:
     note("FAIL " + traceback.format_exc())
     sys.stderr.write(traceback.format_exc())

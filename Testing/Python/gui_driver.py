@@ -124,6 +124,9 @@ class Driver:
         parser.add_argument("--screenshots", default=None, help="also copy the screenshots here")
         parser.add_argument("--pvserver", default=None,
                             help="client/server mode: run the pipeline on this pvserver (a free localhost port)")
+        parser.add_argument("--ranks", type=int, default=1,
+                            help="with --pvserver: start it under --mpiexec with this many ranks")
+        parser.add_argument("--mpiexec", default="mpiexec", help="the MPI launcher for --ranks > 1")
         if add_arguments:
             add_arguments(parser)
         self.args = parser.parse_args()
@@ -201,8 +204,15 @@ class Driver:
                 except OSError:
                     continue
             log = open(os.path.join(self.args.work, "pvserver-%d.log" % attempt), "w")
-            self.server = subprocess.Popen([self.args.pvserver, "--server-port=%d" % port, "--hostname=localhost"],
-                                           env=self.env, stdout=log, stderr=subprocess.STDOUT,
+            command = [self.args.pvserver, "--server-port=%d" % port, "--hostname=localhost"]
+            if self.args.ranks > 1:
+                # root needs --allow-run-as-root; past the cores, ranks share them (--oversubscribe)
+                launcher = [self.args.mpiexec, "-n", str(self.args.ranks), "--oversubscribe"]
+                if os.getuid() == 0:
+                    launcher.insert(1, "--allow-run-as-root")
+                command = launcher + command
+            self.say(" ".join(command))
+            self.server = subprocess.Popen(command, env=self.env, stdout=log, stderr=subprocess.STDOUT,
                                            preexec_fn=die_with_parent)
             end = time.time() + 60
             while time.time() < end and self.server.poll() is None:

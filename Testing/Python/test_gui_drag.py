@@ -63,6 +63,7 @@ ready = read_json("ready.json", timeout=120)
 say("the session is ready (%s); paraview's 3D view %s" % (ready["scene"], ready["view3d"]))
 check(ready.get("remote", False) == bool(args.pvserver),
       "the GUI runs %s (session remote: %s)" % ("on the pvserver" if args.pvserver else "builtin", ready.get("remote")))
+check(ready.get("ranks") == args.ranks, "the server has %d rank(s) (the session sees %s)" % (args.ranks, ready.get("ranks")))
 if ready["scene"] != "bluntfin":
     say("SKIP note: no blunt-fin data in %s: the built-in off-centre sphere instead, no baseline check"
         % os.path.abspath(data))
@@ -89,6 +90,9 @@ sizes = read_json("sizes.json")
 say("after Apply: 3D view %s, image view %s" % (sizes["view3d"], sizes["image_view"]))
 check(sizes["image_view"] is not None and sizes["image_view_mode"] == "2D",
       "Apply opened the image in its own render view, interaction 2D (%s)" % sizes["image_view_mode"])
+check(sizes["distributed_ranks"] == (args.ranks if args.ranks > 1 else 0),
+      "the trace ran in pieces on the server's %d rank(s) (field data distributed_ranks = %s)"
+      % (args.ranks, sizes["distributed_ranks"]))
 check(sizes["image_in_3d"] in ([], [0]), "the film is hidden in the 3D view (%s)" % sizes["image_in_3d"])
 wait_for("the first image", lambda: os.path.exists(dump("initial")), 60)
 initial = os.path.join(args.work, "initial.npz")
