@@ -311,6 +311,15 @@ void CheckPrecision(const Volume& volume, const TraceSettings& s)
         << " world units). Use a distance of at most " << Num(1e6 * diag) << ".";
     throw Error(msg.str());
   }
+  // the camera's focus plane is the film plane: the same reach as FilmDistance's
+  if (s.Camera != CameraModel::None && !(std::fabs(s.FocusPlane) <= 1e6 * diag))
+  {
+    std::ostringstream msg;
+    msg << "FocusPlane " << Num(s.FocusPlane) << " is more than 1e6 times the volume's size ("
+        << Num(diag) << " world units) from its centre: there a deflection of a micro-radian moves a "
+        << "photon by more than the film's width. Use a focus plane within " << Num(1e6 * diag) << ".";
+    throw Error(msg.str());
+  }
 }
 
 } // namespace schlieren

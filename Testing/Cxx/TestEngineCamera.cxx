@@ -386,6 +386,11 @@ void TestErrors()
   schtest::ExpectError("FocusPlane NaN", run([](TraceSettings& s) { s.FocusPlane = std::nan(""); }), { "FocusPlane", "nan" });
   schtest::ExpectError("SourceGridDistance 0", run([](TraceSettings& s) { s.SourceGridDistance = 0; }),
     { "SourceGridDistance", "[0.001, 1e6] m" });
+  schtest::ExpectError("FocusPlane 1e6 volumes away", run([](TraceSettings& s) {
+    s.Camera = CameraModel::Ideal;
+    s.FocusPlane = -9e5;
+    s.CameraDistance = 1e5;
+  }), { "FocusPlane", "1e6 times the volume's size" });
   schtest::ExpectError("focus within the focal length", run([](TraceSettings& s) {
     s.Camera = CameraModel::Lens;
     s.CameraDistance = 0.5;
