@@ -264,6 +264,12 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.KnifeCut = self->GetKnifeCut();
   s.BitDepth = self->GetBitDepth();
   s.SaturationWarning = self->GetSaturationWarning();
+  s.Camera = static_cast<schlieren::CameraModel>(self->GetCamera());
+  s.CameraFocalLength = self->GetCameraFocalLength();
+  s.FNumber = self->GetFNumber();
+  s.CameraDistance = self->GetCameraDistance();
+  s.FocusPlane = self->GetFocusPlane();
+  s.SourceGridDistance = self->GetSourceGridDistance();
   s.FilmDistance = self->GetFilmDistance();
   s.Wavelength = self->GetWavelength();
   s.ReferenceTilt = self->GetReferenceTilt();
@@ -393,6 +399,30 @@ void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
     addNumber("bench_saturated_share", result.BenchSaturated);
     addNumber("bench_dark_share", result.BenchDark);
     addString("bench_model", result.BenchModel);
+  }
+  const schlieren::TraceResult::CameraReadouts& cam = result.Camera;
+  if (cam.Active)
+  {
+    // what the camera implies (docs/BENCH.md "Camera"), each in closed form
+    addNumber("camera_magnification", cam.Magnification);
+    if (cam.Aperture > 0)
+    {
+      addNumber("camera_aperture", cam.Aperture);
+      addNumber("camera_blur_per_depth", cam.BlurPerDepth);
+      addNumber("camera_depth_of_field", cam.DepthOfField);
+      addNumber("camera_aperture_samples", cam.ApertureSamples);
+    }
+    if (cam.BOSMagnification > 0)
+    {
+      addNumber("bos_magnification", cam.BOSMagnification);
+      addNumber("bos_displacement_per_radian", cam.BOSDisplacementPerRadian);
+      addNumber("bos_pixels_per_radian", cam.BOSPixelsPerRadian);
+      addNumber("bos_blur", cam.BOSBlur);
+      addNumber("bos_blur_pixels", cam.BOSBlurPixels);
+    }
+    if (cam.FocusingEffectiveF2 > 0)
+      addNumber("focusing_effective_f2", cam.FocusingEffectiveF2);
+    addString("camera_model", cam.Model);
   }
   // the deflection (rad) the scale maps to full contrast, and the largest one traced
   addNumber("full_contrast_deflection", result.FullContrastDeflection);
@@ -551,6 +581,7 @@ std::string EnumerationProblem(vtkSchlierenImage* f)
           { 6, "BOS" } }),
       SchlierenEnumProblem("Source", f->GetSource(),
         { { 0, "Point" }, { 1, "Slit" }, { 2, "Rectangle" }, { 3, "Disc" }, { 4, "Gaussian" } }),
+      SchlierenEnumProblem("Camera", f->GetCamera(), { { 0, "None" }, { 1, "Ideal" }, { 2, "Lens" } }),
       SchlierenEnumProblem(
         "BackgroundPattern", f->GetBackgroundPattern(), { { 0, "Dots" }, { 1, "Stripes" } }),
       SchlierenEnumProblem(
@@ -842,6 +873,10 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
      << ", BitDepth: " << this->BitDepth << ", SaturationWarning: " << this->SaturationWarning << "\n";
   os << indent << "CutoffScale: " << this->CutoffScale << (this->CutoffScale == 0 ? " (automatic)" : "")
      << "\n";
+  os << indent << "Camera: " << this->Camera << ", CameraFocalLength: " << this->CameraFocalLength
+     << " m, FNumber: " << this->FNumber << ", CameraDistance: " << this->CameraDistance
+     << " m, FocusPlane: " << this->FocusPlane << ", SourceGridDistance: " << this->SourceGridDistance
+     << " m\n";
   os << indent << "FilmDistance: " << this->FilmDistance << "\n";
   os << indent << "Wavelength: " << this->Wavelength << " nm\n";
   os << indent << "ReferenceTilt: " << this->ReferenceTilt << " fringes per world unit\n";

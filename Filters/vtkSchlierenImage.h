@@ -41,6 +41,11 @@
  * With a finite Source under KnifeEdge (docs/BENCH.md): `bench_sensitivity` (dI/I per radian),
  * `bench_range` (2 values, radians: full dark, saturation), `bench_resolvable_deflection` (radians
  * per grey level of BitDepth), `bench_saturated_share`, `bench_dark_share` and `bench_model`.
+ * With a Camera (docs/BENCH.md "Camera"): `camera_magnification`, `camera_model`, and with Lens
+ * `camera_aperture` (m), `camera_blur_per_depth`, `camera_depth_of_field` (world units: the blur
+ * within one film pixel), `camera_aperture_samples`; under BOS `bos_magnification`,
+ * `bos_displacement_per_radian` (m on the sensor), `bos_pixels_per_radian`, `bos_blur` (m on the
+ * sensor), `bos_blur_pixels`; with Lens and KnifeEdge `focusing_effective_f2` (m).
  * What the user should know (fallbacks, failed or under-resolved rays, Auto that found no setting
  * within its tolerance) is reported with vtkWarningMacro; Auto's choice is logged (vtkLog INFO).
  *
@@ -348,6 +353,37 @@ public:
 
   ///@{
   /**
+   * The camera (docs/BENCH.md "Camera"; world units taken as metres). Camera NO_CAMERA (default:
+   * the film where FilmDistance puts it, as before), IDEAL_LENS (a thin lens imaging FocusPlane,
+   * no aperture blur) or FINITE_APERTURE (its aperture CameraFocalLength / FNumber sampled, one
+   * lens point per pass). CameraFocalLength (m, [0.001, 1000]), FNumber ([0.5, 1000]),
+   * CameraDistance (m, [0.001, 1e6]: the lens to the volume's centre), FocusPlane (world units
+   * along the beam from the volume's centre, positive toward the camera, [-1e6, 1e6]),
+   * SourceGridDistance (m, [0.001, 1e6]: a focusing schlieren's source grid to the lens; a
+   * read-out only). Out of range, or the focus plane within the focal length: an error.
+   */
+  enum CameraType
+  {
+    NO_CAMERA = 0,
+    IDEAL_LENS = 1,
+    FINITE_APERTURE = 2
+  };
+  vtkSetMacro(Camera, int);
+  vtkGetMacro(Camera, int);
+  vtkSetMacro(CameraFocalLength, double);
+  vtkGetMacro(CameraFocalLength, double);
+  vtkSetMacro(FNumber, double);
+  vtkGetMacro(FNumber, double);
+  vtkSetMacro(CameraDistance, double);
+  vtkGetMacro(CameraDistance, double);
+  vtkSetMacro(FocusPlane, double);
+  vtkGetMacro(FocusPlane, double);
+  vtkSetMacro(SourceGridDistance, double);
+  vtkGetMacro(SourceGridDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Distance of the film behind the back of the volume's box, world units (>= 0 and finite,
    * else an error). Default 0.
    */
@@ -527,6 +563,12 @@ protected:
   double KnifeCut = 0.5;
   int BitDepth = 8;
   double SaturationWarning = 0.01;
+  int Camera = NO_CAMERA;
+  double CameraFocalLength = 0.1;
+  double FNumber = 8.0;
+  double CameraDistance = 1.0;
+  double FocusPlane = 0.0;
+  double SourceGridDistance = 2.0;
   double FilmDistance = 0.0;
   double Wavelength = 632.8;
   double ReferenceTilt = 0.0;

@@ -169,6 +169,12 @@ const std::vector<Property>& Properties()
     SCH_NUM(KnifeCut, "double", KnifeCut, double),
     SCH_NUM(BitDepth, "int", BitDepth, int),
     SCH_NUM(SaturationWarning, "double", SaturationWarning, double),
+    SCH_ENUM(Camera, Camera, schlieren::CameraModel, "None", "Ideal", "Lens"),
+    SCH_NUM(CameraFocalLength, "double", CameraFocalLength, double),
+    SCH_NUM(FNumber, "double", FNumber, double),
+    SCH_NUM(CameraDistance, "double", CameraDistance, double),
+    SCH_NUM(FocusPlane, "double", FocusPlane, double),
+    SCH_NUM(SourceGridDistance, "double", SourceGridDistance, double),
   };
   return properties;
 }

@@ -1007,9 +1007,12 @@ void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, 
   for (int pass = 0; pass < s.Passes; ++pass)
   {
     P.pass = sums.Passes + pass;
+    // Camera Lens: the pieces trace this pass's tilted beam (Pk); the splatter bins on P's film
+    sch_params Pk = P;
+    CameraPass(s, Pk, P.pass, splat.lensTilt);
     std::vector<float> rec = TraceAll(
-      dv, P, pixels,
-      [&](std::size_t k, float* a, float* b) { sch_emit(&P, static_cast<int>(k), a, b); },
+      dv, Pk, pixels,
+      [&](std::size_t k, float* a, float* b) { sch_emit(&Pk, static_cast<int>(k), a, b); },
       parallel, false, stats, s.Threads, cl.get());
     // in pixel order on rank 0, as one process splats them: the same sums, bit for bit
     if (parallel.Rank() == 0)

@@ -170,6 +170,14 @@ enum class BenchSource
   Gaussian = 4   ///< a Gaussian spot of 1/e^2 diameter SourceSize[0] (sigma = diameter / 4)
 };
 
+/** The camera that images the beam (docs/BENCH.md "Camera"). */
+enum class CameraModel
+{
+  None = 0,  ///< no lens: the film where FilmDistance puts it (today's images)
+  Ideal = 1, ///< a thin lens focused on FocusPlane with no aperture blur (collimated light passes its focus)
+  Lens = 2   ///< a thin lens of aperture CameraFocalLength / FNumber filled with light: its cone of rays sampled
+};
+
 enum class FilmFilter
 {
   None = 0,     ///< each photon in the pixel it lands in
@@ -239,6 +247,22 @@ struct TraceSettings
   /// grey level resolves, and the share of lit pixels at saturation above which a warning is given.
   int BitDepth = 8;
   double SaturationWarning = 0.01;
+  /// The camera (docs/BENCH.md "Camera"; world units are taken as metres). None: the film where
+  /// FilmDistance puts it, as before the camera existed. Ideal and Lens: the film is the image of
+  /// the plane FocusPlane (every cutoff, Shadowgraph included; FilmDistance is not used). Lens:
+  /// an aperture of diameter D = CameraFocalLength / FNumber, CameraDistance from the volume's
+  /// centre, sends each point of the focus plane a cone of rays of angular diameter D / Z_F
+  /// (Z_F = CameraDistance - FocusPlane, the lens to the focus plane): one lens point per pass,
+  /// stratified over the passes (CameraLensSample).
+  CameraModel Camera = CameraModel::None;
+  double CameraFocalLength = 0.1; ///< f, m
+  double FNumber = 8.0;           ///< N (Lens), [0.5, 1000]
+  double CameraDistance = 1.0;    ///< Z_A, m: the lens to the volume's centre, along the beam
+  /// world units along ViewDirection from the volume's centre (positive: toward the camera) of
+  /// the plane the camera focuses on; 0: the centre
+  double FocusPlane = 0.0;
+  /// Focusing schlieren read-out (Camera Lens): the source grid to the lens, m (L)
+  double SourceGridDistance = 2.0;
 
   /** Every setting that changes which photons are traced or how they land and weigh: all but
    * Passes and the film filter (applied in Finalize). Equal keys, same volume: FilmSums of the
@@ -366,7 +390,34 @@ struct TraceResult
   /// shares of the lit pixels at saturation and at full dark (the weights at BenchRange's ends)
   double BenchSaturated = 0, BenchDark = 0;
   std::string BenchModel; ///< how the response was computed; empty for Point
+  /// The camera (Camera not None; docs/BENCH.md "Camera"): what it implies, for the field data.
+  struct CameraReadouts
+  {
+    bool Active = false;
+    double Magnification = 0;  ///< of the focus plane on the sensor, f / (Z_F - f)
+    double Aperture = 0;       ///< D = f / N, m (Lens; 0 for Ideal)
+    double BlurPerDepth = 0;   ///< blur diameter in the object's plane per unit of defocus, D / Z_F
+    double DepthOfField = 0;   ///< world units: the depth over which the blur stays within one film pixel, 2 p Z_F / D
+    int ApertureSamples = 0;   ///< lens points sampled (one per pass; 0 for Ideal)
+    /// BOS (Cutoff BOS): the background Z_D = BackgroundDistance + the box's front half-depth
+    /// behind the volume's centre, the background in focus
+    double BOSMagnification = 0; ///< M = f / (Z_A + Z_D - f)
+    double BOSDisplacementPerRadian = 0; ///< on the sensor, m per radian: M Z_D
+    double BOSPixelsPerRadian = 0;       ///< film pixels per radian: M Z_D / (M_A pixel), M_A = f / (Z_A - f)
+    double BOSBlur = 0;                  ///< the object plane's blur on the sensor, m: D f Z_D / [Z_A (Z_A + Z_D - f)]
+    double BOSBlurPixels = 0;            ///< the same in film pixels
+    /// focusing schlieren (Lens with KnifeEdge): f2_eff = (L - l) L' / L, L' = L f / (L - f),
+    /// l = Z_F; 0 where L <= max(l, f)
+    double FocusingEffectiveF2 = 0;
+    std::string Model;
+  } Camera;
 };
+
+/** Lens point `pass` of a camera with seed `seed`, on the unit disc (u^2 + v^2 <= 1): the R2
+ * low-discrepancy sequence from a seed's offset, mapped to the disc by the concentric map
+ * (area-preserving, so the passes stay stratified). */
+void CameraLensSample(std::uint32_t seed, int pass, double* u, double* v);
+
 
 /**
  * Resolves Integrator::Auto: traces a pilot of 16 x 16 rays across the film with each candidate

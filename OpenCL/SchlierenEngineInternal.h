@@ -98,6 +98,9 @@ struct Splatter
   bool manual;
   BenchResponse Bench; ///< a finite source's closed-form knife (Finite false: the point source)
   double twoPiOverLambda, tilt, bgPlane, period;
+  /// Camera Lens: this pass's tilt (CameraPass); camera: a camera images the focus plane
+  double lensTilt[2] = { 0, 0 };
+  bool camera = false;
 
   Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f);
   /** The photon's weight under the cutoff, with energy weighting or (optionally) photon killing. */
@@ -105,6 +108,19 @@ struct Splatter
   /** Adds `count` records (SCH_RECORD floats each) of the rays first, first + 1, ... of this rank. */
   void Add(const float* rec, std::size_t first, std::size_t count);
 };
+
+// ------------------------------------------------------------------ camera (SchlierenCamera.cxx)
+
+/** The camera's view of pass `pass` (Camera Lens): P's beam direction tilted toward the pass's
+ * lens point and its emission moved by -tilt FocusPlane, so that an undisturbed ray crosses the
+ * focus plane at its pixel. tilt: the tilted direction's slopes along the film's right and top
+ * axes (across over along the beam); the ray's film coordinate is its coordinate in the tilted
+ * frame plus tilt times its depth (the splatter adds tilt sFilm to a landing). Returns false (P untouched, tilt 0) for None
+ * and Ideal. */
+bool CameraPass(const TraceSettings& s, sch_params& P, int pass, double tilt[2]);
+
+/** The camera's read-outs (TraceResult::Camera) for a trace onto film f. */
+TraceResult::CameraReadouts ComputeCamera(const TraceSettings& s, const FilmGeometry& f);
 
 // ------------------------------------------------------------------ parameters (SchlierenParams.cxx)
 

@@ -98,6 +98,9 @@ FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
   // the volume's centre plane, as a schlieren camera focused on the test section does (BOS: the
   // photons are then referred to the background, see Splatter); FilmDistance defocuses it.
   f.FilmPlane = s.Mode == Cutoff::Shadowgraph ? wd + s.FilmDistance : s.FilmDistance;
+  // A camera images its focus plane whatever the cutoff (a shadowgraph is then a defocus)
+  if (s.Camera != CameraModel::None)
+    f.FilmPlane = s.FocusPlane;
   return f;
 }
 
@@ -176,6 +179,7 @@ Splatter::Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f)
   tilt = 2 * 3.14159265358979323846 * s.ReferenceTilt;
   bgPlane = P.sFront - s.BackgroundDistance;
   period = s.BackgroundPeriod > 0 ? s.BackgroundPeriod : 6.0 * P.pixel;
+  camera = s.Camera != CameraModel::None;
 }
 
 float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const
@@ -245,7 +249,26 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
     const int pix = static_cast<int>(P.rayOffset + (first + r) * P.rayStride);
     double la = rec[SCH_REC_A], lb = rec[SCH_REC_B];
     double bosWeight = 0, shiftX = 0, shiftY = 0;
-    if (S.Mode == Cutoff::BOS)
+    if (camera)
+    {
+      // Lens: from the tilted frame of the pass to the film's (zero tilt for Ideal: unchanged)
+      la += lensTilt[0] * P.sFilm;
+      lb += lensTilt[1] * P.sFilm;
+    }
+    if (S.Mode == Cutoff::BOS && camera)
+    {
+      // a camera sees the ray where its exit line crosses the focus plane (the background's
+      // plane for the usual BOS focus); the pattern is that of the background point the ray
+      // left from, tilt times the depth from its pixel's emission point
+      float a0, b0;
+      sch_emit(&P, pix, &a0, &b0);
+      const double ba = a0 - lensTilt[0] * (P.sFilm - bgPlane), bb = b0 - lensTilt[1] * (P.sFilm - bgPlane);
+      bosWeight = sch_bos_pattern(static_cast<float>(ba), static_cast<float>(bb), static_cast<float>(period),
+        S.BackgroundPattern, P.seed);
+      shiftX = la - a0;
+      shiftY = lb - b0;
+    }
+    else if (S.Mode == Cutoff::BOS)
     {
       // the camera sees the background point the photon left from, where the exit ray seems
       // to come from: back along the exit direction to the background plane

@@ -348,6 +348,7 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
            "from the image.\n";
     r.Warnings += msg.str();
   }
+  r.Camera = ComputeCamera(s, r.Film);
   r.Warnings += PhotonWarnings(volume, r.Film, raw);
   r.Warnings += WeakFieldWarning(s, r);
   return r;

@@ -203,6 +203,28 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("BackgroundPattern", s.BackgroundPattern, "0 (dots) or 1 (stripes)");
   if (!(s.BackgroundPeriod >= 0 && std::isfinite(s.BackgroundPeriod)))
     OutOfRange("BackgroundPeriod", s.BackgroundPeriod, "a finite length >= 0 (0: 6 pixels)");
+  // the camera (checked whatever Camera is: a typed value is kept for when it is used)
+  const int camera = static_cast<int>(s.Camera);
+  if (camera < 0 || camera > static_cast<int>(CameraModel::Lens))
+    OutOfRange("Camera", camera, "0 (None), 1 (Ideal) or 2 (Lens)");
+  if (!(s.CameraFocalLength >= 1e-3 && s.CameraFocalLength <= 1e3))
+    OutOfRange("CameraFocalLength", s.CameraFocalLength, "in [0.001, 1000] m");
+  if (!(s.FNumber >= 0.5 && s.FNumber <= 1000))
+    OutOfRange("FNumber", s.FNumber, "in [0.5, 1000]");
+  if (!(s.CameraDistance >= 1e-3 && s.CameraDistance <= 1e6))
+    OutOfRange("CameraDistance", s.CameraDistance, "in [0.001, 1e6] m (the lens to the volume's centre)");
+  if (!(s.FocusPlane >= -1e6 && s.FocusPlane <= 1e6))
+    OutOfRange("FocusPlane", s.FocusPlane, "in [-1e6, 1e6] world units along the beam from the volume's centre");
+  if (!(s.SourceGridDistance >= 1e-3 && s.SourceGridDistance <= 1e6))
+    OutOfRange("SourceGridDistance", s.SourceGridDistance, "in [0.001, 1e6] m");
+  if (s.Camera != CameraModel::None && !(s.CameraDistance - s.FocusPlane > s.CameraFocalLength))
+  {
+    std::ostringstream msg;
+    msg << "CameraDistance " << s.CameraDistance << " m less FocusPlane " << s.FocusPlane
+        << " (the lens to the plane it focuses on) must be more than CameraFocalLength "
+        << s.CameraFocalLength << " m: a lens forms no real image of a plane within its focal length.";
+    throw Error(msg.str());
+  }
   if (!(s.FilterWidth >= 0.01 && s.FilterWidth <= 64))
     OutOfRange("FilterWidth", s.FilterWidth, "in [0.01, 64] pixels");
   if (s.MaxSteps < 0)
@@ -287,6 +309,15 @@ void CheckPrecision(const Volume& volume, const TraceSettings& s)
     msg << "BackgroundDistance " << Num(s.BackgroundDistance)
         << " is more than 1e6 times the volume's size (" << Num(diag)
         << " world units). Use a distance of at most " << Num(1e6 * diag) << ".";
+    throw Error(msg.str());
+  }
+  // the camera's focus plane is the film plane: the same reach as FilmDistance's
+  if (s.Camera != CameraModel::None && !(std::fabs(s.FocusPlane) <= 1e6 * diag))
+  {
+    std::ostringstream msg;
+    msg << "FocusPlane " << Num(s.FocusPlane) << " is more than 1e6 times the volume's size ("
+        << Num(diag) << " world units) from its centre: there a deflection of a micro-radian moves a "
+        << "photon by more than the film's width. Use a focus plane within " << Num(1e6 * diag) << ".";
     throw Error(msg.str());
   }
 }

@@ -71,6 +71,9 @@ std::string TraceSettings::PhotonKey() const
     << ' ' << RankIndex << ' ' << RankCount
     << ' ' << static_cast<int>(Source) << ' ' << SourceSize[0] << ' ' << SourceSize[1] << ' '
     << CollimatorFocalLength << ' ' << SchlierenFocalLength << ' ' << KnifeCut;
+  // the camera (SourceGridDistance is a read-out only)
+  k << ' ' << static_cast<int>(Camera) << ' ' << CameraFocalLength << ' ' << FNumber << ' '
+    << CameraDistance << ' ' << FocusPlane;
   return k.str();
 }
 

@@ -97,13 +97,16 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   for (int pass = 0; pass < s.Passes; ++pass)
   {
     P.pass = sums.Passes + pass;
+    // Camera Lens: the kernels trace this pass's tilted beam (Pk); the splatter bins on P's film
+    sch_params Pk = P;
+    CameraPass(s, Pk, P.pass, splat.lensTilt);
     for (std::size_t first = 0; first < rays; first += chunk)
     {
       const std::size_t count = std::min(chunk, rays - first);
       if (cl)
-        TraceOpenCL(*cl, P, first, count, records.data());
+        TraceOpenCL(*cl, Pk, first, count, records.data());
       else
-        TraceChunkCPU(tv.Field, bytes, P, first, count, records.data(), threads);
+        TraceChunkCPU(tv.Field, bytes, Pk, first, count, records.data(), threads);
       splat.Add(records.data(), first, count);
       done += count;
       if (progress && !progress(done / total))

@@ -405,7 +405,7 @@ void Grids(const std::string& grids, const std::string& backends, int film, int 
 
 } // namespace
 
-// The bench's sources on one case (the Gaussian sphere, size^3): rays/s of each, the passes each
+// The bench's sources on one case (the Gaussian sphere, size^3), and a camera aperture: rays/s of each, the passes each
 // needs for an RMS of 1 % of the image's contrast against its own 32-pass image, and a camera
 // move (8 views, 1 pass on a half-size film) per source. Slit, disc and Gaussian of 0.5 mm with
 // f1 = f2 = 1 m at 50 % cut keep the sphere's deflections in their linear range.
@@ -423,12 +423,27 @@ void Sources(const std::string& backends, int film, int size)
     const Backend dev = b == "CPU" ? Backend::CPU : Backend::OpenCL;
     if (dev == Backend::OpenCL && !QueryOpenCLDevice().Available)
       continue;
-    for (BenchSource src : { BenchSource::Point, BenchSource::Slit, BenchSource::Disc, BenchSource::Gaussian })
+    // the last row: the point source seen by a lens of f = 0.1 m at f/0.5 (D = 0.2) focused 0.5
+    // in front of the sphere's centre, 1 from the focus plane: the sphere blurred by about 0.1
+    // (6 pixels of a 128 film), the aperture sampled one lens point per pass (docs/BENCH.md "Camera")
+    for (int row = 0; row < 5; ++row)
     {
+      const BenchSource src = row == 1 ? BenchSource::Slit
+        : row == 2                     ? BenchSource::Disc
+        : row == 3                     ? BenchSource::Gaussian
+                                       : BenchSource::Point;
       TraceSettings s;
       s.Device = dev;
       s.Mode = Cutoff::KnifeEdge;
       s.Resolution[0] = s.Resolution[1] = film;
+      if (row == 4)
+      {
+        s.Camera = CameraModel::Lens;
+        s.CameraFocalLength = 0.1;
+        s.FNumber = 0.5;
+        s.FocusPlane = 0.5;
+        s.CameraDistance = 1.5;
+      }
       s.Source = src;
       s.SourceSize[0] = s.SourceSize[1] = 0.5;
       s.Passes = 32;
@@ -468,7 +483,8 @@ void Sources(const std::string& backends, int film, int size)
       }
       const double msView = 1e3 * Since(t1) / 8;
       const char* names[] = { "Point", "Slit", "Rectangle", "Disc", "Gaussian" };
-      std::printf("| %s | %s | %.3g | %.3g, %.3g, %.3g | %s | %.1f |\n", b.c_str(), names[static_cast<int>(src)],
+      std::printf("| %s | %s | %.3g | %.3g, %.3g, %.3g | %s | %.1f |\n", b.c_str(),
+        row == 4 ? "Point, Lens f/0.5 defocused" : names[static_cast<int>(src)],
         rate, rms[0], rms[2], rms[4], need ? std::to_string(need).c_str() : "> 16", msView);
       std::fflush(stdout);
     }

@@ -239,6 +239,20 @@ int main()
     cases.push_back(c);
   }
 
+  {
+    // a camera's aperture (docs/BENCH.md "Camera"): each pass's beam tilted toward its lens point,
+    // defocused, so that the tilted rays cross the pieces
+    Case c{ "Gaussian sphere, camera lens f/1", &gauss, TraceSettings() };
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Passes = 3;
+    c.Settings.Camera = CameraModel::Lens;
+    c.Settings.CameraFocalLength = 1.0;
+    c.Settings.FNumber = 1.0;
+    c.Settings.FocusPlane = 0.5;
+    c.Settings.CameraDistance = 3.0;
+    cases.push_back(c);
+  }
+
   const std::vector<std::pair<const char*, Decomposition>> decos = {
     { "whole", Blocks(n, {}, {}, {}) },
     { "2 slabs along z", Blocks(n, {}, {}, { 0.5 }) },
