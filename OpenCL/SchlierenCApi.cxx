@@ -306,61 +306,25 @@ void MakeReport(schlieren_session* s, const std::string& error)
   const schlieren::SessionImage& image = s->Image;
   std::ostringstream o;
   o << "{\"field_data\": {";
-  bool first = true;
-  auto num = [&](const char* name, double v) {
-    o << (first ? "" : ", ") << Json(name) << ": " << Number(v);
-    first = false;
-  };
-  auto str = [&](const char* name, const std::string& v) {
-    o << (first ? "" : ", ") << Json(name) << ": " << Json(v);
-    first = false;
-  };
-  if (error.empty() && image.HasImage)
+  if (error.empty())
   {
-    // the names and order of vtkSchlierenImage's field data
-    const schlieren::TraceResult& result = image.Result;
-    num("cutoff_scale", result.CutoffScaleUsed);
-    if (!result.BenchModel.empty())
+    // the engine's one list (vtkSchlierenImage writes the same as its field data)
+    bool first = true;
+    for (const schlieren::ReportEntry& e : schlieren::ImageReport(image))
     {
-      num("bench_sensitivity", result.BenchSensitivity);
-      o << ", " << Json("bench_range") << ": [" << Number(result.BenchRange[0]) << ", "
-        << Number(result.BenchRange[1]) << "]";
-      num("bench_resolvable_deflection", result.BenchResolvable);
-      num("bench_saturated_share", result.BenchSaturated);
-      num("bench_dark_share", result.BenchDark);
-      str("bench_model", result.BenchModel);
-    }
-    str("warnings", image.Warnings);
-    str("backend", image.BackendUsed);
-    str("device", image.DeviceName);
-    num("photons", result.Photons);
-    num("passes", image.Passes);
-    num("passes_traced", image.PassesTraced);
-    num("samples", result.Samples);
-    num("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
-    num("failed_rays", result.FailedRays);
-    num("missed_rays", result.MissedRays);
-    num("landed_photons", image.LandedPhotons);
-    num("underresolved_rays", result.UnderresolvedRays);
-    num("side_rays", result.SideRays);
-    num("blocked_rays", result.BlockedRays);
-    num("max_drift", result.MaxDrift);
-    num("max_error", result.MaxError);
-    str("integrator", schlieren::IntegratorName(image.Traced.Method));
-    str("reconstruction", schlieren::ReconstructionName(image.Traced.Recon));
-    num("step_size", image.Traced.StepSize);
-    num("octree", image.OctreeUsed ? 1.0 : 0.0);
-    if (image.OctreeUsed)
-      num("octree_tolerance", image.OctreeTolerance);
-    num("distributed_ranks", image.DistributedRanks);
-    if (image.AutoAsked)
-    {
-      str("auto_report", image.Choice.Report);
-      num("expected_error", image.Choice.ExpectedError);
-      num("auto_tolerance", image.Choice.Tolerance);
-      num("auto_met", image.Choice.Met ? 1.0 : 0.0);
-      num("auto_floor", image.Choice.AtFloor ? image.Choice.Floor : 0.0);
-      num("auto_reused", image.Choice.Reused ? 1.0 : 0.0);
+      o << (first ? "" : ", ") << Json(e.Name) << ": ";
+      first = false;
+      if (e.IsText)
+        o << Json(e.Text);
+      else if (e.Numbers.size() == 1)
+        o << Number(e.Numbers[0]);
+      else
+      {
+        o << "[";
+        for (std::size_t i = 0; i < e.Numbers.size(); ++i)
+          o << (i ? ", " : "") << Number(e.Numbers[i]);
+        o << "]";
+      }
     }
   }
   o << "}, \"notes\": [";

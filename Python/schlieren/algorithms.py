@@ -125,7 +125,8 @@ def _field_number(image, name, value):
     from vtkmodules.vtkCommonCore import vtkDoubleArray
     a = vtkDoubleArray()
     a.SetName(name)
-    a.InsertNextValue(value)
+    for v in (value if isinstance(value, (list, tuple)) else [value]):  # bench_range: two
+        a.InsertNextValue(v)
     image.GetFieldData().AddArray(a)
 
 
@@ -389,6 +390,9 @@ class SchlierenImage(_Properties):
             if note["warning"]:
                 warnings.warn("SchlierenImage: " + note["text"])
         size, origin, pixel = s.film()
+        # only the image and the report, as the C++ filter's output (the pipeline passed the
+        # input's field data on: RefractiveIndex's index_* are not this image's)
+        out.Initialize()
         out.SetExtent(0, size[0] - 1, 0, size[1] - 1, 0, 0)
         out.SetSpacing(pixel, pixel, 1.0)
         out.SetOrigin(origin[0], origin[1], 0.0)

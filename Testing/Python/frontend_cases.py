@@ -16,11 +16,12 @@ SCENES = {
 # SchlierenImage properties per case (a few away from the defaults, so that they are all passed)
 IMAGES = {
     "gaussian_sphere": dict(Cutoff="KnifeEdge", KnifeAngle=30.0, Resolution=[96, 80], Passes=2,
-                            Integrator="RK4", StepSize=0.5, ViewDirection=[0.2, 0.1, -1.0]),
+                            Integrator="RK4", StepSize=0.5, ViewDirection=[0.2, 0.1, -1.0],
+                            Source="Slit"),  # a finite source: the bench_* field data
     "solid_sphere": dict(Cutoff="Shadowgraph", FilmDistance=0.5, Resolution=[80, 80], Passes=2,
                          Seed=7),
     "bluntfin": dict(Cutoff="KnifeEdge", Resolution=[96, 64], Passes=2, ViewDirection=[0, -1, 0],
-                     ViewUp=[0, 0, 1]),
+                     ViewUp=[0, 0, 1], Integrator="Auto"),  # Auto's choice: the auto_* field data
 }
 
 BACKENDS = ["CPU", "OpenCL"]
@@ -31,3 +32,23 @@ ARRAYS = ["intensity", "deflection", "blocked", "rgb", "phase", "bos_displacemen
 # field data compared exactly (numbers and strings); timings and devices are not in the report
 FIELDS = ["cutoff_scale", "photons", "passes", "samples", "failed_rays", "missed_rays",
           "landed_photons", "blocked_rays", "integrator", "reconstruction", "step_size", "backend"]
+
+
+def field_data_list(fd):
+    """Every array of an image's field data, in order: [name, "text" or "number", values], the
+    numbers as repr() text (exact, NaN equal to NaN). The C++ filter writes its field data from the
+    engine's report (schlieren::ImageReport) and the Python front end from the same report through
+    the C interface: the two lists must be equal, names, order and values."""
+    import re
+    out = []
+    for i in range(fd.GetNumberOfArrays()):
+        a = fd.GetAbstractArray(i)
+        n = a.GetNumberOfTuples() * a.GetNumberOfComponents()
+        if a.IsA("vtkStringArray"):
+            values = [a.GetValue(j) for j in range(n)]
+            if a.GetName() == "auto_report":  # the one timing in the report: the pilot's ms
+                values = [re.sub(r"rays, \d+ ms\)", "rays, ... ms)", v) for v in values]
+            out.append([a.GetName(), "text", values])
+        else:
+            out.append([a.GetName(), "number", [repr(float(a.GetValue(j))) for j in range(n)]])
+    return out

@@ -48,6 +48,7 @@ def save(name, proxy):
         if arr is not None:
             fields[f] = arr.GetValue(0)
     out["fields"] = np.array(json.dumps(fields))
+    out["field_data"] = np.array(json.dumps(cases.field_data_list(fd)))  # every entry, in order
     np.savez(os.path.join(args.output, name + ".npz"), **out)
     return fields
 

@@ -106,6 +106,16 @@ for backend in cases.BACKENDS:
         report = image.LastReport["field_data"]
         for k, v in fields.items():
             check(report.get(k) == v, "%s: field %s = %r (C++: %r)" % (tag, k, report.get(k), v))
+        # the whole field data, names, order and values: both written from the engine's one
+        # report (schlieren::ImageReport), the C++ filter's directly, this one's through the C API
+        mine_fd = cases.field_data_list(out.GetFieldData())
+        theirs_fd = json.loads(str(ref["field_data"]))
+        diff = [(a, b) for a, b in zip(mine_fd, theirs_fd) if a != b]
+        check(mine_fd == theirs_fd and len(mine_fd) > 20,
+              "%s: the field data equals the C++ filter's: %d entries (%s; Python only: %s; C++ "
+              "only: %s)" % (tag, len(theirs_fd), diff[:3],
+                             sorted({e[0] for e in mine_fd} - {e[0] for e in theirs_fd}),
+                             sorted({e[0] for e in theirs_fd} - {e[0] for e in mine_fd})))
         if name == "solid_sphere":
             check(fields["blocked_rays"] > 0, "%s: the body blocks rays (%d)" %
                   (tag, fields["blocked_rays"]))

@@ -104,6 +104,11 @@ for backend in cases.BACKENDS:
         for k, v in fields.items():
             arr = fd.GetAbstractArray(k)
             check(arr is not None and arr.GetValue(0) == v, "%s: field %s" % (tag, k))
+        mine_fd = cases.field_data_list(fd)
+        theirs_fd = json.loads(str(ref["field_data"]))
+        check(mine_fd == theirs_fd and len(mine_fd) > 20,
+              "%s: the field data equals the C++ filter's (%d entries; differing: %s)"
+              % (tag, len(theirs_fd), [(a, b) for a, b in zip(mine_fd, theirs_fd) if a != b][:3]))
         compared += 1
 check(compared >= 2, "images compared: %d" % compared)
 print("%d failures" % len(failures))
