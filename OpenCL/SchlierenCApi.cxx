@@ -775,7 +775,16 @@ int schlieren_field_index(const char* model, const float* input, int64_t count, 
     {
       m.Model = schlieren::IndexModel::GladstoneDale;
       m.DensityReference = density_reference;
-      if (gas && *gas)
+      std::vector<double> km;
+      if (gas && std::strncmp(gas, "Custom", 6) == 0)
+      {
+        // the proxy's Gas Custom: GladstoneDaleConstant and MolarMass typed in
+        if (!ParseNumbers(gas + 6, km) || km.size() != 2)
+          throw schlieren::Error(std::string("Gas '") + gas +
+            "': Custom takes the Gladstone-Dale constant (m^3/kg) and the molar mass (kg/mol).");
+        m.SingleGas = schlieren::GasChoice::Typed(km[0], km[1]);
+      }
+      else if (gas && *gas)
         m.SingleGas = schlieren::GasChoice::Table(schlieren::ParseGas(gas));
       a.Density.Data = input;
       a.Density.Name = "density";

@@ -136,7 +136,8 @@ SCHLIEREN_C_API int schlieren_gradient(
 /**
  * RefractiveIndex's models on arrays of `count` points: `model` "Passthrough" (`input` is n - 1,
  * or n where `index_is_n`) or "GladstoneDale" (`input` is density, times `density_reference`,
- * gas `gas` by its table name, NULL: Air). Writes n - 1. `report` (may be NULL) gets the warnings
+ * gas `gas` by its table name, NULL: Air, or "Custom K M": the Gladstone-Dale constant K in
+ * m^3/kg and the molar mass M in kg/mol, as the proxy's Gas Custom). Writes n - 1. `report` (may be NULL) gets the warnings
  * as lines (owned by the library until this thread's next call).
  */
 SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input, int64_t count,

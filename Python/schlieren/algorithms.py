@@ -213,11 +213,63 @@ class RefractiveIndex(_Properties):
     """n - 1 from CFD fields (Passthrough, GladstoneDale), resampled onto an image as needed.
 
     Model Automatic takes GladstoneDale on an array named like density (density, rho, Density),
-    else Passthrough on n_minus_1. InputArray names the array (empty: the automatic choice)."""
+    else Passthrough on n_minus_1. InputArray names the array (empty: the automatic choice).
 
-    _defaults = dict(Model="Automatic", InputArray="", PassthroughHoldsN=0, Gas="Air",
-                     DensityReference=1.0, SamplingDimensions=[0, 0, 0], AutomaticDimension=128)
-    _entries = dict(Model=["Automatic", "Passthrough", "GladstoneDale"])
+    Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
+    names: SelectInputArray is InputArray); those this front end does not implement (the mixture
+    and ideal-gas models, Symmetry, sampling bounds, ambient values, bodies) take their default
+    only, and another value is refused by name (the C++ plugin has them)."""
+
+    _defaults = dict(
+        Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
+        MixtureFractionArray="", Species1Array="", Species2Array="", Species3Array="",
+        Species4Array="", HumidityArray="", CO2Array="", PassthroughHoldsN=0, Gas="Custom",
+        GladstoneDaleConstant=2.256e-4, MolarMass=0.0289641, MixtureComposition="MixtureFraction",
+        IdealGasComposition="Gas", MixtureGas0="Air", MixtureGas1="He", NumberOfSpecies=1,
+        SpeciesGases=[6, 8, 1, 5], SpeciesGladstoneDale=[2.256e-4] * 4,
+        SpeciesMolarMass=[0.0289641] * 4, BalanceGas="Air", BalanceGladstoneDale=2.256e-4,
+        BalanceMolarMass=0.0289641, DensityReference=1.0, TemperatureUnit="Kelvin",
+        TemperatureReference=1.0, PressureUnit="Pa", PressureReference=1.0, PressureOffset=0.0,
+        Humidity=0.0, HumidityFromArray=0, HumidityMeasure="RelativeHumidity", CO2=450.0,
+        CO2FromArray=0, Wavelength=632.8, Symmetry="None", Span=1.0, SymmetryAxis="X",
+        AxisFromWedge=1, SamplingDimensions=[0, 0, 0], AutomaticDimension=128,
+        UseSamplingBounds=0, SamplingBounds=[0.0, 1.0, 0.0, 1.0, 0.0, 1.0], AmbientMode="Extend",
+        AmbientValue=2.7164e-4, BodyFromGrid=1, BodyWallFaces=[0, 0, 0, 0, 0, 0],
+        SolidArray="None")
+    _gases = ["Air", "He", "N2", "O2", "Ar", "CO2", "H2", "H2O", "CH4", "CO"]
+    _entries = dict(
+        Model=["Automatic", "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas",
+               "Ciddor"],
+        Gas=["Custom"] + _gases, MixtureComposition=["MixtureFraction", "Species"],
+        IdealGasComposition=["Gas", "MixtureFraction", "Species"], MixtureGas0=_gases,
+        MixtureGas1=_gases, BalanceGas=["None", "Custom"] + _gases,
+        TemperatureUnit=["Kelvin", "Celsius"], PressureUnit=["Pa", "kPa", "atm", "bar"],
+        HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"],
+        Symmetry=["None", "Planar", "Axisymmetric"], SymmetryAxis=["X", "Y", "Z"],
+        AmbientMode=["Extend", "DomainEdgeMedian", "Value"])
+    # implemented here: these properties (Model: the first three entries); the others are held at
+    # their defaults (BodyFromGrid's default is taken, but no body is found in the grid's holes)
+    _implemented = {"Model", "InputArray", "PassthroughHoldsN", "Gas", "GladstoneDaleConstant",
+                    "MolarMass", "DensityReference", "SamplingDimensions", "AutomaticDimension",
+                    "AmbientMode", "BodyFromGrid"}
+    _implemented_entries = dict(Model=["Automatic", "Passthrough", "GladstoneDale"],
+                                AmbientMode=["Extend"])
+
+    def _check(self, name, value):
+        value = _Properties._check(self, name, value)
+        if name in ("InputArray",) and isinstance(value, (list, tuple)):
+            value = value[-1]  # ParaView's ["POINTS", name]
+        if name in self._implemented_entries and value not in self._implemented_entries[name]:
+            raise ValueError("RefractiveIndex: %s %r is not available in the Python front end "
+                             "(it has: %s); the C++ plugin has it"
+                             % (name, value, ", ".join(self._implemented_entries[name])))
+        if name not in self._implemented and value != self._defaults[name] and not (
+                isinstance(value, list) and [float(v) for v in value] ==
+                [float(v) for v in self._defaults[name]]):
+            raise ValueError("RefractiveIndex: %s is not available in the Python front end: it "
+                             "takes only its default %r (got %r); the C++ plugin has it"
+                             % (name, self._defaults[name], value))
+        return value
 
     def __init__(self, **kwargs):
         _Properties.__init__(self, 1, **kwargs)
@@ -264,7 +316,10 @@ class RefractiveIndex(_Properties):
             n1, warnings = _engine.field_index(model, values,
                                                index_is_n=bool(self.PassthroughHoldsN),
                                                density_reference=self.DensityReference,
-                                               gas=self.Gas)
+                                               gas=("Custom %r %r" % (
+                                                   float(self.GladstoneDaleConstant),
+                                                   float(self.MolarMass))
+                                                    if self.Gas == "Custom" else self.Gas))
             dims = list(image.GetDimensions())
             if valid is not None:
                 _engine.extend_into_invalid(dims, valid, n1)
@@ -276,6 +331,10 @@ class RefractiveIndex(_Properties):
         out.GetPointData().SetScalars(a)
         _add(out, "grad_n", grad)
         _field_string(out, "index_model", model)
+        if valid is not None and self.BodyFromGrid:
+            warnings = list(warnings) + [
+                "BodyFromGrid: the Python front end finds no bodies in the grid's holes; the "
+                "points outside the input's cells are filled as the flow (AmbientMode Extend)."]
         for w in warnings:
             import warnings as _w
             _w.warn("RefractiveIndex: " + w)

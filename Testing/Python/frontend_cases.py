@@ -11,6 +11,18 @@ SCENES = {
     "solid_sphere": dict(Scene="GaussianSphere", Dimensions=[48, 40, 44],
                          Bounds=[-1.0, 1.0, -0.8, 0.9, -1.0, 1.0], Amplitude=2e-4, Width=0.4,
                          Body="Sphere", BodyRadius=0.3, BodyCenter=[0.1, 0.0, 0.0]),
+    # the scene's density through RefractiveIndex and RefractionOctree (STAGES), traced with
+    # the octree
+    "indexed_sphere": dict(Scene="GaussianSphere", Dimensions=[40, 36, 32],
+                           Bounds=[-1.0, 1.0, -0.9, 0.9, -0.8, 0.8], Amplitude=1e-4, Width=0.3),
+}
+
+# the filters between a scene and SchlierenImage, in order (proxy name, properties)
+STAGES = {
+    "indexed_sphere": [("RefractiveIndex", dict(Model="GladstoneDale",
+                                                InputArray=["POINTS", "density"],
+                                                DensityReference=2.0)),
+                       ("RefractionOctree", dict(Tolerance=1e-6, MaxLevel=5))],
 }
 
 # SchlierenImage properties per case (a few away from the defaults, so that they are all passed)
@@ -20,6 +32,8 @@ IMAGES = {
                             Source="Slit"),  # a finite source: the bench_* field data
     "solid_sphere": dict(Cutoff="Shadowgraph", FilmDistance=0.5, Resolution=[80, 80], Passes=2,
                          Seed=7),
+    "indexed_sphere": dict(Cutoff="KnifeEdge", Resolution=[64, 56], Passes=1, UseOctree=1,
+                           KnifeAngle=90.0),
     "bluntfin": dict(Cutoff="KnifeEdge", Resolution=[96, 64], Passes=2, ViewDirection=[0, -1, 0],
                      ViewUp=[0, 0, 1], Integrator="Auto"),  # Auto's choice: the auto_* field data
 }

@@ -53,7 +53,11 @@ def save(name, proxy):
     return fields
 
 
-sources = {name: ns["RefractiveScene"](**props) for name, props in cases.SCENES.items()}
+sources = {}
+for name, props in cases.SCENES.items():
+    sources[name] = ns["RefractiveScene"](**props)
+    for stage, stage_props in cases.STAGES.get(name, []):
+        sources[name] = ns[stage](Input=sources[name], **stage_props)
 xyz, q = os.path.join(args.data, "bluntfinxyz.bin"), os.path.join(args.data, "bluntfinq.bin")
 if os.path.exists(xyz) and os.path.exists(q):
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
