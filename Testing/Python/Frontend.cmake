@@ -64,5 +64,9 @@ if(SCHLIEREN_PYTHON_PLUGIN)
   schlieren_python_test(python_plugin
     COMMAND "${_pvpython}" "${_here}/test_python_plugin.py" --plugin "${SCHLIEREN_PYTHON_PLUGIN}"
       --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml" --reference "${_frontend_ref}"
+      --package "${PROJECT_SOURCE_DIR}/Python"
     PROPERTIES FIXTURES_REQUIRED frontend_reference)
+  # the Python front end's package beside the C++ plugin's schlieren_vtk, in one session
+  set_property(TEST python.python_plugin APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endif()

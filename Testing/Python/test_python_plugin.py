@@ -35,6 +35,7 @@ ap = argparse.ArgumentParser()
 ap.add_argument("--plugin", required=True)
 ap.add_argument("--xml", required=True)
 ap.add_argument("--reference", required=True)
+ap.add_argument("--package", help="the folder holding the Python front end's package `schlieren`")
 args = ap.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ns = globals()
@@ -150,5 +151,24 @@ for backend in cases.BACKENDS:
               % (tag, len(theirs_fd), [(a, b) for a, b in zip(mine_fd, theirs_fd) if a != b][:3]))
         compared += 1
 check(compared >= 4, "images compared: %d" % compared)
+# the two packages in one ParaView Python session: the C++ plugin's compiled classes
+# (schlieren_vtk, from the build's dist-packages) and the Python front end (schlieren), neither
+# shadowing the other; the front end hands out the compiled classes under their old name
+if args.package:
+    sys.path.insert(0, args.package)
+    import schlieren_vtk  # noqa: E402
+    import schlieren  # noqa: E402
+    check(os.path.dirname(schlieren.__file__) == os.path.join(args.package, "schlieren") and
+          hasattr(schlieren, "SchlierenImage") and hasattr(schlieren_vtk, "vtkSchlierenImage") and
+          schlieren.vtkSchlierenImage is schlieren_vtk.vtkSchlierenImage,
+          "schlieren (%s) and schlieren_vtk (%s) import in one session; schlieren.vtkSchlierenImage "
+          "is the compiled class" % (schlieren.__file__, schlieren_vtk.__file__))
+    f = schlieren.RefractiveScene(Dimensions=[8, 8, 8])
+    f.Update()
+    g = schlieren_vtk.vtkRefractiveScene()
+    g.SetDimensions(8, 8, 8)
+    g.Update()
+    check(f.GetOutput().GetDimensions() == g.GetOutput().GetDimensions() == (8, 8, 8),
+          "both packages' RefractiveScene run in that session")
 print("%d failures" % len(failures))
 sys.exit(1 if failures else 0)
