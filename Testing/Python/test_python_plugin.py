@@ -40,15 +40,8 @@ args = ap.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ns = globals()
 failures = []
-# what of the C++ plugin the Python plugin leaves out, by name: a proxy or property missing from
-# (or added to) either side and not listed here fails the diff below
-PROXIES_LEFT_OUT = {"NumericalSchlieren"}
-LEFT_OUT = {
-    "SchlierenImage": {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView",
-                       "PassLimit"},  # the GUI's
-    "RefractiveScene": {"TimeSteps"},
-    "RefractiveIndex": {"Body"},  # the optional second input, a body's surface
-}
+PROXIES_LEFT_OUT = cases.PYTHON_PLUGIN_PROXIES_LEFT_OUT  # a proxy or property missing from (or
+LEFT_OUT = cases.PYTHON_PLUGIN_LEFT_OUT                 # added to) either side fails the diff
 
 
 def check(ok, what):
