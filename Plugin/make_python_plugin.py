@@ -7,8 +7,8 @@ documentation and domains are copied from it) and the Python package Python/schl
         --output SchlierenPython.py
 
 The plugin exposes RefractiveScene, RefractiveIndex, RefractionOctree and SchlierenImage with
-every property of their XML, in its order, with its groups (RefractiveIndex's optional Body input
-is left out, and NumericalSchlieren); a property the package does not implement takes its default
+NumericalSchlieren with every property of their XML, in its order, with its groups (RefractiveIndex's
+optional Body input is left out); a property the package does not implement takes its default
 only (the package refuses another value by name); it loads
 libschlieren_engine.so from beside itself, SCHLIEREN_ENGINE_LIBRARY or the loader's path."""
 import argparse
@@ -29,9 +29,10 @@ for name in ("_engine", "png", "algorithms"):
 
 import re
 
-# the proxies the Python package implements, and what of their XML it leaves out: the C++
-# plugin's other proxies (NumericalSchlieren) and these properties are not in the Python plugin
-PROXIES = ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage")
+# the proxies the Python package implements (all the C++ plugin's), and what of their XML it
+# leaves out: these properties are not in the Python plugin
+PROXIES = ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage",
+           "NumericalSchlieren")
 LEFT_OUT = {
     "RefractiveIndex": {"Body"},  # the optional second input (a body's surface)
     "RefractiveScene": {"TimeSteps"},  # the time steps ParaView's animation reads
@@ -154,6 +155,7 @@ out = ['# SPDX-License-Identifier: BSD-3-Clause',
        "RefractiveIndex = _make(_alg.RefractiveIndex, 'RefractiveIndex', True)",
        "RefractionOctree = _make(_alg.RefractionOctree, 'RefractionOctree', True)",
        "SchlierenImage = _make(_alg.SchlierenImage, 'SchlierenImage', True)",
+       "NumericalSchlieren = _make(_alg.NumericalSchlieren, 'NumericalSchlieren', True)",
        ""]
 with open(args.output, "w") as f:
     f.write("\n".join(out))

@@ -19,14 +19,14 @@ from ._engine import EngineError, properties, version  # noqa: F401
 __version__ = "0.1.0"
 
 try:
-    from .algorithms import (RefractionOctree, RefractiveIndex, RefractiveScene,  # noqa: F401
-                             SchlierenImage, image_to_numpy)
+    from .algorithms import (NumericalSchlieren, RefractionOctree, RefractiveIndex,  # noqa: F401
+                             RefractiveScene, SchlierenImage, image_to_numpy)
 except ImportError as _e:  # no VTK: the engine functions still work
     _vtk_error = _e
 
     def _front_end_missing(name):
         if name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage",
-                    "image_to_numpy"):
+                    "NumericalSchlieren", "image_to_numpy"):
             raise ImportError("schlieren.%s needs VTK (pip install vtk): %s" % (name, _vtk_error))
         return None
 else:

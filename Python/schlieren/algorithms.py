@@ -382,6 +382,106 @@ class RefractionOctree(_Properties):
         return 1
 
 
+class NumericalSchlieren(_Properties):
+    """The textbook schlieren image computed from the gradient of a scalar (density or n - 1) on
+    a plane (Slice) or averaged along each pixel's line (LineOfSight): the NumericalSchlieren
+    proxy, the engine's code. Input: vtkImageData."""
+
+    _defaults = dict(Mode="Slice", Gradient="Magnitude", KnifeAngle=0.0, C0=-0.001, C1=0.05, K=5.0,
+                     GradientMaximum=0.0, SliceOffset=0.0, StepSize=0.5,
+                     ViewDirection=[0.0, 0.0, -1.0], ViewUp=[0.0, 1.0, 0.0], Resolution=[512, 512],
+                     DensityArray="")
+    _entries = dict(Mode=["Slice", "LineOfSight"], Gradient=["Magnitude", "KnifeComponent"])
+
+    def __init__(self, **kwargs):
+        _Properties.__init__(self, 1, **kwargs)
+
+    def FillInputPortInformation(self, port, info):
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        return 1
+
+    def _settings(self):
+        return {k: self._values[k] for k in self._defaults if k != "DensityArray"}
+
+    @staticmethod
+    def _grid(info_or_image):
+        if isinstance(info_or_image, vtkImageData):
+            e = info_or_image.GetExtent()
+            spacing = info_or_image.GetSpacing()
+            origin = info_or_image.GetOrigin()
+        else:
+            e = info_or_image.Get(SDDP.WHOLE_EXTENT())
+            spacing = info_or_image.Get(vtkImageData.SPACING())
+            origin = info_or_image.Get(vtkImageData.ORIGIN())
+        dims = [e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1]
+        # the grid's first point (the extent may not start at 0)
+        return dims, [origin[a] + e[2 * a] * spacing[a] for a in range(3)], list(spacing)
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        src = inInfo[0].GetInformationObject(0)
+        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING())):
+            return 1
+        try:
+            dims, origin, spacing = self._grid(src)
+            size, film_origin, pixel = _engine.numerical(self._settings(), dims, origin, spacing)
+        except EngineError as e:
+            return self._fail(str(e))
+        info = outInfo.GetInformationObject(0)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
+        info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
+        info.Set(vtkImageData.ORIGIN(), film_origin[0], film_origin[1], 0.0)
+        return 1
+
+    def RequestData(self, request, inInfo, outInfo):
+        image = vtkImageData.GetData(inInfo[0])
+        out = vtkImageData.GetData(outInfo)
+        if image is None or image.GetNumberOfPoints() == 0:
+            return self._fail("NumericalSchlieren needs a non-empty image (vtkImageData), for "
+                              "example the output of RefractiveIndex or RefractiveScene.")
+
+        def scalars(name):
+            a = image.GetPointData().GetArray(name)
+            return None if a is None or a.GetNumberOfComponents() != 1 else \
+                numpy_support.vtk_to_numpy(a)
+        name = self.DensityArray
+        if name:
+            values = scalars(name)
+            if values is None:
+                return self._fail("DensityArray is '%s': the input has no one-component point "
+                                  "array of that name." % name)
+        else:
+            for name in ("density", "rho", "Density", "n_minus_1"):
+                values = scalars(name)
+                if values is not None:
+                    break
+            if values is None:
+                return self._fail("NumericalSchlieren needs a density (point array 'density', "
+                                  "'rho' or 'Density', or one named in DensityArray) or "
+                                  "'n_minus_1'; the input has none.")
+        solid = scalars("solid")
+        mask = scalars("vtkValidPointMask")
+        try:
+            dims, origin, spacing = self._grid(image)
+            r = _engine.numerical(self._settings(), dims, origin, spacing, values,
+                                  None if solid is None else (solid != 0).astype(np.uint8),
+                                  None if mask is None else (mask == 0).astype(np.uint8))
+        except EngineError as e:
+            return self._fail(str(e))
+        out.Initialize()
+        out.SetExtent(0, r["size"][0] - 1, 0, r["size"][1] - 1, 0, 0)
+        out.SetSpacing(r["pixel"], r["pixel"], 1.0)
+        out.SetOrigin(r["origin"][0], r["origin"][1], 0.0)
+        out.GetPointData().SetScalars(_add(out, "intensity", r["intensity"]))
+        _add(out, "numerical_gradient", r["numerical_gradient"])
+        _add(out, "blocked", r["blocked"])
+        _field_string(out, "numerical_field", name)
+        _field_string(out, "numerical_mode", self.Mode)
+        _field_string(out, "numerical_gradient_kind", self.Gradient)
+        _field_number(out, "gradient_maximum", r["maximum"])
+        _field_number(out, "gradient_largest", r["largest"])
+        return 1
+
+
 def _image_properties():
     props = _engine.properties()
     return ({p["name"]: p["default"] for p in props},

@@ -87,5 +87,8 @@ for backend in cases.BACKENDS:
         print("frontend_reference: %s %s: %s" % (name, backend, fields))
         if backend == "OpenCL":
             opencl = fields.get("backend", "?")
+for name, (scene, props) in cases.NUMERICAL.items():
+    fields = save(name, ns["NumericalSchlieren"](Input=sources[scene], **props))
+    print("frontend_reference: %s: %s" % (name, fields))
 with open(os.path.join(args.output, "opencl.txt"), "w") as f:
     f.write(opencl + "\n")

@@ -63,7 +63,7 @@ for name in sorted(engine_xml & set(api)):
 import re  # noqa: E402
 LEFT_OUT = {"RefractiveScene": {"TimeSteps"}, "RefractiveIndex": {"Body"}}
 root = ET.parse(args.xml).getroot()
-for proxy_name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree"):
+for proxy_name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "NumericalSchlieren"):
     cls = getattr(schlieren, proxy_name)
     px = [p for p in root.iter("SourceProxy") if p.get("name") == proxy_name][0]
     props = {}

@@ -144,6 +144,26 @@ for backend in cases.BACKENDS:
               % (tag, len(theirs_fd), [(a, b) for a, b in zip(mine_fd, theirs_fd) if a != b][:3]))
         compared += 1
 check(compared >= 4, "images compared: %d" % compared)
+
+# NumericalSchlieren: the engine's code in both, the same image and field data
+for name, (scene, props) in cases.NUMERICAL.items():
+    ref = np.load(os.path.join(args.reference, name + ".npz"))
+    image = ns["NumericalSchlieren"](Input=ns["RefractiveScene"](**cases.SCENES[scene]), **props)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    check(np.array_equal(np.array(out.GetExtent()), ref["extent"]) and
+          np.array_equal(np.array(out.GetOrigin()), ref["origin"]) and
+          np.array_equal(np.array(out.GetSpacing()), ref["spacing"]), "%s: the film" % name)
+    for a in ("intensity", "numerical_gradient", "blocked"):
+        mine = out.GetPointData().GetArray(a)
+        m = numpy_support.vtk_to_numpy(mine) if mine is not None else None
+        t = ref["array_" + a]
+        check(m is not None and m.dtype == t.dtype and m.shape == t.shape and
+              np.array_equal(m.view(np.uint8), t.view(np.uint8)),
+              "%s: %s bit for bit (%s, mean %.6g)" % (name, a, t.shape, float(t.mean())))
+    mine_fd = cases.field_data_list(out.GetFieldData())
+    check(mine_fd == json.loads(str(ref["field_data"])),
+          "%s: the field data equals the C++ filter's (%s)" % (name, mine_fd))
 # the two packages in one ParaView Python session: the C++ plugin's compiled classes
 # (schlieren_vtk, from the build's dist-packages) and the Python front end (schlieren), neither
 # shadowing the other; the front end hands out the compiled classes under their old name
