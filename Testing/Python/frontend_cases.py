@@ -16,6 +16,15 @@ SCENES = {
     "indexed_sphere": dict(Scene="GaussianSphere", Dimensions=[40, 36, 32],
                            Bounds=[-1.0, 1.0, -0.9, 0.9, -0.8, 0.8], Amplitude=1e-4, Width=0.3),
 }
+# small scenes for the cases that set every SchlierenImage property away from its default
+# (SETTINGS_CASES): the property -> engine setting mapping of either front end cannot drift
+# unnoticed
+for _case in ("settings_color", "settings_bench", "settings_bos", "settings_fringes"):
+    SCENES[_case] = dict(Scene="GaussianSphere", Dimensions=[28, 26, 24],
+                         Bounds=[-1.0, 1.0, -0.9, 0.9, -0.8, 0.8], Amplitude=2e-4, Width=0.35,
+                         Body="Sphere" if _case == "settings_bos" else "None", BodyRadius=0.2)
+
+SETTINGS_NOT_VARIED = {"Backend", "DeviceName"}
 
 # the filters between a scene and SchlierenImage, in order (proxy name, properties)
 STAGES = {
@@ -34,6 +43,22 @@ IMAGES = {
                          Seed=7),
     "indexed_sphere": dict(Cutoff="KnifeEdge", Resolution=[64, 56], Passes=1, UseOctree=1,
                            KnifeAngle=90.0),
+    # every engine property of SchlierenImage away from its default in one of these (Backend is
+    # the loop's; DeviceName stays empty: the device is the machine's one)
+    "settings_color": dict(Cutoff="ColorFilter", CutoffScale=800.0, Integrator="Midpoint",
+                           Reconstruction="Cubic", StepSize=0.7, EstimateError=1, KeepInvariant=1,
+                           Filter="Gaussian", FilterWidth=1.5, RussianRoulette=1, Jitter=0,
+                           Seed=11, Threads=2, Resolution=[40, 36], Passes=3,
+                           ViewUp=[0.1, 1.0, 0.0], Tolerance=1e-5, UseOctree=0),
+    "settings_bench": dict(Cutoff="KnifeEdge", Source="Disc", SourceSize=[2.0, 1.5],
+                           CollimatorFocalLength=1.5, SchlierenFocalLength=2.5, KnifeCut=0.3,
+                           BitDepth=10, SaturationWarning=0.05, KnifeAngle=45.0,
+                           Resolution=[36, 36], Passes=2, TraceInPieces=0),
+    "settings_bos": dict(Cutoff="BOS", BackgroundDistance=0.5, BackgroundPattern="Stripes",
+                         BackgroundPeriod=3.0, FilmDistance=0.2, Resolution=[36, 32], Passes=2,
+                         Filter="Cone", FilterWidth=2.0),
+    "settings_fringes": dict(Cutoff="Interferometry", Wavelength=532.0, ReferenceTilt=4.0,
+                             Resolution=[36, 36], Passes=2, Integrator="Euler", StepSize=0.3),
     "bluntfin": dict(Cutoff="KnifeEdge", Resolution=[96, 64], Passes=2, ViewDirection=[0, -1, 0],
                      ViewUp=[0, 0, 1], Integrator="Auto"),  # Auto's choice: the auto_* field data
 }

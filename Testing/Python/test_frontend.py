@@ -62,6 +62,17 @@ bad.SetInputConnection(small.GetOutputPort())           # referenced while the p
 bad.Update()
 check("StepSize" in bad.LastError, "an out-of-range value is the engine's error: %s" % bad.LastError)
 
+# every engine property of SchlierenImage is away from its default in some case
+varied = set()
+for props in cases.IMAGES.values():
+    for k, v in props.items():
+        if img._defaults.get(k) != v and not (isinstance(v, list) and [float(x) for x in v] ==
+                                               [float(x) for x in img._defaults.get(k, [])]):
+            varied.add(k)
+never = set(img._defaults) - varied - cases.SETTINGS_NOT_VARIED
+check(not never, "every SchlierenImage property is set away from its default in some case "
+      "(never: %s; left out by name: %s)" % (sorted(never), sorted(cases.SETTINGS_NOT_VARIED)))
+
 # 2. the images against the C++ plugin's
 sources = {}
 keep = []  # VTK's Python algorithms must stay referenced while the pipeline runs
@@ -126,7 +137,8 @@ for backend in cases.BACKENDS:
             check(fields["blocked_rays"] > 0, "%s: the body blocks rays (%d)" %
                   (tag, fields["blocked_rays"]))
         compared += 1
-check(compared >= 6, "images compared: %d" % compared)
+want = len(sources) * (2 if opencl == "OpenCL" else 1)  # every case, on OpenCL where it traced
+check(compared == want, "images compared: %d of %d" % (compared, want))
 
 # NumericalSchlieren: the engine's code through the C interface, the C++ filter's image
 for name, (scene, props) in cases.NUMERICAL.items():
