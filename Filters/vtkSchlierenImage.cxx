@@ -368,118 +368,29 @@ bool WriteImage(vtkImageData* output, const schlieren::TraceResult& result)
   return true;
 }
 
-/** The field data of the image: what was traced, how, and what the user was warned of. */
+/** The field data of the image: the engine's report (schlieren::ImageReport, which the C
+ * interface returns too), one array per entry. */
 void WriteFieldData(vtkFieldData* fd, const schlieren::SessionImage& image)
 {
-  auto addNumber = [fd](const char* name, double value) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->InsertNextValue(value);
-    fd->AddArray(a);
-  };
-  auto addString = [fd](const char* name, const std::string& value) {
-    vtkNew<vtkStringArray> a;
-    a->SetName(name);
-    a->InsertNextValue(value);
-    fd->AddArray(a);
-  };
-  const schlieren::TraceResult& result = image.Result;
-  addNumber("cutoff_scale", result.CutoffScaleUsed);
-  if (!result.BenchModel.empty())
+  for (const schlieren::ReportEntry& e : schlieren::ImageReport(image))
   {
-    // what a finite source implies (docs/BENCH.md): dI/I per radian, eps at full dark and at
-    // saturation, eps of one grey level, the film's shares at either end, how it was computed
-    addNumber("bench_sensitivity", result.BenchSensitivity);
-    vtkNew<vtkDoubleArray> range;
-    range->SetName("bench_range");
-    range->InsertNextValue(result.BenchRange[0]);
-    range->InsertNextValue(result.BenchRange[1]);
-    fd->AddArray(range);
-    addNumber("bench_resolvable_deflection", result.BenchResolvable);
-    addNumber("bench_saturated_share", result.BenchSaturated);
-    addNumber("bench_dark_share", result.BenchDark);
-    addString("bench_model", result.BenchModel);
-  }
-  const schlieren::TraceResult::CameraReadouts& cam = result.Camera;
-  if (cam.Active)
-  {
-    // what the camera implies (docs/BENCH.md "Camera"), each in closed form
-    addNumber("camera_magnification", cam.Magnification);
-    if (cam.Aperture > 0)
+    if (e.IsText)
     {
-      addNumber("camera_aperture", cam.Aperture);
-      addNumber("camera_blur_per_depth", cam.BlurPerDepth);
-      addNumber("camera_depth_of_field", cam.DepthOfField);
-      addNumber("camera_aperture_samples", cam.ApertureSamples);
+      vtkNew<vtkStringArray> a;
+      a->SetName(e.Name.c_str());
+      a->InsertNextValue(e.Text);
+      fd->AddArray(a);
     }
-    if (cam.BOSMagnification > 0)
+    else
     {
-      addNumber("bos_magnification", cam.BOSMagnification);
-      addNumber("bos_displacement_per_radian", cam.BOSDisplacementPerRadian);
-      addNumber("bos_pixels_per_radian", cam.BOSPixelsPerRadian);
-      addNumber("bos_blur", cam.BOSBlur);
-      addNumber("bos_blur_pixels", cam.BOSBlurPixels);
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(e.Name.c_str());
+      for (double v : e.Numbers)
+      {
+        a->InsertNextValue(v);
+      }
+      fd->AddArray(a);
     }
-    if (cam.FocusingEffectiveF2 > 0)
-      addNumber("focusing_effective_f2", cam.FocusingEffectiveF2);
-    addString("camera_model", cam.Model);
-  }
-  // the deflection (rad) the scale maps to full contrast, and the largest one traced
-  addNumber("full_contrast_deflection", result.FullContrastDeflection);
-  addNumber("max_deflection", result.MaxDeflection);
-  // what the user was warned of (empty: nothing), for scripts that check an image is usable
-  addString("warnings", image.Warnings);
-  addString("backend", image.BackendUsed);
-  addString("device", image.DeviceName);
-  addNumber("photons", result.Photons);
-  addNumber("passes", image.Passes);
-  addNumber("passes_traced", image.PassesTraced);
-  addString("volume_from", image.VolumeFrom);
-  addNumber("volumes_cached", image.VolumesCached);
-  addNumber("volumes_packed", image.VolumesPacked);
-  addNumber("samples", result.Samples);
-  addNumber("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
-  addNumber("failed_rays", result.FailedRays);
-  addNumber("missed_rays", result.MissedRays);
-  // photons that reached the film (0: a blank image, which the warnings explain)
-  addNumber("landed_photons", image.LandedPhotons);
-  addNumber("underresolved_rays", result.UnderresolvedRays);
-  addNumber("side_rays", result.SideRays);
-  addNumber("blocked_rays", result.BlockedRays);
-  addNumber("max_drift", result.MaxDrift);
-  addNumber("max_error", result.MaxError);
-  addString("integrator", schlieren::IntegratorName(image.Traced.Method));
-  addString("reconstruction", schlieren::ReconstructionName(image.Traced.Recon));
-  addNumber("step_size", image.Traced.StepSize);
-  // Auto may have found that the octree does not pay (traced without it)
-  addNumber("octree", image.OctreeUsed ? 1.0 : 0.0);
-  if (image.OctreeUsed)
-  {
-    addNumber("octree_tolerance", image.OctreeTolerance);
-  }
-  // traced in pieces over ranks (0: every rank had the whole volume, or one process)
-  addNumber("distributed_ranks", image.DistributedRanks);
-  if (image.DistributedRanks > 0)
-  {
-    addNumber("held_points_max", image.HeldPointsMax);
-    addNumber("rays_handed_on", image.RaysHandedOn);
-    addNumber("ray_traffic_bytes", image.BytesExchanged);
-    addNumber("exchange_rounds", image.Rounds);
-    addNumber("ghost_layers", image.GhostLayers);
-    // where the time went (the slowest rank's): for benchmarks, not for tests
-    addNumber("tracing_seconds", image.SecondsTracing);
-    addNumber("exchange_seconds", image.SecondsExchanging);
-  }
-  if (image.AutoAsked)
-  {
-    addString("auto_report", image.Choice.Report);
-    addNumber("expected_error", image.Choice.ExpectedError);
-    addNumber("auto_tolerance", image.Choice.Tolerance);
-    addNumber("auto_met", image.Choice.Met ? 1.0 : 0.0);
-    // the tolerance was below what the volume allows: the floor the choice was made at (radians)
-    addNumber("auto_floor", image.Choice.AtFloor ? image.Choice.Floor : 0.0);
-    // 1: a camera move kept the previous view's choice (no pilot this update)
-    addNumber("auto_reused", image.Choice.Reused ? 1.0 : 0.0);
   }
 }
 }

@@ -20,6 +20,28 @@ endif()
 if(SKBUILD)
   install(TARGETS schlieren_engine LIBRARY DESTINATION schlieren NAMELINK_SKIP COMPONENT python)
 endif()
+# `cmake --install`: the library, its header and a pkg-config file for C and other front ends
+# (component development; the wheel installs only component python)
+if(NOT SKBUILD)
+  include(GNUInstallDirs)
+  install(TARGETS schlieren_engine LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+    COMPONENT development)
+  install(FILES "${CMAKE_CURRENT_LIST_DIR}/schlieren_c.h"
+    DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/schlieren" COMPONENT development)
+  # relocatable: the prefix from the .pc file's own folder
+  file(RELATIVE_PATH _schlieren_pc_to_prefix "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+  file(WRITE "${CMAKE_CURRENT_BINARY_DIR}/schlieren_engine.pc"
+    "prefix=\${pcfiledir}/${_schlieren_pc_to_prefix}\n"
+    "libdir=\${prefix}/${CMAKE_INSTALL_LIBDIR}\n"
+    "includedir=\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}/schlieren\n\n"
+    "Name: schlieren_engine\n"
+    "Description: Schlieren's VTK-free ray-tracing engine, C interface (schlieren_c.h)\n"
+    "Version: 0.1.0\n"
+    "Libs: -L\${libdir} -lschlieren_engine\n"
+    "Cflags: -I\${includedir}\n")
+  install(FILES "${CMAKE_CURRENT_BINARY_DIR}/schlieren_engine.pc"
+    DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig" COMPONENT development)
+endif()
 # the C interface from C, with no OpenCL loader to be found (the CPU fallback)
 if(BUILD_TESTING)
   enable_language(C)

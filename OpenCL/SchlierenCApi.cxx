@@ -7,6 +7,7 @@
 
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
+#include "SchlierenNumerical.h"
 #include "SchlierenParallel.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
@@ -312,61 +313,25 @@ void MakeReport(schlieren_session* s, const std::string& error)
   const schlieren::SessionImage& image = s->Image;
   std::ostringstream o;
   o << "{\"field_data\": {";
-  bool first = true;
-  auto num = [&](const char* name, double v) {
-    o << (first ? "" : ", ") << Json(name) << ": " << Number(v);
-    first = false;
-  };
-  auto str = [&](const char* name, const std::string& v) {
-    o << (first ? "" : ", ") << Json(name) << ": " << Json(v);
-    first = false;
-  };
-  if (error.empty() && image.HasImage)
+  if (error.empty())
   {
-    // the names and order of vtkSchlierenImage's field data
-    const schlieren::TraceResult& result = image.Result;
-    num("cutoff_scale", result.CutoffScaleUsed);
-    if (!result.BenchModel.empty())
+    // the engine's one list (vtkSchlierenImage writes the same as its field data)
+    bool first = true;
+    for (const schlieren::ReportEntry& e : schlieren::ImageReport(image))
     {
-      num("bench_sensitivity", result.BenchSensitivity);
-      o << ", " << Json("bench_range") << ": [" << Number(result.BenchRange[0]) << ", "
-        << Number(result.BenchRange[1]) << "]";
-      num("bench_resolvable_deflection", result.BenchResolvable);
-      num("bench_saturated_share", result.BenchSaturated);
-      num("bench_dark_share", result.BenchDark);
-      str("bench_model", result.BenchModel);
-    }
-    str("warnings", image.Warnings);
-    str("backend", image.BackendUsed);
-    str("device", image.DeviceName);
-    num("photons", result.Photons);
-    num("passes", image.Passes);
-    num("passes_traced", image.PassesTraced);
-    num("samples", result.Samples);
-    num("samples_per_ray", result.Photons > 0 ? result.Samples / result.Photons : 0.0);
-    num("failed_rays", result.FailedRays);
-    num("missed_rays", result.MissedRays);
-    num("landed_photons", image.LandedPhotons);
-    num("underresolved_rays", result.UnderresolvedRays);
-    num("side_rays", result.SideRays);
-    num("blocked_rays", result.BlockedRays);
-    num("max_drift", result.MaxDrift);
-    num("max_error", result.MaxError);
-    str("integrator", schlieren::IntegratorName(image.Traced.Method));
-    str("reconstruction", schlieren::ReconstructionName(image.Traced.Recon));
-    num("step_size", image.Traced.StepSize);
-    num("octree", image.OctreeUsed ? 1.0 : 0.0);
-    if (image.OctreeUsed)
-      num("octree_tolerance", image.OctreeTolerance);
-    num("distributed_ranks", image.DistributedRanks);
-    if (image.AutoAsked)
-    {
-      str("auto_report", image.Choice.Report);
-      num("expected_error", image.Choice.ExpectedError);
-      num("auto_tolerance", image.Choice.Tolerance);
-      num("auto_met", image.Choice.Met ? 1.0 : 0.0);
-      num("auto_floor", image.Choice.AtFloor ? image.Choice.Floor : 0.0);
-      num("auto_reused", image.Choice.Reused ? 1.0 : 0.0);
+      o << (first ? "" : ", ") << Json(e.Name) << ": ";
+      first = false;
+      if (e.IsText)
+        o << Json(e.Text);
+      else if (e.Numbers.size() == 1)
+        o << Number(e.Numbers[0]);
+      else
+      {
+        o << "[";
+        for (std::size_t i = 0; i < e.Numbers.size(); ++i)
+          o << (i ? ", " : "") << Number(e.Numbers[i]);
+        o << "]";
+      }
     }
   }
   o << "}, \"notes\": [";
@@ -773,6 +738,129 @@ int schlieren_fill_scene(const char* settings, const int dims[3], const double o
   });
 }
 
+int schlieren_numerical(const char* settings, const int dims[3], const double origin[3],
+  const double spacing[3], const float* values, const unsigned char* solid,
+  const unsigned char* excluded, int size[2], double film_origin[2], double* pixel_size,
+  int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
+  double maximum_largest[2])
+{
+  return Guard(LastError, [&] {
+    if (!dims || !origin || !spacing)
+      throw schlieren::Error("schlieren_numerical: dims, origin and spacing must not be NULL.");
+    schlieren::NumericalSettings ns;
+    std::istringstream lines(settings ? settings : "");
+    std::string line;
+    while (std::getline(lines, line))
+    {
+      if (line.find_first_not_of(" \t\r") == std::string::npos)
+        continue;
+      const std::size_t eq = line.find('=');
+      if (eq == std::string::npos)
+        throw schlieren::Error("NumericalSchlieren setting '" + line + "': expected Name=value.");
+      const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
+      std::vector<double> v;
+      auto numbers = [&](std::size_t n) {
+        if (!ParseNumbers(value.c_str(), v) || v.size() != n)
+          throw schlieren::Error(key + " '" + value + "': expected " + std::to_string(n) +
+            (n == 1 ? " number." : " numbers."));
+      };
+      if (key == "Mode" || key == "Gradient")
+      {
+        const bool mode = key == "Mode";
+        const char* a = mode ? "Slice" : "Magnitude";
+        const char* b = mode ? "LineOfSight" : "KnifeComponent";
+        if (value != a && value != b)
+          throw schlieren::Error(key + " '" + value + "' is not one of: " + a + ", " + b + ".");
+        if (mode)
+          ns.Mode = value == a ? schlieren::NumericalMode::Slice : schlieren::NumericalMode::LineOfSight;
+        else
+          ns.Quantity = value == a ? schlieren::NumericalQuantity::Magnitude
+                                   : schlieren::NumericalQuantity::KnifeComponent;
+      }
+      else if (key == "ViewDirection" || key == "ViewUp")
+      {
+        numbers(3);
+        std::copy(v.begin(), v.end(), key == "ViewDirection" ? ns.ViewDirection : ns.ViewUp);
+      }
+      else if (key == "Resolution")
+      {
+        numbers(2);
+        for (int i = 0; i < 2; ++i)
+        {
+          if (v[i] != std::floor(v[i]) || std::fabs(v[i]) > 1e9)
+            throw schlieren::Error("Resolution '" + value + "': expected two integers.");
+          ns.Resolution[i] = static_cast<int>(v[i]);
+        }
+      }
+      else
+      {
+        double* to = key == "KnifeAngle"    ? &ns.KnifeAngle
+          : key == "SliceOffset"            ? &ns.SliceOffset
+          : key == "StepSize"               ? &ns.StepSize
+          : key == "C0"                     ? &ns.C0
+          : key == "C1"                     ? &ns.C1
+          : key == "K"                      ? &ns.K
+          : key == "GradientMaximum"        ? &ns.Maximum
+                                            : nullptr;
+        if (!to)
+          throw schlieren::Error("NumericalSchlieren has no engine setting '" + key + "'.");
+        numbers(1);
+        *to = v[0];
+      }
+    }
+    schlieren::CheckNumericalSettings(ns);
+    schlieren::ScalarGrid grid;
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.Dimensions[a] = dims[a];
+      grid.Origin[a] = origin[a];
+      grid.Spacing[a] = spacing[a];
+    }
+    if (!intensity)
+    {
+      // the film only (RequestInformation's extent)
+      const schlieren::FilmGeometry f = schlieren::NumericalFilm(grid, ns);
+      if (size)
+      {
+        size[0] = f.Size[0];
+        size[1] = f.Size[1];
+      }
+      if (film_origin)
+        f.GetImageOrigin(film_origin);
+      if (pixel_size)
+        *pixel_size = f.PixelSize;
+      return;
+    }
+    if (!values || !gradient || !blocked)
+      throw schlieren::Error("schlieren_numerical: values, intensity, gradient and blocked must be given.");
+    grid.Values = values;
+    grid.Solid = solid;
+    grid.Excluded = excluded;
+    const schlieren::NumericalImage image = schlieren::NumericalSchlieren(grid, ns);
+    const std::int64_t n = static_cast<std::int64_t>(image.Film.Size[0]) * image.Film.Size[1];
+    if (n > capacity)
+      throw schlieren::Error("schlieren_numerical: the film has " + std::to_string(n) +
+        " pixels; the buffers hold " + std::to_string(capacity) + ".");
+    std::copy(image.Intensity.begin(), image.Intensity.end(), intensity);
+    std::copy(image.Gradient.begin(), image.Gradient.end(), gradient);
+    std::copy(image.Blocked.begin(), image.Blocked.end(), blocked);
+    if (size)
+    {
+      size[0] = image.Film.Size[0];
+      size[1] = image.Film.Size[1];
+    }
+    if (film_origin)
+      image.Film.GetImageOrigin(film_origin);
+    if (pixel_size)
+      *pixel_size = image.Film.PixelSize;
+    if (maximum_largest)
+    {
+      maximum_largest[0] = image.Maximum;
+      maximum_largest[1] = image.Largest;
+    }
+  });
+}
+
 int schlieren_octree_levels(const int dims[3], const float* n_minus_1, double tolerance,
   int max_level, unsigned char* levels, double* fraction)
 {
@@ -817,7 +905,16 @@ int schlieren_field_index(const char* model, const float* input, int64_t count, 
     {
       m.Model = schlieren::IndexModel::GladstoneDale;
       m.DensityReference = density_reference;
-      if (gas && *gas)
+      std::vector<double> km;
+      if (gas && std::strncmp(gas, "Custom", 6) == 0)
+      {
+        // the proxy's Gas Custom: GladstoneDaleConstant and MolarMass typed in
+        if (!ParseNumbers(gas + 6, km) || km.size() != 2)
+          throw schlieren::Error(std::string("Gas '") + gas +
+            "': Custom takes the Gladstone-Dale constant (m^3/kg) and the molar mass (kg/mol).");
+        m.SingleGas = schlieren::GasChoice::Typed(km[0], km[1]);
+      }
+      else if (gas && *gas)
         m.SingleGas = schlieren::GasChoice::Table(schlieren::ParseGas(gas));
       a.Density.Data = input;
       a.Density.Name = "density";

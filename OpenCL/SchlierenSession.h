@@ -115,6 +115,23 @@ struct SessionImage
   std::vector<Note> Notes;
 };
 
+/**
+ * One entry of an image's report: what SchlierenImage writes as the output's field data (the C++
+ * filter, a vtkDoubleArray of Numbers or a vtkStringArray of Text) and what the C interface
+ * returns as schlieren_session_report's "field_data" (the Python front end's field data). Made in
+ * one place, ImageReport, so that the front ends list the same names and values in one order.
+ */
+struct ReportEntry
+{
+  std::string Name;
+  bool IsText = false;
+  std::vector<double> Numbers; ///< one value, or more (bench_range: two)
+  std::string Text;
+};
+
+/** The report of a traced image (empty where `image` holds none), in vtkSchlierenImage's order. */
+std::vector<ReportEntry> ImageReport(const SessionImage& image);
+
 class TraceSession
 {
 public:

@@ -130,13 +130,29 @@ SCHLIEREN_C_API int schlieren_fill_scene(const char* settings, const int dims[3]
  * be NULL) gets the fraction of cells at level >= 1. */
 SCHLIEREN_C_API int schlieren_octree_levels(const int dims[3], const float* n_minus_1,
   double tolerance, int max_level, unsigned char* levels, double* fraction);
+/**
+ * NumericalSchlieren (the textbook image from the gradient of a scalar: Slice or LineOfSight) on a
+ * grid of `values` (density or n - 1, x fastest). `settings`: the proxy's properties as
+ * "Name=value" lines (Mode Slice/LineOfSight, Gradient Magnitude/KnifeComponent by entry text;
+ * ViewDirection, ViewUp, Resolution, KnifeAngle, SliceOffset, StepSize, C0, C1, K,
+ * GradientMaximum). `solid`, `excluded` (may be NULL): non-zero at a body's points, at points
+ * outside the input's cells. With `intensity` NULL only the film is planned (size, film_origin,
+ * pixel_size); else `capacity` pixels of intensity, gradient and blocked are written and
+ * maximum_largest (may be NULL) gets the qmax used and the largest q.
+ */
+SCHLIEREN_C_API int schlieren_numerical(const char* settings, const int dims[3],
+  const double origin[3], const double spacing[3], const float* values,
+  const unsigned char* solid, const unsigned char* excluded, int size[2], double film_origin[2],
+  double* pixel_size, int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
+  double maximum_largest[2]);
 /** The gradient of n - 1 in world units, 3 floats per point (RefractiveIndex's grad_n). */
 SCHLIEREN_C_API int schlieren_gradient(
   const int dims[3], const double spacing[3], const float* n_minus_1, float* grad3);
 /**
  * RefractiveIndex's models on arrays of `count` points: `model` "Passthrough" (`input` is n - 1,
  * or n where `index_is_n`) or "GladstoneDale" (`input` is density, times `density_reference`,
- * gas `gas` by its table name, NULL: Air). Writes n - 1. `report` (may be NULL) gets the warnings
+ * gas `gas` by its table name, NULL: Air, or "Custom K M": the Gladstone-Dale constant K in
+ * m^3/kg and the molar mass M in kg/mol, as the proxy's Gas Custom). Writes n - 1. `report` (may be NULL) gets the warnings
  * as lines (owned by the library until this thread's next call).
  */
 SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input, int64_t count,

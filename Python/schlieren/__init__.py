@@ -19,13 +19,32 @@ from ._engine import EngineError, properties, version  # noqa: F401
 __version__ = "0.1.0"
 
 try:
-    from .algorithms import (RefractionOctree, RefractiveIndex, RefractiveScene,  # noqa: F401
-                             SchlierenImage, image_to_numpy)
+    from .algorithms import (NumericalSchlieren, RefractionOctree, RefractiveIndex,  # noqa: F401
+                             RefractiveScene, SchlierenImage, image_to_numpy)
 except ImportError as _e:  # no VTK: the engine functions still work
     _vtk_error = _e
 
-    def __getattr__(name):
+    def _front_end_missing(name):
         if name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage",
-                    "image_to_numpy"):
+                    "NumericalSchlieren", "image_to_numpy"):
             raise ImportError("schlieren.%s needs VTK (pip install vtk): %s" % (name, _vtk_error))
-        raise AttributeError(name)
+        return None
+else:
+    def _front_end_missing(name):
+        return None
+
+
+def __getattr__(name):
+    """The C++ plugin's compiled classes (vtkSchlierenImage, ...), which its package
+    `schlieren_vtk` holds, under this name too: `from schlieren import vtkSchlierenImage`, as
+    scripts wrote it before the compiled package was renamed, works where both are installed."""
+    _front_end_missing(name)
+    if name.startswith("vtk"):
+        try:
+            import schlieren_vtk
+        except ImportError as e:
+            raise ImportError("schlieren.%s is a class of the C++ plugin's package schlieren_vtk, "
+                              "which was not found (%s): install the C++ plugin, or use the "
+                              "Python front end's %s" % (name, e, name[3:])) from e
+        return getattr(schlieren_vtk, name)
+    raise AttributeError("module 'schlieren' has no attribute %r" % name)

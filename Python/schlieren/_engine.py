@@ -81,6 +81,9 @@ _sig("schlieren_gradient", ctypes.c_int, _c_int3, _c_double3, _f32p, _f32p)
 _sig("schlieren_field_index", ctypes.c_int, ctypes.c_char_p, _f32p, ctypes.c_int64, ctypes.c_int,
      ctypes.c_double, ctypes.c_char_p, _f32p, ctypes.POINTER(ctypes.c_char_p))
 
+_sig("schlieren_numerical", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3, _c_double3, _f32p,
+     _u8p, _u8p, ctypes.c_int * 2, ctypes.c_double * 2, ctypes.POINTER(ctypes.c_double),
+     ctypes.c_int64, _f32p, _f32p, _u8p, ctypes.POINTER(ctypes.c_double))
 _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
@@ -148,6 +151,36 @@ def fill_scene(settings, dims, origin, spacing, body=False):
         out["density"].ctypes.data_as(_f32p),
         out["mixture_fraction"].ctypes.data_as(_f32p) if plume else None,
         out["solid"].ctypes.data_as(_u8p) if has_body else None))
+    return out
+
+
+def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded=None):
+    """NumericalSchlieren on a grid: without `values` the film only, (size, origin, pixel);
+    else a dict of intensity, numerical_gradient (float32), blocked (uint8) and the film, with
+    maximum (the qmax used) and largest (the largest q)."""
+    text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items()).encode()
+    size, film_origin, pixel = (ctypes.c_int * 2)(), (ctypes.c_double * 2)(), ctypes.c_double()
+    if values is None:
+        _check(_lib.schlieren_numerical(text, *_grid(dims, origin, spacing), None, None, None, size,
+                                        film_origin, ctypes.byref(pixel), 0, None, None, None,
+                                        None))
+        return list(size), list(film_origin), pixel.value
+    a, p = _floats(values)
+    s_keep, s_p = _bytes(solid)
+    e_keep, e_p = _bytes(excluded)
+    _check(_lib.schlieren_numerical(text, *_grid(dims, origin, spacing), None, None, None, size,
+                                    film_origin, ctypes.byref(pixel), 0, None, None, None, None))
+    n = size[0] * size[1]
+    out = {"intensity": np.empty(n, np.float32), "numerical_gradient": np.empty(n, np.float32),
+           "blocked": np.empty(n, np.uint8)}
+    ml = (ctypes.c_double * 2)()
+    _check(_lib.schlieren_numerical(text, *_grid(dims, origin, spacing), p, s_p, e_p, size,
+                                    film_origin, ctypes.byref(pixel), n,
+                                    out["intensity"].ctypes.data_as(_f32p),
+                                    out["numerical_gradient"].ctypes.data_as(_f32p),
+                                    out["blocked"].ctypes.data_as(_u8p), ml))
+    out.update(size=list(size), origin=list(film_origin), pixel=pixel.value, maximum=ml[0],
+               largest=ml[1])
     return out
 
 

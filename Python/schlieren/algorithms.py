@@ -125,7 +125,8 @@ def _field_number(image, name, value):
     from vtkmodules.vtkCommonCore import vtkDoubleArray
     a = vtkDoubleArray()
     a.SetName(name)
-    a.InsertNextValue(value)
+    for v in (value if isinstance(value, (list, tuple)) else [value]):  # bench_range: two
+        a.InsertNextValue(v)
     image.GetFieldData().AddArray(a)
 
 
@@ -212,11 +213,63 @@ class RefractiveIndex(_Properties):
     """n - 1 from CFD fields (Passthrough, GladstoneDale), resampled onto an image as needed.
 
     Model Automatic takes GladstoneDale on an array named like density (density, rho, Density),
-    else Passthrough on n_minus_1. InputArray names the array (empty: the automatic choice)."""
+    else Passthrough on n_minus_1. InputArray names the array (empty: the automatic choice).
 
-    _defaults = dict(Model="Automatic", InputArray="", PassthroughHoldsN=0, Gas="Air",
-                     DensityReference=1.0, SamplingDimensions=[0, 0, 0], AutomaticDimension=128)
-    _entries = dict(Model=["Automatic", "Passthrough", "GladstoneDale"])
+    Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
+    names: SelectInputArray is InputArray); those this front end does not implement (the mixture
+    and ideal-gas models, Symmetry, sampling bounds, ambient values, bodies) take their default
+    only, and another value is refused by name (the C++ plugin has them)."""
+
+    _defaults = dict(
+        Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
+        MixtureFractionArray="", Species1Array="", Species2Array="", Species3Array="",
+        Species4Array="", HumidityArray="", CO2Array="", PassthroughHoldsN=0, Gas="Custom",
+        GladstoneDaleConstant=2.256e-4, MolarMass=0.0289641, MixtureComposition="MixtureFraction",
+        IdealGasComposition="Gas", MixtureGas0="Air", MixtureGas1="He", NumberOfSpecies=1,
+        SpeciesGases=[6, 8, 1, 5], SpeciesGladstoneDale=[2.256e-4] * 4,
+        SpeciesMolarMass=[0.0289641] * 4, BalanceGas="Air", BalanceGladstoneDale=2.256e-4,
+        BalanceMolarMass=0.0289641, DensityReference=1.0, TemperatureUnit="Kelvin",
+        TemperatureReference=1.0, PressureUnit="Pa", PressureReference=1.0, PressureOffset=0.0,
+        Humidity=0.0, HumidityFromArray=0, HumidityMeasure="RelativeHumidity", CO2=450.0,
+        CO2FromArray=0, Wavelength=632.8, Symmetry="None", Span=1.0, SymmetryAxis="X",
+        AxisFromWedge=1, SamplingDimensions=[0, 0, 0], AutomaticDimension=128,
+        UseSamplingBounds=0, SamplingBounds=[0.0, 1.0, 0.0, 1.0, 0.0, 1.0], AmbientMode="Extend",
+        AmbientValue=2.7164e-4, BodyFromGrid=1, BodyWallFaces=[0, 0, 0, 0, 0, 0],
+        SolidArray="None")
+    _gases = ["Air", "He", "N2", "O2", "Ar", "CO2", "H2", "H2O", "CH4", "CO"]
+    _entries = dict(
+        Model=["Automatic", "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas",
+               "Ciddor"],
+        Gas=["Custom"] + _gases, MixtureComposition=["MixtureFraction", "Species"],
+        IdealGasComposition=["Gas", "MixtureFraction", "Species"], MixtureGas0=_gases,
+        MixtureGas1=_gases, BalanceGas=["None", "Custom"] + _gases,
+        TemperatureUnit=["Kelvin", "Celsius"], PressureUnit=["Pa", "kPa", "atm", "bar"],
+        HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"],
+        Symmetry=["None", "Planar", "Axisymmetric"], SymmetryAxis=["X", "Y", "Z"],
+        AmbientMode=["Extend", "DomainEdgeMedian", "Value"])
+    # implemented here: these properties (Model: the first three entries); the others are held at
+    # their defaults (BodyFromGrid's default is taken, but no body is found in the grid's holes)
+    _implemented = {"Model", "InputArray", "PassthroughHoldsN", "Gas", "GladstoneDaleConstant",
+                    "MolarMass", "DensityReference", "SamplingDimensions", "AutomaticDimension",
+                    "AmbientMode", "BodyFromGrid"}
+    _implemented_entries = dict(Model=["Automatic", "Passthrough", "GladstoneDale"],
+                                AmbientMode=["Extend"])
+
+    def _check(self, name, value):
+        value = _Properties._check(self, name, value)
+        if name in ("InputArray",) and isinstance(value, (list, tuple)):
+            value = value[-1]  # ParaView's ["POINTS", name]
+        if name in self._implemented_entries and value not in self._implemented_entries[name]:
+            raise ValueError("RefractiveIndex: %s %r is not available in the Python front end "
+                             "(it has: %s); the C++ plugin has it"
+                             % (name, value, ", ".join(self._implemented_entries[name])))
+        if name not in self._implemented and value != self._defaults[name] and not (
+                isinstance(value, list) and [float(v) for v in value] ==
+                [float(v) for v in self._defaults[name]]):
+            raise ValueError("RefractiveIndex: %s is not available in the Python front end: it "
+                             "takes only its default %r (got %r); the C++ plugin has it"
+                             % (name, self._defaults[name], value))
+        return value
 
     def __init__(self, **kwargs):
         _Properties.__init__(self, 1, **kwargs)
@@ -263,7 +316,10 @@ class RefractiveIndex(_Properties):
             n1, warnings = _engine.field_index(model, values,
                                                index_is_n=bool(self.PassthroughHoldsN),
                                                density_reference=self.DensityReference,
-                                               gas=self.Gas)
+                                               gas=("Custom %r %r" % (
+                                                   float(self.GladstoneDaleConstant),
+                                                   float(self.MolarMass))
+                                                    if self.Gas == "Custom" else self.Gas))
             dims = list(image.GetDimensions())
             if valid is not None:
                 _engine.extend_into_invalid(dims, valid, n1)
@@ -275,6 +331,10 @@ class RefractiveIndex(_Properties):
         out.GetPointData().SetScalars(a)
         _add(out, "grad_n", grad)
         _field_string(out, "index_model", model)
+        if valid is not None and self.BodyFromGrid:
+            warnings = list(warnings) + [
+                "BodyFromGrid: the Python front end finds no bodies in the grid's holes; the "
+                "points outside the input's cells are filled as the flow (AmbientMode Extend)."]
         for w in warnings:
             import warnings as _w
             _w.warn("RefractiveIndex: " + w)
@@ -319,6 +379,106 @@ class RefractionOctree(_Properties):
         _field_number(out, "octree_tolerance", tol)
         _field_number(out, "octree_max_level", int(self.MaxLevel))
         _field_number(out, "octree_skippable_fraction", fraction)
+        return 1
+
+
+class NumericalSchlieren(_Properties):
+    """The textbook schlieren image computed from the gradient of a scalar (density or n - 1) on
+    a plane (Slice) or averaged along each pixel's line (LineOfSight): the NumericalSchlieren
+    proxy, the engine's code. Input: vtkImageData."""
+
+    _defaults = dict(Mode="Slice", Gradient="Magnitude", KnifeAngle=0.0, C0=-0.001, C1=0.05, K=5.0,
+                     GradientMaximum=0.0, SliceOffset=0.0, StepSize=0.5,
+                     ViewDirection=[0.0, 0.0, -1.0], ViewUp=[0.0, 1.0, 0.0], Resolution=[512, 512],
+                     DensityArray="")
+    _entries = dict(Mode=["Slice", "LineOfSight"], Gradient=["Magnitude", "KnifeComponent"])
+
+    def __init__(self, **kwargs):
+        _Properties.__init__(self, 1, **kwargs)
+
+    def FillInputPortInformation(self, port, info):
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        return 1
+
+    def _settings(self):
+        return {k: self._values[k] for k in self._defaults if k != "DensityArray"}
+
+    @staticmethod
+    def _grid(info_or_image):
+        if isinstance(info_or_image, vtkImageData):
+            e = info_or_image.GetExtent()
+            spacing = info_or_image.GetSpacing()
+            origin = info_or_image.GetOrigin()
+        else:
+            e = info_or_image.Get(SDDP.WHOLE_EXTENT())
+            spacing = info_or_image.Get(vtkImageData.SPACING())
+            origin = info_or_image.Get(vtkImageData.ORIGIN())
+        dims = [e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1]
+        # the grid's first point (the extent may not start at 0)
+        return dims, [origin[a] + e[2 * a] * spacing[a] for a in range(3)], list(spacing)
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        src = inInfo[0].GetInformationObject(0)
+        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING())):
+            return 1
+        try:
+            dims, origin, spacing = self._grid(src)
+            size, film_origin, pixel = _engine.numerical(self._settings(), dims, origin, spacing)
+        except EngineError as e:
+            return self._fail(str(e))
+        info = outInfo.GetInformationObject(0)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
+        info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
+        info.Set(vtkImageData.ORIGIN(), film_origin[0], film_origin[1], 0.0)
+        return 1
+
+    def RequestData(self, request, inInfo, outInfo):
+        image = vtkImageData.GetData(inInfo[0])
+        out = vtkImageData.GetData(outInfo)
+        if image is None or image.GetNumberOfPoints() == 0:
+            return self._fail("NumericalSchlieren needs a non-empty image (vtkImageData), for "
+                              "example the output of RefractiveIndex or RefractiveScene.")
+
+        def scalars(name):
+            a = image.GetPointData().GetArray(name)
+            return None if a is None or a.GetNumberOfComponents() != 1 else \
+                numpy_support.vtk_to_numpy(a)
+        name = self.DensityArray
+        if name:
+            values = scalars(name)
+            if values is None:
+                return self._fail("DensityArray is '%s': the input has no one-component point "
+                                  "array of that name." % name)
+        else:
+            for name in ("density", "rho", "Density", "n_minus_1"):
+                values = scalars(name)
+                if values is not None:
+                    break
+            if values is None:
+                return self._fail("NumericalSchlieren needs a density (point array 'density', "
+                                  "'rho' or 'Density', or one named in DensityArray) or "
+                                  "'n_minus_1'; the input has none.")
+        solid = scalars("solid")
+        mask = scalars("vtkValidPointMask")
+        try:
+            dims, origin, spacing = self._grid(image)
+            r = _engine.numerical(self._settings(), dims, origin, spacing, values,
+                                  None if solid is None else (solid != 0).astype(np.uint8),
+                                  None if mask is None else (mask == 0).astype(np.uint8))
+        except EngineError as e:
+            return self._fail(str(e))
+        out.Initialize()
+        out.SetExtent(0, r["size"][0] - 1, 0, r["size"][1] - 1, 0, 0)
+        out.SetSpacing(r["pixel"], r["pixel"], 1.0)
+        out.SetOrigin(r["origin"][0], r["origin"][1], 0.0)
+        out.GetPointData().SetScalars(_add(out, "intensity", r["intensity"]))
+        _add(out, "numerical_gradient", r["numerical_gradient"])
+        _add(out, "blocked", r["blocked"])
+        _field_string(out, "numerical_field", name)
+        _field_string(out, "numerical_mode", self.Mode)
+        _field_string(out, "numerical_gradient_kind", self.Gradient)
+        _field_number(out, "gradient_maximum", r["maximum"])
+        _field_number(out, "gradient_largest", r["largest"])
         return 1
 
 
@@ -389,6 +549,9 @@ class SchlierenImage(_Properties):
             if note["warning"]:
                 warnings.warn("SchlierenImage: " + note["text"])
         size, origin, pixel = s.film()
+        # only the image and the report, as the C++ filter's output (the pipeline passed the
+        # input's field data on: RefractiveIndex's index_* are not this image's)
+        out.Initialize()
         out.SetExtent(0, size[0] - 1, 0, size[1] - 1, 0, 0)
         out.SetSpacing(pixel, pixel, 1.0)
         out.SetOrigin(origin[0], origin[1], 0.0)

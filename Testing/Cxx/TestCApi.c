@@ -101,6 +101,47 @@ int main(void)
   CHECK(schlieren_session_array(s, "intensity", NULL, NULL) == NULL, "no image after a failure");
   schlieren_session_free(s);
   schlieren_session_free(NULL);
+
+  /* NumericalSchlieren on a density ramp rho = 1 + 0.5 x: |grad rho| = 0.5 on every pixel of the
+   * slice through the volume (central differences are exact on a linear field) */
+  {
+    const char* settings = "Mode=Slice\nGradient=Magnitude\nResolution=24 20";
+    int nsize[2] = { 0, 0 }, flow = 0, x, y, z;
+    double norigin[2], npixel = 0, ml[2] = { 0, 0 }, worst = 0;
+    float *rho = malloc(n * sizeof(float)), *ni, *ng;
+    unsigned char* nb;
+    for (z = 0; z < 33; ++z)
+      for (y = 0; y < 33; ++y)
+        for (x = 0; x < 33; ++x)
+          rho[x + 33 * (y + 33 * z)] = (float)(1.0 + 0.5 * (origin[0] + x * spacing[0]));
+    CHECK(schlieren_numerical(settings, dims, origin, spacing, NULL, NULL, NULL, nsize, norigin,
+            &npixel, 0, NULL, NULL, NULL, NULL) == 0 && nsize[0] == 24 && nsize[1] == 20 && npixel > 0,
+      "numerical: the film planned, %d x %d pixels of %g (%s)", nsize[0], nsize[1], npixel,
+      schlieren_last_error());
+    ni = malloc(24 * 20 * sizeof(float));
+    ng = malloc(24 * 20 * sizeof(float));
+    nb = malloc(24 * 20);
+    CHECK(schlieren_numerical(settings, dims, origin, spacing, rho, NULL, NULL, nsize, norigin, &npixel,
+            24 * 20, ni, ng, nb, ml) == 0, "numerical: traced (%s)", schlieren_last_error());
+    for (i = 0; i < 24 * 20; ++i)
+      if (ng[i] > 0)
+      {
+        ++flow;
+        worst = fmax(worst, fabs(ng[i] / 0.5 - 1));
+      }
+    CHECK(flow > 24 * 20 / 2 && worst < 1e-5, "numerical: |grad rho| = 0.5 on %d pixels (worst relative "
+      "error %.2g; largest %g)", flow, worst, ml[1]);
+    CHECK(schlieren_numerical("Mode=Sideways", dims, origin, spacing, NULL, NULL, NULL, nsize, norigin,
+            &npixel, 0, NULL, NULL, NULL, NULL) != 0 && strstr(schlieren_last_error(), "Mode") != NULL,
+      "numerical: a bad Mode is refused by name: %s", schlieren_last_error());
+    CHECK(schlieren_numerical(settings, dims, origin, spacing, rho, NULL, NULL, nsize, norigin, &npixel,
+            10, ni, ng, nb, ml) != 0 && strstr(schlieren_last_error(), "buffers") != NULL,
+      "numerical: buffers too small are refused: %s", schlieren_last_error());
+    free(rho);
+    free(ni);
+    free(ng);
+    free(nb);
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

@@ -64,5 +64,25 @@ if(SCHLIEREN_PYTHON_PLUGIN)
   schlieren_python_test(python_plugin
     COMMAND "${_pvpython}" "${_here}/test_python_plugin.py" --plugin "${SCHLIEREN_PYTHON_PLUGIN}"
       --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml" --reference "${_frontend_ref}"
+      --package "${PROJECT_SOURCE_DIR}/Python"
     PROPERTIES FIXTURES_REQUIRED frontend_reference)
+  # the Python front end's package beside the C++ plugin's schlieren_vtk, in one session
+  set_property(TEST python.python_plugin APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+endif()
+
+# the Python plugin loaded in the GUI through Tools > Manage Plugins > Load New with X events
+# (xdotool under Xvfb and openbox), then Quick Launch, Apply: the image and field data against the
+# C++ plugin's references, the proxies' property lists against the C++ plugin's
+if(SCHLIEREN_PYTHON_PLUGIN AND SCHLIEREN_XVFB AND _paraview AND SCHLIEREN_XDOTOOL AND SCHLIEREN_OPENBOX
+    AND SCHLIEREN_IMPORT)
+  schlieren_python_test(gui_python_plugin
+    COMMAND "${_with_xvfb}" "${_python}" "${_here}/test_gui_python_plugin.py" --paraview "${_paraview}"
+      --pvpython "${_pvpython}" --plugin "${_temp}/gui_python_plugin-no-plugins/none"
+      --python-plugin "${SCHLIEREN_PYTHON_PLUGIN}" --cxx-plugin "${_plugin}"
+      --reference "${_frontend_ref}" --work "${_temp}/gui_python_plugin"
+    TIMEOUT 300
+    PROPERTIES FIXTURES_REQUIRED frontend_reference RUN_SERIAL ON)
+  set_property(TEST python.gui_python_plugin APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_XVFB_WM=${SCHLIEREN_OPENBOX}")
 endif()

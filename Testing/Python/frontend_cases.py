@@ -11,23 +11,104 @@ SCENES = {
     "solid_sphere": dict(Scene="GaussianSphere", Dimensions=[48, 40, 44],
                          Bounds=[-1.0, 1.0, -0.8, 0.9, -1.0, 1.0], Amplitude=2e-4, Width=0.4,
                          Body="Sphere", BodyRadius=0.3, BodyCenter=[0.1, 0.0, 0.0]),
+    # the scene's density through RefractiveIndex and RefractionOctree (STAGES), traced with
+    # the octree
+    "indexed_sphere": dict(Scene="GaussianSphere", Dimensions=[40, 36, 32],
+                           Bounds=[-1.0, 1.0, -0.9, 0.9, -0.8, 0.8], Amplitude=1e-4, Width=0.3),
+}
+# small scenes for the cases that set every SchlierenImage property away from its default
+# (SETTINGS_CASES): the property -> engine setting mapping of either front end cannot drift
+# unnoticed
+for _case in ("settings_color", "settings_bench", "settings_bos", "settings_fringes"):
+    SCENES[_case] = dict(Scene="GaussianSphere", Dimensions=[28, 26, 24],
+                         Bounds=[-1.0, 1.0, -0.9, 0.9, -0.8, 0.8], Amplitude=2e-4, Width=0.35,
+                         Body="Sphere" if _case == "settings_bos" else "None", BodyRadius=0.2)
+
+SETTINGS_NOT_VARIED = {"Backend", "DeviceName"}
+
+# the filters between a scene and SchlierenImage, in order (proxy name, properties)
+STAGES = {
+    "indexed_sphere": [("RefractiveIndex", dict(Model="GladstoneDale",
+                                                InputArray=["POINTS", "density"],
+                                                DensityReference=2.0)),
+                       ("RefractionOctree", dict(Tolerance=1e-6, MaxLevel=5))],
 }
 
 # SchlierenImage properties per case (a few away from the defaults, so that they are all passed)
 IMAGES = {
     "gaussian_sphere": dict(Cutoff="KnifeEdge", KnifeAngle=30.0, Resolution=[96, 80], Passes=2,
-                            Integrator="RK4", StepSize=0.5, ViewDirection=[0.2, 0.1, -1.0]),
+                            Integrator="RK4", StepSize=0.5, ViewDirection=[0.2, 0.1, -1.0],
+                            Source="Slit"),  # a finite source: the bench_* field data
     "solid_sphere": dict(Cutoff="Shadowgraph", FilmDistance=0.5, Resolution=[80, 80], Passes=2,
                          Seed=7),
+    "indexed_sphere": dict(Cutoff="KnifeEdge", Resolution=[64, 56], Passes=1, UseOctree=1,
+                           KnifeAngle=90.0),
+    # every engine property of SchlierenImage away from its default in one of these (Backend is
+    # the loop's; DeviceName stays empty: the device is the machine's one)
+    "settings_color": dict(Cutoff="ColorFilter", CutoffScale=800.0, Integrator="Midpoint",
+                           Reconstruction="Cubic", StepSize=0.7, EstimateError=1, KeepInvariant=1,
+                           Filter="Gaussian", FilterWidth=1.5, RussianRoulette=1, Jitter=0,
+                           Seed=11, Threads=2, Resolution=[40, 36], Passes=3,
+                           ViewUp=[0.1, 1.0, 0.0], Tolerance=1e-5, UseOctree=0),
+    "settings_bench": dict(Cutoff="KnifeEdge", Source="Disc", SourceSize=[2.0, 1.5],
+                           CollimatorFocalLength=1.5, SchlierenFocalLength=2.5, KnifeCut=0.3,
+                           BitDepth=10, SaturationWarning=0.05, KnifeAngle=45.0,
+                           Resolution=[36, 36], Passes=2, TraceInPieces=0),
+    "settings_bos": dict(Cutoff="BOS", BackgroundDistance=0.5, BackgroundPattern="Stripes",
+                         BackgroundPeriod=3.0, FilmDistance=0.2, Resolution=[36, 32], Passes=2,
+                         Filter="Cone", FilterWidth=2.0),
+    "settings_fringes": dict(Cutoff="Interferometry", Wavelength=532.0, ReferenceTilt=4.0,
+                             Resolution=[36, 36], Passes=2, Integrator="Euler", StepSize=0.3),
     "bluntfin": dict(Cutoff="KnifeEdge", Resolution=[96, 64], Passes=2, ViewDirection=[0, -1, 0],
-                     ViewUp=[0, 0, 1]),
+                     ViewUp=[0, 0, 1], Integrator="Auto"),  # Auto's choice: the auto_* field data
 }
 
 BACKENDS = ["CPU", "OpenCL"]
 
 # the arrays compared (those an image has)
-ARRAYS = ["intensity", "deflection", "blocked", "rgb", "phase", "bos_displacement"]
+ARRAYS = ["intensity", "deflection", "blocked", "rgb", "phase", "bos_displacement",
+          "numerical_gradient"]
+
+# NumericalSchlieren cases: the scene case whose output it takes, and its properties
+NUMERICAL = {
+    "numerical_line": ("solid_sphere", dict(Mode="LineOfSight", Gradient="KnifeComponent",
+                                            KnifeAngle=30.0, Resolution=[64, 56],
+                                            ViewDirection=[0.1, 0.0, -1.0])),
+    "numerical_slice": ("gaussian_sphere", dict(Mode="Slice", Resolution=[48, 48],
+                                                SliceOffset=0.1, DensityArray="density")),
+}
 
 # field data compared exactly (numbers and strings); timings and devices are not in the report
 FIELDS = ["cutoff_scale", "photons", "passes", "samples", "failed_rays", "missed_rays",
           "landed_photons", "blocked_rays", "integrator", "reconstruction", "step_size", "backend"]
+
+
+def field_data_list(fd):
+    """Every array of an image's field data, in order: [name, "text" or "number", values], the
+    numbers as repr() text (exact, NaN equal to NaN). The C++ filter writes its field data from the
+    engine's report (schlieren::ImageReport) and the Python front end from the same report through
+    the C interface: the two lists must be equal, names, order and values."""
+    import re
+    out = []
+    for i in range(fd.GetNumberOfArrays()):
+        a = fd.GetAbstractArray(i)
+        n = a.GetNumberOfTuples() * a.GetNumberOfComponents()
+        if a.IsA("vtkStringArray"):
+            values = [a.GetValue(j) for j in range(n)]
+            if a.GetName() == "auto_report":  # the one timing in the report: the pilot's ms
+                values = [re.sub(r"rays, \d+ ms\)", "rays, ... ms)", v) for v in values]
+            out.append([a.GetName(), "text", values])
+        else:
+            out.append([a.GetName(), "number", [repr(float(a.GetValue(j))) for j in range(n)]])
+    return out
+
+
+# what of the C++ plugin the Python plugin leaves out, by name (Plugin/make_python_plugin.py
+# leaves out the same): the tests diff the two plugins' property lists less these
+PYTHON_PLUGIN_PROXIES_LEFT_OUT = set()
+PYTHON_PLUGIN_LEFT_OUT = {
+    "SchlierenImage": {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView",
+                       "PassLimit"},  # the GUI's
+    "RefractiveScene": {"TimeSteps", "TimestepValues"},  # the time series ParaView animates
+    "RefractiveIndex": {"Body"},  # the optional second input, a body's surface
+}

@@ -48,11 +48,16 @@ def save(name, proxy):
         if arr is not None:
             fields[f] = arr.GetValue(0)
     out["fields"] = np.array(json.dumps(fields))
+    out["field_data"] = np.array(json.dumps(cases.field_data_list(fd)))  # every entry, in order
     np.savez(os.path.join(args.output, name + ".npz"), **out)
     return fields
 
 
-sources = {name: ns["RefractiveScene"](**props) for name, props in cases.SCENES.items()}
+sources = {}
+for name, props in cases.SCENES.items():
+    sources[name] = ns["RefractiveScene"](**props)
+    for stage, stage_props in cases.STAGES.get(name, []):
+        sources[name] = ns[stage](Input=sources[name], **stage_props)
 xyz, q = os.path.join(args.data, "bluntfinxyz.bin"), os.path.join(args.data, "bluntfinq.bin")
 if os.path.exists(xyz) and os.path.exists(q):
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
@@ -82,5 +87,8 @@ for backend in cases.BACKENDS:
         print("frontend_reference: %s %s: %s" % (name, backend, fields))
         if backend == "OpenCL":
             opencl = fields.get("backend", "?")
+for name, (scene, props) in cases.NUMERICAL.items():
+    fields = save(name, ns["NumericalSchlieren"](Input=sources[scene], **props))
+    print("frontend_reference: %s: %s" % (name, fields))
 with open(os.path.join(args.output, "opencl.txt"), "w") as f:
     f.write(opencl + "\n")

@@ -62,10 +62,27 @@ bad.SetInputConnection(small.GetOutputPort())           # referenced while the p
 bad.Update()
 check("StepSize" in bad.LastError, "an out-of-range value is the engine's error: %s" % bad.LastError)
 
+# every engine property of SchlierenImage is away from its default in some case
+varied = set()
+for props in cases.IMAGES.values():
+    for k, v in props.items():
+        if img._defaults.get(k) != v and not (isinstance(v, list) and [float(x) for x in v] ==
+                                               [float(x) for x in img._defaults.get(k, [])]):
+            varied.add(k)
+never = set(img._defaults) - varied - cases.SETTINGS_NOT_VARIED
+check(not never, "every SchlierenImage property is set away from its default in some case "
+      "(never: %s; left out by name: %s)" % (sorted(never), sorted(cases.SETTINGS_NOT_VARIED)))
+
 # 2. the images against the C++ plugin's
 sources = {}
+keep = []  # VTK's Python algorithms must stay referenced while the pipeline runs
 for name, props in cases.SCENES.items():
     sources[name] = schlieren.RefractiveScene(**props)
+    for stage, stage_props in cases.STAGES.get(name, []):
+        keep.append(sources[name])
+        f = getattr(schlieren, stage)(**stage_props)
+        f.SetInputConnection(sources[name].GetOutputPort())
+        sources[name] = f
 vti = os.path.join(args.reference, "bluntfin_index.vti")
 if os.path.exists(vti):
     r = vtkXMLImageDataReader()
@@ -106,11 +123,44 @@ for backend in cases.BACKENDS:
         report = image.LastReport["field_data"]
         for k, v in fields.items():
             check(report.get(k) == v, "%s: field %s = %r (C++: %r)" % (tag, k, report.get(k), v))
+        # the whole field data, names, order and values: both written from the engine's one
+        # report (schlieren::ImageReport), the C++ filter's directly, this one's through the C API
+        mine_fd = cases.field_data_list(out.GetFieldData())
+        theirs_fd = json.loads(str(ref["field_data"]))
+        diff = [(a, b) for a, b in zip(mine_fd, theirs_fd) if a != b]
+        check(mine_fd == theirs_fd and len(mine_fd) > 20,
+              "%s: the field data equals the C++ filter's: %d entries (%s; Python only: %s; C++ "
+              "only: %s)" % (tag, len(theirs_fd), diff[:3],
+                             sorted({e[0] for e in mine_fd} - {e[0] for e in theirs_fd}),
+                             sorted({e[0] for e in theirs_fd} - {e[0] for e in mine_fd})))
         if name == "solid_sphere":
             check(fields["blocked_rays"] > 0, "%s: the body blocks rays (%d)" %
                   (tag, fields["blocked_rays"]))
         compared += 1
-check(compared >= 4, "images compared: %d" % compared)
+want = len(sources) * (2 if opencl == "OpenCL" else 1)  # every case, on OpenCL where it traced
+check(compared == want, "images compared: %d of %d" % (compared, want))
+
+# NumericalSchlieren: the engine's code through the C interface, the C++ filter's image
+for name, (scene, props) in cases.NUMERICAL.items():
+    ref = np.load(os.path.join(args.reference, name + ".npz"))
+    src = schlieren.RefractiveScene(**cases.SCENES[scene])
+    image = schlieren.NumericalSchlieren(**props)
+    image.SetInputConnection(src.GetOutputPort())
+    image.Update()
+    out = image.GetOutput()
+    check(np.array_equal(np.array(out.GetExtent()), ref["extent"]) and
+          np.array_equal(np.array(out.GetOrigin()), ref["origin"]) and
+          np.array_equal(np.array(out.GetSpacing()), ref["spacing"]), "%s: the film" % name)
+    for a in ("intensity", "numerical_gradient", "blocked"):
+        mine = out.GetPointData().GetArray(a)
+        m = numpy_support.vtk_to_numpy(mine) if mine is not None else None
+        t = ref["array_" + a]
+        check(m is not None and m.dtype == t.dtype and m.shape == t.shape and
+              np.array_equal(m.view(np.uint8), t.view(np.uint8)),
+              "%s: %s bit for bit (%s, mean %.6g)" % (name, a, t.shape, float(t.mean())))
+    mine_fd = cases.field_data_list(out.GetFieldData())
+    check(mine_fd == json.loads(str(ref["field_data"])),
+          "%s: the field data equals the C++ filter's (%s)" % (name, mine_fd))
 
 # 3. no OpenCL loader at all: Backend Auto traces on the CPU with a warning naming why
 code = ("import schlieren\n"

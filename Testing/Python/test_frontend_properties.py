@@ -56,5 +56,38 @@ for name in sorted(engine_xml & set(api)):
         want = [float(v) for v in x["default"].split()]
         have = a["default"] if isinstance(a["default"], list) else [a["default"]]
         check([float(v) for v in have] == want, "%s: default %s (XML %s)" % (name, have, want))
+
+# the other proxies the package implements: its algorithms' keywords and defaults against the XML
+# (the names paraview.simple gives: the labels without spaces; what the package leaves out is
+# listed by name, as the Python plugin's test lists it)
+import re  # noqa: E402
+LEFT_OUT = {"RefractiveScene": {"TimeSteps"}, "RefractiveIndex": {"Body"}}
+root = ET.parse(args.xml).getroot()
+for proxy_name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "NumericalSchlieren"):
+    cls = getattr(schlieren, proxy_name)
+    px = [p for p in root.iter("SourceProxy") if p.get("name") == proxy_name][0]
+    props = {}
+    for prop in px:
+        if not prop.tag.endswith("VectorProperty") or prop.get("information_only") == "1" or \
+                prop.get("name") in LEFT_OUT.get(proxy_name, ()):
+            continue
+        props[re.sub(r"[^A-Za-z0-9_]", "", prop.get("label") or prop.get("name"))] = prop
+    check(set(props) == set(cls._defaults), "%s: the same properties (XML only: %s; package "
+          "only: %s)" % (proxy_name, sorted(set(props) - set(cls._defaults)),
+                         sorted(set(cls._defaults) - set(props))))
+    for name in sorted(set(props) & set(cls._defaults)):
+        prop, have = props[name], cls._defaults[name]
+        want = prop.get("default_values", "")
+        entries = {e.get("value"): e.get("text") for e in prop.iter("Entry")}
+        size = int(prop.get("number_of_elements", "1"))
+        if entries:
+            ok = cls._entries.get(name) == list(entries.values()) and have == entries[want]
+        elif prop.tag == "StringVectorProperty":
+            ok = have == ("" if size == 5 and want.endswith("(automatic)") else want)
+        else:
+            h = have if isinstance(have, list) else [have]
+            ok = len(h) == size and [float(v) for v in h] == [float(v) for v in want.split()]
+        check(ok, "%s.%s: default %r, entries %s (XML %r, %s)" % (
+            proxy_name, name, have, cls._entries.get(name), want, list(entries.values())))
 print("%d failures" % len(failures))
 sys.exit(1 if failures else 0)

@@ -10,15 +10,20 @@ Checks:
   1. `cmake --install <build> --prefix <prefix>` succeeds and installs exactly what a user needs:
      the plugin folder <libdir>/paraview-5.11/plugins/Schlieren/ (Schlieren.so and the module
      library libSchlierenFilters.so), the plugin list <libdir>/paraview-5.11/plugins/Schlieren.plugins
-     and the `schlieren` Python package; no header, no static archive, no CMake package file;
+     the `schlieren_vtk` Python package (the compiled classes) and the `schlieren` one (the Python
+     front end, its engine library beside it), the engine library, its C header and pkg-config
+     file; no other header, no static archive, no CMake package file;
   2. the plugin list is ParaView's <Plugins> XML and names "Schlieren";
   3. pvpython started with only that list known (PV_PLUGIN_CONFIG_FILE; no PV_PLUGIN_PATH, no
      build tree on PYTHONPATH) lists "Schlieren" at the installed path and loads it BY NAME
      (LoadDistributedPlugin), and its SchlierenImage gives the weak Gaussian sphere's knife-edge
      image (install_check.py);
-  4. Debian's /usr/bin/python3 imports the installed `schlieren` package with the prefix's package
+  4. Debian's /usr/bin/python3 imports the installed `schlieren_vtk` and `schlieren` packages (one
+     session, neither shadowing the other) with the prefix's package
      folder on PYTHONPATH and nothing loaded before (the extension finds libSchlierenFilters.so in
-     the plugin folder by itself), and runs a vtkRefractiveScene.
+     the plugin folder by itself), and runs a vtkRefractiveScene;
+  5. Testing/Cxx/TestCApi.c builds with `cc` and pkg-config's flags against the installed engine and
+     passes.
 Exit status 0 on success; each failure says what is wrong.
 """
 import argparse
@@ -90,11 +95,22 @@ expected = {
     os.path.join(plugins, "Schlieren", "Schlieren.so"),
     os.path.join(plugins, "Schlieren", "libSchlierenFilters.so"),
     os.path.join(plugins, "Schlieren.plugins"),
-    os.path.join(args.python_dir, "schlieren", "__init__.py"),
-    os.path.join(args.python_dir, "schlieren", "SchlierenFilters.so"),
+    os.path.join(args.python_dir, "schlieren_vtk", "__init__.py"),
+    os.path.join(args.python_dir, "schlieren_vtk", "SchlierenFilters.so"),
+    # the Python front end, its engine library beside it
+    os.path.join(args.python_dir, "schlieren", "libschlieren_engine.so.1"),
+    # the engine for C and other front ends: library, header, pkg-config file
+    os.path.join(args.libdir, "libschlieren_engine.so"),
+    os.path.join(args.libdir, "libschlieren_engine.so.1"),
+    os.path.join("include", "schlieren", "schlieren_c.h"),
+    os.path.join(args.libdir, "pkgconfig", "schlieren_engine.pc"),
 }
-leaked = sorted(f for f in installed if f.endswith((".h", ".hxx", ".txx", ".a", ".cmake")))
-check(not leaked, "no header, static archive or CMake file installed (found: %s)" % (", ".join(leaked) or "none"))
+expected |= {os.path.join(args.python_dir, "schlieren", f) for f in
+             os.listdir(os.path.join(here, "..", "..", "Python", "schlieren")) if f.endswith(".py")}
+leaked = sorted(f for f in installed if f.endswith((".h", ".hxx", ".txx", ".a", ".cmake"))
+                and not f.endswith("schlieren_c.h"))
+check(not leaked, "no header but the C interface's, no static archive or CMake file installed "
+      "(found: %s)" % (", ".join(leaked) or "none"))
 check(not (expected - installed), "the plugin, its module library, the plugin list and the Python package are "
       "installed (missing: %s)" % (", ".join(sorted(expected - installed)) or "none"))
 check(not (installed - expected), "nothing else is installed (extra: %s; a new installed file must be one a user "
@@ -123,18 +139,52 @@ print(run.stdout.rstrip())
 check(run.returncode == 0, "pvpython with PV_PLUGIN_CONFIG_FILE=%s: loaded Schlieren by name and traced "
       "(exit status %d)" % (plugins_file, run.returncode))
 
-# -- 4. the VTK Python package of the prefix, in Debian's Python, with nothing loaded before
-code = ("import schlieren, sys\n"
-        "from schlieren import vtkRefractiveScene\n"
+# -- 4. the VTK Python package of the prefix, in Debian's Python, with nothing loaded before; the
+# Python front end `schlieren` imports in the same session, from its own folder, and gives the
+# compiled classes under their old name too
+code = ("import schlieren_vtk, sys\n"
+        "from schlieren_vtk import vtkRefractiveScene\n"
+        "import schlieren\n"
+        "from schlieren import vtkRefractiveScene as old_name\n"
+        "assert old_name is vtkRefractiveScene, 'schlieren.vtkRefractiveScene'\n"
+        "assert schlieren.engine._lib._name.startswith(schlieren.__path__[0]), "
+        "schlieren.engine._lib._name\n"
+        "f = schlieren.RefractiveScene(Dimensions=[8, 8, 8]); f.Update()\n"
+        "assert f.GetOutput().GetDimensions() == (8, 8, 8)\n"
         "s = vtkRefractiveScene()\n"
         "s.SetDimensions(16, 16, 16)\n"
         "s.Update()\n"
-        "print(schlieren.__file__, s.GetOutput().GetDimensions())\n")
+        "print(schlieren_vtk.__file__, s.GetOutput().GetDimensions())\n")
 run = subprocess.run([args.python, "-c", code], env=clean_env(PYTHONPATH=python_dir), stdout=subprocess.PIPE,
                      stderr=subprocess.STDOUT, universal_newlines=True, timeout=120, cwd=prefix)
 print(run.stdout.rstrip())
 words = run.stdout.split()
 check(run.returncode == 0 and words and words[0].startswith(python_dir + os.sep) and "(16, 16, 16)" in run.stdout,
-      "%s imports the installed schlieren package from %s and runs a 16^3 vtkRefractiveScene (exit status %d)"
-      % (args.python, python_dir, run.returncode))
+      "%s imports the installed schlieren_vtk and schlieren packages from %s in one session (schlieren's "
+      "engine from its folder, schlieren.vtkRefractiveScene the compiled class) and runs a 16^3 "
+      "vtkRefractiveScene (exit status %d)" % (args.python, python_dir, run.returncode))
+
+# -- 5. a C program against the installed engine: Testing/Cxx/TestCApi.c built with pkg-config's
+# flags only (nothing of the build tree), run with no OpenCL loader (the CPU)
+pc_dir = os.path.join(prefix, args.libdir, "pkgconfig")
+flags = subprocess.run(["pkg-config", "--cflags", "--libs", "schlieren_engine"], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, universal_newlines=True,
+                       env=clean_env(PKG_CONFIG_PATH=pc_dir))
+exe = os.path.join(prefix, "TestCApi")
+if check(flags.returncode == 0 and os.path.join(prefix, "include", "schlieren") in
+         [os.path.normpath(f[2:]) for f in flags.stdout.split() if f.startswith("-I")],
+         "pkg-config finds schlieren_engine in %s: %s" % (pc_dir, flags.stdout.strip())):
+    libdir = os.path.join(prefix, args.libdir)
+    cc = subprocess.run(["cc", "-std=c99", "-o", exe, os.path.join(here, "..", "Cxx", "TestCApi.c")]
+                        + flags.stdout.split() + ["-Wl,-rpath," + libdir, "-lm"],
+                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    print(cc.stdout.rstrip())
+    if check(cc.returncode == 0, "cc builds TestCApi.c against the installed header and library"):
+        t = subprocess.run([exe], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                           timeout=120, env=clean_env(SCHLIEREN_OPENCL_LIBRARY="/nonexistent/libOpenCL.so.1"))
+        print(t.stdout.rstrip()[-2000:])
+        ldd = subprocess.run(["ldd", exe], stdout=subprocess.PIPE, universal_newlines=True).stdout
+        check(t.returncode == 0 and os.path.join(libdir, "libschlieren_engine.so.1") in ldd,
+              "the installed TestCApi passes with the installed library (exit status %d)" % t.returncode)
+    os.remove(exe) if os.path.exists(exe) else None
 finish()

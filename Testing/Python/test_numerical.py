@@ -27,7 +27,7 @@
    accepted, just past them an error naming the property (Resolution's upper end, 16384 x 16384
    pixels, is MakeFilm's check shared with SchlierenImage and left out: minutes and GiBs; the
    whole survey: domain_survey.py --proxies NumericalSchlieren).
-5. Plain VTK Python (`from schlieren import vtkNumericalSchlieren`) gives the proxy's image.
+5. Plain VTK Python (`from schlieren_vtk import vtkNumericalSchlieren`) gives the proxy's image.
 """
 import math
 import os
@@ -217,7 +217,7 @@ for prop in proxy:
 T.check(surveyed >= 20, "domain: %d settings of the XML's range domains tried" % surveyed)
 
 # 5. Plain VTK Python: vtkNumericalSchlieren from the schlieren package, the same image as the proxy's.
-from schlieren import vtkNumericalSchlieren, vtkRefractiveScene  # noqa: E402
+from schlieren_vtk import vtkNumericalSchlieren, vtkRefractiveScene  # noqa: E402
 
 vscene = vtkRefractiveScene()
 vscene.SetSceneToGaussianSphere()

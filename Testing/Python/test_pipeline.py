@@ -146,7 +146,7 @@ if "OpenCL" in results:
     T.close(results["OpenCL"][0], results["CPU"][0], 1e-6, "OpenCL vs CPU: intensity")
 
 # ---------------------------------------------------------------- 3. plain VTK Python access
-from schlieren import vtkRefractiveScene, vtkSchlierenImage  # noqa: E402
+from schlieren_vtk import vtkRefractiveScene, vtkSchlierenImage  # noqa: E402
 
 vscene = vtkRefractiveScene()
 vscene.SetSceneToUniform()

@@ -25,7 +25,7 @@ if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11
 
 import numpy as np  # noqa: E402
 from paraview import servermanager  # noqa: E402
-from paraview.simple import LoadPlugin  # noqa: E402
+from paraview.simple import Delete, LoadPlugin  # noqa: E402
 from vtkmodules.util import numpy_support  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -35,11 +35,13 @@ ap = argparse.ArgumentParser()
 ap.add_argument("--plugin", required=True)
 ap.add_argument("--xml", required=True)
 ap.add_argument("--reference", required=True)
+ap.add_argument("--package", help="the folder holding the Python front end's package `schlieren`")
 args = ap.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ns = globals()
 failures = []
-GUI_ONLY = {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView", "PassLimit"}
+PROXIES_LEFT_OUT = cases.PYTHON_PLUGIN_PROXIES_LEFT_OUT  # a proxy or property missing from (or
+LEFT_OUT = cases.PYTHON_PLUGIN_LEFT_OUT                 # added to) either side fails the diff
 
 
 def check(ok, what):
@@ -48,31 +50,60 @@ def check(ok, what):
         failures.append(what)
 
 
-check("RefractiveScene" in ns and "SchlierenImage" in ns, "the plugin's proxies are defined")
 root = ET.parse(args.xml).getroot()
-for proxy, leave_out in (("SchlierenImage", GUI_ONLY), ("RefractiveScene", {"TimeSteps"})):
-    xml = [p for p in root.iter("SourceProxy") if p.get("name") == proxy][0]
-    props = {p.get("name"): p for p in xml if p.tag.endswith("VectorProperty")
-             and p.get("information_only") != "1"}
-    inputs = {p.get("name") for p in xml if p.tag == "InputProperty"}
-    cxx = set(props) | inputs
-    source = ns["RefractiveScene"]() if proxy == "RefractiveScene" else None
-    made = source if source else ns["SchlierenImage"](Input=ns["RefractiveScene"]())
+cxx_proxies = {p.get("name"): p for p in root.iter("SourceProxy")}
+py_proxies = {n for n in cxx_proxies if n in ns and callable(ns[n])}
+check(py_proxies == set(cxx_proxies) - PROXIES_LEFT_OUT,
+      "the proxies are the C++ plugin's less %s (Python: %s)" % (sorted(PROXIES_LEFT_OUT),
+                                                                 sorted(py_proxies)))
+scene = ns["RefractiveScene"]()
+for proxy in sorted(py_proxies):
+    xml = cxx_proxies[proxy]
+    leave_out = LEFT_OUT.get(proxy, set())
+    # the names paraview.simple gives: the labels, as ParaView makes them valid names
+    props = {servermanager._make_name_valid(p.get("label") or p.get("name")): p for p in xml
+             if p.tag.endswith("VectorProperty") and p.get("information_only") != "1"
+             and p.get("name") not in leave_out}
+    inputs = {p.get("name") for p in xml if p.tag == "InputProperty"} - leave_out
+    made = scene if proxy == "RefractiveScene" else ns[proxy](Input=scene)
     py = set(made.ListProperties()) - {"ReloadPythonModule"}  # ParaView's, on every Python proxy
-    check(py == cxx - leave_out, "%s: property list = the C++ plugin's less %s (Python only: %s; "
-          "C++ only: %s)" % (proxy, sorted(leave_out), sorted(py - cxx),
-                             sorted(cxx - leave_out - py)))
+    cxx = set(props) | inputs
+    check(py == cxx, "%s: property list = the C++ plugin's less %s (%d; Python only: %s; C++ "
+          "only: %s)" % (proxy, sorted(leave_out), len(py), sorted(py - cxx), sorted(cxx - py)))
     for name in sorted(py & set(props)):
         want = props[name].get("default_values", "")
         have = made.GetProperty(name).GetData()
-        if isinstance(have, str) or have is None:
-            ok = (have or "") == want or (props[name].find(".//Entry") is not None and
-                                          have == [e.get("text") for e in props[name].iter("Entry")
-                                                   if e.get("value") == want][0])
+        entries = {e.get("value"): e.get("text") for e in props[name].iter("Entry")}
+        if props[name].tag == "StringVectorProperty" and \
+                int(props[name].get("number_of_elements", "1")) == 5:
+            ok = want.split(";")[-1] == "(automatic)" and have[-1] in ("", "(automatic)")
+        elif isinstance(have, str) or have is None:
+            ok = (have or "") == want or have == entries.get(want)
         else:
             have = have if isinstance(have, list) else [have]
             ok = [float(v) for v in have] == [float(v) for v in want.split()]
         check(ok, "%s.%s: default %r (C++ %r)" % (proxy, name, have, want))
+    # the domains and documentation: the same XML (the generator copies it; here it is read back)
+    for name in sorted(py & set(props)):
+        p = made.GetProperty(name)
+        doc = props[name].find("Documentation")
+        want_doc = " ".join((doc.text or "").split()) if doc is not None else ""
+        have_doc = " ".join((p.GetDocumentation().GetDescription() or "").split()) \
+            if p.GetDocumentation() else ""
+        check(have_doc == want_doc, "%s.%s: documentation is the C++ plugin's" % (proxy, name))
+        if entries := [e.get("text") for e in props[name].iter("Entry")]:
+            check(list(p.Available) == entries if hasattr(p, "Available") else True,
+                  "%s.%s: entries %s" % (proxy, name, entries))
+        rng = props[name].find("IntRangeDomain")
+        rng = rng if rng is not None else props[name].find("DoubleRangeDomain")
+        if rng is not None:
+            d = p.SMProperty.GetDomain(rng.get("name"))
+            want_lo = [float(v) for v in (rng.get("min") or "").split()]
+            lo = [float(d.GetMinimum(i)) for i in range(len(want_lo)) if d.GetMinimumExists(i)]
+            check(lo == want_lo,
+                  "%s.%s: range minimum %s (C++ %s)" % (proxy, name, lo, want_lo))
+    if made is not scene:
+        Delete(made)
 
 compared = 0
 for backend in cases.BACKENDS:
@@ -82,8 +113,10 @@ for backend in cases.BACKENDS:
         if "array_intensity" not in ref:
             print("skip %s: no C++ image (no OpenCL device)" % tag)
             continue
-        scene = ns["RefractiveScene"](**props)
-        image = ns["SchlierenImage"](Input=scene, Backend=backend, **cases.IMAGES[name])
+        source = ns["RefractiveScene"](**props)
+        for stage, stage_props in cases.STAGES.get(name, []):
+            source = ns[stage](Input=source, **stage_props)
+        image = ns["SchlierenImage"](Input=source, Backend=backend, **cases.IMAGES[name])
         image.UpdatePipeline()
         out = servermanager.Fetch(image)
         check(np.array_equal(np.array(out.GetExtent()), ref["extent"]) and
@@ -104,7 +137,53 @@ for backend in cases.BACKENDS:
         for k, v in fields.items():
             arr = fd.GetAbstractArray(k)
             check(arr is not None and arr.GetValue(0) == v, "%s: field %s" % (tag, k))
+        mine_fd = cases.field_data_list(fd)
+        theirs_fd = json.loads(str(ref["field_data"]))
+        check(mine_fd == theirs_fd and len(mine_fd) > 20,
+              "%s: the field data equals the C++ filter's (%d entries; differing: %s)"
+              % (tag, len(theirs_fd), [(a, b) for a, b in zip(mine_fd, theirs_fd) if a != b][:3]))
         compared += 1
-check(compared >= 2, "images compared: %d" % compared)
+with open(os.path.join(args.reference, "opencl.txt")) as f:
+    want = len(cases.SCENES) * (2 if f.read().strip() == "OpenCL" else 1)
+check(compared == want, "images compared: %d of %d" % (compared, want))
+
+# NumericalSchlieren: the engine's code in both, the same image and field data
+for name, (scene, props) in cases.NUMERICAL.items():
+    ref = np.load(os.path.join(args.reference, name + ".npz"))
+    image = ns["NumericalSchlieren"](Input=ns["RefractiveScene"](**cases.SCENES[scene]), **props)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    check(np.array_equal(np.array(out.GetExtent()), ref["extent"]) and
+          np.array_equal(np.array(out.GetOrigin()), ref["origin"]) and
+          np.array_equal(np.array(out.GetSpacing()), ref["spacing"]), "%s: the film" % name)
+    for a in ("intensity", "numerical_gradient", "blocked"):
+        mine = out.GetPointData().GetArray(a)
+        m = numpy_support.vtk_to_numpy(mine) if mine is not None else None
+        t = ref["array_" + a]
+        check(m is not None and m.dtype == t.dtype and m.shape == t.shape and
+              np.array_equal(m.view(np.uint8), t.view(np.uint8)),
+              "%s: %s bit for bit (%s, mean %.6g)" % (name, a, t.shape, float(t.mean())))
+    mine_fd = cases.field_data_list(out.GetFieldData())
+    check(mine_fd == json.loads(str(ref["field_data"])),
+          "%s: the field data equals the C++ filter's (%s)" % (name, mine_fd))
+# the two packages in one ParaView Python session: the C++ plugin's compiled classes
+# (schlieren_vtk, from the build's dist-packages) and the Python front end (schlieren), neither
+# shadowing the other; the front end hands out the compiled classes under their old name
+if args.package:
+    sys.path.insert(0, args.package)
+    import schlieren_vtk  # noqa: E402
+    import schlieren  # noqa: E402
+    check(os.path.dirname(schlieren.__file__) == os.path.join(args.package, "schlieren") and
+          hasattr(schlieren, "SchlierenImage") and hasattr(schlieren_vtk, "vtkSchlierenImage") and
+          schlieren.vtkSchlierenImage is schlieren_vtk.vtkSchlierenImage,
+          "schlieren (%s) and schlieren_vtk (%s) import in one session; schlieren.vtkSchlierenImage "
+          "is the compiled class" % (schlieren.__file__, schlieren_vtk.__file__))
+    f = schlieren.RefractiveScene(Dimensions=[8, 8, 8])
+    f.Update()
+    g = schlieren_vtk.vtkRefractiveScene()
+    g.SetDimensions(8, 8, 8)
+    g.Update()
+    check(f.GetOutput().GetDimensions() == g.GetOutput().GetDimensions() == (8, 8, 8),
+          "both packages' RefractiveScene run in that session")
 print("%d failures" % len(failures))
 sys.exit(1 if failures else 0)

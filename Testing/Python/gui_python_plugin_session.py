@@ -1,0 +1,103 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The ParaView side of test_gui_python_plugin.py: run by `paraview --script=` with no plugin
+loaded. It runs the two-line getargspec shim that Debian's ParaView 5.11.0 needs before any Python
+plugin loads under Python 3.11 (docs/PYTHON.md: the user types it into View > Python Shell), and
+answers the driver's commands (cmd-<n>.txt in $SCHLIEREN_GUI_WORK) from a timer of the render view:
+`state <tag>` (which Schlieren proxies ParaView knows, the pipeline's sources, their property
+lists), `set <json>` (properties of the active source, the settings the driver could type),
+`dump <tag>` (the SchlierenImage1 output's arrays, film and field data, as .npz), `quit`.
+Nothing here loads the plugin, creates a proxy or presses Apply: the driver does, with X events.
+"""
+import collections
+import inspect
+import json
+import os
+import sys
+import traceback
+
+work = os.environ["SCHLIEREN_GUI_WORK"]
+here = os.environ["SCHLIEREN_GUI_HERE"]
+
+
+def write_json(name, value):
+    path = os.path.join(work, name)
+    with open(path + ".tmp", "w") as f:
+        json.dump(value, f)
+    os.replace(path + ".tmp", path)
+
+
+try:
+    if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11 (docs/PYTHON.md)
+        _A = collections.namedtuple("ArgSpec", "args varargs keywords defaults")
+        inspect.getargspec = lambda f: _A(*inspect.getfullargspec(f)[:4])
+    from paraview import servermanager
+    from paraview.simple import *  # noqa: F401,F403
+
+    sys.path.insert(0, here)
+    import frontend_cases as cases  # noqa: E402
+
+    view = GetActiveViewOrCreate("RenderView")
+    Render(view)
+    state = {"cmd": 0}
+
+    def known():
+        pxm = servermanager.ProxyManager()
+        out = {}
+        for group, name in (("sources", "RefractiveScene"), ("filters", "RefractiveIndex"),
+                            ("filters", "RefractionOctree"), ("filters", "SchlierenImage"),
+                            ("filters", "NumericalSchlieren")):
+            out[name] = pxm.SMProxyManager.GetPrototypeProxy(group, name) is not None
+        return out
+
+    def command(words):
+        if words[0] == "state":
+            sources = {}
+            for (name, _id), proxy in GetSources().items():
+                sources[name] = {"xml": proxy.GetXMLName(), "properties": proxy.ListProperties(),
+                                 "points": proxy.GetDataInformation().GetNumberOfPoints()}
+            write_json("state-%s.json" % words[1], {"known": known(), "sources": sources})
+        elif words[0] == "set":
+            props = json.loads(" ".join(words[1:]))
+            source = GetActiveSource()
+            for k, v in props.items():
+                setattr(source, k, v)
+            write_json("set-%d.json" % state["cmd"], {"set": list(props)})
+        elif words[0] == "dump":
+            import numpy as np
+            from vtkmodules.util import numpy_support
+            image = FindSource("SchlierenImage1")
+            img = servermanager.Fetch(image)
+            out = {"origin": np.array(img.GetOrigin()), "spacing": np.array(img.GetSpacing()),
+                   "extent": np.array(img.GetExtent())}
+            for a in cases.ARRAYS:
+                arr = img.GetPointData().GetArray(a)
+                if arr is not None:
+                    out["array_" + a] = numpy_support.vtk_to_numpy(arr).copy()
+            out["field_data"] = np.array(json.dumps(cases.field_data_list(img.GetFieldData())))
+            np.savez(os.path.join(work, words[1] + ".npz"), **out)
+            write_json("dumped-%s.json" % words[1], {})
+        elif words[0] == "quit":
+            os._exit(0)
+
+    def poll(caller, event):
+        try:
+            path = os.path.join(work, "cmd-%d.txt" % state["cmd"])
+            if not os.path.exists(path):
+                return
+            words = open(path).read().split()
+            state["cmd"] += 1
+            command(words)
+        except BaseException:
+            with open(os.path.join(work, "session.log"), "a") as f:
+                f.write("poll failed: " + traceback.format_exc())
+            os._exit(3)
+
+    interactor = view.GetRenderWindow().GetInteractor()
+    interactor.CreateRepeatingTimer(50)
+    interactor.AddObserver("TimerEvent", poll)
+    write_json("ready.json", {"known": known()})
+except BaseException:
+    with open(os.path.join(work, "session.log"), "a") as f:
+        f.write("FAIL " + traceback.format_exc())
+    sys.stderr.write(traceback.format_exc())
+    os._exit(1)

@@ -1,0 +1,187 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The Python plugin (SchlierenPython.py) loaded into Debian's ParaView 5.11 GUI the way a user does
+it, with real X events (xdotool) under Xvfb and openbox, and its pipeline's image and property
+lists against the C++ plugin's.
+
+    with_xvfb.sh python3 test_gui_python_plugin.py --paraview paraview --pvpython pvpython \\
+        --plugin <an empty folder>/none --python-plugin SchlierenPython.py \\
+        --cxx-plugin Schlieren.so --reference DIR --work DIR
+
+paraview starts with no plugin (PV_PLUGIN_PATH an empty folder, a fresh HOME) and a session script
+(gui_python_plugin_session.py) that runs the getargspec shim docs/PYTHON.md gives. Then:
+  1. Alt+T, Down x3, Return opens Tools > Manage Plugins; a click on its "Load New ..." button opens
+     the "Load Plugin" file dialog; the path typed there and Return load the .py: the Plugin
+     Manager lists it, and ParaView knows RefractiveScene, RefractiveIndex, RefractionOctree and
+     SchlierenImage and NumericalSchlieren, none of which it knew before;
+  2. Quick Launch (Ctrl+Space) "Refractive Scene" Return, the Gaussian sphere case's settings
+     (frontend_cases.py; set by the session, as the user would type them), Apply (Alt+A); the same
+     for "Schlieren Image" on it, Backend CPU, then OpenCL where the reference has an OpenCL image;
+  3. the image (intensity, deflection: every bit) and its whole field data equal the C++ plugin's
+     for that case (frontend_reference.py's files), and the property lists of the GUI's proxies
+     equal those the C++ plugin's proxies have in pvpython, less what the Python plugin leaves out
+     by name (frontend_cases.PYTHON_PLUGIN_LEFT_OUT).
+Screenshots: plugin_manager.png (the .py listed as Loaded), image.png (the pipeline after Apply).
+"""
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import gui_driver
+
+sys.path.insert(0, gui_driver.HERE)
+import frontend_cases as cases  # noqa: E402
+
+
+def options(parser):
+    parser.add_argument("--python-plugin", required=True)
+    parser.add_argument("--cxx-plugin", required=True)
+    parser.add_argument("--reference", required=True)
+
+
+gd = gui_driver.Driver(__doc__, options)
+args = gd.args
+say, check, fatal, xdo, screenshot = gd.say, gd.check, gd.fatal, gd.xdo, gd.screenshot
+home = os.path.join(args.work, "home")  # no earlier session's settings or plugin list
+os.makedirs(home)
+gd.launch("gui_python_plugin_session.py", env={"HOME": home})
+ready = gd.read_json("ready.json", timeout=120)
+PROXIES = ["RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage", "NumericalSchlieren"]
+check(not any(ready["known"].values()), "before the load ParaView knows no Schlieren proxy (%s)"
+      % ready["known"])
+window = gd.main_window()
+polls = [0]
+
+
+def state():
+    polls[0] += 1
+    gd.send("state %d" % polls[0])
+    return gd.read_json("state-%d.json" % polls[0])
+
+
+def windows(name):
+    return subprocess.run(["xdotool", "search", "--onlyvisible", "--name", name], stdout=subprocess.PIPE,
+                          universal_newlines=True).stdout.split()
+
+
+# -- 1. Tools > Manage Plugins > Load New ..., the path typed into ParaView's file dialog
+xdo("key", "--clearmodifiers", "alt+t")
+time.sleep(1.0)
+xdo("key", "Down", "Down", "Down", "Return")  # Add Camera Link (the first enabled item) -> Manage Plugins...
+dialog = gd.wait_for('a window titled "Plugin Manager"', lambda: windows("^Plugin Manager$"), 20)[0]
+geometry = dict(line.split("=") for line in subprocess.run(
+    ["xdotool", "getwindowgeometry", "--shell", dialog], stdout=subprocess.PIPE,
+    universal_newlines=True).stdout.split())
+# "Load New ..." sits at the dialog's lower left (its 800 x 600 layout, seen in the screenshots)
+xdo("mousemove", int(geometry["X"]) + 65, int(geometry["Y"]) + 513)
+xdo("click", 1)
+gd.wait_for('the "Load Plugin" file dialog after a click on "Load New ..."', lambda: windows("^Load Plugin$"), 20)
+time.sleep(0.5)
+xdo("type", "--delay", "20", os.path.abspath(args.python_plugin))
+xdo("key", "Return")
+known = gd.wait_for("ParaView knowing SchlierenImage after the load",
+                    lambda: (lambda s: s["known"] if s["known"]["SchlierenImage"] else None)(state()), 30)
+check(all(known[p] for p in PROXIES), "after Load New ParaView knows %s (%s)" % (", ".join(PROXIES), known))
+time.sleep(1.0)
+shot = screenshot("plugin_manager")
+say("the Plugin Manager after the load: %s" % shot)
+xdo("key", "Escape")  # closes the Plugin Manager
+gd.wait_for("the Plugin Manager closed", lambda: not windows("^Plugin Manager$"), 10)
+
+
+# -- 2. the pipeline: Quick Launch, the case's settings, Apply
+def quick_launch(label, registered):
+    xdo("windowactivate", "--sync", window)
+    xdo("key", "--clearmodifiers", "ctrl+space")
+    time.sleep(1.0)
+    xdo("type", "--delay", "60", label)
+    time.sleep(1.0)
+    xdo("key", "--clearmodifiers", "Return")
+    gd.wait_for("%s in the pipeline" % registered, lambda: registered in state()["sources"], 30)
+
+
+def set_active(props):
+    gd.send("set " + json.dumps(props))
+    gd.read_json("set-%d.json" % gd.commands)
+
+
+def apply_and_wait(name):
+    xdo("key", "--clearmodifiers", "alt+a")
+    return gd.wait_for("%s's output after Apply" % name,
+                       lambda: state()["sources"][name]["points"] > 0, 120)
+
+
+name = "gaussian_sphere"
+quick_launch("Refractive Scene", "RefractiveScene1")
+set_active(cases.SCENES[name])
+apply_and_wait("RefractiveScene1")
+quick_launch("Schlieren Image", "SchlierenImage1")
+with open(os.path.join(args.reference, "opencl.txt")) as f:
+    opencl = f.read().strip()
+compared = 0
+for backend in cases.BACKENDS:
+    ref = np.load(os.path.join(args.reference, "%s_%s.npz" % (name, backend)))
+    if "array_intensity" not in ref:
+        say("skip %s: the C++ plugin made no image there (OpenCL: %s)" % (backend, opencl))
+        continue
+    set_active(dict(cases.IMAGES[name], Backend=backend))
+    want_backend = [e for e in json.loads(str(ref["field_data"])) if e[0] == "backend"][0]
+    if compared:
+        xdo("key", "--clearmodifiers", "alt+a")
+    else:
+        apply_and_wait("SchlierenImage1")
+    end, k = time.time() + 60, 0
+    while True:  # the image of this Apply: its field data names the backend asked for
+        k += 1
+        mine = np.load(gd.dump("image_%s_%d" % (backend, k)))
+        if want_backend in json.loads(str(mine["field_data"])) or time.time() > end:
+            break
+        time.sleep(0.5)
+    for a in ("intensity", "deflection"):
+        m, t = mine.get("array_" + a), ref["array_" + a]
+        check(m is not None and m.shape == t.shape and np.array_equal(m.view(np.uint32), t.view(np.uint32)),
+              "%s %s: %s bit for bit the C++ plugin's (%s, mean %.6g)" % (name, backend, a, t.shape, float(t.mean())))
+    check(np.array_equal(mine["extent"], ref["extent"]) and np.array_equal(mine["origin"], ref["origin"]),
+          "%s %s: the film's extent and origin" % (name, backend))
+    fd_mine, fd_ref = json.loads(str(mine["field_data"])), json.loads(str(ref["field_data"]))
+    if compared:
+        # this filter's session traced the case before on the other backend and keeps that
+        # volume (the C++ reference is a fresh filter per backend): one volume kept, two packed
+        counters = {e[0]: e[2] for e in fd_mine if e[0] in ("volumes_cached", "volumes_packed")}
+        check(counters == {"volumes_cached": ["1.0"], "volumes_packed": ["2.0"]},
+              "%s %s: the session keeps the first backend's volume (%s)" % (name, backend, counters))
+        fd_mine = [e for e in fd_mine if e[0] not in counters]
+        fd_ref = [e for e in fd_ref if e[0] not in counters]
+    check(fd_mine == fd_ref, "%s %s: the field data equals the C++ plugin's (%d entries; differing: %s)"
+          % (name, backend, len(fd_ref), [(a, b) for a, b in zip(fd_mine, fd_ref) if a != b][:3]))
+    compared += 1
+check(compared >= 1, "images compared: %d" % compared)
+shot = screenshot("image")
+say("the pipeline after Apply: %s" % shot)
+
+# -- 3. the property lists: the GUI's proxies against the C++ plugin's in pvpython
+gui = state()["sources"]
+code = ("import json, sys\n"
+        "from paraview.simple import *\n"
+        "LoadPlugin(sys.argv[1], remote=False, ns=globals())\n"
+        "s = RefractiveScene()\n"
+        "out = {'RefractiveScene': s.ListProperties(),\n"
+        "       'SchlierenImage': SchlierenImage(Input=s).ListProperties()}\n"
+        "print('PROPS ' + json.dumps(out))\n")
+p = subprocess.run([args.pvpython, "-c", code, os.path.abspath(args.cxx_plugin)], stdout=subprocess.PIPE,
+                   stderr=subprocess.STDOUT, universal_newlines=True, timeout=120,
+                   env=dict(os.environ, HOME=home))
+lines = [l for l in p.stdout.splitlines() if l.startswith("PROPS ")]
+if not lines:
+    fatal("pvpython with the C++ plugin listed no properties: %s" % p.stdout[-500:])
+cxx = json.loads(lines[-1][6:])
+for proxy, registered in (("RefractiveScene", "RefractiveScene1"), ("SchlierenImage", "SchlierenImage1")):
+    py = set(gui[registered]["properties"]) - {"ReloadPythonModule"}
+    want = set(cxx[proxy]) - cases.PYTHON_PLUGIN_LEFT_OUT.get(proxy, set())
+    check(py == want, "%s in the GUI: its %d properties are the C++ plugin's less %s (Python only: %s; "
+          "C++ only: %s)" % (proxy, len(py), sorted(cases.PYTHON_PLUGIN_LEFT_OUT.get(proxy, ())),
+                             sorted(py - want), sorted(want - py)))
+gd.finish()
