@@ -19,7 +19,7 @@ SCENES = {
 # small scenes for the cases that set every SchlierenImage property away from its default
 # (SETTINGS_CASES): the property -> engine setting mapping of either front end cannot drift
 # unnoticed
-for _case in ("settings_color", "settings_bench", "settings_bos", "settings_fringes"):
+for _case in ("settings_color", "settings_bench", "settings_bos", "settings_fringes", "settings_camera"):
     SCENES[_case] = dict(Scene="GaussianSphere", Dimensions=[28, 26, 24],
                          Bounds=[-1.0, 1.0, -0.9, 0.9, -0.8, 0.8], Amplitude=2e-4, Width=0.35,
                          Body="Sphere" if _case == "settings_bos" else "None", BodyRadius=0.2)
@@ -59,6 +59,10 @@ IMAGES = {
                          Filter="Cone", FilterWidth=2.0),
     "settings_fringes": dict(Cutoff="Interferometry", Wavelength=532.0, ReferenceTilt=4.0,
                              Resolution=[36, 36], Passes=2, Integrator="Euler", StepSize=0.3),
+    # a lens focused off the volume's centre: the aperture sampled over the passes
+    "settings_camera": dict(Cutoff="KnifeEdge", Camera="Lens", CameraFocalLength=0.2, FNumber=2.8,
+                            CameraDistance=1.5, FocusPlane=0.2, SourceGridDistance=3.0,
+                            Resolution=[36, 36], Passes=3),
     "bluntfin": dict(Cutoff="KnifeEdge", Resolution=[96, 64], Passes=2, ViewDirection=[0, -1, 0],
                      ViewUp=[0, 0, 1], Integrator="Auto"),  # Auto's choice: the auto_* field data
 }
