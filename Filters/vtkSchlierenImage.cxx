@@ -241,6 +241,7 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   }
   s.Resolution[0] = self->GetResolution()[0];
   s.Resolution[1] = self->GetResolution()[1];
+  s.Frame = static_cast<schlieren::Framing>(self->GetFraming());
   s.Passes = self->GetPasses();
   if (self->GetPassLimit() > 0)
   {
@@ -439,6 +440,25 @@ struct vtkSchlierenImage::vtkInternals
   vtkTimeStamp StaleTime;
 };
 
+namespace
+{
+/** The output's whole extent, spacing and origin: the film the settings give on `volume` (the
+ * input's grid), as schlieren::PlannedFilm expects it. */
+void SetFilmInformation(vtkInformation* outInfo, const schlieren::Volume& volume,
+  const schlieren::TraceSettings& s, const schlieren::TraceSession& session)
+{
+  const schlieren::FilmGeometry film = schlieren::PlannedFilm(volume, s, session);
+  double origin[2];
+  film.GetImageOrigin(origin);
+  const int whole[6] = { 0, film.Size[0] - 1, 0, film.Size[1] - 1, 0, 0 };
+  const double spacing[3] = { film.PixelSize, film.PixelSize, 1.0 };
+  const double origin3[3] = { origin[0], origin[1], 0.0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
+}
+}
+
 //------------------------------------------------------------------------------
 vtkMTimeType vtkSchlierenImage::GetMTime()
 {
@@ -493,6 +513,7 @@ std::string EnumerationProblem(vtkSchlierenImage* f)
       SchlierenEnumProblem("Source", f->GetSource(),
         { { 0, "Point" }, { 1, "Slit" }, { 2, "Rectangle" }, { 3, "Disc" }, { 4, "Gaussian" } }),
       SchlierenEnumProblem("Camera", f->GetCamera(), { { 0, "None" }, { 1, "Ideal" }, { 2, "Lens" } }),
+      SchlierenEnumProblem("Framing", f->GetFraming(), { { 0, "Volume" }, { 1, "Silhouette" } }),
       SchlierenEnumProblem(
         "BackgroundPattern", f->GetBackgroundPattern(), { { 0, "Dots" }, { 1, "Stripes" } }),
       SchlierenEnumProblem(
@@ -568,16 +589,7 @@ int vtkSchlierenImage::RequestInformation(
   }
   try
   {
-    const schlieren::Volume volume = WholeVolume(inInfo);
-    const schlieren::FilmGeometry film = schlieren::MakeFilm(volume, SettingsOf(this));
-    double origin[2];
-    film.GetImageOrigin(origin);
-    const int whole[6] = { 0, film.Size[0] - 1, 0, film.Size[1] - 1, 0, 0 };
-    const double spacing[3] = { film.PixelSize, film.PixelSize, 1.0 };
-    const double origin3[3] = { origin[0], origin[1], 0.0 };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-    outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
+    SetFilmInformation(outInfo, WholeVolume(inInfo), SettingsOf(this), this->Internals->Session);
   }
   catch (const schlieren::Error&)
   {
@@ -678,6 +690,13 @@ int vtkSchlierenImage::RequestData(
     schlieren::VolumePiece piece = PieceOf(input, output, inInfo, this->UseOctree);
     TimeVersion(this, input, inInfo, piece, this->Internals->TimeVersions);
     this->Internals->Session.Update(parallel, piece, SettingsOf(this), image, report);
+    // a frame found by this update (Framing Silhouette) may give the film another shape than
+    // RequestInformation could know: the output's information follows the image
+    if (this->Framing == SILHOUETTE_FRAME)
+    {
+      SetFilmInformation(outputVector->GetInformationObject(0), WholeVolume(inInfo),
+        SettingsOf(this), this->Internals->Session);
+    }
   }
   catch (const schlieren::Error& e)
   {
@@ -763,6 +782,7 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ViewUp: " << this->ViewUp[0] << " " << this->ViewUp[1] << " " << this->ViewUp[2]
      << "\n";
   os << indent << "Resolution: " << this->Resolution[0] << " " << this->Resolution[1] << "\n";
+  os << indent << "Framing: " << this->Framing << "\n";
   os << indent << "Passes: " << this->Passes << "\n";
   os << indent << "StepSize: " << this->StepSize << " voxels\n";
   os << indent << "Integrator: "

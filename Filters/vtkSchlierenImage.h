@@ -204,6 +204,23 @@ public:
 
   ///@{
   /**
+   * What the film frames: VOLUME_FRAME (0, the default) the projection of the volume's box;
+   * SILHOUETTE_FRAME (1) the data's silhouette seen along the view (the points that refract or lie
+   * in a body), Resolution and square pixels kept. The frame is found once per change of the
+   * input or of any property but the view, Resolution and Passes, and kept while the camera
+   * follows. Field data: film_extent, film_frame_share, film_frame_kept.
+   */
+  enum
+  {
+    VOLUME_FRAME = 0,
+    SILHOUETTE_FRAME = 1
+  };
+  vtkSetMacro(Framing, int);
+  vtkGetMacro(Framing, int);
+  ///@}
+
+  ///@{
+  /**
    * Progressive passes, each one jittered photon per pixel. Must be at least 1 (0 is reported as
    * an error, not clamped). Default 4.
    */
@@ -544,6 +561,7 @@ protected:
   double ViewDirection[3] = { 0, 0, -1 };
   double ViewUp[3] = { 0, 1, 0 };
   int Resolution[2] = { 512, 512 };
+  int Framing = VOLUME_FRAME;
   int Passes = 4;
   int PassLimit = 0;
   double StepSize = 0.5;

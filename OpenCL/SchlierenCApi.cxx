@@ -131,6 +131,7 @@ const std::vector<Property>& Properties()
       },
       [](const TraceSettings& s) { return std::vector<double>{ double(s.Resolution[0]), double(s.Resolution[1]) }; },
       nullptr, nullptr },
+    SCH_ENUM(Framing, Frame, schlieren::Framing, "Volume", "Silhouette"),
     SCH_NUM(Passes, "int", Passes, int),
     SCH_NUM(StepSize, "double", StepSize, double),
     SCH_ENUM(Integrator, Method, schlieren::Integrator, "Euler", "Midpoint", "RK4", "Straight", "Auto"),
@@ -648,7 +649,7 @@ int schlieren_session_plan_film(schlieren_session* s, const int dims[3], const d
       v.Origin[a] = origin[a];
       v.Spacing[a] = spacing[a];
     }
-    const schlieren::FilmGeometry f = schlieren::MakeFilm(v, s->Settings);
+    const schlieren::FilmGeometry f = schlieren::PlannedFilm(v, s->Settings, s->Session);
     if (size)
     {
       size[0] = f.Size[0];

@@ -178,6 +178,13 @@ enum class CameraModel
   Lens = 2   ///< a thin lens of aperture CameraFocalLength / FNumber filled with light: its cone of rays sampled
 };
 
+/** What the film covers (docs/GUI.md "Framing"). */
+enum class Framing
+{
+  Volume = 0,    ///< the projection of the volume's box (the images before Framing existed)
+  Silhouette = 1 ///< the data's silhouette seen along the view (FrameSilhouette), in its shape
+};
+
 enum class FilmFilter
 {
   None = 0,     ///< each photon in the pixel it lands in
@@ -191,6 +198,15 @@ struct TraceSettings
   double ViewDirection[3] = { 0, 0, -1 }; ///< the beam travels along this world vector
   double ViewUp[3] = { 0, 1, 0 };         ///< film "up" (made orthogonal to ViewDirection)
   int Resolution[2] = { 512, 512 };       ///< film pixels
+  /** Framing Silhouette: TraceSession frames the film to the data (FrameSilhouette) once and keeps
+   * the frame while only the view, Resolution or Passes change (a camera that follows). */
+  Framing Frame = Framing::Volume;
+  /** The film's frame, film coordinates from the volume's centre (world units): a0, a1, b0, b1.
+   * Where a1 > a0 and b1 > b0 the film holds it, centred on it, with square pixels: Framing
+   * Volume on Resolution's pixels, Framing Silhouette on as many pixels as Resolution has, in the
+   * frame's shape (each side 2 to 16384). Otherwise (the default, zeros) the box's projection on
+   * Resolution's pixels. TraceSession sets it for Framing Silhouette; a caller may set it. */
+  double FilmExtent[4] = { 0, 0, 0, 0 };
   int Passes = 1;                         ///< progressive passes, one jittered photon per pixel each
   double StepSize = 0.5;                  ///< base step, in voxels (of the smallest spacing)
   Integrator Method = Integrator::Euler;
@@ -288,8 +304,33 @@ struct FilmGeometry
   void GetImageOrigin(double origin[2]) const;
 };
 
-/** Computes the film that covers the volume's projection with square pixels. */
+/** Computes the film that covers the volume's projection (or settings.FilmExtent) with square
+ * pixels. */
 FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& settings);
+
+/** settings.FilmExtent is a frame (a1 > a0 and b1 > b0): MakeFilm covers it. */
+inline bool HasFilmExtent(const TraceSettings& s)
+{
+  return s.FilmExtent[1] > s.FilmExtent[0] && s.FilmExtent[3] > s.FilmExtent[2];
+}
+
+/** What FrameSilhouette found. */
+struct SilhouetteFrame
+{
+  double Extent[4] = { 0, 0, 0, 0 }; ///< a0, a1, b0, b1 (TraceSettings::FilmExtent)
+  bool Found = false;  ///< false: no point refracts (a uniform field): Extent is the box's projection
+  double Points = 0;   ///< grid points in the silhouette (refracting or solid)
+  double Fraction = 0; ///< the frame's area over the box projection's
+};
+
+/**
+ * The data's silhouette seen along settings.ViewDirection/ViewUp: the film-coordinate rectangle
+ * around the grid points that refract, |grad n| above 1e-3 of the volume's largest (the packed
+ * gradient), or lie in a body, padded by a grid spacing and 2 % of its size, and no larger than
+ * the box's projection. Points of uniform air (a free stream around the flow, a resampled grid's
+ * points outside the data) are left out. One pass over the volume.
+ */
+SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& settings);
 
 /** Per-pixel sums over photons; these add across passes and across MPI ranks. */
 struct FilmSums

@@ -88,9 +88,25 @@ FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
   }
   f.Size[0] = s.Resolution[0];
   f.Size[1] = s.Resolution[1];
-  f.PixelSize = std::max(2 * wa / f.Size[0], 2 * wb / f.Size[1]);
-  f.Corner[0] = -0.5 * f.Size[0] * f.PixelSize;
-  f.Corner[1] = -0.5 * f.Size[1] * f.PixelSize;
+  // the box's projection, or the frame asked for (Framing Silhouette), centred on the film
+  double a0 = -wa, a1 = wa, b0 = -wb, b1 = wb;
+  if (HasFilmExtent(s))
+  {
+    a0 = s.FilmExtent[0];
+    a1 = s.FilmExtent[1];
+    b0 = s.FilmExtent[2];
+    b1 = s.FilmExtent[3];
+  }
+  if (s.Frame == Framing::Silhouette && HasFilmExtent(s))
+  {
+    // the frame's shape with Resolution's pixel count: no film left empty beside the data
+    const double pixels = double(s.Resolution[0]) * s.Resolution[1], aspect = (a1 - a0) / (b1 - b0);
+    f.Size[0] = static_cast<int>(std::min(std::max(std::lround(std::sqrt(pixels * aspect)), 2L), 16384L));
+    f.Size[1] = static_cast<int>(std::min(std::max(std::lround(std::sqrt(pixels / aspect)), 2L), 16384L));
+  }
+  f.PixelSize = std::max((a1 - a0) / f.Size[0], (b1 - b0) / f.Size[1]);
+  f.Corner[0] = 0.5 * (a0 + a1) - 0.5 * f.Size[0] * f.PixelSize;
+  f.Corner[1] = 0.5 * (b0 + b1) - 0.5 * f.Size[1] * f.PixelSize;
   f.FrontPlane = -wd * 1.001;
   if (!std::isfinite(s.FilmDistance))
     throw Error("FilmDistance must be finite.");
@@ -102,6 +118,95 @@ FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
   if (s.Camera != CameraModel::None)
     f.FilmPlane = s.FocusPlane;
   return f;
+}
+
+SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& s)
+{
+  TraceSettings plain = s;
+  for (double& e : plain.FilmExtent)
+    e = 0;
+  const FilmGeometry f = MakeFilm(volume, plain);
+  double h[3];
+  HalfExtent(volume, h);
+  SilhouetteFrame out;
+  double wa = 0, wb = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    wa += h[a] * std::fabs(f.Right[a]);
+    wb += h[a] * std::fabs(f.Up[a]);
+  }
+  out.Extent[0] = -wa;
+  out.Extent[1] = wa;
+  out.Extent[2] = -wb;
+  out.Extent[3] = wb;
+  if (!volume.Field)
+    return out;
+  const int nx = volume.Dimensions[0], ny = volume.Dimensions[1], nz = volume.Dimensions[2];
+  const std::size_t n = volume.NumberOfPoints();
+  const float* F = volume.Field;
+  // the largest |grad n|^2 (the packed gradient, world units)
+  double g2max = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double g2 = double(F[4 * i + 1]) * F[4 * i + 1] + double(F[4 * i + 2]) * F[4 * i + 2] +
+      double(F[4 * i + 3]) * F[4 * i + 3];
+    g2max = std::max(g2max, g2);
+  }
+  const double threshold = 1e-6 * g2max; // (1e-3 of the largest |grad n|)^2
+  auto inside = [&](std::size_t i) {
+    if (volume.Solid && volume.Solid[i])
+      return true;
+    const double g2 = double(F[4 * i + 1]) * F[4 * i + 1] + double(F[4 * i + 2]) * F[4 * i + 2] +
+      double(F[4 * i + 3]) * F[4 * i + 3];
+    return g2max > 0 && g2 > threshold;
+  };
+  // a point's film coordinates are linear along a row: its first and last silhouette points
+  // bound the row's projection
+  double lo[2] = { 1e300, 1e300 }, hi[2] = { -1e300, -1e300 };
+  auto project = [&](int i, int j, int k) {
+    const double p[3] = { i * volume.Spacing[0] - h[0], j * volume.Spacing[1] - h[1],
+      k * volume.Spacing[2] - h[2] };
+    const double c[2] = { Dot(p, f.Right), Dot(p, f.Up) };
+    for (int a = 0; a < 2; ++a)
+    {
+      lo[a] = std::min(lo[a], c[a]);
+      hi[a] = std::max(hi[a], c[a]);
+    }
+  };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+    {
+      const std::size_t row = (static_cast<std::size_t>(k) * ny + j) * nx;
+      int first = -1, last = -1;
+      for (int i = 0; i < nx; ++i)
+        if (inside(row + i))
+        {
+          if (first < 0)
+            first = i;
+          last = i;
+          out.Points += 1;
+        }
+      if (first >= 0)
+      {
+        project(first, j, k);
+        project(last, j, k);
+      }
+    }
+  if (out.Points == 0)
+    return out;
+  out.Found = true;
+  // the data reaches half a cell past its last points; 2 % more keeps the edge off the border
+  const double spacing = std::max({ volume.Spacing[0], volume.Spacing[1], volume.Spacing[2] });
+  for (int a = 0; a < 2; ++a)
+  {
+    const double pad = spacing + 0.02 * (hi[a] - lo[a]);
+    const double w = a == 0 ? wa : wb;
+    out.Extent[2 * a] = std::max(lo[a] - pad, -w);
+    out.Extent[2 * a + 1] = std::min(hi[a] + pad, w);
+  }
+  out.Fraction =
+    (out.Extent[1] - out.Extent[0]) * (out.Extent[3] - out.Extent[2]) / (4 * wa * wb);
+  return out;
 }
 
 std::vector<std::vector<double>*> FilmSums::PixelChannels()

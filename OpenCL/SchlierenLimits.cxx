@@ -172,6 +172,12 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("CutoffScale", s.CutoffScale, "in [0, 1e12] (0: automatic)");
   if (!std::isfinite(s.KnifeAngle))
     OutOfRange("KnifeAngle", s.KnifeAngle, "a finite angle in degrees");
+  const int frame = static_cast<int>(s.Frame);
+  if (frame < 0 || frame > static_cast<int>(Framing::Silhouette))
+    OutOfRange("Framing", frame, "0 (Volume) or 1 (Silhouette)");
+  for (double e : s.FilmExtent)
+    if (!std::isfinite(e))
+      OutOfRange("FilmExtent", e, "finite film coordinates (world units)");
   // the bench (checked whatever the source: a typed value is kept for when it is used)
   const int source = static_cast<int>(s.Source);
   if (source < 0 || source > static_cast<int>(BenchSource::Gaussian))

@@ -61,7 +61,8 @@ std::string TraceSettings::PhotonKey() const
   k.precision(17);
   k << ViewDirection[0] << ' ' << ViewDirection[1] << ' ' << ViewDirection[2] << ' ' << ViewUp[0]
     << ' ' << ViewUp[1] << ' ' << ViewUp[2] << ' ' << Resolution[0] << ' ' << Resolution[1] << ' '
-    << StepSize << ' ' << static_cast<int>(Method) << ' ' << KeepInvariant << ' ' << EstimateError
+    << static_cast<int>(Frame) << ' ' << FilmExtent[0] << ' ' << FilmExtent[1] << ' '
+    << FilmExtent[2] << ' ' << FilmExtent[3] << ' ' << StepSize << ' ' << static_cast<int>(Method) << ' ' << KeepInvariant << ' ' << EstimateError
     << ' ' << UseOctree << ' ' << static_cast<int>(Recon) << ' ' << Tolerance << ' ' << AutoMeasuredError << ' '
     << static_cast<int>(Mode) << ' ' << KnifeAngle << ' ' << CutoffScale << ' ' << FilmDistance
     << ' ' << Wavelength << ' ' << ReferenceTilt << ' ' << BackgroundDistance << ' '

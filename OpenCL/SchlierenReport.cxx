@@ -114,6 +114,17 @@ std::vector<ReportEntry> ImageReport(const SessionImage& image)
     number("tracing_seconds", image.SecondsTracing);
     number("exchange_seconds", image.SecondsExchanging);
   }
+  if (image.Framed)
+  {
+    // Framing Silhouette: the film's frame (a0, a1, b0, b1, film coordinates from the volume's
+    // centre), its share of the box's projection, and 1 where it was kept from the last Apply
+    ReportEntry e;
+    e.Name = "film_extent";
+    e.Numbers.assign(image.Traced.FilmExtent, image.Traced.FilmExtent + 4);
+    out.push_back(std::move(e));
+    number("film_frame_share", image.Frame.Fraction);
+    number("film_frame_kept", image.FrameKept ? 1.0 : 0.0);
+  }
   if (image.AutoAsked)
   {
     text("auto_report", image.Choice.Report);

@@ -269,6 +269,7 @@ TraceSession::~TraceSession()
 
 void TraceSession::Clear()
 {
+  this->FrameKey.clear();
   this->ClearVolume();
   this->SumsKey.clear();
   this->Sums.Resize(0, 0);
@@ -404,6 +405,56 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
   this->AutoResolution[0] = asked.Resolution[0];
   this->AutoResolution[1] = asked.Resolution[1];
   return c;
+}
+
+FilmGeometry PlannedFilm(const Volume& volume, TraceSettings s, const TraceSession& session)
+{
+  if (s.Frame == Framing::Silhouette && !HasFilmExtent(s) && !session.KeptFrame(s.FilmExtent))
+  {
+    Volume grid = volume;
+    grid.Field = nullptr; // the box's projection
+    grid.Solid = nullptr;
+    const SilhouetteFrame box = FrameSilhouette(grid, s);
+    std::copy(box.Extent, box.Extent + 4, s.FilmExtent);
+  }
+  return MakeFilm(volume, s);
+}
+
+void TraceSession::FrameKept(
+  const Volume& volume, TraceSettings& settings, SessionImage& out, bool say)
+{
+  if (settings.Frame != Framing::Silhouette || HasFilmExtent(settings))
+    return;
+  // what the frame depends on besides the view: the volume; and any other setting changed (an
+  // Apply) frames again. Resolution and Passes do not (the interactive films of a camera that
+  // follows, the refinement).
+  TraceSettings k = settings;
+  for (int a = 0; a < 3; ++a)
+    k.ViewDirection[a] = k.ViewUp[a] = 0;
+  k.Resolution[0] = k.Resolution[1] = 0;
+  k.Passes = 0;
+  std::ostringstream key;
+  key << k.PhotonKey() << " | " << volume.Stamp;
+  out.FrameKept = !this->FrameKey.empty() && key.str() == this->FrameKey;
+  if (!out.FrameKept)
+  {
+    this->Frame = FrameSilhouette(volume, settings);
+    this->FrameKey = key.str();
+  }
+  std::copy(this->Frame.Extent, this->Frame.Extent + 4, settings.FilmExtent);
+  out.Framed = true;
+  out.Frame = this->Frame;
+  std::ostringstream note;
+  note.precision(3);
+  if (!this->Frame.Found)
+    note << "Framing Silhouette: no point of the volume refracts; the film frames the whole box.";
+  else
+    note << "Framing Silhouette: the film frames the data's silhouette, "
+         << 100 * this->Frame.Fraction << " % of the box's projection ("
+         << this->Frame.Points << " points refract or are solid); kept while only the view, "
+            "Resolution or Passes change.";
+  if (say && !out.FrameKept) // said when found, not at every step of a camera that follows
+    out.Notes.push_back({ false, note.str() });
 }
 
 //------------------------------------------------------------------------------
@@ -576,6 +627,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   // kept sums go on with the new passes (the jitter sequence goes on where it stopped, so the
   // image equals a trace of all passes at once).
   TraceSettings traced = settings;
+  this->FrameKept(volume, traced, out, rank == 0);
   const AutoChoice choice = this->ResolveKept(parallel, volume, traced);
   if (rank == 0 && (settings.Method == Integrator::Auto || settings.Recon == Reconstruction::Auto))
   {

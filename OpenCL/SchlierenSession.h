@@ -34,6 +34,7 @@
 #include "SchlierenLimits.h"
 #include "SchlierenParallel.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -103,6 +104,11 @@ struct SessionImage
   std::string VolumeFrom;
   int VolumesCached = 0;
   int VolumesPacked = 0;
+  /** Framing Silhouette: the frame traced with (Traced.FilmExtent), and whether it was kept
+   * from an earlier update (only the view, Resolution or Passes changed since it was found). */
+  bool Framed = false;
+  bool FrameKept = false;
+  SilhouetteFrame Frame;
   double LandedPhotons = 0; ///< photons that reached the film (0: a blank image)
   bool OctreeUsed = false;
   double OctreeTolerance = 0.0;
@@ -154,6 +160,15 @@ public:
   const Volume& KeptVolume() const { return this->Kept; }
   /** Drops what is kept (the next update packs and traces afresh). Not collective. */
   void Clear();
+  /** Framing Silhouette: the frame of the last update (TraceSettings::FilmExtent); false where
+   * there is none. */
+  bool KeptFrame(double extent[4]) const
+  {
+    if (this->FrameKey.empty())
+      return false;
+    std::copy(this->Frame.Extent, this->Frame.Extent + 4, extent);
+    return true;
+  }
   /** How many times an update of this session has run Auto's pilot (the others kept a choice). */
   int Pilots() const { return this->PilotsRun; }
 
@@ -199,6 +214,11 @@ private:
    * full resolution after interactive half-size films), and for any other change.
    */
   AutoChoice ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings);
+  /** Framing Silhouette: sets settings.FilmExtent from the frame kept or found now (see
+   * TraceSettings::Frame); out says which; `say`: add the note (rank 0). */
+  void FrameKept(const Volume& volume, TraceSettings& settings, SessionImage& out, bool say);
+  std::string FrameKey; // empty: no frame kept
+  SilhouetteFrame Frame;
   std::string AutoKey; // empty: no choice kept
   TraceSettings AutoTraced;
   AutoChoice AutoKept;
@@ -208,6 +228,14 @@ private:
   bool AutoChoiceKept = false; // the last update kept the choice for another view
   int PilotsRun = 0;
 };
+
+/**
+ * The film an update of `settings` on the grid of `volume` (its values are not needed) is
+ * expected to give, for a front end's output information before the trace: for Framing
+ * Silhouette the session's last frame, before any the box's projection in the frame's shape (the
+ * trace may then find another frame: the output's information follows the image).
+ */
+FilmGeometry PlannedFilm(const Volume& volume, TraceSettings settings, const TraceSession& session);
 
 /**
  * Why an update of `settings` on more than one rank cannot trace the volume in pieces (empty:

@@ -555,6 +555,12 @@ class SchlierenImage(_Properties):
         out.SetExtent(0, size[0] - 1, 0, size[1] - 1, 0, 0)
         out.SetSpacing(pixel, pixel, 1.0)
         out.SetOrigin(origin[0], origin[1], 0.0)
+        # a frame found by this trace (Framing Silhouette) may give the film another shape than
+        # RequestInformation could know: the output's information follows the image
+        info = outInfo.GetInformationObject(0)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
+        info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
+        info.Set(vtkImageData.ORIGIN(), origin[0], origin[1], 0.0)
         out.GetPointData().SetScalars(_add(out, "intensity", s.array("intensity")))
         for name, comps in (("deflection", ("x", "y")), ("rgb", ("r", "g", "b")),
                             ("phase", ()), ("bos_displacement", ("x", "y")),

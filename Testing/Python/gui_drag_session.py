@@ -8,7 +8,7 @@ ParaView's quick launch and press Apply, as a user would (it gives the new image
 settings before Apply), and then answers the driver through files in
 $SCHLIEREN_GUI_WORK: a repeating timer of the 3D view's interactor (it runs in the GUI's event
 loop, between the plugin's refinement chunks) records every image the GUI shows (its passes and
-intensity) and executes the driver's commands (cmd-<n>.txt: `sizes`, `dump <name>`, `index`, `quit`).
+intensity) and executes the driver's commands (cmd-<n>.txt: `sizes`, `dump <name>`, `index`, `fields`, `quit`).
 Nothing here moves the camera or updates the image: the plugin's toolbar does that.
 Connected to a pvserver (test_gui_drag.py --pvserver), the images are fetched from the server.
 """
@@ -131,6 +131,19 @@ try:
             write_json("index.json", {"faces": [int(v) for v in volume.BodyWallFaces],
                                       "from_grid": int(volume.BodyFromGrid),
                                       "solid_points": solid.GetComponentRange(0)[0] if solid else None})
+        elif words[0] == "fields":
+            # the image's Framing, its film's size and the field data of its frame (builtin only)
+            info = image.GetDataInformation()
+            e = info.GetExtent()
+            fd = image.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
+            value = lambda n: ([fd.GetArray(n).GetValue(i) for i in range(fd.GetArray(n).GetNumberOfValues())]
+                               if fd.GetArray(n) is not None else None)
+            write_json("fields.json", {"framing": str(image.Framing).strip("'"),
+                                       "size": [e[1] - e[0] + 1, e[3] - e[2] + 1],
+                                       "film_extent": value("film_extent"),
+                                       "film_frame_kept": value("film_frame_kept"),
+                                       "missed_rays": value("missed_rays"),
+                                       "photons": value("photons")})
         elif words[0] == "quit":
             note("quit")
             os._exit(0)
