@@ -523,7 +523,10 @@ class SchlierenImage(_Properties):
                         pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())))
             if n1.ndim != 1:
                 raise EngineError("The point array 'n_minus_1' must have one component.")
-            key = (image.GetMTime(), data.GetMTime(), id(data))
+            # the input by its C++ object and modification time: id() of the Python wrapper is
+            # not stable (a wrapper freed after RequestData may come back at another address),
+            # and a resampled image is new each time while its source is unchanged
+            key = (data.GetMTime(), data.__this__)
             if key != self._volume_key:
                 solid = _point_array(image, "solid")
                 levels = _point_array(image, "octree_level")
