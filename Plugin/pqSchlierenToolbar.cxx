@@ -136,7 +136,14 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
       }
     }
   });
-  QObject::connect(image, &pqProxy::modifiedStateChanged, this, [this]() { this->onApplied(); });
+  QObject::connect(image, &pqProxy::modifiedStateChanged, this, [this]() {
+    // made in the GUI (the pipeline browser's "uninitialised" state until its first Apply)
+    if (this->Image && this->Image->modifiedState() == pqProxy::UNINITIALIZED)
+    {
+      this->FirstApply = true;
+    }
+    this->onApplied();
+  });
   vtkSMProxy* proxy = image->getProxy();
   pqCoreUtilities::connect(
     proxy->GetProperty("Passes"), vtkCommand::ModifiedEvent, this, SLOT(onPassesModified()));
@@ -378,24 +385,78 @@ void pqSchlierenFollower::openWhenIdle(QPointer<pqDataRepresentation> added, int
 //------------------------------------------------------------------------------
 void pqSchlierenFollower::onApplied()
 {
-  // an Apply of the image whose first trace failed: shown nowhere, nothing else updates it
-  if (!this->PendingView || this->ImageView || !this->Image ||
-    this->Image->modifiedState() != pqProxy::UNMODIFIED)
+  if (!this->Image || this->Image->modifiedState() != pqProxy::UNMODIFIED)
   {
     return;
   }
-  QTimer::singleShot(0, this, [this]() {
+  if (this->FirstApply)
+  {
+    // The image's first Apply. Its <View type="None"/> hint keeps ParaView from showing it in the
+    // 3D view, where the film would be drawn in colour with a legend until its own view opened:
+    // it is shown here instead, in its own 2D view beside the 3D view that was active (or in that
+    // view itself with OpenImageView off). A failed trace shows nothing until an Apply succeeds.
+    this->FirstApply = false;
+    this->PendingView = qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView());
+    this->PendingFirst = true;
+  }
+  if (!this->PendingView || this->ImageView)
+  {
+    return;
+  }
+  this->openAfterApply(200);
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::openAfterApply(int tries)
+{
+  QTimer::singleShot(tries == 200 ? 0 : 50, this, [this, tries]() {
     if (!this->PendingView || this->ImageView || !this->Image)
     {
       return;
     }
-    vtkSMSourceProxy::SafeDownCast(this->Image->getProxy())->UpdatePipeline();
+    if (!Idle() || this->Busy)
+    {
+      if (tries > 0)
+      {
+        this->openAfterApply(tries - 1);
+      }
+      return;
+    }
+    QPointer<pqRenderView> view = this->PendingView;
+    const bool first = this->PendingFirst;
+    this->PendingFirst = false;
+    if (first && !this->Image->getRepresentations(nullptr).empty())
+    {
+      this->PendingView = nullptr; // a script showed it already: its views are the user's
+      return;
+    }
+    if (!this->View3D)
+    {
+      this->View3D = view;
+      this->watchCamera(view);
+    }
+    vtkSMSourceProxy* source = vtkSMSourceProxy::SafeDownCast(this->Image->getProxy());
+    if (vtkSMPropertyHelper(source, "OpenImageView").GetAsInt() == 0)
+    {
+      // the user's choice: the film in the 3D view, as ParaView shows any output
+      this->PendingView = nullptr;
+      vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+      controller->Show(source, 0, vtkSMViewProxy::SafeDownCast(view->getViewProxy()));
+      view->render();
+      return;
+    }
+    source->UpdatePipeline();
     vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
     if (info && info->GetNumberOfPoints() > 0)
     {
-      QPointer<pqRenderView> view = this->PendingView;
       this->PendingView = nullptr;
       this->openImageView(view);
+    }
+    else if (first)
+    {
+      // the trace failed (its error is in the Output Messages): no empty view; it opens after
+      // the next Apply that makes an image
+      this->log("not-opened");
     }
   });
 }

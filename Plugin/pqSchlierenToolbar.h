@@ -78,8 +78,10 @@ private Q_SLOTS:
 private:
   void watchCamera(pqRenderView* view);
   void openWhenIdle(QPointer<pqDataRepresentation> added, int tries);
-  /// After an Apply: opens the view a failed first trace did not, if the image is there now.
+  /// After an Apply: the first opens the image's view (or shows it in the 3D view); a later one
+  /// opens the view a failed first trace did not, if the image is there now.
   void onApplied();
+  void openAfterApply(int tries);
   void setPasses(int passes);
   void restoreResolution();
   int passes() const;
@@ -91,7 +93,9 @@ private:
   QPointer<pqPipelineSource> Image;
   QPointer<pqRenderView> View3D;
   QPointer<pqRenderView> ImageView;
-  QPointer<pqRenderView> PendingView; // the 3D view of an Apply whose trace failed
+  QPointer<pqRenderView> PendingView; // the 3D view of an Apply that has not shown the image yet
+  bool FirstApply = false;   // made in the GUI, not applied yet
+  bool PendingFirst = false; // PendingView is the first Apply's
   vtkWeakPointer<vtkObject> Camera;
   unsigned long CameraTag = 0;
   int Target = 1;        // the passes the user asked for

@@ -189,6 +189,7 @@ try:
                                                           if r.GetProperty("Input") is not None
                                                           and r.Input == image],
                                           "follow": int(image.FollowCamera),
+                                          "shown_3d": dict(shown_3d),
                                           # the ranks the last trace ran on (its field data)
                                           "distributed_ranks": int(image.FieldData["distributed_ranks"].GetRange()[0])
                                           if "distributed_ranks" in image.FieldData.keys() else None})
@@ -211,6 +212,24 @@ try:
             note("poll failed: " + traceback.format_exc())
             os._exit(3)
 
+    # every render of the 3D view: whether it drew the film (the image's representation visible
+    # there) or a colour legend; Apply should show the film in its own view only, never here
+    shown_3d = {"renders": 0, "film": 0, "legend": 0}
+
+    def on_render_3d(caller, event):
+        shown_3d["renders"] += 1
+        im = FindSource("SchlierenImage1")
+        if im is None:
+            return
+        for r in view.Representations:
+            if r.GetProperty("Visibility") is None or not int(r.Visibility):
+                continue
+            if r.GetProperty("Input") is not None and r.Input == im:
+                shown_3d["film"] += 1
+            elif r.GetXMLName().endswith("ScalarBarWidgetRepresentation"):
+                shown_3d["legend"] += 1
+
+    view.GetRenderWindow().AddObserver("EndEvent", on_render_3d)
     interactor = view.GetRenderWindow().GetInteractor()
     interactor.CreateRepeatingTimer(50)
     poll_tag = interactor.AddObserver("TimerEvent", poll)

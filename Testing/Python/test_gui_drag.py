@@ -94,6 +94,10 @@ check(sizes["distributed_ranks"] == (args.ranks if args.ranks > 1 else 0),
       "the trace ran in pieces on the server's %d rank(s) (field data distributed_ranks = %s)"
       % (args.ranks, sizes["distributed_ranks"]))
 check(sizes["image_in_3d"] in ([], [0]), "the film is hidden in the 3D view (%s)" % sizes["image_in_3d"])
+shown = sizes["shown_3d"]
+check(shown["renders"] > 0 and shown["film"] == 0 and shown["legend"] == 0,
+      "no render of the 3D view drew the film or a colour legend (%d renders: the film in %d, a legend "
+      "in %d)" % (shown["renders"], shown["film"], shown["legend"]))
 wait_for("the first image", lambda: os.path.exists(dump("initial")), 60)
 initial = os.path.join(args.work, "initial.npz")
 time.sleep(1.0)  # the views' deferred renders
