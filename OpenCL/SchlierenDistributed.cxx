@@ -1007,9 +1007,10 @@ void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, 
   for (int pass = 0; pass < s.Passes; ++pass)
   {
     P.pass = sums.Passes + pass;
-    // Camera Lens: the pieces trace this pass's tilted beam (Pk); the splatter bins on P's film
+    // Camera Lens: the pieces trace this pass's tilted beam (Pk), a band this pass's wavelength;
+    // the splatter bins on P's film
     sch_params Pk = P;
-    CameraPass(s, Pk, P.pass, splat.lensTilt);
+    splat.BeginPass(Pk, P.pass);
     std::vector<float> rec = TraceAll(
       dv, Pk, pixels,
       [&](std::size_t k, float* a, float* b) { sch_emit(&Pk, static_cast<int>(k), a, b); },

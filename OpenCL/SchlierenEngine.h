@@ -178,6 +178,13 @@ enum class CameraModel
   Lens = 2   ///< a thin lens of aperture CameraFocalLength / FNumber filled with light: its cone of rays sampled
 };
 
+/** How the index of a band's wavelengths follows from the input's (docs/BENCH.md "Light"). */
+enum class Dispersion
+{
+  Air = 0, ///< n - 1 scaled by standard air's (Ciddor): (n(l) - 1) / (n(Wavelength) - 1)
+  None = 1 ///< n - 1 the same at every wavelength (only the phase's 2 pi / l changes)
+};
+
 /** What the film covers (docs/GUI.md "Framing"). */
 enum class Framing
 {
@@ -228,6 +235,17 @@ struct TraceSettings
   double FilmDistance = 0.0;
   double Wavelength = 632.8; ///< nm (Interferometry; world units are taken as metres)
   double ReferenceTilt = 0.0; ///< Interferometry: reference-beam fringes per world unit along film x
+  /// Light (docs/BENCH.md "Light"): a band of vacuum wavelengths, nm, flat in wavenumber; both 0
+  /// (the default): the one Wavelength, as before. With a band, Wavelength is the one the input's
+  /// n - 1 holds (RefractiveIndex's) and the one ReferenceTilt's fringes are counted at (a path
+  /// difference of ReferenceTilt Wavelength per world unit); each pass traces one wavelength of
+  /// the band, WavelengthBins bins in a well-spread order (SpectralPass), n - 1 scaled by
+  /// Dispersion, and the film gets rgb, the colour of the light that reached it.
+  double WavelengthRange[2] = { 0.0, 0.0 };
+  int WavelengthBins = 16;
+  schlieren::Dispersion Disperse = schlieren::Dispersion::Air;
+  /// A band of wavelengths (WavelengthRange set)
+  bool WhiteLight() const { return WavelengthRange[1] > 0; }
   double BackgroundDistance = 1.0; ///< BOS: world units from the front of the volume's box to the background
   int BackgroundPattern = 0;       ///< BOS: 0 dots, 1 stripes (along film x)
   double BackgroundPeriod = 0.0;   ///< BOS: dot spacing or stripe period, world units; 0: 6 pixels
@@ -403,7 +421,7 @@ struct TraceResult
   std::vector<float> Intensity;  ///< nx*ny
   std::vector<float> Deflection; ///< 2*nx*ny, radians along film x and y (mean of the photons)
   std::vector<float> ErrorEstimate; ///< nx*ny, radians (EstimateError only, else empty)
-  std::vector<float> RGB;        ///< 3*nx*ny (ColorFilter only, else empty)
+  std::vector<float> RGB;        ///< 3*nx*ny (ColorFilter, or a band of wavelengths; else empty)
   std::vector<float> Phase;      ///< nx*ny, radians (Interferometry only, else empty)
   std::vector<float> Displacement; ///< 2*nx*ny, world units (BOS only, else empty)
   /// nx*ny: the fraction of the photons emitted at a pixel that a solid body stopped (the
@@ -431,6 +449,9 @@ struct TraceResult
   /// shares of the lit pixels at saturation and at full dark (the weights at BenchRange's ends)
   double BenchSaturated = 0, BenchDark = 0;
   std::string BenchModel; ///< how the response was computed; empty for Point
+  /// A band of wavelengths: how it was sampled and the dispersion's scales of n - 1 at its ends
+  std::string Spectrum;
+  double SpectrumScale[2] = { 1, 1 };
   /// The camera (Camera not None; docs/BENCH.md "Camera"): what it implies, for the field data.
   struct CameraReadouts
   {

@@ -101,8 +101,16 @@ struct Splatter
   /// Camera Lens: this pass's tilt (CameraPass); camera: a camera images the focus plane
   double lensTilt[2] = { 0, 0 };
   bool camera = false;
+  /// A band of wavelengths (SpectralPass): this pass's colour, and Wavelength / its wavelength
+  /// (ReferenceTilt is a path difference counted in Wavelength's fringes)
+  bool white = false;
+  double passColour[3] = { 1, 1, 1 };
+  double tiltScale = 1.0;
 
   Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f);
+  /** Pass `pass`'s kernel parameters Pk (from the trace's P) and this splatter's state for it:
+   * the camera's tilt (CameraPass) and a band's wavelength (SpectralWavelength). */
+  void BeginPass(sch_params& Pk, int pass);
   /** The photon's weight under the cutoff, with energy weighting or (optionally) photon killing. */
   float CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const;
   /** Adds `count` records (SCH_RECORD floats each) of the rays first, first + 1, ... of this rank. */
@@ -121,6 +129,19 @@ bool CameraPass(const TraceSettings& s, sch_params& P, int pass, double tilt[2])
 
 /** The camera's read-outs (TraceResult::Camera) for a trace onto film f. */
 TraceResult::CameraReadouts ComputeCamera(const TraceSettings& s, const FilmGeometry& f);
+
+// ------------------------------------------------------------------ light (SchlierenSpectrum.cxx)
+
+/** A band's wavelength (nm) for pass `pass` (TraceSettings::WavelengthRange set). */
+double SpectralWavelength(const TraceSettings& s, int pass);
+/** (n(nm) - 1) / (n(Wavelength) - 1) under s.Disperse. */
+double DispersionScale(const TraceSettings& s, double nm);
+/** The colour of light of wavelength nm: CIE 1931 (an analytic fit), linear sRGB, unnormalised. */
+void SpectralColour(double nm, double rgb[3]);
+/** The mean SpectralColour of passes 0 .. passes - 1: the band's white. */
+void SpectrumMeanColour(const TraceSettings& s, int passes, double rgb[3]);
+/** The field data's account of the band after `passes` passes; scale: n - 1's at its ends. */
+std::string SpectrumText(const TraceSettings& s, int passes, double scale[2]);
 
 // ------------------------------------------------------------------ parameters (SchlierenParams.cxx)
 

@@ -285,6 +285,7 @@ Splatter::Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f)
   bgPlane = P.sFront - s.BackgroundDistance;
   period = s.BackgroundPeriod > 0 ? s.BackgroundPeriod : 6.0 * P.pixel;
   camera = s.Camera != CameraModel::None;
+  white = s.WhiteLight();
 }
 
 float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const
@@ -305,7 +306,7 @@ float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_
       w = sch_circular_weight(ex, ey, k, 1);
       break;
     case Cutoff::Interferometry:
-      w = sch_fringe_weight(static_cast<float>(phase), static_cast<float>(tilt * landA));
+      w = sch_fringe_weight(static_cast<float>(phase), static_cast<float>(tilt * tiltScale * landA));
       break;
     default:
       w = 1.0f;
@@ -414,7 +415,25 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
       F.ShiftY[idx] += shiftY;
     }
     else if (manual || Bench.Finite || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
-      F.Weight[idx] += CutoffWeight(ex, ey, static_cast<float>(la), phase, static_cast<sch_uint>(pix));
+    {
+      const float w = CutoffWeight(ex, ey, static_cast<float>(la), phase, static_cast<sch_uint>(pix));
+      F.Weight[idx] += w;
+      if (white)
+      {
+        // the colour of the light the cutoff lets through
+        F.Red[idx] += w * passColour[0];
+        F.Green[idx] += w * passColour[1];
+        F.Blue[idx] += w * passColour[2];
+      }
+      continue;
+    }
+    if (white && S.Mode != Cutoff::ColorFilter)
+    {
+      // the colour of the light that landed (Finalize scales it by the pixel's intensity)
+      F.Red[idx] += passColour[0];
+      F.Green[idx] += passColour[1];
+      F.Blue[idx] += passColour[2];
+    }
   }
 }
 

@@ -196,8 +196,16 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   r.Deflection.assign(2 * n, 0.f);
   if (s.EstimateError)
     r.ErrorEstimate.assign(n, 0.f);
-  if (s.Mode == Cutoff::ColorFilter)
+  const bool white = s.WhiteLight() && s.Mode != Cutoff::ColorFilter;
+  if (s.Mode == Cutoff::ColorFilter || white)
     r.RGB.assign(3 * n, 0.f);
+  // a band: rgb per channel over the band's white (the mean colour of the passes traced)
+  double bandWhite[3] = { 1, 1, 1 };
+  if (s.WhiteLight())
+  {
+    SpectrumMeanColour(s, sums.Passes, bandWhite);
+    r.Spectrum = SpectrumText(s, sums.Passes, r.SpectrumScale);
+  }
   if (s.Mode == Cutoff::Interferometry)
     r.Phase.assign(n, 0.f);
   if (s.Mode == Cutoff::BOS)
@@ -275,6 +283,19 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
     if (volume.Solid)
       r.Blocked[i] = static_cast<float>(sums.Blocked[i] / passes);
     r.Intensity[i] = static_cast<float>(I);
+    if (white)
+    {
+      // where each photon's weight is known (Splatter) the sums are of the light let through;
+      // elsewhere they are of the light that landed, its share of each colour times I
+      const bool perPhoton = weighted || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::Shadowgraph;
+      const double sum[3] = { sums.Red[i], sums.Green[i], sums.Blue[i] };
+      for (int a = 0; a < 3; ++a)
+      {
+        const double v = perPhoton ? sum[a] / (passes * bandWhite[a])
+                                   : (c > 0 ? I * sum[a] / (c * bandWhite[a]) : 0.0);
+        r.RGB[3 * i + a] = static_cast<float>(std::min(1.0, std::max(0.0, v)));
+      }
+    }
   }
   r.CutoffScaleUsed = (s.Mode == Cutoff::Shadowgraph || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::BOS) ? 0.0 : k;
   if (bench.Finite)

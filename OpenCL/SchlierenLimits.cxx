@@ -201,6 +201,25 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("FilmDistance", s.FilmDistance, "a finite distance >= 0 (world units behind the volume)");
   if (!(s.Wavelength >= 100 && s.Wavelength <= 100000))
     OutOfRange("Wavelength", s.Wavelength, "in [100, 100000] nm");
+  if (!(s.WavelengthRange[0] == 0 && s.WavelengthRange[1] == 0))
+  {
+    // a band: Ciddor's range where it is scaled by air's dispersion
+    const bool air = s.Disperse == Dispersion::Air;
+    const double lo = air ? 300 : 100, hi = air ? 1700 : 100000;
+    if (!(s.WavelengthRange[0] >= lo && s.WavelengthRange[0] <= s.WavelengthRange[1] &&
+          s.WavelengthRange[1] <= hi))
+      throw Error("WavelengthRange is " + Num(s.WavelengthRange[0]) + " " + Num(s.WavelengthRange[1]) +
+        ": it must be 0 0 (one wavelength) or a band l0 <= l1 in [" + Num(lo) + ", " + Num(hi) +
+        "] nm" + (air ? " (Ciddor's range: Dispersion Air)" : "") + ".");
+    if (air && !(s.Wavelength >= 300 && s.Wavelength <= 1700))
+      OutOfRange("Wavelength", s.Wavelength, "in [300, 1700] nm with a band under Dispersion Air "
+        "(n - 1 is scaled from it by Ciddor's index of air)");
+  }
+  if (s.WavelengthBins < 1 || s.WavelengthBins > 4096)
+    OutOfRange("WavelengthBins", s.WavelengthBins, "in [1, 4096]");
+  const int dispersion = static_cast<int>(s.Disperse);
+  if (dispersion < 0 || dispersion > static_cast<int>(Dispersion::None))
+    OutOfRange("Dispersion", dispersion, "0 (Air) or 1 (None)");
   if (!std::isfinite(s.ReferenceTilt))
     OutOfRange("ReferenceTilt", s.ReferenceTilt, "finite (fringes per world unit)");
   if (!(s.BackgroundDistance >= 0 && std::isfinite(s.BackgroundDistance)))

@@ -75,6 +75,8 @@ std::string TraceSettings::PhotonKey() const
   // the camera (SourceGridDistance is a read-out only)
   k << ' ' << static_cast<int>(Camera) << ' ' << CameraFocalLength << ' ' << FNumber << ' '
     << CameraDistance << ' ' << FocusPlane;
+  k << ' ' << WavelengthRange[0] << ' ' << WavelengthRange[1] << ' ' << WavelengthBins << ' '
+    << static_cast<int>(Disperse);
   return k.str();
 }
 

@@ -59,6 +59,7 @@ sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGe
   P.maxSteps = static_cast<int>(std::min(maxSteps, 1e9));
   P.seed = s.Seed;
   P.pass = 0;
+  P.indexScale = 1.0f; // SpectralPass sets a band's
   P.integrator = static_cast<int>(s.Method);
   P.jitter = s.Jitter ? 1 : 0;
   if (s.RankCount < 1 || s.RankIndex < 0 || s.RankIndex >= s.RankCount)

@@ -216,6 +216,8 @@ typedef struct
   /* Distributed tracing: the cells this rank owns, [own?0, own?1) along each axis (whole-grid
    * indices); a ray that steps out of them goes to the rank that owns where it went. */
   int ownX0, ownX1, ownY0, ownY1, ownZ0, ownZ1;
+  /* n - 1 and grad n of every sample times this: a band's wavelength (1 for one wavelength) */
+  float indexScale;
 } sch_params;
 
 /* Reconstructions of the packed field between grid points. */
@@ -386,10 +388,20 @@ SCH_FN sch_sample sch_sample_cell(
   return s;
 }
 
+/* a sample of the field k (n - 1) in place of n - 1: the index at another wavelength */
+SCH_FN sch_sample sch_scaled(sch_sample s, float k)
+{
+  s.n1 *= k;
+  s.gx *= k;
+  s.gy *= k;
+  s.gz *= k;
+  return s;
+}
+
 SCH_FN sch_sample sch_sample_field(SCH_FIELD field, const sch_params* P, sch_v3 p)
 {
   long cell;
-  return sch_sample_cell(field, P, p, &cell);
+  return sch_scaled(sch_sample_cell(field, P, p, &cell), P->indexScale);
 }
 
 /* 1 if p (relative to the centre) lies in a solid body: where the trilinear interpolation of the
@@ -508,15 +520,16 @@ SCH_FN sch_sample sch_sample_at(SCH_FIELD field, SCH_GLOBAL const sch_uchar* lev
       const int kk = k - q * P->slabCells;
       if (kk >= 1 && kk + 2 <= P->slabCells)
       {
-        return sch_sample_cubic_at(
-          sch_slab_base(field, q), P, i, j, kk, fx, fy, fz - (float)(q * P->slabCells));
+        return sch_scaled(sch_sample_cubic_at(sch_slab_base(field, q), P, i, j, kk, fx, fy,
+                            fz - (float)(q * P->slabCells)),
+          P->indexScale);
       }
 #else
-      return sch_sample_cubic_at(field, P, i, j, k, fx, fy, fz);
+      return sch_scaled(sch_sample_cubic_at(field, P, i, j, k, fx, fy, fz), P->indexScale);
 #endif
     }
   }
-  return sch_sample_cell(field, P, p, cell);
+  return sch_scaled(sch_sample_cell(field, P, p, cell), P->indexScale);
 }
 
 SCH_FN sch_sample sch_sample_pt(SCH_FIELD field, SCH_GLOBAL const sch_uchar* levels,

@@ -42,6 +42,15 @@ std::vector<ReportEntry> ImageReport(const SessionImage& image)
     number("bench_dark_share", result.BenchDark);
     text("bench_model", result.BenchModel);
   }
+  if (!result.Spectrum.empty())
+  {
+    // a band of wavelengths: how it was sampled, and n - 1's scale at its long and short ends
+    text("spectrum", result.Spectrum);
+    ReportEntry scale;
+    scale.Name = "spectrum_index_scale";
+    scale.Numbers = { result.SpectrumScale[0], result.SpectrumScale[1] };
+    out.push_back(std::move(scale));
+  }
   const TraceResult::CameraReadouts& cam = result.Camera;
   if (cam.Active)
   {

@@ -97,9 +97,10 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   for (int pass = 0; pass < s.Passes; ++pass)
   {
     P.pass = sums.Passes + pass;
-    // Camera Lens: the kernels trace this pass's tilted beam (Pk); the splatter bins on P's film
+    // Camera Lens: the kernels trace this pass's tilted beam (Pk), a band this pass's wavelength;
+    // the splatter bins on P's film
     sch_params Pk = P;
-    CameraPass(s, Pk, P.pass, splat.lensTilt);
+    splat.BeginPass(Pk, P.pass);
     for (std::size_t first = 0; first < rays; first += chunk)
     {
       const std::size_t count = std::min(chunk, rays - first);
