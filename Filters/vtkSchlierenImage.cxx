@@ -274,6 +274,10 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.FilmDistance = self->GetFilmDistance();
   s.Wavelength = self->GetWavelength();
   s.ReferenceTilt = self->GetReferenceTilt();
+  s.WavelengthRange[0] = self->GetWavelengthRange()[0];
+  s.WavelengthRange[1] = self->GetWavelengthRange()[1];
+  s.WavelengthBins = self->GetWavelengthBins();
+  s.Disperse = static_cast<schlieren::Dispersion>(self->GetDispersion());
   s.BackgroundDistance = self->GetBackgroundDistance();
   s.BackgroundPattern = self->GetBackgroundPattern();
   s.BackgroundPeriod = self->GetBackgroundPeriod();
@@ -811,6 +815,8 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FilmDistance: " << this->FilmDistance << "\n";
   os << indent << "Wavelength: " << this->Wavelength << " nm\n";
   os << indent << "ReferenceTilt: " << this->ReferenceTilt << " fringes per world unit\n";
+  os << indent << "WavelengthRange: " << this->WavelengthRange[0] << " " << this->WavelengthRange[1]
+     << " nm, WavelengthBins: " << this->WavelengthBins << ", Dispersion: " << this->Dispersion << "\n";
   os << indent << "BackgroundDistance: " << this->BackgroundDistance << "\n";
   os << indent << "BackgroundPattern: " << (this->BackgroundPattern == STRIPES ? "Stripes" : "Dots")
      << "\n";

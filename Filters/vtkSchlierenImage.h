@@ -14,8 +14,8 @@
  * Point arrays of the output:
  * - `intensity` (float, the active scalars): the image the cutoff forms;
  * - `deflection` (float, 2 components): the mean exit-direction change along film x and y, radians;
- * - `rgb` (float, 3 components in [0, 1]; ColorFilter only): hue from the direction of the
- *   deflection, value k|e|;
+ * - `rgb` (float, 3 components in [0, 1]; ColorFilter: hue from the direction of the
+ *   deflection, value k|e|; a WavelengthRange: the colour of the light that reached the pixel);
  * - `phase` (float, radians; Interferometry only): 2 pi / Wavelength times the optical path
  *   excess against the index where the ray entered;
  * - `bos_displacement` (float, 2 components, world units; BOS only): the apparent shift of the
@@ -429,6 +429,26 @@ public:
 
   ///@{
   /**
+   * White light (docs/BENCH.md "Light"): a band of vacuum wavelengths, nm, flat in wavenumber
+   * (0 0, the default: the one Wavelength, which is then the wavelength the input's n - 1 holds);
+   * WavelengthBins (16, [1, 4096]) bins traced one per pass; Dispersion AIR (n - 1 scaled by
+   * air's Ciddor index) or NO_DISPERSION. The output gets `rgb`, the colour of the light.
+   */
+  vtkSetVector2Macro(WavelengthRange, double);
+  vtkGetVector2Macro(WavelengthRange, double);
+  vtkSetMacro(WavelengthBins, int);
+  vtkGetMacro(WavelengthBins, int);
+  enum DispersionModel
+  {
+    AIR = 0,
+    NO_DISPERSION = 1
+  };
+  vtkSetMacro(Dispersion, int);
+  vtkGetMacro(Dispersion, int);
+  ///@}
+
+  ///@{
+  /**
    * BOS: distance from the front of the volume's box (where the beam enters) to the background,
    * world units (>= 0 and finite, else an error). Default 1.
    */
@@ -590,6 +610,9 @@ protected:
   double FilmDistance = 0.0;
   double Wavelength = 632.8;
   double ReferenceTilt = 0.0;
+  double WavelengthRange[2] = { 0.0, 0.0 };
+  int WavelengthBins = 16;
+  int Dispersion = AIR;
   double BackgroundDistance = 1.0;
   int BackgroundPattern = DOTS;
   double BackgroundPeriod = 0.0;

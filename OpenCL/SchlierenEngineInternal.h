@@ -101,7 +101,8 @@ struct Splatter
   /// Camera Lens: this pass's tilt (CameraPass); camera: a camera images the focus plane
   double lensTilt[2] = { 0, 0 };
   bool camera = false;
-  /// A band of wavelengths (SpectralPass): this pass's colour, and Wavelength / its wavelength
+  /// A band of wavelengths (SpectralWavelength): this pass's X, Y, Z (summed in the film's
+  /// Red, Green and Blue channels), and Wavelength / its wavelength
   /// (ReferenceTilt is a path difference counted in Wavelength's fringes)
   bool white = false;
   double passColour[3] = { 1, 1, 1 };
@@ -136,10 +137,12 @@ TraceResult::CameraReadouts ComputeCamera(const TraceSettings& s, const FilmGeom
 double SpectralWavelength(const TraceSettings& s, int pass);
 /** (n(nm) - 1) / (n(Wavelength) - 1) under s.Disperse. */
 double DispersionScale(const TraceSettings& s, double nm);
-/** The colour of light of wavelength nm: CIE 1931 (an analytic fit), linear sRGB, unnormalised. */
-void SpectralColour(double nm, double rgb[3]);
-/** The mean SpectralColour of passes 0 .. passes - 1: the band's white. */
-void SpectrumMeanColour(const TraceSettings& s, int passes, double rgb[3]);
+/** The CIE 1931 tristimulus values of light of wavelength nm (an analytic fit, Wyman et al. 2013). */
+void SpectralXYZ(double nm, double xyz[3]);
+/** The mean SpectralXYZ of passes 0 .. passes - 1: the band's white. */
+void SpectrumMeanXYZ(const TraceSettings& s, int passes, double xyz[3]);
+/** Linear sRGB in [0, 1] of a pixel's X, Y, Z as shares of the band's white's (1, 1, 1: white). */
+void BandColour(const double share[3], float rgb[3]);
 /** The field data's account of the band after `passes` passes; scale: n - 1's at its ends. */
 std::string SpectrumText(const TraceSettings& s, int passes, double scale[2]);
 

@@ -199,11 +199,11 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
   const bool white = s.WhiteLight() && s.Mode != Cutoff::ColorFilter;
   if (s.Mode == Cutoff::ColorFilter || white)
     r.RGB.assign(3 * n, 0.f);
-  // a band: rgb per channel over the band's white (the mean colour of the passes traced)
+  // a band: X, Y, Z (summed in Red, Green, Blue) over the band's white, the mean of the passes'
   double bandWhite[3] = { 1, 1, 1 };
   if (s.WhiteLight())
   {
-    SpectrumMeanColour(s, sums.Passes, bandWhite);
+    SpectrumMeanXYZ(s, sums.Passes, bandWhite);
     r.Spectrum = SpectrumText(s, sums.Passes, r.SpectrumScale);
   }
   if (s.Mode == Cutoff::Interferometry)
@@ -289,12 +289,10 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
       // elsewhere they are of the light that landed, its share of each colour times I
       const bool perPhoton = weighted || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::Shadowgraph;
       const double sum[3] = { sums.Red[i], sums.Green[i], sums.Blue[i] };
+      double share[3];
       for (int a = 0; a < 3; ++a)
-      {
-        const double v = perPhoton ? sum[a] / (passes * bandWhite[a])
-                                   : (c > 0 ? I * sum[a] / (c * bandWhite[a]) : 0.0);
-        r.RGB[3 * i + a] = static_cast<float>(std::min(1.0, std::max(0.0, v)));
-      }
+        share[a] = perPhoton ? sum[a] / (passes * bandWhite[a]) : (c > 0 ? I * sum[a] / (c * bandWhite[a]) : 0.0);
+      BandColour(share, &r.RGB[3 * i]);
     }
   }
   r.CutoffScaleUsed = (s.Mode == Cutoff::Shadowgraph || s.Mode == Cutoff::Interferometry || s.Mode == Cutoff::BOS) ? 0.0 : k;

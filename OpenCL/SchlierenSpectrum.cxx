@@ -5,8 +5,9 @@
 // band and B passes take every bin once; inside its bin the wavenumber is the centre (Jitter off)
 // or a hashed point (Jitter on: stratified, converging to the band's integral). The pass traces
 // n - 1 scaled to its wavelength (Dispersion Air: standard air's Ciddor index relative to
-// Wavelength's), its phase is 2 pi / lambda of its path, and its photons carry the colour of
-// lambda (CIE 1931, linear sRGB), normalised in Finalize so that the band's light is white.
+// Wavelength's), its phase is 2 pi / lambda of its path, and its photons carry the tristimulus
+// values of lambda (CIE 1931 X, Y, Z: every weight positive, as a camera's channels); Finalize
+// divides each pixel's sums by the band's (so that its light is white, D65) and converts to sRGB.
 #include "SchlierenEngineInternal.h"
 #include "SchlierenIndexModels.h"
 
@@ -61,29 +62,38 @@ double DispersionScale(const TraceSettings& s, double nm)
   return AirIndex(nm) / AirIndex(s.Wavelength);
 }
 
-void SpectralColour(double nm, double rgb[3])
+void SpectralXYZ(double nm, double xyz[3])
 {
   const double X = 1.056 * Lobe(nm, 599.8, 37.9, 31.0) + 0.362 * Lobe(nm, 442.0, 16.0, 26.7) -
     0.065 * Lobe(nm, 501.1, 20.4, 26.2);
   const double Y = 0.821 * Lobe(nm, 568.8, 46.9, 40.5) + 0.286 * Lobe(nm, 530.9, 16.3, 31.1);
   const double Z = 1.217 * Lobe(nm, 437.0, 11.8, 36.0) + 0.681 * Lobe(nm, 459.0, 26.0, 13.8);
-  // XYZ to linear sRGB (IEC 61966-2-1); a single wavelength lies outside the gamut: a channel
-  // may be negative, and only sums over the band are shown
-  rgb[0] = 3.2406 * X - 1.5372 * Y - 0.4986 * Z;
-  rgb[1] = -0.9689 * X + 1.8758 * Y + 0.0415 * Z;
-  rgb[2] = 0.0557 * X - 0.2040 * Y + 1.0570 * Z;
+  xyz[0] = X;
+  xyz[1] = Y;
+  xyz[2] = Z;
 }
 
-void SpectrumMeanColour(const TraceSettings& s, int passes, double rgb[3])
+void SpectrumMeanXYZ(const TraceSettings& s, int passes, double xyz[3])
 {
-  rgb[0] = rgb[1] = rgb[2] = 0;
+  xyz[0] = xyz[1] = xyz[2] = 0;
   for (int p = 0; p < passes; ++p)
   {
     double c[3];
-    SpectralColour(SpectralWavelength(s, p), c);
+    SpectralXYZ(SpectralWavelength(s, p), c);
     for (int a = 0; a < 3; ++a)
-      rgb[a] += c[a] / passes;
+      xyz[a] += c[a] / passes;
   }
+}
+
+void BandColour(const double share[3], float rgb[3])
+{
+  // the band's white as D65 (a von Kries scaling in XYZ), then XYZ to linear sRGB (IEC
+  // 61966-2-1), which takes D65 to (1, 1, 1); clamped to [0, 1] where a colour is out of gamut
+  const double X = 0.95047 * share[0], Y = share[1], Z = 1.08883 * share[2];
+  const double c[3] = { 3.2406 * X - 1.5372 * Y - 0.4986 * Z, -0.9689 * X + 1.8758 * Y + 0.0415 * Z,
+    0.0557 * X - 0.2040 * Y + 1.0570 * Z };
+  for (int a = 0; a < 3; ++a)
+    rgb[a] = static_cast<float>(std::min(1.0, std::max(0.0, c[a])));
 }
 
 std::string SpectrumText(const TraceSettings& s, int passes, double scale[2])
@@ -112,7 +122,7 @@ void Splatter::BeginPass(sch_params& Pk, int pass)
   Pk.indexScale = static_cast<float>(DispersionScale(S, nm));
   twoPiOverLambda = 2 * 3.14159265358979323846 / (nm * 1e-9);
   tiltScale = S.Wavelength / nm;
-  SpectralColour(nm, passColour);
+  SpectralXYZ(nm, passColour);
 }
 
 } // namespace schlieren

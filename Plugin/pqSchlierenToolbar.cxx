@@ -537,7 +537,9 @@ void pqSchlierenFollower::openImageView(pqRenderView* view3D)
   vtkSMProxy* repr = controller->Show(source, 0, vtkSMViewProxy::SafeDownCast(viewProxy));
   if (repr)
   {
-    const bool colour = vtkSMPropertyHelper(source, "Cutoff").GetAsInt() == 4; // ColorFilter
+    // ColorFilter, or a band of wavelengths: the rgb colours
+    const bool colour = vtkSMPropertyHelper(source, "Cutoff").GetAsInt() == 4 ||
+      vtkSMPropertyHelper(source, "WavelengthRange").GetAsDouble(1) > 0;
     if (colour)
     {
       vtkSMPVRepresentationProxy::SetScalarColoring(repr, "rgb", vtkDataObject::POINT);

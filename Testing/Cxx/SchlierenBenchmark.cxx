@@ -426,7 +426,9 @@ void Sources(const std::string& backends, int film, int size)
     // the last row: the point source seen by a lens of f = 0.1 m at f/0.5 (D = 0.2) focused 0.5
     // in front of the sphere's centre, 1 from the focus plane: the sphere blurred by about 0.1
     // (6 pixels of a 128 film), the aperture sampled one lens point per pass (docs/BENCH.md "Camera")
-    for (int row = 0; row < 5; ++row)
+    // and the point source under a white band, 400-700 nm in 16 bins (one wavelength per pass,
+    // n - 1 scaled by air's dispersion: docs/BENCH.md "Light")
+    for (int row = 0; row < 6; ++row)
     {
       const BenchSource src = row == 1 ? BenchSource::Slit
         : row == 2                     ? BenchSource::Disc
@@ -443,6 +445,12 @@ void Sources(const std::string& backends, int film, int size)
         s.FNumber = 0.5;
         s.FocusPlane = 0.5;
         s.CameraDistance = 1.5;
+      }
+      if (row == 5)
+      {
+        s.WavelengthRange[0] = 400;
+        s.WavelengthRange[1] = 700;
+        s.WavelengthBins = 16;
       }
       s.Source = src;
       s.SourceSize[0] = s.SourceSize[1] = 0.5;
@@ -484,7 +492,7 @@ void Sources(const std::string& backends, int film, int size)
       const double msView = 1e3 * Since(t1) / 8;
       const char* names[] = { "Point", "Slit", "Rectangle", "Disc", "Gaussian" };
       std::printf("| %s | %s | %.3g | %.3g, %.3g, %.3g | %s | %.1f |\n", b.c_str(),
-        row == 4 ? "Point, Lens f/0.5 defocused" : names[static_cast<int>(src)],
+        row == 4 ? "Point, Lens f/0.5 defocused" : row == 5 ? "Point, white 400-700 nm" : names[static_cast<int>(src)],
         rate, rms[0], rms[2], rms[4], need ? std::to_string(need).c_str() : "> 16", msView);
       std::fflush(stdout);
     }

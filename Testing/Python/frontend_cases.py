@@ -58,7 +58,8 @@ IMAGES = {
                          BackgroundPeriod=3.0, FilmDistance=0.2, Resolution=[36, 32], Passes=2,
                          Filter="Cone", FilterWidth=2.0),
     "settings_fringes": dict(Cutoff="Interferometry", Wavelength=532.0, ReferenceTilt=4.0,
-                             Framing="Silhouette",
+                             Framing="Silhouette", WavelengthRange=[450.0, 650.0],
+                             WavelengthBins=4, Dispersion="None",
                              Resolution=[36, 36], Passes=2, Integrator="Euler", StepSize=0.3),
     # a lens focused off the volume's centre: the aperture sampled over the passes
     "settings_camera": dict(Cutoff="KnifeEdge", Camera="Lens", CameraFocalLength=0.2, FNumber=2.8,
