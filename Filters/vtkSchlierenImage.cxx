@@ -260,6 +260,7 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.Source = static_cast<schlieren::BenchSource>(self->GetSource());
   s.SourceSize[0] = self->GetSourceSize()[0];
   s.SourceSize[1] = self->GetSourceSize()[1];
+  s.StopDiameter = self->GetStopDiameter();
   s.CollimatorFocalLength = self->GetCollimatorFocalLength();
   s.SchlierenFocalLength = self->GetSchlierenFocalLength();
   s.KnifeCut = self->GetKnifeCut();

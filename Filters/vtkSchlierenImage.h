@@ -354,6 +354,13 @@ public:
   };
   vtkSetMacro(Source, int);
   vtkGetMacro(Source, int);
+  /**
+   * CIRCULAR and COMPLEMENT_CIRCULAR: the stop's diameter in the cutoff plane, mm ([0, 10000]; 0,
+   * the default: the idealised stops of CutoffScale). With a diameter the weight is the share of
+   * the source's image (POINT, DISC or GAUSSIAN_SPOT, shifted by f2 |e|) the stop lets through.
+   */
+  vtkSetMacro(StopDiameter, double);
+  vtkGetMacro(StopDiameter, double);
   vtkSetVector2Macro(SourceSize, double);
   vtkGetVector2Macro(SourceSize, double);
   vtkSetMacro(CollimatorFocalLength, double);
@@ -596,6 +603,7 @@ protected:
   double CutoffScale = 0.0;
   int Source = POINT_SOURCE;
   double SourceSize[2] = { 1.0, 1.0 };
+  double StopDiameter = 0.0;
   double CollimatorFocalLength = 1.0;
   double SchlierenFocalLength = 1.0;
   double KnifeCut = 0.5;

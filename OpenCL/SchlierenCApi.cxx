@@ -175,6 +175,7 @@ const std::vector<Property>& Properties()
     SCH_NUM(CollimatorFocalLength, "double", CollimatorFocalLength, double),
     SCH_NUM(SchlierenFocalLength, "double", SchlierenFocalLength, double),
     SCH_NUM(KnifeCut, "double", KnifeCut, double),
+    SCH_NUM(StopDiameter, "double", StopDiameter, double),
     SCH_NUM(BitDepth, "int", BitDepth, int),
     SCH_NUM(SaturationWarning, "double", SaturationWarning, double),
     SCH_ENUM(Camera, Camera, schlieren::CameraModel, "None", "Ideal", "Lens"),

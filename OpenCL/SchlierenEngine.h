@@ -277,6 +277,11 @@ struct TraceSettings
   double CollimatorFocalLength = 1.0;   ///< f1, m
   double SchlierenFocalLength = 1.0;    ///< f2, m
   double KnifeCut = 0.5;                ///< fraction of the source image's light the knife covers, [0, 0.999]
+  /// Circular and ComplementCircular: the stop's diameter in the cutoff plane, mm (an aperture
+  /// the light passes through, or an opaque disc); 0 (the default): the idealised stops,
+  /// I = 1 - k|e| and k|e|. With a diameter the response is the share of the source's image
+  /// (Point, Disc or Gaussian, shifted by f2 |e|) inside the stop, in closed form.
+  double StopDiameter = 0.0;
   /// Read-outs only (applied in Finalize): the camera's bit depth, for the smallest deflection one
   /// grey level resolves, and the share of lit pixels at saturation above which a warning is given.
   int BitDepth = 8;
@@ -532,8 +537,19 @@ struct BenchResponse
   double DarkWeight = 0, SaturatedWeight = 1; ///< the passing share at those ends
   double Resolvable = 0; ///< eps of one grey level of BitDepth: 1 / ((2^bits - 1) Open Sensitivity)
   std::string Model;
+  /// A circular stop of StopDiameter (Circular, ComplementCircular): Size is the source image's
+  /// R' (Disc) or sigma (Gaussian), 0 for Point; the Gaussian's share inside the stop is tabulated
+  /// over the shift (StopTable, StopStep apart, from 0)
+  bool Stop = false;
+  bool Complement = false;
+  double StopRadius = 0;
+  std::vector<double> StopTable;
+  double StopStep = 0;
 };
 BenchResponse ComputeBench(const TraceSettings& settings);
+/** A circular stop's weight for a source image shifted by s (m, >= 0) in the cutoff plane: the
+ * share of the image inside the stop (Circular) or outside it (ComplementCircular). */
+double StopWeight(const BenchResponse& b, double s);
 
 /** Turns sums into the image: intensity per the cutoff, mean deflection. */
 TraceResult Finalize(const Volume& volume, const TraceSettings& settings, const FilmSums& sums);

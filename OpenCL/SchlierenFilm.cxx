@@ -300,10 +300,10 @@ float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_
                        : sch_knife_weight(ex, ey, ca, sa, k);
       break;
     case Cutoff::Circular:
-      w = sch_circular_weight(ex, ey, k, 0);
-      break;
     case Cutoff::ComplementCircular:
-      w = sch_circular_weight(ex, ey, k, 1);
+      // a stop in mm: the share of the source's image, shifted by f2 |e|, it lets through
+      w = Bench.Stop ? static_cast<float>(StopWeight(Bench, S.SchlierenFocalLength * std::hypot(double(ex), double(ey))))
+                     : sch_circular_weight(ex, ey, k, S.Mode == Cutoff::ComplementCircular ? 1 : 0);
       break;
     case Cutoff::Interferometry:
       w = sch_fringe_weight(static_cast<float>(phase), static_cast<float>(tilt * tiltScale * landA));

@@ -193,6 +193,14 @@ void CheckSettings(const TraceSettings& s)
   if (!(s.KnifeCut >= 0 && s.KnifeCut <= 0.999))
     OutOfRange("KnifeCut", s.KnifeCut, "in [0, 0.999]: the share of the source's image the knife "
       "covers (all of it would leave no light)");
+  if (!(s.StopDiameter >= 0 && s.StopDiameter <= 1e4))
+    OutOfRange("StopDiameter", s.StopDiameter, "in [0, 10000] mm (0: the idealised stops of Cutoff Scale)");
+  if (s.StopDiameter > 0 && (s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular) &&
+    (s.Source == BenchSource::Slit || s.Source == BenchSource::Rectangle))
+    throw Error(std::string("A circular stop (StopDiameter ") + Num(s.StopDiameter) + " mm) takes a Point, "
+      "Disc or Gaussian source, not a " + (s.Source == BenchSource::Slit ? "Slit" : "Rectangle") +
+      ": a slit's image is cut by a knife (Cutoff KnifeEdge). Choose Source Disc (a pinhole) or set "
+      "StopDiameter to 0.");
   if (s.BitDepth < 1 || s.BitDepth > 32)
     OutOfRange("BitDepth", s.BitDepth, "in [1, 32] bits");
   if (!(s.SaturationWarning >= 0 && s.SaturationWarning <= 1))

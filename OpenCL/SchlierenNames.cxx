@@ -71,7 +71,7 @@ std::string TraceSettings::PhotonKey() const
     << ':' << DeviceName << ' ' << RaysPerWorkItem
     << ' ' << RankIndex << ' ' << RankCount
     << ' ' << static_cast<int>(Source) << ' ' << SourceSize[0] << ' ' << SourceSize[1] << ' '
-    << CollimatorFocalLength << ' ' << SchlierenFocalLength << ' ' << KnifeCut;
+    << CollimatorFocalLength << ' ' << SchlierenFocalLength << ' ' << KnifeCut << ' ' << StopDiameter;
   // the camera (SourceGridDistance is a read-out only)
   k << ' ' << static_cast<int>(Camera) << ' ' << CameraFocalLength << ' ' << FNumber << ' '
     << CameraDistance << ' ' << FocusPlane;

@@ -416,6 +416,110 @@ void TestPointUnchanged(bool opencl)
   std::printf("Point source unchanged by the bench's settings (%s)\n", opencl ? "OpenCL" : "CPU");
 }
 
+// Circular stops in mm (StopDiameter): the share of the source's image, shifted by s = f2 |e|,
+// inside a circular aperture of radius rho (Circular) or outside an opaque disc (Complement),
+// against shares computed here another way: a disc's by summing its chords inside the circle, a
+// Gaussian's by integrating it over the circle on a polar grid, the point source's as a step.
+double DiscInsideByChords(double a, double rho, double d)
+{
+  const int n = 200000;
+  double sum = 0;
+  for (int k = 0; k < n; ++k)
+  {
+    const double x = d - a + 2 * a * (k + 0.5) / n; // across the source's image, centred at d
+    const double ys = std::sqrt(std::max(0.0, a * a - (x - d) * (x - d)));
+    const double yb = std::fabs(x) < rho ? std::sqrt(rho * rho - x * x) : 0.0;
+    sum += 2 * std::min(ys, yb); // both chords are centred on y = 0
+  }
+  return sum * (2 * a / n) / (kPi * a * a);
+}
+
+double GaussianInsideByGrid(double sigma, double rho, double d)
+{
+  const int nr = 600, nt = 600;
+  double sum = 0;
+  for (int i = 0; i < nr; ++i)
+    for (int k = 0; k < nt; ++k)
+    {
+      const double r = rho * (i + 0.5) / nr, t = 2 * kPi * (k + 0.5) / nt;
+      const double x = r * std::cos(t) - d, y = r * std::sin(t);
+      sum += std::exp(-0.5 * (x * x + y * y) / (sigma * sigma)) * r;
+    }
+  return sum * (rho / nr) * (2 * kPi / nt) / (2 * kPi * sigma * sigma);
+}
+
+void TestStops()
+{
+  const double f1 = 1.0, f2 = 1.0, n0m1 = 3e-4;
+  // mm: rho = 0.8 mm, larger than the disc's image (R' = 0.5 mm), and 0.3 mm, smaller than it
+  for (double diameter : { 1.6, 0.6 })
+  for (BenchSource src : { BenchSource::Disc, BenchSource::Gaussian, BenchSource::Point })
+    for (Cutoff mode : { Cutoff::Circular, Cutoff::ComplementCircular })
+    {
+      const double rho = 0.5 * diameter * 1e-3;
+      const double h = 1.0; // mm: a disc's image R' = 0.5 mm, a Gaussian's sigma = 0.25 mm
+      const double size = src == BenchSource::Disc ? 0.5e-3 * h : 0.25e-3 * h;
+      double worst = 0;
+      for (double sh : Sweep(0.0, 1.5e-3, 13)) // the image's shift in the cutoff plane, m
+      {
+        if (src == BenchSource::Point && std::fabs(sh - rho) < 0.05e-3)
+          continue; // the step itself: the slab's own deflection error decides which side
+        const double G = sh / f2 * (1 + n0m1) / W;
+        Slab slab(n0m1, G);
+        TraceSettings s = BenchSettings(src, h, f1, f2, 0.5);
+        s.Mode = mode;
+        s.StopDiameter = diameter;
+        const TraceResult r = Trace(slab.V, s);
+        const double dy = 2 * H / (NX - 1);
+        const double tolAbs = 2 * W * 2 * (std::fabs(n0m1) + std::fabs(G) * H) * kFloatEps / (2 * dy);
+        for (int j = 0; j < kFilm; ++j)
+          for (int i = 0; i < kFilm; ++i)
+          {
+            const std::size_t p = static_cast<std::size_t>(j) * kFilm + i;
+            const double y = r.Film.Center[1] + r.Film.Corner[1] + (j + 0.5) * r.Film.PixelSize;
+            const double ey = G * W / (1 + n0m1 + G * y);
+            const double d = f2 * std::fabs(ey);
+            double inside = src == BenchSource::Disc ? DiscInsideByChords(size, rho, d)
+              : src == BenchSource::Gaussian         ? GaussianInsideByGrid(size, rho, d)
+                                                     : (d < rho ? 1.0 : 0.0);
+            const double want = mode == Cutoff::Circular ? inside : 1 - inside;
+            // float weights, the deflection's error times the response's slope (at most
+            // 2 / (pi R') for a disc, 1 / (sigma sqrt(2 pi)) for a Gaussian), the Gaussian's table
+            const double slope = src == BenchSource::Disc ? 2 / (kPi * size) : 1 / (size * std::sqrt(2 * kPi));
+            const double tolE = DeflectionTolerance() * std::fabs(ey) + tolAbs;
+            const double tol = 16 * kFloatEps + (src == BenchSource::Point ? 0 : f2 * tolE * slope) +
+              (src == BenchSource::Gaussian ? 1e-5 : 2e-7);
+            worst = std::max(worst, std::fabs(r.Intensity[p] - want));
+            CHECK(std::fabs(r.Intensity[p] - want) <= tol,
+              std::string("stop: ") + CutoffName(mode) + " I = " + std::to_string(r.Intensity[p]) +
+                " against " + std::to_string(want) + " at shift " + std::to_string(d * 1e3) + " mm");
+          }
+        if (src == BenchSource::Disc && sh == 0.0 && diameter == 1.6)
+        {
+          // the range: the stop begins to cut the image at (rho - R') / f2, covers it at (rho + R') / f2
+          const bool c = mode == Cutoff::Circular;
+          CHECK(std::fabs(r.BenchRange[c ? 1 : 0] - (rho - size) / f2) < 1e-12 &&
+              std::fabs(r.BenchRange[c ? 0 : 1] - (rho + size) / f2) < 1e-12,
+            "stop: bench_range from rho -/+ R'");
+          CHECK(r.BenchModel.find("1.6 mm") != std::string::npos, "stop: the model names the stop: " + r.BenchModel);
+        }
+      }
+      std::printf("stop %s, %s: max |I - share| = %.3g over shifts 0..1.5 mm (rho = %g mm)\n",
+        CutoffName(mode), src == BenchSource::Disc ? "disc R' 0.5 mm" : src == BenchSource::Gaussian
+          ? "Gaussian sigma 0.25 mm" : "point", worst, rho * 1e3);
+    }
+  // StopDiameter 0 keeps the idealised stops: bit for bit
+  Slab slab(n0m1, 2e-3);
+  TraceSettings s = BenchSettings(BenchSource::Disc, 1.0, f1, f2, 0.5);
+  s.Mode = Cutoff::Circular;
+  s.CutoffScale = 500;
+  const TraceResult a = Trace(slab.V, s);
+  s.Source = BenchSource::Point;
+  const TraceResult b = Trace(slab.V, s);
+  CHECK(std::memcmp(a.Intensity.data(), b.Intensity.data(), a.Intensity.size() * sizeof(float)) == 0,
+    "StopDiameter 0: the idealised circular stop whatever the source");
+}
+
 void TestErrors()
 {
   Slab slab(3e-4, 1e-3);
@@ -441,6 +545,15 @@ void TestErrors()
   schtest::ExpectError("BitDepth 0", run([](TraceSettings& s) { s.BitDepth = 0; }), { "BitDepth", "[1, 32]" });
   schtest::ExpectError("SaturationWarning 2", run([](TraceSettings& s) { s.SaturationWarning = 2; }),
     { "SaturationWarning", "[0, 1]" });
+  schtest::ExpectError("StopDiameter -1", run([](TraceSettings& s) {
+    s.Mode = Cutoff::Circular;
+    s.StopDiameter = -1;
+  }), { "StopDiameter", "[0, 10000] mm" });
+  schtest::ExpectError("a slit with a circular stop", run([](TraceSettings& s) {
+    s.Mode = Cutoff::ComplementCircular;
+    s.Source = BenchSource::Slit;
+    s.StopDiameter = 2;
+  }), { "circular stop", "Disc" });
   schtest::ExpectError("Source 7", run([](TraceSettings& s) { s.Source = static_cast<BenchSource>(7); }),
     { "Source", "Gaussian" });
 }
@@ -453,6 +566,7 @@ int main()
   TestDisc();
   TestGaussian();
   TestIntegrators();
+  TestStops();
   TestErrors();
   TestPointUnchanged(false);
   if (schtest::HaveOpenCL())

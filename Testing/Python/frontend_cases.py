@@ -19,7 +19,8 @@ SCENES = {
 # small scenes for the cases that set every SchlierenImage property away from its default
 # (SETTINGS_CASES): the property -> engine setting mapping of either front end cannot drift
 # unnoticed
-for _case in ("settings_color", "settings_bench", "settings_bos", "settings_fringes", "settings_camera"):
+for _case in ("settings_color", "settings_bench", "settings_bos", "settings_fringes", "settings_camera",
+              "settings_stop"):
     SCENES[_case] = dict(Scene="GaussianSphere", Dimensions=[28, 26, 24],
                          Bounds=[-1.0, 1.0, -0.9, 0.9, -0.8, 0.8], Amplitude=2e-4, Width=0.35,
                          Body="Sphere" if _case == "settings_bos" else "None", BodyRadius=0.2)
@@ -61,6 +62,9 @@ IMAGES = {
                              Framing="Silhouette", WavelengthRange=[450.0, 650.0],
                              WavelengthBins=4, Dispersion="None",
                              Resolution=[36, 36], Passes=2, Integrator="Euler", StepSize=0.3),
+    # a pinhole's image through a circular aperture in mm (the bench's closed-form stop)
+    "settings_stop": dict(Cutoff="Circular", Source="Disc", SourceSize=[1.0, 1.0], StopDiameter=1.2,
+                          Resolution=[36, 36], Passes=2),
     # a lens focused off the volume's centre: the aperture sampled over the passes
     "settings_camera": dict(Cutoff="KnifeEdge", Camera="Lens", CameraFocalLength=0.2, FNumber=2.8,
                             CameraDistance=1.5, FocusPlane=0.2, SourceGridDistance=3.0,
