@@ -253,6 +253,22 @@ int main()
     cases.push_back(c);
   }
 
+  {
+    // white light (docs/BENCH.md "Light"): each pass a wavelength of the band, n - 1 scaled in
+    // every piece's kernels, the colours summed on rank 0
+    Case c{ "Gaussian interferogram, 400-700 nm", &gauss, TraceSettings() };
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.ViewDirection[0] = 0.3;
+    c.Settings.ViewDirection[2] = -1;
+    c.Settings.Mode = Cutoff::Interferometry;
+    c.Settings.ReferenceTilt = 3;
+    c.Settings.WavelengthRange[0] = 400;
+    c.Settings.WavelengthRange[1] = 700;
+    c.Settings.WavelengthBins = 4;
+    c.Settings.Passes = 4;
+    cases.push_back(c);
+  }
+
   const std::vector<std::pair<const char*, Decomposition>> decos = {
     { "whole", Blocks(n, {}, {}, {}) },
     { "2 slabs along z", Blocks(n, {}, {}, { 0.5 }) },
