@@ -138,7 +138,16 @@ try:
             fd = image.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
             value = lambda n: ([fd.GetArray(n).GetValue(i) for i in range(fd.GetArray(n).GetNumberOfValues())]
                                if fd.GetArray(n) is not None else None)
+            spectrum = fd.GetAbstractArray("spectrum")
+            iv = state["image_view"]
+            shown = GetDisplayProperties(image, view=iv) if iv is not None else None
             write_json("fields.json", {"framing": str(image.Framing).strip("'"),
+                                       "wavelength_range": list(image.WavelengthRange),
+                                       "spectrum": spectrum.GetValue(0) if spectrum is not None else None,
+                                       # what the image view colours the film by, and whether
+                                       # through a colour map (1) or as the colours themselves (0)
+                                       "image_colour": [shown.ColorArrayName[1], int(shown.MapScalars)]
+                                       if shown is not None else None,
                                        "size": [e[1] - e[0] + 1, e[3] - e[2] + 1],
                                        "film_extent": value("film_extent"),
                                        "film_frame_kept": value("film_frame_kept"),
