@@ -1,4 +1,4 @@
-"""The helium plume under a Z-type schlieren bench: a slit cut 30, 50 and 70 %, and a pinhole.
+"""The helium plume under a Z-type schlieren bench: a slit cut 30, 50 and 70 %, a pinhole, and stops in mm.
 
     pvpython Examples/bench_gallery.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
         --output out/bench
@@ -12,8 +12,15 @@ white) and beyond full dark at 70 % (-4.5e-4 rad: the other rim clips to black):
 contrast and a darker background. The pinhole of 1.5 mm at 50 % has the disc's response, steeper
 at the centre ((4 / pi) f2 / R' against the slit's 2 f2 / a0) and rounded toward its ends.
 
-Writes bench_cut30.png, bench_cut50.png, bench_cut70.png, bench_disc50.png, bench.txt (each image's
-read-outs) and, if matplotlib imports, bench.png, a contact sheet with titles.
+The second row: a 0.5 mm pinhole (its image R' = 0.25 mm) through an iris of 1 mm (Circular with
+StopDiameter: light lost where the deflection moves the image past the iris, from 2.5e-4 rad, all
+of it beyond 7.5e-4 rad), onto an opaque disc of 0.6 mm (dark field: light from 5e-5 rad), and a
+0.3 mm pinhole around a colour filter's opaque centre of 0.6 mm (the light that passes takes the
+hue of its deflection's direction).
+
+Writes bench_cut30.png, bench_cut50.png, bench_cut70.png, bench_disc50.png, bench_iris.png,
+bench_darkfield.png, bench_colour.png, bench.txt (each image's read-outs) and, if matplotlib
+imports, bench.png, a contact sheet with titles.
 """
 import argparse
 import os
@@ -30,6 +37,9 @@ def fetch(proxy):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     nx, ny, _ = data.GetDimensions()
     intensity = vtk_to_numpy(data.GetPointData().GetArray("intensity")).astype(float).reshape(ny, nx)
+    rgb = data.GetPointData().GetArray("rgb")
+    if rgb is not None and data.GetPointData().GetArray("intensity").GetRange()[1] > 0:
+        intensity = vtk_to_numpy(rgb).astype(float).reshape(ny, nx, 3)  # the colour filter's picture
     fd = data.GetFieldData()
     fields = {}
     for i in range(fd.GetNumberOfArrays()):
@@ -61,7 +71,13 @@ def main():
     shots = [("bench_cut30", "Slit 1.5 mm, 30 % cut", dict(Source="Slit", SourceSize=[1.5, 10], KnifeCut=0.3)),
              ("bench_cut50", "Slit 1.5 mm, 50 % cut", dict(Source="Slit", SourceSize=[1.5, 10], KnifeCut=0.5)),
              ("bench_cut70", "Slit 1.5 mm, 70 % cut", dict(Source="Slit", SourceSize=[1.5, 10], KnifeCut=0.7)),
-             ("bench_disc50", "Pinhole 1.5 mm, 50 % cut", dict(Source="Disc", SourceSize=[1.5, 1.5], KnifeCut=0.5))]
+             ("bench_disc50", "Pinhole 1.5 mm, 50 % cut", dict(Source="Disc", SourceSize=[1.5, 1.5], KnifeCut=0.5)),
+             ("bench_iris", "Pinhole 0.5 mm, iris 1 mm", dict(Cutoff="Circular", Source="Disc", SourceSize=[0.5, 0.5],
+                                                            StopDiameter=1.0)),
+             ("bench_darkfield", "Pinhole 0.5 mm, disc 0.6 mm", dict(Cutoff="ComplementCircular", Source="Disc",
+                                                                   SourceSize=[0.5, 0.5], StopDiameter=0.6)),
+             ("bench_colour", "Pinhole 0.3 mm, colour filter 0.6 mm", dict(Cutoff="ColorFilter", Source="Disc",
+                                                                         SourceSize=[0.3, 0.3], StopDiameter=0.6))]
     log, panels = [], []
     for name, title, props in shots:
         settings = dict(bench)
@@ -76,6 +92,9 @@ def main():
                 % (name + ".png", title, f["bench_sensitivity"][0], f["bench_range"][0], f["bench_range"][1],
                    f["bench_resolvable_deflection"][0], 100 * f["bench_saturated_share"][0],
                    100 * f["bench_dark_share"][0], np.median(intensity)))
+        if "StopDiameter" in props:
+            # a stop's range: where it begins to cut the source's image and where it covers it
+            line += "\n    " + f["bench_model"][0]
         print(line)
         log.append(line)
     flat = [t for t, p in panels if np.ptp(p) < 0.2]
@@ -90,8 +109,12 @@ def main():
     except ImportError:
         print("matplotlib is not available: no contact sheet")
         return
-    fig, axes = plt.subplots(1, len(panels), figsize=(3.0 * len(panels), 3.3))
-    for ax, (title, picture) in zip(axes, panels):
+    cols = 4
+    rows = (len(panels) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(3.0 * cols, 3.3 * rows))
+    for ax in axes.ravel():
+        ax.axis("off")
+    for ax, (title, picture) in zip(axes.ravel(), panels):
         ax.imshow(np.clip(picture, 0, 1), cmap="gray", vmin=0, vmax=1, origin="lower", interpolation="nearest")
         ax.set_title(title, fontsize=10)
         ax.axis("off")

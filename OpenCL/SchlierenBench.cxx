@@ -115,7 +115,8 @@ BenchResponse ComputeStop(const TraceSettings& s)
 {
   BenchResponse b;
   b.Finite = b.Stop = true;
-  b.Complement = s.Mode == Cutoff::ComplementCircular;
+  // the colour filter's opaque centre passes the light it does not cover, as a dark-field disc
+  b.Complement = s.Mode == Cutoff::ComplementCircular || s.Mode == Cutoff::ColorFilter;
   b.Source = static_cast<int>(s.Source);
   const double f2 = s.SchlierenFocalLength;
   b.ImageHeight = s.Source == BenchSource::Point ? 0 : s.SourceSize[0] * 1e-3 * f2 / s.CollimatorFocalLength;
@@ -124,8 +125,13 @@ BenchResponse ComputeStop(const TraceSettings& s)
   const double rho = b.StopRadius;
   std::ostringstream m;
   m.precision(4);
-  m << (b.Complement ? "an opaque disc" : "a circular aperture") << " of " << s.StopDiameter
-    << " mm in the cutoff plane; ";
+  m << (s.Mode == Cutoff::ColorFilter ? "a colour filter with an opaque centre"
+          : b.Complement               ? "an opaque disc"
+                                       : "a circular aperture")
+    << " of " << s.StopDiameter << " mm in the cutoff plane";
+  if (s.Mode == Cutoff::ColorFilter)
+    m << " (the hue of the shift's direction: the image's spread in azimuth is not integrated)";
+  m << "; ";
   double reach = 0; // the image's half width
   if (s.Source == BenchSource::Disc)
   {
@@ -181,7 +187,8 @@ BenchResponse ComputeStop(const TraceSettings& s)
 BenchResponse ComputeBench(const TraceSettings& s)
 {
   BenchResponse b;
-  if ((s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular) && s.StopDiameter > 0)
+  if ((s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular ||
+        s.Mode == Cutoff::ColorFilter) && s.StopDiameter > 0)
     return ComputeStop(s);
   if (s.Source == BenchSource::Point || s.Mode != Cutoff::KnifeEdge)
     return b;

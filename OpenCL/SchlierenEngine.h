@@ -277,10 +277,11 @@ struct TraceSettings
   double CollimatorFocalLength = 1.0;   ///< f1, m
   double SchlierenFocalLength = 1.0;    ///< f2, m
   double KnifeCut = 0.5;                ///< fraction of the source image's light the knife covers, [0, 0.999]
-  /// Circular and ComplementCircular: the stop's diameter in the cutoff plane, mm (an aperture
-  /// the light passes through, or an opaque disc); 0 (the default): the idealised stops,
-  /// I = 1 - k|e| and k|e|. With a diameter the response is the share of the source's image
-  /// (Point, Disc or Gaussian, shifted by f2 |e|) inside the stop, in closed form.
+  /// Circular, ComplementCircular and ColorFilter: the stop's diameter in the cutoff plane, mm (an
+  /// aperture the light passes through, an opaque disc, the colour filter's opaque centre); 0 (the
+  /// default): the idealised stops, I = 1 - k|e|, k|e| and value k|e|. With a diameter the response
+  /// is the share of the source's image (Point, Disc or Gaussian, shifted by f2 |e|) inside the
+  /// aperture or outside the disc, in closed form (the colour filter: on the shift's hue).
   double StopDiameter = 0.0;
   /// Read-outs only (applied in Finalize): the camera's bit depth, for the smallest deflection one
   /// grey level resolves, and the share of lit pixels at saturation above which a warning is given.

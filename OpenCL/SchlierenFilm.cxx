@@ -402,11 +402,17 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
     {
       float cr, cg, cb;
       sch_hue_rgb(ex, ey, &cr, &cg, &cb);
-      // value k|e| (manual k, clamped) or |e| (automatic: k applied in Finalize)
-      const double v = manual ? std::min(1.0, k * absE) : absE;
+      // value k|e| (manual k, clamped) or |e| (automatic: k applied in Finalize); a stop in mm:
+      // the share of the source's image the filter's opaque centre leaves, on the hue of the
+      // shift's direction
+      const double v = Bench.Stop ? StopWeight(Bench, S.SchlierenFocalLength * absE)
+        : manual                  ? std::min(1.0, k * absE)
+                                  : absE;
       F.Red[idx] += v * cr;
       F.Green[idx] += v * cg;
       F.Blue[idx] += v * cb;
+      if (Bench.Stop)
+        F.Weight[idx] += v; // the share passed: the read-outs' dark and full shares
     }
     else if (S.Mode == Cutoff::BOS)
     {

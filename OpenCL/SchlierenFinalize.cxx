@@ -260,12 +260,14 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
         break;
       case Cutoff::ColorFilter:
       {
-        const double scale = (manual ? 1.0 : k) / passes;
+        // the values are final where k was applied per photon or a stop in mm weighed them
+        const bool direct = manual || bench.Stop;
+        const double scale = (direct ? 1.0 : k) / passes;
         r.RGB[3 * i] = static_cast<float>(sums.Red[i] * scale);
         r.RGB[3 * i + 1] = static_cast<float>(sums.Green[i] * scale);
         r.RGB[3 * i + 2] = static_cast<float>(sums.Blue[i] * scale);
-        I = (manual ? 0.0 : k * sums.AbsDeflection[i]) / passes;
-        if (manual)
+        I = (direct ? 0.0 : k * sums.AbsDeflection[i]) / passes;
+        if (direct)
           I = std::max(r.RGB[3 * i], std::max(r.RGB[3 * i + 1], r.RGB[3 * i + 2]));
         break;
       }
@@ -316,7 +318,9 @@ TraceResult Finalize(const Volume& volume, const TraceSettings& s, const FilmSum
       }
     r.BenchSaturated = lit > 0 ? saturated / lit : 0;
     r.BenchDark = lit > 0 ? dark / lit : 0;
-    if (r.BenchSaturated > s.SaturationWarning)
+    // a knife's saturation is the end of its measuring range; a stop's "saturated" pixels (the
+    // whole image passed) are its undisturbed background: no warning
+    if (!bench.Stop && r.BenchSaturated > s.SaturationWarning)
     {
       std::ostringstream msg;
       msg.precision(3);

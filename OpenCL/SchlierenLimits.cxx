@@ -195,7 +195,8 @@ void CheckSettings(const TraceSettings& s)
       "covers (all of it would leave no light)");
   if (!(s.StopDiameter >= 0 && s.StopDiameter <= 1e4))
     OutOfRange("StopDiameter", s.StopDiameter, "in [0, 10000] mm (0: the idealised stops of Cutoff Scale)");
-  if (s.StopDiameter > 0 && (s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular) &&
+  if (s.StopDiameter > 0 &&
+    (s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular || s.Mode == Cutoff::ColorFilter) &&
     (s.Source == BenchSource::Slit || s.Source == BenchSource::Rectangle))
     throw Error(std::string("A circular stop (StopDiameter ") + Num(s.StopDiameter) + " mm) takes a Point, "
       "Disc or Gaussian source, not a " + (s.Source == BenchSource::Slit ? "Slit" : "Rectangle") +

@@ -508,6 +508,31 @@ void TestStops()
         CutoffName(mode), src == BenchSource::Disc ? "disc R' 0.5 mm" : src == BenchSource::Gaussian
           ? "Gaussian sigma 0.25 mm" : "point", worst, rho * 1e3);
     }
+  // the colour filter with an opaque centre of 1.6 mm: the light a disc's image leaves around it,
+  // on the hue of the deflection's direction (+y here: between yellow and green, rgb (0.5, 1, 0))
+  {
+    const double rho = 0.8e-3, size = 0.5e-3;
+    double worst = 0;
+    for (double sh : Sweep(0.0, 1.5e-3, 7))
+    {
+      const double G = sh / f2 * (1 + n0m1) / W;
+      Slab slab(n0m1, G);
+      TraceSettings s = BenchSettings(BenchSource::Disc, 1.0, f1, f2, 0.5);
+      s.Mode = Cutoff::ColorFilter;
+      s.StopDiameter = 1.6;
+      const TraceResult r = Trace(slab.V, s);
+      const std::size_t p = static_cast<std::size_t>(kFilm / 2) * kFilm + kFilm / 2;
+      const double y = r.Film.Center[1] + r.Film.Corner[1] + (kFilm / 2 + 0.5) * r.Film.PixelSize;
+      const double ey = G * W / (1 + n0m1 + G * y);
+      const double share = 1 - DiscInsideByChords(size, rho, f2 * std::fabs(ey));
+      const double hue[3] = { sh > 0 ? 0.5 : 1.0, sh > 0 ? 1.0 : 0.0, 0.0 }; // no deflection: hue 0, red
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, std::fabs(r.RGB[3 * p + c] - share * hue[c]));
+      worst = std::max(worst, std::fabs(r.Intensity[p] - share));
+    }
+    std::printf("colour filter with a 1.6 mm opaque centre, disc R' 0.5 mm: max |rgb - share x hue| = %.3g\n", worst);
+    CHECK(worst < 1e-4, "colour filter in mm: the share outside its centre on the deflection's hue");
+  }
   // StopDiameter 0 keeps the idealised stops: bit for bit
   Slab slab(n0m1, 2e-3);
   TraceSettings s = BenchSettings(BenchSource::Disc, 1.0, f1, f2, 0.5);
