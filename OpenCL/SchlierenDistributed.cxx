@@ -394,8 +394,6 @@ sch_params PieceParams(const DistributedVolume& dv, const TraceSettings& s, cons
     throw Error("Distributed tracing: resolve Auto first (ResolveAuto).");
   if (s.Recon == Reconstruction::Cubic)
     throw Error("Distributed tracing does not take Reconstruction Cubic yet: use Trilinear.");
-  if (s.EstimateError)
-    throw Error("Distributed tracing does not take the step-doubling error estimate yet.");
   if (s.RankCount != 1 || s.RankIndex != 0)
     throw Error("Distributed tracing: RankIndex/RankCount must be 0/1 (every rank traces its piece).");
   const int need = GhostPointsFor(s, dv.Levels.empty() ? 0 : dv.LevelMax);
@@ -940,6 +938,48 @@ std::shared_ptr<OpenCLTracer> PieceBackend(const DistributedVolume& dv, const Tr
 }
 } // namespace
 
+namespace
+{
+/**
+ * TraceAll, with the step-doubling estimate where P asks for it. A walk on the pieces cannot march
+ * a second, private ray across ranks as one process does (sch_record): the rays are traced on the
+ * pieces at the base step and again at twice it, and rank 0 (every rank with `everywhere`) puts the
+ * estimate and the second trace's samples into each record with the arithmetic of sch_record, so
+ * the records equal one process's bit for bit. Both traces march (no line-of-sight sums: one
+ * process marches both).
+ */
+template <typename PointOf>
+std::vector<float> TraceAllEstimated(const DistributedVolume& dv, const sch_params& P, std::size_t count,
+  PointOf pointOf, Parallel& parallel, bool everywhere, DistributedStats* stats, int threads,
+  OpenCLTracer* cl, bool sums = true)
+{
+  if (!P.estimate)
+    return TraceAll(dv, P, count, pointOf, parallel, everywhere, stats, threads, cl, sums);
+  sch_params base = P;
+  base.estimate = 0;
+  sch_params doubled = base;
+  doubled.step = 2.0f * P.step;
+  std::vector<float> rec = TraceAll(dv, base, count, pointOf, parallel, everywhere, stats, threads, cl, false);
+  const std::vector<float> rec2 =
+    TraceAll(dv, doubled, count, pointOf, parallel, everywhere, stats, threads, cl, false);
+  if (rec.empty())
+    return rec;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    float* r = &rec[k * SCH_RECORD];
+    const float* r2 = &rec2[k * SCH_RECORD];
+    const unsigned f1 = static_cast<unsigned>(r[SCH_REC_FLAGS]), f2 = static_cast<unsigned>(r2[SCH_REC_FLAGS]);
+    if ((f1 & SCH_RAY_MISSED) || (f1 & SCH_RAY_BLOCKED))
+      continue;
+    r[SCH_REC_ERROR] = (f2 & SCH_RAY_BLOCKED)
+      ? 0.0f
+      : sch_doubling_error(P.integrator, r[SCH_REC_EX], r[SCH_REC_EY], r2[SCH_REC_EX], r2[SCH_REC_EY]);
+    r[SCH_REC_SAMPLES] += r2[SCH_REC_SAMPLES];
+  }
+  return rec;
+}
+} // namespace
+
 std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const TraceSettings& s,
   const std::vector<float>& ab, Parallel& parallel, bool everywhere, DistributedStats* stats,
   bool lineOfSightSums)
@@ -948,7 +988,7 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const T
   const sch_params P = PieceParams(dv, s, film);
   const std::size_t count = ab.size() / 2;
   const std::shared_ptr<OpenCLTracer> cl = PieceBackend(dv, s, P, lineOfSightSums, parallel, stats);
-  std::vector<float> rec = TraceAll(
+  std::vector<float> rec = TraceAllEstimated(
     dv, P, count,
     [&](std::size_t k, float* a, float* b) {
       *a = ab[2 * k];
@@ -1011,7 +1051,7 @@ void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, 
     // the splatter bins on P's film
     sch_params Pk = P;
     splat.BeginPass(Pk, P.pass);
-    std::vector<float> rec = TraceAll(
+    std::vector<float> rec = TraceAllEstimated(
       dv, Pk, pixels,
       [&](std::size_t k, float* a, float* b) { sch_emit(&Pk, static_cast<int>(k), a, b); },
       parallel, false, stats, s.Threads, cl.get());

@@ -16,8 +16,9 @@
  *
  * On the CPU backend or an OpenCL device (the kernel sch_walk_pieces steps a batch of rays until
  * each leaves the volume or the rank's cells); trilinear reconstruction, fixed steps or the octree
- * up to DistributedOctreeMaxLevel, no solid bodies and no step-doubling estimate; other settings
- * are refused with an Error that says so.
+ * up to DistributedOctreeMaxLevel, no solid bodies; the step-doubling estimate as a second trace
+ * at twice the step on the pieces (TraceAllEstimated); other settings are refused with an Error
+ * that says so.
  */
 #ifndef SchlierenDistributed_h
 #define SchlierenDistributed_h

@@ -1042,6 +1042,14 @@ SCH_FN void sch_missed(sch_v3 o, sch_ray* R)
   R->flags = SCH_RAY_MISSED;
 }
 
+/* Step doubling: the deflection error estimated from the deflections of a ray at the base step
+ * (1) and at twice it (2), scaled by the scheme's order. */
+SCH_FN float sch_doubling_error(int integrator, float ex1, float ey1, float ex2, float ey2)
+{
+  float order = integrator == SCH_RK4 ? 15.0f : (integrator == SCH_MIDPOINT ? 3.0f : 1.0f);
+  return sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
+}
+
 /* The record of a marched (or missed) ray: side exits, the step-doubling estimate, deflection,
  * and the flight to the film. */
 SCH_FN void sch_record(SCH_FIELD field,
@@ -1075,11 +1083,9 @@ SCH_FN void sch_record(SCH_FIELD field,
       float ex1, ey1, ex2, ey2;
       sch_deflection(P, &R, &ex1, &ey1);
       sch_deflection(P, &R2, &ex2, &ey2);
-      float order =
-        P->integrator == SCH_RK4 ? 15.0f : (P->integrator == SCH_MIDPOINT ? 3.0f : 1.0f);
       /* a ray the doubled step stops at a body has no deflection to compare */
       if (!(R2.flags & SCH_RAY_BLOCKED))
-        err = sch_sqrt((ex1 - ex2) * (ex1 - ex2) + (ey1 - ey2) * (ey1 - ey2)) / order;
+        err = sch_doubling_error(P->integrator, ex1, ey1, ex2, ey2);
       R.samples += R2.samples;
     }
 #endif

@@ -18,8 +18,6 @@ std::string WhyNotInPieces(const TraceSettings& s)
   if (s.Recon != Reconstruction::Trilinear)
     return std::string("Reconstruction ") + ReconstructionName(s.Recon) +
       " is not available in pieces yet";
-  if (s.EstimateError)
-    return "the step-doubling error estimate is not available in pieces yet";
   if (s.Frame == Framing::Silhouette && !HasFilmExtent(s))
     return "Framing Silhouette (the data's silhouette, found in the whole volume) is not available "
            "in pieces yet";

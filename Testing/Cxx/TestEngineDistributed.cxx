@@ -131,6 +131,14 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   const std::vector<RayRecord> expected = TraceRays(whole, s, ab);
   FilmSums expectedSums;
   Accumulate(whole, s, expectedSums);
+  if (s.EstimateError)
+  {
+    // the records compared carry an estimate: not all zero
+    double largest = 0;
+    for (const RayRecord& r : expected)
+      largest = std::max(largest, double(r.Error));
+    CHECK(largest > 0, std::string(c.Name) + ": one process's estimate is not zero (" + std::to_string(largest) + ")");
+  }
 
   const int ranks = static_cast<int>(deco.size());
   std::vector<std::vector<float>> values(ranks);
@@ -253,6 +261,20 @@ int main()
     cases.push_back(c);
   }
 
+  {
+    // the step-doubling estimate: every ray traced again at twice the step on the pieces, the
+    // estimate put into its record on rank 0 as one process's private second march does
+    Case c{ "Gaussian sphere, RK4, error estimate", &gauss, TraceSettings() };
+    c.Settings.ViewDirection[0] = -0.4;
+    c.Settings.ViewDirection[1] = 0.5;
+    c.Settings.ViewDirection[2] = -0.8;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Method = Integrator::RK4;
+    c.Settings.StepSize = 1.0;
+    c.Settings.EstimateError = true;
+    c.Settings.Passes = 2;
+    cases.push_back(c);
+  }
   {
     // white light (docs/BENCH.md "Light"): each pass a wavelength of the band, n - 1 scaled in
     // every piece's kernels, the colours summed on rank 0

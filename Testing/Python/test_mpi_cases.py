@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Tracing in pieces under MPI gives one process's image, bit for bit, on 1, 2 and 4 ranks of
 pvbatch and on pvservers of 2 and 4 ranks with pvpython as their client, for the cases where rays
-cross pieces in every way: the Gaussian sphere seen obliquely, the Luneburg lens (rays that bend
+cross pieces in every way: the Gaussian sphere seen obliquely (also with the step-doubling error
+estimate, its error_estimate compared too), the Luneburg lens (rays that bend
 across the pieces and back to a focus), a shadowgraph far behind a strong sphere (caustics: the
 rays cross), and the NASA blunt fin through its reader's own partition (when the shared data is
 there).
@@ -41,6 +42,10 @@ def cases():
     out["oblique"] = SchlierenImage(Input=gauss, ViewDirection=[0.5, -0.4, -0.75], ViewUp=[0, 1, 0],  # noqa: F821
                                     Resolution=[48, 40], Passes=2, Integrator="RK4", StepSize=1.0,
                                     Cutoff="KnifeEdge", KnifeAngle=20.0, Backend="CPU")
+    # the step-doubling estimate: a second trace at twice the step on the pieces
+    out["estimate"] = SchlierenImage(Input=gauss, ViewDirection=[-0.4, 0.5, -0.8], ViewUp=[0, 1, 0],  # noqa: F821
+                                     Resolution=[40, 40], Passes=2, Integrator="Midpoint", StepSize=1.0,
+                                     EstimateError=1, Cutoff="KnifeEdge", Backend="CPU")
     lens = RefractiveScene(Scene="LuneburgLens", Dimensions=[48, 48, 48], Bounds=[-1, 1, -1, 1, -1, 1],  # noqa: F821
                            Radius=0.8)
     out["lens"] = SchlierenImage(Input=lens, ViewDirection=[0.3, 0.2, -1.0], Resolution=[40, 40], Passes=1,  # noqa: F821
@@ -62,6 +67,13 @@ def cases():
     else:
         print("NOTE: the blunt fin is not traced: the shared data is not in %s" % data)
     return out
+
+
+def estimate(image):
+    """The error_estimate array of an image, empty where it has none."""
+    a = image.GetPointData().GetArray("error_estimate")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    return vtk_to_numpy(a).copy() if a is not None else np.array([])
 
 
 def number(fd, key):
@@ -87,6 +99,7 @@ if output:
         record[name + "_intensity"] = I
         record[name + "_deflection"] = D
         record[name + "_photons"] = np.array(F.get("photons", np.nan))
+        record[name + "_error"] = estimate(image)
         if ranks > 1:
             info = proxy.Input.GetDataInformation()
             e = info.GetExtent()
@@ -109,25 +122,31 @@ else:
     T.check(len(inputs) > 0, "runs to compare with: %s" % inputs)
     serial = {}
     for name, proxy in images.items():
-        X, Y, I, D, F = st.image_arrays(sm.Fetch(proxy))
-        serial[name] = (I, D, F.get("photons", np.nan))
+        image = sm.Fetch(proxy)
+        X, Y, I, D, F = st.image_arrays(image)
+        serial[name] = (I, D, F.get("photons", np.nan), estimate(image))
     # the caustics case has caustics: photons pile up where the rays cross
     I = serial["caustics"][0]
     T.check(I.max() > 4 * I.mean(), "caustics: the brightest pixel is %.1f x the mean" % (I.max() / I.mean()))
     # the lens focuses: the shadowgraph is far from uniform
     I = serial["lens"][0]
     T.check(I.max() > 3 * np.median(I), "lens: focused light, brightest %.1f x the median" % (I.max() / np.median(I)))
+    E = serial["estimate"][3]
+    T.check(E.size > 0 and E.max() > 0, "estimate: one process's error_estimate is there and not zero (largest %.3g rad)"
+            % (E.max() if E.size else float("nan")))
     for path in inputs:
         if not os.path.exists(path):
             T.check(False, "%s is missing: run the MPI case first" % path)
             continue
         mpi = np.load(path)
         ranks = int(mpi["ranks"])
-        for name, (I, D, photons) in serial.items():
+        for name, (I, D, photons, E) in serial.items():
             if name + "_intensity" not in mpi:
                 T.check(False, "%s: not in %s" % (name, path))
                 continue
             T.close(mpi[name + "_intensity"], I, 0.0, "%s: intensity on %d ranks = one process" % (name, ranks))
             T.close(mpi[name + "_deflection"], D, 0.0, "%s: deflection on %d ranks = one process" % (name, ranks))
             T.close(mpi[name + "_photons"], photons, 0.0, "%s: photons on %d ranks" % (name, ranks))
+            if E.size:
+                T.close(mpi[name + "_error"], E, 0.0, "%s: error_estimate on %d ranks = one process" % (name, ranks))
 T.finish()

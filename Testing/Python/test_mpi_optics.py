@@ -12,8 +12,9 @@ traces the same pipeline and compares. Under MPI SchlierenImage traces "color" a
 tolerance, blocks of up to 2^3 cells, so the octree here stops at level 3 as well, and Auto is
 resolved on the pieces with every rank the same choice; Auto's line of sight is then traced
 without ray passing, its partial integrals added in another order: k within 1e-6), and "fringes"
-(the error estimate) with
-the whole volume on every rank (Auto on rank 0, broadcast). The images must be those of one
+(the error estimate: each ray traced again at twice the step on the pieces; the CPU backend too,
+where the pieces' arithmetic is one process's: on an OpenCL device the pieces' kernel rounds
+otherwise, and an estimate, a difference of two close deflections, shows it). The images must be those of one
 process: every point array within 1e-6 (of its largest value), the same integrator, step,
 expected error and samples per ray, and the same Auto report (less its timing).
 """
@@ -45,7 +46,7 @@ images = {
     # interferometry with the error estimate and a Gaussian film filter
     "fringes": SchlierenImage(Input=octree, Integrator="Midpoint", StepSize=1.0, Cutoff="Interferometry",  # noqa: F821
                               EstimateError=1, Filter="Gaussian", FilterWidth=0.7, Resolution=[48, 48],
-                              Passes=2, Seed=5, ReferenceTilt=3.0),
+                              Passes=2, Seed=5, ReferenceTilt=3.0, Backend="CPU"),
     # BOS with RK4 over the octree
     "bos": SchlierenImage(Input=octree, Integrator="RK4", StepSize=1.0, Cutoff="BOS",  # noqa: F821
                           BackgroundDistance=3.0, Resolution=[48, 48], Passes=1, Jitter=0, Backend="CPU"),
