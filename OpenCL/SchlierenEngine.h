@@ -356,6 +356,23 @@ struct SilhouetteFrame
  */
 SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& settings);
 
+/** The points a FrameSilhouette scans: a block [Lo, Hi) of a held array of Held points (the
+ * Volume::Field layout), whose point (0, 0, 0) is the whole grid's point Offset. */
+struct SilhouetteScan
+{
+  const float* Field = nullptr;
+  const unsigned char* Solid = nullptr;
+  int Held[3] = { 0, 0, 0 };
+  int Lo[3] = { 0, 0, 0 }, Hi[3] = { 0, 0, 0 };
+  int Offset[3] = { 0, 0, 0 };
+};
+/** FrameSilhouette of the whole grid `grid` (its geometry) from the points `scan` holds, the
+ * largest gradient, the extremes and the count combined over the pieces by `reduce` (max: true
+ * for a maximum, false for a sum; a no-op for a whole volume), so that every piece's rank gets
+ * the whole volume's frame. */
+SilhouetteFrame FrameSilhouette(const Volume& grid, const TraceSettings& settings,
+  const SilhouetteScan& scan, const std::function<void(double* values, std::size_t count, bool max)>& reduce);
+
 /** Per-pixel sums over photons; these add across passes and across MPI ranks. */
 struct FilmSums
 {

@@ -122,12 +122,28 @@ FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)
 
 SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& s)
 {
+  SilhouetteScan scan;
+  scan.Field = volume.Field;
+  scan.Solid = volume.Solid;
+  for (int a = 0; a < 3; ++a)
+  {
+    scan.Held[a] = volume.Dimensions[a];
+    scan.Hi[a] = volume.Dimensions[a];
+  }
+  return FrameSilhouette(volume, s, scan, [](double*, std::size_t, bool) {});
+}
+
+SilhouetteFrame FrameSilhouette(const Volume& grid, const TraceSettings& s, const SilhouetteScan& scan,
+  const std::function<void(double* values, std::size_t count, bool max)>& reduce)
+{
   TraceSettings plain = s;
   for (double& e : plain.FilmExtent)
     e = 0;
-  const FilmGeometry f = MakeFilm(volume, plain);
+  Volume box = grid;
+  box.Field = nullptr;
+  const FilmGeometry f = MakeFilm(box, plain);
   double h[3];
-  HalfExtent(volume, h);
+  HalfExtent(grid, h);
   SilhouetteFrame out;
   double wa = 0, wb = 0;
   for (int a = 0; a < 3; ++a)
@@ -139,33 +155,35 @@ SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& s)
   out.Extent[1] = wa;
   out.Extent[2] = -wb;
   out.Extent[3] = wb;
-  if (!volume.Field)
+  if (!scan.Field)
     return out;
-  const int nx = volume.Dimensions[0], ny = volume.Dimensions[1], nz = volume.Dimensions[2];
-  const std::size_t n = volume.NumberOfPoints();
-  const float* F = volume.Field;
-  // the largest |grad n|^2 (the packed gradient, world units)
+  const float* F = scan.Field;
+  auto at = [&scan](int i, int j, int k) {
+    return (static_cast<std::size_t>(k) * scan.Held[1] + j) * scan.Held[0] + i;
+  };
+  auto grad2 = [F](std::size_t p) {
+    return double(F[4 * p + 1]) * F[4 * p + 1] + double(F[4 * p + 2]) * F[4 * p + 2] +
+      double(F[4 * p + 3]) * F[4 * p + 3];
+  };
+  // the largest |grad n|^2 (the packed gradient, world units), over every piece
   double g2max = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double g2 = double(F[4 * i + 1]) * F[4 * i + 1] + double(F[4 * i + 2]) * F[4 * i + 2] +
-      double(F[4 * i + 3]) * F[4 * i + 3];
-    g2max = std::max(g2max, g2);
-  }
+  for (int k = scan.Lo[2]; k < scan.Hi[2]; ++k)
+    for (int j = scan.Lo[1]; j < scan.Hi[1]; ++j)
+      for (int i = scan.Lo[0]; i < scan.Hi[0]; ++i)
+        g2max = std::max(g2max, grad2(at(i, j, k)));
+  reduce(&g2max, 1, true);
   const double threshold = 1e-6 * g2max; // (1e-3 of the largest |grad n|)^2
-  auto inside = [&](std::size_t i) {
-    if (volume.Solid && volume.Solid[i])
+  auto inside = [&](std::size_t p) {
+    if (scan.Solid && scan.Solid[p])
       return true;
-    const double g2 = double(F[4 * i + 1]) * F[4 * i + 1] + double(F[4 * i + 2]) * F[4 * i + 2] +
-      double(F[4 * i + 3]) * F[4 * i + 3];
-    return g2max > 0 && g2 > threshold;
+    return g2max > 0 && grad2(p) > threshold;
   };
   // a point's film coordinates are linear along a row: its first and last silhouette points
-  // bound the row's projection
+  // bound the row's projection (whole-grid indices: scan.Offset + held)
   double lo[2] = { 1e300, 1e300 }, hi[2] = { -1e300, -1e300 };
   auto project = [&](int i, int j, int k) {
-    const double p[3] = { i * volume.Spacing[0] - h[0], j * volume.Spacing[1] - h[1],
-      k * volume.Spacing[2] - h[2] };
+    const double p[3] = { (i + scan.Offset[0]) * grid.Spacing[0] - h[0],
+      (j + scan.Offset[1]) * grid.Spacing[1] - h[1], (k + scan.Offset[2]) * grid.Spacing[2] - h[2] };
     const double c[2] = { Dot(p, f.Right), Dot(p, f.Up) };
     for (int a = 0; a < 2; ++a)
     {
@@ -173,18 +191,18 @@ SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& s)
       hi[a] = std::max(hi[a], c[a]);
     }
   };
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
+  double points = 0;
+  for (int k = scan.Lo[2]; k < scan.Hi[2]; ++k)
+    for (int j = scan.Lo[1]; j < scan.Hi[1]; ++j)
     {
-      const std::size_t row = (static_cast<std::size_t>(k) * ny + j) * nx;
       int first = -1, last = -1;
-      for (int i = 0; i < nx; ++i)
-        if (inside(row + i))
+      for (int i = scan.Lo[0]; i < scan.Hi[0]; ++i)
+        if (inside(at(i, j, k)))
         {
           if (first < 0)
             first = i;
           last = i;
-          out.Points += 1;
+          points += 1;
         }
       if (first >= 0)
       {
@@ -192,11 +210,20 @@ SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& s)
         project(last, j, k);
       }
     }
+  // over every piece: the extremes (as maxima of the negated lows) and the count
+  double extremes[4] = { -lo[0], -lo[1], hi[0], hi[1] };
+  reduce(extremes, 4, true);
+  reduce(&points, 1, false);
+  lo[0] = -extremes[0];
+  lo[1] = -extremes[1];
+  hi[0] = extremes[2];
+  hi[1] = extremes[3];
+  out.Points = points;
   if (out.Points == 0)
     return out;
   out.Found = true;
   // the data reaches half a cell past its last points; 2 % more keeps the edge off the border
-  const double spacing = std::max({ volume.Spacing[0], volume.Spacing[1], volume.Spacing[2] });
+  const double spacing = std::max({ grid.Spacing[0], grid.Spacing[1], grid.Spacing[2] });
   for (int a = 0; a < 2; ++a)
   {
     const double pad = spacing + 0.02 * (hi[a] - lo[a]);

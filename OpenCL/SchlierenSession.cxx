@@ -420,8 +420,8 @@ FilmGeometry PlannedFilm(const Volume& volume, TraceSettings s, const TraceSessi
   return MakeFilm(volume, s);
 }
 
-void TraceSession::FrameKept(
-  const Volume& volume, TraceSettings& settings, SessionImage& out, bool say)
+void TraceSession::FrameKept(std::uint64_t stamp, Parallel& parallel,
+  const std::function<SilhouetteFrame()>& find, TraceSettings& settings, SessionImage& out, bool say)
 {
   if (settings.Frame != Framing::Silhouette || HasFilmExtent(settings))
     return;
@@ -434,11 +434,11 @@ void TraceSession::FrameKept(
   k.Resolution[0] = k.Resolution[1] = 0;
   k.Passes = 0;
   std::ostringstream key;
-  key << k.PhotonKey() << " | " << volume.Stamp;
-  out.FrameKept = !this->FrameKey.empty() && key.str() == this->FrameKey;
+  key << k.PhotonKey() << " | " << stamp;
+  out.FrameKept = parallel.AllOk(!this->FrameKey.empty() && key.str() == this->FrameKey);
   if (!out.FrameKept)
   {
-    this->Frame = FrameSilhouette(volume, settings);
+    this->Frame = find();
     this->FrameKey = key.str();
   }
   std::copy(this->Frame.Extent, this->Frame.Extent + 4, settings.FilmExtent);
@@ -627,7 +627,8 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   // kept sums go on with the new passes (the jitter sequence goes on where it stopped, so the
   // image equals a trace of all passes at once).
   TraceSettings traced = settings;
-  this->FrameKept(volume, traced, out, rank == 0);
+  this->FrameKept(volume.Stamp, parallel, [&volume, &traced]() { return FrameSilhouette(volume, traced); },
+    traced, out, rank == 0);
   const AutoChoice choice = this->ResolveKept(parallel, volume, traced);
   if (rank == 0 && (settings.Method == Integrator::Auto || settings.Recon == Reconstruction::Auto))
   {

@@ -215,8 +215,11 @@ private:
    */
   AutoChoice ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings);
   /** Framing Silhouette: sets settings.FilmExtent from the frame kept or found now (see
-   * TraceSettings::Frame); out says which; `say`: add the note (rank 0). */
-  void FrameKept(const Volume& volume, TraceSettings& settings, SessionImage& out, bool say);
+   * TraceSettings::Frame); out says which; `say`: add the note (rank 0). The frame is found by
+   * `find` (FrameSilhouette of the volume, or of the pieces: collective), again where any rank
+   * lost its key; `stamp`: the volume's. */
+  void FrameKept(std::uint64_t stamp, Parallel& parallel, const std::function<SilhouetteFrame()>& find,
+    TraceSettings& settings, SessionImage& out, bool say);
   std::string FrameKey; // empty: no frame kept
   SilhouetteFrame Frame;
   std::string AutoKey; // empty: no choice kept

@@ -18,9 +18,6 @@ std::string WhyNotInPieces(const TraceSettings& s)
   if (s.Recon != Reconstruction::Trilinear)
     return std::string("Reconstruction ") + ReconstructionName(s.Recon) +
       " is not available in pieces yet";
-  if (s.Frame == Framing::Silhouette && !HasFilmExtent(s))
-    return "Framing Silhouette (the data's silhouette, found in the whole volume) is not available "
-           "in pieces yet";
   return std::string();
 }
 
@@ -92,10 +89,33 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     progress(0.05);
   const DistributedVolume& dv = *this->Pieces;
 
-  // 2. Auto on the pieces (every rank the same choice), then the passes not yet traced.
+  // 2. Framing Silhouette from the pieces (each rank scans the points of its cells, the frame
+  // reduced over the ranks), Auto on the pieces (every rank the same choice), then the passes
+  // not yet traced.
   TraceSettings traced = settings;
   traced.RankIndex = 0;
   traced.RankCount = 1;
+  this->FrameKept(dv.Stamp, parallel,
+    [&dv, &traced, &parallel]() {
+      SilhouetteScan scan;
+      scan.Field = dv.Packed.data();
+      for (int a = 0; a < 3; ++a)
+      {
+        scan.Held[a] = dv.HeldDims[a];
+        scan.Offset[a] = dv.HeldLo[a];
+        // the points of the owned cells: [lo, hi), and the grid's last point on its last rank
+        const int lo = dv.Owned[2 * a], hi = dv.Owned[2 * a + 1];
+        scan.Lo[a] = lo - dv.HeldLo[a];
+        scan.Hi[a] = hi > lo ? hi - dv.HeldLo[a] + (hi == dv.WholeDimensions[a] - 1 ? 1 : 0) : scan.Lo[a];
+      }
+      return FrameSilhouette(dv.Whole(), traced, scan, [&parallel](double* v, std::size_t n, bool max) {
+        if (max)
+          parallel.Max(v, n);
+        else
+          parallel.Sum(v, n);
+      });
+    },
+    traced, out, rank == 0);
   AutoChoice choice;
   const bool autoAsked = settings.Method == Integrator::Auto;
   traced = ResolveAutoDistributed(dv, traced, parallel, &choice);

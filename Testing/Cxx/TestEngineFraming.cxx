@@ -12,6 +12,9 @@
 //    blob's disc on the film and fills it;
 //  - a bad Framing value is refused by name.
 #include "SchlierenSession.h"
+#include "SchlierenParallel.h"
+
+#include <mutex>
 #include "SchlierenTesting.h"
 
 #include <algorithm>
@@ -229,6 +232,55 @@ int main()
     for (const ReportEntry& e : ImageReport(first))
       named = named || (e.Name == "film_extent" && e.Numbers.size() == 4 && e.Numbers[0] == first.Traced.FilmExtent[0]);
     CHECK(named, "the report has film_extent");
+  }
+  // in pieces: 3 ranks, slabs along x (the blob across two of them) and an oblique view; each
+  // rank scans its cells' points, the frame is reduced over the ranks: the one-process frame and
+  // image, bit for bit (the CPU backend), traced in pieces
+  {
+    TraceSettings s = View(0.3, -0.2, -1, 0, 1, 0);
+    s.Resolution[0] = 40;
+    s.Resolution[1] = 30;
+    s.Passes = 2;
+    s.Method = Integrator::RK4;
+    SessionImage whole;
+    {
+      TraceSession session;
+      session.Update(SerialParallel(), WholePiece(blob.V, blob.N1, 9), s, whole);
+    }
+    const int n = blob.V.Dimensions[0];
+    SessionImage pieces;
+    std::mutex m;
+    RunInProcessRanks(3, [&](Parallel& p) {
+      const int r = p.Rank();
+      VolumePiece piece = WholePiece(blob.V, blob.N1, 9);
+      const int cut[4] = { 0, n / 3, 2 * n / 3 + 5, n - 1 };
+      piece.Extent[0] = cut[r];
+      piece.Extent[1] = cut[r + 1];
+      const int e0 = piece.Extent[0], e1 = piece.Extent[1];
+      piece.Load = [&blob, e0, e1, n](PieceValues& values) {
+        for (int k = 0; k < n; ++k)
+          for (int j = 0; j < n; ++j)
+            for (int i = e0; i <= e1; ++i)
+              values.NMinus1.push_back(blob.N1[(static_cast<std::size_t>(k) * n + j) * n + i]);
+        return std::string();
+      };
+      TraceSession session;
+      SessionImage out;
+      session.Update(p, piece, s, out);
+      std::lock_guard<std::mutex> lock(m);
+      if (r == 0)
+        pieces = out;
+    });
+    std::printf("framed in pieces: film_extent %.6f %.6f %.6f %.6f (one process %.6f %.6f %.6f %.6f), %d ranks\n",
+      pieces.Traced.FilmExtent[0], pieces.Traced.FilmExtent[1], pieces.Traced.FilmExtent[2],
+      pieces.Traced.FilmExtent[3], whole.Traced.FilmExtent[0], whole.Traced.FilmExtent[1],
+      whole.Traced.FilmExtent[2], whole.Traced.FilmExtent[3], pieces.DistributedRanks);
+    CHECK(pieces.DistributedRanks == 3, "Framing Silhouette is traced in pieces on 3 ranks");
+    CHECK(pieces.Framed && std::equal(whole.Traced.FilmExtent, whole.Traced.FilmExtent + 4, pieces.Traced.FilmExtent) &&
+        pieces.Frame.Points == whole.Frame.Points,
+      "the pieces' frame is one process's (extent and points)");
+    CHECK(pieces.Result.Intensity == whole.Result.Intensity && pieces.Result.Deflection == whole.Result.Deflection,
+      "the framed image in pieces is one process's, bit for bit");
   }
   // errors
   {
