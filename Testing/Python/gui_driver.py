@@ -308,6 +308,19 @@ class Driver:
         with self.lock:
             return [m for m in self.messages if m[0] >= t and m[1] == kind]
 
+    def quick_launch(self, label="Schlieren Image", configured=True):
+        """As a user makes a filter: Ctrl+Space (ParaView's quick launch), the label typed, Return;
+        it applies to the active source. With `configured`, waits until the session has set the
+        test's settings on the new image (gui_drag_session.py writes configured.json)."""
+        self.xdo("key", "--clearmodifiers", "ctrl+space")
+        time.sleep(1.0)
+        self.xdo("type", "--delay", "60", label)
+        time.sleep(1.0)
+        self.xdo("key", "--clearmodifiers", "Return")
+        if configured:
+            self.read_json("configured.json", timeout=60)
+            time.sleep(0.5)
+
     def send(self, text):
         path = os.path.join(self.args.work, "cmd-%d.txt" % self.commands)
         with open(path + ".tmp", "w") as f:

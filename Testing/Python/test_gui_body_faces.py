@@ -74,12 +74,7 @@ check(after["solid_points"] and after["solid_points"] > 0,
       "the index finds the fin a body: solid_points %s" % after["solid_points"])
 
 # the image: quick launch, Apply
-xdo("key", "--clearmodifiers", "ctrl+space")
-time.sleep(1.0)
-xdo("type", "--delay", "60", "Schlieren Image")
-time.sleep(1.0)
-xdo("key", "--clearmodifiers", "Return")
-read_json("configured.json", timeout=60)
+gd.quick_launch("Schlieren Image")
 t = time.time()
 xdo("key", "--clearmodifiers", "alt+a")
 wait_for("Apply opening the schlieren view", lambda: events_since(t, "opened"), 120)

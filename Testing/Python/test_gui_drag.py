@@ -71,13 +71,7 @@ window = gd.main_window()
 
 # -- 1. The Schlieren Image from the GUI's quick launch (Ctrl+Space), then Apply (Alt+A); the image
 # opens in its own 2D view
-xdo("key", "--clearmodifiers", "ctrl+space")
-time.sleep(1.0)
-xdo("type", "--delay", "60", "Schlieren Image")
-time.sleep(1.0)
-xdo("key", "--clearmodifiers", "Return")
-read_json("configured.json", timeout=60)
-time.sleep(0.5)
+gd.quick_launch("Schlieren Image")
 screenshot("configured")
 t = time.time()
 xdo("key", "--clearmodifiers", "alt+a")

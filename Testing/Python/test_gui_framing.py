@@ -55,13 +55,7 @@ if ready["scene"] != "bluntfin":
 window = gd.main_window()
 
 # the image: quick launch, then the panel (before Apply)
-xdo("key", "--clearmodifiers", "ctrl+space")
-time.sleep(1.0)
-xdo("type", "--delay", "60", "Schlieren Image")
-time.sleep(1.0)
-xdo("key", "--clearmodifiers", "Return")
-read_json("configured.json", timeout=60)
-time.sleep(0.5)
+gd.quick_launch("Schlieren Image")
 # the panel's search box (below Apply/Reset/Delete), "framing": the one row left is Framing's
 xdo("mousemove", 130, 539)
 xdo("click", 1)

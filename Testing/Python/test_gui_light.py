@@ -49,13 +49,7 @@ def fields(name):
 ready = read_json("ready.json", timeout=120)
 window = gd.main_window()
 
-xdo("key", "--clearmodifiers", "ctrl+space")
-time.sleep(1.0)
-xdo("type", "--delay", "60", "Schlieren Image")
-time.sleep(1.0)
-xdo("key", "--clearmodifiers", "Return")
-read_json("configured.json", timeout=60)
-time.sleep(0.5)
+gd.quick_launch("Schlieren Image")
 # the panel's search box (below Apply/Reset/Delete): "wavelength range" leaves its two fields
 xdo("mousemove", 130, 539)
 xdo("click", 1)
