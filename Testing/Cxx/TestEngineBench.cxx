@@ -473,15 +473,17 @@ void TestStops()
         const double dy = 2 * H / (NX - 1);
         const double tolAbs = 2 * W * 2 * (std::fabs(n0m1) + std::fabs(G) * H) * kFloatEps / (2 * dy);
         for (int j = 0; j < kFilm; ++j)
+        {
+          // a row's pixels share their deflection (the slab's n depends on y alone)
+          const double y = r.Film.Center[1] + r.Film.Corner[1] + (j + 0.5) * r.Film.PixelSize;
+          const double ey = G * W / (1 + n0m1 + G * y);
+          const double d = f2 * std::fabs(ey);
+          const double inside = src == BenchSource::Disc ? DiscInsideByChords(size, rho, d)
+            : src == BenchSource::Gaussian               ? GaussianInsideByGrid(size, rho, d)
+                                                         : (d < rho ? 1.0 : 0.0);
           for (int i = 0; i < kFilm; ++i)
           {
             const std::size_t p = static_cast<std::size_t>(j) * kFilm + i;
-            const double y = r.Film.Center[1] + r.Film.Corner[1] + (j + 0.5) * r.Film.PixelSize;
-            const double ey = G * W / (1 + n0m1 + G * y);
-            const double d = f2 * std::fabs(ey);
-            double inside = src == BenchSource::Disc ? DiscInsideByChords(size, rho, d)
-              : src == BenchSource::Gaussian         ? GaussianInsideByGrid(size, rho, d)
-                                                     : (d < rho ? 1.0 : 0.0);
             const double want = mode == Cutoff::Circular ? inside : 1 - inside;
             // float weights, the deflection's error times the response's slope (at most
             // 2 / (pi R') for a disc, 1 / (sigma sqrt(2 pi)) for a Gaussian), the Gaussian's table
@@ -494,6 +496,7 @@ void TestStops()
               std::string("stop: ") + CutoffName(mode) + " I = " + std::to_string(r.Intensity[p]) +
                 " against " + std::to_string(want) + " at shift " + std::to_string(d * 1e3) + " mm");
           }
+        }
         if (src == BenchSource::Disc && sh == 0.0 && diameter == 1.6)
         {
           // the range: the stop begins to cut the image at (rho - R') / f2, covers it at (rho + R') / f2
