@@ -19,6 +19,7 @@
 
 #include "SchlierenArrays.h"
 #include "SchlierenController.h"
+#include "SchlierenFilmInformation.h"
 #include "SchlierenNumerical.h"
 #include "SchlierenValues.h"
 
@@ -136,15 +137,7 @@ int vtkNumericalSchlieren::RequestInformation(
   }
   try
   {
-    const schlieren::FilmGeometry film = schlieren::NumericalFilm(grid, SettingsOf(this));
-    double origin[2];
-    film.GetImageOrigin(origin);
-    const int whole[6] = { 0, film.Size[0] - 1, 0, film.Size[1] - 1, 0, 0 };
-    const double spacing[3] = { film.PixelSize, film.PixelSize, 1.0 };
-    const double origin3[3] = { origin[0], origin[1], 0.0 };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-    outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
+    schlieren::SetFilmInformation(outInfo, schlieren::NumericalFilm(grid, SettingsOf(this)));
   }
   catch (const schlieren::Error& e)
   {

@@ -25,6 +25,7 @@
 #include "SchlierenArrays.h"
 #include "SchlierenController.h"
 #include "SchlierenEngine.h"
+#include "SchlierenFilmInformation.h"
 #include "SchlierenSession.h"
 
 #include <algorithm>
@@ -452,15 +453,7 @@ namespace
 void SetFilmInformation(vtkInformation* outInfo, const schlieren::Volume& volume,
   const schlieren::TraceSettings& s, const schlieren::TraceSession& session)
 {
-  const schlieren::FilmGeometry film = schlieren::PlannedFilm(volume, s, session);
-  double origin[2];
-  film.GetImageOrigin(origin);
-  const int whole[6] = { 0, film.Size[0] - 1, 0, film.Size[1] - 1, 0, 0 };
-  const double spacing[3] = { film.PixelSize, film.PixelSize, 1.0 };
-  const double origin3[3] = { origin[0], origin[1], 0.0 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin3, 3);
+  schlieren::SetFilmInformation(outInfo, schlieren::PlannedFilm(volume, s, session));
 }
 }
 
