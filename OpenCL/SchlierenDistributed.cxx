@@ -86,6 +86,32 @@ std::string BoxText(const int b[6])
 
 } // namespace
 
+namespace
+{
+// The longest base step (voxels of the smallest spacing) a trace with settings s takes: Auto's
+// candidates reach 8 voxels trilinear and 64 tricubic; the step-doubling estimate twice the step.
+double LongestStep(const TraceSettings& s)
+{
+  const bool cubic = s.Recon != Reconstruction::Trilinear;
+  const double step =
+    s.Method == Integrator::Auto ? std::max(s.StepSize, cubic ? 64.0 : 8.0) : s.StepSize;
+  return step * (s.EstimateError ? 2.0 : 1.0);
+}
+} // namespace
+
+int SmoothLevelsFor(const TraceSettings& s)
+{
+  if (s.Recon == Reconstruction::Trilinear)
+    return 0;
+  // level q lets a step of (2^q - 1) cells (sch_walk_step): a level whose room is a cell longer
+  // than the longest base step leaves every step at the base step, as every higher level does
+  const double step = LongestStep(s);
+  int q = 1;
+  while (q < 7 && double((1 << q) - 1) < step + 1.0)
+    ++q;
+  return q;
+}
+
 int GhostPointsFor(const TraceSettings& s, int octreeLevel)
 {
   // a step of StepSize voxels of the smallest spacing moves at most that many cells along any
@@ -93,12 +119,20 @@ int GhostPointsFor(const TraceSettings& s, int octreeLevel)
   // ends a hair past the face of its block: at most a block and a cell along any axis. Then the
   // cell of a trilinear sample (1), the gradient's central difference (1) and one to spare.
   const int block = (s.UseOctree && octreeLevel > 0) ? (1 << octreeLevel) : 0;
-  // Auto's trilinear candidates step up to 8 voxels
-  const double step = s.Method == Integrator::Auto ? std::max(s.StepSize, 8.0) : s.StepSize;
-  const int reach = std::max(
-    static_cast<int>(std::ceil(step * (s.EstimateError ? 2.0 : 1.0))), block ? block + 1 : 0);
+  const int reach =
+    std::max(static_cast<int>(std::ceil(LongestStep(s))), block ? block + 1 : 0);
   // an owned cell's level: its block and the block's one-point halo
-  return std::max(reach + 3, block ? block + 2 : 0);
+  int ghost = std::max(reach + 3, block ? block + 2 : 0);
+  if (s.Recon != Reconstruction::Trilinear)
+  {
+    // tricubic where a step may end: the cell's 4 x 4 x 4 points (-1 .. 2), their fourth-order
+    // gradients (+-2) and the smoothness test of those points (+-2), and one to spare; an owned
+    // cell's smoothness level q: the cells within 2^q cells (points -(2^q + 1) .. 2^q + 2) free of
+    // jumps by the five-point test (+-2), and one to spare
+    ghost = std::max(ghost, reach + 7);
+    ghost = std::max(ghost, (1 << SmoothLevelsFor(s)) + 5);
+  }
+  return ghost;
 }
 
 // ------------------------------------------------------------------ the distributed volume
@@ -109,7 +143,7 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
 }
 
 DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel,
-  double octreeTolerance, int octreeMaxLevel)
+  double octreeTolerance, int octreeMaxLevel, int smoothLevels)
 {
   std::copy(piece.WholeDimensions, piece.WholeDimensions + 3, this->WholeDimensions);
   std::copy(piece.Origin, piece.Origin + 3, this->Origin);
@@ -201,7 +235,8 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
       std::ostringstream what;
       what << "This rank's share of the volume (" << this->HeldDims[0] << " x " << this->HeldDims[1]
            << " x " << this->HeldDims[2] << " points with its ghosts)";
-      CheckHostMemory(22.0 * BoxPoints(held), what.str(),
+      // (Reconstruction Cubic: the smoothness, a byte, and its working bytes, 5 more)
+      CheckHostMemory((smoothLevels > 0 ? 28.0 : 22.0) * BoxPoints(held), what.str(),
         "Run on more ranks (or nodes), or resample the data to fewer points.");
     }
     catch (const Error& err)
@@ -286,23 +321,53 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
     failure = "no rank holds some of the points this rank needs: pieces must tile the grid";
   std::vector<unsigned char>().swap(have);
 
-  // 4. Validated and packed as one process packs the whole: the gradient is wrong only on the
-  // outermost ghost layer (one-sided there), which no sample of an owned cell's step reads.
+  // 4. Validated; the index range of the whole grid (for the step-quality checks and the
+  // smoothness test's floor), from the held points, which together are the whole grid's.
   if (failure.empty() && heldPoints)
     failure = ValidateIndex(n1.data(), heldPoints);
-  if (failure.empty() && heldPoints)
+  failure = parallel.Failure(failure);
+  if (!failure.empty())
+    throw Error("Distributed volume: " + failure);
+  {
+    double lo = 1e300, hi = -1e300;
+    for (std::size_t i = 0; i < heldPoints; ++i)
+    {
+      lo = std::min(lo, double(n1[i]));
+      hi = std::max(hi, double(n1[i]));
+    }
+    lo = parallel.Min(lo);
+    hi = parallel.Max(hi);
+    this->RangeLo = static_cast<float>(lo);
+    this->RangeHi = static_cast<float>(hi);
+  }
+
+  // 5. Packed as one process packs the whole: the gradient is wrong only on the outermost ghost
+  // layer (one-sided there), which no sample of an owned cell's step reads. Reconstruction Cubic:
+  // the fourth-order gradient and the smoothness of every held point, right wherever a step from
+  // an owned cell samples and, for the smoothness levels, on the owned cells (GhostPointsFor).
+  std::vector<unsigned char> smooth;
+  if (heldPoints)
   {
     try
     {
       this->Packed.resize(4 * heldPoints);
-      PackField(this->HeldDims, this->Spacing, n1.data(), this->Packed.data());
+      if (smoothLevels > 0)
+      {
+        this->HighOrder = true;
+        this->SmoothLevelMax = std::min(smoothLevels, 7);
+        smooth.resize(heldPoints);
+        PackFieldHighOrderOf(this->HeldDims, this->Spacing, n1.data(), this->Packed.data(),
+          smooth.data(), 0.25, this->RangeLo, this->RangeHi, this->SmoothLevelMax);
+      }
+      else
+        PackField(this->HeldDims, this->Spacing, n1.data(), this->Packed.data());
     }
     catch (const Error& err)
     {
       failure = err.what();
     }
   }
-  // 5. The octree levels of the held cells, on the whole grid's blocks.
+  // 6. The octree levels of the held cells, on the whole grid's blocks.
   if (failure.empty() && heldPoints && octreeTolerance >= 0 && octreeMaxLevel > 0)
   {
     this->LevelMax = std::min(octreeMaxLevel, DistributedOctreeMaxLevel);
@@ -318,6 +383,7 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
         this->Levels.resize(heldPoints);
         ComputeOctreeLevelsOfPiece(this->HeldDims, this->HeldLo, this->WholeDimensions, n1.data(),
           octreeTolerance, this->Levels.data(), this->LevelMax);
+        this->Octree = true;
       }
       catch (const Error& err)
       {
@@ -325,21 +391,20 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
       }
     }
   }
+  // the kernels' cell bytes: the octree level in the low bits, the smoothness above (as
+  // TraceVolume merges them for one process)
+  if (failure.empty() && this->HighOrder)
+  {
+    if (this->Levels.empty())
+      this->Levels.swap(smooth);
+    else
+      for (std::size_t i = 0; i < heldPoints; ++i)
+        this->Levels[i] = static_cast<unsigned char>(
+          (this->Levels[i] & SCH_OCTREE_BITS) | (smooth[i] & ~SCH_OCTREE_BITS));
+  }
   failure = parallel.Failure(failure);
   if (!failure.empty())
     throw Error("Distributed volume: " + failure);
-
-  // 6. The index range of the whole grid (for the step-quality checks), from the owned points.
-  double lo = 1e300, hi = -1e300;
-  for (std::size_t i = 0; i < heldPoints; ++i)
-  {
-    lo = std::min(lo, double(n1[i]));
-    hi = std::max(hi, double(n1[i]));
-  }
-  lo = parallel.Min(lo);
-  hi = parallel.Max(hi);
-  this->RangeLo = static_cast<float>(lo);
-  this->RangeHi = static_cast<float>(hi);
 }
 
 Volume DistributedVolume::Whole() const
@@ -359,7 +424,9 @@ Volume DistributedVolume::Held() const
     v.Origin[d] = this->Origin[d] + this->HeldLo[d] * this->Spacing[d];
   std::copy(this->Spacing, this->Spacing + 3, v.Spacing);
   v.Field = this->Packed.empty() ? nullptr : this->Packed.data();
-  v.Levels = this->Levels.empty() ? nullptr : this->Levels.data();
+  v.Levels = this->Octree ? this->Levels.data() : nullptr;
+  // with Reconstruction Cubic the cell bytes (Levels) carry the smoothness too
+  v.Smooth = this->HighOrder ? this->Levels.data() : nullptr;
   v.LevelTolerance = this->LevelTolerance;
   v.Stamp = this->Stamp;
   return v;
@@ -392,18 +459,25 @@ sch_params PieceParams(const DistributedVolume& dv, const TraceSettings& s, cons
 {
   if (s.Method == Integrator::Auto || s.Recon == Reconstruction::Auto)
     throw Error("Distributed tracing: resolve Auto first (ResolveAuto).");
-  if (s.Recon == Reconstruction::Cubic)
-    throw Error("Distributed tracing does not take Reconstruction Cubic yet: use Trilinear.");
+  if (s.Recon == Reconstruction::Cubic && !dv.HighOrder)
+    throw Error("Distributed tracing: Reconstruction Cubic needs the pieces packed for it "
+                "(DistributedVolume's smoothLevels).");
   if (s.RankCount != 1 || s.RankIndex != 0)
     throw Error("Distributed tracing: RankIndex/RankCount must be 0/1 (every rank traces its piece).");
-  const int need = GhostPointsFor(s, dv.Levels.empty() ? 0 : dv.LevelMax);
+  const int need = GhostPointsFor(s, dv.Octree ? dv.LevelMax : 0);
   if (dv.Ghost < need)
     throw Error("Distributed tracing: StepSize " + std::to_string(s.StepSize) + " needs " +
       std::to_string(need) + " ghost points; the volume holds " + std::to_string(dv.Ghost) + ".");
+  if (s.Recon == Reconstruction::Cubic && dv.SmoothLevelMax < SmoothLevelsFor(s))
+    throw Error("Distributed tracing: StepSize " + std::to_string(s.StepSize) +
+      " with Reconstruction Cubic needs smoothness levels up to " +
+      std::to_string(SmoothLevelsFor(s)) + "; the pieces hold " + std::to_string(dv.SmoothLevelMax) + ".");
   Volume whole = dv.Whole();
   whole.LevelTolerance = dv.LevelTolerance;
+  // (MakeParams checks that Cubic has the smoothness: the pieces' cell bytes)
+  whole.Smooth = dv.HighOrder ? dv.Levels.data() : nullptr;
   sch_params P = MakeParams(whole, s, film);
-  P.useLevels = (s.UseOctree && !dv.Levels.empty()) ? 1 : 0;
+  P.useLevels = (s.UseOctree && dv.Octree) ? 1 : 0;
   P.nx = dv.HeldDims[0];
   P.ny = dv.HeldDims[1];
   P.nz = dv.HeldDims[2];
@@ -471,10 +545,10 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
     {
       RayState st = live[r];
       bool left = false;
-      if (Pw.useLevels)
+      if (Pw.useLevels || Pw.recon == SCH_CUBIC)
       {
         // the level of the cell it is in, as its owner knows it (a sender's ghost cell may be
-        // lower: its block reaches past the sender's ghosts)
+        // lower: its octree block or its smoothness window reaches past the sender's ghosts)
         long cell;
         sch_sample_cell(field, &Pw, st.w.x, &cell);
         st.w.level = levels[cell];
@@ -743,10 +817,12 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
   return records;
 }
 
-/** Whether a trace with P takes the line-of-sight partial integrals (no ray passing). */
+/** Whether a trace with P takes the line-of-sight partial integrals (no ray passing): not with
+ * Cubic, whose steps are sized by the smoothness of cells that only their owner knows. */
 bool StraightSums(const sch_params& P)
 {
-  return P.integrator == SCH_STRAIGHT && !P.useLevels && !P.keepInvariant && !P.estimate;
+  return P.integrator == SCH_STRAIGHT && !P.useLevels && !P.keepInvariant && !P.estimate &&
+    P.recon != SCH_CUBIC;
 }
 
 /**
@@ -1013,11 +1089,13 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const T
 TraceSettings ResolveAutoDistributed(const DistributedVolume& dv, const TraceSettings& s,
   Parallel& parallel, AutoChoice* choice)
 {
-  if (s.Recon != Reconstruction::Trilinear)
-    throw Error("Distributed tracing does not take Reconstruction Cubic or Auto yet: use Trilinear.");
+  if (s.Recon != Reconstruction::Trilinear && !dv.HighOrder)
+    throw Error("Distributed tracing: Reconstruction " + std::string(ReconstructionName(s.Recon)) +
+      " needs the pieces packed for Cubic (DistributedVolume's smoothLevels).");
   AutoVolume grid;
   grid.Grid = dv.Whole();
-  grid.HasLevels = !dv.Levels.empty();
+  grid.HasLevels = dv.Octree;
+  grid.HasSmooth = dv.HighOrder;
   return ResolveAutoWith(grid, s, choice,
     [&](const TraceSettings& t, const std::vector<float>& ab) {
       // the pilot's line-of-sight rays handed on like the others: its records, hence its

@@ -16,7 +16,9 @@
  *
  * On the CPU backend or an OpenCL device (the kernel sch_walk_pieces steps a batch of rays until
  * each leaves the volume or the rank's cells); trilinear reconstruction, fixed steps or the octree
- * up to DistributedOctreeMaxLevel, no solid bodies; the step-doubling estimate as a second trace
+ * up to DistributedOctreeMaxLevel, no solid bodies; Reconstruction Cubic (and Auto's choice between
+ * the two) on pieces packed for it (smoothLevels), the smoothness test on the whole grid's range
+ * and every owned cell's bytes the whole grid's; the step-doubling estimate as a second trace
  * at twice the step on the pieces (TraceAllEstimated); other settings are refused with an Error
  * that says so.
  */
@@ -71,6 +73,14 @@ constexpr int DistributedOctreeMaxLevel = 3;
  */
 int GhostPointsFor(const TraceSettings& s, int octreeLevel = 0);
 
+/**
+ * The smoothness levels (Volume::Smooth bits 4-6) a trace with settings `s` can tell apart: 0 for
+ * Trilinear; else the least level q whose step room, 2^q - 1 cells, is a cell longer than the
+ * longest base step (Auto's candidates included), past which no step is longer. Pieces hold levels
+ * up to it, not to 7: an owned cell's level q needs ghosts of 2^q + 5 points (GhostPointsFor).
+ */
+int SmoothLevelsFor(const TraceSettings& s);
+
 /** This rank's share of a distributed volume. Construction is collective. */
 class DistributedVolume
 {
@@ -87,7 +97,9 @@ public:
    * cells it holds on the whole grid's blocks, which for its owned cells are the whole grid's.
    */
   DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel, double octreeTolerance,
-    int octreeMaxLevel = DistributedOctreeMaxLevel);
+    int octreeMaxLevel = DistributedOctreeMaxLevel, int smoothLevels = 0);
+  /* octreeTolerance < 0: no octree. smoothLevels > 0: packed for Reconstruction Cubic
+   * (PackFieldHighOrder on the whole grid's range), smoothness levels up to it (SmoothLevelsFor). */
 
   /** The whole grid (no field): for the film and the parameters. */
   Volume Whole() const;
@@ -106,7 +118,11 @@ public:
   AlignedFloats Packed;       ///< 4 floats per held point (Volume::Field layout), page-aligned: a
                               ///< CPU OpenCL device traces it in place
   std::uint64_t Stamp = NewVolumeStamp(); ///< the held points' (a device keeps its copy)
-  std::vector<unsigned char> Levels; ///< octree level per held cell (empty: no octree)
+  std::vector<unsigned char> Levels; ///< the kernels' byte per held cell: octree level (Octree),
+                                     ///< smoothness (HighOrder); empty: neither
+  bool Octree = false;               ///< Levels holds the octree levels
+  bool HighOrder = false;            ///< packed for Cubic: Levels holds the smoothness bits
+  int SmoothLevelMax = 0;            ///< the smoothness levels held go up to this
   double LevelTolerance = 0;         ///< the tolerance the levels were built for
   int LevelMax = 0;                  ///< the largest level they may hold
   float RangeLo = 0, RangeHi = 0; ///< n - 1 over the whole grid
@@ -114,7 +130,7 @@ public:
 };
 
 /**
- * Line of sight (Integrator Straight, without the octree or KeepInvariant) needs no ray passing:
+ * Line of sight (Integrator Straight, without the octree, Cubic or KeepInvariant) needs no ray passing:
  * every rank integrates the steps that start in its cells (walking every ray's positions with the
  * same arithmetic as one process, sampling only its own), and rank 0 adds each ray's runs in
  * order. The sums are reassociated, so these records equal one process's within float rounding

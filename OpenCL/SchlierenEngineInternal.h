@@ -64,6 +64,17 @@ inline double MinSpacing(const Volume& v)
 double ComputeOctreeLevelsOfPiece(const int dims[3], const int offset[3], const int whole[3],
   const float* n1, double tol, unsigned char* levels, int maxLevel);
 
+// ------------------------------------------------------------------ field (SchlierenField.cxx)
+
+/**
+ * PackFieldHighOrder with the range of n - 1 given (the whole grid's, where `n1` is a piece of it:
+ * the smoothness test's floor is a part of that range) and the smoothness levels (bits 4-6) stopped
+ * at `levelMax` (1..7). On a piece held with ghosts, every value at least the stencils' reach from
+ * the piece's faces is the one the whole grid gives (docs/PARALLEL.md). No validation: the caller's.
+ */
+double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const float* n1, float* out,
+  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax);
+
 // ------------------------------------------------------------------ Auto (SchlierenAuto.cxx)
 
 /** What ResolveAuto needs of a volume: its grid (no field needed) and which data it has. */

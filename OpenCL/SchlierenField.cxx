@@ -155,12 +155,19 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
   std::string bad = ValidateIndex(n1, n);
   if (!bad.empty())
     throw Error(bad);
+  const auto mm = std::minmax_element(n1, n1 + n);
+  return PackFieldHighOrderOf(dims, spacing, n1, out, smooth, threshold, *mm.first, *mm.second, 7);
+}
+
+double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const float* n1, float* out,
+  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax)
+{
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
   const std::size_t strides[3] = { 1, static_cast<std::size_t>(dims[0]),
     static_cast<std::size_t>(dims[0]) * dims[1] };
   // structure below this part of the field's range is left to the smooth scheme: its overshoot
   // there is far below what the tracer resolves (steps are flagged for 1 % of the range)
-  const auto mm = std::minmax_element(n1, n1 + n);
-  const double floor = 1e-4 * (double(*mm.second) - *mm.first) + 1e-30;
+  const double floor = 1e-4 * (double(rangeHi) - rangeLo) + 1e-30;
   // 1. the smooth points: two or more points from every border, and along every axis a fourth
   // difference small against the range of the five points (a jump or a kink makes it of the
   // order of the range; smooth data makes it O(h^2) smaller)
@@ -341,7 +348,7 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
     minPass(ero, next, a, { -1, 0, 1 }, true);
     ero.swap(next);
   }
-  for (int q = 1, r = 1; q <= 7; ++q, r *= 2)
+  for (int q = 1, r = 1; q <= std::min(levelMax, 7); ++q, r *= 2)
   {
     for (int a = 0; a < 3; ++a)
     {

@@ -15,9 +15,6 @@ std::string WhyNotInPieces(const TraceSettings& s)
 {
   if (!s.InPieces)
     return "TraceInPieces is off";
-  if (s.Recon != Reconstruction::Trilinear)
-    return std::string("Reconstruction ") + ReconstructionName(s.Recon) +
-      " is not available in pieces yet";
   return std::string();
 }
 
@@ -38,9 +35,12 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     p.Extent[2 * a + 1] = piece.Extent[2 * a + 1] - piece.WholeExtent[2 * a];
   }
   const bool octreeAsked = settings.UseOctree;
+  // Reconstruction Cubic or Auto: the pieces packed for Cubic, smoothness levels as deep as the
+  // steps use (SmoothLevelsFor)
+  const bool highOrder = settings.Recon != Reconstruction::Trilinear;
   std::ostringstream key;
   key.precision(17);
-  key << piece.Version << ' ' << ranks << ' ' << octreeAsked;
+  key << piece.Version << ' ' << ranks << ' ' << octreeAsked << ' ' << highOrder;
   for (int a = 0; a < 6; ++a)
     key << ' ' << piece.Extent[a] << ' ' << piece.WholeExtent[a];
   for (int a = 0; a < 3; ++a)
@@ -51,8 +51,8 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
   // kept while the ghosts are deep enough for these settings' steps
   const bool reuse = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
     this->Pieces && key.str() == this->PiecesKey &&
-    this->Pieces->Ghost >=
-      GhostPointsFor(settings, this->Pieces->Levels.empty() ? 0 : this->Pieces->LevelMax));
+    this->Pieces->Ghost >= GhostPointsFor(settings, this->Pieces->Octree ? this->Pieces->LevelMax : 0) &&
+    this->Pieces->SmoothLevelMax >= SmoothLevelsFor(settings));
   if (!reuse)
   {
     this->Pieces.reset();
@@ -80,9 +80,8 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     const int ghost = GhostPointsFor(settings, octree ? DistributedOctreeMaxLevel : 0);
     p.NMinus1 = values.NMinus1.empty() ? nullptr : values.NMinus1.data();
     // the pieces, ghosts and octree: a failure on any rank throws on every rank
-    this->Pieces = octree
-      ? std::make_shared<DistributedVolume>(p, ghost, parallel, tol, DistributedOctreeMaxLevel)
-      : std::make_shared<DistributedVolume>(p, ghost, parallel);
+    this->Pieces = std::make_shared<DistributedVolume>(p, ghost, parallel, octree ? tol : -1.0,
+      DistributedOctreeMaxLevel, highOrder ? SmoothLevelsFor(settings) : 0);
     this->PiecesKey = key.str();
   }
   if (progress)
@@ -134,7 +133,7 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
   const Volume grid = dv.Whole();
   std::ostringstream sk;
   sk.precision(17);
-  sk << traced.PhotonKey() << " | " << this->PiecesKey << ' ' << dv.Levels.empty();
+  sk << traced.PhotonKey() << " | " << this->PiecesKey << ' ' << dv.Octree;
   const std::string sumsKey = sk.str();
   const bool reuseSums = parallel.AllOk(
     sumsKey == this->SumsKey && this->Sums.Passes > 0 && settings.Passes >= this->Sums.Passes);
@@ -206,7 +205,7 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
        << " of the volume's " << double(grid.NumberOfPoints()) << " points (its piece and "
        << dv.Ghost << " ghost layers); " << sums[0] << " rays handed between ranks, " << sums[1]
        << " bytes exchanged, " << stats.Rounds << " rounds.";
-  if (!dv.Levels.empty())
+  if (dv.Octree)
     note << " Octree blocks up to 2^" << dv.LevelMax << " cells (tolerance " << dv.LevelTolerance
          << ").";
   out.Notes.push_back({ false, note.str() });
@@ -220,7 +219,7 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
   out.Passes = this->Sums.Passes;
   for (double c : this->Sums.Count)
     out.LandedPhotons += c;
-  out.OctreeUsed = !dv.Levels.empty() && traced.UseOctree;
+  out.OctreeUsed = dv.Octree && traced.UseOctree;
   out.OctreeTolerance = dv.LevelTolerance;
 }
 

@@ -85,9 +85,9 @@ __kernel void sch_walk_pieces(SCH_FIELD_ARGS, __global const uchar* levels, cons
   if (k >= count)
     return;
   sch_piece_ray r = rays[k];
-  if (SCH_USE_LEVELS(&P))
+  if (SCH_USE_LEVELS(&P) | (SCH_RECON(&P) == SCH_CUBIC))
   {
-    /* the level of its cell as this rank (its owner) knows it */
+    /* the level (and smoothness) of its cell as this rank (its owner) knows it */
     long cell;
     sch_sample_cell(field, &P, r.w.x, &cell);
     r.w.level = (int)levels[cell];

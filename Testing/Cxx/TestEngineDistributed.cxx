@@ -70,10 +70,22 @@ Piece PieceOf(const schtest::SceneVolume& sv, const std::array<int, 6>& e, const
 }
 
 /** One process's volume of `sv`, with the whole grid's octree (levels up to the distributed
- * maximum, into `levels`) where tol >= 0. */
-Volume WholeVolume(const schtest::SceneVolume& sv, double tol, std::vector<unsigned char>& levels)
+ * maximum, into `levels`) where tol >= 0, packed for Reconstruction Cubic (into `cubic`, the
+ * smoothness into `smooth`) where `highOrder`. */
+Volume WholeVolume(const schtest::SceneVolume& sv, double tol, std::vector<unsigned char>& levels,
+  bool highOrder, std::vector<float>& cubic, std::vector<unsigned char>& smooth)
 {
   Volume whole = sv.V;
+  if (highOrder)
+  {
+    cubic.resize(4 * whole.NumberOfPoints());
+    smooth.resize(whole.NumberOfPoints());
+    const double fraction =
+      PackFieldHighOrder(whole.Dimensions, whole.Spacing, sv.N1.data(), cubic.data(), smooth.data());
+    std::printf("  (packed for Cubic: %.2f of the cells smooth)\n", fraction);
+    whole.Field = cubic.data();
+    whole.Smooth = smooth.data();
+  }
   if (tol >= 0)
   {
     levels.resize(whole.NumberOfPoints());
@@ -105,7 +117,39 @@ struct Case
   schtest::SceneVolume* Volume;
   TraceSettings Settings;
   double OctreeTolerance = -1; ///< >= 0: with the min-max octree (levels up to 3)
+  bool OnDevice = true;        ///< also traced on OpenCL in pieces
 };
+
+/** Whether the case needs the pieces packed for Cubic (Reconstruction Cubic or Auto). */
+bool HighOrder(const TraceSettings& s)
+{
+  return s.Recon != Reconstruction::Trilinear;
+}
+
+/** A rank's distributed volume for the case: its piece with the ghosts that `s` needs, the octree
+ * where the case has one, packed for Cubic where `s` asks for it. */
+DistributedVolume PiecesFor(const Case& c, const TraceSettings& s, const Piece& piece, Parallel& p)
+{
+  const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
+  return DistributedVolume(piece, ghost, p, c.OctreeTolerance, DistributedOctreeMaxLevel,
+    HighOrder(s) ? SmoothLevelsFor(s) : 0);
+}
+
+/** Settings with Auto resolved as one process resolves it on `whole` (unchanged without Auto). */
+TraceSettings Resolved(const Volume& whole, const TraceSettings& s)
+{
+  if (s.Method != Integrator::Auto && s.Recon != Reconstruction::Auto)
+    return s;
+  AutoChoice choice;
+  const TraceSettings out = ResolveAuto(whole, s, &choice);
+  std::printf("  (one process's Auto: %s)\n", choice.Report.c_str());
+  return out;
+}
+
+bool SameChoice(const TraceSettings& a, const TraceSettings& b)
+{
+  return a.Method == b.Method && a.StepSize == b.StepSize && a.Recon == b.Recon;
+}
 
 /** Traces `c` on the decomposition and compares with one process; returns the rays handed on. */
 double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
@@ -114,11 +158,15 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   TraceSettings s = c.Settings;
   s.Device = Backend::CPU;
   // one process's volume, with the whole grid's octree where the case has one
-  std::vector<unsigned char> levels;
-  const Volume whole = WholeVolume(sv, c.OctreeTolerance, levels);
+  std::vector<unsigned char> levels, smooth;
+  std::vector<float> cubic;
+  const Volume whole = WholeVolume(sv, c.OctreeTolerance, levels, HighOrder(s), cubic, smooth);
   if (c.OctreeTolerance >= 0)
     s.UseOctree = true;
   const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
+  // Auto: the pieces must make one process's choice; both trace it
+  const TraceSettings asked = s;
+  s = Resolved(whole, asked);
   // the known answer: one process, the whole volume, the CPU backend
   std::vector<float> ab;
   const FilmGeometry film = MakeFilm(whole, s);
@@ -145,18 +193,20 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   for (int r = 0; r < ranks; ++r)
     values[r] = Cut(sv, deco[r]);
   std::mutex m;
-  bool recordsEqual = true, sumsEqual = true, smaller = true;
+  bool recordsEqual = true, sumsEqual = true, smaller = true, sameChoice = true;
   double handed = 0, rounds = 0;
   RunInProcessRanks(ranks, [&](Parallel& p) {
     const int r = p.Rank();
-    DistributedVolume dv = c.OctreeTolerance >= 0
-      ? DistributedVolume(PieceOf(sv, deco[r], values[r]), ghost, p, c.OctreeTolerance)
-      : DistributedVolume(PieceOf(sv, deco[r], values[r]), ghost, p);
+    DistributedVolume dv = PiecesFor(c, asked, PieceOf(sv, deco[r], values[r]), p);
+    const TraceSettings mine = asked.Method == Integrator::Auto || asked.Recon == Reconstruction::Auto
+      ? ResolveAutoDistributed(dv, asked, p)
+      : asked;
     DistributedStats st;
     const std::vector<RayRecord> got = TraceRaysDistributed(dv, s, ab, p, true, &st);
     FilmSums sums;
     AccumulateDistributed(dv, s, sums, p, &st);
     std::lock_guard<std::mutex> lock(m);
+    sameChoice = sameChoice && SameChoice(mine, s);
     recordsEqual = recordsEqual && SameRecords(got, expected);
     if (r == 0)
       sumsEqual = SameSums(sums, expectedSums);
@@ -171,6 +221,7 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   });
   const std::string what = std::string(c.Name) + ", " + decoName + " (" + std::to_string(ranks) +
     " ranks)";
+  CHECK(sameChoice, what + ": Auto on the pieces chose what one process chose");
   CHECK(recordsEqual, what + ": every ray record equals one process's, bit for bit");
   CHECK(sumsEqual, what + ": the film sums equal one process's, bit for bit");
   CHECK(smaller, what + ": each rank holds its piece and " + std::to_string(ghost) +
@@ -206,6 +257,10 @@ int main()
   SceneParameters lp;
   lp.Radius = 0.8;
   schtest::SceneVolume luneburg(Scene::LuneburgLens, lp, n, 1.0);
+  SceneParameters bp;
+  bp.Radius = 0.6;
+  bp.Width = 0.04;
+  schtest::SceneVolume blast(Scene::BlastWave, bp, n, 1.0);
 
   std::vector<Case> cases;
   {
@@ -292,6 +347,37 @@ int main()
     cases.push_back(c);
   }
 
+  {
+    // Reconstruction Cubic (issue 23): tricubic samples where the data is smooth, trilinear
+    // beside the shock, steps sized by the smoothness levels; the pieces' smoothness tested on the
+    // whole grid's range, every owned cell's bytes the whole grid's
+    Case c{ "Blast wave, oblique, Cubic RK4", &blast, TraceSettings() };
+    c.Settings.ViewDirection[0] = 0.5;
+    c.Settings.ViewDirection[1] = 0.4;
+    c.Settings.ViewDirection[2] = -0.8;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Method = Integrator::RK4;
+    c.Settings.StepSize = 4.0;
+    c.Settings.Recon = Reconstruction::Cubic;
+    cases.push_back(c);
+  }
+  {
+    // Auto with Reconstruction Auto: the pilot on the pieces, both reconstructions' candidates
+    // (tricubic ones up to 64 voxels: every piece's ghosts reach across this small grid)
+    Case c{ "Gaussian sphere, Auto + Recon Auto", &gauss, TraceSettings() };
+    c.Settings.ViewDirection[0] = 0.3;
+    c.Settings.ViewDirection[1] = -0.2;
+    c.Settings.ViewDirection[2] = -1;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Method = Integrator::Auto;
+    c.Settings.Recon = Reconstruction::Auto;
+    c.Settings.Tolerance = 1e-6;
+    // (on the CPU only: the blast wave runs Cubic on the device; one process's pilot there compiles
+    // every candidate's kernel, 9 s cold)
+    c.OnDevice = false;
+    cases.push_back(c);
+  }
+
   const std::vector<std::pair<const char*, Decomposition>> decos = {
     { "whole", Blocks(n, {}, {}, {}) },
     { "2 slabs along z", Blocks(n, {}, {}, { 0.5 }) },
@@ -315,13 +401,18 @@ int main()
   {
     for (Case& c : cases)
     {
+      if (!c.OnDevice)
+        continue;
       const schtest::SceneVolume& sv = *c.Volume;
       TraceSettings s = c.Settings;
       s.Device = Backend::OpenCL;
-      std::vector<unsigned char> levels;
-      const Volume whole = WholeVolume(sv, c.OctreeTolerance, levels);
+      std::vector<unsigned char> levels, smooth;
+      std::vector<float> cubic;
+      const Volume whole = WholeVolume(sv, c.OctreeTolerance, levels, HighOrder(s), cubic, smooth);
       if (c.OctreeTolerance >= 0)
         s.UseOctree = true;
+      const TraceSettings asked = s;
+      s = Resolved(whole, asked);
       FilmSums expected;
       Accumulate(whole, s, expected);
       FilmSums got[2];
@@ -336,11 +427,7 @@ int main()
           values[r] = Cut(sv, d[r]);
         std::mutex m;
         RunInProcessRanks(ranks, [&](Parallel& p) {
-          const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
-          const Piece piece = PieceOf(sv, d[p.Rank()], values[p.Rank()]);
-          DistributedVolume dv = c.OctreeTolerance >= 0
-            ? DistributedVolume(piece, ghost, p, c.OctreeTolerance)
-            : DistributedVolume(piece, ghost, p);
+          DistributedVolume dv = PiecesFor(c, asked, PieceOf(sv, d[p.Rank()], values[p.Rank()]), p);
           DistributedStats st;
           FilmSums sums;
           AccumulateDistributed(dv, s, sums, p, &st);
@@ -489,8 +576,9 @@ int main()
     s.Resolution[0] = s.Resolution[1] = 24;
     s.ViewDirection[0] = 0.6;
     s.ViewDirection[2] = -0.8;
-    std::vector<unsigned char> levels;
-    const Volume whole = WholeVolume(gauss, tol, levels);
+    std::vector<unsigned char> levels, smooth;
+    std::vector<float> cubic;
+    const Volume whole = WholeVolume(gauss, tol, levels, false, cubic, smooth);
     AutoChoice one;
     const TraceSettings expected = ResolveAuto(whole, s, &one);
     const Decomposition d = Blocks(n, { 0.4 }, {}, { 0.6 });
