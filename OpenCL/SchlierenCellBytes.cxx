@@ -17,7 +17,7 @@ namespace schlieren
 // the longest step) of the cell, so that steps there are cut to a cell; and the volume's levels
 // lowered until no block (with its one-point halo) holds a solid point, so that no skip crosses a
 // body.
-static std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach)
+std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach)
 {
   const std::size_t N = v.NumberOfPoints();
   const int nx = v.Dimensions[0], ny = v.Dimensions[1], nz = v.Dimensions[2];

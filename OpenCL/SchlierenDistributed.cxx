@@ -84,6 +84,78 @@ std::string BoxText(const int b[6])
   return s.str();
 }
 
+/**
+ * The values (T per point, x fastest) of the box `held` from the ranks whose pieces (`e` this
+ * rank's, of `values`) have them: one all-to-all. heldAll: every rank's held box. Collective.
+ * Returns false where some held point came from no rank.
+ */
+template <typename T>
+bool HeldValues(const int e[6], const T* values, const int held[6],
+  const std::vector<std::array<int, 6>>& heldAll, int me, Parallel& parallel, std::vector<T>& out)
+{
+  const int ranks = parallel.Size();
+  std::vector<std::vector<char>> send(ranks);
+  const int ex = e[1] - e[0] + 1, ey = e[3] - e[2] + 1;
+  for (int r = 0; r < ranks; ++r)
+  {
+    int part[6];
+    // this rank's own points are copied in place below, not through a message
+    if (r == me || Empty(e) || Empty(heldAll[r].data()))
+      continue;
+    Intersect(e, heldAll[r].data(), part);
+    if (Empty(part))
+      continue;
+    // the box, then its values in x-fastest order
+    for (int k = 0; k < 6; ++k)
+      Append(send[r], part[k]);
+    for (int z = part[4]; z <= part[5]; ++z)
+      for (int y = part[2]; y <= part[3]; ++y)
+      {
+        const T* row = values + (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex + (part[0] - e[0]);
+        const std::size_t at = send[r].size();
+        send[r].resize(at + sizeof(T) * (part[1] - part[0] + 1));
+        std::memcpy(send[r].data() + at, row, sizeof(T) * (part[1] - part[0] + 1));
+      }
+  }
+  std::vector<std::vector<char>> in = parallel.Exchange(send);
+  send.clear();
+  out.assign(BoxPoints(held), T());
+  std::vector<unsigned char> have(out.size(), 0);
+  const int hx = held[1] - held[0] + 1, hy = held[3] - held[2] + 1;
+  {
+    int part[6];
+    Intersect(e, held, part);
+    if (!Empty(e) && !Empty(part))
+      for (int z = part[4]; z <= part[5]; ++z)
+        for (int y = part[2]; y <= part[3]; ++y)
+        {
+          const std::size_t at =
+            (static_cast<std::size_t>(z - held[4]) * hy + (y - held[2])) * hx + (part[0] - held[0]);
+          const T* row = values + (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex + (part[0] - e[0]);
+          std::memcpy(out.data() + at, row, sizeof(T) * (part[1] - part[0] + 1));
+          std::memset(have.data() + at, 1, part[1] - part[0] + 1);
+        }
+  }
+  for (int r = 0; r < ranks; ++r)
+  {
+    if (in[r].empty())
+      continue;
+    int part[6];
+    std::memcpy(part, in[r].data(), 6 * sizeof(int));
+    const char* v = in[r].data() + 6 * sizeof(int);
+    const int len = part[1] - part[0] + 1;
+    for (int z = part[4]; z <= part[5]; ++z)
+      for (int y = part[2]; y <= part[3]; ++y, v += sizeof(T) * len)
+      {
+        const std::size_t at =
+          (static_cast<std::size_t>(z - held[4]) * hy + (y - held[2])) * hx + (part[0] - held[0]);
+        std::memcpy(out.data() + at, v, sizeof(T) * len);
+        std::memset(have.data() + at, 1, len);
+      }
+    std::vector<char>().swap(in[r]);
+  }
+  return std::find(have.begin(), have.end(), 0) == have.end();
+}
 } // namespace
 
 namespace
@@ -248,78 +320,32 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
       throw Error("Distributed volume: " + tooBig);
   }
 
-  // 3. The held points from whichever ranks have them (its own piece included).
+  // 3. The held points from whichever ranks have them (its own piece included): n - 1, and the
+  // solid points where any rank's piece has a body.
   std::vector<char> heldBox;
   for (int k = 0; k < 6; ++k)
     Append(heldBox, held[k]);
   all = parallel.AllGather(heldBox);
-  std::vector<std::vector<char>> out(ranks);
-  const int ex = e[1] - e[0] + 1, ey = e[3] - e[2] + 1;
+  std::vector<std::array<int, 6>> heldAll(ranks);
   for (int r = 0; r < ranks; ++r)
-  {
-    int theirs[6], part[6];
-    std::memcpy(theirs, all[r].data(), 6 * sizeof(int));
-    // this rank's own points are copied in place below, not through a message
-    if (r == me || Empty(e) || Empty(theirs))
-      continue;
-    Intersect(e, theirs, part);
-    if (Empty(part))
-      continue;
-    // the box, then its values in x-fastest order
-    for (int k = 0; k < 6; ++k)
-      Append(out[r], part[k]);
-    for (int z = part[4]; z <= part[5]; ++z)
-      for (int y = part[2]; y <= part[3]; ++y)
-      {
-        const float* row = piece.NMinus1 +
-          (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex + (part[0] - e[0]);
-        const std::size_t at = out[r].size();
-        out[r].resize(at + sizeof(float) * (part[1] - part[0] + 1));
-        std::memcpy(out[r].data() + at, row, sizeof(float) * (part[1] - part[0] + 1));
-      }
-  }
-  std::vector<std::vector<char>> in = parallel.Exchange(out);
-  out.clear();
+    std::memcpy(heldAll[r].data(), all[r].data(), 6 * sizeof(int));
+  all.clear();
   const std::size_t heldPoints = BoxPoints(held);
-  std::vector<float> n1(heldPoints, 0.0f);
-  std::vector<unsigned char> have(heldPoints, 0);
-  const int hx = this->HeldDims[0], hy = this->HeldDims[1];
-  {
-    int part[6];
-    Intersect(e, held, part);
-    if (!Empty(e) && !Empty(part))
-      for (int z = part[4]; z <= part[5]; ++z)
-        for (int y = part[2]; y <= part[3]; ++y)
-        {
-          const std::size_t at =
-            (static_cast<std::size_t>(z - held[4]) * hy + (y - held[2])) * hx + (part[0] - held[0]);
-          const float* row = piece.NMinus1 +
-            (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex + (part[0] - e[0]);
-          std::memcpy(n1.data() + at, row, sizeof(float) * (part[1] - part[0] + 1));
-          std::memset(have.data() + at, 1, part[1] - part[0] + 1);
-        }
-  }
-  for (int r = 0; r < ranks; ++r)
-  {
-    if (in[r].empty())
-      continue;
-    int part[6];
-    std::memcpy(part, in[r].data(), 6 * sizeof(int));
-    const char* values = in[r].data() + 6 * sizeof(int);
-    const int len = part[1] - part[0] + 1;
-    for (int z = part[4]; z <= part[5]; ++z)
-      for (int y = part[2]; y <= part[3]; ++y, values += sizeof(float) * len)
-      {
-        const std::size_t at =
-          (static_cast<std::size_t>(z - held[4]) * hy + (y - held[2])) * hx + (part[0] - held[0]);
-        std::memcpy(n1.data() + at, values, sizeof(float) * len);
-        std::memset(have.data() + at, 1, len);
-      }
-    std::vector<char>().swap(in[r]);
-  }
-  if (std::find(have.begin(), have.end(), 0) != have.end())
+  std::vector<float> n1;
+  if (!HeldValues(e, piece.NMinus1, held, heldAll, me, parallel, n1))
     failure = "no rank holds some of the points this rank needs: pieces must tile the grid";
-  std::vector<unsigned char>().swap(have);
+  const bool body = parallel.Max(piece.Solid && !Empty(e) ? 1.0 : 0.0) > 0;
+  if (body)
+  {
+    // a piece without solid points of its own sends zeros
+    std::vector<unsigned char> none;
+    if (!piece.Solid)
+      none.assign(BoxPoints(e), 0);
+    HeldValues(e, piece.Solid ? piece.Solid : none.data(), held, heldAll, me, parallel, this->Solid);
+    for (unsigned char& c : this->Solid)
+      c = c ? 1 : 0;
+    this->HasSolid = true;
+  }
 
   // 4. Validated; the index range of the whole grid (for the step-quality checks and the
   // smoothness test's floor), from the held points, which together are the whole grid's.
@@ -416,6 +442,27 @@ Volume DistributedVolume::Whole() const
   return v;
 }
 
+std::shared_ptr<const std::vector<unsigned char>> DistributedVolume::CellBytes(double reach) const
+{
+  if (!this->HasSolid)
+    return nullptr;
+  if (this->KeptBytes && this->KeptReach == reach)
+    return this->KeptBytes;
+  // the held box as a volume of its own: MakeCellBytes' windows (a step's reach, an octree block
+  // and its halo) stop at its faces, which are the whole grid's or at least that far from every
+  // owned cell (GhostPointsFor)
+  Volume v = this->Held();
+  v.Levels = this->Octree ? this->Levels.data() : nullptr;
+  v.Solid = this->Solid.empty() ? nullptr : this->Solid.data();
+  this->KeptBytes.reset();
+  auto bytes = std::make_shared<std::vector<unsigned char>>();
+  if (v.Solid && v.NumberOfPoints() > 0)
+    *bytes = MakeCellBytes(v, reach);
+  this->KeptBytes = bytes;
+  this->KeptReach = reach;
+  return this->KeptBytes;
+}
+
 Volume DistributedVolume::Held() const
 {
   Volume v;
@@ -476,6 +523,9 @@ sch_params PieceParams(const DistributedVolume& dv, const TraceSettings& s, cons
   whole.LevelTolerance = dv.LevelTolerance;
   // (MakeParams checks that Cubic has the smoothness: the pieces' cell bytes)
   whole.Smooth = dv.HighOrder ? dv.Levels.data() : nullptr;
+  // a body: its bits in the cell bytes (MakeParams then traces trilinear, as one process does)
+  static const unsigned char aBody = 1;
+  whole.Solid = dv.HasSolid ? &aBody : nullptr;
   sch_params P = MakeParams(whole, s, film);
   P.useLevels = (s.UseOctree && dv.Octree) ? 1 : 0;
   P.nx = dv.HeldDims[0];
@@ -534,7 +584,7 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
     return;
   }
   const float* field = dv.Packed.data();
-  const unsigned char* levels = dv.Levels.empty() ? nullptr : dv.Levels.data();
+  const unsigned char* levels = dv.TraceBytes();
   const unsigned nt = std::max(1u, std::min<unsigned>(CpuThreads(threadCount),
                                      static_cast<unsigned>((live.size() + 63) / 64)));
   std::vector<std::vector<Finished>> fin(nt);
@@ -545,13 +595,16 @@ void Advance(const DistributedVolume& dv, const sch_params& P, std::vector<RaySt
     {
       RayState st = live[r];
       bool left = false;
-      if (Pw.useLevels || Pw.recon == SCH_CUBIC)
+      if (Pw.useLevels || Pw.recon == SCH_CUBIC || Pw.useSolid)
       {
-        // the level of the cell it is in, as its owner knows it (a sender's ghost cell may be
-        // lower: its octree block or its smoothness window reaches past the sender's ghosts)
+        // the byte of the cell it is in, as its owner knows it (a sender's ghost cell may differ:
+        // its octree block, its smoothness window or a body's reach lies past the sender's ghosts)
         long cell;
         sch_sample_cell(field, &Pw, st.w.x, &cell);
-        st.w.level = levels[cell];
+        if (Pw.useLevels || Pw.recon == SCH_CUBIC)
+          st.w.level = levels[cell];
+        if (Pw.useSolid)
+          st.w.nearSolid = levels[cell] & SCH_NEAR_BIT;
       }
       while (sch_walk_step(field, levels, &Pw, &st.w))
       {
@@ -822,7 +875,7 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
 bool StraightSums(const sch_params& P)
 {
   return P.integrator == SCH_STRAIGHT && !P.useLevels && !P.keepInvariant && !P.estimate &&
-    P.recon != SCH_CUBIC;
+    P.recon != SCH_CUBIC && !P.useSolid;
 }
 
 /**
@@ -868,7 +921,7 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
     CellOf(P, st.entry, c);
     if (!dv.OwnsCell(c[0], c[1], c[2]))
       continue;
-    sch_walk_begin(dv.Packed.data(), dv.Levels.empty() ? nullptr : dv.Levels.data(), &P, st.entry,
+    sch_walk_begin(dv.Packed.data(), dv.TraceBytes(), &P, st.entry,
       P.step, &st.w);
     fresh.push_back(st);
   }
@@ -985,7 +1038,7 @@ std::shared_ptr<OpenCLTracer> PieceBackend(const DistributedVolume& dv, const Tr
   {
     try
     {
-      cl = AcquireTracer(dv.Held(), dv.Levels.empty() ? nullptr : dv.Levels.data(), nullptr, 1,
+      cl = AcquireTracer(dv.Held(), dv.TraceBytes(), dv.HasSolid ? dv.KeptBytes : nullptr, 1,
         s.RaysPerWorkItem, GetRuntimeOptions(), s.DeviceName);
       PreparePiecesKernel(*cl, P);
       used = "OpenCL";
@@ -1063,6 +1116,8 @@ std::vector<RayRecord> TraceRaysDistributed(const DistributedVolume& dv, const T
   const FilmGeometry film = MakeFilm(dv.Whole(), s);
   const sch_params P = PieceParams(dv, s, film);
   const std::size_t count = ab.size() / 2;
+  // a body's bits for this trace's reach (the estimate's doubled step included, as one process)
+  dv.CellBytes(StepReach(P));
   const std::shared_ptr<OpenCLTracer> cl = PieceBackend(dv, s, P, lineOfSightSums, parallel, stats);
   std::vector<float> rec = TraceAllEstimated(
     dv, P, count,
@@ -1096,6 +1151,7 @@ TraceSettings ResolveAutoDistributed(const DistributedVolume& dv, const TraceSet
   grid.Grid = dv.Whole();
   grid.HasLevels = dv.Octree;
   grid.HasSmooth = dv.HighOrder;
+  grid.HasSolid = dv.HasSolid;
   return ResolveAutoWith(grid, s, choice,
     [&](const TraceSettings& t, const std::vector<float>& ab) {
       // the pilot's line-of-sight rays handed on like the others: its records, hence its
@@ -1121,6 +1177,12 @@ void AccumulateDistributed(const DistributedVolume& dv, const TraceSettings& s, 
   }
   const std::size_t pixels = static_cast<std::size_t>(film.Size[0]) * film.Size[1];
   Splatter splat(P, s, sums);
+  dv.CellBytes(StepReach(P));
+  if (dv.HasSolid && s.Recon == Reconstruction::Cubic && sums.Passes == 0 && stats &&
+    parallel.Rank() == 0)
+    stats->Warnings += "Reconstruction Cubic is not available with a solid body (the byte per "
+                       "point that carries the body holds the smoothness it needs): traced "
+                       "trilinear.\n";
   const std::shared_ptr<OpenCLTracer> cl = PieceBackend(dv, s, P, true, parallel, stats);
   for (int pass = 0; pass < s.Passes; ++pass)
   {

@@ -16,7 +16,7 @@
  *
  * On the CPU backend or an OpenCL device (the kernel sch_walk_pieces steps a batch of rays until
  * each leaves the volume or the rank's cells); trilinear reconstruction, fixed steps or the octree
- * up to DistributedOctreeMaxLevel, no solid bodies; Reconstruction Cubic (and Auto's choice between
+ * up to DistributedOctreeMaxLevel, solid bodies (their bits on the held points); Reconstruction Cubic (and Auto's choice between
  * the two) on pieces packed for it (smoothLevels), the smoothness test on the whole grid's range
  * and every owned cell's bytes the whole grid's; the step-doubling estimate as a second trace
  * at twice the step on the pieces (TraceAllEstimated); other settings are refused with an Error
@@ -31,6 +31,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,7 @@ struct Piece
   /** Points held, inclusive whole-grid indices: x0, x1, y0, y1, z0, z1 (empty: x1 < x0). */
   int Extent[6] = { 0, -1, 0, -1, 0, -1 };
   const float* NMinus1 = nullptr; ///< n - 1 at the Extent's points, x fastest
+  const unsigned char* Solid = nullptr; ///< non-zero at points in a solid body (null: none here)
 };
 
 /** What ray passing cost in a trace (this rank's share, then summed over ranks by the caller). */
@@ -123,9 +125,28 @@ public:
   bool Octree = false;               ///< Levels holds the octree levels
   bool HighOrder = false;            ///< packed for Cubic: Levels holds the smoothness bits
   int SmoothLevelMax = 0;            ///< the smoothness levels held go up to this
+  bool HasSolid = false;             ///< some rank's piece has a body: Solid holds the held points
+  std::vector<unsigned char> Solid;  ///< 1 at held points in a body (HasSolid)
+  /**
+   * The kernels' bytes for a trace with P on the held points: Levels without a body; with one,
+   * the solid, near and lowered-level bits of one process's (MakeCellBytes) for steps of up to
+   * `reach` world units, every owned cell's the whole grid's (the ghosts reach the step and the
+   * octree blocks). Kept for the last reach.
+   */
+  std::shared_ptr<const std::vector<unsigned char>> CellBytes(double reach) const;
+  /** The bytes the tracing reads: with a body, those of the last CellBytes call (each trace
+   * makes it first), else Levels (or null). */
+  const unsigned char* TraceBytes() const
+  {
+    if (this->HasSolid && this->KeptBytes)
+      return this->KeptBytes->data();
+    return this->Levels.empty() ? nullptr : this->Levels.data();
+  }
   double LevelTolerance = 0;         ///< the tolerance the levels were built for
   int LevelMax = 0;                  ///< the largest level they may hold
   float RangeLo = 0, RangeHi = 0; ///< n - 1 over the whole grid
+  mutable std::shared_ptr<const std::vector<unsigned char>> KeptBytes; ///< CellBytes' last
+  mutable double KeptReach = -1;
   double HeldBytes() const { return double(sizeof(float)) * Packed.size() + Levels.size(); }
 };
 

@@ -218,6 +218,9 @@ std::size_t RaysForRank(const sch_params& P);
  */
 std::shared_ptr<const std::vector<unsigned char>> CellBytesOf(const Volume& v, double reach);
 
+/** The bytes CellBytesOf keeps: for a volume with Solid (and Levels, or null), steps of `reach`. */
+std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach);
+
 /**
  * The volume as the kernels see it: with Volume::Smooth, its levels buffer holds the smoothness
  * bits above the octree levels; `own` holds the merged bytes of this call.

@@ -476,7 +476,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
       this->UpdatePieces(parallel, piece, settings, out, progress);
       if (out.DistributedRanks > 0)
         return;
-      why = "a solid body is not traced in pieces yet";
+      why = "the pieces were not traced";
     }
     if (rank == 0)
       out.Notes.push_back({ false, "Tracing the whole volume on every rank: " + why + "." });

@@ -45,9 +45,6 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     key << ' ' << piece.Extent[a] << ' ' << piece.WholeExtent[a];
   for (int a = 0; a < 3; ++a)
     key << ' ' << piece.Origin[a] << ' ' << piece.Spacing[a];
-  // a volume found to hold a body (PiecesKey set, no pieces) goes the other way at once
-  if (parallel.AllOk(!this->Pieces && !this->PiecesKey.empty() && key.str() == this->PiecesKey))
-    return;
   // kept while the ghosts are deep enough for these settings' steps
   const bool reuse = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
     this->Pieces && key.str() == this->PiecesKey &&
@@ -60,14 +57,10 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     PieceValues values;
     const std::size_t count = ExtentPoints(piece.Extent);
     AgreeOrThrow(parallel, LoadPiece(piece, settings, ranks, values));
-    // a body is not traced in pieces yet: the caller traces the whole volume on every rank
-    const bool body = std::any_of(values.Solid.begin(), values.Solid.end(),
-      [](unsigned char c) { return c != 0; });
-    if (parallel.Max(body ? 1.0 : 0.0) > 0)
-    {
-      this->PiecesKey = key.str();
-      return;
-    }
+    // a body: its solid points travel with n - 1 (the ghosts' too)
+    const bool body = values.Solid.size() == count &&
+      std::any_of(values.Solid.begin(), values.Solid.end(), [](unsigned char c) { return c != 0; });
+    p.Solid = body ? values.Solid.data() : nullptr;
     // the whole-volume path's volume and sums go (its film sums are not these)
     this->ClearVolume();
     this->Sums.Resize(0, 0);
@@ -98,6 +91,7 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     [&dv, &traced, &parallel]() {
       SilhouetteScan scan;
       scan.Field = dv.Packed.data();
+      scan.Solid = dv.HasSolid ? dv.Solid.data() : nullptr;
       for (int a = 0; a < 3; ++a)
       {
         scan.Held[a] = dv.HeldDims[a];
@@ -130,7 +124,10 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     if (!choice.Met)
       out.Notes.push_back({ true, choice.Report });
   }
-  const Volume grid = dv.Whole();
+  Volume grid = dv.Whole();
+  // Finalize's blocked output where the volume has a body (a flag: the grid has no field)
+  static const unsigned char aBody = 1;
+  grid.Solid = dv.HasSolid ? &aBody : nullptr;
   std::ostringstream sk;
   sk.precision(17);
   sk << traced.PhotonKey() << " | " << this->PiecesKey << ' ' << dv.Octree;

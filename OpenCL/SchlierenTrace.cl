@@ -85,12 +85,15 @@ __kernel void sch_walk_pieces(SCH_FIELD_ARGS, __global const uchar* levels, cons
   if (k >= count)
     return;
   sch_piece_ray r = rays[k];
-  if (SCH_USE_LEVELS(&P) | (SCH_RECON(&P) == SCH_CUBIC))
+  if (SCH_USE_LEVELS(&P) | (SCH_RECON(&P) == SCH_CUBIC) | SCH_USE_SOLID(&P))
   {
-    /* the level (and smoothness) of its cell as this rank (its owner) knows it */
+    /* the byte of its cell as this rank (its owner) knows it: level, smoothness, near a body */
     long cell;
     sch_sample_cell(field, &P, r.w.x, &cell);
-    r.w.level = (int)levels[cell];
+    if (SCH_USE_LEVELS(&P) | (SCH_RECON(&P) == SCH_CUBIC))
+      r.w.level = (int)levels[cell];
+    if (SCH_USE_SOLID(&P))
+      r.w.nearSolid = (int)(levels[cell] & SCH_NEAR_BIT);
   }
   while (sch_walk_step(field, levels, &P, &r.w))
   {

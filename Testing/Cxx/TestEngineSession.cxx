@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The engine's TraceSession (what a SchlierenImage runs) on 1, 2 and 3 in-process ranks, each rank
-// given a different slab of one scene's volume (with an octree whose piece levels must be rebuilt
+// The engine's TraceSession (what a SchlierenImage runs) on 1, 2 and 3 in-process ranks with
+// TraceInPieces off, each rank given a different slab of one scene's volume (with an octree whose
+// piece levels must be rebuilt
 // and a solid body in one slab only):
 // - every rank assembles the whole volume bit for bit as one rank packs it;
 // - the image on rank 0 equals the one-rank image bit for bit. Why exact: every rank holds the
@@ -129,6 +130,9 @@ TraceSettings Settings(int passes, bool autoIntegrator)
   s.KnifeAngle = 30.0;
   s.Method = autoIntegrator ? Integrator::Auto : Integrator::RK4;
   s.Device = Backend::CPU;
+  // the whole-volume path (TraceInPieces off): every rank assembles the volume. The pieces path
+  // (a body included) has its own tests: TestEngineDistributed, python.mpi_cases, solids_mpi
+  s.InPieces = false;
   return s;
 }
 

@@ -8,7 +8,8 @@ Two bodies, each split over the ranks' pieces: RefractiveScene's sphere beside t
 (its `solid` array kept by RefractiveIndex and gathered by SchlierenImage like n - 1), and a
 closed sphere surface on RefractiveIndex's Body input (every rank voxelises its own piece against
 the whole surface). Knife edge, Auto: the intensity, the `blocked` fraction and `blocked_rays`
-must equal one process's exactly (the photons are put on the film in ray order on rank 0).
+must equal one process's exactly (the photons are put on the film in ray order on rank 0). The
+2 ranks trace in pieces: each holds its piece's solid points and their ghosts.
 """
 import os
 import sys
@@ -52,6 +53,12 @@ T.check(record["blocked_rays"] > 100 and (record["blocked"] == 1).sum() > 20,
         "both bodies stop rays (%.0f)" % record["blocked_rays"])
 if output:
     T.check(ranks == 2, "pvbatch runs on 2 ranks (got %d)" % ranks)
+    # in pieces: no rank held the whole volume, rays were handed between the ranks
+    held = fd.GetArray("held_points_max")
+    handed = fd.GetArray("rays_handed_on")
+    T.check(held is not None and 0 < held.GetValue(0) < 49 ** 3 and handed is not None and handed.GetValue(0) > 0,
+            "traced in pieces with the bodies: the most a rank held %s of %d points, %s rays handed on"
+            % (held.GetValue(0) if held else None, 49 ** 3, handed.GetValue(0) if handed else None))
     np.savez(output, **record)
     print("wrote %s" % output)
 else:
