@@ -66,5 +66,5 @@ else:
     T.check(float(mpi["blocked_rays"]) == float(record["blocked_rays"]),
             "the same rays stopped on 2 ranks as on one process (%.0f)" % record["blocked_rays"])
     T.check(np.array_equal(mpi["blocked"], record["blocked"]), "the same blocked fraction in every pixel")
-    T.close(mpi["intensity"], record["intensity"], 1e-6, "the image on 2 ranks = on one process")
+    T.close(mpi["intensity"], record["intensity"], 0.0, "the image on 2 ranks = on one process, bit for bit")
 T.finish()
