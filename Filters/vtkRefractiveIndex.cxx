@@ -1135,6 +1135,10 @@ struct vtkRefractiveIndex::Work
   vtkNew<vtkFloatArray> NMinus1;
   std::vector<std::string> Warnings;
   std::vector<float> Edge; // n - 1 at the edge of the flow domain (DomainEdgeMedian)
+  // BodyFromGrid on an image split over ranks: the holes the flow encloses, found across the
+  // pieces (EnclosedInvalidPointsOfPiece) before any rank can leave; empty: not found that way
+  std::vector<unsigned char> Enclosed;
+  bool EnclosedFound = false;
   // the points outside the flow domain, the gradient, the bodies
   int AmbientMode = EXTEND;
   double Ambient = 0.0;
@@ -1192,6 +1196,21 @@ int vtkRefractiveIndex::RequestData(
   if (problem.empty())
   {
     problem = this->AgreeAcrossRanks(w, this->EvaluateModel(w));
+  }
+  // 3b. BodyFromGrid on an image split over ranks: which holes the flow encloses is a flood fill
+  // across the pieces (collective: every rank, an empty piece too, before an empty one leaves)
+  if (problem.empty() && this->BodyFromGrid && parallel.Size() > 1 && !w.Resampled &&
+    parallel.Max(w.AnyInvalid ? 1.0 : 0.0) > 0.5)
+  {
+    int extent[6] = { 0, -1, 0, -1, 0, -1 };
+    if (!w.EmptyPiece && w.Valid.size() == static_cast<std::size_t>(w.Count))
+    {
+      std::copy(w.GridExt, w.GridExt + 6, extent);
+    }
+    w.Enclosed.assign(w.Valid.size(), 0);
+    schlieren::EnclosedInvalidPointsOfPiece(parallel, extent, w.Whole, w.Valid.data(),
+      this->BodyWallFaces, w.Enclosed.data());
+    w.EnclosedFound = true;
   }
   for (const std::string& warning : w.Warnings)
   {
@@ -1838,11 +1857,14 @@ std::string vtkRefractiveIndex::ComputeSolid(Work& w, std::string& note)
     {
       any = schlieren::EnclosedInvalidPoints(dims, valid.data(), this->BodyWallFaces, solid.data()) > 0;
     }
-    else
+    else if (w.EnclosedFound && w.Enclosed.size() == solid.size())
     {
-      note = "BodyFromGrid: the invalid points of an image split over MPI ranks cannot be told "
-             "apart (body or outside) piece by piece; no body is taken from them. Give the body "
-             "as a SolidArray or a surface instead.";
+      // found across the pieces (step 3b)
+      for (std::size_t i = 0; i < solid.size(); ++i)
+      {
+        solid[i] = w.Enclosed[i];
+        any = any || solid[i];
+      }
     }
   }
   // the voids beside the mesh's walls (a body on the domain's edge), where the mesh has a velocity

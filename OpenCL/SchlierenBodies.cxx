@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenBodies.h"
+#include "SchlierenParallel.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace schlieren
@@ -52,6 +55,133 @@ std::size_t EnclosedInvalidPoints(
       seed(i, j, k - 1);
     if (k + 1 < nz)
       seed(i, j, k + 1);
+  }
+  std::size_t count = 0;
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    solid[p] = (!valid[p] && !outside[p]) ? 1 : 0;
+    count += solid[p];
+  }
+  return count;
+}
+
+std::size_t EnclosedInvalidPointsOfPiece(Parallel& parallel, const int extent[6], const int whole[6],
+  const unsigned char* valid, const int* wallFaces, unsigned char* solid)
+{
+  const int ranks = parallel.Size(), me = parallel.Rank();
+  const bool empty = extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4];
+  const std::int64_t nx = empty ? 0 : extent[1] - extent[0] + 1, ny = empty ? 0 : extent[3] - extent[2] + 1,
+                     nz = empty ? 0 : extent[5] - extent[4] + 1;
+  const std::size_t n = static_cast<std::size_t>(nx * ny * nz);
+  // every rank's extent
+  std::vector<char> mine(6 * sizeof(int));
+  std::memcpy(mine.data(), extent, 6 * sizeof(int));
+  const std::vector<std::vector<char>> all = parallel.AllGather(mine);
+  std::vector<std::array<int, 6>> ext(ranks);
+  for (int r = 0; r < ranks; ++r)
+    std::memcpy(ext[r].data(), all[r].data(), 6 * sizeof(int));
+  std::vector<unsigned char> outside(n, 0);
+  std::vector<std::int64_t> stack;
+  auto at = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return ((k - extent[4]) * ny + (j - extent[2])) * nx + (i - extent[0]);
+  };
+  auto inside = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return !empty && i >= extent[0] && i <= extent[1] && j >= extent[2] && j <= extent[3] &&
+      k >= extent[4] && k <= extent[5];
+  };
+  auto seed = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    if (!inside(i, j, k))
+      return;
+    const std::int64_t p = at(i, j, k);
+    if (!valid[p] && !outside[p])
+    {
+      outside[p] = 1;
+      stack.push_back(p);
+    }
+  };
+  // the whole grid's open faces (as EnclosedInvalidPoints)
+  auto open = [&](int f) { return !(wallFaces && wallFaces[f]); };
+  for (std::int64_t k = extent[4]; k <= extent[5] && !empty; ++k)
+    for (std::int64_t j = extent[2]; j <= extent[3]; ++j)
+      for (std::int64_t i = extent[0]; i <= extent[1]; ++i)
+        if ((i == whole[0] && open(0)) || (i == whole[1] && open(1)) || (j == whole[2] && open(2)) ||
+          (j == whole[3] && open(3)) || (k == whole[4] && open(4)) || (k == whole[5] && open(5)))
+          seed(i, j, k);
+  auto flood = [&]() {
+    while (!stack.empty())
+    {
+      const std::int64_t p = stack.back();
+      stack.pop_back();
+      const std::int64_t i = extent[0] + p % nx, j = extent[2] + (p / nx) % ny, k = extent[4] + p / (nx * ny);
+      seed(i - 1, j, k);
+      seed(i + 1, j, k);
+      seed(i, j - 1, k);
+      seed(i, j + 1, k);
+      seed(i, j, k - 1);
+      seed(i, j, k + 1);
+    }
+  };
+  // what each other rank needs of this piece: its points shared with, or next to, that rank's
+  // piece (the other's extent grown by one)
+  std::vector<std::array<int, 6>> boxes(ranks);
+  for (int r = 0; r < ranks; ++r)
+  {
+    std::array<int, 6>& b = boxes[r];
+    const std::array<int, 6>& o = ext[r];
+    const bool theirsEmpty = o[1] < o[0] || o[3] < o[2] || o[5] < o[4];
+    for (int a = 0; a < 3; ++a)
+    {
+      b[2 * a] = std::max(extent[2 * a], o[2 * a] - 1);
+      b[2 * a + 1] = std::min(extent[2 * a + 1], o[2 * a + 1] + 1);
+    }
+    if (r == me || empty || theirsEmpty)
+      b = { 0, -1, 0, -1, 0, -1 };
+  }
+  flood();
+  for (;;)
+  {
+    // this piece's outside points in each box (a byte each), to the box's rank
+    std::vector<std::vector<char>> send(ranks);
+    for (int r = 0; r < ranks; ++r)
+    {
+      const std::array<int, 6>& b = boxes[r];
+      if (b[1] < b[0] || b[3] < b[2] || b[5] < b[4])
+        continue;
+      send[r].resize(6 * sizeof(int));
+      std::memcpy(send[r].data(), b.data(), 6 * sizeof(int));
+      for (std::int64_t k = b[4]; k <= b[5]; ++k)
+        for (std::int64_t j = b[2]; j <= b[3]; ++j)
+          for (std::int64_t i = b[0]; i <= b[1]; ++i)
+            send[r].push_back(static_cast<char>(outside[at(i, j, k)]));
+    }
+    const std::vector<std::vector<char>> got = parallel.Exchange(send);
+    // an outside point of another piece makes its invalid neighbours here (and itself, where
+    // shared) outside
+    for (int r = 0; r < ranks; ++r)
+    {
+      if (got[r].size() < 6 * sizeof(int))
+        continue;
+      int b[6];
+      std::memcpy(b, got[r].data(), 6 * sizeof(int));
+      const char* f = got[r].data() + 6 * sizeof(int);
+      for (std::int64_t k = b[4]; k <= b[5]; ++k)
+        for (std::int64_t j = b[2]; j <= b[3]; ++j)
+          for (std::int64_t i = b[0]; i <= b[1]; ++i, ++f)
+            if (*f)
+            {
+              seed(i, j, k);
+              seed(i - 1, j, k);
+              seed(i + 1, j, k);
+              seed(i, j - 1, k);
+              seed(i, j + 1, k);
+              seed(i, j, k - 1);
+              seed(i, j, k + 1);
+            }
+    }
+    // every rank stops together, once no piece found a new outside point
+    if (parallel.Max(stack.empty() ? 0.0 : 1.0) == 0.0)
+      break;
+    flood();
   }
   std::size_t count = 0;
   for (std::size_t p = 0; p < n; ++p)

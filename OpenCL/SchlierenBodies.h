@@ -28,6 +28,20 @@ namespace schlieren
 std::size_t EnclosedInvalidPoints(
   const int dims[3], const unsigned char* valid, const int* wallFaces, unsigned char* solid);
 
+class Parallel;
+
+/**
+ * EnclosedInvalidPoints on a grid split over ranks: this rank holds the points `extent` (inclusive
+ * indices of the whole grid `whole`, both x0, x1, y0, y1, z0, z1; empty: x1 < x0) with their
+ * validity. The outside is flooded from the whole grid's open faces on every piece, and the
+ * pieces hand on, round after round, the outside points next to or shared with another's piece,
+ * until no piece finds a new one: every rank's `solid` (over its extent) is then the part of the
+ * one-process answer on the whole grid. Collective: every rank calls it. Returns this rank's
+ * solid points.
+ */
+std::size_t EnclosedInvalidPointsOfPiece(Parallel& parallel, const int extent[6], const int whole[6],
+  const unsigned char* valid, const int* wallFaces, unsigned char* solid);
+
 /**
  * The bodies a CFD mesh leaves out beside its walls (a wedge or a step on the domain's edge,
  * which reach the grid's boundary and so are not enclosed). `rim` holds, for the invalid points

@@ -5,6 +5,7 @@
 // equal bit for bit (the same steps with the same arithmetic, splatted in the same order), for the
 // Gaussian sphere seen obliquely, the Luneburg lens (rays that curve across pieces and back) and a
 // shadowgraph with caustics. Bad decompositions and bad pieces give one error on every rank.
+#include "SchlierenBodies.h"
 #include "SchlierenDistributed.h"
 #include "SchlierenOptions.h"
 #include "SchlierenTesting.h"
@@ -268,10 +269,75 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   return handed;
 }
 
+/**
+ * BodyFromGrid across pieces (EnclosedInvalidPointsOfPiece): random holes (about 45 % of the
+ * points invalid, so regions wind across the pieces) on a 20 x 18 x 16 grid, split into pieces
+ * that share their face points and pieces that only touch; every piece's solid points must be
+ * the whole grid's (EnclosedInvalidPoints), with and without wall faces.
+ */
+void TestEnclosedInPieces()
+{
+  const int dims[3] = { 20, 18, 16 };
+  const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::vector<unsigned char> valid(n);
+  unsigned state = 12345u;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    state = state * 1664525u + 1013904223u;
+    valid[i] = (state >> 8) % 100 >= 45 ? 1 : 0;
+  }
+  const int walls[6] = { 0, 0, 0, 0, 1, 0 };
+  for (const int* wallFaces : { static_cast<const int*>(nullptr), walls })
+  {
+    std::vector<unsigned char> expected(n);
+    const std::size_t count = EnclosedInvalidPoints(dims, valid.data(), wallFaces, expected.data());
+    // pieces: {x0, x1, ...} per rank; "touching" ones leave no shared layer
+    const std::vector<std::pair<const char*, std::vector<std::array<int, 6>>>> decos = {
+      { "2 slabs sharing a layer", { { 0, 19, 0, 17, 0, 8 }, { 0, 19, 0, 17, 8, 15 } } },
+      { "3 touching slabs along x", { { 0, 5, 0, 17, 0, 15 }, { 6, 12, 0, 17, 0, 15 }, { 13, 19, 0, 17, 0, 15 } } },
+      { "2 x 2 blocks sharing layers, an empty rank",
+        { { 0, 10, 0, 9, 0, 15 }, { 10, 19, 0, 9, 0, 15 }, { 0, 10, 9, 17, 0, 15 }, { 10, 19, 9, 17, 0, 15 },
+          { 0, -1, 0, -1, 0, -1 } } },
+    };
+    for (const auto& d : decos)
+    {
+      const int ranks = static_cast<int>(d.second.size());
+      std::mutex m;
+      bool same = true;
+      double solid = 0;
+      RunInProcessRanks(ranks, [&](Parallel& p) {
+        const std::array<int, 6>& e = d.second[p.Rank()];
+        std::vector<unsigned char> v, got;
+        for (int z = e[4]; z <= e[5]; ++z)
+          for (int y = e[2]; y <= e[3]; ++y)
+            for (int x = e[0]; x <= e[1]; ++x)
+              v.push_back(valid[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x]);
+        got.resize(v.size());
+        EnclosedInvalidPointsOfPiece(p, e.data(), whole, v.data(), wallFaces, got.data());
+        std::lock_guard<std::mutex> lock(m);
+        std::size_t k = 0;
+        for (int z = e[4]; z <= e[5]; ++z)
+          for (int y = e[2]; y <= e[3]; ++y)
+            for (int x = e[0]; x <= e[1]; ++x, ++k)
+            {
+              same = same && got[k] == expected[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x];
+              solid += got[k];
+            }
+      });
+      CHECK(same && count > 0,
+        std::string("BodyFromGrid in pieces, ") + d.first + (wallFaces ? ", z min a wall" : "") +
+          ": every piece's solid points are the whole grid's (" + std::to_string(count) + " of " +
+          std::to_string(n) + ")");
+    }
+  }
+}
+
 } // namespace
 
 int main()
 {
+  TestEnclosedInPieces();
   const int n = 40;
   SceneParameters gp;
   gp.Amplitude = 2e-3;
