@@ -396,7 +396,7 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
   // 6. The octree levels of the held cells, on the whole grid's blocks.
   if (failure.empty() && heldPoints && octreeTolerance >= 0 && octreeMaxLevel > 0)
   {
-    this->LevelMax = std::min(octreeMaxLevel, DistributedOctreeMaxLevel);
+    this->LevelMax = std::min(octreeMaxLevel, 10);
     this->LevelTolerance = octreeTolerance;
     if ((1 << this->LevelMax) + 2 > this->Ghost)
       failure = "octree levels up to " + std::to_string(this->LevelMax) + " need " +
@@ -431,6 +431,76 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
   failure = parallel.Failure(failure);
   if (!failure.empty())
     throw Error("Distributed volume: " + failure);
+}
+
+int OctreeLevelReached(const Piece& piece, double tol, int maxLevel, Parallel& parallel)
+{
+  maxLevel = std::max(0, std::min(maxLevel, 10));
+  int reached = std::min(maxLevel, DistributedOctreeMaxLevel);
+  const int* e = piece.Extent;
+  const bool empty = Empty(e) || !piece.NMinus1;
+  const int ex = e[1] - e[0] + 1, ey = e[3] - e[2] + 1;
+  for (int L = DistributedOctreeMaxLevel + 1; L <= maxLevel; ++L)
+  {
+    // the whole grid's blocks of 2^L cells, aligned on its index 0 (as ComputeOctreeLevels); per
+    // block -min and max of its points [b B - 1, b B + B + 1] that this piece holds
+    const int B = 1 << L;
+    int nb[3];
+    for (int a = 0; a < 3; ++a)
+      nb[a] = std::max(1, (piece.WholeDimensions[a] - 2) / B + 1);
+    const std::size_t blocks = static_cast<std::size_t>(nb[0]) * nb[1] * nb[2];
+    std::vector<double> v(2 * blocks, -1e300);
+    if (!empty)
+    {
+      int lo[3], hi[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        // the blocks whose windows meet this piece's points
+        lo[a] = std::max(0, (e[2 * a] - 1) / B - 1);
+        hi[a] = std::min(nb[a] - 1, (e[2 * a + 1] + 1) / B);
+      }
+      for (int bz = lo[2]; bz <= hi[2]; ++bz)
+        for (int by = lo[1]; by <= hi[1]; ++by)
+          for (int bx = lo[0]; bx <= hi[0]; ++bx)
+          {
+            const int b[3] = { bx, by, bz };
+            int p0[3], p1[3];
+            bool meets = true;
+            for (int a = 0; a < 3; ++a)
+            {
+              p0[a] = std::max({ 0, b[a] * B - 1, e[2 * a] });
+              p1[a] = std::min({ piece.WholeDimensions[a] - 1, b[a] * B + B + 1, e[2 * a + 1] });
+              meets = meets && p0[a] <= p1[a];
+            }
+            if (!meets)
+              continue;
+            float mn = 1e30f, mx = -1e30f;
+            for (int z = p0[2]; z <= p1[2]; ++z)
+              for (int y = p0[1]; y <= p1[1]; ++y)
+              {
+                const float* row =
+                  piece.NMinus1 + (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex - e[0];
+                for (int x = p0[0]; x <= p1[0]; ++x)
+                {
+                  mn = std::min(mn, row[x]);
+                  mx = std::max(mx, row[x]);
+                }
+              }
+            const std::size_t o = (static_cast<std::size_t>(bz) * nb[1] + by) * nb[0] + bx;
+            v[2 * o] = std::max(v[2 * o], -double(mn));
+            v[2 * o + 1] = std::max(v[2 * o + 1], double(mx));
+          }
+    }
+    parallel.Max(v.data(), v.size());
+    // ComputeOctreeLevels' test on the floats: exact in doubles
+    bool any = false;
+    for (std::size_t o = 0; o < blocks && !any; ++o)
+      any = v[2 * o + 1] - (-v[2 * o]) <= tol;
+    if (!any)
+      break;
+    reached = L;
+  }
+  return reached;
 }
 
 Volume DistributedVolume::Whole() const

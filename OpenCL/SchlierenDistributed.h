@@ -63,9 +63,20 @@ struct DistributedStats
   std::string Warnings;       ///< what this rank's user should know (an OpenCL fallback)
 };
 
-/** The largest octree level distributed tracing builds (blocks of 2^3 cells): every level a rank
- * holds must be the one the whole grid gives, which takes ghosts as deep as a block. */
+/** The octree levels pieces hold at least where the octree asks for them (blocks of 2^3 cells, 10
+ * ghost layers): every level a rank holds must be the one the whole grid gives, which takes
+ * ghosts as deep as a block; higher levels where the volume reaches them (OctreeLevelReached). */
 constexpr int DistributedOctreeMaxLevel = 3;
+
+/**
+ * The highest octree level (up to maxLevel) that some block of the whole grid passes at tolerance
+ * `tol`, found from the pieces' own points (no ghosts: per block the minimum and maximum of n - 1
+ * over its points and halo, reduced over the ranks) for the levels above
+ * DistributedOctreeMaxLevel; at least min(maxLevel, DistributedOctreeMaxLevel). The pieces then
+ * hold levels up to it with ghosts of 2^level + 2 points (GhostPointsFor), and every cell's level
+ * is one process's at that maxLevel. Collective.
+ */
+int OctreeLevelReached(const Piece& piece, double tol, int maxLevel, Parallel& parallel);
 
 /**
  * The ghost points a trace with settings `s` needs around the owned cells: the longest step's reach
@@ -94,8 +105,8 @@ public:
    */
   DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel);
   /**
-   * The same, with the min-max octree of the whole grid (levels up to `octreeMaxLevel`, at most
-   * DistributedOctreeMaxLevel) for `octreeTolerance` (>= 0): each rank computes the levels of the
+   * The same, with the min-max octree of the whole grid (levels up to `octreeMaxLevel`: ghosts of
+   * 2^octreeMaxLevel + 2 points at least) for `octreeTolerance` (>= 0): each rank computes the levels of the
    * cells it holds on the whole grid's blocks, which for its owned cells are the whole grid's.
    */
   DistributedVolume(const Piece& piece, int ghostPoints, Parallel& parallel, double octreeTolerance,

@@ -70,11 +70,15 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
       values.HasLevelTolerance && values.LevelTolerance >= 0;
     const double tol = -parallel.Max(present ? -values.LevelTolerance : -1e300);
     const bool octree = octreeAsked && tol < 1e300;
-    const int ghost = GhostPointsFor(settings, octree ? DistributedOctreeMaxLevel : 0);
     p.NMinus1 = values.NMinus1.empty() ? nullptr : values.NMinus1.data();
+    // its levels up to the highest any piece was built for (as the whole volume's), held up to
+    // the highest the volume reaches, with the ghosts that level's blocks need
+    const int maxLevel = static_cast<int>(parallel.Max(present ? double(values.MaxLevel) : -1.0));
+    const int level = octree ? OctreeLevelReached(p, tol, maxLevel, parallel) : 0;
+    const int ghost = GhostPointsFor(settings, level);
     // the pieces, ghosts and octree: a failure on any rank throws on every rank
-    this->Pieces = std::make_shared<DistributedVolume>(p, ghost, parallel, octree ? tol : -1.0,
-      DistributedOctreeMaxLevel, highOrder ? SmoothLevelsFor(settings) : 0);
+    this->Pieces = std::make_shared<DistributedVolume>(p, ghost, parallel,
+      octree && level > 0 ? tol : -1.0, level, highOrder ? SmoothLevelsFor(settings) : 0);
     this->PiecesKey = key.str();
   }
   if (progress)

@@ -3,13 +3,14 @@
 ranks; prints a table.
 
 Run: /usr/bin/python3 distributed.py --plugin <Schlieren.so> [--size 384] [--resolution 256]
-         [--passes 2] [--ranks 1,2,4] [--integrator Euler] [--backend CPU] [--pvbatch pvbatch]
-         [--mpiexec mpiexec]
+         [--passes 2] [--ranks 1,2,4] [--integrator Euler] [--step 0.5] [--reconstruction Trilinear]
+         [--body 0] [--backend CPU] [--pvbatch pvbatch] [--mpiexec mpiexec]
 
 Each row is one `mpiexec -n N pvbatch --mpi --symmetric` run of this script (--worker): every rank
 makes its piece of a RefractiveScene of size^3 points (the Gaussian sphere), reads its high-water
 mark of resident memory (VmHWM), traces it with SchlierenImage (Euler, 0.5 voxel, knife edge) and
-reads VmHWM again. "pieces" is the default under MPI (the volume stays in pieces, rays are handed
+reads VmHWM again. --reconstruction Cubic packs the pieces for tricubic samples (deeper ghosts);
+--body 1 puts RefractiveScene's solid sphere (radius 0.2 of the box, off centre) in the volume. "pieces" is the default under MPI (the volume stays in pieces, rays are handed
 between ranks); "whole" turns TraceInPieces off: every rank gathers the whole volume (the path
 every rank took before tracing in pieces). Both on --backend (CPU by default). Columns: the largest VmHWM of
 any rank and the most the trace added on any rank (after - before), the points the busiest rank
@@ -52,12 +53,18 @@ def worker():
     rank = controller.GetLocalProcessId()
     size = int(argument("--size"))
     scene = ns["RefractiveScene"](Dimensions=[size] * 3, Amplitude=1e-4, Width=0.3)
+    if argument("--body", "0") == "1":
+        scene.Body = "Sphere"
+        scene.BodyRadius = 0.2
+        scene.BodyCenter = [-0.25, 0.1, 0.0]
     scene.UpdatePipeline()
     before = hwm()
     image = ns["SchlierenImage"](Input=scene, Resolution=[int(argument("--resolution"))] * 2,
                                  Passes=int(argument("--passes")), Backend=argument("--backend"),
                                  TraceInPieces=int(argument("--pieces")),
-                                 Integrator=argument("--integrator", "Euler"), StepSize=0.5)
+                                 Integrator=argument("--integrator", "Euler"),
+                                 StepSize=float(argument("--step", "0.5")),
+                                 Reconstruction=argument("--reconstruction", "Trilinear"))
     t0 = time.time()
     image.UpdatePipeline()
     seconds = time.time() - t0
@@ -87,10 +94,12 @@ def main():
     ranks = [int(r) for r in argument("--ranks", "1,2,4").split(",")]
     cores = os.cpu_count() or 1
     points = int(size) ** 3
-    print("%s^3 points (%.0f MB of n - 1 as floats, %.0f MB packed), film %s^2, %s passes, %s at 0.5 voxel, %d cores"
-          % (size, points * 4 / 1e6, points * 16 / 1e6, resolution, passes, argument("--integrator", "Euler"), cores))
-    print("%5s %6s %11s %11s %13s %12s %10s %10s %10s" % (
-        "ranks", "mode", "peak MB", "trace MB", "held points", "MB/pass", "s/pass", "tracing", "exchange"))
+    print("%s^3 points (%.0f MB of n - 1 as floats, %.0f MB packed), film %s^2, %s passes, %s at %s voxel, %s%s, %d cores"
+          % (size, points * 4 / 1e6, points * 16 / 1e6, resolution, passes, argument("--integrator", "Euler"),
+             argument("--step", "0.5"), argument("--reconstruction", "Trilinear"),
+             ", a solid sphere" if argument("--body", "0") == "1" else "", cores))
+    print("%5s %6s %11s %11s %13s %12s %10s %10s %10s %6s" % (
+        "ranks", "mode", "peak MB", "trace MB", "held points", "MB/pass", "s/pass", "tracing", "exchange", "ghosts"))
     for n in ranks:
         backend = argument("--backend", "CPU")
         for mode, pieces in (("pieces", "1"), ("whole", "0")):
@@ -100,7 +109,8 @@ def main():
             cmd = [mpiexec, "-n", str(n), "--allow-run-as-root", "--oversubscribe", pvbatch, "--mpi",
                    "--symmetric", os.path.abspath(__file__), "--worker", "--plugin", plugin, "--size", size,
                    "--resolution", resolution, "--passes", passes, "--backend", backend, "--pieces", pieces,
-                   "--integrator", argument("--integrator", "Euler")]
+                   "--integrator", argument("--integrator", "Euler"), "--step", argument("--step", "0.5"),
+                   "--reconstruction", argument("--reconstruction", "Trilinear"), "--body", argument("--body", "0")]
             outdir = tempfile.mkdtemp(prefix="schlieren_distributed_")
             run = subprocess.run(cmd + ["--outdir", outdir], env=env, stdout=subprocess.PIPE,
                                  stderr=subprocess.STDOUT, text=True)
@@ -121,10 +131,10 @@ def main():
             held = numbers.get("held_points_max", points)
             p = float(passes)
             mode = "one" if n == 1 else mode
-            print("%5d %6s %11.0f %11.0f %13.0f %12.2f %10.2f %10.2f %10.2f" % (
+            print("%5d %6s %11.0f %11.0f %13.0f %12.2f %10.2f %10.2f %10.2f %6.0f" % (
                 n, mode, peak, added, held, numbers.get("ray_traffic_bytes", 0) / 1e6 / p,
                 numbers["seconds"] / p, numbers.get("tracing_seconds", float("nan")) / p,
-                numbers.get("exchange_seconds", float("nan")) / p))
+                numbers.get("exchange_seconds", float("nan")) / p, numbers.get("ghost_layers", 0)))
 
 
 if __name__ == "__main__":

@@ -81,7 +81,8 @@ Piece PieceOf(const schtest::SceneVolume& sv, const std::array<int, 6>& e, const
  * maximum, into `levels`) where tol >= 0, packed for Reconstruction Cubic (into `cubic`, the
  * smoothness into `smooth`) where `highOrder`. */
 Volume WholeVolume(const schtest::SceneVolume& sv, double tol, std::vector<unsigned char>& levels,
-  bool highOrder, std::vector<float>& cubic, std::vector<unsigned char>& smooth)
+  bool highOrder, std::vector<float>& cubic, std::vector<unsigned char>& smooth,
+  int maxLevel = DistributedOctreeMaxLevel)
 {
   Volume whole = sv.V;
   if (highOrder)
@@ -97,7 +98,7 @@ Volume WholeVolume(const schtest::SceneVolume& sv, double tol, std::vector<unsig
   if (tol >= 0)
   {
     levels.resize(whole.NumberOfPoints());
-    ComputeOctreeLevels(whole.Dimensions, sv.N1.data(), tol, levels.data(), DistributedOctreeMaxLevel);
+    ComputeOctreeLevels(whole.Dimensions, sv.N1.data(), tol, levels.data(), maxLevel);
     whole.Levels = levels.data();
     whole.LevelTolerance = tol;
   }
@@ -127,7 +128,30 @@ struct Case
   double OctreeTolerance = -1; ///< >= 0: with the min-max octree (levels up to 3)
   bool OnDevice = true;        ///< also traced on OpenCL in pieces
   const std::vector<unsigned char>* Solid = nullptr; ///< a body's points (whole grid), or none
+  int OctreeLevels = DistributedOctreeMaxLevel;      ///< one process's octree MaxLevel
 };
+
+/** The octree level the pieces hold for the case (OctreeLevelReached on the whole grid as one
+ * piece: the same on any pieces), 0 without the octree. */
+int LevelFor(const Case& c)
+{
+  if (c.OctreeTolerance < 0)
+    return 0;
+  int level = 0;
+  const std::vector<float>& n1 = c.Volume->N1;
+  RunInProcessRanks(1, [&](Parallel& p) {
+    Piece whole;
+    std::copy(c.Volume->V.Dimensions, c.Volume->V.Dimensions + 3, whole.WholeDimensions);
+    for (int a = 0; a < 3; ++a)
+    {
+      whole.Extent[2 * a] = 0;
+      whole.Extent[2 * a + 1] = c.Volume->V.Dimensions[a] - 1;
+    }
+    whole.NMinus1 = n1.data();
+    level = OctreeLevelReached(whole, c.OctreeTolerance, c.OctreeLevels, p);
+  });
+  return level;
+}
 
 /** Whether the case needs the pieces packed for Cubic (Reconstruction Cubic or Auto). */
 bool HighOrder(const TraceSettings& s)
@@ -141,8 +165,10 @@ DistributedVolume PiecesFor(const Case& c, const TraceSettings& s, Piece piece, 
   const std::vector<unsigned char>& solid)
 {
   piece.Solid = c.Solid ? solid.data() : nullptr;
-  const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
-  return DistributedVolume(piece, ghost, p, c.OctreeTolerance, DistributedOctreeMaxLevel,
+  // the level reached, from the pieces (every rank the same)
+  const int level = c.OctreeTolerance >= 0 ? OctreeLevelReached(piece, c.OctreeTolerance, c.OctreeLevels, p) : 0;
+  const int ghost = GhostPointsFor(s, level);
+  return DistributedVolume(piece, ghost, p, level > 0 ? c.OctreeTolerance : -1.0, level,
     HighOrder(s) ? SmoothLevelsFor(s) : 0);
 }
 
@@ -171,12 +197,12 @@ double CheckCase(Case& c, const char* decoName, const Decomposition& deco)
   // one process's volume, with the whole grid's octree where the case has one
   std::vector<unsigned char> levels, smooth;
   std::vector<float> cubic;
-  Volume whole = WholeVolume(sv, c.OctreeTolerance, levels, HighOrder(s), cubic, smooth);
+  Volume whole = WholeVolume(sv, c.OctreeTolerance, levels, HighOrder(s), cubic, smooth, c.OctreeLevels);
   if (c.Solid)
     whole.Solid = c.Solid->data();
   if (c.OctreeTolerance >= 0)
     s.UseOctree = true;
-  const int ghost = GhostPointsFor(s, c.OctreeTolerance >= 0 ? DistributedOctreeMaxLevel : 0);
+  const int ghost = GhostPointsFor(s, LevelFor(c));
   // Auto: the pieces must make one process's choice; both trace it
   const TraceSettings asked = s;
   s = Resolved(whole, asked);
@@ -374,6 +400,23 @@ int main()
     cases.push_back(c);
   }
   {
+    // the octree at one process's default MaxLevel (7): blocks up to the level the volume reaches
+    // (OctreeLevelReached, from the pieces' own points), ghosts as deep as such a block (issue 23)
+    Case c{ "Gaussian sphere, octree to level 7, RK4", &gauss, TraceSettings(), 2e-6 };
+    c.OctreeLevels = 7;
+    c.Settings.ViewDirection[0] = -0.3;
+    c.Settings.ViewDirection[1] = 0.2;
+    c.Settings.ViewDirection[2] = -1;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Method = Integrator::RK4;
+    c.Settings.StepSize = 0.5;
+    c.OnDevice = false;
+    std::printf("octree to level 7 on the Gaussian: the pieces hold levels up to %d\n", LevelFor(c));
+    CHECK(LevelFor(c) > DistributedOctreeMaxLevel, "the Gaussian's octree reaches past level 3 (" +
+        std::to_string(LevelFor(c)) + ")");
+    cases.push_back(c);
+  }
+  {
     // the octree skips the uniform air around the sphere (tolerance: 1e-3 of the peak)
     Case c{ "Gaussian sphere, octree, Euler", &gauss, TraceSettings(), 2e-6 };
     c.Settings.ViewDirection[0] = 0.2;
@@ -533,7 +576,7 @@ int main()
       s.Device = Backend::OpenCL;
       std::vector<unsigned char> levels, smooth;
       std::vector<float> cubic;
-      Volume whole = WholeVolume(sv, c.OctreeTolerance, levels, HighOrder(s), cubic, smooth);
+      Volume whole = WholeVolume(sv, c.OctreeTolerance, levels, HighOrder(s), cubic, smooth, c.OctreeLevels);
       if (c.Solid)
         whole.Solid = c.Solid->data();
       if (c.OctreeTolerance >= 0)
@@ -657,7 +700,10 @@ int main()
 
   // the shadowgraph has caustics: photons pile up (a pixel with several times the mean count)
   {
-    TraceSettings s = cases[3].Settings;
+    TraceSettings s;
+    for (const Case& c : cases)
+      if (std::string(c.Name) == "Gaussian shadowgraph, caustics")
+        s = c.Settings;
     s.Device = Backend::CPU;
     FilmSums f;
     Accumulate(gauss.V, s, f);

@@ -9,7 +9,8 @@ The 2-rank run checks that the octree filter ran on both pieces with one toleran
 tolerance reduces the range of n - 1 across ranks) and writes the images; the one-process run
 traces the same pipeline and compares. Under MPI SchlierenImage traces "color" and "bos" in pieces
 (the CPU backend; each rank computes the whole grid's octree levels of its cells at the filter's
-tolerance, blocks of up to 2^3 cells, so the octree here stops at level 3 as well, and Auto is
+tolerance, at the filter's default MaxLevel (7), up to the level the volume reaches, found from the
+pieces, with ghosts as deep as such a block, and Auto is
 resolved on the pieces with every rank the same choice; Auto's line of sight is then traced
 without ray passing, its partial integrals added in another order: k within 1e-6), and "fringes"
 (the error estimate: each ray traced again at twice the step on the pieces; the CPU backend too,
@@ -37,7 +38,7 @@ T = st.Checker("test_mpi_optics (%d rank%s)" % (ranks, "s" if ranks > 1 else "")
 
 scene = RefractiveScene(Scene="GaussianSphere", Dimensions=[64, 64, 64], Bounds=[-1, 1, -1, 1, -1, 1],  # noqa: F821
                         Amplitude=1e-4, Width=0.2, Center=[0.1, -0.05, 0.02])
-octree = RefractionOctree(Input=scene, MaxLevel=3)  # noqa: F821
+octree = RefractionOctree(Input=scene)  # noqa: F821
 images = {
     # Auto with the octree, colour filter (rgb), automatic k (reduced across ranks)
     "color": SchlierenImage(Input=octree, Integrator="Auto", Cutoff="ColorFilter",  # noqa: F821
