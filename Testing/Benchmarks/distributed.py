@@ -4,7 +4,7 @@ ranks; prints a table.
 
 Run: /usr/bin/python3 distributed.py --plugin <Schlieren.so> [--size 384] [--resolution 256]
          [--passes 2] [--ranks 1,2,4] [--integrator Euler] [--step 0.5] [--reconstruction Trilinear]
-         [--body 0] [--backend CPU] [--pvbatch pvbatch] [--mpiexec mpiexec]
+         [--body 0] [--modes pieces,whole] [--backend CPU] [--pvbatch pvbatch] [--mpiexec mpiexec]
 
 Each row is one `mpiexec -n N pvbatch --mpi --symmetric` run of this script (--worker): every rank
 makes its piece of a RefractiveScene of size^3 points (the Gaussian sphere), reads its high-water
@@ -98,12 +98,14 @@ def main():
           % (size, points * 4 / 1e6, points * 16 / 1e6, resolution, passes, argument("--integrator", "Euler"),
              argument("--step", "0.5"), argument("--reconstruction", "Trilinear"),
              ", a solid sphere" if argument("--body", "0") == "1" else "", cores))
-    print("%5s %6s %11s %11s %13s %12s %10s %10s %10s %6s" % (
-        "ranks", "mode", "peak MB", "trace MB", "held points", "MB/pass", "s/pass", "tracing", "exchange", "ghosts"))
+    print("%5s %6s %11s %11s %13s %12s %10s %10s %10s %6s %7s %9s %9s" % (
+        "ranks", "mode", "peak MB", "trace MB", "held points", "MB/pass", "s/pass", "tracing", "exchange", "ghosts",
+        "rounds", "handed M", "samples M"))
+    modes = argument("--modes", "pieces,whole").split(",")
     for n in ranks:
         backend = argument("--backend", "CPU")
         for mode, pieces in (("pieces", "1"), ("whole", "0")):
-            if n == 1 and mode == "whole":
+            if (n == 1 and mode == "whole") or (n > 1 and mode not in modes):
                 continue  # one rank always has the whole volume (its row says "one")
             env = dict(os.environ, SCHLIEREN_CPU_THREADS=str(max(1, cores // n)))
             cmd = [mpiexec, "-n", str(n), "--allow-run-as-root", "--oversubscribe", pvbatch, "--mpi",
@@ -131,10 +133,12 @@ def main():
             held = numbers.get("held_points_max", points)
             p = float(passes)
             mode = "one" if n == 1 else mode
-            print("%5d %6s %11.0f %11.0f %13.0f %12.2f %10.2f %10.2f %10.2f %6.0f" % (
+            print("%5d %6s %11.0f %11.0f %13.0f %12.2f %10.2f %10.2f %10.2f %6.0f %7.0f %9.3f %9.2f" % (
                 n, mode, peak, added, held, numbers.get("ray_traffic_bytes", 0) / 1e6 / p,
                 numbers["seconds"] / p, numbers.get("tracing_seconds", float("nan")) / p,
-                numbers.get("exchange_seconds", float("nan")) / p, numbers.get("ghost_layers", 0)))
+                numbers.get("exchange_seconds", float("nan")) / p, numbers.get("ghost_layers", 0),
+                numbers.get("exchange_rounds", 0) / p, numbers.get("rays_handed_on", 0) / 1e6 / p,
+                numbers.get("samples", 0) / 1e6 / p))
 
 
 if __name__ == "__main__":
