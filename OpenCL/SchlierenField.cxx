@@ -181,36 +181,58 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
   const double H[3] = { spacing[0], spacing[1], spacing[2] };
   unsigned char* const PT = point.data();
   unsigned char* const JF = jumpFree.data();
+  const double TH = threshold, FL = floor;
   ParallelSlices(dims[2], [=](int k0, int k1) {
-    const int dims[3] = { G[0], G[1], G[2] };
-    const std::size_t strides[3] = { St[0], St[1], St[2] };
+    const int nx = G[0], ny = G[1], nz = G[2];
+    const std::size_t sy = St[1], sz = St[2];
+    // the five-point test of row values f0..f4 (each a row of nx points): ok[i] &= the test at i
+    // (a loop without branches over a row, which the compiler vectorises)
+    auto test = [TH, FL](const float* f0, const float* f1, const float* f2, const float* f3,
+                  const float* f4, unsigned char* ok, int i0, int i1) {
+      for (int i = i0; i < i1; ++i)
+      {
+        const double a0 = f0[i], a1 = f1[i], a2 = f2[i], a3 = f3[i], a4 = f4[i];
+        const double lo = std::min(std::min(std::min(a0, a1), std::min(a2, a3)), a4);
+        const double hi = std::max(std::max(std::max(a0, a1), std::max(a2, a3)), a4);
+        const double d4 = a0 - 4 * a1 + 6 * a2 - 4 * a3 + a4;
+        ok[i] = ok[i] & (std::fabs(d4) <= TH * (hi - lo + FL) ? 1 : 0);
+      }
+    };
+    std::vector<unsigned char> ok(static_cast<std::size_t>(nx));
+    const bool tooThin = nx < 5 || ny < 5 || nz < 5;
     for (int k = k0; k < k1; ++k)
-      for (int j = 0; j < dims[1]; ++j)
-        for (int i = 0; i < dims[0]; ++i)
+      for (int j = 0; j < ny; ++j)
+      {
+        const std::size_t row = j * sy + k * sz;
+        unsigned char* jf = JF + row;
+        unsigned char* pt = PT + row;
+        if (tooThin)
         {
-          const int ijk[3] = { i, j, k };
-          const std::size_t idx = i + j * strides[1] + k * strides[2];
-          bool ok = true, inner = true;
-          for (int a = 0; a < 3 && ok; ++a)
-          {
-            if (dims[a] < 5)
-            {
-              ok = false;
-              break;
-            }
-            inner = inner && ijk[a] >= 2 && ijk[a] <= dims[a] - 3;
-            const int c = std::min(std::max(ijk[a], 2), dims[a] - 3);
-            const std::size_t s = strides[a];
-            const std::size_t m = idx + (static_cast<std::ptrdiff_t>(c) - ijk[a]) * static_cast<std::ptrdiff_t>(s);
-            const double f[5] = { n1[m - 2 * s], n1[m - s], n1[m], n1[m + s], n1[m + 2 * s] };
-            const double lo = std::min({ f[0], f[1], f[2], f[3], f[4] });
-            const double hi = std::max({ f[0], f[1], f[2], f[3], f[4] });
-            const double d4 = f[0] - 4 * f[1] + 6 * f[2] - 4 * f[3] + f[4];
-            ok = std::fabs(d4) <= threshold * (hi - lo + floor);
-          }
-          JF[idx] = ok ? 1 : 0;
-          PT[idx] = ok && inner ? 1 : 0;
+          std::fill(jf, jf + nx, static_cast<unsigned char>(0));
+          std::fill(pt, pt + nx, static_cast<unsigned char>(0));
+          continue;
         }
+        std::fill(ok.begin(), ok.end(), static_cast<unsigned char>(1));
+        // along x: the five points around i, those around 2 (or nx - 3) near the ends
+        const float* r = n1 + row;
+        test(r - 2, r - 1, r, r + 1, r + 2, ok.data(), 2, nx - 2);
+        for (int i = 0; i < 2; ++i)
+          ok[i] = ok[2];
+        for (int i = nx - 2; i < nx; ++i)
+          ok[i] = ok[nx - 3];
+        // along y and z: the five rows around j (k), those around 2 (or n - 3) near the ends
+        const int jc = std::min(std::max(j, 2), ny - 3), kc = std::min(std::max(k, 2), nz - 3);
+        const float* ry = n1 + jc * sy + k * sz;
+        test(ry - 2 * sy, ry - sy, ry, ry + sy, ry + 2 * sy, ok.data(), 0, nx);
+        const float* rz = n1 + j * sy + kc * sz;
+        test(rz - 2 * sz, rz - sz, rz, rz + sz, rz + 2 * sz, ok.data(), 0, nx);
+        const bool innerRow = j >= 2 && j <= ny - 3 && k >= 2 && k <= nz - 3;
+        for (int i = 0; i < nx; ++i)
+        {
+          jf[i] = ok[i];
+          pt[i] = (innerRow && i >= 2 && i <= nx - 3) ? ok[i] : 0;
+        }
+      }
   });
   // 2. n - 1 and the gradient: along each axis, fourth order where the five points of the
   // difference are all smooth (a point beside a jump may pass the test on its own), PackField's
@@ -250,13 +272,9 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
                    std::initializer_list<int> offsets, bool clamp) {
     // everything the loops read in locals: byte stores may alias any captured value, which kept
     // the compiler from vectorising (and reloaded the bounds every iteration)
-    int off[4] = { 0, 0, 0, 0 }, no = 0, dlo = 0, dhi = 0;
+    int off[4] = { 0, 0, 0, 0 }, no = 0;
     for (int d : offsets)
-    {
       off[no++] = d;
-      dlo = std::min(dlo, d);
-      dhi = std::max(dhi, d);
-    }
     const int nx = dims[0], ny = dims[1], na = dims[a];
     const std::size_t sy = strides[1], sz = strides[2];
     const unsigned char* const S = src.data();
@@ -269,38 +287,20 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
           if (a == 0)
           {
             const unsigned char* __restrict in = S + j * sy + k * sz;
-            // inside the row no offset reaches past it: one sweep per offset (vectorised)
-            const int i0 = std::max(0, -dlo), i1 = nx - std::max(0, dhi);
-            if (i1 > i0)
+            // one sweep per offset d, in three parts: before the row (in[0] clamped, or 0), inside
+            // it, past it (in[nx - 1], or 0); each a plain loop the compiler vectorises
+            std::fill(out, out + nx, static_cast<unsigned char>(1));
+            for (int o = 0; o < no; ++o)
             {
-              std::fill(out + i0, out + i1, static_cast<unsigned char>(1));
-              for (int o = 0; o < no; ++o)
-              {
-                const int d = off[o];
-                for (int i = i0; i < i1; ++i)
-                  out[i] = std::min(out[i], in[i + d]);
-              }
-            }
-            for (int i = 0; i < nx; ++i)
-            {
-              if (i >= i0 && i < i1)
-                continue;
-              unsigned char m = 1;
-              for (int o = 0; o < no; ++o)
-              {
-                int c = i + off[o];
-                if (c < 0 || c > nx - 1)
-                {
-                  if (!clamp)
-                  {
-                    m = 0;
-                    break;
-                  }
-                  c = c < 0 ? 0 : nx - 1;
-                }
-                m = std::min(m, in[c]);
-              }
-              out[i] = m;
+              const int d = off[o];
+              const int lo = std::min(nx, std::max(0, -d)), hi = std::max(lo, std::min(nx, nx - d));
+              const unsigned char first = clamp ? in[0] : 0, last = clamp ? in[nx - 1] : 0;
+              for (int i = 0; i < lo; ++i)
+                out[i] = std::min(out[i], first);
+              for (int i = lo; i < hi; ++i)
+                out[i] = std::min(out[i], in[i + d]);
+              for (int i = hi; i < nx; ++i)
+                out[i] = std::min(out[i], last);
             }
             continue;
           }
