@@ -3,7 +3,8 @@
 pvbatch and on pvservers of 2 and 4 ranks with pvpython as their client, for the cases where rays
 cross pieces in every way: the Gaussian sphere seen obliquely (also with the step-doubling error
 estimate, its error_estimate compared too), a blast wave with Reconstruction Cubic, Auto choosing
-between the reconstructions, the Luneburg lens (rays that bend
+between the reconstructions, two solid bodies (RefractiveScene's sphere and a surface), the
+octree at its default MaxLevel, the Luneburg lens (rays that bend
 across the pieces and back to a focus), a shadowgraph far behind a strong sphere (caustics: the
 rays cross), and the NASA blunt fin through its reader's own partition (when the shared data is
 there).
@@ -65,6 +66,21 @@ def cases():
     out["auto_cubic"] = SchlierenImage(Input=gauss, ViewDirection=[0.3, -0.2, -1.0], ViewUp=[0, 1, 0],  # noqa: F821
                                        Resolution=[40, 40], Passes=1, Integrator="Auto",
                                        Reconstruction="Auto", Cutoff="KnifeEdge", Backend="CPU")
+    # solid bodies in pieces: RefractiveScene's sphere and a closed surface voxelised by
+    # RefractiveIndex on every rank's piece; and the octree at RefractionOctree's defaults
+    # (MaxLevel 7: the pieces hold the levels the volume reaches, with ghosts as deep as a block)
+    bodies = RefractiveScene(Scene="GaussianSphere", Dimensions=[48, 48, 48], Bounds=[-1, 1, -1, 1, -1, 1],  # noqa: F821
+                             Amplitude=1e-4, Width=0.3, Body="Sphere", BodyRadius=0.25, BodyCenter=[0.45, 0.1, 0.0])
+    walled = RefractiveIndex(Input=bodies, Model="Passthrough",  # noqa: F821
+                             Body=Sphere(Radius=0.2, Center=[-0.5, -0.3, 0.1], ThetaResolution=24, PhiResolution=24))  # noqa: F821
+    walled.InputArray = ["POINTS", "n_minus_1"]
+    out["bodies"] = SchlierenImage(Input=walled, ViewDirection=[0.3, -0.2, -1.0], ViewUp=[0, 1, 0],  # noqa: F821
+                                   Resolution=[40, 40], Passes=1, Integrator="RK4", StepSize=1.0,
+                                   Cutoff="KnifeEdge", CutoffScale=1000.0, Backend="CPU")
+    octree = RefractionOctree(Input=gauss)  # noqa: F821
+    out["octree"] = SchlierenImage(Input=octree, ViewDirection=[-0.3, 0.2, -1.0], ViewUp=[0, 1, 0],  # noqa: F821
+                                   Resolution=[40, 40], Passes=1, Integrator="RK4", StepSize=0.5,
+                                   Cutoff="KnifeEdge", Backend="CPU")
     data = ct.data_dir()
     xyz, q = os.path.join(data, "bluntfinxyz.bin"), os.path.join(data, "bluntfinq.bin")
     if os.path.exists(xyz) and os.path.exists(q):
@@ -139,6 +155,12 @@ else:
         image = sm.Fetch(proxy)
         X, Y, I, D, F = st.image_arrays(image)
         serial[name] = (I, D, F.get("photons", np.nan), estimate(image))
+        if name == "bodies":
+            stopped = number(image.GetFieldData(), "blocked_rays")
+            T.check(stopped > 50, "bodies: the two bodies stop %d rays" % stopped)
+        if name == "octree":
+            fd = image.GetFieldData()
+            T.check(number(fd, "octree") == 1, "octree: traced over the octree")
     # the caustics case has caustics: photons pile up where the rays cross
     I = serial["caustics"][0]
     T.check(I.max() > 4 * I.mean(), "caustics: the brightest pixel is %.1f x the mean" % (I.max() / I.mean()))
