@@ -107,18 +107,21 @@ std::size_t EnclosedInvalidPointsOfPiece(Parallel& parallel, const int extent[6]
         if ((i == whole[0] && open(0)) || (i == whole[1] && open(1)) || (j == whole[2] && open(2)) ||
           (j == whole[3] && open(3)) || (k == whole[4] && open(4)) || (k == whole[5] && open(5)))
           seed(i, j, k);
+  // the six neighbours of point (i, j, k) (of the whole grid), those in this piece
+  auto seedAround = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    seed(i - 1, j, k);
+    seed(i + 1, j, k);
+    seed(i, j - 1, k);
+    seed(i, j + 1, k);
+    seed(i, j, k - 1);
+    seed(i, j, k + 1);
+  };
   auto flood = [&]() {
     while (!stack.empty())
     {
       const std::int64_t p = stack.back();
       stack.pop_back();
-      const std::int64_t i = extent[0] + p % nx, j = extent[2] + (p / nx) % ny, k = extent[4] + p / (nx * ny);
-      seed(i - 1, j, k);
-      seed(i + 1, j, k);
-      seed(i, j - 1, k);
-      seed(i, j + 1, k);
-      seed(i, j, k - 1);
-      seed(i, j, k + 1);
+      seedAround(extent[0] + p % nx, extent[2] + (p / nx) % ny, extent[4] + p / (nx * ny));
     }
   };
   // what each other rank needs of this piece: its points shared with, or next to, that rank's
@@ -170,12 +173,7 @@ std::size_t EnclosedInvalidPointsOfPiece(Parallel& parallel, const int extent[6]
             if (*f)
             {
               seed(i, j, k);
-              seed(i - 1, j, k);
-              seed(i + 1, j, k);
-              seed(i, j - 1, k);
-              seed(i, j + 1, k);
-              seed(i, j, k - 1);
-              seed(i, j, k + 1);
+              seedAround(i, j, k);
             }
     }
     // every rank stops together, once no piece found a new outside point
