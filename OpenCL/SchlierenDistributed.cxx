@@ -156,10 +156,7 @@ bool HeldValues(const int e[6], const T* values, const int held[6],
   }
   return std::find(have.begin(), have.end(), 0) == have.end();
 }
-} // namespace
 
-namespace
-{
 // The longest base step (voxels of the smallest spacing) a trace with settings s takes: Auto's
 // candidates reach 8 voxels trilinear and 64 tricubic; the step-doubling estimate twice the step.
 double LongestStep(const TraceSettings& s)
@@ -479,11 +476,11 @@ int OctreeLevelReached(const Piece& piece, double tol, int maxLevel, Parallel& p
               for (int y = p0[1]; y <= p1[1]; ++y)
               {
                 const float* row =
-                  piece.NMinus1 + (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex - e[0];
+                  piece.NMinus1 + (static_cast<std::size_t>(z - e[4]) * ey + (y - e[2])) * ex;
                 for (int x = p0[0]; x <= p1[0]; ++x)
                 {
-                  mn = std::min(mn, row[x]);
-                  mx = std::max(mx, row[x]);
+                  mn = std::min(mn, row[x - e[0]]);
+                  mx = std::max(mx, row[x - e[0]]);
                 }
               }
             const std::size_t o = (static_cast<std::size_t>(bz) * nb[1] + by) * nb[0] + bx;
@@ -941,7 +938,8 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
 }
 
 /** Whether a trace with P takes the line-of-sight partial integrals (no ray passing): not with
- * Cubic, whose steps are sized by the smoothness of cells that only their owner knows. */
+ * Cubic or a body, whose steps are sized by cell bytes (smoothness, near a body) that only the
+ * cell's owner knows. */
 bool StraightSums(const sch_params& P)
 {
   return P.integrator == SCH_STRAIGHT && !P.useLevels && !P.keepInvariant && !P.estimate &&

@@ -473,15 +473,14 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     std::string why = WhyNotInPieces(settings);
     if (why.empty())
     {
+      // every mode traces in pieces (UpdatePieces traces or throws on every rank)
       this->UpdatePieces(parallel, piece, settings, out, progress);
-      if (out.DistributedRanks > 0)
-        return;
-      why = "the pieces were not traced";
+      return;
     }
     if (rank == 0)
       out.Notes.push_back({ false, "Tracing the whole volume on every rank: " + why + "." });
   }
-  // the pieces go (a key without pieces stays: it marks a volume with a body)
+  // the pieces go
   if (this->Pieces)
   {
     this->Pieces.reset();
