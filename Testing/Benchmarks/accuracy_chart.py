@@ -20,7 +20,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {"Straight": "tab:grey", "Euler": "tab:blue", "Midpoint": "tab:orange", "RK4": "tab:green"}
+COLOURS = {"Straight": "tab:grey", "Euler": "tab:blue", "Midpoint": "tab:orange", "RK4": "tab:green", "Auto": "tab:red", "Auto 1e-3": "tab:purple"}
 MARKERS = {0.0: "o", 0.0001: "s", 0.01: "^"}
 
 
@@ -39,7 +39,8 @@ def main(src, dst):
             flagged = r["flagged"] == "1"
             c = COLOURS[r["method"]]
             cubic = r.get("reconstruction", "Trilinear") == "Cubic"
-            ax.scatter(ms, err, marker="D" if cubic else MARKERS.get(tol, "x"), s=36,
+            auto = r["method"].startswith("Auto")
+            ax.scatter(ms, err, marker="*" if auto else "D" if cubic else MARKERS.get(tol, "x"), s=90 if auto else 36,
                        facecolors="none" if flagged else c, edgecolors=c)
             pts.append((ms, err, r))
         pts.sort(key=lambda p: p[0])
@@ -56,11 +57,14 @@ def main(src, dst):
         ax.set_xlabel("ms per pass")
         ax.set_ylabel("error / largest deflection")
         ax.grid(True, which="both", alpha=0.3)
-    handles = [plt.Line2D([], [], color=c, marker="o", ls="", label=m) for m, c in COLOURS.items()]
+    handles = [plt.Line2D([], [], color=c, marker="o", ls="", label=m) for m, c in COLOURS.items()
+               if not m.startswith("Auto")]
     handles += [plt.Line2D([], [], color="k", marker=mk, ls="", mfc="none",
                            label="octree off" if t == 0 else "octree %g of range" % t)
                 for t, mk in MARKERS.items()]
     handles.append(plt.Line2D([], [], color="k", marker="D", ls="", mfc="none", label="Reconstruction Cubic"))
+    handles.append(plt.Line2D([], [], color="tab:red", marker="*", ls="", ms=10, label="Auto, default tolerance"))
+    handles.append(plt.Line2D([], [], color="tab:purple", marker="*", ls="", ms=10, label="Auto, 1e-3 of max deflection"))
     handles.append(plt.Line2D([], [], color="k", label="Pareto front"))
     fig.legend(handles=handles, loc="lower center", ncol=4)
     fig.suptitle("Schlieren: time per pass against error (hollow: flagged as stepping over structure)")
