@@ -22,12 +22,16 @@ Timings are one run each on this machine; compare rows of one run.
 """
 import argparse
 import math
+import os
+import sys
 import time
 
 import numpy as np
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager as sm
-from vtkmodules.util.numpy_support import vtk_to_numpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Python"))
+import schlieren_testing as st  # noqa: E402  (the closed form the tests use)
 
 ap = argparse.ArgumentParser()
 ap.add_argument("--plugin", required=True)
@@ -41,7 +45,7 @@ args = ap.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 
 A, S = 2e-4, 0.25
-EMAX = math.sqrt(2.0 * math.pi) * A * math.exp(-0.5)
+EMAX = st.gaussian_max_deflection(A)
 AXIS = ([0.0, 0.0, -1.0], [0.0, 1.0, 0.0])
 
 
@@ -59,29 +63,19 @@ SETTINGS = [("default", "default (Euler 0.5 voxel, trilinear)", dict(Integrator=
              dict(Integrator="Auto", Reconstruction="Cubic", Tolerance=args.tolerance))]
 
 
-def fields(data):
-    fd = data.GetFieldData()
-    out = {}
-    for i in range(fd.GetNumberOfArrays()):
-        a = fd.GetAbstractArray(i)
-        out[a.GetName()] = a.GetValue(0)
-    return out
-
-
 def error(data):
     """Largest |deflection - closed form| / EMAX over the film (film coordinates are world units
     in the film plane, centred on the volume's centre: the sphere's centre)."""
-    nx, ny, _ = data.GetDimensions()
-    ox, oy, _ = data.GetOrigin()
-    hx, hy, _ = data.GetSpacing()
-    X, Y = np.meshgrid(ox + hx * np.arange(nx), oy + hy * np.arange(ny))
-    d = vtk_to_numpy(data.GetPointData().GetArray("deflection")).reshape(ny, nx, 2).astype(float)
-    f = -(2.0 * math.sqrt(math.pi) * A / S) * np.exp(-(X ** 2 + Y ** 2) / S ** 2)
-    return float(np.abs(d - np.stack([f * X, f * Y], axis=-1)).max() / EMAX)
+    X, Y, _, d, _ = st.image_arrays(data)
+    return float(np.abs(d - st.gaussian_deflection(X, Y, A, S)).max() / EMAX)
+
+
+def fields(data):
+    return st.image_arrays(data)[4]
 
 
 def intensity(data):
-    return vtk_to_numpy(data.GetPointData().GetArray("intensity")).astype(float)
+    return st.image_arrays(data)[2].ravel()
 
 
 def timed(image):
