@@ -160,6 +160,7 @@ const std::vector<Property>& Properties()
     SCH_NUM(FilterWidth, "double", FilterWidth, double),
     SCH_NUM(RussianRoulette, "bool", RussianRoulette, bool),
     SCH_NUM(Jitter, "bool", Jitter, bool),
+    SCH_ENUM(JitterPattern, Pattern, schlieren::JitterPattern, "Random", "Lattice"),
     SCH_NUM(Seed, "int", Seed, std::uint32_t),
     SCH_ENUM(Backend, Device, schlieren::Backend, "Auto", "OpenCL", "CPU"),
     Property{ "DeviceName", "string", 1, {}, nullptr, nullptr,

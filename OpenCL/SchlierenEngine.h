@@ -192,6 +192,14 @@ enum class Framing
   Silhouette = 1 ///< the data's silhouette seen along the view (FrameSilhouette), in its shape
 };
 
+/** Where a pass's photons start inside their pixels, with Jitter on (docs/GUI.md "Jitter"). */
+enum class JitterPattern
+{
+  Random = 0, ///< each pixel its own random offset (then R2 over the passes): noise, never a pattern
+  Lattice = 1 ///< one offset for every pixel of a pass (R2 over the passes): the pixel grid shifted;
+              ///< smooth fields and shocks converge in fewer passes, caustics show moire that fades
+};
+
 enum class FilmFilter
 {
   None = 0,     ///< each photon in the pixel it lands in
@@ -253,6 +261,7 @@ struct TraceSettings
   double FilterWidth = 1.0;  ///< pixels
   bool RussianRoulette = false; ///< photon killing instead of energy weighting (manual CutoffScale)
   bool Jitter = true;        ///< jitter photons inside their pixel (false: pixel centres)
+  JitterPattern Pattern = JitterPattern::Lattice; ///< with Jitter: an offset per pass or per pixel
   std::uint32_t Seed = 1;
   int MaxSteps = 0;          ///< per ray; 0: 8 times the box diagonal over the step
   Backend Device = Backend::Auto;

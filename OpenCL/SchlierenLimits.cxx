@@ -235,6 +235,9 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("BackgroundDistance", s.BackgroundDistance, "a finite distance >= 0 (world units)");
   if (s.BackgroundPattern != 0 && s.BackgroundPattern != 1)
     OutOfRange("BackgroundPattern", s.BackgroundPattern, "0 (dots) or 1 (stripes)");
+  const int pattern = static_cast<int>(s.Pattern);
+  if (pattern < 0 || pattern > static_cast<int>(JitterPattern::Lattice))
+    OutOfRange("JitterPattern", pattern, "0 (Random) or 1 (Lattice)");
   if (!(s.BackgroundPeriod >= 0 && std::isfinite(s.BackgroundPeriod)))
     OutOfRange("BackgroundPeriod", s.BackgroundPeriod, "a finite length >= 0 (0: 6 pixels)");
   // the camera (checked whatever Camera is: a typed value is kept for when it is used)

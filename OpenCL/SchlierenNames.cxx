@@ -67,6 +67,7 @@ std::string TraceSettings::PhotonKey() const
     << static_cast<int>(Mode) << ' ' << KnifeAngle << ' ' << CutoffScale << ' ' << FilmDistance
     << ' ' << Wavelength << ' ' << ReferenceTilt << ' ' << BackgroundDistance << ' '
     << BackgroundPattern << ' ' << BackgroundPeriod << ' ' << RussianRoulette << ' ' << Jitter
+    << ' ' << static_cast<int>(Pattern)
     << ' ' << Seed << ' ' << MaxSteps << ' ' << static_cast<int>(Device) << ' ' << DeviceName.size()
     << ':' << DeviceName << ' ' << RaysPerWorkItem
     << ' ' << RankIndex << ' ' << RankCount

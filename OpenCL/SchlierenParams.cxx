@@ -61,7 +61,7 @@ sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGe
   P.pass = 0;
   P.indexScale = 1.0f; // SpectralPass sets a band's
   P.integrator = static_cast<int>(s.Method);
-  P.jitter = s.Jitter ? 1 : 0;
+  P.jitter = s.Jitter ? (s.Pattern == JitterPattern::Lattice ? 2 : 1) : 0;
   if (s.RankCount < 1 || s.RankIndex < 0 || s.RankIndex >= s.RankCount)
     throw Error("RankIndex must be in [0, RankCount).");
   P.rayOffset = s.RankIndex;

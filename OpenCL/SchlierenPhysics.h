@@ -194,7 +194,7 @@ typedef struct
   sch_uint seed;
   int pass;
   int integrator;
-  int jitter;               /* 0: rays through pixel centres; 1: jittered inside each pixel */
+  int jitter;               /* 0: rays through pixel centres; 1: an offset per pixel; 2: one per pass */
   int rayOffset, rayStride; /* ray k traces pixel rayOffset + k * rayStride */
   int useLevels;            /* 1: skip through octree blocks (levels buffer), 0: fixed steps */
   int keepInvariant;        /* 1: rescale v so that |v| = n after every step */
@@ -591,10 +591,12 @@ SCH_FN void sch_emit(const sch_params* P, int pix, float* a, float* b)
   float jx = 0.5f, jy = 0.5f;
   if (P->jitter)
   {
-    /* a random offset per pixel and seed, then the R2 low-discrepancy sequence over the passes
+    /* a random offset per pixel and seed (jitter 1), or one per seed for every pixel (2: the
+     * pixel grid shifted as a whole), then the R2 low-discrepancy sequence over the passes
      * (additive recurrence with the plastic number): the passes of a pixel never repeat and fill
      * it evenly, and the same seed gives the same photons */
-    sch_uint h = sch_hash(P->seed ^ sch_hash((sch_uint)pix * 2654435761u + 0x9e3779b9u));
+    sch_uint h = P->jitter == 2 ? sch_hash(P->seed ^ 0x5bd1e995u)
+                                : sch_hash(P->seed ^ sch_hash((sch_uint)pix * 2654435761u + 0x9e3779b9u));
     float ox = sch_unit(h), oy = sch_unit(sch_hash(h ^ 0x68bc21ebu));
     float p = (float)P->pass;
     jx = ox + p * 0.7548776662f;
