@@ -287,6 +287,7 @@ schlieren::TraceSettings SettingsOf(vtkSchlierenImage* self)
   s.FilterWidth = self->GetFilterWidth();
   s.RussianRoulette = self->GetRussianRoulette();
   s.Jitter = self->GetJitter();
+  s.Pattern = static_cast<schlieren::JitterPattern>(self->GetJitterPattern());
   s.Seed = static_cast<std::uint32_t>(self->GetSeed());
   switch (self->GetBackend())
   {
@@ -514,6 +515,8 @@ std::string EnumerationProblem(vtkSchlierenImage* f)
       SchlierenEnumProblem("Framing", f->GetFraming(), { { 0, "Volume" }, { 1, "Silhouette" } }),
       SchlierenEnumProblem(
         "BackgroundPattern", f->GetBackgroundPattern(), { { 0, "Dots" }, { 1, "Stripes" } }),
+      SchlierenEnumProblem(
+        "JitterPattern", f->GetJitterPattern(), { { 0, "Random" }, { 1, "Lattice" } }),
       SchlierenEnumProblem(
         "Filter", f->GetFilter(), { { 0, "None" }, { 1, "Gaussian" }, { 2, "Cone" } }),
       SchlierenEnumProblem(
@@ -821,6 +824,7 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FilterWidth: " << this->FilterWidth << " pixels\n";
   os << indent << "RussianRoulette: " << (this->RussianRoulette ? "On" : "Off") << "\n";
   os << indent << "Jitter: " << (this->Jitter ? "On" : "Off") << "\n";
+  os << indent << "JitterPattern: " << (this->JitterPattern == LATTICE ? "Lattice" : "Random") << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Backend: "
      << (this->Backend == OPENCL ? "OpenCL" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";

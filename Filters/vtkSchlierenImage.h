@@ -84,7 +84,8 @@
  *   FilterWidth / sqrt(passes) pixels) and FilterWidth (1 pixel).
  * - RussianRoulette (off): photon killing instead of energy weighting (needs a CutoffScale for the
  *   knife and circular cutoffs): the same mean, more noise.
- * - Jitter (on: photons start at random points of their pixels; off: at the centres) and
+ * - Jitter (on: photons start at random points of their pixels; off: at the centres),
+ *   JitterPattern (LATTICE: one offset per pass, the pixel grid shifted; RANDOM: one per pixel) and
  *   Seed (1) for the jitter; Backend (AUTO: OpenCL if a device works, else the CPU with a warning;
  *   OPENCL: OpenCL or an error; CPU).
  * - DeviceName (empty): a substring of the OpenCL device's name; empty: SCHLIEREN_OPENCL_DEVICE,
@@ -522,6 +523,23 @@ public:
 
   ///@{
   /**
+   * With Jitter on, where a pass's photons start: LATTICE (1, the default) one offset for every
+   * pixel of a pass, the pixel grid shifted as a whole (smooth fields and shocks converge in a
+   * fraction of the passes, without the first passes' speckle; near caustics the first passes
+   * show moire that fades as passes add); RANDOM (0) every pixel its own random offset (a pass's
+   * image is noisy, never patterned).
+   */
+  enum JitterPatternType
+  {
+    RANDOM = 0,
+    LATTICE = 1
+  };
+  vtkSetMacro(JitterPattern, int);
+  vtkGetMacro(JitterPattern, int);
+  ///@}
+
+  ///@{
+  /**
    * Seed of the photons' jitter. Default 1.
    */
   vtkSetMacro(Seed, int);
@@ -628,6 +646,7 @@ protected:
   double FilterWidth = 1.0;
   int RussianRoulette = 0;
   int Jitter = 1;
+  int JitterPattern = LATTICE;
   int Seed = 1;
   int Backend = AUTO;
   char* DeviceName = nullptr;
