@@ -57,7 +57,7 @@ IMAGES = {
                            Resolution=[36, 36], Passes=2, TraceInPieces=0),
     "settings_bos": dict(Cutoff="BOS", BackgroundDistance=0.5, BackgroundPattern="Stripes",
                          BackgroundPeriod=3.0, FilmDistance=0.2, Resolution=[36, 32], Passes=2,
-                         Filter="Cone", FilterWidth=2.0),
+                         Filter="Cone", FilterWidth=2.0, JitterPattern="Random"),
     "settings_fringes": dict(Cutoff="Interferometry", Wavelength=532.0, ReferenceTilt=4.0,
                              Framing="Silhouette", WavelengthRange=[450.0, 650.0],
                              WavelengthBins=4, Dispersion="None",

@@ -105,7 +105,14 @@ print("     RMS against the %d-pass image, per refinement step the GUI showed (%
 check(len(rms) >= 2 and rms[-1][1] == 0.0 and rms[0][0] < int(b["passes"]),
       "the refinement converged to the target image (%d steps seen, from %d passes)"
       % (len(rms), rms[0][0] if rms else 0))
-check(all(y[1] < x[1] for x, y in zip(rms, rms[1:])), "the RMS fell at every step")
+# With JitterPattern Lattice (the default) a pass adds no noise to average away but a shifted grid
+# of photons: the error falls overall, not at every step (measured: 0.0019 at 6 passes, 0.0017 at
+# 25, 0.0018 at 32, 0.0014 at 47, 0 at 96). A refinement that started again from few passes would
+# jump up (the same view on a 320^2 film, against 64 passes: 0.0068 at 1 pass); asserted: no step
+# above 1.2 times the one before, and every step of the second half below the first step.
+check(all(y[1] <= 1.2 * x[1] for x, y in zip(rms, rms[1:])) and
+      all(r[1] < rms[0][1] for r in rms[len(rms) // 2:]),
+      "the RMS fell over the refinement (no step above 1.2x the one before; the second half below the first step)")
 
 
 
