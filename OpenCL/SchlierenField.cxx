@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Field preparation: grid checks, ValidateIndex, the gradient, PackField and PackFieldHighOrder.
 #include "SchlierenEngineInternal.h"
+#include "SchlierenLimits.h"
 
 #include <algorithm>
 #include <atomic>
@@ -174,7 +175,9 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
   // order of the range; smooth data makes it O(h^2) smaller)
   // (near a border the five points are the five nearest inside: jumpFree, what the step length
   // needs; point adds the two points of margin that the fourth-order stencils need)
-  std::vector<unsigned char> point(n, 0), jumpFree(n, 0);
+  // (the scratch rows are written whole before they are read: no zero fill, whose first touch of
+  // the memory would run on one thread)
+  AlignedBytes point(n), jumpFree(n);
   // the loops read the grid's sizes from locals (captured by value): byte and float stores could
   // alias captured references, which the compiler must then reload at every point
   const int G[3] = { dims[0], dims[1], dims[2] };
@@ -269,7 +272,7 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
   });
   // 3. the smooth cells, and 4. their levels, by minima along one axis at a time: dst(i) = the
   // least src(i + d) over the offsets d; beyond the grid, 0 (cells) or the border's value (levels)
-  auto minPass = [&](const std::vector<unsigned char>& src, std::vector<unsigned char>& dst, int a,
+  auto minPass = [&](const AlignedBytes& src, AlignedBytes& dst, int a,
                    std::initializer_list<int> offsets, bool clamp) {
     // everything the loops read in locals: byte stores may alias any captured value, which kept
     // the compiler from vectorising (and reloaded the bounds every iteration)
@@ -326,23 +329,23 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
     });
   };
   // cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are, along every axis
-  std::vector<unsigned char> cell = point, next(n, 0);
+  AlignedBytes cell = point, next(n);
   for (int a = 0; a < 3; ++a)
   {
     minPass(cell, next, a, { -1, 0, 1, 2 }, false);
     cell.swap(next);
   }
-  std::vector<unsigned char>().swap(point);
+  AlignedBytes().swap(point);
   // level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is free of jumps
   // (its points c - 1 .. c + 2 inside the grid are jumpFree; beyond the grid no step goes). A
   // cube erosion of radius 1 (offsets -1, 0, 1), then radius r -> 2 r by offsets -r, r.
-  std::vector<unsigned char> ero = jumpFree;
+  AlignedBytes ero = jumpFree;
   for (int a = 0; a < 3; ++a)
   {
     minPass(ero, next, a, { -1, 0, 1, 2 }, true);
     ero.swap(next);
   }
-  std::vector<unsigned char>().swap(jumpFree);
+  AlignedBytes().swap(jumpFree);
   std::vector<unsigned char> level(n, 0);
   for (int a = 0; a < 3; ++a)
   {
@@ -352,7 +355,7 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
   // The levels' erosions on bit rows (64 cells a word): a pass reads and writes an eighth of the
   // bytes the byte rows took (these passes were half of the packing's time). Row bits past the
   // grid's last point are never read (the shifts clamp to the row's ends).
-  std::vector<unsigned char>().swap(next);
+  AlignedBytes().swap(next);
   const int nx = dims[0], ny = dims[1], nz = dims[2];
   const int W = (nx + 63) / 64;
   const std::size_t rowsYZ = static_cast<std::size_t>(ny) * nz;
@@ -367,7 +370,7 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
             A[row * W + (i >> 6)] |= std::uint64_t(1) << (i & 63);
     });
   }
-  std::vector<unsigned char>().swap(ero);
+  AlignedBytes().swap(ero);
   // bits s .. s + 63 of a row, positions clamped to the row's ends (0 .. nx - 1)
   auto bitsAt = [nx](const std::uint64_t* in, long s) {
     const long lo = std::max(s, 0L), hi = std::min(s + 63, long(nx) - 1);
@@ -456,14 +459,28 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
     if (!any)
       break;
   }
-  std::size_t count = 0, total = 0;
-  for (int k = 0; k + 1 < dims[2]; ++k)
-    for (int j = 0; j + 1 < dims[1]; ++j)
-      for (int i = 0; i + 1 < dims[0]; ++i, ++total)
-        count += cell[i + j * strides[1] + k * strides[2]];
-  for (std::size_t i = 0; i < n; ++i)
-    smooth[i] = static_cast<unsigned char>((cell[i] ? SCH_SMOOTH_CELL : 0) | (level[i] << SCH_SMOOTH_SHIFT));
-  return total ? double(count) / total : 0.0;
+  // the smooth share of the cells (c .. c + 1 inside the grid), and the smoothness bytes
+  std::atomic<std::size_t> count(0);
+  {
+    const unsigned char* const C = cell.data();
+    const unsigned char* const Lv = level.data();
+    const std::size_t slice = static_cast<std::size_t>(nx) * ny;
+    ParallelSlices(nz, [=, &count](int k0, int k1) {
+      std::size_t c = 0;
+      for (int k = k0; k < std::min(k1, nz - 1); ++k)
+        for (int j = 0; j + 1 < ny; ++j)
+        {
+          const unsigned char* row = C + j * std::size_t(nx) + k * slice;
+          for (int i = 0; i + 1 < nx; ++i)
+            c += row[i];
+        }
+      count += c;
+      for (std::size_t i = std::size_t(k0) * slice; i < std::size_t(k1) * slice; ++i)
+        smooth[i] = static_cast<unsigned char>((C[i] ? SCH_SMOOTH_CELL : 0) | (Lv[i] << SCH_SMOOTH_SHIFT));
+    });
+  }
+  const std::size_t total = std::size_t(nx - 1) * (ny - 1) * (nz - 1);
+  return total ? double(count.load()) / total : 0.0;
 }
 
 void CheckVolume(const Volume& v)

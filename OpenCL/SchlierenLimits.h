@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace schlieren
@@ -94,6 +95,18 @@ struct PageAlignedAllocator
     return static_cast<T*>(p);
   }
   void deallocate(T* p, std::size_t) { std::free(p); }
+  // resize() leaves the new elements uninitialised: the packings write every one, and a zero
+  // fill first would touch the memory twice, the first time (its page faults) on one thread
+  template <typename U>
+  void construct(U* p) noexcept
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
   template <typename U>
   bool operator==(const PageAlignedAllocator<U>&) const
   {
@@ -106,6 +119,7 @@ struct PageAlignedAllocator
   }
 };
 using AlignedFloats = std::vector<float, PageAlignedAllocator<float>>;
+using AlignedBytes = std::vector<unsigned char, PageAlignedAllocator<unsigned char>>;
 
 /** The most base steps a ray may need across the volume's diagonal (CheckPrecision refuses more). */
 double MaxStepsAcross();

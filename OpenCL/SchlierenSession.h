@@ -185,13 +185,15 @@ private:
   // the whole volume and what it was built from
   std::string VolumeKey;
   AlignedFloats Packed; // page-aligned: a CPU OpenCL device traces it in place
-  std::vector<unsigned char> Levels, Solid, Smooth;
+  std::vector<unsigned char> Levels, Solid;
+  AlignedBytes Smooth; // written whole by PackFieldHighOrder: no zero fill first
   Volume Kept;
   struct EarlierVolume
   {
     std::string Key;
     AlignedFloats Packed;
-    std::vector<unsigned char> Levels, Solid, Smooth;
+    std::vector<unsigned char> Levels, Solid;
+    AlignedBytes Smooth;
     Volume Kept;
     double Bytes = 0.0;
   };
