@@ -329,23 +329,23 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
     });
   };
   // cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are, along every axis
-  AlignedBytes cell = point, next(n);
+  // (the point and jumpFree rows are not needed after: taken, not copied, saving the copies'
+  // first touch of fresh memory)
+  AlignedBytes cell(std::move(point)), next(n);
   for (int a = 0; a < 3; ++a)
   {
     minPass(cell, next, a, { -1, 0, 1, 2 }, false);
     cell.swap(next);
   }
-  AlignedBytes().swap(point);
   // level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is free of jumps
   // (its points c - 1 .. c + 2 inside the grid are jumpFree; beyond the grid no step goes). A
   // cube erosion of radius 1 (offsets -1, 0, 1), then radius r -> 2 r by offsets -r, r.
-  AlignedBytes ero = jumpFree;
+  AlignedBytes ero(std::move(jumpFree));
   for (int a = 0; a < 3; ++a)
   {
     minPass(ero, next, a, { -1, 0, 1, 2 }, true);
     ero.swap(next);
   }
-  AlignedBytes().swap(jumpFree);
   std::vector<unsigned char> level(n, 0);
   for (int a = 0; a < 3; ++a)
   {
