@@ -559,7 +559,9 @@ int schlieren_session_set_volume(schlieren_session* s, const int dims[3], const 
     piece.Version = ++s->Version;
     piece.Problem.clear();
     piece.Load = [s](schlieren::PieceValues& v) {
-      v.NMinus1 = s->NMinus1;
+      // read in place: the session's copy lives, unchanged, through the Update
+      v.NMinus1InPlace = s->NMinus1.data();
+      v.NMinus1InPlaceCount = s->NMinus1.size();
       v.Solid = s->Solid;
       if (s->Settings.UseOctree && !s->Levels.empty())
       {

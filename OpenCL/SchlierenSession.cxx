@@ -45,8 +45,8 @@ std::string LoadPiece(
     try
     {
       problem = piece.Load ? piece.Load(values) : std::string("no values for the input piece");
-      if (problem.empty() && values.NMinus1.size() != count)
-        problem = "The input piece has " + std::to_string(values.NMinus1.size()) +
+      if (problem.empty() && values.NMinus1Size() != count)
+        problem = "The input piece has " + std::to_string(values.NMinus1Size()) +
           " values of n - 1 for its " + std::to_string(count) + " points.";
     }
     catch (const std::bad_alloc&)
@@ -175,14 +175,14 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
 /** This rank's piece as one message: extent, whether it has a body, n - 1, the solid points. */
 std::vector<char> PieceMessage(const int ext[6], const PieceValues& values, bool hasSolid)
 {
-  const std::size_t n = values.NMinus1.size();
+  const std::size_t n = values.NMinus1Size();
   std::vector<char> m(6 * sizeof(int) + 1 + n * sizeof(float) + (hasSolid ? n : 0));
   char* p = m.data();
   std::memcpy(p, ext, 6 * sizeof(int));
   p += 6 * sizeof(int);
   *p++ = hasSolid ? 1 : 0;
   if (n)
-    std::memcpy(p, values.NMinus1.data(), n * sizeof(float));
+    std::memcpy(p, values.NMinus1Data(), n * sizeof(float));
   p += n * sizeof(float);
   if (hasSolid)
     std::memcpy(p, values.Solid.data(), n);
@@ -192,7 +192,7 @@ std::vector<char> PieceMessage(const int ext[6], const PieceValues& values, bool
 } // namespace
 
 //------------------------------------------------------------------------------
-void AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& values,
+const float* AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& values,
   std::vector<float>& field, std::vector<unsigned char>& solid)
 {
   const int* whole = piece.WholeExtent;
@@ -208,11 +208,13 @@ void AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& v
   solid.clear();
   if (parallel.Size() == 1 && std::equal(piece.Extent, piece.Extent + 6, whole))
   {
-    // the whole volume in one piece: taken as it is
-    field.swap(values.NMinus1);
+    // the whole volume in one piece: taken as it is (read in place where the input allows)
     if (hasSolid)
       solid.swap(values.Solid);
-    return;
+    if (values.NMinus1InPlace)
+      return values.NMinus1InPlace;
+    field.swap(values.NMinus1);
+    return field.data();
   }
   std::vector<std::vector<char>> all = parallel.AllGather(PieceMessage(piece.Extent, values, hasSolid));
   std::vector<float>().swap(values.NMinus1);
@@ -257,6 +259,7 @@ void AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& v
     throw Error("The input pieces do not cover the input's whole extent; the tracer needs the "
                 "whole volume.");
   }
+  return field.data();
 }
 
 //------------------------------------------------------------------------------
@@ -531,7 +534,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     double tolerance = hasTolerance ? values.LevelTolerance : 0.0;
     int maxLevel = present ? values.MaxLevel : 7;
     std::vector<float> field;
-    AssembleVolume(parallel, piece, values, field, this->Solid);
+    const float* nMinus1 = AssembleVolume(parallel, piece, values, field, this->Solid);
 
     // 2b. The octree levels of the whole volume. One rank with the whole volume: the piece's
     // levels as they are. Otherwise (pieces, whose levels stop at the piece borders): the levels
@@ -558,7 +561,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
         this->Levels.resize(total);
         // ValidateIndex runs in PackField below; ComputeOctreeLevels itself only reads values
         ComputeOctreeLevels(
-          volume.Dimensions, field.data(), tolerance, this->Levels.data(), maxLevel);
+          volume.Dimensions, nMinus1, tolerance, this->Levels.data(), maxLevel);
       }
       else if (rank == 0)
         out.Notes.push_back({ true,
@@ -580,12 +583,12 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
         "AutomaticDimension), or trace a subset (ExtractSubset).");
       this->Packed.resize(4 * total);
       if (settings.Recon == Reconstruction::Trilinear)
-        PackField(volume.Dimensions, volume.Spacing, field.data(), this->Packed.data());
+        PackField(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data());
       else
       {
         // fourth-order gradients where the data is smooth, and the smoothness per cell
         this->Smooth.resize(total);
-        PackFieldHighOrder(volume.Dimensions, volume.Spacing, field.data(), this->Packed.data(),
+        PackFieldHighOrder(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data(),
           this->Smooth.data());
       }
     }

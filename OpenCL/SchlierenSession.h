@@ -49,6 +49,22 @@ namespace schlieren
 struct PieceValues
 {
   std::vector<float> NMinus1; ///< n - 1 at the piece's points, x fastest
+  /**
+   * Or n - 1 read in place, without a copy (NMinus1 then empty): an input that already holds
+   * floats, x fastest, that lives and does not change until the Update that loads it returns.
+   */
+  const float* NMinus1InPlace = nullptr;
+  std::size_t NMinus1InPlaceCount = 0;
+  /** n - 1 at the piece's points, from either; null where there are none. */
+  const float* NMinus1Data() const
+  {
+    return this->NMinus1InPlace ? this->NMinus1InPlace
+                                : this->NMinus1.empty() ? nullptr : this->NMinus1.data();
+  }
+  std::size_t NMinus1Size() const
+  {
+    return this->NMinus1InPlace ? this->NMinus1InPlaceCount : this->NMinus1.size();
+  }
   /** Octree levels per point (RefractionOctree); empty: none. Used only with UseOctree. */
   std::vector<unsigned char> Levels;
   bool HasLevelTolerance = false; ///< the tolerance the levels were built for is known
@@ -249,12 +265,13 @@ FilmGeometry PlannedFilm(const Volume& volume, TraceSettings settings, const Tra
 std::string WhyNotInPieces(const TraceSettings& settings);
 
 /**
- * The whole volume from every rank's piece, on every rank (collective): n - 1 into `field`, and
+ * The whole volume from every rank's piece, on every rank (collective): returns n - 1 at its
+ * points, in `field` or, for one rank's whole volume read in place, in that input (no copy); and
  * where any piece has a body, the solid points into `solid` (else it comes back empty). `values`
  * is this rank's; its vectors may be taken. Throws Error where the pieces do not cover the whole
  * extent (on every rank alike).
  */
-void AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& values,
+const float* AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceValues& values,
   std::vector<float>& field, std::vector<unsigned char>& solid);
 
 } // namespace schlieren

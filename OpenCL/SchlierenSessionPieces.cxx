@@ -70,7 +70,7 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
       values.HasLevelTolerance && values.LevelTolerance >= 0;
     const double tol = -parallel.Max(present ? -values.LevelTolerance : -1e300);
     const bool octree = octreeAsked && tol < 1e300;
-    p.NMinus1 = values.NMinus1.empty() ? nullptr : values.NMinus1.data();
+    p.NMinus1 = values.NMinus1Data();
     // its levels up to the highest any piece was built for (as the whole volume's), held up to
     // the highest the volume reaches, with the ghosts that level's blocks need
     const int maxLevel = static_cast<int>(parallel.Max(present ? double(values.MaxLevel) : -1.0));
