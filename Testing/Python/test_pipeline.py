@@ -235,4 +235,27 @@ T.check(np.abs(images[np.float32]).max() > 0.5 * EMAX and np.array_equal(images[
         "float n_minus_1 (read in place) and double (converted): the same deflections bit for bit "
         "(max |eps| %.3g rad)" % np.abs(images[np.float32]).max())
 
+# ---------------------------------------------------------------- 5. the image's range cache
+# the filter fills each image array's range cache (what ParaView's data information asks after
+# every update): every range as VTK computes it on a copy without the cache, for all values and the
+# finite ones, per component and (-1) the norm's
+from vtkmodules.vtkCommonCore import vtkAbstractArray, vtkFloatArray  # noqa: E402
+
+pd = im.GetOutput().GetPointData()
+for k in range(pd.GetNumberOfArrays()):
+    arr = pd.GetArray(k)
+    name = arr.GetName()
+    T.check(arr.GetInformation().Has(vtkAbstractArray.PER_COMPONENT()),
+            "range cache: '%s' has its ranges after the update" % name)
+    fresh = vtkFloatArray()
+    fresh.DeepCopy(arr)  # DeepCopy leaves the range keys behind: computed anew
+    T.check(not fresh.GetInformation().Has(vtkAbstractArray.PER_COMPONENT()),
+            "range cache: a deep copy of '%s' has none (so the ranges below are VTK's own)" % name)
+    for c in range(-1, arr.GetNumberOfComponents()):
+        cached, own = arr.GetRange(c), fresh.GetRange(c)
+        cachedF, ownF = arr.GetFiniteRange(c), fresh.GetFiniteRange(c)
+        T.check(cached == own and cachedF == ownF,
+                "range cache: '%s' component %d: %r == VTK's %r, finite %r == %r" % (name, c, cached, own, cachedF, ownF))
+
+
 T.finish()
