@@ -331,8 +331,8 @@ std::string ErrorKey(vtkSchlierenImage* self)
  * for more than one component, the range of the tuples' L2 norm, as vtkDataArray computes them
  * (double minima and maxima; the norm's from the sums of squares in component order), for all
  * values and for the finite ones (the same here). ParaView's data information asks each of these
- * after every update and would compute them on one thread, twice: 24 % of a camera move's CPU at
- * 16 samples per ray. An array with a NaN or an infinity is left to VTK.
+ * after every update and would otherwise compute them on one thread, twice (docs/PERFORMANCE.md
+ * has what that cost a camera move). An array with a NaN or an infinity is left to VTK.
  */
 void SeedRanges(vtkFloatArray* a, vtkIdType tuples)
 {

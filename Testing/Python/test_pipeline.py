@@ -255,7 +255,8 @@ for k in range(pd.GetNumberOfArrays()):
         cached, own = arr.GetRange(c), fresh.GetRange(c)
         cachedF, ownF = arr.GetFiniteRange(c), fresh.GetFiniteRange(c)
         T.check(cached == own and cachedF == ownF,
-                "range cache: '%s' component %d: %r == VTK's %r, finite %r == %r" % (name, c, cached, own, cachedF, ownF))
+                "range cache: '%s' component %d: %r == VTK's %r, finite %r == %r"
+                % (name, c, cached, own, cachedF, ownF))
 
 
 T.finish()
