@@ -376,7 +376,9 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
     F.MaxDrift = std::max(F.MaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
     F.MaxError = std::max(F.MaxError, double(rec[SCH_REC_ERROR]));
     const float ex = rec[SCH_REC_EX], ey = rec[SCH_REC_EY];
-    const double absE = std::hypot(double(ex), double(ey));
+    // the squares of floats are exact in double and cannot overflow: one rounding in the sum and
+    // one in the root, as std::hypot gives, at a fraction of its cost (it was 0.9 % of a move)
+    const double absE = std::sqrt(double(ex) * ex + double(ey) * ey);
     F.MaxAbsKnife = std::max(F.MaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
     F.MaxAbsDeflection = std::max(F.MaxAbsDeflection, absE);
     const int pix = static_cast<int>(P.rayOffset + (first + r) * P.rayStride);

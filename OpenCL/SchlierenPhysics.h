@@ -130,6 +130,11 @@ static inline sch_f4 sch_f4_madd(sch_f4 acc, float w, sch_f4 b)
 #define SCH_KEEP(P) ((P)->keepInvariant)
 #define SCH_USE_SOLID(P) ((P)->useSolid)
 #endif
+/* The lock-step kernel traces the film in tiles of SCH_TILE_W x SCH_TILE_ROWS pixels, bands of
+ * SCH_TILE_ROWS rows (sch_tile_order); the host cuts its chunks of rays on whole bands */
+#define SCH_TILE_W 8
+#define SCH_TILE_ROWS 8
+
 /* Number of floats per output ray record. */
 #define SCH_RECORD 12
 /* Record layout. */

@@ -78,6 +78,11 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   std::size_t chunk = 64;
   while (chunk < (1u << 16) && (2 * chunk) * samplesPerRay <= 8e6)
     chunk *= 2;
+  // whole bands of film rows where this rank traces every pixel: the lock-step kernel then
+  // traces them in tiles (sch_tile_order)
+  const std::size_t band = std::size_t(SCH_TILE_ROWS) * std::size_t(P.filmNx);
+  if (P.rayStride == 1 && chunk % band != 0)
+    chunk = std::max(band, chunk / band * band);
   chunk = std::min<std::size_t>(std::max<std::size_t>(rays, 1), chunk);
   std::string used, device, warn;
   // with a body the kernels read its solid and near bits in the levels byte (no Cubic then)
