@@ -557,36 +557,40 @@ void TestSlabs(bool haveCL)
   }
   const SmallSphere sphere;
   const std::uint64_t planes20 = 20 * 48 * 48 * 16;
+  // (steps of 4 voxels: the lock-step kernel's prefetch addresses the slabs too)
   for (bool octree : { false, true })
     for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::RK4 })
       for (int lock : { 0, 1 })
-      {
-        const Volume v = sphere.With(octree);
-        TraceSettings s;
-        s.Device = Backend::OpenCL;
-        s.Method = m;
-        s.StepSize = 0.5;
-        s.Resolution[0] = 36;
-        s.Resolution[1] = 30;
-        s.CutoffScale = 1000;
-        const schtest::ScopedOptions kernel([lock](RuntimeOptions& o) { o.Lockstep = lock; });
-        const TraceResult whole = Trace(v, s);
-        TraceResult split;
+        for (double step : { 0.5, 4.0 })
         {
-          const schtest::ScopedOptions limit([&](RuntimeOptions& o) { o.MaxAlloc = planes20; });
-          split = Trace(v, s);
+          const Volume v = sphere.With(octree);
+          TraceSettings s;
+          s.Device = Backend::OpenCL;
+          s.Method = m;
+          s.StepSize = step;
+          s.Resolution[0] = 36;
+          s.Resolution[1] = 30;
+          s.CutoffScale = 1000;
+          const schtest::ScopedOptions kernel([lock](RuntimeOptions& o) { o.Lockstep = lock; });
+          const TraceResult whole = Trace(v, s);
+          TraceResult split;
+          {
+            const schtest::ScopedOptions limit([&](RuntimeOptions& o) { o.MaxAlloc = planes20; });
+            split = Trace(v, s);
+          }
+          const double diff = LargestDifference(whole.Deflection, split.Deflection);
+          const std::string name = std::string(IntegratorName(m)) + (octree ? " + octree" : "") +
+            (lock ? ", lock-step" : ", per item") + (step > 1 ? ", 4 voxel steps" : "");
+          std::printf("%s: 3 slabs against one buffer, largest deflection difference %.3g rad\n",
+            name.c_str(),
+            diff);
+          CHECK(split.DeviceName.find("split in 3 buffers") != std::string::npos &&
+              whole.DeviceName.find("split") == std::string::npos,
+            name +
+              ": the device reports the field in 3 buffers under the forced limit, else in one");
+          CHECK(diff == 0.0 && whole.Samples == split.Samples,
+            name + ": a volume split into slabs traces as from one buffer, bit for bit");
         }
-        const double diff = LargestDifference(whole.Deflection, split.Deflection);
-        const std::string name = std::string(IntegratorName(m)) + (octree ? " + octree" : "") +
-          (lock ? ", lock-step" : ", per item");
-        std::printf("%s: 3 slabs against one buffer, largest deflection difference %.3g rad\n",
-          name.c_str(), diff);
-        CHECK(split.DeviceName.find("split in 3 buffers") != std::string::npos &&
-            whole.DeviceName.find("split") == std::string::npos,
-          name + ": the device reports the field in 3 buffers under the forced limit, else in one");
-        CHECK(diff == 0.0 && whole.Samples == split.Samples,
-          name + ": a volume split into slabs traces as from one buffer, bit for bit");
-      }
   // TraceRays (the explicit-point kernel) too
   std::vector<float> ab;
   for (int i = -5; i <= 5; ++i)
