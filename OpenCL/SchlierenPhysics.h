@@ -349,6 +349,20 @@ SCH_FN float sch_grid_coord(float x, float is, float g0, float hi, int* c)
   return f;
 }
 
+/* The packed point (i, j, k) (indices in the points held): in its slab where the field is in
+ * slabs (the slab of k found by comparisons, no indexed array). */
+SCH_FN SCH_GLOBAL const float* sch_cell_corner(SCH_FIELD field, const sch_params* P, int i, int j, int k)
+{
+#ifdef SCH_SLABS
+  const int q = k / P->slabCells;
+  SCH_GLOBAL const float* base = sch_slab_base(field, q);
+  k -= q * P->slabCells;
+#else
+  SCH_GLOBAL const float* base = field;
+#endif
+  return base + (long)k * P->sliceFloats + (long)j * P->rowFloats + (long)i * 4;
+}
+
 /* Trilinear interpolation of the packed field at p (relative to the centre); outside the grid the
  * nearest border value is used. *cell: the point index of the cell's first corner. */
 SCH_FN sch_sample sch_sample_cell(
@@ -367,15 +381,7 @@ SCH_FN sch_sample sch_sample_cell(
   k -= P->oz;
   const long sy = P->rowFloats, sz = P->sliceFloats;
   *cell = ((long)k * P->ny + j) * P->nx + i;
-#ifdef SCH_SLABS
-  /* the slab of cell k, by comparisons (no indexed array), and k within it */
-  const int q = k / P->slabCells;
-  SCH_GLOBAL const float* base = sch_slab_base(field, q);
-  k -= q * P->slabCells;
-#else
-  SCH_GLOBAL const float* base = field;
-#endif
-  SCH_GLOBAL const float* c000 = base + (long)k * sz + (long)j * sy + (long)i * 4;
+  SCH_GLOBAL const float* c000 = sch_cell_corner(field, P, i, j, k);
   SCH_GLOBAL const float* c001 = c000 + sz;
   /* seven lerps of the four channels at once: along x on the four edges, then y, then z */
   sch_f4 e00 = sch_f4_lerp(sch_f4_load(c000), sch_f4_load(c000 + 4), tx);

@@ -127,15 +127,8 @@ static inline void sch_prefetch_cell(SCH_FIELD field, const sch_params* P, sch_v
   j -= P->oy;
   k -= P->oz;
   const long sy = P->rowFloats, sz = P->sliceFloats;
-#ifdef SCH_SLABS
-  const int q = k / P->slabCells;
-  __global const float* base = sch_slab_base(field, q);
-  k -= q * P->slabCells;
-#else
-  __global const float* base = field;
-#endif
   /* the two points along x of each of the four rows: 32 bytes, in one or two cache lines */
-  __global const float* c = base + (long)k * sz + (long)j * sy + (long)i * 4;
+  __global const float* c = sch_cell_corner(field, P, i, j, k);
   __builtin_prefetch(c);
   __builtin_prefetch(c + 7);
   __builtin_prefetch(c + sy);
