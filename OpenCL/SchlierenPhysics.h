@@ -351,7 +351,8 @@ SCH_FN float sch_grid_coord(float x, float is, float g0, float hi, int* c)
 
 /* The packed point (i, j, k) (indices in the points held): in its slab where the field is in
  * slabs (the slab of k found by comparisons, no indexed array). */
-SCH_FN SCH_GLOBAL const float* sch_cell_corner(SCH_FIELD field, const sch_params* P, int i, int j, int k)
+SCH_FN SCH_GLOBAL const float* sch_cell_corner(
+  SCH_FIELD field, const sch_params* P, int i, int j, int k)
 {
 #ifdef SCH_SLABS
   const int q = k / P->slabCells;
