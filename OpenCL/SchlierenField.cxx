@@ -147,6 +147,102 @@ static void ParallelSlices(int nz, Body body)
     [&](unsigned t) { body(nz * int(t) / nt, nz * (int(t) + 1) / nt); });
 }
 
+// One bit per point, rows of W words along x (row r = j + k ny): the smoothness passes' masks.
+// The erosions of a mask (dst = the AND of src shifted by offsets along one axis) read and write an
+// eighth of what byte rows took, and the masks' scratch is a sixteenth of the packed field's.
+// Bits past a row's last point (nx - 1) are never read: the shifts stop at the row's ends.
+using Words = std::vector<std::uint64_t, PageAlignedAllocator<std::uint64_t>>;
+
+namespace
+{
+struct BitGrid
+{
+  int nx, ny, nz, W;
+  std::size_t Words() const { return static_cast<std::size_t>(ny) * nz * W; }
+  // bits s .. s + 63 of a row; positions before 0 or past nx - 1 read the row's end bit (clamp)
+  // or 0
+  std::uint64_t At(const std::uint64_t* in, long s, bool clamp) const
+  {
+    const long lo = std::max(s, 0L), hi = std::min(s + 63, long(nx) - 1);
+    std::uint64_t v = 0;
+    if (lo <= hi)
+    {
+      const int len = int(hi - lo + 1), off = int(lo & 63);
+      const long w = lo >> 6;
+      std::uint64_t chunk = in[w] >> off;
+      if (off && off + len > 64)
+        chunk |= in[w + 1] << (64 - off);
+      if (len < 64)
+        chunk &= (std::uint64_t(1) << len) - 1;
+      v = chunk << (lo - s);
+    }
+    if (!clamp)
+      return v;
+    if (s < 0 && (in[0] & 1))
+    {
+      const long below = std::min(-s, 64L); // bits 0 .. below - 1 lie before the row
+      v |= below >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << below) - 1;
+    }
+    if (s + 63 > long(nx) - 1 && ((in[(nx - 1) >> 6] >> ((nx - 1) & 63)) & 1))
+    {
+      const long first = std::max(0L, long(nx) - s); // bits first .. 63 lie past the row
+      v |= first >= 64 ? 0 : ~std::uint64_t(0) << first;
+    }
+    return v;
+  }
+  // dst = the AND over the offsets d of src at (point + d along axis a); beyond the grid the
+  // border's bit (clamp) or 0
+  void Erode(const std::uint64_t* S, std::uint64_t* D, int a, std::initializer_list<int> offsets,
+    bool clamp) const
+  {
+    int off[5] = { 0, 0, 0, 0, 0 }, no = 0;
+    for (int d : offsets)
+      off[no++] = d;
+    const BitGrid g = *this;
+    ParallelSlices(nz, [=](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        for (int j = 0; j < g.ny; ++j)
+        {
+          const std::size_t row = (std::size_t(k) * g.ny + j) * g.W;
+          std::uint64_t* out = D + row;
+          if (a == 0)
+          {
+            for (int w = 0; w < g.W; ++w)
+            {
+              std::uint64_t v = ~std::uint64_t(0);
+              for (int o = 0; o < no; ++o)
+                v &= g.At(S + row, long(w) * 64 + off[o], clamp);
+              out[w] = v;
+            }
+            continue;
+          }
+          for (int w = 0; w < g.W; ++w)
+            out[w] = ~std::uint64_t(0);
+          for (int o = 0; o < no; ++o)
+          {
+            int c = (a == 1 ? j : k) + off[o];
+            const int na = a == 1 ? g.ny : g.nz;
+            if (c < 0 || c > na - 1)
+            {
+              if (!clamp)
+              {
+                for (int w = 0; w < g.W; ++w)
+                  out[w] = 0;
+                break;
+              }
+              c = c < 0 ? 0 : na - 1;
+            }
+            const std::uint64_t* in =
+              S + ((a == 1 ? std::size_t(k) * g.ny + c : std::size_t(c) * g.ny + j) * g.W);
+            for (int w = 0; w < g.W; ++w)
+              out[w] &= in[w];
+          }
+        }
+    });
+  }
+};
+} // namespace
+
 double PackFieldHighOrder(const int dims[3], const double spacing[3], const float* n1, float* out,
   unsigned char* smooth, double threshold)
 {
@@ -164,320 +260,204 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
 double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const float* n1, float* out,
   unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax)
 {
-  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
   const std::size_t strides[3] = { 1, static_cast<std::size_t>(dims[0]),
     static_cast<std::size_t>(dims[0]) * dims[1] };
   // structure below this part of the field's range is left to the smooth scheme: its overshoot
   // there is far below what the tracer resolves (steps are flagged for 1 % of the range)
   const double floor = 1e-4 * (double(rangeHi) - rangeLo) + 1e-30;
+  const BitGrid grid{ dims[0], dims[1], dims[2], (dims[0] + 63) / 64 };
+  const int nx = dims[0], ny = dims[1], nz = dims[2], W = grid.W;
+  // (every mask is written whole before it is read: no zero fill, whose first touch of the memory
+  // would run on one thread)
+  Words point(grid.Words()), jumpFree(grid.Words());
   // 1. the smooth points: two or more points from every border, and along every axis a fourth
   // difference small against the range of the five points (a jump or a kink makes it of the
   // order of the range; smooth data makes it O(h^2) smaller)
   // (near a border the five points are the five nearest inside: jumpFree, what the step length
   // needs; point adds the two points of margin that the fourth-order stencils need)
-  // (the scratch rows are written whole before they are read: no zero fill, whose first touch of
-  // the memory would run on one thread)
-  AlignedBytes point(n), jumpFree(n);
-  // the loops read the grid's sizes from locals (captured by value): byte and float stores could
-  // alias captured references, which the compiler must then reload at every point
-  const int G[3] = { dims[0], dims[1], dims[2] };
-  const std::size_t St[3] = { strides[0], strides[1], strides[2] };
-  const double H[3] = { spacing[0], spacing[1], spacing[2] };
-  unsigned char* const PT = point.data();
-  unsigned char* const JF = jumpFree.data();
-  const double TH = threshold, FL = floor;
-  ParallelSlices(dims[2], [=](int k0, int k1) {
-    const int nx = G[0], ny = G[1], nz = G[2];
-    const std::size_t sy = St[1], sz = St[2];
-    // the five-point test of row values f0..f4 (each a row of nx points): ok[i] &= the test at i
-    // (a loop without branches over a row, which the compiler vectorises)
-    auto test = [TH, FL](const float* f0, const float* f1, const float* f2, const float* f3,
-                  const float* f4, unsigned char* ok, int i0, int i1) {
-      for (int i = i0; i < i1; ++i)
-      {
-        const double a0 = f0[i], a1 = f1[i], a2 = f2[i], a3 = f3[i], a4 = f4[i];
-        const double lo = std::min(std::min(std::min(a0, a1), std::min(a2, a3)), a4);
-        const double hi = std::max(std::max(std::max(a0, a1), std::max(a2, a3)), a4);
-        const double d4 = a0 - 4 * a1 + 6 * a2 - 4 * a3 + a4;
-        ok[i] = ok[i] & (std::fabs(d4) <= TH * (hi - lo + FL) ? 1 : 0);
-      }
-    };
-    std::vector<unsigned char> ok(static_cast<std::size_t>(nx));
-    const bool tooThin = nx < 5 || ny < 5 || nz < 5;
-    for (int k = k0; k < k1; ++k)
-      for (int j = 0; j < ny; ++j)
-      {
-        const std::size_t row = j * sy + k * sz;
-        unsigned char* jf = JF + row;
-        unsigned char* pt = PT + row;
-        if (tooThin)
-        {
-          std::fill(jf, jf + nx, static_cast<unsigned char>(0));
-          std::fill(pt, pt + nx, static_cast<unsigned char>(0));
-          continue;
-        }
-        std::fill(ok.begin(), ok.end(), static_cast<unsigned char>(1));
-        // along x: the five points around i, those around 2 (or nx - 3) near the ends
-        const float* r = n1 + row;
-        test(r - 2, r - 1, r, r + 1, r + 2, ok.data(), 2, nx - 2);
-        for (int i = 0; i < 2; ++i)
-          ok[i] = ok[2];
-        for (int i = nx - 2; i < nx; ++i)
-          ok[i] = ok[nx - 3];
-        // along y and z: the five rows around j (k), those around 2 (or n - 3) near the ends
-        const int jc = std::min(std::max(j, 2), ny - 3), kc = std::min(std::max(k, 2), nz - 3);
-        const float* ry = n1 + jc * sy + k * sz;
-        test(ry - 2 * sy, ry - sy, ry, ry + sy, ry + 2 * sy, ok.data(), 0, nx);
-        const float* rz = n1 + j * sy + kc * sz;
-        test(rz - 2 * sz, rz - sz, rz, rz + sz, rz + 2 * sz, ok.data(), 0, nx);
-        const bool innerRow = j >= 2 && j <= ny - 3 && k >= 2 && k <= nz - 3;
-        for (int i = 0; i < nx; ++i)
-        {
-          jf[i] = ok[i];
-          pt[i] = (innerRow && i >= 2 && i <= nx - 3) ? ok[i] : 0;
-        }
-      }
-  });
-  // 2. n - 1 and the gradient: along each axis, fourth order where the five points of the
-  // difference are all smooth (a point beside a jump may pass the test on its own), PackField's
-  // second order elsewhere
-  ParallelSlices(dims[2], [=](int k0, int k1) {
-    const int dims[3] = { G[0], G[1], G[2] };
-    const std::size_t strides[3] = { St[0], St[1], St[2] };
-    const double spacing[3] = { H[0], H[1], H[2] };
-    const unsigned char* const point = PT;
-    for (int k = k0; k < k1; ++k)
-      for (int j = 0; j < dims[1]; ++j)
-        for (int i = 0; i < dims[0]; ++i)
-        {
-          const int ijk[3] = { i, j, k };
-          const std::size_t idx = i + j * strides[1] + k * strides[2];
-          out[4 * idx] = n1[idx];
-          for (int a = 0; a < 3; ++a)
-          {
-            const std::size_t s = strides[a];
-            double g;
-            if (point[idx] && point[idx - s] && point[idx + s] && point[idx - 2 * s] && point[idx + 2 * s])
-              g = (double(n1[idx - 2 * s]) - 8.0 * n1[idx - s] + 8.0 * n1[idx + s] - n1[idx + 2 * s]) /
-                (12.0 * spacing[a]);
-            else if (ijk[a] == 0)
-              g = (double(n1[idx + s]) - n1[idx]) / spacing[a];
-            else if (ijk[a] == dims[a] - 1)
-              g = (double(n1[idx]) - n1[idx - s]) / spacing[a];
-            else
-              g = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
-            out[4 * idx + 1 + a] = static_cast<float>(g);
-          }
-        }
-  });
-  // 3. the smooth cells, and 4. their levels, by minima along one axis at a time: dst(i) = the
-  // least src(i + d) over the offsets d; beyond the grid, 0 (cells) or the border's value (levels)
-  auto minPass = [&](const AlignedBytes& src, AlignedBytes& dst, int a,
-                   std::initializer_list<int> offsets, bool clamp) {
-    // everything the loops read in locals: byte stores may alias any captured value, which kept
-    // the compiler from vectorising (and reloaded the bounds every iteration)
-    int off[4] = { 0, 0, 0, 0 }, no = 0;
-    for (int d : offsets)
-      off[no++] = d;
-    const int nx = dims[0], ny = dims[1], na = dims[a];
+  {
+    // the loops read the grid's sizes from locals (captured by value): stores could alias
+    // captured references, which the compiler must then reload at every point
     const std::size_t sy = strides[1], sz = strides[2];
-    const unsigned char* const S = src.data();
-    unsigned char* const D = dst.data();
-    ParallelSlices(dims[2], [=](int k0, int k1) {
+    std::uint64_t* const PT = point.data();
+    std::uint64_t* const JF = jumpFree.data();
+    const double TH = threshold, FL = floor;
+    ParallelSlices(nz, [=](int k0, int k1) {
+      // the five-point test of row values f0..f4 (each a row of nx points): ok[i] &= the test at
+      // i (a loop without branches over a row, which the compiler vectorises)
+      auto test = [TH, FL](const float* f0, const float* f1, const float* f2, const float* f3,
+                    const float* f4, unsigned char* ok, int i0, int i1) {
+        for (int i = i0; i < i1; ++i)
+        {
+          const double a0 = f0[i], a1 = f1[i], a2 = f2[i], a3 = f3[i], a4 = f4[i];
+          const double lo = std::min(std::min(std::min(a0, a1), std::min(a2, a3)), a4);
+          const double hi = std::max(std::max(std::max(a0, a1), std::max(a2, a3)), a4);
+          const double d4 = a0 - 4 * a1 + 6 * a2 - 4 * a3 + a4;
+          ok[i] = ok[i] & (std::fabs(d4) <= TH * (hi - lo + FL) ? 1 : 0);
+        }
+      };
+      // bytes b[0 .. nx - 1] (0 or 1) as the row's bits
+      auto toBits = [nx, W](const unsigned char* b, std::uint64_t* bits) {
+        for (int w = 0; w < W; ++w)
+        {
+          std::uint64_t v = 0;
+          const int n = std::min(64, nx - 64 * w);
+          for (int i = 0; i < n; ++i)
+            v |= std::uint64_t(b[64 * w + i]) << i;
+          bits[w] = v;
+        }
+      };
+      std::vector<unsigned char> ok(static_cast<std::size_t>(nx)), pt(static_cast<std::size_t>(nx));
+      const bool tooThin = nx < 5 || ny < 5 || nz < 5;
       for (int k = k0; k < k1; ++k)
         for (int j = 0; j < ny; ++j)
         {
-          unsigned char* __restrict out = D + j * sy + k * sz;
-          if (a == 0)
+          const std::size_t row = (std::size_t(k) * ny + j) * W;
+          if (tooThin)
           {
-            const unsigned char* __restrict in = S + j * sy + k * sz;
-            // one sweep per offset d, in three parts: before the row (in[0] clamped, or 0), inside
-            // it, past it (in[nx - 1], or 0); each a plain loop the compiler vectorises
-            std::fill(out, out + nx, static_cast<unsigned char>(1));
-            for (int o = 0; o < no; ++o)
-            {
-              const int d = off[o];
-              const int lo = std::min(nx, std::max(0, -d)), hi = std::max(lo, std::min(nx, nx - d));
-              const unsigned char first = clamp ? in[0] : 0, last = clamp ? in[nx - 1] : 0;
-              for (int i = 0; i < lo; ++i)
-                out[i] = std::min(out[i], first);
-              for (int i = lo; i < hi; ++i)
-                out[i] = std::min(out[i], in[i + d]);
-              for (int i = hi; i < nx; ++i)
-                out[i] = std::min(out[i], last);
-            }
+            std::fill(JF + row, JF + row + W, std::uint64_t(0));
+            std::fill(PT + row, PT + row + W, std::uint64_t(0));
             continue;
           }
-          std::fill(out, out + nx, static_cast<unsigned char>(1));
-          for (int o = 0; o < no; ++o)
+          std::fill(ok.begin(), ok.end(), static_cast<unsigned char>(1));
+          // along x: the five points around i, those around 2 (or nx - 3) near the ends
+          const float* r = n1 + j * sy + k * sz;
+          test(r - 2, r - 1, r, r + 1, r + 2, ok.data(), 2, nx - 2);
+          for (int i = 0; i < 2; ++i)
+            ok[i] = ok[2];
+          for (int i = nx - 2; i < nx; ++i)
+            ok[i] = ok[nx - 3];
+          // along y and z: the five rows around j (k), those around 2 (or n - 3) near the ends
+          const int jc = std::min(std::max(j, 2), ny - 3), kc = std::min(std::max(k, 2), nz - 3);
+          const float* ry = n1 + jc * sy + k * sz;
+          test(ry - 2 * sy, ry - sy, ry, ry + sy, ry + 2 * sy, ok.data(), 0, nx);
+          const float* rz = n1 + j * sy + kc * sz;
+          test(rz - 2 * sz, rz - sz, rz, rz + sz, rz + 2 * sz, ok.data(), 0, nx);
+          const bool innerRow = j >= 2 && j <= ny - 3 && k >= 2 && k <= nz - 3;
+          for (int i = 0; i < nx; ++i)
+            pt[i] = (innerRow && i >= 2 && i <= nx - 3) ? ok[i] : 0;
+          toBits(ok.data(), JF + row);
+          toBits(pt.data(), PT + row);
+        }
+    });
+  }
+  // 2. n - 1 and the gradient: along each axis, fourth order where the five points of the
+  // difference are all smooth (a point beside a jump may pass the test on its own), PackField's
+  // second order elsewhere. fourth[a]: those points along axis a (point is 0 two points from the
+  // borders, so beyond the grid reads 0).
+  Words fourth[3] = { Words(grid.Words()), Words(grid.Words()), Words(grid.Words()) };
+  for (int a = 0; a < 3; ++a)
+    grid.Erode(point.data(), fourth[a].data(), a, { -2, -1, 0, 1, 2 }, false);
+  {
+    const int G[3] = { dims[0], dims[1], dims[2] };
+    const std::size_t St[3] = { strides[0], strides[1], strides[2] };
+    const double H[3] = { spacing[0], spacing[1], spacing[2] };
+    const std::uint64_t* const F[3] = { fourth[0].data(), fourth[1].data(), fourth[2].data() };
+    ParallelSlices(nz, [=](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        for (int j = 0; j < G[1]; ++j)
+        {
+          const std::size_t row = (std::size_t(k) * G[1] + j) * W;
+          for (int i = 0; i < G[0]; ++i)
           {
-            int c = (a == 1 ? j : k) + off[o];
-            if (c < 0 || c > na - 1)
+            const int ijk[3] = { i, j, k };
+            const std::size_t idx = i + j * St[1] + k * St[2];
+            out[4 * idx] = n1[idx];
+            for (int a = 0; a < 3; ++a)
             {
-              if (!clamp)
-              {
-                std::fill(out, out + nx, static_cast<unsigned char>(0));
-                break;
-              }
-              c = c < 0 ? 0 : na - 1;
+              const std::size_t s = St[a];
+              double g;
+              if ((F[a][row + (i >> 6)] >> (i & 63)) & 1)
+                g = (double(n1[idx - 2 * s]) - 8.0 * n1[idx - s] + 8.0 * n1[idx + s] - n1[idx + 2 * s]) /
+                  (12.0 * H[a]);
+              else if (ijk[a] == 0)
+                g = (double(n1[idx + s]) - n1[idx]) / H[a];
+              else if (ijk[a] == G[a] - 1)
+                g = (double(n1[idx]) - n1[idx - s]) / H[a];
+              else
+                g = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * H[a]);
+              out[4 * idx + 1 + a] = static_cast<float>(g);
             }
-            const unsigned char* __restrict in = S + (a == 1 ? c : j) * sy + (a == 2 ? c : k) * sz;
-            for (int i = 0; i < nx; ++i)
-              out[i] = std::min(out[i], in[i]);
           }
         }
     });
-  };
-  // cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are, along every axis
-  // (the point and jumpFree rows are not needed after: taken, not copied, saving the copies'
-  // first touch of fresh memory)
-  AlignedBytes cell(std::move(point)), next(n);
-  for (int a = 0; a < 3; ++a)
-  {
-    minPass(cell, next, a, { -1, 0, 1, 2 }, false);
-    cell.swap(next);
   }
-  // level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is free of jumps
-  // (its points c - 1 .. c + 2 inside the grid are jumpFree; beyond the grid no step goes). A
-  // cube erosion of radius 1 (offsets -1, 0, 1), then radius r -> 2 r by offsets -r, r.
-  AlignedBytes ero(std::move(jumpFree));
-  for (int a = 0; a < 3; ++a)
-  {
-    minPass(ero, next, a, { -1, 0, 1, 2 }, true);
-    ero.swap(next);
-  }
-  std::vector<unsigned char> level(n, 0);
-  for (int a = 0; a < 3; ++a)
-  {
-    minPass(ero, next, a, { -1, 0, 1 }, true);
-    ero.swap(next);
-  }
-  // The levels' erosions on bit rows (64 cells a word): a pass reads and writes an eighth of the
-  // bytes the byte rows took (these passes were half of the packing's time). Row bits past the
-  // grid's last point are never read (the shifts clamp to the row's ends).
-  AlignedBytes().swap(next);
-  const int nx = dims[0], ny = dims[1], nz = dims[2];
-  const int W = (nx + 63) / 64;
-  const std::size_t rowsYZ = static_cast<std::size_t>(ny) * nz;
-  std::vector<std::uint64_t> bitsA(rowsYZ * W, 0), bitsB(rowsYZ * W, 0);
-  {
-    const unsigned char* const E = ero.data();
-    std::uint64_t* const A = bitsA.data();
-    ParallelSlices(nz, [=](int k0, int k1) {
-      for (std::size_t row = std::size_t(k0) * ny; row < std::size_t(k1) * ny; ++row)
-        for (int i = 0; i < nx; ++i)
-          if (E[row * nx + i])
-            A[row * W + (i >> 6)] |= std::uint64_t(1) << (i & 63);
-    });
-  }
-  AlignedBytes().swap(ero);
-  // bits s .. s + 63 of a row, positions clamped to the row's ends (0 .. nx - 1)
-  auto bitsAt = [nx](const std::uint64_t* in, long s) {
-    const long lo = std::max(s, 0L), hi = std::min(s + 63, long(nx) - 1);
-    std::uint64_t v = 0;
-    if (lo <= hi)
-    {
-      const int len = int(hi - lo + 1), off = int(lo & 63);
-      const long w = lo >> 6;
-      std::uint64_t chunk = in[w] >> off;
-      if (off && off + len > 64)
-        chunk |= in[w + 1] << (64 - off);
-      if (len < 64)
-        chunk &= (std::uint64_t(1) << len) - 1;
-      v = chunk << (lo - s);
-    }
-    if (s < 0 && (in[0] & 1))
-    {
-      const long below = std::min(-s, 64L); // bits 0 .. below - 1 lie before the row
-      v |= below >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << below) - 1;
-    }
-    if (s + 63 > long(nx) - 1 && ((in[(nx - 1) >> 6] >> ((nx - 1) & 63)) & 1))
-    {
-      const long first = std::max(0L, long(nx) - s); // bits first .. 63 lie past the row
-      v |= first >= 64 ? 0 : ~std::uint64_t(0) << first;
-    }
-    return v;
-  };
-  for (int q = 1, r = 1; q <= std::min(levelMax, 7); ++q, r *= 2)
-  {
-    // x: bit i = bit i - r and bit i + r (clamped), A -> B
-    {
-      const std::uint64_t* const A = bitsA.data();
-      std::uint64_t* const B = bitsB.data();
-      ParallelSlices(nz, [=](int k0, int k1) {
-        for (std::size_t row = std::size_t(k0) * ny; row < std::size_t(k1) * ny; ++row)
-          for (int w = 0; w < W; ++w)
-            B[row * W + w] = bitsAt(A + row * W, long(w) * 64 - r) & bitsAt(A + row * W, long(w) * 64 + r);
-      });
-    }
-    // y, then z: rows j - r and j + r (clamped), B -> A -> B
-    for (int a = 1; a < 3; ++a)
-    {
-      const std::uint64_t* const S = bitsB.data();
-      std::uint64_t* const D = bitsA.data();
-      ParallelSlices(nz, [=](int k0, int k1) {
-        for (int k = k0; k < k1; ++k)
-          for (int j = 0; j < ny; ++j)
-          {
-            const int c = a == 1 ? j : k, na = a == 1 ? ny : nz;
-            const int lo = std::max(0, c - r), hi = std::min(na - 1, c + r);
-            const std::uint64_t* r0 = S + ((a == 1 ? std::size_t(k) * ny + lo : std::size_t(lo) * ny + j) * W);
-            const std::uint64_t* r1 = S + ((a == 1 ? std::size_t(k) * ny + hi : std::size_t(hi) * ny + j) * W);
-            std::uint64_t* out = D + (std::size_t(k) * ny + j) * W;
-            for (int w = 0; w < W; ++w)
-              out[w] = r0[w] & r1[w];
-          }
-      });
-      bitsA.swap(bitsB);
-    }
-    // bitsB holds this level's cells: the level of every set bit
-    std::atomic<bool> any(false);
-    {
-      const std::uint64_t* const B = bitsB.data();
-      unsigned char* const Lv = level.data();
-      ParallelSlices(nz, [=, &any](int k0, int k1) {
-        bool found = false;
-        for (std::size_t row = std::size_t(k0) * ny; row < std::size_t(k1) * ny; ++row)
-          for (int w = 0; w < W; ++w)
-          {
-            std::uint64_t v = B[row * W + w];
-            if (w == W - 1 && (nx & 63))
-              v &= (std::uint64_t(1) << (nx & 63)) - 1;
-            while (v)
-            {
-              const int b = __builtin_ctzll(v);
-              Lv[row * nx + w * 64 + b] = static_cast<unsigned char>(q);
-              v &= v - 1;
-              found = true;
-            }
-          }
-        if (found)
-          any = true;
-      });
-    }
-    bitsA.swap(bitsB);
-    if (!any)
-      break;
-  }
-  // the smooth share of the cells (c .. c + 1 inside the grid), and the smoothness bytes
+  // 3. the smooth cells: cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are,
+  // along every axis (beyond the grid: not smooth)
+  Words& cell = fourth[0];
+  Words& spare = fourth[1];
+  grid.Erode(point.data(), spare.data(), 0, { -1, 0, 1, 2 }, false);
+  grid.Erode(spare.data(), cell.data(), 1, { -1, 0, 1, 2 }, false);
+  grid.Erode(cell.data(), spare.data(), 2, { -1, 0, 1, 2 }, false);
+  cell.swap(spare);
+  // 4. level q (1 .. 7) of a cell: every cell within 2^q cells (Chebyshev distance) is free of
+  // jumps (its points c - 1 .. c + 2 inside the grid are jumpFree; beyond the grid no step goes).
+  // A cube erosion of radius 1 (offsets -1, 0, 1), then radius r -> 2 r by offsets -r, r.
+  Words& A = point; // free now
+  Words& B = fourth[2];
+  grid.Erode(jumpFree.data(), A.data(), 0, { -1, 0, 1, 2 }, true);
+  grid.Erode(A.data(), B.data(), 1, { -1, 0, 1, 2 }, true);
+  grid.Erode(B.data(), A.data(), 2, { -1, 0, 1, 2 }, true);
+  grid.Erode(A.data(), B.data(), 0, { -1, 0, 1 }, true);
+  grid.Erode(B.data(), A.data(), 1, { -1, 0, 1 }, true);
+  grid.Erode(A.data(), B.data(), 2, { -1, 0, 1 }, true);
+  // the smoothness bytes without levels, and the smooth share of the cells (c .. c + 1 inside the
+  // grid)
   std::atomic<std::size_t> count(0);
   {
-    const unsigned char* const C = cell.data();
-    const unsigned char* const Lv = level.data();
-    const std::size_t slice = static_cast<std::size_t>(nx) * ny;
+    const std::uint64_t* const C = cell.data();
     ParallelSlices(nz, [=, &count](int k0, int k1) {
       std::size_t c = 0;
-      for (int k = k0; k < std::min(k1, nz - 1); ++k)
-        for (int j = 0; j + 1 < ny; ++j)
+      for (int k = k0; k < k1; ++k)
+        for (int j = 0; j < ny; ++j)
         {
-          const unsigned char* row = C + j * std::size_t(nx) + k * slice;
-          for (int i = 0; i + 1 < nx; ++i)
-            c += row[i];
+          const std::uint64_t* bits = C + (std::size_t(k) * ny + j) * W;
+          unsigned char* s = smooth + (std::size_t(k) * ny + j) * nx;
+          for (int i = 0; i < nx; ++i)
+            s[i] = ((bits[i >> 6] >> (i & 63)) & 1) ? SCH_SMOOTH_CELL : 0;
+          if (k + 1 < nz && j + 1 < ny)
+            for (int w = 0; w < W; ++w)
+            {
+              const int last = std::min(64, nx - 1 - 64 * w); // cells i < nx - 1
+              if (last > 0)
+                c += __builtin_popcountll(last >= 64 ? bits[w] : bits[w] & ((std::uint64_t(1) << last) - 1));
+            }
         }
       count += c;
-      for (std::size_t i = std::size_t(k0) * slice; i < std::size_t(k1) * slice; ++i)
-        smooth[i] = static_cast<unsigned char>((C[i] ? SCH_SMOOTH_CELL : 0) | (Lv[i] << SCH_SMOOTH_SHIFT));
     });
+  }
+  for (int q = 1, r = 1; q <= std::min(levelMax, 7); ++q, r *= 2)
+  {
+    // B holds level q - 1's cells (q = 1: the radius-1 erosion): x, y, z by offsets -r, r
+    grid.Erode(B.data(), A.data(), 0, { -r, r }, true);
+    grid.Erode(A.data(), B.data(), 1, { -r, r }, true);
+    grid.Erode(B.data(), A.data(), 2, { -r, r }, true);
+    A.swap(B);
+    // B holds this level's cells: the level of every set bit (a subset of the last level's)
+    std::atomic<bool> any(false);
+    const std::uint64_t* const L = B.data();
+    ParallelSlices(nz, [=, &any](int k0, int k1) {
+      bool found = false;
+      for (std::size_t row = std::size_t(k0) * ny; row < std::size_t(k1) * ny; ++row)
+        for (int w = 0; w < W; ++w)
+        {
+          std::uint64_t v = L[row * W + w];
+          if (w == W - 1 && (nx & 63))
+            v &= (std::uint64_t(1) << (nx & 63)) - 1;
+          while (v)
+          {
+            const int b = __builtin_ctzll(v);
+            unsigned char& s = smooth[row * nx + w * 64 + b];
+            s = static_cast<unsigned char>((s & SCH_SMOOTH_CELL) | (q << SCH_SMOOTH_SHIFT));
+            v &= v - 1;
+            found = true;
+          }
+        }
+      if (found)
+        any = true;
+    });
+    if (!any)
+      break;
   }
   const std::size_t total = std::size_t(nx - 1) * (ny - 1) * (nz - 1);
   return total ? double(count.load()) / total : 0.0;
