@@ -98,11 +98,26 @@ sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGe
 
 std::mutex KeptMutex;
 
+namespace
+{
+// the index range of the last stamped volume (finding it is a pass over the whole field), under
+// KeptMutex
+VolumeIdentity rangeOf;
+float rangeLo = 0, rangeHi = 0;
+}
+
+void KeepIndexRange(const Volume& volume, float lo, float hi)
+{
+  if (volume.Stamp == 0)
+    return;
+  std::lock_guard<std::mutex> lock(KeptMutex);
+  rangeOf = VolumeIdentity(volume);
+  rangeLo = lo;
+  rangeHi = hi;
+}
+
 void SetFeatureTolerance(sch_params& P, const Volume& volume)
 {
-  // the index range of the last stamped volume (kept: finding it is a pass over the whole field)
-  static VolumeIdentity rangeOf;
-  static float rangeLo = 0, rangeHi = 0;
   float lo = volume.Field[0], hi = volume.Field[0];
   bool known = false;
   {
@@ -120,13 +135,8 @@ void SetFeatureTolerance(sch_params& P, const Volume& volume)
     lo = std::min(lo, volume.Field[4 * i]);
     hi = std::max(hi, volume.Field[4 * i]);
   }
-  if (!known && volume.Stamp != 0)
-  {
-    std::lock_guard<std::mutex> lock(KeptMutex);
-    rangeOf = VolumeIdentity(volume);
-    rangeLo = lo;
-    rangeHi = hi;
-  }
+  if (!known)
+    KeepIndexRange(volume, lo, hi);
   P.featureTol = FeatureTolerance(lo, hi, volume.LevelTolerance);
 }
 
