@@ -104,6 +104,16 @@ namespace
 // KeptMutex
 VolumeIdentity rangeOf;
 float rangeLo = 0, rangeHi = 0;
+
+// the range is the field's alone: the tracer's view of a volume (TraceVolume) may carry other
+// level bytes, yet the same range
+VolumeIdentity FieldIdentity(const Volume& volume)
+{
+  VolumeIdentity id(volume);
+  id.Levels = nullptr;
+  id.Solid = nullptr;
+  return id;
+}
 }
 
 void KeepIndexRange(const Volume& volume, float lo, float hi)
@@ -111,7 +121,7 @@ void KeepIndexRange(const Volume& volume, float lo, float hi)
   if (volume.Stamp == 0)
     return;
   std::lock_guard<std::mutex> lock(KeptMutex);
-  rangeOf = VolumeIdentity(volume);
+  rangeOf = FieldIdentity(volume);
   rangeLo = lo;
   rangeHi = hi;
 }
@@ -122,7 +132,7 @@ void SetFeatureTolerance(sch_params& P, const Volume& volume)
   bool known = false;
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
-    if (rangeOf == VolumeIdentity(volume))
+    if (rangeOf == FieldIdentity(volume))
     {
       lo = rangeLo;
       hi = rangeHi;
