@@ -346,18 +346,18 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
 
   // 4. Validated; the index range of the whole grid (for the step-quality checks and the
   // smoothness test's floor), from the held points, which together are the whole grid's.
+  double lo = 1e300, hi = -1e300;
   if (failure.empty() && heldPoints)
-    failure = ValidateIndex(n1.data(), heldPoints);
+  {
+    float heldLo, heldHi;
+    failure = ScanIndex(n1.data(), heldPoints, heldLo, heldHi);
+    lo = heldLo;
+    hi = heldHi;
+  }
   failure = parallel.Failure(failure);
   if (!failure.empty())
     throw Error("Distributed volume: " + failure);
   {
-    double lo = 1e300, hi = -1e300;
-    for (std::size_t i = 0; i < heldPoints; ++i)
-    {
-      lo = std::min(lo, double(n1[i]));
-      hi = std::max(hi, double(n1[i]));
-    }
     lo = parallel.Min(lo);
     hi = parallel.Max(hi);
     this->RangeLo = static_cast<float>(lo);
@@ -380,10 +380,14 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
         this->SmoothLevelMax = std::min(smoothLevels, 7);
         smooth.resize(heldPoints);
         PackFieldHighOrderOf(this->HeldDims, this->Spacing, n1.data(), this->Packed.data(),
-          smooth.data(), 0.25, this->RangeLo, this->RangeHi, this->SmoothLevelMax);
+          smooth.data(), DefaultSmoothnessThreshold, this->RangeLo, this->RangeHi,
+          this->SmoothLevelMax);
       }
       else
-        PackField(this->HeldDims, this->Spacing, n1.data(), this->Packed.data());
+      {
+        CheckGrid(this->HeldDims, this->Spacing); // (validated above)
+        PackFieldOf(this->HeldDims, this->Spacing, n1.data(), this->Packed.data());
+      }
     }
     catch (const Error& err)
     {

@@ -67,6 +67,18 @@ double ComputeOctreeLevelsOfPiece(const int dims[3], const int offset[3], const 
 // ------------------------------------------------------------------ field (SchlierenField.cxx)
 
 /**
+ * ValidateIndex, and the range [rangeLo, rangeHi] of the valid values (0, 0 where none is), in one
+ * pass on every core. Empty where every value is usable, else the message ValidateIndex gives.
+ */
+std::string ScanIndex(const float* n1, std::size_t count, float& rangeLo, float& rangeHi);
+
+/** The smoothness threshold the engine packs with (PackFieldHighOrder's default). */
+constexpr double DefaultSmoothnessThreshold = 0.25;
+
+/** PackField without its checks (CheckGrid, ValidateIndex): the caller's. */
+void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out);
+
+/**
  * PackFieldHighOrder with the range of n - 1 given (the whole grid's, where `n1` is a piece of it:
  * the smoothness test's floor is a part of that range) and the smoothness levels (bits 4-6) stopped
  * at `levelMax` (1..7). On a piece held with ghosts, every value at least the stencils' reach from
@@ -197,6 +209,11 @@ extern std::mutex KeptMutex;
  * call it once the backend has accepted the volume.
  */
 void SetFeatureTolerance(sch_params& P, const Volume& volume);
+/**
+ * Tells SetFeatureTolerance the range of a stamped volume's n - 1, found while packing it, so that
+ * the first trace does not read the whole field again. Ignored for a volume without a stamp.
+ */
+void KeepIndexRange(const Volume& volume, float lo, float hi);
 /** The feature tolerance for a field whose n - 1 spans [lo, hi] (SetFeatureTolerance's rule). */
 float FeatureTolerance(float lo, float hi, double levelTolerance);
 

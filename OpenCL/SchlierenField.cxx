@@ -49,21 +49,56 @@ void CheckGrid(const int dims[3], const double spacing[3])
   }
 }
 
-std::string ValidateIndex(const float* n1, std::size_t count)
+std::string ScanIndex(const float* n1, std::size_t count, float& rangeLo, float& rangeHi)
 {
-  std::size_t nonfinite = 0, nonpositive = 0, first = count;
-  for (std::size_t i = 0; i < count; ++i)
+  // one pass over the field on every core (a 512^3 field is 0.5 GB: one thread took ~0.12 s for
+  // the check and ~0.23 s for the range)
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned nt = static_cast<unsigned>(std::min<std::size_t>(cores, count / 65536 + 1));
+  struct Part
   {
-    const float v = n1[i];
-    if (!std::isfinite(v))
+    std::size_t nonfinite = 0, nonpositive = 0, first = 0;
+    float lo = 0, hi = 0;
+    bool any = false;
+  };
+  std::vector<Part> parts(nt);
+  RunOnThreads(nt, [&](unsigned t) {
+    const std::size_t i0 = count * t / nt, i1 = count * (t + 1) / nt;
+    Part p;
+    p.first = count;
+    float lo = 0, hi = 0;
+    bool any = false;
+    for (std::size_t i = i0; i < i1; ++i)
     {
-      ++nonfinite;
-      first = std::min(first, i);
+      const float v = n1[i];
+      if (std::isfinite(v) && v > -1.0f)
+      {
+        lo = any ? std::min(lo, v) : v;
+        hi = any ? std::max(hi, v) : v;
+        any = true;
+        continue;
+      }
+      ++(std::isfinite(v) ? p.nonpositive : p.nonfinite);
+      p.first = std::min(p.first, i);
     }
-    else if (v <= -1.0f)
+    p.lo = lo;
+    p.hi = hi;
+    p.any = any;
+    parts[t] = p;
+  });
+  std::size_t nonfinite = 0, nonpositive = 0, first = count;
+  bool any = false;
+  rangeLo = rangeHi = 0;
+  for (const Part& p : parts)
+  {
+    nonfinite += p.nonfinite;
+    nonpositive += p.nonpositive;
+    first = std::min(first, p.first);
+    if (p.any)
     {
-      ++nonpositive;
-      first = std::min(first, i);
+      rangeLo = any ? std::min(rangeLo, p.lo) : p.lo;
+      rangeHi = any ? std::max(rangeHi, p.hi) : p.hi;
+      any = true;
     }
   }
   if (nonfinite == 0 && nonpositive == 0)
@@ -80,6 +115,12 @@ std::string ValidateIndex(const float* n1, std::size_t count)
       << "). Check the input arrays (density, temperature, pressure) for invalid values, or mask "
          "them before tracing.";
   return msg.str();
+}
+
+std::string ValidateIndex(const float* n1, std::size_t count)
+{
+  float lo, hi;
+  return ScanIndex(n1, count, lo, hi);
 }
 
 template <typename Store>
@@ -130,6 +171,11 @@ void PackField(const int dims[3], const double spacing[3], const float* n1, floa
   std::string bad = ValidateIndex(n1, n);
   if (!bad.empty())
     throw Error(bad);
+  PackFieldOf(dims, spacing, n1, out);
+}
+
+void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out)
+{
   GradientLoop(dims, spacing, n1, [out, n1](std::size_t idx, const double g[3]) {
     out[4 * idx] = n1[idx];
     out[4 * idx + 1] = static_cast<float>(g[0]);
@@ -250,11 +296,11 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
   if (!(threshold > 0) || !std::isfinite(threshold))
     throw Error("PackFieldHighOrder: the smoothness threshold must be positive and finite.");
   const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
-  std::string bad = ValidateIndex(n1, n);
+  float lo, hi;
+  std::string bad = ScanIndex(n1, n, lo, hi);
   if (!bad.empty())
     throw Error(bad);
-  const auto mm = std::minmax_element(n1, n1 + n);
-  return PackFieldHighOrderOf(dims, spacing, n1, out, smooth, threshold, *mm.first, *mm.second, 7);
+  return PackFieldHighOrderOf(dims, spacing, n1, out, smooth, threshold, lo, hi, 7);
 }
 
 double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const float* n1, float* out,

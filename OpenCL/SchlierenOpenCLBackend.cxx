@@ -90,9 +90,13 @@ public:
         ocl::Check(err, "clCreateBuffer(field)");
       }
       // the cell bytes (octree levels, solid points), or one byte that no kernel reads when
-      // there are none
+      // there are none; shared like the field where aligned (they live as long as it: the
+      // session's, or held with the kept tracer, see AcquireTracer's bytesOwner)
       static unsigned char none = 0;
-      Levels = clCreateBuffer(RT.Context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      const bool shareBytes =
+        shareHost && cellBytes && reinterpret_cast<std::uintptr_t>(cellBytes) % align == 0;
+      Levels = clCreateBuffer(RT.Context,
+        CL_MEM_READ_ONLY | (shareBytes ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR),
         cellBytes ? volume.NumberOfPoints() : 1, const_cast<unsigned char*>(cellBytes ? cellBytes : &none), &err);
       ocl::Check(err, "clCreateBuffer(levels)");
       EnsureOut(chunk);

@@ -98,16 +98,41 @@ sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGe
 
 std::mutex KeptMutex;
 
+namespace
+{
+// the index range of the last stamped volume (finding it is a pass over the whole field), under
+// KeptMutex
+VolumeIdentity rangeOf;
+float rangeLo = 0, rangeHi = 0;
+
+// the range is the field's alone: the tracer's view of a volume (TraceVolume) may carry other
+// level bytes, yet the same range
+VolumeIdentity FieldIdentity(const Volume& volume)
+{
+  VolumeIdentity id(volume);
+  id.Levels = nullptr;
+  id.Solid = nullptr;
+  return id;
+}
+}
+
+void KeepIndexRange(const Volume& volume, float lo, float hi)
+{
+  if (volume.Stamp == 0)
+    return;
+  std::lock_guard<std::mutex> lock(KeptMutex);
+  rangeOf = FieldIdentity(volume);
+  rangeLo = lo;
+  rangeHi = hi;
+}
+
 void SetFeatureTolerance(sch_params& P, const Volume& volume)
 {
-  // the index range of the last stamped volume (kept: finding it is a pass over the whole field)
-  static VolumeIdentity rangeOf;
-  static float rangeLo = 0, rangeHi = 0;
   float lo = volume.Field[0], hi = volume.Field[0];
   bool known = false;
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
-    if (rangeOf == VolumeIdentity(volume))
+    if (rangeOf == FieldIdentity(volume))
     {
       lo = rangeLo;
       hi = rangeHi;
@@ -120,13 +145,8 @@ void SetFeatureTolerance(sch_params& P, const Volume& volume)
     lo = std::min(lo, volume.Field[4 * i]);
     hi = std::max(hi, volume.Field[4 * i]);
   }
-  if (!known && volume.Stamp != 0)
-  {
-    std::lock_guard<std::mutex> lock(KeptMutex);
-    rangeOf = VolumeIdentity(volume);
-    rangeLo = lo;
-    rangeHi = hi;
-  }
+  if (!known)
+    KeepIndexRange(volume, lo, hi);
   P.featureTol = FeatureTolerance(lo, hi, volume.LevelTolerance);
 }
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenSession.h"
+#include "SchlierenEngineInternal.h"
 #include "SchlierenSessionInternal.h"
 
 #include <algorithm>
@@ -573,6 +574,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
 
     // 3. n - 1 and its gradient, packed.
     problem.clear();
+    float rangeLo = 0, rangeHi = 0;
     try
     {
       std::ostringstream what;
@@ -581,15 +583,21 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
       CheckHostMemory(double(total) * (VolumeBytesPerPoint() - 4.0), what.str(),
         "Resample the data to fewer points (RefractiveIndex SamplingDimensions or "
         "AutomaticDimension), or trace a subset (ExtractSubset).");
+      // checked, and its range found, in one pass (the tracer's feature tolerance needs the range
+      // too: kept below, with the volume's stamp)
+      CheckGrid(volume.Dimensions, volume.Spacing);
+      const std::string bad = ScanIndex(nMinus1, total, rangeLo, rangeHi);
+      if (!bad.empty())
+        throw Error(bad);
       this->Packed.resize(4 * total);
       if (settings.Recon == Reconstruction::Trilinear)
-        PackField(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data());
+        PackFieldOf(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data());
       else
       {
         // fourth-order gradients where the data is smooth, and the smoothness per cell
         this->Smooth.resize(total);
-        PackFieldHighOrder(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data(),
-          this->Smooth.data());
+        PackFieldHighOrderOf(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data(),
+          this->Smooth.data(), DefaultSmoothnessThreshold, rangeLo, rangeHi, 7);
       }
     }
     catch (const Error& e)
@@ -614,6 +622,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     volume.Solid = this->Solid.empty() ? nullptr : this->Solid.data();
     volume.Smooth = this->Smooth.empty() ? nullptr : this->Smooth.data();
     volume.Stamp = NewVolumeStamp();
+    KeepIndexRange(volume, rangeLo, rangeHi);
     this->Stamped = true;
     this->Kept = volume;
     this->VolumeKey = volumeKey;
