@@ -447,20 +447,82 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
   grid.Erode(A.data(), B.data(), 0, { -1, 0, 1 }, true);
   grid.Erode(B.data(), A.data(), 1, { -1, 0, 1 }, true);
   grid.Erode(A.data(), B.data(), 2, { -1, 0, 1 }, true);
-  // the smoothness bytes without levels, and the smooth share of the cells (c .. c + 1 inside the
-  // grid)
+  // each cell's level as three bit planes, level = L0 + 2 L1 + 4 L2: for each level q the cells
+  // of its set take q (a bit row per plane, not a byte per cell per level); the bytes are written
+  // once, below
+  Words& L0 = spare; // free now, as jumpFree is
+  Words& L1 = jumpFree;
+  Words L2(grid.Words());
+  {
+    std::uint64_t* const P0 = L0.data();
+    std::uint64_t* const P1 = L1.data();
+    std::uint64_t* const P2 = L2.data();
+    ParallelSlices(nz, [=](int k0, int k1) {
+      const std::size_t w0 = std::size_t(k0) * ny * W, w1 = std::size_t(k1) * ny * W;
+      std::fill(P0 + w0, P0 + w1, std::uint64_t(0));
+      std::fill(P1 + w0, P1 + w1, std::uint64_t(0));
+      std::fill(P2 + w0, P2 + w1, std::uint64_t(0));
+    });
+  }
+  for (int q = 1, r = 1; q <= std::min(levelMax, 7); ++q, r *= 2)
+  {
+    // B holds level q - 1's cells (q = 1: the radius-1 erosion): x, y, z by offsets -r, r
+    grid.Erode(B.data(), A.data(), 0, { -r, r }, true);
+    grid.Erode(A.data(), B.data(), 1, { -r, r }, true);
+    grid.Erode(B.data(), A.data(), 2, { -r, r }, true);
+    A.swap(B);
+    // B holds this level's cells: their level is q (a subset of the last level's)
+    std::atomic<bool> any(false);
+    const std::uint64_t* const L = B.data();
+    std::uint64_t* const P[3] = { L0.data(), L1.data(), L2.data() };
+    ParallelSlices(nz, [=, &any](int k0, int k1) {
+      std::uint64_t found = 0;
+      for (std::size_t row = std::size_t(k0) * ny; row < std::size_t(k1) * ny; ++row)
+        for (int w = 0; w < W; ++w)
+        {
+          std::uint64_t v = L[row * W + w];
+          if (w == W - 1 && (nx & 63))
+            v &= (std::uint64_t(1) << (nx & 63)) - 1;
+          found |= v;
+          for (int b = 0; b < 3; ++b)
+          {
+            std::uint64_t& plane = P[b][row * W + w];
+            plane = ((q >> b) & 1) ? (plane | v) : (plane & ~v);
+          }
+        }
+      if (found)
+        any = true;
+    });
+    if (!any)
+      break;
+  }
+  // the smoothness bytes (the smooth cell bit and the level), and the smooth share of the cells
+  // (c .. c + 1 inside the grid)
   std::atomic<std::size_t> count(0);
   {
     const std::uint64_t* const C = cell.data();
+    const std::uint64_t* const P[3] = { L0.data(), L1.data(), L2.data() };
     ParallelSlices(nz, [=, &count](int k0, int k1) {
       std::size_t c = 0;
       for (int k = k0; k < k1; ++k)
         for (int j = 0; j < ny; ++j)
         {
-          const std::uint64_t* bits = C + (std::size_t(k) * ny + j) * W;
+          const std::size_t row = (std::size_t(k) * ny + j) * W;
+          const std::uint64_t* bits = C + row;
           unsigned char* s = smooth + (std::size_t(k) * ny + j) * nx;
-          for (int i = 0; i < nx; ++i)
-            s[i] = ((bits[i >> 6] >> (i & 63)) & 1) ? SCH_SMOOTH_CELL : 0;
+          for (int w = 0; w < W; ++w)
+          {
+            const std::uint64_t cw = bits[w], p0 = P[0][row + w], p1 = P[1][row + w],
+                                p2 = P[2][row + w];
+            const int n = std::min(64, nx - 64 * w);
+            for (int i = 0; i < n; ++i)
+            {
+              const unsigned level = unsigned((p0 >> i) & 1) | unsigned((p1 >> i) & 1) << 1 |
+                unsigned((p2 >> i) & 1) << 2;
+              s[64 * w + i] = static_cast<unsigned char>(
+                (((cw >> i) & 1) ? SCH_SMOOTH_CELL : 0) | (level << SCH_SMOOTH_SHIFT));
+            }
+          }
           if (k + 1 < nz && j + 1 < ny)
             for (int w = 0; w < W; ++w)
             {
@@ -471,39 +533,6 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
         }
       count += c;
     });
-  }
-  for (int q = 1, r = 1; q <= std::min(levelMax, 7); ++q, r *= 2)
-  {
-    // B holds level q - 1's cells (q = 1: the radius-1 erosion): x, y, z by offsets -r, r
-    grid.Erode(B.data(), A.data(), 0, { -r, r }, true);
-    grid.Erode(A.data(), B.data(), 1, { -r, r }, true);
-    grid.Erode(B.data(), A.data(), 2, { -r, r }, true);
-    A.swap(B);
-    // B holds this level's cells: the level of every set bit (a subset of the last level's)
-    std::atomic<bool> any(false);
-    const std::uint64_t* const L = B.data();
-    ParallelSlices(nz, [=, &any](int k0, int k1) {
-      bool found = false;
-      for (std::size_t row = std::size_t(k0) * ny; row < std::size_t(k1) * ny; ++row)
-        for (int w = 0; w < W; ++w)
-        {
-          std::uint64_t v = L[row * W + w];
-          if (w == W - 1 && (nx & 63))
-            v &= (std::uint64_t(1) << (nx & 63)) - 1;
-          while (v)
-          {
-            const int b = __builtin_ctzll(v);
-            unsigned char& s = smooth[row * nx + w * 64 + b];
-            s = static_cast<unsigned char>((s & SCH_SMOOTH_CELL) | (q << SCH_SMOOTH_SHIFT));
-            v &= v - 1;
-            found = true;
-          }
-        }
-      if (found)
-        any = true;
-    });
-    if (!any)
-      break;
   }
   const std::size_t total = std::size_t(nx - 1) * (ny - 1) * (nz - 1);
   return total ? double(count.load()) / total : 0.0;
