@@ -193,6 +193,26 @@ static void ParallelSlices(int nz, Body body)
     [&](unsigned t) { body(nz * int(t) / nt, nz * (int(t) + 1) / nt); });
 }
 
+// The smoothness test of a row (PackFieldHighOrderOf, step 1): ok[i] &= the five-point test at i
+// of row values f0..f4. Built twice (the loop vectorises with AVX2's conversions of floats to
+// doubles, not with the baseline's SSE2), the CPU's clone chosen at load time: the same doubles,
+// the same decisions (no FMA in either clone).
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+static void FivePointTest(const float* f0, const float* f1, const float* f2, const float* f3,
+  const float* f4, unsigned char* ok, int i0, int i1, double TH, double FL)
+{
+  for (int i = i0; i < i1; ++i)
+  {
+    const double a0 = f0[i], a1 = f1[i], a2 = f2[i], a3 = f3[i], a4 = f4[i];
+    const double lo = std::min(std::min(std::min(a0, a1), std::min(a2, a3)), a4);
+    const double hi = std::max(std::max(std::max(a0, a1), std::max(a2, a3)), a4);
+    const double d4 = a0 - 4 * a1 + 6 * a2 - 4 * a3 + a4;
+    ok[i] = ok[i] & (std::fabs(d4) <= TH * (hi - lo + FL) ? 1 : 0);
+  }
+}
+
 // One bit per point, rows of W words along x (row r = j + k ny): the smoothness passes' masks.
 // The erosions of a mask (dst = the AND of src shifted by offsets along one axis) read and write an
 // eighth of what byte rows took, and the masks' scratch is a sixteenth of the packed field's.
@@ -333,14 +353,7 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
       // i (a loop without branches over a row, which the compiler vectorises)
       auto test = [TH, FL](const float* f0, const float* f1, const float* f2, const float* f3,
                     const float* f4, unsigned char* ok, int i0, int i1) {
-        for (int i = i0; i < i1; ++i)
-        {
-          const double a0 = f0[i], a1 = f1[i], a2 = f2[i], a3 = f3[i], a4 = f4[i];
-          const double lo = std::min(std::min(std::min(a0, a1), std::min(a2, a3)), a4);
-          const double hi = std::max(std::max(std::max(a0, a1), std::max(a2, a3)), a4);
-          const double d4 = a0 - 4 * a1 + 6 * a2 - 4 * a3 + a4;
-          ok[i] = ok[i] & (std::fabs(d4) <= TH * (hi - lo + FL) ? 1 : 0);
-        }
+        FivePointTest(f0, f1, f2, f3, f4, ok, i0, i1, TH, FL);
       };
       // bytes b[0 .. nx - 1] (0 or 1) as the row's bits
       auto toBits = [nx, W](const unsigned char* b, std::uint64_t* bits) {
