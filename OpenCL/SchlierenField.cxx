@@ -349,12 +349,6 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
     std::uint64_t* const JF = jumpFree.data();
     const double TH = threshold, FL = floor;
     ParallelSlices(nz, [=](int k0, int k1) {
-      // the five-point test of row values f0..f4 (each a row of nx points): ok[i] &= the test at
-      // i (a loop without branches over a row, which the compiler vectorises)
-      auto test = [TH, FL](const float* f0, const float* f1, const float* f2, const float* f3,
-                    const float* f4, unsigned char* ok, int i0, int i1) {
-        FivePointTest(f0, f1, f2, f3, f4, ok, i0, i1, TH, FL);
-      };
       // bytes b[0 .. nx - 1] (0 or 1) as the row's bits
       auto toBits = [nx, W](const unsigned char* b, std::uint64_t* bits) {
         for (int w = 0; w < W; ++w)
@@ -381,7 +375,7 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
           std::fill(ok.begin(), ok.end(), static_cast<unsigned char>(1));
           // along x: the five points around i, those around 2 (or nx - 3) near the ends
           const float* r = n1 + j * sy + k * sz;
-          test(r - 2, r - 1, r, r + 1, r + 2, ok.data(), 2, nx - 2);
+          FivePointTest(r - 2, r - 1, r, r + 1, r + 2, ok.data(), 2, nx - 2, TH, FL);
           for (int i = 0; i < 2; ++i)
             ok[i] = ok[2];
           for (int i = nx - 2; i < nx; ++i)
@@ -389,9 +383,9 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
           // along y and z: the five rows around j (k), those around 2 (or n - 3) near the ends
           const int jc = std::min(std::max(j, 2), ny - 3), kc = std::min(std::max(k, 2), nz - 3);
           const float* ry = n1 + jc * sy + k * sz;
-          test(ry - 2 * sy, ry - sy, ry, ry + sy, ry + 2 * sy, ok.data(), 0, nx);
+          FivePointTest(ry - 2 * sy, ry - sy, ry, ry + sy, ry + 2 * sy, ok.data(), 0, nx, TH, FL);
           const float* rz = n1 + j * sy + kc * sz;
-          test(rz - 2 * sz, rz - sz, rz, rz + sz, rz + 2 * sz, ok.data(), 0, nx);
+          FivePointTest(rz - 2 * sz, rz - sz, rz, rz + sz, rz + 2 * sz, ok.data(), 0, nx, TH, FL);
           const bool innerRow = j >= 2 && j <= ny - 3 && k >= 2 && k <= nz - 3;
           for (int i = 0; i < nx; ++i)
             pt[i] = (innerRow && i >= 2 && i <= nx - 3) ? ok[i] : 0;

@@ -369,8 +369,10 @@ struct KeptTracer
   int RaysPerItem = 0;
   // the device asked for and the OpenCL options (RuntimeOptions::OpenCLKey) it was made with
   std::string Device;
-  // the cell bytes the device copy was made from, held so that no other allocation can take
-  // their address while the copy is kept: with a body they change with the step's reach
+  // the cell bytes the device copy was made from, held (where the engine made them: a body's,
+  // which change with the step's reach, or the octree merged with Cubic's smoothness) so that
+  // no other allocation can take their address while the copy is kept, nor free them while a
+  // CPU device uses them in place
   const unsigned char* Bytes = nullptr;
   std::shared_ptr<const void> BytesOwner;
   std::shared_ptr<OpenCLTracer> Tracer;

@@ -88,8 +88,11 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   // with a body the kernels read its solid and near bits in the levels byte (no Cubic then)
   const auto solidBytes = CellBytesOf(volume, StepReach(P));
   const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
+  // the owner of the bytes where they are not the volume's (a device may use them in place)
+  const std::shared_ptr<const void> owner =
+    solidBytes ? std::shared_ptr<const void>(solidBytes) : levelBytes;
   std::shared_ptr<OpenCLTracer> cl =
-    OpenBackend(tv, bytes, solidBytes, s, P, chunk, false, used, device, warn);
+    OpenBackend(tv, bytes, owner, s, P, chunk, false, used, device, warn);
   SetFeatureTolerance(P, tv);
   if (volume.Solid && s.Recon == Reconstruction::Cubic && sums.Passes == 0)
     warn += "Reconstruction Cubic is not available with a solid body (the byte per point that "
@@ -169,8 +172,10 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const Volume tv = TraceVolume(volume, levelBytes);
   const auto solidBytes = CellBytesOf(volume, StepReach(P));
   const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
+  const std::shared_ptr<const void> owner =
+    solidBytes ? std::shared_ptr<const void>(solidBytes) : levelBytes;
   std::shared_ptr<OpenCLTracer> cl = OpenBackend(
-    tv, bytes, solidBytes, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
+    tv, bytes, owner, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
   SetFeatureTolerance(P, tv);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)
