@@ -18,10 +18,12 @@
 //             within |x|, |y| < 2.2 s
 //   sources   the bench's sources (Point, Slit, Disc, Gaussian) on the Gaussian sphere: rays/s, the
 //             passes for an RMS of 1 %, a camera move
+//   raycost   the Gaussian sphere (--size) traced as a camera move traces it at steps of 0.3 to 30
+//             voxels: what a ray costs besides its samples (issue 24's per-ray overhead)
 //
 //   SchlierenBenchmark [--cases gaussian,plume,bluntfin] [--size N] [--film N] [--passes N]
 //     [--step voxels] [--backends OpenCL,CPU] [--rays-per-item N] [--raw bluntfin_256 (no suffix)]
-//     [--grids 64,128,256,512] [--tolerance 1e-3]
+//     [--grids 64,128,256,512] [--tolerance 1e-3] [--rounds 5 (raycost)]
 #include "SchlierenEngine.h"
 #include "SchlierenOracles.h"
 #include "SchlierenScenes.h"
@@ -286,6 +288,104 @@ void Run(Case& c, const std::string& backends, const std::string& only, int film
     c.PackMs, c.OctreeTolerance, 100 * c.Skippable, c.LevelMs);
 }
 
+// The raycost case (issue 24's per-ray overhead): what a ray costs besides its samples. The
+// Gaussian sphere traced as a camera move traces it (a whole update of the engine: the film sums
+// zeroed in place, Accumulate, Finalize; a new oblique view each time) at base steps from 0.3 to
+// 30 voxels, and once with every ray stopped after its first step (MaxSteps 1: the ray's set-up,
+// its entry sample and its record alone). Steps are taken in turn, round after round, so that
+// the machine's drift falls on every row alike; each row is the median over the rounds. A
+// fit of time = rays x fixed + samples x per-sample through the 10 and 30 voxel rows says what a
+// ray costs that does not depend on its length, in samples' worth; the rate column's ratio, the
+// rate against the shortest step's, is issue 24's ratio (target >= 0.5 at about 16 samples per
+// ray). Each row's error is that of its step against the closed form (625 probe rays).
+void RayCost(Case& c, const std::string& backends, int film, int rounds)
+{
+  std::printf("## ray cost: %s, film %d^2, 1 pass, oblique views, median of %d rounds\n\n",
+    c.Name.c_str(), film, rounds);
+  std::printf("| backend | base step (voxels) | samples/ray | ms per update | M samples/s | "
+              "rate / rate at the shortest step | error (of max eps) |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  const double steps[] = { 0.3, 1, 3, 10, 30, 10 };
+  const int kinds = 6; // the last: 10 voxels with MaxSteps 1
+  std::stringstream bs(backends);
+  std::string name;
+  while (std::getline(bs, name, ','))
+  {
+    try
+    {
+      // per row, per round: ms and samples; every row sees the same views (one per round)
+      std::vector<std::vector<double>> ms(kinds);
+      std::vector<double> samples(kinds), time(kinds), err(kinds);
+      double rays = 0;
+      FilmSums sums;
+      for (int r = 0; r <= rounds; ++r)
+        for (int k = 0; k < kinds; ++k)
+        {
+          TraceSettings s;
+          s.Device = ParseBackend(name);
+          s.Resolution[0] = s.Resolution[1] = film;
+          s.CutoffScale = 1000;
+          s.StepSize = steps[k];
+          if (k == kinds - 1)
+            s.MaxSteps = 1;
+          const double a = 0.3 + 0.37 * r;
+          s.ViewDirection[0] = std::cos(a);
+          s.ViewDirection[1] = 0.3 * std::sin(3 * a);
+          s.ViewDirection[2] = std::sin(a);
+          const auto t0 = Clock::now();
+          sums.Resize(film, film);
+          Accumulate(c.V, s, sums);
+          const TraceResult res = Finalize(c.V, s, sums);
+          const double t = Since(t0);
+          if (r == 0)
+          {
+            // the first round builds the programs and uploads: not timed; the errors, on axis
+            TraceSettings axis = s;
+            axis.ViewDirection[0] = axis.ViewDirection[1] = 0;
+            axis.ViewDirection[2] = -1;
+            const std::vector<RayRecord> rec = TraceRays(c.V, axis, c.Probe);
+            for (std::size_t q = 0; q < rec.size(); ++q)
+              err[k] = std::max(err[k], std::hypot(rec[q].DeflX - c.RefX[q], rec[q].DeflY - c.RefY[q]));
+            continue;
+          }
+          ms[k].push_back(t * 1e3);
+          samples[k] += res.Samples;
+          time[k] += t;
+          rays += k == 0 ? res.Photons : 0;
+        }
+      rays /= rounds; // per update
+      std::vector<double> med(kinds), spr(kinds), rate(kinds);
+      for (int k = 0; k < kinds; ++k)
+      {
+        std::sort(ms[k].begin(), ms[k].end());
+        med[k] = ms[k][ms[k].size() / 2];
+        spr[k] = samples[k] / rounds / rays;
+        rate[k] = samples[k] / time[k];
+      }
+      for (int k = 0; k < kinds; ++k)
+      {
+        char e[32] = "-"; // rays stopped after a step have no deflection to compare
+        if (k < kinds - 1)
+          std::snprintf(e, sizeof(e), "%.3g", err[k] / c.RefMax);
+        std::printf("| %s | %g%s | %.1f | %.1f | %.1f | %.2f | %s |\n", name.c_str(), steps[k],
+          k == kinds - 1 ? ", MaxSteps 1" : "", spr[k], med[k], rate[k] / 1e6, rate[k] / rate[0], e);
+      }
+      // time per ray = fixed + per-sample x samples per ray through the 10 and 30 voxel rows
+      // (the same views, the same kind of step: long, prefetched, checked for features)
+      const double per = (time[3] - time[4]) / (samples[3] - samples[4]);
+      const double fixed = (time[3] - per * samples[3]) / (rounds * rays);
+      std::printf("\n%s: at long steps a ray costs %.0f ns besides its samples (%.1f samples' worth) "
+                  "and %.1f ns a sample; at 0.3 voxels %.1f ns a sample (wall, every thread)\n\n",
+        name.c_str(), fixed * 1e9, fixed / per, per * 1e9, 1e9 / rate[0]);
+    }
+    catch (const Error& e)
+    {
+      std::printf("| %s | failed: %s | | | | | |\n", name.c_str(), e.what());
+    }
+    std::fflush(stdout);
+  }
+}
+
 // The grids case: one row per grid, reconstruction and backend.
 void Grids(const std::string& grids, const std::string& backends, int film, int passes, double tolFrac)
 {
@@ -508,6 +608,7 @@ int main(int argc, char** argv)
   std::string rows; // empty: all rows (euler,octree,auto,onethread)
   std::string grids = "64,128,256,512";
   double tolFrac = 1e-3;
+  int rounds = 5;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     if (!std::strcmp(argv[i], "--size"))
@@ -532,6 +633,8 @@ int main(int argc, char** argv)
       grids = argv[i + 1];
     else if (!std::strcmp(argv[i], "--tolerance"))
       tolFrac = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--rounds"))
+      rounds = std::max(1, std::atoi(argv[i + 1]));
   }
   DeviceInfo dev = QueryOpenCLDevice();
   std::printf("# Schlieren benchmark: film %d^2, %d passes, Euler step %.2f voxel\n\n", film, passes, step);
@@ -550,6 +653,8 @@ int main(int argc, char** argv)
         Grids(grids, backends, film, passes, tolFrac);
       else if (name == "sources")
         Sources(backends, film, size);
+      else if (name == "raycost" && Gaussian(c, size))
+        RayCost(c, backends, film, rounds);
       else if (name == "gaussian")
         ok = Gaussian(c, size);
       else if (name == "plume")
@@ -557,7 +662,7 @@ int main(int argc, char** argv)
       else if (name == "bluntfin")
         ok = BluntFin(c, raw);
       else
-        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, sources)\n", name.c_str());
+        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, sources, raycost)\n", name.c_str());
     }
     catch (const Error& e)
     {
