@@ -25,6 +25,7 @@
 //     [--step voxels] [--backends OpenCL,CPU] [--rays-per-item N] [--raw bluntfin_256 (no suffix)]
 //     [--grids 64,128,256,512] [--tolerance 1e-3] [--rounds 5 --steps 0.3,1,3,10,30 (raycost)]
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 #include "SchlierenOracles.h"
 #include "SchlierenScenes.h"
 
@@ -66,7 +67,8 @@ struct Case
 {
   std::string Name, Reference;
   Volume V;
-  std::vector<float> N1, Field;
+  std::vector<float> N1;
+  AlignedFloats Field; // page-aligned, as the filters' session keeps it: a CPU device traces it in place
   std::vector<unsigned char> Levels;
   double OctreeTolerance = 0, Skippable = 0, LevelMs = 0, PackMs = 0;
   std::vector<float> Probe;          // film coordinates (a, b) of the probe rays
