@@ -195,21 +195,23 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
   sch_v3 o, entry;
   __local sch_walk walks[SCH_LOCKSTEP_GROUP];
   __local sch_walk* W = &walks[get_local_id(0)];
-  int hit = 0;
-  if (valid)
-  {
-    sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
-    hit = sch_entry(&P, a, b, &o, &entry, &s1);
-    if (hit)
-      sch_walk_begin(field, levels, &P, entry, P.step, W);
-  }
-  int live = hit;
   /* steps of more than two cells land in cache lines that no step of the group has read: each
    * step then asks for those of its next end point, predicted as one more step of the same
    * length, while the rest of the group steps (measured: 6-8 % faster from 2.5 voxels up, slower
    * at a voxel, where the lines are read already; Cubic, which computes more per sample, gained
    * nothing: docs/PERFORMANCE.md) */
   const int prefetch = SCH_RECON(&P) == SCH_TRILINEAR && P.step > 2.0f * P.cellStep;
+  int hit = 0;
+  if (valid)
+  {
+    sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
+    hit = sch_entry(&P, a, b, &o, &entry, &s1);
+    /* the walks begin after the barrier below: their entry samples are asked for while the rest
+     * of the group finds its entries */
+    if (hit & prefetch)
+      sch_prefetch_cell(field, &P, entry);
+  }
+  int live = hit;
   /* one barrier per step: a flag per step, in three slots so that resetting the slot of step
    * t + 1 before the barrier of step t cannot race with reads of the slot of step t - 1, which all
    * happened before the barrier of step t - 1 */
@@ -217,6 +219,8 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
   if (get_local_id(0) == 0)
     anyLive[0] = anyLive[1] = anyLive[2] = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
+  if (hit)
+    sch_walk_begin(field, levels, &P, entry, P.step, W);
   for (int t = 0;; t = t == 2 ? 0 : t + 1)
   {
     if (live)
