@@ -137,8 +137,16 @@ struct Splatter
   void BeginPass(sch_params& Pk, int pass);
   /** The photon's weight under the cutoff, with energy weighting or (optionally) photon killing. */
   float CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const;
-  /** Adds `count` records (SCH_RECORD floats each) of the rays first, first + 1, ... of this rank. */
+  /** Adds `count` records (SCH_RECORD floats each) of the rays first, first + 1, ... of this rank:
+   * on two threads where the trace may use two (CpuThreads), each adding the photons that land
+   * in its film rows, so that every pixel takes its photons in the records' order (the sums of
+   * one thread, bit for bit). */
   void Add(const float* rec, std::size_t first, std::size_t count);
+  /** Add's work for the photons that land in rows [rowLo, rowHi) (and the rays blocked there);
+   * the totals and maxima of all the records where `totals`. */
+  void AddRows(const float* rec, std::size_t first, std::size_t count, int rowLo, int rowHi,
+    bool totals);
+  unsigned Threads = 1;
 };
 
 // ------------------------------------------------------------------ camera (SchlierenCamera.cxx)

@@ -313,6 +313,7 @@ Splatter::Splatter(const sch_params& p, const TraceSettings& s, FilmSums& f)
   period = s.BackgroundPeriod > 0 ? s.BackgroundPeriod : 6.0 * P.pixel;
   camera = s.Camera != CameraModel::None;
   white = s.WhiteLight();
+  Threads = std::min(2u, CpuThreads(s.Threads));
 }
 
 float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_uint pix) const
@@ -349,38 +350,91 @@ float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_
 
 void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
 {
+  // the rows split at the chunk's middle ray: photons land near where they were emitted, so
+  // each thread gets about half; the totals (counts and maxima, exact in any order) on the first.
+  // Small chunks on one thread: a thread's start costs more than it saves there.
+  const long W = std::max(1, P.filmNx);
+  const long mid = (P.rayOffset + (long(first) + long(count) / 2) * P.rayStride) / W;
+  const int split = static_cast<int>(std::min<long>(std::max<long>(mid, 1), P.filmNy - 1));
+  if (Threads < 2 || count < 8192 || P.filmNy < 2)
+  {
+    AddRows(rec, first, count, 0, P.filmNy, true);
+    return;
+  }
+  RunOnThreads(2, [&](unsigned t) {
+    if (t == 0)
+      AddRows(rec, first, count, 0, split, true);
+    else
+      AddRows(rec, first, count, split, P.filmNy, false);
+  });
+}
+
+void Splatter::AddRows(const float* rec, std::size_t first, std::size_t count, int rowLo,
+  int rowHi, bool totals)
+{
+  // local copies of the channels' addresses and of the totals: the other thread writes beside
+  // F's members (the totals are written back once, at the end)
+  double* const cCount = F.Count.data();
+  double* const cWeight = F.Weight.data();
+  double* const cDeflectionX = F.DeflectionX.data();
+  double* const cDeflectionY = F.DeflectionY.data();
+  double* const cAbsDeflection = F.AbsDeflection.data();
+  double* const cRed = F.Red.data();
+  double* const cGreen = F.Green.data();
+  double* const cBlue = F.Blue.data();
+  double* const cPhase = F.Phase.data();
+  double* const cShiftX = F.ShiftX.data();
+  double* const cShiftY = F.ShiftY.data();
+  double* const cErrorSum = F.ErrorSum.data();
+  double* const cBlocked = F.Blocked.data();
+  double tPhotons = F.Photons, tSamples = F.Samples, tSteps = F.Steps;
+  double tMissedRays = F.MissedRays, tUnderresolvedRays = F.UnderresolvedRays;
+  double tSideRays = F.SideRays, tBlockedRays = F.BlockedRays, tFailedRays = F.FailedRays;
+  double tMaxDrift = F.MaxDrift, tMaxError = F.MaxError, tMaxAbsKnife = F.MaxAbsKnife;
+  double tMaxAbsDeflection = F.MaxAbsDeflection;
   for (std::size_t r = 0; r < count; ++r, rec += SCH_RECORD)
   {
     const unsigned flags = static_cast<unsigned>(rec[SCH_REC_FLAGS]);
-    F.Photons += 1;
-    F.Samples += rec[SCH_REC_SAMPLES];
-    F.Steps += rec[SCH_REC_STEPS];
-    if (flags & SCH_RAY_MISSED)
-      F.MissedRays += 1;
-    if (flags & SCH_RAY_UNDERRESOLVED)
-      F.UnderresolvedRays += 1;
-    if (flags & SCH_RAY_SIDE)
-      F.SideRays += 1;
+    if (totals)
+    {
+      tPhotons += 1;
+      tSamples += rec[SCH_REC_SAMPLES];
+      tSteps += rec[SCH_REC_STEPS];
+      if (flags & SCH_RAY_MISSED)
+        tMissedRays += 1;
+      if (flags & SCH_RAY_UNDERRESOLVED)
+        tUnderresolvedRays += 1;
+      if (flags & SCH_RAY_SIDE)
+        tSideRays += 1;
+    }
     if (flags & SCH_RAY_BLOCKED)
     {
       // stopped by a body: no light; counted in the pixel it was emitted through (the shadow)
-      F.BlockedRays += 1;
-      F.Blocked[static_cast<std::size_t>(P.rayOffset + (first + r) * P.rayStride)] += 1;
+      if (totals)
+        tBlockedRays += 1;
+      const std::size_t at = static_cast<std::size_t>(P.rayOffset + (first + r) * P.rayStride);
+      const long row = static_cast<long>(at / static_cast<std::size_t>(std::max(1, P.filmNx)));
+      if (row >= rowLo && row < rowHi)
+        cBlocked[at] += 1;
       continue;
     }
     if (flags & SCH_RAY_LOST)
     {
-      F.FailedRays += 1;
+      if (totals)
+        tFailedRays += 1;
       continue;
     }
-    F.MaxDrift = std::max(F.MaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
-    F.MaxError = std::max(F.MaxError, double(rec[SCH_REC_ERROR]));
     const float ex = rec[SCH_REC_EX], ey = rec[SCH_REC_EY];
     // the squares of floats are exact in double and cannot overflow: one rounding in the sum and
     // one in the root, as std::hypot gives, at a fraction of its cost (it was 0.9 % of a move)
     const double absE = std::sqrt(double(ex) * ex + double(ey) * ey);
-    F.MaxAbsKnife = std::max(F.MaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
-    F.MaxAbsDeflection = std::max(F.MaxAbsDeflection, absE);
+    if (totals)
+    {
+      tMaxDrift = std::max(tMaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
+      tMaxError = std::max(tMaxError, double(rec[SCH_REC_ERROR]));
+      tMaxAbsKnife = std::max(tMaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
+      tMaxAbsDeflection = std::max(tMaxAbsDeflection, absE);
+    }
     const int pix = static_cast<int>(P.rayOffset + (first + r) * P.rayStride);
     double la = rec[SCH_REC_A], lb = rec[SCH_REC_B];
     double bosWeight = 0, shiftX = 0, shiftY = 0;
@@ -419,14 +473,16 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
     const double fj = std::floor((lb - P.filmB0) / P.pixel);
     if (fi < 0 || fj < 0 || fi >= P.filmNx || fj >= P.filmNy)
       continue; // landed off the film
+    if (fj < rowLo || fj >= rowHi)
+      continue; // another thread's rows
     const std::size_t idx = static_cast<std::size_t>(fj) * P.filmNx + static_cast<std::size_t>(fi);
     const double phase = twoPiOverLambda * rec[SCH_REC_OPL];
-    F.Count[idx] += 1;
-    F.DeflectionX[idx] += ex;
-    F.DeflectionY[idx] += ey;
-    F.AbsDeflection[idx] += absE;
-    F.ErrorSum[idx] += rec[SCH_REC_ERROR];
-    F.Phase[idx] += phase;
+    cCount[idx] += 1;
+    cDeflectionX[idx] += ex;
+    cDeflectionY[idx] += ey;
+    cAbsDeflection[idx] += absE;
+    cErrorSum[idx] += rec[SCH_REC_ERROR];
+    cPhase[idx] += phase;
     if (S.Mode == Cutoff::ColorFilter)
     {
       float cr, cg, cb;
@@ -437,38 +493,53 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
       const double v = Bench.Stop ? StopWeight(Bench, S.SchlierenFocalLength * absE)
         : manual                  ? std::min(1.0, k * absE)
                                   : absE;
-      F.Red[idx] += v * cr;
-      F.Green[idx] += v * cg;
-      F.Blue[idx] += v * cb;
+      cRed[idx] += v * cr;
+      cGreen[idx] += v * cg;
+      cBlue[idx] += v * cb;
       if (Bench.Stop)
-        F.Weight[idx] += v; // the share passed: the read-outs' dark and full shares
+        cWeight[idx] += v; // the share passed: the read-outs' dark and full shares
     }
     else if (S.Mode == Cutoff::BOS)
     {
-      F.Weight[idx] += bosWeight;
-      F.ShiftX[idx] += shiftX;
-      F.ShiftY[idx] += shiftY;
+      cWeight[idx] += bosWeight;
+      cShiftX[idx] += shiftX;
+      cShiftY[idx] += shiftY;
     }
     else if (manual || Bench.Finite || S.Mode == Cutoff::Interferometry || S.RussianRoulette)
     {
       const float w = CutoffWeight(ex, ey, static_cast<float>(la), phase, static_cast<sch_uint>(pix));
-      F.Weight[idx] += w;
+      cWeight[idx] += w;
       if (white)
       {
         // the colour of the light the cutoff lets through
-        F.Red[idx] += w * passColour[0];
-        F.Green[idx] += w * passColour[1];
-        F.Blue[idx] += w * passColour[2];
+        cRed[idx] += w * passColour[0];
+        cGreen[idx] += w * passColour[1];
+        cBlue[idx] += w * passColour[2];
       }
       continue;
     }
     if (white && S.Mode != Cutoff::ColorFilter)
     {
       // the colour of the light that landed (Finalize scales it by the pixel's intensity)
-      F.Red[idx] += passColour[0];
-      F.Green[idx] += passColour[1];
-      F.Blue[idx] += passColour[2];
+      cRed[idx] += passColour[0];
+      cGreen[idx] += passColour[1];
+      cBlue[idx] += passColour[2];
     }
+  }
+  if (totals)
+  {
+    F.Photons = tPhotons;
+    F.Samples = tSamples;
+    F.Steps = tSteps;
+    F.MissedRays = tMissedRays;
+    F.UnderresolvedRays = tUnderresolvedRays;
+    F.SideRays = tSideRays;
+    F.BlockedRays = tBlockedRays;
+    F.FailedRays = tFailedRays;
+    F.MaxDrift = tMaxDrift;
+    F.MaxError = tMaxError;
+    F.MaxAbsKnife = tMaxAbsKnife;
+    F.MaxAbsDeflection = tMaxAbsDeflection;
   }
 }
 

@@ -10,6 +10,8 @@
 #include <limits>
 #include <sstream>
 
+#include <new>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -138,6 +140,23 @@ double VolumeBytesPerPoint()
 {
   // the packed field (n - 1 and grad n as 4 floats), the octree levels, the filter's copy of n - 1
   return 16.0 + 1.0 + 4.0;
+}
+
+void* AllocatePages(std::size_t bytes)
+{
+  const std::size_t page = 4096, huge = std::size_t(2) << 20;
+  const std::size_t align = bytes >= 2 * huge ? huge : page;
+  const std::size_t size = (std::max(bytes, page) + align - 1) / align * align;
+  void* p = std::aligned_alloc(align, size);
+  if (!p)
+    throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  // advice only: where the kernel has huge pages off (or none free) the pages stay 4 KiB; Linux
+  // asks for this advice by default (transparent_hugepage/enabled = madvise)
+  if (align == huge)
+    madvise(p, size, MADV_HUGEPAGE);
+#endif
+  return p;
 }
 
 double MaxStepsAcross()

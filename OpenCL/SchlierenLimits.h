@@ -73,8 +73,18 @@ void CheckSettings(const TraceSettings& settings);
 void CheckPrecision(const Volume& volume, const TraceSettings& settings);
 
 /**
- * Page-aligned storage: a packed field held in it is used in place by a CPU OpenCL device
- * (CL_MEM_USE_HOST_PTR needs the device's base-address alignment) instead of being copied.
+ * Page-aligned memory for `bytes` (at least a page), freed with std::free. Buffers of 4 MiB and
+ * more are aligned to 2 MiB and asked for in transparent huge pages where Linux offers them on
+ * request (madvise): a long step lands on a new 4 KiB page of the field at nearly every sample,
+ * and each such page costs a walk of the page tables (in a VM, of two sets). Throws
+ * std::bad_alloc.
+ */
+void* AllocatePages(std::size_t bytes);
+
+/**
+ * Page-aligned storage (AllocatePages): a packed field held in it is used in place by a CPU
+ * OpenCL device (CL_MEM_USE_HOST_PTR needs the device's base-address alignment) instead of being
+ * copied.
  */
 template <typename T>
 struct PageAlignedAllocator
@@ -85,15 +95,7 @@ struct PageAlignedAllocator
   PageAlignedAllocator(const PageAlignedAllocator<U>&)
   {
   }
-  T* allocate(std::size_t n)
-  {
-    const std::size_t page = 4096;
-    const std::size_t bytes = (n * sizeof(T) + page - 1) / page * page;
-    void* p = std::aligned_alloc(page, bytes ? bytes : page);
-    if (!p)
-      throw std::bad_alloc();
-    return static_cast<T*>(p);
-  }
+  T* allocate(std::size_t n) { return static_cast<T*>(AllocatePages(n * sizeof(T))); }
   void deallocate(T* p, std::size_t) { std::free(p); }
   // resize() leaves the new elements uninitialised: the packings write every one, and a zero
   // fill first would touch the memory twice, the first time (its page faults) on one thread

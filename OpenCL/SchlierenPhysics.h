@@ -28,6 +28,11 @@
 #define SCH_WALK_AS
 #define SCH_PRIVATE_WALKS 1
 #endif
+/* The address space of the record sch_record writes: private (copied out by the caller), or
+ * __global where the lock-step kernel writes it straight into the output buffer. */
+#ifndef SCH_RECORD_AS
+#define SCH_RECORD_AS
+#endif
 
 #ifdef __OPENCL_VERSION__
 /* always inlined (PoCL left sch_sample_field and the step as calls: "too costly to inline") */
@@ -1075,7 +1080,7 @@ SCH_FN void sch_record(SCH_FIELD field,
   sch_v3 entry,
   float s1,
   sch_ray* Rp,
-  float* rec)
+  SCH_RECORD_AS float* rec)
 {
   sch_ray R = *Rp;
   sch_v3 d0 = sch_make(P->dx, P->dy, P->dz);

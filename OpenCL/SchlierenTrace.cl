@@ -13,6 +13,7 @@
 #define SCH_PACKET SCH_RAYS_PER_ITEM
 #ifdef SCH_LOCKSTEP_GROUP
 #define SCH_WALK_AS __local
+#define SCH_RECORD_AS __global
 #endif
 #include "SchlierenPhysics.h"
 
@@ -194,21 +195,23 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
   sch_v3 o, entry;
   __local sch_walk walks[SCH_LOCKSTEP_GROUP];
   __local sch_walk* W = &walks[get_local_id(0)];
-  int hit = 0;
-  if (valid)
-  {
-    sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
-    hit = sch_entry(&P, a, b, &o, &entry, &s1);
-    if (hit)
-      sch_walk_begin(field, levels, &P, entry, P.step, W);
-  }
-  int live = hit;
   /* steps of more than two cells land in cache lines that no step of the group has read: each
    * step then asks for those of its next end point, predicted as one more step of the same
    * length, while the rest of the group steps (measured: 6-8 % faster from 2.5 voxels up, slower
    * at a voxel, where the lines are read already; Cubic, which computes more per sample, gained
    * nothing: docs/PERFORMANCE.md) */
   const int prefetch = SCH_RECON(&P) == SCH_TRILINEAR && P.step > 2.0f * P.cellStep;
+  int hit = 0;
+  if (valid)
+  {
+    sch_emit(&P, P.rayOffset + (first + k) * P.rayStride, &a, &b);
+    hit = sch_entry(&P, a, b, &o, &entry, &s1);
+    /* the walks begin after the barrier below: their entry samples are asked for while the rest
+     * of the group finds its entries */
+    if (hit & prefetch)
+      sch_prefetch_cell(field, &P, entry);
+  }
+  int live = hit;
   /* one barrier per step: a flag per step, in three slots so that resetting the slot of step
    * t + 1 before the barrier of step t cannot race with reads of the slot of step t - 1, which all
    * happened before the barrier of step t - 1 */
@@ -216,6 +219,8 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
   if (get_local_id(0) == 0)
     anyLive[0] = anyLive[1] = anyLive[2] = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
+  if (hit)
+    sch_walk_begin(field, levels, &P, entry, P.step, W);
   for (int t = 0;; t = t == 2 ? 0 : t + 1)
   {
     if (live)
@@ -240,10 +245,10 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
     sch_walk_end(field, &P, W, &R);
   else
     sch_missed(o, &R);
-  float rec[SCH_RECORD];
-  sch_record(field, levels, &P, a, b, o, entry, s1, &R, rec);
-  for (int c = 0; c < SCH_RECORD; ++c)
-    out[(long)k * SCH_RECORD + c] = rec[c];
+  /* written in place: a record built in private memory and copied out was read back wider than
+   * it was written, a stall at every ray (store forwarding; 1 in 9 of the kernel's time when each
+   * ray takes one step) */
+  sch_record(field, levels, &P, a, b, o, entry, s1, &R, out + (long)k * SCH_RECORD);
 }
 
 #endif

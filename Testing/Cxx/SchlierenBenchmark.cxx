@@ -23,8 +23,9 @@
 //
 //   SchlierenBenchmark [--cases gaussian,plume,bluntfin] [--size N] [--film N] [--passes N]
 //     [--step voxels] [--backends OpenCL,CPU] [--rays-per-item N] [--raw bluntfin_256 (no suffix)]
-//     [--grids 64,128,256,512] [--tolerance 1e-3] [--rounds 5 (raycost)]
+//     [--grids 64,128,256,512] [--tolerance 1e-3] [--rounds 5 --steps 0.3,1,3,10,30 (raycost)]
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 #include "SchlierenOracles.h"
 #include "SchlierenScenes.h"
 
@@ -66,7 +67,8 @@ struct Case
 {
   std::string Name, Reference;
   Volume V;
-  std::vector<float> N1, Field;
+  std::vector<float> N1;
+  AlignedFloats Field; // page-aligned, as the filters' session keeps it: a CPU device traces it in place
   std::vector<unsigned char> Levels;
   double OctreeTolerance = 0, Skippable = 0, LevelMs = 0, PackMs = 0;
   std::vector<float> Probe;          // film coordinates (a, b) of the probe rays
@@ -298,15 +300,15 @@ void Run(Case& c, const std::string& backends, const std::string& only, int film
 // ray costs that does not depend on its length, in samples' worth; the rate column's ratio, the
 // rate against the shortest step's, is issue 24's ratio (target >= 0.5 at about 16 samples per
 // ray). Each row's error is that of its step against the closed form (625 probe rays).
-void RayCost(Case& c, const std::string& backends, int film, int rounds)
+void RayCost(Case& c, const std::string& backends, int film, int rounds, std::vector<double> steps)
 {
   std::printf("## ray cost: %s, film %d^2, 1 pass, oblique views, median of %d rounds\n\n",
     c.Name.c_str(), film, rounds);
   std::printf("| backend | base step (voxels) | samples/ray | ms per update | M samples/s | "
-              "rate / rate at the shortest step | error (of max eps) |\n");
+              "rate / the first row's rate | error (of max eps) |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
-  const double steps[] = { 0.3, 1, 3, 10, 30, 10 };
-  const int kinds = 6; // the last: 10 voxels with MaxSteps 1
+  steps.push_back(10); // the last row: 10 voxels with MaxSteps 1
+  const int kinds = static_cast<int>(steps.size());
   std::stringstream bs(backends);
   std::string name;
   while (std::getline(bs, name, ','))
@@ -372,11 +374,18 @@ void RayCost(Case& c, const std::string& backends, int film, int rounds)
       }
       // time per ray = fixed + per-sample x samples per ray through the 10 and 30 voxel rows
       // (the same views, the same kind of step: long, prefetched, checked for features)
-      const double per = (time[3] - time[4]) / (samples[3] - samples[4]);
-      const double fixed = (time[3] - per * samples[3]) / (rounds * rays);
-      std::printf("\n%s: at long steps a ray costs %.0f ns besides its samples (%.1f samples' worth) "
-                  "and %.1f ns a sample; at 0.3 voxels %.1f ns a sample (wall, every thread)\n\n",
-        name.c_str(), fixed * 1e9, fixed / per, per * 1e9, 1e9 / rate[0]);
+      const auto p10 = std::find(steps.begin(), steps.end() - 1, 10.0) - steps.begin();
+      const auto p30 = std::find(steps.begin(), steps.end() - 1, 30.0) - steps.begin();
+      if (p10 < kinds - 1 && p30 < kinds - 1)
+      {
+        const double per = (time[p10] - time[p30]) / (samples[p10] - samples[p30]);
+        const double fixed = (time[p10] - per * samples[p10]) / (rounds * rays);
+        std::printf("\n%s: at long steps a ray costs %.0f ns besides its samples (%.1f samples' "
+                    "worth) and %.1f ns a sample; at %g voxels %.1f ns a sample (wall, every "
+                    "thread)\n",
+          name.c_str(), fixed * 1e9, fixed / per, per * 1e9, steps[0], 1e9 / rate[0]);
+      }
+      std::printf("\n");
     }
     catch (const Error& e)
     {
@@ -609,6 +618,7 @@ int main(int argc, char** argv)
   std::string grids = "64,128,256,512";
   double tolFrac = 1e-3;
   int rounds = 5;
+  std::vector<double> raySteps = { 0.3, 1, 3, 10, 30 };
   for (int i = 1; i + 1 < argc; i += 2)
   {
     if (!std::strcmp(argv[i], "--size"))
@@ -635,6 +645,16 @@ int main(int argc, char** argv)
       tolFrac = std::atof(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--rounds"))
       rounds = std::max(1, std::atoi(argv[i + 1]));
+    else if (!std::strcmp(argv[i], "--steps"))
+    {
+      raySteps.clear();
+      std::stringstream st(argv[i + 1]);
+      std::string v;
+      while (std::getline(st, v, ','))
+        raySteps.push_back(std::atof(v.c_str()));
+      if (raySteps.empty())
+        raySteps.push_back(0.3);
+    }
   }
   DeviceInfo dev = QueryOpenCLDevice();
   std::printf("# Schlieren benchmark: film %d^2, %d passes, Euler step %.2f voxel\n\n", film, passes, step);
@@ -654,7 +674,7 @@ int main(int argc, char** argv)
       else if (name == "sources")
         Sources(backends, film, size);
       else if (name == "raycost" && Gaussian(c, size))
-        RayCost(c, backends, film, rounds);
+        RayCost(c, backends, film, rounds, raySteps);
       else if (name == "gaussian")
         ok = Gaussian(c, size);
       else if (name == "plume")
