@@ -351,7 +351,7 @@ float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_
 void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
 {
   // the rows split at the chunk's middle ray: photons land near where they were emitted, so
-  // each thread gets about half; the totals (counts and maxima, exact in any order) on the first.
+  // each thread gets about half; the totals and maxima on the first, in the records' order.
   // Small chunks on one thread: a thread's start costs more than it saves there.
   const long W = std::max(1, P.filmNx);
   const long mid = (P.rayOffset + (long(first) + long(count) / 2) * P.rayStride) / W;
@@ -372,8 +372,8 @@ void Splatter::Add(const float* rec, std::size_t first, std::size_t count)
 void Splatter::AddRows(const float* rec, std::size_t first, std::size_t count, int rowLo,
   int rowHi, bool totals)
 {
-  // local copies of the channels' addresses and of the totals: the other thread writes beside
-  // F's members (the totals are written back once, at the end)
+  // the channels' addresses read once: F's vectors sit beside the totals the first thread
+  // writes, and a read of them at every photon would share that cache line
   double* const cCount = F.Count.data();
   double* const cWeight = F.Weight.data();
   double* const cDeflectionX = F.DeflectionX.data();
@@ -387,31 +387,26 @@ void Splatter::AddRows(const float* rec, std::size_t first, std::size_t count, i
   double* const cShiftY = F.ShiftY.data();
   double* const cErrorSum = F.ErrorSum.data();
   double* const cBlocked = F.Blocked.data();
-  double tPhotons = F.Photons, tSamples = F.Samples, tSteps = F.Steps;
-  double tMissedRays = F.MissedRays, tUnderresolvedRays = F.UnderresolvedRays;
-  double tSideRays = F.SideRays, tBlockedRays = F.BlockedRays, tFailedRays = F.FailedRays;
-  double tMaxDrift = F.MaxDrift, tMaxError = F.MaxError, tMaxAbsKnife = F.MaxAbsKnife;
-  double tMaxAbsDeflection = F.MaxAbsDeflection;
   for (std::size_t r = 0; r < count; ++r, rec += SCH_RECORD)
   {
     const unsigned flags = static_cast<unsigned>(rec[SCH_REC_FLAGS]);
     if (totals)
     {
-      tPhotons += 1;
-      tSamples += rec[SCH_REC_SAMPLES];
-      tSteps += rec[SCH_REC_STEPS];
+      F.Photons += 1;
+      F.Samples += rec[SCH_REC_SAMPLES];
+      F.Steps += rec[SCH_REC_STEPS];
       if (flags & SCH_RAY_MISSED)
-        tMissedRays += 1;
+        F.MissedRays += 1;
       if (flags & SCH_RAY_UNDERRESOLVED)
-        tUnderresolvedRays += 1;
+        F.UnderresolvedRays += 1;
       if (flags & SCH_RAY_SIDE)
-        tSideRays += 1;
+        F.SideRays += 1;
     }
     if (flags & SCH_RAY_BLOCKED)
     {
       // stopped by a body: no light; counted in the pixel it was emitted through (the shadow)
       if (totals)
-        tBlockedRays += 1;
+        F.BlockedRays += 1;
       const std::size_t at = static_cast<std::size_t>(P.rayOffset + (first + r) * P.rayStride);
       const long row = static_cast<long>(at / static_cast<std::size_t>(std::max(1, P.filmNx)));
       if (row >= rowLo && row < rowHi)
@@ -421,7 +416,7 @@ void Splatter::AddRows(const float* rec, std::size_t first, std::size_t count, i
     if (flags & SCH_RAY_LOST)
     {
       if (totals)
-        tFailedRays += 1;
+        F.FailedRays += 1;
       continue;
     }
     const float ex = rec[SCH_REC_EX], ey = rec[SCH_REC_EY];
@@ -430,10 +425,10 @@ void Splatter::AddRows(const float* rec, std::size_t first, std::size_t count, i
     const double absE = std::sqrt(double(ex) * ex + double(ey) * ey);
     if (totals)
     {
-      tMaxDrift = std::max(tMaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
-      tMaxError = std::max(tMaxError, double(rec[SCH_REC_ERROR]));
-      tMaxAbsKnife = std::max(tMaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
-      tMaxAbsDeflection = std::max(tMaxAbsDeflection, absE);
+      F.MaxDrift = std::max(F.MaxDrift, double(std::fabs(rec[SCH_REC_DRIFT])));
+      F.MaxError = std::max(F.MaxError, double(rec[SCH_REC_ERROR]));
+      F.MaxAbsKnife = std::max(F.MaxAbsKnife, double(std::fabs(ex * ca + ey * sa)));
+      F.MaxAbsDeflection = std::max(F.MaxAbsDeflection, absE);
     }
     const int pix = static_cast<int>(P.rayOffset + (first + r) * P.rayStride);
     double la = rec[SCH_REC_A], lb = rec[SCH_REC_B];
@@ -525,21 +520,6 @@ void Splatter::AddRows(const float* rec, std::size_t first, std::size_t count, i
       cGreen[idx] += passColour[1];
       cBlue[idx] += passColour[2];
     }
-  }
-  if (totals)
-  {
-    F.Photons = tPhotons;
-    F.Samples = tSamples;
-    F.Steps = tSteps;
-    F.MissedRays = tMissedRays;
-    F.UnderresolvedRays = tUnderresolvedRays;
-    F.SideRays = tSideRays;
-    F.BlockedRays = tBlockedRays;
-    F.FailedRays = tFailedRays;
-    F.MaxDrift = tMaxDrift;
-    F.MaxError = tMaxError;
-    F.MaxAbsKnife = tMaxAbsKnife;
-    F.MaxAbsDeflection = tMaxAbsDeflection;
   }
 }
 

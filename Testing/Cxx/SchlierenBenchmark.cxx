@@ -292,14 +292,15 @@ void Run(Case& c, const std::string& backends, const std::string& only, int film
 
 // The raycost case (issue 24's per-ray overhead): what a ray costs besides its samples. The
 // Gaussian sphere traced as a camera move traces it (a whole update of the engine: the film sums
-// zeroed in place, Accumulate, Finalize; a new oblique view each time) at base steps from 0.3 to
-// 30 voxels, and once with every ray stopped after its first step (MaxSteps 1: the ray's set-up,
-// its entry sample and its record alone). Steps are taken in turn, round after round, so that
-// the machine's drift falls on every row alike; each row is the median over the rounds. A
-// fit of time = rays x fixed + samples x per-sample through the 10 and 30 voxel rows says what a
-// ray costs that does not depend on its length, in samples' worth; the rate column's ratio, the
-// rate against the shortest step's, is issue 24's ratio (target >= 0.5 at about 16 samples per
-// ray). Each row's error is that of its step against the closed form (625 probe rays).
+// zeroed in place, Accumulate, Finalize; an oblique view per round, the same for every row) at
+// the base steps of --steps (0.3 to 30 voxels), and once with every ray stopped after its first
+// step (MaxSteps 1: the ray's set-up, its entry sample, one step and its record). Steps are taken
+// in turn, round after round, so that the machine's drift falls on every row alike; each row's
+// time is the median over the rounds. A fit of time = rays x fixed + samples x per-sample
+// through the 10 and 30 voxel rows says what a ray costs that does not depend on its length, in
+// samples' worth; the rate against the first row's (0.3 voxel by default) is issue 24's ratio
+// (target >= 0.5 at about 16 samples per ray). Each row's error is that of its step against the
+// closed form (625 probe rays, on axis).
 void RayCost(Case& c, const std::string& backends, int film, int rounds, std::vector<double> steps)
 {
   std::printf("## ray cost: %s, film %d^2, 1 pass, oblique views, median of %d rounds\n\n",
@@ -673,8 +674,11 @@ int main(int argc, char** argv)
         Grids(grids, backends, film, passes, tolFrac);
       else if (name == "sources")
         Sources(backends, film, size);
-      else if (name == "raycost" && Gaussian(c, size))
-        RayCost(c, backends, film, rounds, raySteps);
+      else if (name == "raycost")
+      {
+        if (Gaussian(c, size))
+          RayCost(c, backends, film, rounds, raySteps);
+      }
       else if (name == "gaussian")
         ok = Gaussian(c, size);
       else if (name == "plume")
