@@ -1105,7 +1105,8 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
         const char* a = mode ? "Slice" : "Magnitude";
         const char* b = mode ? "LineOfSight" : "KnifeComponent";
         if (value != a && value != b)
-          throw schlieren::Error(key + " '" + value + "' is not one of: " + a + ", " + b + ".");
+          throw schlieren::Error(key + " '" + value + "' is not one of: " + a + ", " + b +
+            Closest(value, std::vector<const char*>{ a, b }) + ".");
         if (mode)
           ns.Mode = value == a ? schlieren::NumericalMode::Slice : schlieren::NumericalMode::LineOfSight;
         else
@@ -1329,6 +1330,12 @@ int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims
 int schlieren_check_memory(double bytes, const char* what, const char* hint)
 {
   return Guard(LastError, [&] {
+    if (!(bytes >= 0))
+    {
+      std::ostringstream msg;
+      msg << "schlieren_check_memory: bytes is " << bytes << ": give a count of bytes (>= 0).";
+      throw schlieren::Error(msg.str());
+    }
     schlieren::CheckHostMemory(bytes, what ? what : "This", hint ? hint : "");
   });
 }
