@@ -528,6 +528,15 @@ class NumericalSchlieren(_Properties):
         return 1
 
 
+def _python_advice(message):
+    """The engine's message with its advice made this front end's: its RefractiveIndex has
+    Symmetry None only (the engine's advice names the C++ plugin's Symmetry)."""
+    if "Symmetry" in message:
+        message += (" (Symmetry is the C++ plugin's RefractiveIndex: the Python front end's "
+                    "takes None only; give SchlierenImage a 3D volume here.)")
+    return message
+
+
 def _image_properties():
     props = _engine.properties()
     return ({p["name"]: p["default"] for p in props},
@@ -590,7 +599,7 @@ class SchlierenImage(_Properties):
             report = s.trace()
         except EngineError as e:
             object.__setattr__(self, "LastReport", getattr(e, "report", None))
-            return self._fail(str(e))
+            return self._fail(_python_advice(str(e)))
         object.__setattr__(self, "LastReport", report)
         object.__setattr__(self, "LastError", "")
         import warnings
@@ -641,7 +650,7 @@ class SchlierenImage(_Properties):
             size, origin, pixel = self._session.plan_film(dims, src.Get(vtkImageData.ORIGIN()),
                                                           src.Get(vtkImageData.SPACING()))
         except EngineError as err:
-            return self._fail(str(err))
+            return self._fail(_python_advice(str(err)))
         info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
         info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
         info.Set(vtkImageData.ORIGIN(), origin[0], origin[1], 0.0)

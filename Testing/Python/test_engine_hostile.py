@@ -197,6 +197,13 @@ else:
     err = raises(lambda: schlieren.SchlierenImage(Cutoff="shadowgraph"), ValueError)
     check(err is not None and "'Shadowgraph'" in str(err), "Cutoff='shadowgraph' names the "
           "closest entry", str(err)[-60:])
+    flat = schlieren.RefractiveScene(Dimensions=[16, 16, 1])
+    flat_image = schlieren.SchlierenImage(Resolution=[16, 16], Backend="CPU")
+    flat_image.SetInputConnection(flat.GetOutputPort())
+    flat_image.Update()
+    check("Symmetry" in flat_image.LastError and "Python front end's takes None only" in
+          flat_image.LastError, "a 2D volume: the advice does not send the Python front end's "
+          "user to a Symmetry it refuses", flat_image.LastError[-110:])
     wavelet = vtkRTAnalyticSource()
     wavelet.SetWholeExtent(-5, 5, -5, 5, -5, 5)
     grid = vtkAppendFilter()   # an unstructured grid: resampled by RefractiveIndex
