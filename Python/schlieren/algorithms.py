@@ -201,8 +201,9 @@ class RefractiveScene(_Properties):
         origin, spacing = [0.0] * 3, [0.0] * 3
         for a in range(3):
             lo, hi = float(self.Bounds[2 * a]), float(self.Bounds[2 * a + 1])
-            if dims[a] < 1:
-                raise EngineError("Dimensions must be at least 1 along each axis; got %s." % dims)
+            if dims[a] < 1 or dims[a] > 2 ** 31 - 1:
+                raise EngineError("Dimensions must be at least 1 along each axis (and fit a "
+                                  "32-bit integer); got %s." % dims)
             if dims[a] > 1 and not hi > lo:
                 raise EngineError("Bounds along axis %d are [%g, %g]: the max must exceed the "
                                   "min." % (a, lo, hi))

@@ -191,6 +191,10 @@ else:
     check("2000 x 2000 x 2000" in scene_alg.LastError and "needs" in scene_alg.LastError and
           "GiB" in scene_alg.LastError, "RefractiveScene(Dimensions=[2000]*3): 'needs N GiB' "
           "before allocating (NumPy's MemoryError before)", scene_alg.LastError)
+    wide = schlieren.RefractiveScene(Dimensions=[3000000000, 4, 4])
+    wide.Update()
+    check("3000000000" in wide.LastError and "Dimensions" in wide.LastError,
+          "RefractiveScene(Dimensions=[3e9, 4, 4]) named as given", wide.LastError)
     err = raises(lambda: schlieren.SchlierenImage(cutoff="Shadowgraph"), AttributeError)
     check(err is not None and "'Cutoff'" in str(err),
           "SchlierenImage(cutoff=...) names Cutoff (silently KnifeEdge before)", str(err)[:100])
