@@ -10,7 +10,8 @@
  * values (a length the function must refuse is the point); what it varies is whether the length is
  * the one the function needs. Every call must return (a crash or a sanitizer report fails the
  * test), and every refusal must come with a message (an empty one fails). The issue's crashers are
- * fixed cases first, each with the message it must give. A table of outcomes per function ends the
+ * fixed cases first, each with the message it must give (one more, a read outside the array in
+ * ExtendIntoInvalid on a grid one point thick, was found by this fuzz under AddressSanitizer). A table of outcomes per function ends the
  * run. ctest runs the fixed cases and 4000 random ones (a few seconds); the longer run under
  * AddressSanitizer is in docs/FUZZING.md. Traces are kept small (a film of at most 24 x 24, a pass
  * or two, a grid of at most 12 points a side): long but legitimate traces are the plugin fuzz's
@@ -167,6 +168,26 @@ static void fixed_cases(void)
   EXPECT(schlieren_field_index("Passthrough", small, -1, 0, 1, NULL, small, NULL) != 0 &&
       has(schlieren_last_error(), "count is -1"),
     "fixed: field_index with count -1 says what is wrong", schlieren_last_error());
+  /* found by this fuzz under AddressSanitizer: the smoothing of the fill read across an axis one
+   * point thick (outside the array); a harmonic fill stays within its edge's values */
+  {
+    const int flat[3] = { 7, 6, 1 };
+    float values[42];
+    unsigned char inside[42];
+    int i, bounded = 1;
+    for (i = 0; i < 42; ++i)
+    {
+      const int x = i % 7, y = i / 7;
+      inside[i] = (unsigned char)(x == 0 || y == 0 || x == 6 || y == 5);
+      values[i] = inside[i] ? (float)(1e-4 * (1 + 0.1 * x + 0.05 * y)) : -1.0f;
+    }
+    EXPECT(schlieren_extend_into_invalid(flat, inside, 42, values, &filled) == 0 && filled == 20,
+      "fixed: extend_into_invalid on a 7 x 6 x 1 grid with a hole of 20 points", schlieren_last_error());
+    for (i = 0; i < 42; ++i)
+      bounded = bounded && isfinite(values[i]) && values[i] >= 0.99e-4f && values[i] <= 1.9e-4f;
+    EXPECT(bounded, "fixed: the 2D fill stays within its edge's values (read outside the array before)",
+      NULL);
+  }
   /* names and numbers */
   EXPECT(schlieren_session_set(s, "cutoff", "Shadowgraph") != 0 &&
       has(schlieren_session_error(s), "closest known name: 'Cutoff'"),
