@@ -467,11 +467,12 @@ std::int64_t GridPoints(const char* function, const int dims[3])
       throw schlieren::Error(std::string(function) + ": dims are " + std::to_string(dims[0]) + " " +
         std::to_string(dims[1]) + " " + std::to_string(dims[2]) +
         ": each must be at least 1 (points along x, y, z).");
-    n *= dims[a]; // at most 2^31 * 2^31 * 2^31 after the check below: checked step by step
-    if (n > (std::int64_t(1) << 40))
+    // checked before the product (2^40 x 2^31 would overflow 64 bits)
+    if (n > (std::int64_t(1) << 40) / dims[a])
       throw schlieren::Error(std::string(function) + ": dims " + std::to_string(dims[0]) + " x " +
         std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
         " make more than 2^40 points: no array of the engine can hold them.");
+    n *= dims[a];
   }
   return n;
 }
