@@ -1271,6 +1271,14 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
   {
     w.Notes.push_back(this->WedgeNote);
   }
+  if (!w.Symmetric && w.Ranks.Rank() == 0)
+  {
+    const std::string wedge = this->WedgeWithoutSymmetry(w.Input);
+    if (!wedge.empty())
+    {
+      w.Warnings.push_back(wedge);
+    }
+  }
   if (!meshNote.empty())
   {
     w.Notes.push_back(meshNote);
@@ -1463,7 +1471,7 @@ std::string vtkRefractiveIndex::EvaluateModel(Work& w)
   {
     const schlieren::FieldReport report =
       schlieren::ComputeFieldIndex(fields, ModelOf(this), w.NMinus1->GetPointer(0));
-    w.Warnings = report.Warnings;
+    w.Warnings.insert(w.Warnings.end(), report.Warnings.begin(), report.Warnings.end());
     if (w.AnyInvalid && report.ValidPoints == 0)
     {
       return "No point of the " +

@@ -638,6 +638,11 @@ private:
    * sets the axis in use, its crossing and the sampled half plane's tilt, and WedgeNote.
    */
   schlieren::Wedge FindWedge(vtkDataObject* input);
+  /**
+   * NO_SYMMETRY: "" or the warning that the (non-image) input is an axisymmetric wedge, which
+   * traced as it is would be a slab of gas a few degrees thick (issue 48), and what to set.
+   */
+  std::string WedgeWithoutSymmetry(vtkDataObject* input);
   /** "" or the error of a NO_SYMMETRY input that is 2D (one message, naming Symmetry). */
   std::string FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input);
   /**

@@ -11,6 +11,12 @@ on the main branch before issue 48.
    accepted. A camera lens inside the test section (CameraDistance 0.05 m in a 2 m box) refused;
    BOS with the volume's centre within the focal length (M_A = f / (Z_A - f) < 0) refused.
 3. SchlierenImage with KnifeAngle 400: an error and no image (it output an image traced at 400).
+4. Wedges (RefractiveIndex): an OpenFOAM-style 5 degree wedge (one cell across, prisms on the
+   axis, cell data, in a multiblock) at the defaults (Symmetry None) gets a warning naming it and
+   what to set (it was traced as a 5 degree slab of gas without a word), and under Axisymmetric
+   is revolved; a wedge whose axis is tilted 20 degrees (turned about its radial axis) is refused
+   with the reason (it was revolved about x); a 30 degree wedge's error names the 10 degree limit
+   (it was called a 3D volume).
 
 Run: pvpython test_physics_sense.py --plugin <Schlieren.so> --engine <libschlieren_engine.so.1>
 """
@@ -125,5 +131,79 @@ data, text = fetch(im)
 T.check("ERROR" in text and "KnifeAngle is 400" in text, "KnifeAngle 400: an error naming it")
 T.check(data.GetNumberOfPoints() == 0, "KnifeAngle 400: no image (was an image traced at 400 degrees)")
 Delete(im)
+
+# ------------------------------------------------------------------ 4. wedges
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_WEDGE, vtkMultiBlockDataSet, vtkUnstructuredGrid
+import cfd_testing as cfd
+
+
+def wedge_mesh(angle_deg, tilt_deg=0.0, nx=21, nr=11, length=1.0, radius=0.5):
+    """An OpenFOAM-style axisymmetric wedge: the axis along x (turned by tilt_deg about y), the
+    mesh at y >= 0 between the planes z = +-y tan(angle / 2), one cell across, prisms on the axis,
+    the density as cell data, in a multiblock."""
+    t = math.tan(math.radians(angle_deg) / 2)
+    c, s_ = math.cos(math.radians(tilt_deg)), math.sin(math.radians(tilt_deg))
+    pts = vtkPoints()
+    index = {}
+
+    def point(i, j, side):
+        key = (i, 0, 0) if j == 0 else (i, j, side)
+        if key not in index:
+            x, y = length * i / (nx - 1), radius * j / (nr - 1)
+            z = side * y * t
+            index[key] = pts.InsertNextPoint(c * x + s_ * z, y, -s_ * x + c * z)
+        return index[key]
+
+    ug = vtkUnstructuredGrid()
+    rho = vtkDoubleArray()
+    rho.SetName("density")
+    cells = []
+    for i in range(nx - 1):
+        for j in range(nr - 1):
+            if j == 0:
+                ids = [point(i, 0, 0), point(i, 1, -1), point(i, 1, 1),
+                       point(i + 1, 0, 0), point(i + 1, 1, -1), point(i + 1, 1, 1)]
+                cells.append((VTK_WEDGE, ids))
+            else:
+                ids = [point(i, j, -1), point(i, j + 1, -1), point(i, j + 1, 1), point(i, j, 1),
+                       point(i + 1, j, -1), point(i + 1, j + 1, -1), point(i + 1, j + 1, 1), point(i + 1, j, 1)]
+                cells.append((VTK_HEXAHEDRON, ids))
+            xc, rc = length * (i + 0.5) / (nx - 1), radius * (j + 0.5) / (nr - 1)
+            rho.InsertNextValue(1.2 + 0.5 * math.exp(-((xc - 0.5) ** 2 + rc ** 2) / 0.04))
+    ug.SetPoints(pts)
+    for kind, ids in cells:
+        ug.InsertNextCell(kind, len(ids), ids)
+    ug.GetCellData().AddArray(rho)
+    mb = vtkMultiBlockDataSet()
+    mb.SetBlock(0, ug)
+    return mb
+
+
+wedge5 = cfd.producer(globals(), wedge_mesh(5.0))
+ri = RefractiveIndex(Input=wedge5, AutomaticDimension=32)
+data, text = fetch(ri)
+T.check("axisymmetric wedge" in text and "5 deg slab of gas" in text and "Set Symmetry to Axisymmetric" in text,
+        "a 5 deg wedge at the defaults (Symmetry None): a warning naming the wedge and what to set")
+ri.Symmetry = "Axisymmetric"
+data, text = fetch(ri)
+T.check("ERROR" not in text and "deg slab" not in text and data.GetNumberOfPoints() > 0 and
+        "is an axisymmetric wedge (AxisFromWedge)" in text,
+        "the same wedge under Symmetry Axisymmetric: revolved about the axis it found, no warning")
+Delete(ri)
+
+tilted = cfd.producer(globals(), wedge_mesh(5.0, tilt_deg=20.0))
+ri = RefractiveIndex(Input=tilted, Symmetry="Axisymmetric", AutomaticDimension=32)
+data, text = fetch(ri)
+T.check("ERROR" in text and "tilted 20 deg from x (direction -0.94, 0, 0.342)" in text and data.GetNumberOfPoints() == 0,
+        "a wedge whose axis is tilted 20 deg: refused with the reason (was revolved about x, 10 % valid)")
+Delete(ri)
+
+wide = cfd.producer(globals(), wedge_mesh(30.0))
+ri = RefractiveIndex(Input=wide, Symmetry="Axisymmetric", AutomaticDimension=32)
+data, text = fetch(ri)
+T.check("ERROR" in text and "30 deg apart, more than the 10 deg" in text and "3D volume" not in text,
+        "a 30 deg wedge: the error names the 10 deg limit (was called a 3D volume)")
+Delete(ri)
 
 T.finish()
