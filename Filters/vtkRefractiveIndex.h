@@ -585,6 +585,9 @@ private:
   std::string ReadInputs(Work& w);
   /** The grid the model runs on: the input image's (grown) piece, or the resampled grid. */
   std::string MakeGrid(Work& w);
+  /** A resampled input whose bounds moved since RequestInformation (a moving mesh over time): the
+   * grid's origin and spacing in the output information follow them (collective under MPI). */
+  void FollowMovingBounds(Work& w);
   /** n - 1 from the model on the grid, and the domain edge of the points this piece owns. */
   std::string EvaluateModel(Work& w);
   /** Under MPI: every rank learns whether any failed (given `failure`), and the whole edge. */

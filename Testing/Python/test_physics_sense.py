@@ -17,6 +17,15 @@ on the main branch before issue 48.
    is revolved; a wedge whose axis is tilted 20 degrees (turned about its radial axis) is refused
    with the reason (it was revolved about x); a 30 degree wedge's error names the 10 degree limit
    (it was called a 3D volume).
+5. AMR with two boxes that overlap on one level (one box's values were dropped without a word):
+   refused naming the level, the boxes and the cells they share; two boxes sharing a face are
+   resampled as before.
+6. A time series whose mesh moves (two unstructured steps, the second moved by 0.5 along x): the
+   second step's sampling box follows its bounds, and its image is that step's traced alone (the
+   first step's box was kept: |dI| 0.2 to 0.5).
+7. Messages: a mesh of patches with no internal mesh (SamplingBounds off) is told that its cells
+   enclose no volume, with its cells counted by dimension (it was told to "check
+   SamplingBounds"); with SamplingBounds on and outside the mesh, "check SamplingBounds".
 
 Run: pvpython test_physics_sense.py --plugin <Schlieren.so> --engine <libschlieren_engine.so.1>
 """
@@ -204,6 +213,180 @@ ri = RefractiveIndex(Input=wide, Symmetry="Axisymmetric", AutomaticDimension=32)
 data, text = fetch(ri)
 T.check("ERROR" in text and "30 deg apart, more than the 10 deg" in text and "3D volume" not in text,
         "a 30 deg wedge: the error names the 10 deg limit (was called a 3D volume)")
+Delete(ri)
+
+# ------------------------------------------------------------------ 5. AMR boxes that overlap
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonDataModel import vtkAMRBox, vtkAMRUtilities, vtkOverlappingAMR, vtkUniformGrid
+
+
+def amr_block(lo, h, n, offset):
+    """A vtkUniformGrid of n[0] x n[1] x n[2] cells from corner lo, spacing h, a Gaussian n - 1
+    (+ offset) at its points."""
+    g = vtkUniformGrid()
+    g.SetOrigin(*lo)
+    g.SetSpacing(h, h, h)
+    g.SetDimensions(n[0] + 1, n[1] + 1, n[2] + 1)
+    x = [lo[a] + h * np.arange(n[a] + 1) for a in range(3)]
+    Z, Y, X = np.meshgrid(x[2], x[1], x[0], indexing="ij")
+    a = numpy_to_vtk((1e-4 * np.exp(-(X ** 2 + Y ** 2 + Z ** 2) / 0.0625) + offset).ravel().astype(np.float32), deep=1)
+    a.SetName("n_minus_1")
+    g.GetPointData().AddArray(a)
+    return g
+
+
+def make_amr(x_ranges):
+    """Level 0: [-1, 1]^3 in 8 cells a side; level 1 (spacing 0.125): a box over each x range,
+    [-0.5, 0.5] in y and z, the second 1e-5 above the first."""
+    h0, h1 = 0.25, 0.125
+    amr = vtkOverlappingAMR()
+    amr.Initialize(2, [1, len(x_ranges)])
+    amr.SetOrigin([-1.0, -1.0, -1.0])
+    amr.SetSpacing(0, [h0] * 3)
+    amr.SetAMRBox(0, 0, vtkAMRBox([-1.0] * 3, [9] * 3, [h0] * 3, [-1.0] * 3, 8))
+    amr.SetDataSet(0, 0, amr_block([-1.0] * 3, h0, [8] * 3, 0.0))
+    amr.SetSpacing(1, [h1] * 3)
+    for b, (x0, x1) in enumerate(x_ranges):
+        n = [int(round((x1 - x0) / h1)), 8, 8]
+        lo = [x0, -0.5, -0.5]
+        amr.SetAMRBox(1, b, vtkAMRBox(lo, [n[0] + 1, 9, 9], [h1] * 3, [-1.0] * 3, 8))
+        amr.SetDataSet(1, b, amr_block(lo, h1, n, 1e-5 * b))
+    amr.SetRefinementRatio(0, 2)
+    vtkAMRUtilities.BlankCells(amr)
+    return amr
+
+
+overlapping = cfd.producer(globals(), make_amr([(-0.5, 0.25), (-0.25, 0.5)]))
+ri = RefractiveIndex(Input=overlapping, Model="Passthrough")
+data, text = fetch(ri)
+T.check("ERROR" in text and "level 1 has boxes that overlap: boxes 0 and 1 share 256 cells" in text
+        and data.GetNumberOfPoints() == 0,
+        "AMR with two boxes overlapping on level 1 (4 x 8 x 8 cells): refused naming them (one box's "
+        "values were dropped)")
+Delete(ri)
+touching = cfd.producer(globals(), make_amr([(-0.5, 0.0), (0.0, 0.5)]))
+ri = RefractiveIndex(Input=touching, Model="Passthrough")
+data, text = fetch(ri)
+T.check("ERROR" not in text and data.GetNumberOfPoints() == 17 ** 3,
+        "AMR with two boxes sharing a face on level 1: resampled (17^3 points at the finest spacing)")
+Delete(ri)
+
+# ------------------------------------------------------------------ 6. a mesh that moves
+import tempfile
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkFiltersCore import vtkAppendFilter
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+
+
+def moving_mesh(path, shift):
+    """An unstructured mesh (13^3 points over [-1, 1]^3 moved by `shift` along x) carrying a
+    Gaussian density that moves with it."""
+    im = vtkImageData()
+    im.SetDimensions(13, 13, 13)
+    im.SetOrigin(-1.0 + shift, -1.0, -1.0)
+    im.SetSpacing(1 / 6, 1 / 6, 1 / 6)
+    x = [im.GetOrigin()[a] + np.arange(13) / 6 for a in range(3)]
+    Z, Y, X = np.meshgrid(x[2], x[1], x[0], indexing="ij")
+    rho = numpy_to_vtk((1.2 + 0.4 * np.exp(-((X - shift) ** 2 + Y ** 2 + Z ** 2) / 0.1)).ravel(), deep=1)
+    rho.SetName("density")
+    im.GetPointData().AddArray(rho)
+    ap = vtkAppendFilter()
+    ap.AddInputData(im)
+    ap.Update()
+    w = vtkXMLUnstructuredGridWriter()
+    w.SetFileName(path)
+    w.SetInputData(ap.GetOutput())
+    w.Write()
+
+
+def traced(reader, time=None):
+    ri = RefractiveIndex(Input=reader, AutomaticDimension=20)
+    im = SchlierenImage(Input=ri, Resolution=[20, 20], Passes=1, Backend="CPU", CutoffScale=100.0,
+                        Jitter=0)
+    with st.CapturedOutput() as out:
+        if time is None:
+            im.UpdatePipeline()
+            ri.UpdatePipeline()
+        else:
+            im.UpdatePipeline(time)
+            ri.UpdatePipeline(time)
+        image = sm.Fetch(im)
+        volume = sm.Fetch(ri)
+    I = vtk_to_numpy(image.GetPointData().GetArray("intensity")).astype(float) if image.GetNumberOfPoints() else None
+    result = (I, volume.GetBounds(), out.text)
+    Delete(im)
+    Delete(ri)
+    return result
+
+
+folder = tempfile.mkdtemp(prefix="physics_sense_")
+steps = [os.path.join(folder, "mesh_%d.vtu" % i) for i in range(2)]
+moving_mesh(steps[0], 0.0)
+moving_mesh(steps[1], 0.5)
+series = XMLUnstructuredGridReader(FileName=steps)
+series.UpdatePipelineInformation()
+alone = XMLUnstructuredGridReader(FileName=[steps[1]])
+I_alone, b_alone, _ = traced(alone)
+ri_series = RefractiveIndex(Input=series, AutomaticDimension=20)
+im_series = SchlierenImage(Input=ri_series, Resolution=[20, 20], Passes=1, Backend="CPU", CutoffScale=100.0,
+                           Jitter=0)
+with st.CapturedOutput() as out:
+    im_series.UpdatePipeline(0.0)
+    im_series.UpdatePipeline(1.0)
+    ri_series.UpdatePipeline(1.0)
+    image = sm.Fetch(im_series)
+    volume = sm.Fetch(ri_series)
+I_series = vtk_to_numpy(image.GetPointData().GetArray("intensity")).astype(float)
+T.close(volume.GetBounds()[0:2], b_alone[0:2], 1e-9,
+        "a mesh moved by 0.5 along x at its second step: the sampling box follows it (x from %.4g to %.4g)"
+        % volume.GetBounds()[0:2])
+T.check("the grid follows them" in out.text, "the moved bounds are said in the log")
+if I_alone is not None:
+    T.close(I_series, I_alone, 1e-6, "the second step traced in the series against that step alone")
+Delete(im_series)
+Delete(ri_series)
+for f in steps:
+    os.remove(f)
+os.rmdir(folder)
+
+# ------------------------------------------------------------------ 7. what the messages say
+from vtkmodules.vtkCommonDataModel import VTK_QUAD
+
+
+def box_patches():
+    """The six faces of [-1, 1]^3 as quads (an OpenFOAM case's patches without its internal
+    mesh), in a multiblock: no cell holds any volume."""
+    pts = vtkPoints()
+    for z in (-1, 1):
+        for y in (-1, 1):
+            for x in (-1, 1):
+                pts.InsertNextPoint(x, y, z)
+    ug = vtkUnstructuredGrid()
+    ug.SetPoints(pts)
+    for quad in ((0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)):
+        ug.InsertNextCell(VTK_QUAD, 4, quad)
+    rho = vtkDoubleArray()
+    rho.SetName("density")
+    for i in range(8):
+        rho.InsertNextValue(1.2)
+    ug.GetPointData().AddArray(rho)
+    mb = vtkMultiBlockDataSet()
+    mb.SetBlock(0, ug)
+    return mb
+
+
+patches = cfd.producer(globals(), box_patches())
+ri = RefractiveIndex(Input=patches, AutomaticDimension=16)
+data, text = fetch(ri)
+T.check("ERROR" in text and "enclose no volume" in text and "6 cells: 0 3D, 6 2D" in text
+        and "check SamplingBounds" not in text,
+        "patches with no internal mesh, SamplingBounds off: the error says the cells enclose no "
+        "volume (it said 'check SamplingBounds')")
+ri.UseSamplingBounds = 1
+ri.SamplingBounds = [5, 6, 5, 6, 5, 6]
+data, text = fetch(ri)
+T.check("ERROR" in text and "check SamplingBounds" in text,
+        "the same with SamplingBounds on and outside the mesh: 'check SamplingBounds'")
 Delete(ri)
 
 T.finish()
