@@ -26,6 +26,7 @@ on the main branch before issue 48.
 7. Messages: a mesh of patches with no internal mesh (SamplingBounds off) is told that its cells
    enclose no volume, with its cells counted by dimension (it was told to "check
    SamplingBounds"); with SamplingBounds on and outside the mesh, "check SamplingBounds".
+   RefractionOctree's Tolerance out of range says what the tolerance is (it spoke of units).
 
 Run: pvpython test_physics_sense.py --plugin <Schlieren.so> --engine <libschlieren_engine.so.1>
 """
@@ -388,5 +389,11 @@ data, text = fetch(ri)
 T.check("ERROR" in text and "check SamplingBounds" in text,
         "the same with SamplingBounds on and outside the mesh: 'check SamplingBounds'")
 Delete(ri)
+octree = RefractionOctree(Input=sphere, Tolerance=2.0)
+data, text = fetch(octree)
+T.check("ERROR" in text and "Tolerance is 2" in text and "air's n - 1 is about 3e-4" in text
+        and "units" not in text, "RefractionOctree Tolerance 2: the range and what the value means, "
+        "not a word about units")
+Delete(octree)
 
 T.finish()
