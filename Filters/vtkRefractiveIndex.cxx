@@ -1182,6 +1182,13 @@ int vtkRefractiveIndex::RequestData(
     // a time step computed before, with the same pipeline: not resampled again
     w.Output->ShallowCopy(kept);
     w.Output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), key.Time);
+    if (w.Resampled)
+    {
+      // the grid of that step (FollowMovingBounds may have moved it since): what SchlierenImage
+      // reads from the information must be the kept image's
+      w.OutInfo->Set(vtkDataObject::ORIGIN(), w.Output->GetOrigin(), 3);
+      w.OutInfo->Set(vtkDataObject::SPACING(), w.Output->GetSpacing(), 3);
+    }
     ++this->TimeCache->Served;
     CacheFields(w.Output, *this->TimeCache, true);
     return 1;

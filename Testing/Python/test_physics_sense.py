@@ -331,19 +331,36 @@ I_alone, b_alone, _ = traced(alone)
 ri_series = RefractiveIndex(Input=series, AutomaticDimension=20)
 im_series = SchlierenImage(Input=ri_series, Resolution=[20, 20], Passes=1, Backend="CPU", CutoffScale=100.0,
                            Jitter=0)
+def intensity_now():
+    return vtk_to_numpy(sm.Fetch(im_series).GetPointData().GetArray("intensity")).astype(float)
+
+
 with st.CapturedOutput() as out:
     im_series.UpdatePipeline(0.0)
+    I_first = intensity_now()
     im_series.UpdatePipeline(1.0)
     ri_series.UpdatePipeline(1.0)
     image = sm.Fetch(im_series)
     volume = sm.Fetch(ri_series)
-I_series = vtk_to_numpy(image.GetPointData().GetArray("intensity")).astype(float)
+    I_series = vtk_to_numpy(image.GetPointData().GetArray("intensity")).astype(float)
+    # back to the first step: RefractiveIndex serves it from its time cache, on its own grid
+    im_series.UpdatePipeline(0.0)
+    I_again = intensity_now()
+    ri_series.UpdatePipeline(0.0)
+    b_again = sm.Fetch(ri_series).GetBounds()
+    from vtkmodules.vtkCommonDataModel import vtkDataObject
+    info_origin = ri_series.GetClientSideObject().GetOutputInformation(0).Get(vtkDataObject.ORIGIN())
+    data_origin = ri_series.GetClientSideObject().GetOutputDataObject(0).GetOrigin()
 T.close(volume.GetBounds()[0:2], b_alone[0:2], 1e-9,
         "a mesh moved by 0.5 along x at its second step: the sampling box follows it (x from %.4g to %.4g)"
         % volume.GetBounds()[0:2])
 T.check("the grid follows them" in out.text, "the moved bounds are said in the log")
 if I_alone is not None:
     T.close(I_series, I_alone, 1e-6, "the second step traced in the series against that step alone")
+T.close(I_again, I_first, 0.0, "the first step again (from the time cache) against its first trace")
+T.close(b_again[0:2], [-1.0, 1.0], 1e-5, "the first step again: its own box (x from %.4g to %.4g)" % b_again[0:2])
+T.close(info_origin, data_origin, 1e-12, "the first step again: the grid in the pipeline information "
+        "(what SchlierenImage reads) is the kept image's, not the moved step's")
 Delete(im_series)
 Delete(ri_series)
 for f in steps:
