@@ -18,6 +18,8 @@ ap = argparse.ArgumentParser()
 ap.add_argument("--xml", required=True)
 ap.add_argument("--package", required=True)
 ap.add_argument("--output", required=True)
+ap.add_argument("--view", help="Plugin/schlieren_view.py, embedded as the module schlieren_view "
+                "(Follow Camera from Python, as the C++ plugin embeds it)")
 args = ap.parse_args()
 
 root = ET.parse(args.xml).getroot()
@@ -26,6 +28,10 @@ sources = {}
 for name in ("_engine", "png", "algorithms"):
     with open("%s/%s.py" % (args.package, name)) as f:
         sources[name] = f.read()
+view_source = None
+if args.view:
+    with open(args.view) as f:
+        view_source = f.read()
 
 import re
 
@@ -112,11 +118,38 @@ out = ['# SPDX-License-Identifier: BSD-3-Clause',
        "    exec(compile(_SOURCES[_name], 'schlieren/%s.py' % _name, 'exec'), _m.__dict__)",
        "_alg = _pkg.algorithms",
        "",
+       "# schlieren_view (Follow Camera from Python), as the C++ plugin embeds it: `import",
+       "# schlieren_view` works after LoadPlugin, in pvpython, pvbatch and the GUI's Python shell",
+       "_VIEW = %r" % view_source,
+       "if _VIEW is not None and 'schlieren_view' not in _sys.modules:",
+       "    _view = _types.ModuleType('schlieren_view')",
+       "    _view.__file__ = __file__",
+       "    exec(compile(_VIEW, 'schlieren_view.py', 'exec'), _view.__dict__)",
+       "    _sys.modules['schlieren_view'] = _view",
+       "",
        "from paraview.util.vtkAlgorithm import smproperty, smproxy  # noqa: E402",
        "",
        "",
        "def _setter(name, attr, values_map, size, tag):",
        "    def set_(self, *values):",
+       "        # a value the package refuses is kept as the filter's error (Output Messages, an",
+       "        # empty output until it is changed), never raised here: an exception out of a",
+       "        # proxy's setter is a raw traceback, and the filter would run with the old value",
+       "        # while the panel shows the new one",
+       "        try:",
+       "            value = _value(values_map, size, tag, values)",
+       "        except (KeyError, TypeError, ValueError, IndexError) as e:",
+       "            self._refused[attr] = '%s: %r is not a value of this property (%s)' % (",
+       "                name, values, e)",
+       "            self.Modified()",
+       "            return",
+       "        if getattr(self, attr) != value or attr in self._refused:",
+       "            self.SetProperty(attr, value)",
+       "    set_.__name__ = 'Set' + name",
+       "    return set_",
+       "",
+       "",
+       "def _value(values_map, size, tag, values):",
        "        if values_map:",
        "            value = values_map[str(int(values[0]))]  # the entry's text",
        "        elif tag == 'StringVectorProperty' and size == 5:",
@@ -128,10 +161,7 @@ out = ['# SPDX-License-Identifier: BSD-3-Clause',
        "            value = values[0]",
        "        else:",
        "            value = list(values)",
-       "        if getattr(self, attr) != value:",
-       "            setattr(self, attr, value)",
-       "    set_.__name__ = 'Set' + name",
-       "    return set_",
+       "        return value",
        "",
        "",
        "def _make(base, proxy, is_filter):",

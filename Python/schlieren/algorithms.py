@@ -10,12 +10,19 @@
 
 Property names, defaults and entries are the ParaView proxies'; they are keyword arguments and
 attributes (setting one marks the algorithm modified). Inputs may be any vtkDataSet: what is not
-an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first.
+an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first by RefractiveIndex
+(a composite data set, a PLOT3D multiblock for example, too: its blocks onto one image);
+RefractionOctree, NumericalSchlieren and SchlierenImage take an axis-aligned vtkImageData and
+refuse anything else with the C++ filters' reason. Every output is one vtkImageData, whatever the
+input (no per-block multiblock); a failed request leaves it empty and says why (a VTK error, the
+message kept in LastError), never a Python traceback.
 """
 import numpy as np
 from vtkmodules.util import numpy_support
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
-from vtkmodules.vtkCommonDataModel import vtkDataSet, vtkImageData
+from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkDataObject, vtkDataSet,
+                                           vtkImageData)
+from vtkmodules.vtkCommonExecutionModel import vtkDemandDrivenPipeline as DDP
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
 
 from . import _engine
@@ -31,6 +38,8 @@ class _Properties(VTKPythonAlgorithmBase):
     def __init__(self, nInputPorts, outputType="vtkImageData", **kwargs):
         object.__setattr__(self, "_values", dict(self._defaults))
         object.__setattr__(self, "LastError", "")  # the message of the last failed request
+        # values refused by SetProperty (the ParaView plugin's setters): name -> the reason
+        object.__setattr__(self, "_refused", {})
         VTKPythonAlgorithmBase.__init__(self, nInputPorts=nInputPorts, nOutputPorts=1,
                                         outputType=outputType)
         object.__setattr__(self, "_ready", True)
@@ -69,6 +78,49 @@ class _Properties(VTKPythonAlgorithmBase):
             return value
         return value
 
+    def SetProperty(self, name, value):
+        """Sets a property as ParaView's setters do: a value this front end refuses is kept as an
+        error instead of raised (no traceback out of a proxy's setter). Until a good value is
+        set, every request fails with that error and an empty output, so that no image shows
+        that seems to use the refused value."""
+        try:
+            setattr(self, name, value)
+        except (ValueError, TypeError, EngineError) as e:
+            self._refused[name] = str(e)
+            self.Modified()
+            return False
+        if self._refused.pop(name, None) is not None:
+            self.Modified()
+        return True
+
+    def ProcessRequest(self, request, inInfo, outInfo):
+        """VTKPythonAlgorithmBase's dispatch with the errors a C++ filter gives: a refused value
+        or an exception of any kind becomes a VTK error (ParaView's Output Messages) and an
+        empty output, never a traceback."""
+        is_data = request.Has(DDP.REQUEST_DATA())
+        try:
+            if self._refused and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
+                if not is_data:
+                    # said once, by the data request; the output's extent is empty until then
+                    info = outInfo.GetInformationObject(0)
+                    if info.Has(SDDP.WHOLE_EXTENT()):
+                        info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
+                    return 1
+                ok = self._fail("; ".join(self._refused.values()) + " (the output stays empty "
+                                "until the value is changed)")
+            else:
+                ok = VTKPythonAlgorithmBase.ProcessRequest(self, request, inInfo, outInfo)
+        except Exception as e:  # noqa: BLE001 -- a message, not a traceback, whatever it is
+            ok = self._fail(str(e) if isinstance(e, EngineError) else
+                            "%s: %s" % (type(e).__name__, e))
+        if is_data and not ok:
+            out = outInfo.GetInformationObject(0).Get(vtkDataObject.DATA_OBJECT())
+            if out is not None:
+                out.Initialize()
+        elif is_data:
+            object.__setattr__(self, "_said", None)  # a later failure is said again
+        return ok
+
     def GetOutput(self, port=0):
         """The output data object (vtkImageData), as vtkImageAlgorithm::GetOutput gives it."""
         return self.GetOutputDataObject(port)
@@ -85,9 +137,50 @@ class _Properties(VTKPythonAlgorithmBase):
         LastError for scripts; returns 0 for the pipeline (the request failed)."""
         from vtkmodules.vtkCommonCore import vtkOutputWindow
         object.__setattr__(self, "LastError", message)
-        vtkOutputWindow.GetInstance().DisplayErrorText(
-            "ERROR: In %s: %s\n" % (type(self).__name__, message))
+        # said once, as the C++ filters do: not again for the same settings (a failed request
+        # is asked again by every update and Fetch)
+        key = (message, self.GetMTime())
+        if self.__dict__.get("_said") != key:
+            object.__setattr__(self, "_said", key)
+            vtkOutputWindow.GetInstance().DisplayErrorText(
+                "ERROR: In %s: %s\n" % (type(self).__name__, message))
         return 0
+
+    def _warn(self, message):
+        """A VTK warning (ParaView's Output Messages, as vtkWarningMacro writes)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        vtkOutputWindow.GetInstance().DisplayWarningText(
+            "Warning: In %s: %s\n" % (type(self).__name__, message))
+
+
+def _axis_aligned_image(data, what):
+    """`data` if it is a vtkImageData without a direction matrix; else an EngineError with the
+    reason the C++ SchlierenImage gives."""
+    if not isinstance(data, vtkImageData):
+        raise EngineError(
+            "%s needs a vtkImageData input with the point array 'n_minus_1'; got %s. Resample "
+            "the data onto an image and apply RefractiveIndex first."
+            % (what, data.GetClassName() if data is not None else "nothing"))
+    direction = getattr(data, "GetDirectionMatrix", None)
+    if direction is not None and not direction().IsIdentity():
+        raise EngineError("%s traces axis-aligned images only; this one has a direction matrix. "
+                          "Resample it onto an axis-aligned image first." % what)
+    return data
+
+
+def _first_point(image):
+    """The world position of an image's first point (its extent may not start at 0)."""
+    e, o, s = image.GetExtent(), image.GetOrigin(), image.GetSpacing()
+    return [o[a] + e[2 * a] * s[a] for a in range(3)]
+
+
+def _bounds(data):
+    """The bounds of a data set or of a composite data set's blocks."""
+    if isinstance(data, vtkCompositeDataSet):
+        b = [0.0] * 6
+        data.GetBounds(b)
+        return b
+    return data.GetBounds()
 
 
 def _image_input(data, dims=None):
@@ -99,7 +192,7 @@ def _image_input(data, dims=None):
     r = vtkResampleToImage()
     r.SetInputDataObject(data)
     if dims is None:
-        dims = _engine.automatic_dimensions(data.GetBounds(), 128)
+        dims = _engine.automatic_dimensions(_bounds(data), 128)
     r.SetSamplingDimensions(*dims)
     r.Update()
     out = vtkImageData()
@@ -275,19 +368,43 @@ class RefractiveIndex(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
+        # a data set or a composite data set as one input (the C++ filter's types): the blocks
+        # are resampled onto one image, not executed one by one into a multiblock of images
         info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet")
+        info.Append(self.INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet")
+        return 1
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        # a resampled input's grid is known in RequestData only; an image's is the input's
+        src = inInfo[0].GetInformationObject(0)
+        if not isinstance(vtkDataObject.GetData(src), vtkImageData):
+            outInfo.GetInformationObject(0).Remove(SDDP.WHOLE_EXTENT())
+        return 1
+
+    def RequestUpdateExtent(self, request, inInfo, outInfo):
+        # the whole input: resampling (or the gradient at the borders) needs all of it
+        src = inInfo[0].GetInformationObject(0)
+        if src.Has(SDDP.WHOLE_EXTENT()):
+            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
 
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
         if min(dims) > 0:
             return dims
-        return _engine.automatic_dimensions(data.GetBounds(), int(self.AutomaticDimension))
+        return _engine.automatic_dimensions(_bounds(data), int(self.AutomaticDimension))
 
     def RequestData(self, request, inInfo, outInfo):
-        data = vtkDataSet.GetData(inInfo[0])
+        data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
         try:
+            if data is None or not isinstance(data, (vtkDataSet, vtkCompositeDataSet)):
+                raise EngineError("RefractiveIndex needs a data set or a composite data set; "
+                                  "got %s." % (data.GetClassName() if data else "nothing"))
+            if isinstance(data, vtkCompositeDataSet) and \
+                    data.GetNumberOfPoints() == 0:
+                raise EngineError("RefractiveIndex: the input (%s) has no points."
+                                  % data.GetClassName())
             image, valid = _image_input(data, None if isinstance(data, vtkImageData)
                                         else self._dims(data))
             pd = image.GetPointData()
@@ -327,6 +444,9 @@ class RefractiveIndex(_Properties):
         except EngineError as e:
             return self._fail(str(e))
         out.ShallowCopy(image)
+        if not isinstance(data, vtkImageData):
+            e = out.GetExtent()  # the resampled grid's, known only now
+            outInfo.GetInformationObject(0).Set(SDDP.WHOLE_EXTENT(), e, 6)
         a = _add(out, "n_minus_1", n1)
         out.GetPointData().SetScalars(a)
         _add(out, "grad_n", grad)
@@ -336,8 +456,7 @@ class RefractiveIndex(_Properties):
                 "BodyFromGrid: the Python front end finds no bodies in the grid's holes; the "
                 "points outside the input's cells are filled as the flow (AmbientMode Extend)."]
         for w in warnings:
-            import warnings as _w
-            _w.warn("RefractiveIndex: " + w)
+            self._warn(w)
         return 1
 
 
@@ -351,12 +470,18 @@ class RefractionOctree(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
-        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        # any data object, refused below unless an image: a multiblock must not be executed
+        # block by block into a multiblock output (the output is one image or empty)
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject")
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
-        image = vtkImageData.GetData(inInfo[0])
+        image = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
+        if not isinstance(image, vtkImageData):
+            return self._fail("RefractionOctree needs a vtkImageData input with the point "
+                              "array 'n_minus_1' (the output of RefractiveIndex); got %s."
+                              % (image.GetClassName() if image is not None else "nothing"))
         if not 0 <= int(self.MaxLevel) <= 10:
             return self._fail("MaxLevel is %d: it must be in [0, 10]." % int(self.MaxLevel))
         n1 = _point_array(image, "n_minus_1")
@@ -397,7 +522,15 @@ class NumericalSchlieren(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
-        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject")  # one image out, see above
+        return 1
+
+    def RequestUpdateExtent(self, request, inInfo, outInfo):
+        # the whole volume (not the film's extent, which the pipeline would copy upstream and
+        # then report as outside the input's whole extent)
+        src = inInfo[0].GetInformationObject(0)
+        if src.Has(SDDP.WHOLE_EXTENT()):
+            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
 
     def _settings(self):
@@ -433,8 +566,18 @@ class NumericalSchlieren(_Properties):
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
-        image = vtkImageData.GetData(inInfo[0])
+        image = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
+        if image is not None and not isinstance(image, vtkImageData):
+            return self._fail("NumericalSchlieren needs a vtkImageData input (for example the "
+                              "output of RefractiveIndex or RefractiveScene); got %s. Resample "
+                              "the data onto an image with RefractiveIndex first."
+                              % image.GetClassName())
+        try:
+            _axis_aligned_image(image, "NumericalSchlieren")
+        except EngineError as e:
+            if image is not None:
+                return self._fail(str(e))
         if image is None or image.GetNumberOfPoints() == 0:
             return self._fail("NumericalSchlieren needs a non-empty image (vtkImageData), for "
                               "example the output of RefractiveIndex or RefractiveScene.")
@@ -505,15 +648,18 @@ class SchlierenImage(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
-        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet")
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject")  # one image out, see above
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
-        data = vtkDataSet.GetData(inInfo[0])
+        data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
         s = self._session
         try:
-            image, _ = _image_input(data)
+            # the C++ filter's refusals: not an image (an unstructured grid traced as vacuum
+            # outside its cells would be a wrong image: RefractiveIndex resamples it with the
+            # validity mask and fills those points), or a turned one
+            image = _axis_aligned_image(data, "SchlierenImage")
             n1 = _point_array(image, "n_minus_1")
             if n1 is None:
                 pd = image.GetPointData()
@@ -533,7 +679,7 @@ class SchlierenImage(_Properties):
                 fd = image.GetFieldData()
                 tol = fd.GetArray("octree_tolerance")
                 maxl = fd.GetArray("octree_max_level")
-                s.set_volume(image.GetDimensions(), image.GetOrigin(), image.GetSpacing(), n1,
+                s.set_volume(image.GetDimensions(), _first_point(image), image.GetSpacing(), n1,
                              None if solid is None else (solid != 0).astype(np.uint8),
                              None if levels is None else np.clip(levels, 0, 10).astype(np.uint8),
                              tol.GetValue(0) if tol is not None else -1.0,
@@ -547,10 +693,9 @@ class SchlierenImage(_Properties):
             return self._fail(str(e))
         object.__setattr__(self, "LastReport", report)
         object.__setattr__(self, "LastError", "")
-        import warnings
         for note in report["notes"]:
             if note["warning"]:
-                warnings.warn("SchlierenImage: " + note["text"])
+                self._warn(note["text"])
         size, origin, pixel = s.film()
         # only the image and the report, as the C++ filter's output (the pipeline passed the
         # input's field data on: RefractiveIndex's index_* are not this image's)
@@ -582,18 +727,22 @@ class SchlierenImage(_Properties):
         # (a non-image input is resampled in RequestData; its film is known only then)
         src = inInfo[0].GetInformationObject(0)
         info = outInfo.GetInformationObject(0)
-        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING())):
+        # empty until the film is known (not the input's extent, which the executive copied)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
+        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING()) and
+                src.Has(vtkImageData.ORIGIN())):
             return 1
         e = src.Get(SDDP.WHOLE_EXTENT())
         dims = [e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1]
         if min(dims) < 1:
             return self._fail("The input volume is empty: nothing to trace. If a filter upstream "
                               "reported an error, that is the cause; fix it there.")
+        spacing = src.Get(vtkImageData.SPACING())
+        first = [src.Get(vtkImageData.ORIGIN())[a] + e[2 * a] * spacing[a] for a in range(3)]
         try:
             for name, value in self._values.items():
                 self._session.set(name, value)
-            size, origin, pixel = self._session.plan_film(dims, src.Get(vtkImageData.ORIGIN()),
-                                                          src.Get(vtkImageData.SPACING()))
+            size, origin, pixel = self._session.plan_film(dims, first, spacing)
         except EngineError as err:
             return self._fail(str(err))
         info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)

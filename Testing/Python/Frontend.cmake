@@ -69,6 +69,17 @@ if(SCHLIEREN_PYTHON_PLUGIN)
   # the Python front end's package beside the C++ plugin's schlieren_vtk, in one session
   set_property(TEST python.python_plugin APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+  # where a user meets it, against the C++ plugin's compiled filters in the same pvpython: one
+  # vtkImageData for any input (the blunt fin's multiblock), errors as VTK errors with an empty
+  # output (no traceback), NumericalSchlieren's update extent, schlieren_view embedded
+  # (Examples/first_light.py), the C++ filter's refusals and an extent not starting at 0
+  schlieren_python_test(python_plugin_parity
+    COMMAND "${_pvpython}" "${_here}/test_python_plugin_parity.py"
+      --plugin "${SCHLIEREN_PYTHON_PLUGIN}" --cxx-plugin "${_plugin}" --pvpython "${_pvpython}"
+      --example "${PROJECT_SOURCE_DIR}/Examples/first_light.py"
+      --work "${_temp}/python_plugin_parity")
+  set_property(TEST python.python_plugin_parity APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endif()
 
 # the Python plugin loaded in the GUI through Tools > Manage Plugins > Load New with X events

@@ -1,0 +1,307 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The ParaView Python plugin (SchlierenPython.py) where a user meets it, against the C++ plugin's
+filters (the compiled classes of schlieren_vtk, in the same pvpython):
+
+  1. outputs are one vtkImageData for any input: RefractiveIndex on the blunt fin (PLOT3D, a
+     multiblock) gives the C++ filter's grid (extent, origin, spacing), n - 1 and grad n bit for
+     bit, and SchlierenImage and NumericalSchlieren on it give images (not multiblocks; the C++
+     SchlierenImage's film, bit for bit); SchlierenImage straight on the multiblock
+     gives an empty image and the C++ filter's reason;
+  2. errors are VTK errors (ParaView's Output Messages), never a Python traceback; a refused value
+     (Model IdealGas, Resolution 1 x 1) leaves an empty output, and a good value set after it
+     gives the image again;
+  3. NumericalSchlieren logs no update-extent error;
+  4. `import schlieren_view` works after LoadPlugin, and Examples/first_light.py runs with the
+     Python plugin (its PNG equals the C++ plugin's bit for bit);
+  5. what the C++ SchlierenImage refuses the Python one refuses with the same reason (a direction
+     matrix; an unstructured grid given straight to it), and an image whose extent does not start
+     at 0 is traced to the C++ filter's film, bit for bit (intensity, origin), which is also the
+     film of the same grid given with its extent from 0.
+
+    pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
+        --example Examples/first_light.py --work DIR [--data ../shared/data]
+
+The blunt fin part is skipped (said so) when ../shared/data (or SCHLIEREN_DATA) has no blunt fin.
+ParaView 5.11.0 under Python 3.11 needs the getargspec shim below before any Python plugin loads
+(docs/PYTHON.md)."""
+import argparse
+import collections
+import inspect
+import os
+import subprocess
+import sys
+import tempfile
+
+if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11
+    _ArgSpec = collections.namedtuple("ArgSpec", "args varargs keywords defaults")
+    inspect.getargspec = lambda f: _ArgSpec(*inspect.getfullargspec(f)[:4])
+
+import numpy as np  # noqa: E402
+from paraview import servermanager  # noqa: E402
+from paraview.simple import LoadPlugin, PLOT3DReader, PVTrivialProducer  # noqa: E402
+from vtkmodules.util import numpy_support  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ap = argparse.ArgumentParser()
+ap.add_argument("--plugin", required=True, help="SchlierenPython.py")
+ap.add_argument("--cxx-plugin", required=True, help="Schlieren.so (for first_light.py's reference)")
+ap.add_argument("--example", required=True, help="Examples/first_light.py")
+ap.add_argument("--work", required=True)
+ap.add_argument("--pvpython", default="pvpython", help="to run the example")
+ap.add_argument("--data", default=os.environ.get("SCHLIEREN_DATA") or
+                os.path.join(HERE, "..", "..", "..", "shared", "data"))
+args = ap.parse_args()
+os.makedirs(args.work, exist_ok=True)
+
+LoadPlugin(args.plugin, remote=False, ns=globals())
+ns = globals()
+import schlieren_vtk as cxx  # noqa: E402  the C++ plugin's filters, compiled
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+class Captured:
+    """What the process writes to its standard error (file descriptor 2: VTK's output window and
+    Python's tracebacks) while the block runs."""
+
+    def __enter__(self):
+        sys.stderr.flush()
+        self._file = tempfile.TemporaryFile(mode="w+b")
+        self._saved = os.dup(2)
+        os.dup2(self._file.fileno(), 2)
+        return self
+
+    def __exit__(self, *exc):
+        sys.stderr.flush()
+        os.dup2(self._saved, 2)
+        os.close(self._saved)
+        self._file.seek(0)
+        self.text = self._file.read().decode("utf-8", "replace")
+        self._file.close()
+        sys.stderr.write(self.text)  # still in the test's log
+        return False
+
+
+def array(data, name):
+    a = data.GetPointData().GetArray(name) if data is not None else None
+    return None if a is None else numpy_support.vtk_to_numpy(a)
+
+
+def producer(data):
+    """A pipeline source (paraview.simple) that hands out `data`."""
+    p = PVTrivialProducer()
+    p.GetClientSideObject().SetOutput(data)
+    return p
+
+
+def cxx_image(data, **settings):
+    """The C++ SchlierenImage's output for `data` (a copy) and whether it succeeded."""
+    f = cxx.vtkSchlierenImage()
+    f.SetInputData(data)
+    f.SetBackend(cxx.vtkSchlierenImage.CPU)
+    f.SetResolution(*settings.get("Resolution", [48, 40]))
+    f.SetPasses(settings.get("Passes", 1))
+    f.SetViewDirection(*settings.get("ViewDirection", [0, 0, -1]))
+    f.SetViewUp(*settings.get("ViewUp", [0, 1, 0]))
+    ok = f.GetExecutive().Update()
+    out = vtkImageData()
+    out.DeepCopy(f.GetOutput())
+    return out, ok
+
+
+def py_image(data, **settings):
+    """The Python plugin's SchlierenImage proxy on `data`: (output copy, stderr text)."""
+    kw = dict(Resolution=[48, 40], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+    kw.update(settings)
+    src = producer(data)
+    img = ns["SchlierenImage"](Input=src, Backend="CPU", **kw)
+    with Captured() as c:
+        img.UpdatePipeline()
+    out = servermanager.Fetch(img)
+    return out, c.text
+
+
+def same_film(a, b):
+    ia, ib = array(a, "intensity"), array(b, "intensity")
+    return (ia is not None and ib is not None and a.GetExtent() == b.GetExtent() and
+            a.GetOrigin() == b.GetOrigin() and a.GetSpacing() == b.GetSpacing() and
+            np.array_equal(ia.view(np.uint32), ib.view(np.uint32)))
+
+
+# a small volume with n_minus_1 from the C++ RefractiveScene (a Gaussian sphere)
+scene = cxx.vtkRefractiveScene()
+scene.SetDimensions(24, 20, 16)
+scene.Update()
+volume = vtkImageData()
+volume.DeepCopy(scene.GetOutput())
+
+# -- 1. one vtkImageData for any input: the blunt fin (a PLOT3D multiblock)
+xyz, q = os.path.join(args.data, "bluntfinxyz.bin"), os.path.join(args.data, "bluntfinq.bin")
+if not (os.path.exists(xyz) and os.path.exists(q)):
+    print("SKIP the blunt fin part: no bluntfinxyz.bin/bluntfinq.bin in %s (set SCHLIEREN_DATA)"
+          % os.path.abspath(args.data))
+else:
+    reader = PLOT3DReader(FileName=xyz, QFileName=[q])
+    index = ns["RefractiveIndex"](Input=reader, Model="GladstoneDale", Gas="Air",
+                                  DensityReference=1.2, AutomaticDimension=48, BodyFromGrid=1)
+    index.InputArray = ["POINTS", "Density"]
+    index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    blocks = servermanager.Fetch(reader)
+    ref = cxx.vtkRefractiveIndex()
+    ref.SetInputData(blocks)
+    ref.SetModel(cxx.vtkRefractiveIndex.GLADSTONE_DALE)
+    ref.SetGas(cxx.vtkRefractiveIndex.AIR)
+    ref.SetDensityReference(1.2)
+    ref.SetAutomaticDimension(48)
+    ref.SetBodyFromGrid(0)  # the Python front end finds no body in the grid's holes (yet)
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "Density")
+    ref.Update()
+    theirs = ref.GetOutput()
+    check(mine.GetClassName() == "vtkImageData",
+          "RefractiveIndex on the blunt fin's %s: one %s" % (blocks.GetClassName(),
+                                                           mine.GetClassName()))
+    check(mine.GetExtent() == theirs.GetExtent() and
+          np.allclose(mine.GetOrigin(), theirs.GetOrigin(), rtol=0, atol=1e-12) and
+          np.allclose(mine.GetSpacing(), theirs.GetSpacing(), rtol=1e-12, atol=0),
+          "its grid is the C++ filter's (extent %s, origin %s, spacing %s; C++ %s %s %s)"
+          % (mine.GetExtent(), mine.GetOrigin(), mine.GetSpacing(), theirs.GetExtent(),
+             theirs.GetOrigin(), theirs.GetSpacing()))
+    for name in ("n_minus_1", "grad_n"):
+        a, b = array(mine, name), array(theirs, name)
+        check(a is not None and b is not None and a.shape == b.shape and
+              np.array_equal(a.view(np.uint32), b.view(np.uint32)),
+              "%s bit for bit with the C++ filter's (BodyFromGrid off there: the Python front "
+              "end finds no body in the grid's holes yet)" % name)
+    settings = dict(Resolution=[64, 48], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+    image = ns["SchlierenImage"](Input=index, Backend="CPU", **settings)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    film, _ = cxx_image(theirs, **settings)
+    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() == 64 * 48 and
+          same_film(out, film),
+          "SchlierenImage on it: a %s, the C++ filter's film %s bit for bit (got %s)"
+          % (out.GetClassName(), film.GetExtent(), out.GetExtent()))
+    numerical = ns["NumericalSchlieren"](Input=index, Resolution=[64, 48])
+    with Captured() as c:
+        numerical.UpdatePipeline()
+    out = servermanager.Fetch(numerical)
+    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() > 0,
+          "NumericalSchlieren on it: a %s of %d points" % (out.GetClassName(),
+                                                          out.GetNumberOfPoints()))
+    # -- 3. no update-extent error (the film's extent is not the volume's)
+    check("update extent" not in c.text.lower() and "ERR" not in c.text,
+          "NumericalSchlieren logs no update-extent error (stderr: %r)" % c.text[-300:])
+    direct = ns["SchlierenImage"](Input=reader, Backend="CPU", Resolution=[32, 32], Passes=1)
+    with Captured() as c:
+        direct.UpdatePipeline()
+    out = servermanager.Fetch(direct)
+    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() == 0 and
+          "SchlierenImage needs a vtkImageData input with the point array 'n_minus_1'; got "
+          "vtkMultiBlockDataSet" in c.text and "Traceback" not in c.text,
+          "SchlierenImage straight on the multiblock: an empty %s and the C++ filter's reason"
+          % out.GetClassName())
+
+# -- 2. errors: VTK errors, no traceback; a refused value leaves an empty output
+src = producer(volume)
+index = ns["RefractiveIndex"](Input=src, Model="Passthrough")
+index.UpdatePipeline()
+check(servermanager.Fetch(index).GetNumberOfPoints() == 24 * 20 * 16, "RefractiveIndex runs")
+with Captured() as c:
+    index.Model = "IdealGas"  # the Python front end refuses it (so far)
+    index.UpdatePipeline()
+out = servermanager.Fetch(index)
+check("Traceback" not in c.text and "ERROR: In RefractiveIndex" in c.text and
+      "IdealGas" in c.text and out.GetNumberOfPoints() == 0,
+      "Model IdealGas: an error naming it, no traceback, an empty output (%d points; %r)"
+      % (out.GetNumberOfPoints(), c.text.strip().splitlines()[:1]))
+with Captured() as c:
+    index.Model = "Passthrough"
+    index.UpdatePipeline()
+check("ERR" not in c.text and servermanager.Fetch(index).GetNumberOfPoints() == 24 * 20 * 16,
+      "Model Passthrough again: the output is back, no error")
+image = ns["SchlierenImage"](Input=index, Backend="CPU", Resolution=[32, 32], Passes=1)
+image.UpdatePipeline()
+good = servermanager.Fetch(image).GetNumberOfPoints()
+with Captured() as c:
+    image.Resolution = [1, 1]
+    image.UpdatePipeline()
+out = servermanager.Fetch(image)
+check(good == 32 * 32 and out.GetNumberOfPoints() == 0 and "Traceback" not in c.text and
+      "Resolution is 1 x 1 pixels" in c.text,
+      "SchlierenImage Resolution 1 x 1: the engine's error, no traceback, no image left from "
+      "before (%d points after, %d before)" % (out.GetNumberOfPoints(), good))
+
+# -- 5. the C++ filter's refusals, and an extent that does not start at 0
+turned = vtkImageData()
+turned.DeepCopy(volume)
+turned.SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1)
+out, text = py_image(turned)
+_, ok = cxx_image(turned)
+check(not ok and out.GetNumberOfPoints() == 0 and "has a direction matrix" in text and
+      "Traceback" not in text,
+      "a direction matrix: refused by both, with the C++ filter's reason, an empty output")
+shifted = vtkImageData()
+shifted.DeepCopy(volume)
+shifted.SetExtent(5, 28, -3, 16, 2, 17)
+mine, text = py_image(shifted)
+theirs, ok = cxx_image(shifted)
+check(ok and same_film(mine, theirs),
+      "extent %s: the C++ filter's film bit for bit (origin %s, C++ %s)"
+      % (shifted.GetExtent(), mine.GetOrigin(), theirs.GetOrigin()))
+moved = vtkImageData()
+moved.DeepCopy(volume)
+moved.SetOrigin([volume.GetOrigin()[a] + e * volume.GetSpacing()[a]
+                 for a, e in enumerate((5, -3, 2))])
+check(same_film(mine, py_image(moved)[0]),
+      "and the film of the same grid with its extent from 0 (placed where the points are)")
+from vtkmodules.vtkFiltersCore import vtkAppendFilter  # noqa: E402
+append = vtkAppendFilter()
+append.SetInputData(volume)
+append.Update()
+grid = append.GetOutput()
+out, text = py_image(grid)
+_, ok = cxx_image(grid)
+check(not ok and out.GetNumberOfPoints() == 0 and
+      "needs a vtkImageData input with the point array 'n_minus_1'; got vtkUnstructuredGrid" in
+      text and "Traceback" not in text,
+      "an unstructured grid straight to SchlierenImage: refused by both with the reason "
+      "(RefractiveIndex resamples it), an empty output")
+
+# -- 4. schlieren_view embedded; Examples/first_light.py with the Python plugin
+try:
+    import schlieren_view
+    check(hasattr(schlieren_view, "follow_camera"), "import schlieren_view after LoadPlugin")
+except ImportError as e:
+    check(False, "import schlieren_view after LoadPlugin (%s)" % e)
+shim = os.path.join(args.work, "first_light_shim.py")
+with open(shim, "w") as f:
+    f.write("import collections, inspect, runpy, sys\n"
+            "if not hasattr(inspect, 'getargspec'):\n"
+            "    A = collections.namedtuple('ArgSpec', 'args varargs keywords defaults')\n"
+            "    inspect.getargspec = lambda f: A(*inspect.getfullargspec(f)[:4])\n"
+            "sys.argv = sys.argv[1:]\n"
+            "runpy.run_path(sys.argv[0], run_name='__main__')\n")
+pngs = {}
+for which, plugin in (("python", args.plugin), ("cxx", args.cxx_plugin)):
+    pngs[which] = os.path.join(args.work, "first_light_%s.png" % which)
+    if os.path.exists(pngs[which]):
+        os.remove(pngs[which])
+    p = subprocess.run([args.pvpython, shim, args.example, "--plugin", plugin, "--output",
+                        pngs[which], "--backend", "CPU", "--resolution", "64", "--passes", "1"],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    check(p.returncode == 0 and os.path.exists(pngs[which]),
+          "Examples/first_light.py with the %s plugin (rc %d%s)"
+          % (which, p.returncode, "" if p.returncode == 0 else ": " + p.stdout[-400:]))
+if all(os.path.exists(p) for p in pngs.values()):
+    with open(pngs["python"], "rb") as f, open(pngs["cxx"], "rb") as g:
+        check(f.read() == g.read(), "its PNG equals the C++ plugin's bit for bit")
+print("%d failures" % len(failures))
+sys.exit(1 if failures else 0)
