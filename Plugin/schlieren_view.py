@@ -42,6 +42,7 @@ class CameraFollower:
         self.moved = 0  # camera changes seen
         self._tags = [self.camera.AddObserver("ModifiedEvent", self._on_camera)]
         self._timer = None
+        self.also_render = []  # views besides `view` to render after each refinement
         self.sync()
 
     # the camera's line of sight, as the filter's properties
@@ -85,6 +86,8 @@ class CameraFollower:
         def on_timer(caller, event):
             if self.refine():
                 self.view.StillRender()
+                for view in self.also_render:  # other views showing the image (the Python plugin's)
+                    view.StillRender()
 
         self._tags.append(interactor.AddObserver("TimerEvent", on_timer))
         return True
