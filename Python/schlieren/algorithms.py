@@ -113,7 +113,9 @@ class _Properties(VTKPythonAlgorithmBase):
         except Exception as e:  # noqa: BLE001 -- a message, not a traceback, whatever it is
             ok = self._fail(str(e) if isinstance(e, EngineError) else
                             "%s: %s" % (type(e).__name__, e))
-        if is_data and not ok:
+        if not ok and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
+            # no image from before left as if it were this request's (a failed information
+            # request is not followed by a data request)
             out = outInfo.GetInformationObject(0).Get(vtkDataObject.DATA_OBJECT())
             if out is not None:
                 out.Initialize()

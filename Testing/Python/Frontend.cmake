@@ -26,6 +26,17 @@ foreach(_which NEWEST OLDEST)
       RESOURCE_LOCK python_venvs)
   set_property(TEST python.frontend_vtk_${_lower} APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+  # inputs and errors in plain VTK: a multiblock to RefractiveIndex gives one image, the C++
+  # SchlierenImage's refusals, an extent not starting at 0, no image left by a failed request
+  schlieren_python_test(frontend_inputs_vtk_${_lower}
+    COMMAND "${_python}" "${_here}/frontend_venv.py" --venv "${_venvs}/vtk-${_lower}"
+      --requirements "${SCHLIEREN_FRONTEND_VTK_${_which}}"
+      --pythonpath "${PROJECT_SOURCE_DIR}/Python"
+      -- "${_here}/test_frontend_inputs.py"
+    TIMEOUT 900
+    PROPERTIES SKIP_RETURN_CODE 77 RESOURCE_LOCK python_venvs)
+  set_property(TEST python.frontend_inputs_vtk_${_lower} APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endforeach()
 
 # the examples, in the newest venv (PyVista from PyPI there)
