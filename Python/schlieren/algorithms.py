@@ -377,10 +377,36 @@ class RefractiveIndex(_Properties):
         return 1
 
     def RequestInformation(self, request, inInfo, outInfo):
-        # a resampled input's grid is known in RequestData only; an image's is the input's
+        # an image's grid is the input's (the executive copied it); a resampled input's grid is
+        # known from its bounds, known once it has executed: it is updated now, as the C++ filter
+        # does, and the grid vtkResampleToImage will make is given downstream (SchlierenImage
+        # plans its film from it; without it a view asks for an empty extent and shows nothing)
         src = inInfo[0].GetInformationObject(0)
-        if not isinstance(vtkDataObject.GetData(src), vtkImageData):
-            outInfo.GetInformationObject(0).Remove(SDDP.WHOLE_EXTENT())
+        info = outInfo.GetInformationObject(0)
+        connection = self.GetInputConnection(0, 0) if self.GetNumberOfInputConnections(0) else None
+        if connection is not None and src.Has(SDDP.WHOLE_EXTENT()):
+            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        if connection is not None:
+            connection.GetProducer().Update(connection.GetIndex())
+        data = vtkDataObject.GetData(src)
+        if isinstance(data, vtkImageData):
+            return 1
+        info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
+        if not isinstance(data, (vtkDataSet, vtkCompositeDataSet)) or \
+                data.GetNumberOfPoints() == 0:
+            return 1  # RequestData says why
+        # the grid vtkResampleToImage makes (it says its origin and spacing in RequestData
+        # only): the bounds pulled in by a hair about their centre, as the C++ filter's
+        from vtkmodules.vtkCommonDataModel import vtkBoundingBox
+        dims = self._dims(data)
+        box = vtkBoundingBox(_bounds(data))
+        box.ScaleAboutCenter(1.0 - 1e-6)
+        b = [0.0] * 6
+        box.GetBounds(b)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
+        info.Set(vtkImageData.ORIGIN(), b[0], b[2], b[4])
+        info.Set(vtkImageData.SPACING(), *[(b[2 * a + 1] - b[2 * a]) / (dims[a] - 1)
+                                           if dims[a] > 1 else 1.0 for a in range(3)])
         return 1
 
     def RequestUpdateExtent(self, request, inInfo, outInfo):

@@ -38,7 +38,7 @@ if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11
 
 import numpy as np  # noqa: E402
 from paraview import servermanager  # noqa: E402
-from paraview.simple import LoadPlugin, PLOT3DReader, PVTrivialProducer  # noqa: E402
+from paraview.simple import LoadPlugin, PLOT3DReader, PVTrivialProducer, Slice  # noqa: E402
 from vtkmodules.util import numpy_support  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 
@@ -189,6 +189,15 @@ else:
           same_film(out, film),
           "SchlierenImage on it: a %s, the C++ filter's film %s bit for bit (got %s)"
           % (out.GetClassName(), film.GetExtent(), out.GetExtent()))
+    # what a view asks for: the pipeline's information (not Fetch, which asks for everything)
+    # gives the film's extent, so a Slice (as a 2D view's slice representation) has points
+    slicer = Slice(Input=image)
+    slicer.SliceType.Normal = [1, 0, 0]
+    slicer.UpdatePipeline()
+    extent = tuple(int(v) for v in image.GetDataInformation().DataInformation.GetExtent())
+    check(extent == film.GetExtent() and slicer.GetDataInformation().GetNumberOfPoints() == 48,
+          "the image's data information has the film's extent %s and a Slice across it has its "
+          "48 points (%d)" % (extent, slicer.GetDataInformation().GetNumberOfPoints()))
     numerical = ns["NumericalSchlieren"](Input=index, Resolution=[64, 48])
     with Captured() as c:
         numerical.UpdatePipeline()
