@@ -159,6 +159,23 @@ SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input,
   int index_is_n, double density_reference, const char* gas, float* n_minus_1,
   const char** report);
 
+/**
+ * RefractiveIndex's index models, every one (the engine's ComputeFieldIndex, which the C++ filter
+ * calls): `settings` are the proxy's properties as "Name=value" lines (entries by their text:
+ * Model, PassthroughHoldsN, Gas, GladstoneDaleConstant, MolarMass, MixtureComposition,
+ * IdealGasComposition, MixtureGas0, MixtureGas1, NumberOfSpecies, SpeciesGases (4 numbers: -1
+ * Custom, 0 Air, 1 He, ...), SpeciesGladstoneDale, SpeciesMolarMass (4 each), BalanceGas (None,
+ * Custom or a gas), BalanceGladstoneDale, BalanceMolarMass, DensityReference, TemperatureUnit,
+ * TemperatureReference, PressureUnit, PressureReference, PressureOffset, Humidity,
+ * HumidityMeasure, CO2, Wavelength; absent: the proxy's default). `number_of_arrays` arrays of
+ * `count` floats, each with a role ("index", "density", "temperature", "pressure",
+ * "mixture_fraction", "species1".."species4", "humidity", "co2"; "role:name" names the input array
+ * in messages); `valid` (may be NULL) marks the points to compute. Writes n - 1 of the valid
+ * points; `report` (may be NULL) gets the warnings as lines.
+ */
+SCHLIEREN_C_API int schlieren_index_model(const char* settings, int64_t count,
+  int number_of_arrays, const char* const* roles, const float* const* arrays,
+  const unsigned char* valid, float* n_minus_1, const char** report);
 /** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
  * RefractiveIndex filter's AmbientMode Extend); `filled` (may be NULL) gets how many. */
 SCHLIEREN_C_API int schlieren_extend_into_invalid(

@@ -214,6 +214,31 @@ def field_index(model, values, index_is_n=False, density_reference=1.0, gas=None
     return out, [w for w in _text(report.value).split("\n") if w]
 
 
+def index_model(settings, arrays, valid=None):
+    """RefractiveIndex's index models, every one (the C interface's schlieren_index_model):
+    `settings` the proxy's properties by name (entries by their text), `arrays` role -> values
+    (roles: index, density, temperature, pressure, mixture_fraction, species1-4, humidity, co2;
+    "role:name" names the input array in messages). Returns (n - 1 float32, warnings)."""
+    f = _sig("schlieren_index_model", ctypes.c_int, ctypes.c_char_p, ctypes.c_int64, ctypes.c_int,
+             ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(_f32p), _u8p,
+             _f32p, ctypes.POINTER(ctypes.c_char_p))
+    kept = [np.ascontiguousarray(v, dtype=np.float32) for v in arrays.values()]
+    count = kept[0].size if kept else (0 if valid is None else np.asarray(valid).size)
+    for role, a in zip(arrays, kept):
+        if a.size != count:
+            raise EngineError("index_model: array %s has %d values, not %d" % (role, a.size,
+                                                                              count))
+    roles = (ctypes.c_char_p * max(1, len(kept)))(*[r.encode() for r in arrays])
+    ptrs = (_f32p * max(1, len(kept)))(*[a.ctypes.data_as(_f32p) for a in kept])
+    v, vp = _bytes(valid)
+    out = np.zeros(count, np.float32)
+    text = "\n".join("%s=%s" % (k, _value_text(x)) for k, x in settings.items()).encode()
+    report = ctypes.c_char_p()
+    _check(f(text, count, len(kept), roles, ptrs, vp, out.ctypes.data_as(_f32p),
+             ctypes.byref(report)))
+    return out, [w for w in _text(report.value).split("\n") if w]
+
+
 def extend_into_invalid(dims, valid, n_minus_1):
     """Fills n - 1 (float32, changed in place) where valid == 0 by the engine's smooth
     continuation of the flow; returns how many points were filled."""

@@ -344,15 +344,32 @@ class RefractiveIndex(_Properties):
         AmbientMode=["Extend", "DomainEdgeMedian", "Value"])
     # implemented here: these properties (Model: the first three entries); the others are held at
     # their defaults (BodyFromGrid's default is taken, but no body is found in the grid's holes)
-    _implemented = {"Model", "InputArray", "PassthroughHoldsN", "Gas", "GladstoneDaleConstant",
-                    "MolarMass", "DensityReference", "SamplingDimensions", "AutomaticDimension",
-                    "AmbientMode", "BodyFromGrid"}
-    _implemented_entries = dict(Model=["Automatic", "Passthrough", "GladstoneDale"],
-                                AmbientMode=["Extend"])
+    # the index models' settings, handed to the engine by name (schlieren_index_model)
+    _model_settings = ("PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
+                       "MixtureComposition", "IdealGasComposition", "MixtureGas0", "MixtureGas1",
+                       "NumberOfSpecies", "SpeciesGases", "SpeciesGladstoneDale",
+                       "SpeciesMolarMass", "BalanceGas", "BalanceGladstoneDale",
+                       "BalanceMolarMass", "DensityReference", "TemperatureUnit",
+                       "TemperatureReference", "PressureUnit", "PressureReference",
+                       "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength")
+    _implemented = {"Model", "InputArray", "SamplingDimensions", "AutomaticDimension",
+                    "AmbientMode", "BodyFromGrid", "TemperatureArray", "PressureArray",
+                    "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
+                    "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray",
+                    "CO2FromArray"} | set(_model_settings)
+    # Automatic chooses Passthrough or GladstoneDale only (the C++ filter also IdealGas from a
+    # temperature and a pressure): name the model for the others
+    _implemented_entries = dict(AmbientMode=["Extend"])
+    # the names an empty array property takes, in order (the C++ filter's, lower case)
+    _candidates = dict(TemperatureArray=("temperature", "temp", "t", "static_temperature",
+                                         "t_static"),
+                       PressureArray=("pressure", "pres", "press", "p", "static_pressure",
+                                      "p_static"),
+                       MixtureFractionArray=("mixture_fraction", "mixturefraction", "f", "z"))
 
     def _check(self, name, value):
         value = _Properties._check(self, name, value)
-        if name in ("InputArray",) and isinstance(value, (list, tuple)):
+        if name.endswith("Array") and isinstance(value, (list, tuple)):
             value = value[-1]  # ParaView's ["POINTS", name]
         if name in self._implemented_entries and value not in self._implemented_entries[name]:
             raise ValueError("RefractiveIndex: %s %r is not available in the Python front end "
@@ -416,6 +433,55 @@ class RefractiveIndex(_Properties):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
 
+    def _index_model(self, model, image, names, valid):
+        """n - 1 by GladstoneDaleMixture, IdealGas or Ciddor: the engine's models (the C++
+        filter's) on the arrays the properties name (an empty name: the C++ filter's choice among
+        the usual names), with the proxy's settings."""
+        def pick(prop, role, required=True):
+            chosen = getattr(self, prop)
+            if not chosen:
+                lower = {n.lower(): n for n in reversed(names)}
+                chosen = next((lower[c] for c in self._candidates.get(prop, ()) if c in lower),
+                              "")
+            if not chosen:
+                if required:
+                    raise EngineError("RefractiveIndex: Model %s needs %s (a point array); the "
+                                      "input has: %s" % (model, prop, ", ".join(names) or "none"))
+                return
+            a = _point_array(image, chosen)
+            if a is None or a.ndim != 1:
+                raise EngineError("RefractiveIndex: %s is '%s': the input has no one-component "
+                                  "point array of that name (it has: %s)"
+                                  % (prop, chosen, ", ".join(names) or "none"))
+            arrays["%s:%s" % (role, chosen)] = a
+        arrays = {}
+        composition = {"GladstoneDaleMixture": self.MixtureComposition,
+                       "IdealGas": self.IdealGasComposition}.get(model, "Gas")
+        if model == "GladstoneDaleMixture" and self.InputArray:
+            pick("InputArray", "density")
+        elif model == "GladstoneDaleMixture":
+            density = next((n for n in names if n in ("density", "rho", "Density", "Rho")), "")
+            if not density:
+                raise EngineError("RefractiveIndex: Model GladstoneDaleMixture needs a density "
+                                  "array (InputArray); the input has: %s" % ", ".join(names))
+            arrays["density:" + density] = _point_array(image, density)
+        if model in ("IdealGas", "Ciddor"):
+            pick("TemperatureArray", "temperature")
+            pick("PressureArray", "pressure")
+        if composition == "MixtureFraction":
+            pick("MixtureFractionArray", "mixture_fraction")
+        elif composition == "Species":
+            for k in range(int(self.NumberOfSpecies)):
+                pick("Species%dArray" % (k + 1), "species%d" % (k + 1))
+        if model == "Ciddor":
+            if self.HumidityFromArray:
+                pick("HumidityArray", "humidity")
+            if self.CO2FromArray:
+                pick("CO2Array", "co2")
+        settings = {k: self._values[k] for k in self._model_settings}
+        settings["Model"] = model
+        return _engine.index_model(settings, arrays, valid)
+
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
         if min(dims) > 0:
@@ -448,23 +514,29 @@ class RefractiveIndex(_Properties):
                     model = "Passthrough"
             if not name:
                 name = "n_minus_1" if model == "Passthrough" else "density"
-            values = _point_array(image, name)
-            if values is None or values.ndim != 1:
+            if model in ("GladstoneDaleMixture", "IdealGas", "Ciddor"):
+                n1, warnings = self._index_model(model, image, names, valid)
+                name = None
+            values = None if name is None else _point_array(image, name)
+            if name is not None and (values is None or values.ndim != 1):
                 raise EngineError("RefractiveIndex needs the one-component point array %r; the "
                                   "input has: %s" % (name, ", ".join(names) or "none"))
-            if valid is not None:
+            if name is None:
+                pass
+            elif valid is not None:
                 if not valid.any():
                     raise EngineError("RefractiveIndex: no point of the sampling grid lies inside "
                                       "the input's cells.")
                 # the points outside the input's cells are filled below: not checked as flow
                 values = np.where(valid != 0, values, values[np.argmax(valid)])
-            n1, warnings = _engine.field_index(model, values,
-                                               index_is_n=bool(self.PassthroughHoldsN),
-                                               density_reference=self.DensityReference,
-                                               gas=("Custom %r %r" % (
-                                                   float(self.GladstoneDaleConstant),
-                                                   float(self.MolarMass))
-                                                    if self.Gas == "Custom" else self.Gas))
+            if name is not None:
+                n1, warnings = _engine.field_index(model, values,
+                                                   index_is_n=bool(self.PassthroughHoldsN),
+                                                   density_reference=self.DensityReference,
+                                                   gas=("Custom %r %r" % (
+                                                       float(self.GladstoneDaleConstant),
+                                                       float(self.MolarMass))
+                                                       if self.Gas == "Custom" else self.Gas))
             dims = list(image.GetDimensions())
             if valid is not None:
                 _engine.extend_into_invalid(dims, valid, n1)

@@ -8,7 +8,7 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      SchlierenImage's film, bit for bit); SchlierenImage straight on the multiblock
      gives an empty image and the C++ filter's reason;
   2. errors are VTK errors (ParaView's Output Messages), never a Python traceback; a refused value
-     (Model IdealGas, Resolution 1 x 1) leaves an empty output, and a good value set after it
+     (Symmetry Planar, Resolution 1 x 1) leaves an empty output, and a good value set after it
      gives the image again;
   3. NumericalSchlieren logs no update-extent error;
   4. `import schlieren_view` works after LoadPlugin, and Examples/first_light.py runs with the
@@ -16,7 +16,11 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
   5. what the C++ SchlierenImage refuses the Python one refuses with the same reason (a direction
      matrix; an unstructured grid given straight to it), and an image whose extent does not start
      at 0 is traced to the C++ filter's film, bit for bit (intensity, origin), which is also the
-     film of the same grid given with its extent from 0.
+     film of the same grid given with its extent from 0;
+  6. RefractiveIndex's index models (GladstoneDaleMixture by mixture fraction and by species,
+     IdealGas with one gas, a mixture fraction and species with a custom gas, Ciddor with
+     constant and array humidity and CO2) give the C++ filter's n - 1 and grad n bit for bit on
+     the same arrays (the engine's ComputeFieldIndex through schlieren_index_model).
 
     pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
         --example Examples/first_light.py --work DIR [--data ../shared/data]
@@ -38,7 +42,7 @@ if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11
 
 import numpy as np  # noqa: E402
 from paraview import servermanager  # noqa: E402
-from paraview.simple import LoadPlugin, PLOT3DReader, PVTrivialProducer, Slice  # noqa: E402
+from paraview.simple import Delete, LoadPlugin, PLOT3DReader, PVTrivialProducer, Slice  # noqa: E402
 from vtkmodules.util import numpy_support  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 
@@ -224,18 +228,18 @@ index = ns["RefractiveIndex"](Input=src, Model="Passthrough")
 index.UpdatePipeline()
 check(servermanager.Fetch(index).GetNumberOfPoints() == 24 * 20 * 16, "RefractiveIndex runs")
 with Captured() as c:
-    index.Model = "IdealGas"  # the Python front end refuses it (so far)
+    index.Symmetry = "Planar"  # the Python front end refuses it (so far)
     index.UpdatePipeline()
 out = servermanager.Fetch(index)
 check("Traceback" not in c.text and "ERROR: In RefractiveIndex" in c.text and
-      "IdealGas" in c.text and out.GetNumberOfPoints() == 0,
-      "Model IdealGas: an error naming it, no traceback, an empty output (%d points; %r)"
+      "Symmetry is not available" in c.text and out.GetNumberOfPoints() == 0,
+      "Symmetry Planar: an error naming it, no traceback, an empty output (%d points; %r)"
       % (out.GetNumberOfPoints(), c.text.strip().splitlines()[:1]))
 with Captured() as c:
-    index.Model = "Passthrough"
+    index.Symmetry = "None"
     index.UpdatePipeline()
 check("ERR" not in c.text and servermanager.Fetch(index).GetNumberOfPoints() == 24 * 20 * 16,
-      "Model Passthrough again: the output is back, no error")
+      "Symmetry None again: the output is back, no error")
 image = ns["SchlierenImage"](Input=index, Backend="CPU", Resolution=[32, 32], Passes=1)
 image.UpdatePipeline()
 good = servermanager.Fetch(image).GetNumberOfPoints()
@@ -283,6 +287,92 @@ check(not ok and out.GetNumberOfPoints() == 0 and
       text and "Traceback" not in text,
       "an unstructured grid straight to SchlierenImage: refused by both with the reason "
       "(RefractiveIndex resamples it), an empty output")
+
+# -- 6. RefractiveIndex's index models: the engine's (schlieren_index_model), bit for bit the C++
+# filter's n - 1 and grad n on the same arrays
+fields = vtkImageData()
+fields.SetDimensions(14, 11, 9)
+fields.SetSpacing(0.01, 0.012, 0.015)
+fields.SetOrigin(-0.07, -0.06, -0.06)
+count = fields.GetNumberOfPoints()
+x = np.linspace(0.0, 1.0, count)
+wave = np.sin(7.0 * x) * np.cos(3.0 * x)
+for field, values in (("density", 1.2 + 0.3 * wave), ("T", 300.0 - 40.0 * wave),
+                      ("p", 101.325 * (1.0 + 0.2 * wave)), ("mix", 0.5 + 0.4 * wave),
+                      ("Y1", 0.05 + 0.04 * wave), ("Y2", 0.2 - 0.1 * wave),
+                      ("rh", 0.5 + 0.3 * wave), ("co2", 450.0 + 100.0 * wave)):
+    a = numpy_support.numpy_to_vtk(values.astype(np.float32), deep=1)
+    a.SetName(field)
+    fields.GetPointData().AddArray(a)
+RI = cxx.vtkRefractiveIndex
+ARRAY_INDEX = dict(InputArray=0, TemperatureArray=1, PressureArray=2, MixtureFractionArray=3,
+                   Species1Array=4, Species2Array=5, HumidityArray=8, CO2Array=9)
+ENUMS = dict(Model=["Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas", "Ciddor"],
+             MixtureComposition={"MixtureFraction": 1, "Species": 2},
+             IdealGasComposition={"Gas": 0, "MixtureFraction": 1, "Species": 2},
+             PressureUnit=["Pa", "kPa", "atm", "bar"], TemperatureUnit=["Kelvin", "Celsius"],
+             HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"])
+GASES = ["Air", "He", "N2", "O2", "Ar", "CO2", "H2", "H2O", "CH4", "CO"]
+MODELS = {
+    "mixture_fraction": dict(Model="GladstoneDaleMixture", InputArray="density",
+                             MixtureComposition="MixtureFraction", MixtureFractionArray="mix",
+                             MixtureGas0="Air", MixtureGas1="He"),
+    "mixture_species": dict(Model="GladstoneDaleMixture", InputArray="density",
+                            MixtureComposition="Species", NumberOfSpecies=2,
+                            SpeciesGases=[6, 8, 1, 5], Species1Array="Y1", Species2Array="Y2",
+                            BalanceGas="N2"),
+    "ideal_gas": dict(Model="IdealGas", Gas="CO2", TemperatureArray="T", PressureArray="p",
+                      PressureUnit="kPa"),
+    "ideal_gas_mixture": dict(Model="IdealGas", IdealGasComposition="MixtureFraction",
+                              TemperatureArray="T", PressureArray="p", PressureUnit="kPa",
+                              MixtureFractionArray="mix", MixtureGas0="N2", MixtureGas1="Ar"),
+    "ideal_gas_species": dict(Model="IdealGas", IdealGasComposition="Species", NumberOfSpecies=2,
+                              SpeciesGases=[-1, 8, 1, 5], SpeciesGladstoneDale=[3e-4, 2.2e-4,
+                                                                                 2e-4, 2e-4],
+                              SpeciesMolarMass=[0.04, 0.03, 0.004, 0.044],
+                              Species1Array="Y1", Species2Array="Y2", TemperatureArray="T",
+                              PressureArray="p", PressureUnit="kPa", TemperatureReference=1.1),
+    "ciddor": dict(Model="Ciddor", TemperatureArray="T", PressureArray="p", PressureUnit="kPa",
+                   Humidity=0.4, CO2=500.0, Wavelength=550.0),
+    "ciddor_arrays": dict(Model="Ciddor", TemperatureArray="T", PressureArray="p",
+                          PressureUnit="kPa", HumidityFromArray=1, HumidityArray="rh",
+                          CO2FromArray=1, CO2Array="co2", TemperatureUnit="Kelvin"),
+}
+source = producer(fields)
+for case, props in MODELS.items():
+    ref = RI()
+    ref.SetInputData(fields)
+    for k, v in props.items():
+        if k in ARRAY_INDEX:
+            ref.SetInputArrayToProcess(ARRAY_INDEX[k], 0, 0, 0, v)
+        elif k in ENUMS:
+            e = ENUMS[k]
+            getattr(ref, "Set" + k)(e[v] if isinstance(e, dict) else e.index(v))
+        elif k in ("Gas", "MixtureGas0", "MixtureGas1", "BalanceGas"):
+            getattr(ref, "Set" + k)(GASES.index(v))
+        elif isinstance(v, list):
+            getattr(ref, "Set" + k)(*v)
+        else:
+            getattr(ref, "Set" + k)(v)
+    ok = ref.GetExecutive().Update()
+    theirs = ref.GetOutput()
+    index = ns["RefractiveIndex"](Input=source)
+    for k, v in props.items():
+        index.GetProperty(k).SetData(["POINTS", v] if k in ARRAY_INDEX else v)
+    with Captured() as c:
+        index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    same = ok and all(
+        array(mine, n) is not None and array(theirs, n) is not None and
+        np.array_equal(array(mine, n).view(np.uint32), array(theirs, n).view(np.uint32))
+        for n in ("n_minus_1", "grad_n"))
+    b = array(theirs, "n_minus_1")
+    check(same and "ERR" not in c.text,
+          "RefractiveIndex %s: n_minus_1 and grad_n bit for bit the C++ filter's (n - 1 %.6g..%.6g"
+          "%s)" % (case, b.min() if b is not None else float("nan"),
+                   b.max() if b is not None else float("nan"),
+                   "" if "ERR" not in c.text else "; " + c.text.strip().splitlines()[0][:200]))
+    Delete(index)
 
 # -- 4. schlieren_view embedded; Examples/first_light.py with the Python plugin
 try:
