@@ -200,7 +200,10 @@ def _image_input(data, dims=None):
     out = vtkImageData()
     out.ShallowCopy(r.GetOutput())
     mask = _point_array(out, r.GetMaskArrayName())
-    out.GetPointData().RemoveArray(r.GetMaskArrayName())
+    if mask is None or mask.all():
+        # kept where it says something, as the C++ filter does: NumericalSchlieren leaves the
+        # points outside the input's cells out of its gradients
+        out.GetPointData().RemoveArray(r.GetMaskArrayName())
     return out, (None if mask is None or mask.all() else np.ascontiguousarray(mask, np.uint8))
 
 
@@ -548,7 +551,9 @@ class RefractiveIndex(_Properties):
             e = out.GetExtent()  # the resampled grid's, known only now
             outInfo.GetInformationObject(0).Set(SDDP.WHOLE_EXTENT(), e, 6)
         a = _add(out, "n_minus_1", n1)
-        out.GetPointData().SetScalars(a)
+        # active, not SetScalars: that would drop the input's active scalars (the blunt fin's
+        # Density), which the C++ filter keeps (and NumericalSchlieren prefers a density)
+        out.GetPointData().SetActiveScalars(a.GetName())
         _add(out, "grad_n", grad)
         _field_string(out, "index_model", model)
         if valid is not None and self.BodyFromGrid:

@@ -206,9 +206,18 @@ else:
     with Captured() as c:
         numerical.UpdatePipeline()
     out = servermanager.Fetch(numerical)
-    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() > 0,
-          "NumericalSchlieren on it: a %s of %d points" % (out.GetClassName(),
-                                                          out.GetNumberOfPoints()))
+    ref_numerical = cxx.vtkNumericalSchlieren()
+    ref_numerical.SetInputData(theirs)
+    ref_numerical.SetResolution(64, 48)
+    ref_numerical.Update()
+    want = ref_numerical.GetOutput()
+    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() > 0 and
+          out.GetExtent() == want.GetExtent() and out.GetOrigin() == want.GetOrigin() and
+          all(array(out, n) is not None and array(want, n) is not None and
+              np.array_equal(array(out, n).view(np.uint8), array(want, n).view(np.uint8))
+              for n in ("intensity", "numerical_gradient", "blocked")),
+          "NumericalSchlieren on it: a %s of %d points, the C++ filter's image bit for bit"
+          % (out.GetClassName(), out.GetNumberOfPoints()))
     # -- 3. no update-extent error (the film's extent is not the volume's)
     check("update extent" not in c.text.lower() and "ERR" not in c.text,
           "NumericalSchlieren logs no update-extent error (stderr: %r)" % c.text[-300:])
