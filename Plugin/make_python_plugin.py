@@ -115,6 +115,9 @@ def _follow_now(algorithm):
         view, proxy, interactive_passes=algorithm.__dict__.get("_interactive_passes", 1),
         timer=interactor is not None and interactor.IsA("QVTKInteractor"))
     follower.also_render = shows
+    # the image deleted from the pipeline: stop (its proxy is no longer registered)
+    pxm = proxy.SMProxy.GetSessionProxyManager()
+    follower.alive = lambda: bool(pxm.GetProxyName("sources", proxy.SMProxy))
     object.__setattr__(algorithm, "_follower", follower)
 
 
