@@ -308,15 +308,18 @@ class RefractiveScene(_Properties):
 
 
 class RefractiveIndex(_Properties):
-    """n - 1 from CFD fields (Passthrough, GladstoneDale), resampled onto an image as needed.
+    """n - 1 from CFD fields by every index model of the engine (Passthrough, GladstoneDale,
+    GladstoneDaleMixture, IdealGas, Ciddor), resampled onto an image as needed.
 
-    Model Automatic takes GladstoneDale on an array named like density (density, rho, Density),
-    else Passthrough on n_minus_1. InputArray names the array (empty: the automatic choice).
+    Model Automatic chooses as the C++ filter does: Passthrough on an array named as n - 1, else
+    GladstoneDale on one named as a density, else IdealGas on a temperature and a pressure, else
+    Passthrough of n; a named InputArray decides by its name. An empty array property takes the
+    first array named as what it holds (the C++ filter's names).
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
-    names: SelectInputArray is InputArray); those this front end does not implement (the mixture
-    and ideal-gas models, Symmetry, sampling bounds, ambient values, bodies) take their default
-    only, and another value is refused by name (the C++ plugin has them)."""
+    names: SelectInputArray is InputArray); those this front end does not implement (Symmetry,
+    sampling bounds, ambient modes but Extend, bodies) take their default only, and another value
+    is refused by name (the C++ plugin has them)."""
 
     _defaults = dict(
         Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
@@ -360,8 +363,6 @@ class RefractiveIndex(_Properties):
                     "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
                     "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray",
                     "CO2FromArray"} | set(_model_settings)
-    # Automatic chooses Passthrough or GladstoneDale only (the C++ filter also IdealGas from a
-    # temperature and a pressure): name the model for the others
     _implemented_entries = dict(AmbientMode=["Extend"])
     # the names an empty array property takes, in order (the C++ filter's, lower case)
     _candidates = dict(TemperatureArray=("temperature", "temp", "t", "static_temperature",
@@ -436,12 +437,75 @@ class RefractiveIndex(_Properties):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
 
-    def _index_model(self, model, image, names, valid):
+    # what a name says an array holds (lower case, in order of preference: the C++ filter's)
+    _kinds = dict(n_minus_1=("n_minus_1", "nminus1", "n-1", "refractivity"),
+                  n=("n", "refractive_index", "refractiveindex", "index_of_refraction"),
+                  density=("density", "rho", "dens", "mass_density"),
+                  temperature=_candidates["TemperatureArray"],
+                  pressure=_candidates["PressureArray"])
+
+    @classmethod
+    def _kind_of(cls, name):
+        low = name.lower()
+        return next((k for k, v in cls._kinds.items() if low in v), None)
+
+    @classmethod
+    def _find(cls, names, kind):
+        """The first of `names` named as `kind` (by the order of preference), or ""."""
+        for want in cls._kinds[kind]:
+            for n in names:
+                if n.lower() == want:
+                    return n
+        return ""
+
+    def _choose(self, names, pd):
+        """Model Automatic's choice and the input array, as the C++ filter's ChooseModel and its
+        automatic arrays: (model, input array name or None, holds n, {property: array name})."""
+        model, name, holds_n, chosen = self.Model, self.InputArray, bool(self.PassthroughHoldsN), {}
+        if model == "Automatic":
+            holds_n = False
+            if name:
+                kind = self._kind_of(name)
+                model = {"n": "Passthrough", "density": "GladstoneDale", "temperature": "IdealGas",
+                         "pressure": "IdealGas"}.get(kind, "Passthrough")
+                holds_n = kind == "n"
+                if kind in ("temperature", "pressure"):
+                    chosen[kind.capitalize() + "Array"] = name
+            elif self._find(names, "n_minus_1"):
+                model, name = "Passthrough", self._find(names, "n_minus_1")
+            elif self._find(names, "density"):
+                model, name = "GladstoneDale", self._find(names, "density")
+            elif self._find(names, "temperature") and self._find(names, "pressure"):
+                model = "IdealGas"
+            elif self._find(names, "n"):
+                model, name, holds_n = "Passthrough", self._find(names, "n"), True
+            else:
+                raise EngineError(
+                    "Model Automatic found no array named as a refractive index (n_minus_1, n), "
+                    "a density (density, rho) or a temperature and a pressure (temperature, Temp, "
+                    "T; pressure, Pres, p) among the input's arrays: %s. Choose the Model and its "
+                    "arrays." % (", ".join(names) or "none"))
+        if model in ("IdealGas", "Ciddor"):
+            return model, None, holds_n, chosen
+        if not name and model == "Passthrough":
+            name = self._find(names, "n" if holds_n else "n_minus_1")
+        elif not name:
+            name = self._find(names, "density")
+        if not name:
+            # no name known: the active point scalars, else the first point array
+            scalars = pd.GetScalars()
+            name = scalars.GetName() if scalars is not None and scalars.GetName() else \
+                (names[0] if names else "n_minus_1")
+        return model, name, holds_n, chosen
+
+    def _index_model(self, model, image, names, valid, chosen=None):
         """n - 1 by GladstoneDaleMixture, IdealGas or Ciddor: the engine's models (the C++
         filter's) on the arrays the properties name (an empty name: the C++ filter's choice among
         the usual names), with the proxy's settings."""
+        automatic = chosen or {}
+
         def pick(prop, role, required=True):
-            chosen = getattr(self, prop)
+            chosen = automatic.get(prop) or getattr(self, prop)
             if not chosen:
                 lower = {n.lower(): n for n in reversed(names)}
                 chosen = next((lower[c] for c in self._candidates.get(prop, ()) if c in lower),
@@ -463,7 +527,7 @@ class RefractiveIndex(_Properties):
         if model == "GladstoneDaleMixture" and self.InputArray:
             pick("InputArray", "density")
         elif model == "GladstoneDaleMixture":
-            density = next((n for n in names if n in ("density", "rho", "Density", "Rho")), "")
+            density = self._find(names, "density")
             if not density:
                 raise EngineError("RefractiveIndex: Model GladstoneDaleMixture needs a density "
                                   "array (InputArray); the input has: %s" % ", ".join(names))
@@ -506,19 +570,10 @@ class RefractiveIndex(_Properties):
                                         else self._dims(data))
             pd = image.GetPointData()
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
-            model, name = self.Model, self.InputArray
-            if model == "Automatic":
-                density = [n for n in names if n in ("density", "rho", "Density", "Rho")]
-                if name:
-                    model = "Passthrough" if name in ("n_minus_1", "n") else "GladstoneDale"
-                elif density:
-                    model, name = "GladstoneDale", density[0]
-                else:
-                    model = "Passthrough"
-            if not name:
-                name = "n_minus_1" if model == "Passthrough" else "density"
+            names = [n for n in names if n and n != "vtkValidPointMask"]
+            model, name, holds_n, chosen = self._choose(names, pd)
             if model in ("GladstoneDaleMixture", "IdealGas", "Ciddor"):
-                n1, warnings = self._index_model(model, image, names, valid)
+                n1, warnings = self._index_model(model, image, names, valid, chosen)
                 name = None
             values = None if name is None else _point_array(image, name)
             if name is not None and (values is None or values.ndim != 1):
@@ -533,8 +588,7 @@ class RefractiveIndex(_Properties):
                 # the points outside the input's cells are filled below: not checked as flow
                 values = np.where(valid != 0, values, values[np.argmax(valid)])
             if name is not None:
-                n1, warnings = _engine.field_index(model, values,
-                                                   index_is_n=bool(self.PassthroughHoldsN),
+                n1, warnings = _engine.field_index(model, values, index_is_n=holds_n,
                                                    density_reference=self.DensityReference,
                                                    gas=("Custom %r %r" % (
                                                        float(self.GladstoneDaleConstant),

@@ -17,8 +17,9 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      matrix; an unstructured grid given straight to it), and an image whose extent does not start
      at 0 is traced to the C++ filter's film, bit for bit (intensity, origin), which is also the
      film of the same grid given with its extent from 0;
-  6. RefractiveIndex's index models (GladstoneDaleMixture by mixture fraction and by species,
-     IdealGas with one gas, a mixture fraction and species with a custom gas, Ciddor with
+  6. RefractiveIndex's index models (Model Automatic's choice: n - 1 before a density, IdealGas
+     from a temperature and a pressure, Passthrough of an array named n; GladstoneDaleMixture by
+     mixture fraction and by species, IdealGas with one gas, a mixture fraction and species with a custom gas, Ciddor with
      constant and array humidity and CO2) give the C++ filter's n - 1 and grad n bit for bit on
      the same arrays (the engine's ComputeFieldIndex through schlieren_index_model).
 
@@ -316,7 +317,8 @@ for field, values in (("density", 1.2 + 0.3 * wave), ("T", 300.0 - 40.0 * wave),
 RI = cxx.vtkRefractiveIndex
 ARRAY_INDEX = dict(InputArray=0, TemperatureArray=1, PressureArray=2, MixtureFractionArray=3,
                    Species1Array=4, Species2Array=5, HumidityArray=8, CO2Array=9)
-ENUMS = dict(Model=["Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas", "Ciddor"],
+ENUMS = dict(Model={"Automatic": -1, "Passthrough": 0, "GladstoneDale": 1,
+                    "GladstoneDaleMixture": 2, "IdealGas": 3, "Ciddor": 4},
              MixtureComposition={"MixtureFraction": 1, "Species": 2},
              IdealGasComposition={"Gas": 0, "MixtureFraction": 1, "Species": 2},
              PressureUnit=["Pa", "kPa", "atm", "bar"], TemperatureUnit=["Kelvin", "Celsius"],
@@ -346,11 +348,30 @@ MODELS = {
     "ciddor_arrays": dict(Model="Ciddor", TemperatureArray="T", PressureArray="p",
                           PressureUnit="kPa", HumidityFromArray=1, HumidityArray="rh",
                           CO2FromArray=1, CO2Array="co2", TemperatureUnit="Kelvin"),
+    # Model Automatic: n - 1 before a density (a scene has both), a temperature and a pressure
+    # (IdealGas, arrays found by name), an array named n (Passthrough of n)
+    "automatic_n_minus_1": dict(Model="Automatic", _input="scene"),
+    "automatic_ideal_gas": dict(Model="Automatic", PressureUnit="kPa", Gas="Ar", _input="tp"),
+    "automatic_n": dict(Model="Automatic", _input="n"),
+    "automatic_named_temperature": dict(Model="Automatic", InputArray="T", PressureUnit="kPa",
+                                        _input="tp"),
 }
-source = producer(fields)
+inputs = dict(fields=fields, scene=volume)
+for which, keep in (("tp", ("T", "p")), ("n", ())):
+    inputs[which] = vtkImageData()
+    inputs[which].CopyStructure(fields)
+    for field in keep:
+        inputs[which].GetPointData().AddArray(fields.GetPointData().GetArray(field))
+n_array = numpy_support.numpy_to_vtk((1.0 + 3e-4 * (1 + wave)).astype(np.float32), deep=1)
+n_array.SetName("n")
+inputs["n"].GetPointData().AddArray(n_array)
+sources = {k: producer(v) for k, v in inputs.items()}
 for case, props in MODELS.items():
+    props = dict(props)
+    which = props.pop("_input", "fields")
+    source = sources[which]
     ref = RI()
-    ref.SetInputData(fields)
+    ref.SetInputData(inputs[which])
     for k, v in props.items():
         if k in ARRAY_INDEX:
             ref.SetInputArrayToProcess(ARRAY_INDEX[k], 0, 0, 0, v)
@@ -376,9 +397,11 @@ for case, props in MODELS.items():
         np.array_equal(array(mine, n).view(np.uint32), array(theirs, n).view(np.uint32))
         for n in ("n_minus_1", "grad_n"))
     b = array(theirs, "n_minus_1")
+    model = mine.GetFieldData().GetAbstractArray("index_model")
     check(same and "ERR" not in c.text,
-          "RefractiveIndex %s: n_minus_1 and grad_n bit for bit the C++ filter's (n - 1 %.6g..%.6g"
-          "%s)" % (case, b.min() if b is not None else float("nan"),
+          "RefractiveIndex %s: n_minus_1 and grad_n bit for bit the C++ filter's (model %s, n - 1 "
+          "%.6g..%.6g%s)" % (case, model.GetValue(0) if model else None,
+                             b.min() if b is not None else float("nan"),
                    b.max() if b is not None else float("nan"),
                    "" if "ERR" not in c.text else "; " + c.text.strip().splitlines()[0][:200]))
     Delete(index)
