@@ -185,14 +185,17 @@ def _bounds(data):
     return data.GetBounds()
 
 
-def _image_input(data, dims=None):
+def _image_input(data, dims=None, bounds=None):
     """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
-    or resampled with vtkResampleToImage onto `dims` points over its bounds."""
+    or resampled with vtkResampleToImage onto `dims` points over its bounds (or `bounds`)."""
     if isinstance(data, vtkImageData):
         return data, None
     from vtkmodules.vtkFiltersCore import vtkResampleToImage
     r = vtkResampleToImage()
     r.SetInputDataObject(data)
+    if bounds is not None:
+        r.SetUseInputBounds(0)
+        r.SetSamplingBounds(*[float(b) for b in bounds])
     if dims is None:
         dims = _engine.automatic_dimensions(_bounds(data), 128)
     r.SetSamplingDimensions(*dims)
@@ -318,7 +321,7 @@ class RefractiveIndex(_Properties):
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
     names: SelectInputArray is InputArray); those this front end does not implement (Symmetry,
-    sampling bounds, ambient modes but Extend, bodies) take their default only, and another value
+    ambient modes but Extend, bodies) take their default only, and another value
     is refused by name (the C++ plugin has them)."""
 
     _defaults = dict(
@@ -359,6 +362,7 @@ class RefractiveIndex(_Properties):
                        "TemperatureReference", "PressureUnit", "PressureReference",
                        "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength")
     _implemented = {"Model", "InputArray", "SamplingDimensions", "AutomaticDimension",
+                    "UseSamplingBounds", "SamplingBounds",
                     "AmbientMode", "BodyFromGrid", "TemperatureArray", "PressureArray",
                     "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
                     "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray",
@@ -420,10 +424,12 @@ class RefractiveIndex(_Properties):
         # only): the bounds pulled in by a hair about their centre, as the C++ filter's
         from vtkmodules.vtkCommonDataModel import vtkBoundingBox
         dims = self._dims(data)
-        box = vtkBoundingBox(_bounds(data))
-        box.ScaleAboutCenter(1.0 - 1e-6)
-        b = [0.0] * 6
-        box.GetBounds(b)
+        b = self._sampling_bounds()
+        if b is None:
+            box = vtkBoundingBox(_bounds(data))
+            box.ScaleAboutCenter(1.0 - 1e-6)
+            b = [0.0] * 6
+            box.GetBounds(b)
         info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
         info.Set(vtkImageData.ORIGIN(), b[0], b[2], b[4])
         info.Set(vtkImageData.SPACING(), *[(b[2 * a + 1] - b[2 * a]) / (dims[a] - 1)
@@ -549,11 +555,23 @@ class RefractiveIndex(_Properties):
         settings["Model"] = model
         return _engine.index_model(settings, arrays, valid)
 
+    def _sampling_bounds(self):
+        """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
+        None (the input's bounds)."""
+        if not self.UseSamplingBounds:
+            return None
+        b = [float(v) for v in self.SamplingBounds]
+        if not all(np.isfinite(b)) or any(b[2 * a + 1] <= b[2 * a] for a in range(3)):
+            raise EngineError("RefractiveIndex: SamplingBounds %s: each max must exceed its min "
+                              "(SamplingBounds: xmin xmax ymin ymax zmin zmax)" % b)
+        return b
+
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
         if min(dims) > 0:
             return dims
-        return _engine.automatic_dimensions(_bounds(data), int(self.AutomaticDimension))
+        return _engine.automatic_dimensions(self._sampling_bounds() or _bounds(data),
+                                            int(self.AutomaticDimension))
 
     def RequestData(self, request, inInfo, outInfo):
         data = vtkDataObject.GetData(inInfo[0])
@@ -567,7 +585,7 @@ class RefractiveIndex(_Properties):
                 raise EngineError("RefractiveIndex: the input (%s) has no points."
                                   % data.GetClassName())
             image, valid = _image_input(data, None if isinstance(data, vtkImageData)
-                                        else self._dims(data))
+                                        else self._dims(data), self._sampling_bounds())
             pd = image.GetPointData()
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
             names = [n for n in names if n and n != "vtkValidPointMask"]

@@ -185,6 +185,30 @@ else:
               np.array_equal(a.view(np.uint32), b.view(np.uint32)),
               "%s bit for bit with the C++ filter's (BodyFromGrid off there: the Python front "
               "end finds no body in the grid's holes yet)" % name)
+    # the box the example samples (Examples/bluntfin.py), AutomaticDimension over it
+    boxed = ns["RefractiveIndex"](Input=reader, Model="GladstoneDale", Gas="Air",
+                                  DensityReference=1.2, AutomaticDimension=48, UseSamplingBounds=1,
+                                  SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7])
+    boxed.InputArray = ["POINTS", "Density"]
+    boxed.UpdatePipeline()
+    mine_boxed = servermanager.Fetch(boxed)
+    ref.SetUseSamplingBounds(1)
+    ref.SetSamplingBounds(-2.5, 7.5, 0.0, 5.0, 0.0, 5.7)
+    ref.Update()
+    theirs_boxed = ref.GetOutput()
+    check(mine_boxed.GetExtent() == theirs_boxed.GetExtent() and
+          mine_boxed.GetOrigin() == theirs_boxed.GetOrigin() and
+          mine_boxed.GetSpacing() == theirs_boxed.GetSpacing() and
+          all(array(mine_boxed, n) is not None and array(theirs_boxed, n) is not None and
+              np.array_equal(array(mine_boxed, n).view(np.uint32),
+                             array(theirs_boxed, n).view(np.uint32))
+              for n in ("n_minus_1", "grad_n")) and
+          tuple(int(v) for v in boxed.GetDataInformation().DataInformation.GetExtent()) ==
+          theirs_boxed.GetExtent(),
+          "SamplingBounds -2.5 7.5 0 5 0 5.7: the C++ filter's grid %s, n_minus_1 and grad_n bit "
+          "for bit, the same extent in the pipeline's information" % (theirs_boxed.GetExtent(),))
+    ref.SetUseSamplingBounds(0)
+    ref.Update()
     settings = dict(Resolution=[64, 48], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
     image = ns["SchlierenImage"](Input=index, Backend="CPU", **settings)
     image.UpdatePipeline()
