@@ -1132,6 +1132,49 @@ int schlieren_extend_into_invalid(
   });
 }
 
+int schlieren_fill_ambient(const int dims[3], const unsigned char* valid, float* n_minus_1,
+  const char* mode, double value, double* ambient, int64_t* filled)
+{
+  return Guard(LastError, [&] {
+    if (!dims || !valid || !n_minus_1 || !mode)
+      throw schlieren::Error("schlieren_fill_ambient: dims, valid, n_minus_1 and mode must be given.");
+    const std::string m = mode;
+    const std::size_t count =
+      static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(dims[2]);
+    double used = std::numeric_limits<double>::quiet_NaN();
+    std::size_t n = 0;
+    if (m == "Extend")
+      n = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
+    else if (m == "DomainEdgeMedian" || m == "Value")
+    {
+      used = value;
+      if (m == "DomainEdgeMedian")
+      {
+        // the RefractiveIndex filter's: the median of n - 1 at the flow domain's edge, else (no
+        // valid point touches an invalid one) of every valid point
+        std::vector<float> edge;
+        schlieren::CollectDomainEdge(dims, valid, n_minus_1, nullptr, edge);
+        used = schlieren::Median(edge);
+        if (!std::isfinite(used))
+        {
+          std::vector<float> values;
+          for (std::size_t i = 0; i < count; ++i)
+            if (valid[i])
+              values.push_back(n_minus_1[i]);
+          used = schlieren::Median(values);
+        }
+      }
+      n = schlieren::FillInvalid(count, valid, used, n_minus_1);
+    }
+    else
+      throw schlieren::Error("AmbientMode '" + m + "' is not one of: Extend, DomainEdgeMedian, Value.");
+    if (ambient)
+      *ambient = used;
+    if (filled)
+      *filled = static_cast<int64_t>(n);
+  });
+}
+
 int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3])
 {
   return Guard(LastError, [&] {

@@ -180,6 +180,12 @@ SCHLIEREN_C_API int schlieren_index_model(const char* settings, int64_t count,
  * RefractiveIndex filter's AmbientMode Extend); `filled` (may be NULL) gets how many. */
 SCHLIEREN_C_API int schlieren_extend_into_invalid(
   const int dims[3], const unsigned char* valid, float* n_minus_1, int64_t* filled);
+/** The points with valid[i] == 0 filled as RefractiveIndex's AmbientMode says: "Extend" (as
+ * schlieren_extend_into_invalid), "DomainEdgeMedian" (the median of n - 1 at the flow domain's
+ * edge) or "Value" (`value`). `ambient` (may be NULL) gets the value used (NaN for Extend), `filled`
+ * (may be NULL) how many points. */
+SCHLIEREN_C_API int schlieren_fill_ambient(const int dims[3], const unsigned char* valid,
+  float* n_minus_1, const char* mode, double value, double* ambient, int64_t* filled);
 /** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
  * side, about the same spacing along the others. */
 SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);

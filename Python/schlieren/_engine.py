@@ -252,6 +252,20 @@ def extend_into_invalid(dims, valid, n_minus_1):
     return filled.value
 
 
+def fill_ambient(dims, valid, n_minus_1, mode, value=0.0):
+    """Fills n - 1 (float32, in place) where valid == 0 as RefractiveIndex's AmbientMode says
+    (Extend, DomainEdgeMedian, Value); returns (the value used, NaN for Extend; points filled)."""
+    f = _sig("schlieren_fill_ambient", ctypes.c_int, _c_int3, _u8p, _f32p, ctypes.c_char_p,
+             ctypes.c_double, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int64))
+    if n_minus_1.dtype != np.float32 or not n_minus_1.flags.c_contiguous:
+        raise TypeError("n_minus_1 must be a contiguous float32 array (it is filled in place)")
+    v, vp = _bytes(valid)
+    used, filled = ctypes.c_double(0.0), ctypes.c_int64(0)
+    _check(f(_c_int3(*dims), vp, n_minus_1.ctypes.data_as(_f32p), mode.encode(), float(value),
+             ctypes.byref(used), ctypes.byref(filled)))
+    return used.value, filled.value
+
+
 def automatic_dimensions(bounds, longest):
     """RefractiveIndex's automatic sampling dimensions of a box."""
     dims = _c_int3()

@@ -321,7 +321,7 @@ class RefractiveIndex(_Properties):
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
     names: SelectInputArray is InputArray); those this front end does not implement (Symmetry,
-    ambient modes but Extend, bodies) take their default only, and another value
+    bodies) take their default only, and another value
     is refused by name (the C++ plugin has them)."""
 
     _defaults = dict(
@@ -363,11 +363,12 @@ class RefractiveIndex(_Properties):
                        "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength")
     _implemented = {"Model", "InputArray", "SamplingDimensions", "AutomaticDimension",
                     "UseSamplingBounds", "SamplingBounds",
-                    "AmbientMode", "BodyFromGrid", "TemperatureArray", "PressureArray",
+                    "AmbientMode", "AmbientValue", "BodyFromGrid", "TemperatureArray",
+                    "PressureArray",
                     "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
                     "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray",
                     "CO2FromArray"} | set(_model_settings)
-    _implemented_entries = dict(AmbientMode=["Extend"])
+    _implemented_entries = {}
     # the names an empty array property takes, in order (the C++ filter's, lower case)
     _candidates = dict(TemperatureArray=("temperature", "temp", "t", "static_temperature",
                                          "t_static"),
@@ -613,8 +614,10 @@ class RefractiveIndex(_Properties):
                                                        float(self.MolarMass))
                                                        if self.Gas == "Custom" else self.Gas))
             dims = list(image.GetDimensions())
-            if valid is not None:
+            if valid is not None and self.AmbientMode == "Extend":
                 _engine.extend_into_invalid(dims, valid, n1)
+            elif valid is not None:
+                _engine.fill_ambient(dims, valid, n1, self.AmbientMode, self.AmbientValue)
             grad = _engine.gradient(dims, image.GetSpacing(), n1)
         except EngineError as e:
             return self._fail(str(e))
@@ -631,7 +634,8 @@ class RefractiveIndex(_Properties):
         if valid is not None and self.BodyFromGrid:
             warnings = list(warnings) + [
                 "BodyFromGrid: the Python front end finds no bodies in the grid's holes; the "
-                "points outside the input's cells are filled as the flow (AmbientMode Extend)."]
+                "points outside the input's cells are filled as AmbientMode %s says."
+                % self.AmbientMode]
         for w in warnings:
             self._warn(w)
         return 1

@@ -207,6 +207,22 @@ else:
           theirs_boxed.GetExtent(),
           "SamplingBounds -2.5 7.5 0 5 0 5.7: the C++ filter's grid %s, n_minus_1 and grad_n bit "
           "for bit, the same extent in the pipeline's information" % (theirs_boxed.GetExtent(),))
+    # the points outside the grid (the fin's hole, the box's corners) by each AmbientMode
+    for mode, number in (("DomainEdgeMedian", 1), ("Value", 2)):
+        boxed.AmbientMode = mode
+        boxed.AmbientValue = 2.5e-4
+        boxed.UpdatePipeline()
+        mine_boxed = servermanager.Fetch(boxed)
+        ref.SetAmbientMode(number)
+        ref.SetAmbientValue(2.5e-4)
+        ref.Update()
+        theirs_boxed = ref.GetOutput()
+        check(all(array(mine_boxed, n) is not None and array(theirs_boxed, n) is not None and
+                  np.array_equal(array(mine_boxed, n).view(np.uint32),
+                                 array(theirs_boxed, n).view(np.uint32))
+                  for n in ("n_minus_1", "grad_n")),
+              "AmbientMode %s: n_minus_1 and grad_n bit for bit the C++ filter's" % mode)
+    ref.SetAmbientMode(0)
     ref.SetUseSamplingBounds(0)
     ref.Update()
     settings = dict(Resolution=[64, 48], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
