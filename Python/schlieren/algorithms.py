@@ -321,8 +321,8 @@ class RefractiveIndex(_Properties):
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
     names: SelectInputArray is InputArray); those this front end does not implement (Symmetry,
-    bodies) take their default only, and another value
-    is refused by name (the C++ plugin has them)."""
+    bodies) take their default only, and another value is refused by name (the C++ plugin has
+    them)."""
 
     _defaults = dict(
         Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
@@ -351,8 +351,8 @@ class RefractiveIndex(_Properties):
         HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"],
         Symmetry=["None", "Planar", "Axisymmetric"], SymmetryAxis=["X", "Y", "Z"],
         AmbientMode=["Extend", "DomainEdgeMedian", "Value"])
-    # implemented here: these properties (Model: the first three entries); the others are held at
-    # their defaults (BodyFromGrid's default is taken, but no body is found in the grid's holes)
+    # implemented here: the properties in _implemented (the others are held at their defaults;
+    # BodyFromGrid's default is taken, but no body is found in the grid's holes yet)
     # the index models' settings, handed to the engine by name (schlieren_index_model)
     _model_settings = ("PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
                        "MixtureComposition", "IdealGasComposition", "MixtureGas0", "MixtureGas1",
@@ -409,14 +409,14 @@ class RefractiveIndex(_Properties):
         # plans its film from it; without it a view asks for an empty extent and shows nothing)
         src = inInfo[0].GetInformationObject(0)
         info = outInfo.GetInformationObject(0)
+        if isinstance(vtkDataObject.GetData(src), vtkImageData):
+            return 1  # (the data object exists, empty, before the input executes)
         connection = self.GetInputConnection(0, 0) if self.GetNumberOfInputConnections(0) else None
         if connection is not None and src.Has(SDDP.WHOLE_EXTENT()):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         if connection is not None:
             connection.GetProducer().Update(connection.GetIndex())
         data = vtkDataObject.GetData(src)
-        if isinstance(data, vtkImageData):
-            return 1
         info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
         if not isinstance(data, (vtkDataSet, vtkCompositeDataSet)) or \
                 data.GetNumberOfPoints() == 0:
