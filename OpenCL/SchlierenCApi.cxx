@@ -5,6 +5,7 @@
 #define SCHLIEREN_C_BUILDING
 #include "schlieren_c.h"
 
+#include "SchlierenBodies.h"
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenNumerical.h"
@@ -1172,6 +1173,18 @@ int schlieren_fill_ambient(const int dims[3], const unsigned char* valid, float*
       *ambient = used;
     if (filled)
       *filled = static_cast<int64_t>(n);
+  });
+}
+
+int schlieren_enclosed_invalid(const int dims[3], const unsigned char* valid,
+  const int wall_faces[6], unsigned char* solid, int64_t* count)
+{
+  return Guard(LastError, [&] {
+    if (!dims || !valid || !solid)
+      throw schlieren::Error("schlieren_enclosed_invalid: dims, valid and solid must be given.");
+    const std::size_t n = schlieren::EnclosedInvalidPoints(dims, valid, wall_faces, solid);
+    if (count)
+      *count = static_cast<int64_t>(n);
   });
 }
 

@@ -186,6 +186,12 @@ SCHLIEREN_C_API int schlieren_extend_into_invalid(
  * (may be NULL) how many points. */
 SCHLIEREN_C_API int schlieren_fill_ambient(const int dims[3], const unsigned char* valid,
   float* n_minus_1, const char* mode, double value, double* ambient, int64_t* filled);
+/** RefractiveIndex's bodies from the grid's holes (BodyFromGrid): marks in `solid` (a byte per
+ * point) the points with valid[i] == 0 whose region of invalid points reaches no face of the grid
+ * but those with wall_faces[f] != 0 (xmin, xmax, ymin, ymax, zmin, zmax; may be NULL: none);
+ * `count` (may be NULL) gets how many. */
+SCHLIEREN_C_API int schlieren_enclosed_invalid(const int dims[3], const unsigned char* valid,
+  const int wall_faces[6], unsigned char* solid, int64_t* count);
 /** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
  * side, about the same spacing along the others. */
 SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);

@@ -266,6 +266,19 @@ def fill_ambient(dims, valid, n_minus_1, mode, value=0.0):
     return used.value, filled.value
 
 
+def enclosed_invalid(dims, valid, wall_faces=None):
+    """RefractiveIndex's bodies from the grid's holes: a uint8 array, 1 at the invalid points that
+    the flow encloses (their region reaches no face of the grid but the wall faces)."""
+    f = _sig("schlieren_enclosed_invalid", ctypes.c_int, _c_int3, _u8p, ctypes.POINTER(ctypes.c_int),
+             _u8p, ctypes.POINTER(ctypes.c_int64))
+    v, vp = _bytes(valid)
+    solid = np.zeros(v.size, np.uint8)
+    walls = None if wall_faces is None else (ctypes.c_int * 6)(*[int(w) for w in wall_faces])
+    count = ctypes.c_int64(0)
+    _check(f(_c_int3(*dims), vp, walls, solid.ctypes.data_as(_u8p), ctypes.byref(count)))
+    return solid
+
+
 def automatic_dimensions(bounds, longest):
     """RefractiveIndex's automatic sampling dimensions of a box."""
     dims = _c_int3()

@@ -320,9 +320,10 @@ class RefractiveIndex(_Properties):
     first array named as what it holds (the C++ filter's names).
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
-    names: SelectInputArray is InputArray); those this front end does not implement (Symmetry,
-    bodies) take their default only, and another value is refused by name (the C++ plugin has
-    them)."""
+    names: SelectInputArray is InputArray); those this front end does not implement (Symmetry and
+    its axis, span and wedge) take their default only, and another value is refused by name (the
+    C++ plugin has them). Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), a solid
+    array (SolidArray, an upstream `solid`); not from a mesh's walls or a body surface input."""
 
     _defaults = dict(
         Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
@@ -351,8 +352,7 @@ class RefractiveIndex(_Properties):
         HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"],
         Symmetry=["None", "Planar", "Axisymmetric"], SymmetryAxis=["X", "Y", "Z"],
         AmbientMode=["Extend", "DomainEdgeMedian", "Value"])
-    # implemented here: the properties in _implemented (the others are held at their defaults;
-    # BodyFromGrid's default is taken, but no body is found in the grid's holes yet)
+    # implemented here: the properties in _implemented (the others are held at their defaults)
     # the index models' settings, handed to the engine by name (schlieren_index_model)
     _model_settings = ("PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
                        "MixtureComposition", "IdealGasComposition", "MixtureGas0", "MixtureGas1",
@@ -362,7 +362,7 @@ class RefractiveIndex(_Properties):
                        "TemperatureReference", "PressureUnit", "PressureReference",
                        "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength")
     _implemented = {"Model", "InputArray", "SamplingDimensions", "AutomaticDimension",
-                    "UseSamplingBounds", "SamplingBounds",
+                    "UseSamplingBounds", "SamplingBounds", "BodyWallFaces", "SolidArray",
                     "AmbientMode", "AmbientValue", "BodyFromGrid", "TemperatureArray",
                     "PressureArray",
                     "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
@@ -554,7 +554,9 @@ class RefractiveIndex(_Properties):
                 pick("CO2Array", "co2")
         settings = {k: self._values[k] for k in self._model_settings}
         settings["Model"] = model
-        return _engine.index_model(settings, arrays, valid)
+        n1, warnings = _engine.index_model(settings, arrays, valid)
+        object.__setattr__(self, "_read", [k.split(":", 1)[1] for k in arrays])
+        return n1, warnings
 
     def _sampling_bounds(self):
         """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
@@ -566,6 +568,37 @@ class RefractiveIndex(_Properties):
             raise EngineError("RefractiveIndex: SamplingBounds %s: each max must exceed its min "
                               "(SamplingBounds: xmin xmax ymin ymax zmin zmax)" % b)
         return b
+
+    def _solid(self, image, dims, valid):
+        """The output's `solid` (uint8, 1: body) as the C++ filter's ComputeSolid makes it, or
+        None where there is no body: the holes of a resampled grid that the flow encloses
+        (BodyFromGrid, with BodyWallFaces; the engine's), a `solid` array the input carries and
+        SolidArray (non-zero, or at least 0.5 where resampled). Not here: the voids beside a
+        mesh's walls found from its velocity (the C++ filter's BodiesBesideWalls)."""
+        resampled = valid is not None
+        solid = np.zeros(int(np.prod(dims)), np.uint8)
+        if self.BodyFromGrid and resampled:
+            solid |= _engine.enclosed_invalid(dims, valid, self.BodyWallFaces)
+
+        def mark(values):
+            values = np.asarray(values)
+            solid[(values >= 0.5) if resampled else (values != 0)] = 1
+        upstream = _point_array(image, "solid")
+        if upstream is not None and upstream.ndim == 1:
+            mark(upstream)
+        name = self.SolidArray
+        if name and name != "None":
+            mask = _point_array(image, name)
+            if mask is None:
+                pd = image.GetPointData()
+                raise EngineError("SolidArray '%s' is not a point array of the input. Point "
+                                  "arrays present: %s." % (name, ", ".join(
+                                      pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays()))))
+            if mask.ndim != 1:
+                raise EngineError("SolidArray '%s' has %d components; it must be a scalar "
+                                  "(non-zero: solid)." % (name, mask.shape[1]))
+            mark(mask)
+        return solid if solid.any() else None
 
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
@@ -593,7 +626,10 @@ class RefractiveIndex(_Properties):
             model, name, holds_n, chosen = self._choose(names, pd)
             if model in ("GladstoneDaleMixture", "IdealGas", "Ciddor"):
                 n1, warnings = self._index_model(model, image, names, valid, chosen)
+                read = self._read
                 name = None
+            else:
+                read = [name]
             values = None if name is None else _point_array(image, name)
             if name is not None and (values is None or values.ndim != 1):
                 raise EngineError("RefractiveIndex needs the one-component point array %r; the "
@@ -614,11 +650,14 @@ class RefractiveIndex(_Properties):
                                                        float(self.MolarMass))
                                                        if self.Gas == "Custom" else self.Gas))
             dims = list(image.GetDimensions())
+            ambient = None
             if valid is not None and self.AmbientMode == "Extend":
                 _engine.extend_into_invalid(dims, valid, n1)
             elif valid is not None:
-                _engine.fill_ambient(dims, valid, n1, self.AmbientMode, self.AmbientValue)
+                ambient, _ = _engine.fill_ambient(dims, valid, n1, self.AmbientMode,
+                                                  self.AmbientValue)
             grad = _engine.gradient(dims, image.GetSpacing(), n1)
+            solid = self._solid(image, dims, valid)
         except EngineError as e:
             return self._fail(str(e))
         out.ShallowCopy(image)
@@ -630,12 +669,22 @@ class RefractiveIndex(_Properties):
         # Density), which the C++ filter keeps (and NumericalSchlieren prefers a density)
         out.GetPointData().SetActiveScalars(a.GetName())
         _add(out, "grad_n", grad)
+        if solid is not None:
+            out.GetPointData().RemoveArray("solid")
+            _add(out, "solid", solid)
+        # the C++ filter's field data (less its notes and per-model numbers)
+        if ambient is not None:
+            _field_number(out, "ambient_n_minus_1", ambient)
         _field_string(out, "index_model", model)
-        if valid is not None and self.BodyFromGrid:
-            warnings = list(warnings) + [
-                "BodyFromGrid: the Python front end finds no bodies in the grid's holes; the "
-                "points outside the input's cells are filled as AmbientMode %s says."
-                % self.AmbientMode]
+        from vtkmodules.vtkCommonCore import vtkStringArray
+        arrays = vtkStringArray()
+        arrays.SetName("index_arrays")
+        for r in read:
+            arrays.InsertNextValue(r)
+        out.GetFieldData().AddArray(arrays)
+        invalid = 0 if valid is None else int(np.count_nonzero(valid == 0))
+        _field_number(out, "valid_point_fraction", 1.0 - invalid / n1.size if n1.size else 0.0)
+        _field_number(out, "solid_points", 0 if solid is None else int(solid.sum()))
         for w in warnings:
             self._warn(w)
         return 1

@@ -223,6 +223,36 @@ else:
                   for n in ("n_minus_1", "grad_n")),
               "AmbientMode %s: n_minus_1 and grad_n bit for bit the C++ filter's" % mode)
     ref.SetAmbientMode(0)
+    # the fin as a body: the grid's hole the flow encloses, through the wall faces of
+    # Examples/bluntfin.py (the fin runs past x max, the plane y = 0 cuts it, it stands on z = 0
+    # and reaches the top), as the example's silhouette
+    boxed.AmbientMode = "Extend"
+    boxed.BodyWallFaces = [0, 1, 1, 0, 1, 1]
+    boxed.UpdatePipeline()
+    mine_boxed = servermanager.Fetch(boxed)
+    ref.SetBodyFromGrid(1)
+    ref.SetBodyWallFaces(0, 1, 1, 0, 1, 1)
+    ref.Update()
+    theirs_boxed = ref.GetOutput()
+    solid = array(theirs_boxed, "solid")
+    check(all(array(mine_boxed, n) is not None and array(theirs_boxed, n) is not None and
+              np.array_equal(array(mine_boxed, n).view(np.uint8),
+                             array(theirs_boxed, n).view(np.uint8))
+              for n in ("n_minus_1", "grad_n", "solid")) and solid is not None and
+          solid.sum() > 100,
+          "BodyFromGrid with BodyWallFaces 0 1 1 0 1 1: the fin's %s solid points, solid, n_minus_1 "
+          "and grad_n bit for bit the C++ filter's" % (None if solid is None else int(solid.sum())))
+    fields_of = (lambda d: {n: [d.GetFieldData().GetAbstractArray(n).GetVariantValue(i).ToString()
+                                for i in range(d.GetFieldData().GetAbstractArray(n)
+                                               .GetNumberOfValues())]
+                            for n in ("index_model", "index_arrays", "valid_point_fraction",
+                                      "solid_points")
+                            if d.GetFieldData().GetAbstractArray(n) is not None})
+    check(fields_of(mine_boxed) == fields_of(theirs_boxed) and len(fields_of(theirs_boxed)) == 4,
+          "its field data index_model, index_arrays, valid_point_fraction, solid_points: the C++ "
+          "filter's (%s)" % fields_of(mine_boxed))
+    ref.SetBodyFromGrid(0)
+    ref.SetBodyWallFaces(0, 0, 0, 0, 0, 0)
     ref.SetUseSamplingBounds(0)
     ref.Update()
     settings = dict(Resolution=[64, 48], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
@@ -350,7 +380,8 @@ wave = np.sin(7.0 * x) * np.cos(3.0 * x)
 for field, values in (("density", 1.2 + 0.3 * wave), ("T", 300.0 - 40.0 * wave),
                       ("p", 101.325 * (1.0 + 0.2 * wave)), ("mix", 0.5 + 0.4 * wave),
                       ("Y1", 0.05 + 0.04 * wave), ("Y2", 0.2 - 0.1 * wave),
-                      ("rh", 0.5 + 0.3 * wave), ("co2", 450.0 + 100.0 * wave)):
+                      ("rh", 0.5 + 0.3 * wave), ("co2", 450.0 + 100.0 * wave),
+                      ("blk", (wave > 0.3).astype(float))):
     a = numpy_support.numpy_to_vtk(values.astype(np.float32), deep=1)
     a.SetName(field)
     fields.GetPointData().AddArray(a)
@@ -395,6 +426,8 @@ MODELS = {
     "automatic_n": dict(Model="Automatic", _input="n"),
     "automatic_named_temperature": dict(Model="Automatic", InputArray="T", PressureUnit="kPa",
                                         _input="tp"),
+    # a solid mask array (SolidArray): its non-zero points are the output's solid
+    "solid_array": dict(Model="GladstoneDale", InputArray="density", SolidArray="blk"),
 }
 inputs = dict(fields=fields, scene=volume)
 for which, keep in (("tp", ("T", "p")), ("n", ())):
@@ -435,7 +468,10 @@ for case, props in MODELS.items():
     same = ok and all(
         array(mine, n) is not None and array(theirs, n) is not None and
         np.array_equal(array(mine, n).view(np.uint32), array(theirs, n).view(np.uint32))
-        for n in ("n_minus_1", "grad_n"))
+        for n in ("n_minus_1", "grad_n")) and (
+        "SolidArray" not in props or (array(mine, "solid") is not None and array(
+            theirs, "solid") is not None and np.array_equal(array(mine, "solid"),
+                                                            array(theirs, "solid"))))
     b = array(theirs, "n_minus_1")
     model = mine.GetFieldData().GetAbstractArray("index_model")
     check(same and "ERR" not in c.text,
