@@ -4,9 +4,12 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
 
   1. outputs are one vtkImageData for any input: RefractiveIndex on the blunt fin (PLOT3D, a
      multiblock) gives the C++ filter's grid (extent, origin, spacing), n - 1 and grad n bit for
-     bit, and SchlierenImage and NumericalSchlieren on it give images (not multiblocks; the C++
-     SchlierenImage's film, bit for bit); SchlierenImage straight on the multiblock
-     gives an empty image and the C++ filter's reason;
+     bit, also over the example's SamplingBounds, with AmbientMode DomainEdgeMedian and Value, and
+     with the fin as a body (BodyWallFaces: solid bit for bit, the field data's counts equal);
+     its information has the grid before RequestData (a Slice of the image has points), and
+     SchlierenImage and NumericalSchlieren on it give the C++ filters' images bit for bit (not
+     multiblocks); SchlierenImage straight on the multiblock gives an empty image and the C++
+     filter's reason;
   2. errors are VTK errors (ParaView's Output Messages), never a Python traceback; a refused value
      (Symmetry Planar, Resolution 1 x 1) leaves an empty output, and a good value set after it
      gives the image again;
@@ -19,9 +22,10 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      film of the same grid given with its extent from 0;
   6. RefractiveIndex's index models (Model Automatic's choice: n - 1 before a density, IdealGas
      from a temperature and a pressure, Passthrough of an array named n; GladstoneDaleMixture by
-     mixture fraction and by species, IdealGas with one gas, a mixture fraction and species with a custom gas, Ciddor with
-     constant and array humidity and CO2) give the C++ filter's n - 1 and grad n bit for bit on
-     the same arrays (the engine's ComputeFieldIndex through schlieren_index_model).
+     mixture fraction and by species, IdealGas with one gas, a mixture fraction and species with
+     a custom gas, Ciddor with constant and array humidity and CO2; a SolidArray) give the C++
+     filter's n - 1 and grad n bit for bit on the same arrays (the engine's ComputeFieldIndex
+     through schlieren_index_model).
 
     pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
         --example Examples/first_light.py --work DIR [--data ../shared/data]
