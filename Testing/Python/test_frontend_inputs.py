@@ -9,7 +9,8 @@ python.python_plugin_parity checks against the C++ plugin in pvpython, here in a
   - an image whose extent does not start at 0 gives the film of the same points given with their
     extent from 0 (python.python_plugin_parity: that film is the C++ filter's bit for bit);
   - a failed request leaves the output empty (no image from before) and LastError says why;
-  - an exception of any kind inside a request is an error message, not a traceback.
+  - an exception of any kind inside a request is an error message, not a traceback;
+  - RefractiveIndex's IdealGas (the engine's index models) against rho = p M / (R T).
 
     python test_frontend_inputs.py      (the package on PYTHONPATH, SCHLIEREN_ENGINE_LIBRARY set)
 """
@@ -144,6 +145,26 @@ check(one.GetNumberOfPoints() == 40 * 32 and one.GetOrigin() == two.GetOrigin() 
       np.array_equal(intensity(one), intensity(two)),
       "extent %s: the film of the same points with their extent from 0 (origin %s)"
       % (shifted.GetExtent(), one.GetOrigin()))
+
+# the index models in plain VTK: IdealGas air from T and p against rho = p M / (R T), n - 1 = K rho
+# (K 0.2256 cm^3/g, M 28.9641 g/mol, R 8.314462618 J/(mol K): the engine's table, ORACLES.md)
+tp = vtkImageData()
+tp.SetDimensions(6, 5, 4)
+t_values = np.linspace(250.0, 350.0, 120)
+p_values = np.linspace(0.9e5, 1.1e5, 120)
+for field, values in (("Temperature", t_values), ("Pressure", p_values)):
+    a = numpy_support.numpy_to_vtk(values.astype(np.float32), deep=1)
+    a.SetName(field)
+    tp.GetPointData().AddArray(a)
+ideal = schlieren.RefractiveIndex(Model="IdealGas", Gas="Air")
+_, out, text = run(ideal, tp)
+got = out.GetPointData().GetArray("n_minus_1")
+want = 0.2256e-3 * p_values.astype(np.float32) * 28.9641e-3 / (8.314462618 *
+                                                               t_values.astype(np.float32))
+err = np.max(np.abs(numpy_support.vtk_to_numpy(got) / want - 1.0)) if got is not None else 1.0
+check(got is not None and err < 1e-6 and "ERROR" not in text,
+      "IdealGas air (arrays Temperature, Pressure found by name): n - 1 = K p M / (R T) within "
+      "%.1e relative (float32)" % err)
 
 # a failed request leaves no image from before
 image = schlieren.SchlierenImage(**image_settings())
