@@ -500,17 +500,20 @@ with open(shim, "w") as f:
             "    inspect.getargspec = lambda f: A(*inspect.getfullargspec(f)[:4])\n"
             "sys.argv = sys.argv[1:]\n"
             "runpy.run_path(sys.argv[0], run_name='__main__')\n")
-pngs = {}
-for which, plugin in (("python", args.plugin), ("cxx", args.cxx_plugin)):
+pngs, runs = {}, {}
+for which, plugin in (("python", args.plugin), ("cxx", args.cxx_plugin)):  # the two at once
     pngs[which] = os.path.join(args.work, "first_light_%s.png" % which)
     if os.path.exists(pngs[which]):
         os.remove(pngs[which])
-    p = subprocess.run([args.pvpython, shim, args.example, "--plugin", plugin, "--output",
-                        pngs[which], "--backend", "CPU", "--resolution", "64", "--passes", "1"],
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+    runs[which] = subprocess.Popen(
+        [args.pvpython, shim, args.example, "--plugin", plugin, "--output", pngs[which],
+         "--backend", "CPU", "--resolution", "64", "--passes", "1"],
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+for which, p in runs.items():
+    output = p.communicate(timeout=300)[0]
     check(p.returncode == 0 and os.path.exists(pngs[which]),
           "Examples/first_light.py with the %s plugin (rc %d%s)"
-          % (which, p.returncode, "" if p.returncode == 0 else ": " + p.stdout[-400:]))
+          % (which, p.returncode, "" if p.returncode == 0 else ": " + output[-400:]))
 if all(os.path.exists(p) for p in pngs.values()):
     with open(pngs["python"], "rb") as f, open(pngs["cxx"], "rb") as g:
         check(f.read() == g.read(), "its PNG equals the C++ plugin's bit for bit")
