@@ -210,6 +210,23 @@ def _image_input(data, dims=None, bounds=None):
     return out, (None if mask is None or mask.all() else np.ascontiguousarray(mask, np.uint8))
 
 
+def _image_validity(image):
+    """The flow's points of an image input as the C++ filter's Validity reads them (a uint8 array,
+    1 in the flow), or None where all are: vtkValidPointMask 0 and hidden points (ghost array)
+    are outside it."""
+    n = image.GetNumberOfPoints()
+    valid = np.ones(n, np.uint8)
+    mask = _point_array(image, "vtkValidPointMask")
+    if mask is not None and mask.ndim == 1:
+        valid[mask == 0] = 0
+    ghosts = image.GetPointData().GetArray("vtkGhostType")
+    if ghosts is not None:
+        from vtkmodules.vtkCommonDataModel import vtkDataSetAttributes
+        g = numpy_support.vtk_to_numpy(ghosts)
+        valid[(g.astype(np.int64) & vtkDataSetAttributes.HIDDENPOINT) != 0] = 0
+    return None if valid.all() else valid
+
+
 def _point_array(image, name):
     a = image.GetPointData().GetArray(name)
     return None if a is None else numpy_support.vtk_to_numpy(a)
@@ -569,15 +586,14 @@ class RefractiveIndex(_Properties):
                               "(SamplingBounds: xmin xmax ymin ymax zmin zmax)" % b)
         return b
 
-    def _solid(self, image, dims, valid):
+    def _solid(self, image, dims, valid, resampled):
         """The output's `solid` (uint8, 1: body) as the C++ filter's ComputeSolid makes it, or
         None where there is no body: the holes of a resampled grid that the flow encloses
         (BodyFromGrid, with BodyWallFaces; the engine's), a `solid` array the input carries and
         SolidArray (non-zero, or at least 0.5 where resampled). Not here: the voids beside a
         mesh's walls found from its velocity (the C++ filter's BodiesBesideWalls)."""
-        resampled = valid is not None
         solid = np.zeros(int(np.prod(dims)), np.uint8)
-        if self.BodyFromGrid and resampled:
+        if self.BodyFromGrid and valid is not None:
             solid |= _engine.enclosed_invalid(dims, valid, self.BodyWallFaces)
 
         def mark(values):
@@ -618,8 +634,11 @@ class RefractiveIndex(_Properties):
                     data.GetNumberOfPoints() == 0:
                 raise EngineError("RefractiveIndex: the input (%s) has no points."
                                   % data.GetClassName())
-            image, valid = _image_input(data, None if isinstance(data, vtkImageData)
-                                        else self._dims(data), self._sampling_bounds())
+            resampled = not isinstance(data, vtkImageData)
+            image, valid = _image_input(data, None if not resampled else self._dims(data),
+                                        self._sampling_bounds())
+            if not resampled:
+                valid = _image_validity(image)
             pd = image.GetPointData()
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
             names = [n for n in names if n and n != "vtkValidPointMask"]
@@ -657,7 +676,7 @@ class RefractiveIndex(_Properties):
                 ambient, _ = _engine.fill_ambient(dims, valid, n1, self.AmbientMode,
                                                   self.AmbientValue)
             grad = _engine.gradient(dims, image.GetSpacing(), n1)
-            solid = self._solid(image, dims, valid)
+            solid = self._solid(image, dims, valid, resampled)
         except EngineError as e:
             return self._fail(str(e))
         out.ShallowCopy(image)
