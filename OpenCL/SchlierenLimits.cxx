@@ -189,8 +189,10 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("Tolerance", s.Tolerance, "in [0, 1] radians (0: automatic, 1 % of the largest deflection)");
   if (!(s.CutoffScale >= 0 && s.CutoffScale <= 1e12))
     OutOfRange("CutoffScale", s.CutoffScale, "in [0, 1e12] (0: automatic)");
-  if (!std::isfinite(s.KnifeAngle))
-    OutOfRange("KnifeAngle", s.KnifeAngle, "a finite angle in degrees");
+  // the SchlierenImage proxy's domain (Schlieren.xml), for every front end: outside it an
+  // error, not a wrap
+  if (!(s.KnifeAngle >= -180 && s.KnifeAngle <= 180))
+    OutOfRange("KnifeAngle", s.KnifeAngle, "in [-180, 180] degrees");
   const int frame = static_cast<int>(s.Frame);
   if (frame < 0 || frame > static_cast<int>(Framing::Silhouette))
     OutOfRange("Framing", frame, "0 (Volume) or 1 (Silhouette)");

@@ -29,6 +29,25 @@ from . import _engine
 from ._engine import EngineError
 
 
+def _is_number(v):
+    return isinstance(v, (int, float, np.integer, np.floating, np.bool_))
+
+
+def _closest(name, names):
+    """" (the closest known name: 'X'...)" for the known name nearest to `name`, or ""."""
+    import difflib
+    names = list(names)
+    same = [n for n in names if n.lower() == str(name).lower()]
+    if same:
+        return " (the closest known name: %r; names are case-sensitive)" % same[0]
+    near = difflib.get_close_matches(str(name), names, n=1, cutoff=0.75) or \
+        difflib.get_close_matches(str(name).lower(), [n.lower() for n in names], n=1, cutoff=0.75)
+    if near:
+        match = [n for n in names if n == near[0] or n.lower() == near[0]][0]
+        return " (the closest known name: %r)" % match
+    return ""
+
+
 class _Properties(VTKPythonAlgorithmBase):
     """Proxy properties as attributes and keyword arguments."""
 
@@ -54,28 +73,44 @@ class _Properties(VTKPythonAlgorithmBase):
 
     def __setattr__(self, name, value):
         if name in self._defaults:
-            self._values[name] = self._check(name, value)
+            try:
+                self._values[name] = self._check(name, value)
+            except (TypeError, ValueError) as e:
+                object.__setattr__(self, "LastError", str(e))
+                raise
             self.Modified()
-        elif not self.__dict__.get("_ready") or not name[:1].isupper() or \
-                hasattr(type(self), name):
+        elif not self.__dict__.get("_ready") or hasattr(type(self), name) or \
+                (not name[:1].isupper() and (name.startswith("_") or
+                                             not _closest(name, self._defaults))):
             # the base class's own attributes (InputType, ...) and private state
             object.__setattr__(self, name, value)
         else:
-            raise AttributeError("%s has no property %r; its properties: %s"
-                                 % (type(self).__name__, name, ", ".join(self._defaults)))
+            # a property's name mistyped or wrongly cased (cutoff=...): an error, not an
+            # attribute the trace never reads
+            raise AttributeError("%s has no property %r%s; its properties: %s"
+                                 % (type(self).__name__, name, _closest(name, self._defaults),
+                                    ", ".join(self._defaults)))
 
     def _check(self, name, value):
         default = self._defaults[name]
         if name in self._entries:
             if value not in self._entries[name]:
-                raise ValueError("%s %r is not one of: %s" % (name, value,
-                                                             ", ".join(self._entries[name])))
+                raise ValueError("%s %r is not one of: %s%s" % (
+                    name, value, ", ".join(self._entries[name]),
+                    _closest(str(value), self._entries[name])))
             return value
         if isinstance(default, (list, tuple)):
-            value = list(np.asarray(value).ravel().tolist())
+            try:
+                value = list(np.asarray(value).ravel().tolist())
+            except Exception:
+                raise ValueError("%s takes %d numbers, got %r" % (name, len(default), value))
             if len(value) != len(default):
                 raise ValueError("%s takes %d values, got %d" % (name, len(default), len(value)))
+            if all(_is_number(d) for d in default) and not all(_is_number(v) for v in value):
+                raise ValueError("%s takes %d numbers, got %r" % (name, len(default), value))
             return value
+        if _is_number(default) and not _is_number(value):
+            raise ValueError("%s is %r: it takes a number" % (name, value))
         return value
 
     def SetProperty(self, name, value):
@@ -284,8 +319,9 @@ class RefractiveScene(_Properties):
         origin, spacing = [0.0] * 3, [0.0] * 3
         for a in range(3):
             lo, hi = float(self.Bounds[2 * a]), float(self.Bounds[2 * a + 1])
-            if dims[a] < 1:
-                raise EngineError("Dimensions must be at least 1 along each axis; got %s." % dims)
+            if dims[a] < 1 or dims[a] > 2 ** 31 - 1:
+                raise EngineError("Dimensions must be at least 1 along each axis (and fit a "
+                                  "32-bit integer); got %s." % dims)
             if dims[a] > 1 and not hi > lo:
                 raise EngineError("Bounds along axis %d are [%g, %g]: the max must exceed the "
                                   "min." % (a, lo, hi))
@@ -618,10 +654,25 @@ class RefractiveIndex(_Properties):
 
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
-        if min(dims) > 0:
-            return dims
-        return _engine.automatic_dimensions(self._sampling_bounds() or _bounds(data),
-                                            int(self.AutomaticDimension))
+        automatic = min(dims) <= 0
+        if automatic:
+            dims = _engine.automatic_dimensions(self._sampling_bounds() or _bounds(data),
+                                                int(self.AutomaticDimension))
+        # the resampled image is this process's to allocate: refused before, as the C++ filter
+        # does (its arrays, the mask, and the engine's per-point share; a composite input: a few
+        # double arrays, as the C++ filter counts it)
+        if isinstance(data, vtkDataSet):
+            pd = data.GetPointData()
+            per_point = 1.0 + 21.0 + sum(
+                pd.GetArray(i).GetNumberOfComponents() * pd.GetArray(i).GetDataTypeSize()
+                for i in range(pd.GetNumberOfArrays()) if pd.GetArray(i) is not None)
+        else:
+            per_point = 1.0 + 21.0 + 64.0
+        _engine.check_memory(float(dims[0]) * dims[1] * dims[2] * per_point,
+                             "Resampling onto %d x %d x %d points" % tuple(dims),
+                             "Lower AutomaticDimension (points along the longest side)."
+                             if automatic else "Lower SamplingDimensions.")
+        return dims
 
     def RequestData(self, request, inInfo, outInfo):
         data = vtkDataObject.GetData(inInfo[0])
@@ -874,6 +925,15 @@ class NumericalSchlieren(_Properties):
         return 1
 
 
+def _python_advice(message):
+    """The engine's message with its advice made this front end's: its RefractiveIndex has
+    Symmetry None only (the engine's advice names the C++ plugin's Symmetry)."""
+    if "Symmetry" in message:
+        message += (" (Symmetry is the C++ plugin's RefractiveIndex: the Python front end's "
+                    "takes None only; give SchlierenImage a 3D volume here.)")
+    return message
+
+
 def _image_properties():
     props = _engine.properties()
     return ({p["name"]: p["default"] for p in props},
@@ -939,7 +999,7 @@ class SchlierenImage(_Properties):
             report = s.trace()
         except EngineError as e:
             object.__setattr__(self, "LastReport", getattr(e, "report", None))
-            return self._fail(str(e))
+            return self._fail(_python_advice(str(e)))
         object.__setattr__(self, "LastReport", report)
         object.__setattr__(self, "LastError", "")
         for note in report["notes"]:
@@ -993,7 +1053,7 @@ class SchlierenImage(_Properties):
                 self._session.set(name, value)
             size, origin, pixel = self._session.plan_film(dims, first, spacing)
         except EngineError as err:
-            return self._fail(str(err))
+            return self._fail(_python_advice(str(err)))
         info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
         info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
         info.Set(vtkImageData.ORIGIN(), origin[0], origin[1], 0.0)
