@@ -5,6 +5,7 @@
 #define SCHLIEREN_C_BUILDING
 #include "schlieren_c.h"
 
+#include "SchlierenBodies.h"
 #include "SchlierenEngine.h"
 #include "SchlierenLimits.h"
 #include "SchlierenIndexModels.h"
@@ -1304,6 +1305,187 @@ int schlieren_field_index(const char* model, const float* input, int64_t count, 
   });
 }
 
+namespace
+{
+/** An entry's text among `names` (its index), else an Error naming the property and the entries. */
+int EntryOf(const std::string& property, const std::string& text, std::vector<std::string> names)
+{
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == text)
+      return static_cast<int>(i);
+  std::string all;
+  for (const std::string& n : names)
+    all += (all.empty() ? "" : ", ") + n;
+  throw schlieren::Error(property + " '" + text + "' is not one of: " + all + ".");
+}
+
+/** `count` numbers of a property's text, else an Error naming it. */
+std::vector<double> NumbersOf(const std::string& property, const std::string& text, std::size_t count)
+{
+  std::vector<double> v;
+  if (!ParseNumbers(text.c_str(), v) || v.size() != count)
+    throw schlieren::Error(property + " '" + text + "': " + std::to_string(count) +
+      (count == 1 ? " number" : " numbers") + " expected.");
+  return v;
+}
+
+/** A gas by the proxy's number (-1 Custom with K and M, 0 Air, 1 He, ...: SpeciesGases). */
+schlieren::GasChoice GasByNumber(const std::string& property, double number, double K, double M)
+{
+  const int g = static_cast<int>(number);
+  if (g != number || g < -1 || g >= static_cast<int>(schlieren::Gas::NumberOfGases))
+    throw schlieren::Error(property + ": " + std::to_string(number) + " is not a gas number (-1 "
+      "Custom, 0 to " + std::to_string(static_cast<int>(schlieren::Gas::NumberOfGases) - 1) + ").");
+  return g < 0 ? schlieren::GasChoice::Typed(K, M)
+               : schlieren::GasChoice::Table(static_cast<schlieren::Gas>(g));
+}
+} // namespace
+
+int schlieren_index_model(const char* settings, int64_t count, int number_of_arrays,
+  const char* const* roles, const float* const* arrays, const unsigned char* valid,
+  float* n_minus_1, const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    if (count < 0)
+      throw schlieren::Error("schlieren_index_model: count is " + std::to_string(count) +
+        ": the number of points in every array and n_minus_1 (>= 0).");
+    if (!settings || (count > 0 && !n_minus_1) || number_of_arrays < 0 ||
+      (number_of_arrays > 0 && (!roles || !arrays)))
+      throw schlieren::Error("schlieren_index_model: settings, the arrays and n_minus_1 must be "
+                             "given.");
+    // the proxy's properties, as Name=value lines (entries by their text)
+    std::map<std::string, std::string> p;
+    std::istringstream lines(settings);
+    for (std::string line; std::getline(lines, line);)
+    {
+      const std::size_t eq = line.find('=');
+      if (line.empty())
+        continue;
+      if (eq == std::string::npos)
+        throw schlieren::Error("schlieren_index_model: '" + line + "' is not Name=value.");
+      p[line.substr(0, eq)] = line.substr(eq + 1);
+    }
+    static const std::vector<std::string> known = { "Model", "PassthroughHoldsN", "Gas",
+      "GladstoneDaleConstant", "MolarMass", "MixtureComposition", "IdealGasComposition",
+      "MixtureGas0", "MixtureGas1", "NumberOfSpecies", "SpeciesGases", "SpeciesGladstoneDale",
+      "SpeciesMolarMass", "BalanceGas", "BalanceGladstoneDale", "BalanceMolarMass",
+      "DensityReference", "TemperatureUnit", "TemperatureReference", "PressureUnit",
+      "PressureReference", "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength" };
+    for (const auto& kv : p)
+      if (std::find(known.begin(), known.end(), kv.first) == known.end())
+        throw schlieren::Error("schlieren_index_model: unknown setting '" + kv.first + "'.");
+    auto text = [&](const char* name, const char* fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? std::string(fallback) : it->second;
+    };
+    auto number = [&](const char* name, double fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? fallback : NumbersOf(name, it->second, 1)[0];
+    };
+    auto gas = [&](const char* name, const std::string& value, double K, double M) {
+      if (value == "Custom")
+        return schlieren::GasChoice::Typed(K, M);
+      try
+      {
+        return schlieren::GasChoice::Table(schlieren::ParseGas(value));
+      }
+      catch (const schlieren::Error& e)
+      {
+        throw schlieren::Error(std::string(name) + ": " + e.what());
+      }
+    };
+    schlieren::FieldModel m;
+    m.Model = static_cast<schlieren::IndexModel>(EntryOf("Model", text("Model", "Passthrough"),
+      { "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas", "Ciddor" }));
+    m.IndexIsN = number("PassthroughHoldsN", 0) != 0;
+    m.SingleGas = gas("Gas", text("Gas", "Air"), number("GladstoneDaleConstant", 2.256e-4),
+      number("MolarMass", 0.0289641));
+    if (m.Model == schlieren::IndexModel::GladstoneDaleMixture)
+      m.Mixture = static_cast<schlieren::Composition>(1 +
+        EntryOf("MixtureComposition", text("MixtureComposition", "MixtureFraction"),
+          { "MixtureFraction", "Species" }));
+    else if (m.Model == schlieren::IndexModel::IdealGas)
+      m.Mixture = static_cast<schlieren::Composition>(EntryOf("IdealGasComposition",
+        text("IdealGasComposition", "Gas"), { "Gas", "MixtureFraction", "Species" }));
+    else
+      m.Mixture = schlieren::Composition::SingleGas;
+    m.Gas0 = gas("MixtureGas0", text("MixtureGas0", "Air"), 0, 0).Preset;
+    m.GasF = gas("MixtureGas1", text("MixtureGas1", "He"), 0, 0).Preset;
+    m.NumberOfSpecies = static_cast<int>(number("NumberOfSpecies", 1));
+    const std::vector<double> gases = NumbersOf("SpeciesGases", text("SpeciesGases", "6 8 1 5"), 4);
+    const std::vector<double> K =
+      NumbersOf("SpeciesGladstoneDale", text("SpeciesGladstoneDale", "2.256e-4 2.256e-4 2.256e-4 2.256e-4"), 4);
+    const std::vector<double> M =
+      NumbersOf("SpeciesMolarMass", text("SpeciesMolarMass", "0.0289641 0.0289641 0.0289641 0.0289641"), 4);
+    for (int s = 0; s < schlieren::MaxSpecies; ++s)
+      m.Species[s] = GasByNumber("SpeciesGases", gases[s], K[s], M[s]);
+    const std::string balance = text("BalanceGas", "Air");
+    m.HasBalance = balance != "None";
+    m.Balance = m.HasBalance ? gas("BalanceGas", balance, number("BalanceGladstoneDale", 2.256e-4),
+                                 number("BalanceMolarMass", 0.0289641))
+                             : schlieren::GasChoice::Table(schlieren::Gas::Air);
+    m.DensityReference = number("DensityReference", 1.0);
+    m.TemperatureReference = number("TemperatureReference", 1.0);
+    m.TemperatureUnits = static_cast<schlieren::TemperatureUnit>(
+      EntryOf("TemperatureUnit", text("TemperatureUnit", "Kelvin"), { "Kelvin", "Celsius" }));
+    m.PressureReference = number("PressureReference", 1.0);
+    m.PressureOffset = number("PressureOffset", 0.0);
+    m.PressureUnits = static_cast<schlieren::PressureUnit>(
+      EntryOf("PressureUnit", text("PressureUnit", "Pa"), { "Pa", "kPa", "atm", "bar" }));
+    m.Humidity = number("Humidity", 0.0);
+    m.HumidityKind = static_cast<schlieren::HumidityMeasure>(EntryOf("HumidityMeasure",
+      text("HumidityMeasure", "RelativeHumidity"), { "RelativeHumidity", "WaterMoleFraction" }));
+    m.CO2 = number("CO2", 450.0);
+    m.Wavelength = number("Wavelength", 632.8);
+    // the arrays, by role
+    schlieren::FieldArrays a;
+    a.Count = static_cast<std::size_t>(count);
+    a.Valid = valid;
+    for (int i = 0; i < number_of_arrays; ++i)
+    {
+      if (!roles[i] || !arrays[i])
+        throw schlieren::Error("schlieren_index_model: array " + std::to_string(i) +
+          " has no role or no values.");
+      const std::string role = roles[i];
+      // "role:name": the name is the input array's, for messages
+      const std::size_t colon = role.find(':');
+      const std::string kind = role.substr(0, colon);
+      const std::string name = colon == std::string::npos ? kind : role.substr(colon + 1);
+      schlieren::NamedArray* slot = nullptr;
+      if (kind == "index")
+        slot = &a.Index;
+      else if (kind == "density")
+        slot = &a.Density;
+      else if (kind == "temperature")
+        slot = &a.Temperature;
+      else if (kind == "pressure")
+        slot = &a.Pressure;
+      else if (kind == "mixture_fraction")
+        slot = &a.MixtureFraction;
+      else if (kind.size() == 8 && kind.compare(0, 7, "species") == 0 && kind[7] >= '1' &&
+        kind[7] <= '4')
+        slot = &a.Species[kind[7] - '1'];
+      else if (kind == "humidity")
+        slot = &a.Humidity;
+      else if (kind == "co2")
+        slot = &a.CO2;
+      else
+        throw schlieren::Error("schlieren_index_model: unknown array role '" + kind + "' (index, "
+          "density, temperature, pressure, mixture_fraction, species1-4, humidity, co2).");
+      slot->Data = arrays[i];
+      slot->Name = name;
+    }
+    const schlieren::FieldReport r = schlieren::ComputeFieldIndex(a, m, n_minus_1);
+    Returned.clear();
+    for (const std::string& w : r.Warnings)
+      Returned += w + "\n";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
 int schlieren_extend_into_invalid(const int dims[3], const unsigned char* valid, int64_t count,
   float* n_minus_1, int64_t* filled)
 {
@@ -1316,6 +1498,68 @@ int schlieren_extend_into_invalid(const int dims[3], const unsigned char* valid,
     const std::size_t done = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
     if (filled)
       *filled = static_cast<int64_t>(done);
+  });
+}
+
+int schlieren_fill_ambient(const int dims[3], const unsigned char* valid, int64_t count_given,
+  float* n_minus_1, const char* mode, double value, double* ambient, int64_t* filled)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_fill_ambient";
+    const std::int64_t points = GridPoints(f, dims);
+    CheckArray(f, "valid (and n_minus_1)", valid, count_given, points,
+      "a grid of " + GridText(dims) + " points", false);
+    if (!n_minus_1 || !mode)
+      throw schlieren::Error("schlieren_fill_ambient: n_minus_1 and mode must be given.");
+    const std::string m = mode;
+    const std::size_t count = static_cast<std::size_t>(points);
+    double used = std::numeric_limits<double>::quiet_NaN();
+    std::size_t n = 0;
+    if (m == "Extend")
+      n = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
+    else if (m == "DomainEdgeMedian" || m == "Value")
+    {
+      used = value;
+      if (m == "DomainEdgeMedian")
+      {
+        // the RefractiveIndex filter's: the median of n - 1 at the flow domain's edge, else (no
+        // valid point touches an invalid one) of every valid point
+        std::vector<float> edge;
+        schlieren::CollectDomainEdge(dims, valid, n_minus_1, nullptr, edge);
+        used = schlieren::Median(edge);
+        if (!std::isfinite(used))
+        {
+          std::vector<float> values;
+          for (std::size_t i = 0; i < count; ++i)
+            if (valid[i])
+              values.push_back(n_minus_1[i]);
+          used = schlieren::Median(values);
+        }
+      }
+      n = schlieren::FillInvalid(count, valid, used, n_minus_1);
+    }
+    else
+      throw schlieren::Error("AmbientMode '" + m + "' is not one of: Extend, DomainEdgeMedian, Value.");
+    if (ambient)
+      *ambient = used;
+    if (filled)
+      *filled = static_cast<int64_t>(n);
+  });
+}
+
+int schlieren_enclosed_invalid(const int dims[3], const unsigned char* valid, int64_t count,
+  const int wall_faces[6], unsigned char* solid, int64_t* solid_points)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_enclosed_invalid";
+    const std::int64_t points = GridPoints(f, dims);
+    CheckArray(f, "valid (and solid)", valid, count, points,
+      "a grid of " + GridText(dims) + " points", false);
+    if (!solid)
+      throw schlieren::Error("schlieren_enclosed_invalid: solid is NULL: it must hold `count` bytes.");
+    const std::size_t n = schlieren::EnclosedInvalidPoints(dims, valid, wall_faces, solid);
+    if (solid_points)
+      *solid_points = static_cast<int64_t>(n);
   });
 }
 

@@ -187,11 +187,43 @@ SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input,
   int index_is_n, double density_reference, const char* gas, float* n_minus_1,
   const char** report);
 
+/**
+ * RefractiveIndex's index models, every one (the engine's ComputeFieldIndex, which the C++ filter
+ * calls): `settings` are the proxy's properties as "Name=value" lines (entries by their text:
+ * Model, PassthroughHoldsN, Gas, GladstoneDaleConstant, MolarMass, MixtureComposition,
+ * IdealGasComposition, MixtureGas0, MixtureGas1, NumberOfSpecies, SpeciesGases (4 numbers: -1
+ * Custom, 0 Air, 1 He, ...), SpeciesGladstoneDale, SpeciesMolarMass (4 each), BalanceGas (None,
+ * Custom or a gas), BalanceGladstoneDale, BalanceMolarMass, DensityReference, TemperatureUnit,
+ * TemperatureReference, PressureUnit, PressureReference, PressureOffset, Humidity,
+ * HumidityMeasure, CO2, Wavelength; absent: the proxy's default). `number_of_arrays` arrays of
+ * `count` floats, each with a role ("index", "density", "temperature", "pressure",
+ * "mixture_fraction", "species1".."species4", "humidity", "co2"; "role:name" names the input array
+ * in messages); `valid` (may be NULL) marks the points to compute. Writes n - 1 of the valid
+ * points; `report` (may be NULL) gets the warnings as lines.
+ */
+SCHLIEREN_C_API int schlieren_index_model(const char* settings, int64_t count,
+  int number_of_arrays, const char* const* roles, const float* const* arrays,
+  const unsigned char* valid, float* n_minus_1, const char** report);
 /** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
  * RefractiveIndex filter's AmbientMode Extend); `valid` and `n_minus_1` hold `count` values (the
  * grid's points); `filled` (may be NULL) gets how many. */
 SCHLIEREN_C_API int schlieren_extend_into_invalid(const int dims[3], const unsigned char* valid,
   int64_t count, float* n_minus_1, int64_t* filled);
+/** The points with valid[i] == 0 filled as RefractiveIndex's AmbientMode says: "Extend" (as
+ * schlieren_extend_into_invalid), "DomainEdgeMedian" (the median of n - 1 at the flow domain's
+ * edge) or "Value" (`value`). `valid` and `n_minus_1` hold `count` values (the grid's points);
+ * `ambient` (may be NULL) gets the value used (NaN for Extend), `filled` (may be NULL) how many
+ * points. */
+SCHLIEREN_C_API int schlieren_fill_ambient(const int dims[3], const unsigned char* valid,
+  int64_t count, float* n_minus_1, const char* mode, double value, double* ambient,
+  int64_t* filled);
+/** RefractiveIndex's bodies from the grid's holes (BodyFromGrid): marks in `solid` (a byte per
+ * point) the points with valid[i] == 0 whose region of invalid points reaches no face of the grid
+ * but those with wall_faces[f] != 0 (xmin, xmax, ymin, ymax, zmin, zmax; may be NULL: none).
+ * `valid` and `solid` hold `count` values (the grid's points); `solid_points` (may be NULL) gets
+ * how many are solid. */
+SCHLIEREN_C_API int schlieren_enclosed_invalid(const int dims[3], const unsigned char* valid,
+  int64_t count, const int wall_faces[6], unsigned char* solid, int64_t* solid_points);
 /** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
  * side, about the same spacing along the others. */
 SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);

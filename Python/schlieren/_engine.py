@@ -322,6 +322,31 @@ def field_index(model, values, index_is_n=False, density_reference=1.0, gas=None
     return out, [w for w in _text(report.value).split("\n") if w]
 
 
+def index_model(settings, arrays, valid=None):
+    """RefractiveIndex's index models, every one (the C interface's schlieren_index_model):
+    `settings` the proxy's properties by name (entries by their text), `arrays` role -> values
+    (roles: index, density, temperature, pressure, mixture_fraction, species1-4, humidity, co2;
+    "role:name" names the input array in messages). Returns (n - 1 float32, warnings)."""
+    f = _sig("schlieren_index_model", ctypes.c_int, ctypes.c_char_p, ctypes.c_int64, ctypes.c_int,
+             ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(_f32p), _u8p,
+             _f32p, ctypes.POINTER(ctypes.c_char_p))
+    kept = [np.ascontiguousarray(v, dtype=np.float32) for v in arrays.values()]
+    count = kept[0].size if kept else (0 if valid is None else np.asarray(valid).size)
+    for role, a in zip(arrays, kept):
+        if a.size != count:
+            raise EngineError("index_model: array %s has %d values, not %d" % (role, a.size,
+                                                                              count))
+    roles = (ctypes.c_char_p * max(1, len(kept)))(*[r.encode() for r in arrays])
+    ptrs = (_f32p * max(1, len(kept)))(*[a.ctypes.data_as(_f32p) for a in kept])
+    v, vp = _bytes(valid)
+    out = np.zeros(count, np.float32)
+    text = "\n".join("%s=%s" % (k, _value_text(x)) for k, x in settings.items()).encode()
+    report = ctypes.c_char_p()
+    _check(f(text, count, len(kept), roles, ptrs, vp, out.ctypes.data_as(_f32p),
+             ctypes.byref(report)))
+    return out, [w for w in _text(report.value).split("\n") if w]
+
+
 def extend_into_invalid(dims, valid, n_minus_1):
     """Fills n - 1 (float32, changed in place) where valid == 0 by the engine's smooth
     continuation of the flow; returns how many points were filled."""
@@ -338,6 +363,38 @@ def extend_into_invalid(dims, valid, n_minus_1):
                                               n_minus_1.ctypes.data_as(_f32p),
                                               ctypes.byref(filled)))
     return filled.value
+
+
+def fill_ambient(dims, valid, n_minus_1, mode, value=0.0):
+    """Fills n - 1 (float32, in place) where valid == 0 as RefractiveIndex's AmbientMode says
+    (Extend, DomainEdgeMedian, Value); returns (the value used, NaN for Extend; points filled)."""
+    f = _sig("schlieren_fill_ambient", ctypes.c_int, _c_int3, _u8p, ctypes.c_int64, _f32p,
+             ctypes.c_char_p, ctypes.c_double, ctypes.POINTER(ctypes.c_double),
+             ctypes.POINTER(ctypes.c_int64))
+    n_minus_1 = np.asarray(n_minus_1)
+    if n_minus_1.dtype != np.float32 or not n_minus_1.flags.c_contiguous:
+        raise ArgumentTypeError("n_minus_1 must be a C-contiguous float32 array (it is filled in "
+                                "place)")
+    _point_array(n_minus_1, "n_minus_1", dims, np.float32)  # the shape and size checks
+    v = _point_array(valid, "valid", dims, np.uint8, mask=True)
+    used, filled = ctypes.c_double(0.0), ctypes.c_int64(0)
+    _check(f(_grid(dims, [0] * 3, [1] * 3)[0], _up(v), v.size, n_minus_1.ctypes.data_as(_f32p),
+             mode.encode(), float(value), ctypes.byref(used), ctypes.byref(filled)))
+    return used.value, filled.value
+
+
+def enclosed_invalid(dims, valid, wall_faces=None):
+    """RefractiveIndex's bodies from the grid's holes: a uint8 array, 1 at the invalid points that
+    the flow encloses (their region reaches no face of the grid but the wall faces)."""
+    f = _sig("schlieren_enclosed_invalid", ctypes.c_int, _c_int3, _u8p, ctypes.c_int64,
+             ctypes.POINTER(ctypes.c_int), _u8p, ctypes.POINTER(ctypes.c_int64))
+    v = _point_array(valid, "valid", dims, np.uint8, mask=True)
+    solid = np.zeros(v.size, np.uint8)
+    walls = None if wall_faces is None else (ctypes.c_int * 6)(*[int(w) for w in wall_faces])
+    count = ctypes.c_int64(0)
+    _check(f(_grid(dims, [0] * 3, [1] * 3)[0], _up(v), v.size, walls,
+             solid.ctypes.data_as(_u8p), ctypes.byref(count)))
+    return solid
 
 
 def automatic_dimensions(bounds, longest):
