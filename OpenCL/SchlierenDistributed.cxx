@@ -158,12 +158,12 @@ bool HeldValues(const int e[6], const T* values, const int held[6],
 }
 
 // The longest base step (voxels of the smallest spacing) a trace with settings s takes: Auto's
-// candidates reach 8 voxels trilinear and 64 tricubic; the step-doubling estimate twice the step.
+// candidates reach 64 voxels on the pieces (their ghost layers bound them there: issue 50, the
+// whole volume's Auto goes up to its diagonal, and a choice up to 64 voxels is the same on any
+// number of ranks); the step-doubling estimate twice the step.
 double LongestStep(const TraceSettings& s)
 {
-  const bool cubic = s.Recon != Reconstruction::Trilinear;
-  const double step =
-    s.Method == Integrator::Auto ? std::max(s.StepSize, cubic ? 64.0 : 8.0) : s.StepSize;
+  const double step = s.Method == Integrator::Auto ? std::max(s.StepSize, 64.0) : s.StepSize;
   return step * (s.EstimateError ? 2.0 : 1.0);
 }
 } // namespace
@@ -1224,6 +1224,11 @@ TraceSettings ResolveAutoDistributed(const DistributedVolume& dv, const TraceSet
   grid.HasLevels = dv.Octree;
   grid.HasSmooth = dv.HighOrder;
   grid.HasSolid = dv.HasSolid;
+  // the candidates' steps stay within what the pieces' ghost layers hold
+  grid.StepFits = [&dv](const TraceSettings& t) {
+    return dv.Ghost >= GhostPointsFor(t, dv.Octree ? dv.LevelMax : 0) &&
+      (t.Recon != Reconstruction::Cubic || dv.SmoothLevelMax >= SmoothLevelsFor(t));
+  };
   return ResolveAutoWith(grid, s, choice,
     [&](const TraceSettings& t, const std::vector<float>& ab) {
       // the pilot's line-of-sight rays handed on like the others: its records, hence its

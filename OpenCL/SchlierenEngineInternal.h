@@ -94,6 +94,9 @@ struct AutoVolume
 {
   Volume Grid;
   bool HasLevels = false, HasSmooth = false, HasSolid = false;
+  /** Whether a candidate's settings can be traced at all (the pieces' ghost layers hold its
+   * step); empty: every step up to the volume's diagonal can. */
+  std::function<bool(const TraceSettings&)> StepFits;
 };
 /** Traces the pilot's rays (film points, pairs) with settings t: TraceRays, or a distributed trace
  * that returns the same records on every rank (so that every rank makes the same choice). */
