@@ -45,7 +45,13 @@ bool Comparable(const RayRecord& a, const RayRecord& b)
 }
 } // namespace
 
-TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice)
+double AutoPiecesReach(bool cubic)
+{
+  return cubic ? 64.0 : 8.0;
+}
+
+TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice,
+  bool piecesBound)
 {
   if (in.Method == Integrator::Auto || in.Recon == Reconstruction::Auto)
     CheckVolume(volume);
@@ -54,6 +60,7 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   grid.HasLevels = volume.Levels != nullptr;
   grid.HasSmooth = volume.Smooth != nullptr;
   grid.HasSolid = volume.Solid != nullptr;
+  grid.PiecesBound = piecesBound;
   return ResolveAutoWith(grid, in, choice,
     [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); });
 }
@@ -213,7 +220,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     t.StepSize = step;
     t.Recon = rc;
     t.EstimateError = false;
-    if (grid.StepFits && !grid.StepFits(t))
+    if (grid.PiecesBound && step > AutoPiecesReach(rc == Reconstruction::Cubic))
     {
       boundByPieces = true;
       return false;
@@ -394,8 +401,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   rep << "Auto chose " << IntegratorName(c.Method) << " at " << c.StepSize << " voxel: expected "
       << "deflection error " << c.ExpectedError << " rad (tolerance " << tol << " rad), landing error "
       << c.ExpectedLandingError << " pixel, " << c.SamplesPerRay << " samples per ray (pilot of "
-      << ab.size() / 2 << " rays, " << tried << " candidates up to " << ToText(maxStep)
-      << " voxel, " << static_cast<int>(ms) << " ms)";
+      << ab.size() / 2 << " rays, " << static_cast<int>(ms) << " ms)";
   if (c.Recon != Reconstruction::Trilinear || autoRecon)
     rep << "; reconstruction " << ReconstructionName(c.Recon);
   if (autoRecon && tryCubic)
@@ -407,8 +413,10 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
         << " rad asks no more than the pilot can measure)";
   else if (!c.Met)
     rep << "; no candidate met the tolerance: using the most accurate one";
-  if (boundByPieces)
-    rep << "; steps bounded by the pieces' ghost layers (distributed tracing)";
+  // (the pieces' bound is not in the report, which is one process's where the choice is: the
+  // session says it apart, AutoChoice::PiecesBound)
+  c.PiecesBound = boundByPieces;
+  c.Candidates = tried;
   if (in.UseOctree && grid.HasLevels)
     rep << "; octree " << (c.UseOctree ? "on" : "off") << ": it skips "
         << static_cast<int>(std::lround(100 * c.OctreeSaving)) << " % of the samples"

@@ -344,8 +344,17 @@ void TraceSession::ClearVolume()
 //------------------------------------------------------------------------------
 AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings)
 {
+  std::ostringstream stamp;
+  stamp << volume.Stamp;
+  return this->ResolveKept(parallel, volume, settings, stamp.str(),
+    [&parallel, &volume](TraceSettings& s) { return ResolveOnRankZero(parallel, volume, s); });
+}
+
+AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings,
+  const std::string& volumeKey, const std::function<AutoChoice(TraceSettings&)>& resolve)
+{
   if (settings.Method != Integrator::Auto && settings.Recon != Reconstruction::Auto)
-    return ResolveOnRankZero(parallel, volume, settings);
+    return resolve(settings);
   // what the choice depends on besides the view and the film's size: the volume and every other
   // setting
   TraceSettings k = settings;
@@ -359,7 +368,7 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
   k.Jitter = false;
   k.Pattern = JitterPattern::Random;
   std::ostringstream key;
-  key << k.PhotonKey() << " | " << volume.Stamp;
+  key << k.PhotonKey() << " | " << volumeKey;
   // the view of the last pilot, and of the last update
   bool pilotView = true, lastView = true;
   for (int a = 0; a < 3; ++a)
@@ -426,7 +435,7 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
     return c;
   }
   const TraceSettings asked = settings;
-  AutoChoice c = ResolveOnRankZero(parallel, volume, settings);
+  AutoChoice c = resolve(settings);
   ++this->PilotsRun;
   this->AutoKey = key.str();
   this->AutoTraced = settings;

@@ -234,6 +234,10 @@ private:
    * within half its pixel, and for any other change (the volume, the tolerance, the cutoff...).
    */
   AutoChoice ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings);
+  /** The same for a volume whose version is `volumeKey` (not volume.Stamp: the pieces' key),
+   * resolved by `resolve` (the pieces' pilot, collective) where a pilot runs. */
+  AutoChoice ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings,
+    const std::string& volumeKey, const std::function<AutoChoice(TraceSettings&)>& resolve);
   /** Framing Silhouette: sets settings.FilmExtent from the frame kept or found now (see
    * TraceSettings::Frame); out says which; `say`: add the note (rank 0). The frame is found by
    * `find` (FrameSilhouette of the volume, or of the pieces: collective), again where any rank

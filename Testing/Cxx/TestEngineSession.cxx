@@ -414,5 +414,49 @@ int main()
     session.Update(p, piece, s, e);
     CHECK(session.Pilots() == 4, "Auto: another view pilots again at rest");
   }
+  // the same on the pieces (2 in-process ranks, TraceInPieces): the pilot, traced on the pieces
+  // with rays handed on, is kept across a seed and a film size and runs again for a tolerance
+  {
+    std::vector<int> pilots(2, -1), kept(2, -1), again(2, -1);
+    std::vector<std::string> errors(2), reports(2);
+    RunInProcessRanks(2, [&](Parallel& p) {
+      const int r = p.Rank();
+      VolumePiece piece = Slab(r, 2, 2, true);
+      piece.Load = [&w, piece](PieceValues& v) {
+        Cut(w, piece, v, true);
+        return std::string();
+      };
+      TraceSession session;
+      TraceSettings s = Settings(1, true);
+      s.InPieces = true;
+      SessionImage a, b;
+      try
+      {
+        session.Update(p, piece, s, a);
+        pilots[r] = session.Pilots();
+        s.Seed = 12;
+        s.Resolution[0] = 20;
+        s.Resolution[1] = 16;
+        session.Update(p, piece, s, b);
+        kept[r] = session.Pilots();
+        reports[r] = b.Choice.Report;
+        s.Tolerance = 1e-5;
+        session.Update(p, piece, s, b);
+        again[r] = session.Pilots();
+      }
+      catch (const Error& e)
+      {
+        errors[r] = e.what();
+      }
+    });
+    for (int r = 0; r < 2; ++r)
+    {
+      CHECK(errors[r].empty(), "pieces, Auto: no error: " + errors[r]);
+      CHECK(pilots[r] == 1 && kept[r] == 1 && again[r] == 2,
+        "pieces, Auto: a seed and a film keep the pilot, a tolerance runs it (rank " +
+          std::to_string(r) + ": " + std::to_string(pilots[r]) + ", " + std::to_string(kept[r]) +
+          ", " + std::to_string(again[r]) + "): " + reports[r]);
+    }
+  }
   return schtest::Finish();
 }
