@@ -136,11 +136,13 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
         triError = std::max(triError,
           double(std::hypot(refTri[k].DeflX - refCubic[k].DeflX, refTri[k].DeflY - refCubic[k].DeflY)));
     c.TrilinearError = triError;
-    // trilinear only where its own error is within the tolerance: its candidates then answer
-    // for it on top of their own (err + triError), so that the cheaper reconstruction is taken
-    // wherever that sum meets the tolerance (half the tolerance, before issue 50, left the
-    // trilinear out where a line of sight on it met the tolerance at a third of the cost)
-    if (triError > tol)
+    // Integrator Auto: trilinear only where its own error is within the tolerance: its
+    // candidates then answer for it on top of their own (err + triError), so that the cheaper
+    // reconstruction is taken wherever that sum meets the tolerance (half the tolerance, before
+    // issue 50, left the trilinear out where a line of sight on it met the tolerance at a third
+    // of the cost). A fixed integrator, whose error is not measured: where the trilinear's own
+    // leaves at least half the tolerance to it.
+    if (triError > (in.Method == Integrator::Auto ? 1.0 : 0.5) * tol)
       tryTri = false;
   }
   if (in.Method != Integrator::Auto)
