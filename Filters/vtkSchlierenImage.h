@@ -53,7 +53,7 @@
  * - ViewDirection (0 0 -1): the beam's direction, world vector; ViewUp (0 1 0): film "up".
  * - Resolution (512 512): film pixels.
  * - Passes (4, at least 1): progressive passes, one jittered photon per pixel each.
- * - StepSize (0.5 voxels, in [0.01, 64]): the base integration step.
+ * - StepSize (0.5 voxels, in [0.01, 1000]): the base integration step.
  * - Integrator (EULER): EULER (the paper's), MIDPOINT, RK4, STRAIGHT (line of sight: grad n
  *   integrated along the unbent ray) or AUTO_INTEGRATOR (the cheapest of those, and a step, that
  *   meets Tolerance on a pilot of 16 x 16 rays; StepSize is then ignored).
@@ -240,7 +240,7 @@ public:
 
   ///@{
   /**
-   * The base integration step, in voxels (of the smallest spacing). Valid range [0.01, 64]:
+   * The base integration step, in voxels (of the smallest spacing). Valid range [0.01, 1000]:
    * a value outside it is an error when the filter runs (never clamped). Default 0.5.
    */
   vtkSetMacro(StepSize, double);

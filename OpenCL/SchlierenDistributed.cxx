@@ -158,12 +158,14 @@ bool HeldValues(const int e[6], const T* values, const int held[6],
 }
 
 // The longest base step (voxels of the smallest spacing) a trace with settings s takes: Auto's
-// candidates reach 8 voxels trilinear and 64 tricubic; the step-doubling estimate twice the step.
+// candidates reach 8 voxels trilinear and 64 tricubic on the pieces (AutoPiecesReach: the whole
+// volume's Auto goes on to its diagonal since issue 50; the pieces' ghost layers stay those of
+// 8 and 64 voxels); the step-doubling estimate twice the step.
 double LongestStep(const TraceSettings& s)
 {
   const bool cubic = s.Recon != Reconstruction::Trilinear;
   const double step =
-    s.Method == Integrator::Auto ? std::max(s.StepSize, cubic ? 64.0 : 8.0) : s.StepSize;
+    s.Method == Integrator::Auto ? std::max(s.StepSize, AutoPiecesReach(cubic)) : s.StepSize;
   return step * (s.EstimateError ? 2.0 : 1.0);
 }
 } // namespace
@@ -1224,6 +1226,8 @@ TraceSettings ResolveAutoDistributed(const DistributedVolume& dv, const TraceSet
   grid.HasLevels = dv.Octree;
   grid.HasSmooth = dv.HighOrder;
   grid.HasSolid = dv.HasSolid;
+  // the candidates' steps stay within what the pieces' ghost layers hold (AutoPiecesReach)
+  grid.PiecesBound = true;
   return ResolveAutoWith(grid, s, choice,
     [&](const TraceSettings& t, const std::vector<float>& ab) {
       // the pilot's line-of-sight rays handed on like the others: its records, hence its

@@ -146,7 +146,8 @@ enum class Reconstruction
                  ///< smooth); steps of StepSize only in smooth data, at most a voxel elsewhere.
                  ///< Needs Volume::Smooth (PackFieldHighOrder)
   Auto = 2       ///< Cubic where the second-order reconstruction's error (estimated on the pilot
-                 ///< rays) would exceed half the tolerance, else Trilinear; Trilinear without Smooth
+                 ///< rays) would exceed the tolerance (with the candidate's own error) or where
+                 ///< Cubic is cheaper at it, else Trilinear; Trilinear without Smooth
 };
 
 enum class Cutoff
@@ -444,6 +445,11 @@ struct AutoChoice
   /** The pilot was not traced for this choice: it is the previous update's (a camera move of a
    * TraceSession, see TraceSession::Update). */
   bool Reused = false;
+  /** Candidates the pilot traced (besides its references). */
+  int Candidates = 0;
+  /** Traced in pieces: steps longer than the pieces' ghost layers hold (8 voxels trilinear, 64
+   * tricubic) were not tried; one process may choose a longer one. */
+  bool PiecesBound = false;
 };
 
 /** The finished image. */
@@ -515,22 +521,31 @@ void CameraLensSample(std::uint32_t seed, int pass, double* u, double* v);
 
 /**
  * Resolves Integrator::Auto: traces a pilot of 16 x 16 rays across the film with each candidate
- * (line of sight; Euler, midpoint, RK4 at several steps) and against a reference (RK4 at 1/8 voxel,
- * no octree) on the same grid, and returns the settings of the cheapest candidate (fewest samples)
- * whose deflection error is within the tolerance and whose landing error is within half a pixel.
+ * (line of sight; Euler, midpoint, RK4) and against a reference (RK4 at 1/8 voxel, no octree) on
+ * the same grid, and returns the settings of the cheapest candidate (fewest samples) whose
+ * deflection error is within the tolerance and whose landing error is within half a pixel.
  * The reference shares the grid, so this measures integration error, not the grid's own.
+ * The steps are found from the pilot (issue 50): each integrator and reconstruction starts at 8
+ * voxels, doubles while the candidate meets the tolerance (up to the volume's diagonal), halves
+ * until one does where 8 does not, and bisects the last interval twice in log(step); a step
+ * beyond 8 voxels meets only with 0.75 of the tolerance (after the trilinear's own error) and
+ * without the kernel's step-longer-than-a-feature flag where the reference has none.
  * With UseOctree and volume.Levels, the octree is kept only if it skips at least 10 % of the
  * chosen setting's pilot samples (a skipping step costs more than a plain one).
- * Reconstruction Cubic adds steps of 16, 32 and 64 voxels to the candidates (taken only through
- * smooth data). Reconstruction Auto (with Volume::Smooth) traces both references: their difference
+ * Reconstruction Cubic's long steps are taken only through smooth data. Reconstruction Auto (with
+ * Volume::Smooth) traces both references: their difference
  * is the trilinear scheme's own error, which a reference with the same reconstruction cannot see;
- * trilinear candidates are kept only where that error is at most half the tolerance and answer for
+ * trilinear candidates are kept only where that error is within the tolerance and answer for
  * it on top of their own, and a tricubic sample is counted as three trilinear ones, so
  * that the cheaper reconstruction at the tolerance is chosen. With Reconstruction Auto and a fixed
  * integrator only the reconstruction is chosen.
  * Settings whose Method is not Auto (and whose Recon is not Auto) come back unchanged.
+ * piecesBound: the steps stay within what tracing in pieces allows (8 voxels trilinear, 64
+ * tricubic: the pieces' ghost layers), as ResolveAutoDistributed's do; one process then makes the
+ * choice the pieces make (beyond those steps the two differ: the pieces' auto_report says so).
  */
-TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr);
+TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr,
+  bool piecesBound = false);
 
 /** The film coordinates of Auto's pilot rays: the centres of a 16 x 16 grid over the film. */
 std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings);

@@ -94,7 +94,13 @@ struct AutoVolume
 {
   Volume Grid;
   bool HasLevels = false, HasSmooth = false, HasSolid = false;
+  /** The candidates' steps stay within AutoPiecesReach (the pieces' ghost layers hold no
+   * longer ones); false: up to the volume's diagonal. */
+  bool PiecesBound = false;
 };
+/** The longest step Auto's candidates take on the pieces of a distributed volume, voxels:
+ * 8 trilinear, 64 tricubic (the ghost layers are sized for them, GhostPointsFor). */
+double AutoPiecesReach(bool cubic);
 /** Traces the pilot's rays (film points, pairs) with settings t: TraceRays, or a distributed trace
  * that returns the same records on every rank (so that every rank makes the same choice). */
 using PilotTracer =

@@ -188,8 +188,8 @@ void CheckSettings(const TraceSettings& s)
     msg << "Passes is " << s.Passes << ": it must be at least 1 (and at most 1000000).";
     throw Error(msg.str());
   }
-  if (!(s.StepSize >= 0.01 && s.StepSize <= 64))
-    OutOfRange("StepSize", s.StepSize, "in [0.01, 64] voxels (of the smallest spacing)");
+  if (!(s.StepSize >= 0.01 && s.StepSize <= 1000))
+    OutOfRange("StepSize", s.StepSize, "in [0.01, 1000] voxels (of the smallest spacing)");
   if (!(s.Tolerance >= 0 && s.Tolerance <= 1))
     OutOfRange("Tolerance", s.Tolerance, "in [0, 1] radians (0: automatic, 1 % of the largest deflection)");
   if (!(s.CutoffScale >= 0 && s.CutoffScale <= 1e12))

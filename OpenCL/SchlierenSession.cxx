@@ -344,8 +344,17 @@ void TraceSession::ClearVolume()
 //------------------------------------------------------------------------------
 AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings)
 {
+  std::ostringstream stamp;
+  stamp << volume.Stamp;
+  return this->ResolveKept(parallel, volume, settings, stamp.str(),
+    [&parallel, &volume](TraceSettings& s) { return ResolveOnRankZero(parallel, volume, s); });
+}
+
+AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings,
+  const std::string& volumeKey, const std::function<AutoChoice(TraceSettings&)>& resolve)
+{
   if (settings.Method != Integrator::Auto && settings.Recon != Reconstruction::Auto)
-    return ResolveOnRankZero(parallel, volume, settings);
+    return resolve(settings);
   // what the choice depends on besides the view and the film's size: the volume and every other
   // setting
   TraceSettings k = settings;
@@ -353,8 +362,13 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
     k.ViewDirection[a] = k.ViewUp[a] = 0;
   k.Resolution[0] = k.Resolution[1] = 0;
   k.RankIndex = k.RankCount = 0;
+  // the pilot traces its rays through fixed film points: where the photons start in their pixels
+  // (the seed, the jitter) is not its business (issue 50: kept across seeds, passes, films)
+  k.Seed = 0;
+  k.Jitter = false;
+  k.Pattern = JitterPattern::Random;
   std::ostringstream key;
-  key << k.PhotonKey() << " | " << volume.Stamp;
+  key << k.PhotonKey() << " | " << volumeKey;
   // the view of the last pilot, and of the last update
   bool pilotView = true, lastView = true;
   for (int a = 0; a < 3; ++a)
@@ -369,9 +383,25 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
     this->LastView[a] = settings.ViewDirection[a];
     this->LastView[3 + a] = settings.ViewUp[a];
   }
-  // a finer film than the kept choice was made for asks for a tighter landing (half a pixel)
-  const bool finer = settings.Resolution[0] > this->AutoResolution[0] ||
-    settings.Resolution[1] > this->AutoResolution[1];
+  // another film size: the choice holds where its landing error (measured on the pilot's film,
+  // world units) is still within half a pixel of this film; a film so much finer that it is not
+  // asks for a tighter landing: pilot again
+  double pixel = 0;
+  bool finer = false, otherFilm = false;
+  if (settings.Resolution[0] != this->AutoResolution[0] ||
+    settings.Resolution[1] != this->AutoResolution[1])
+  {
+    otherFilm = true;
+    try
+    {
+      pixel = MakeFilm(volume, settings).PixelSize;
+    }
+    catch (const Error&)
+    {
+      pixel = 0; // the pilot will say what is wrong
+    }
+    finer = !(pixel > 0) || this->AutoLanding > 0.5 * pixel;
+  }
   // the camera moved: keep the choice. It came to rest (the same view again after a kept
   // choice) or the film got finer (the refinement at full resolution): pilot again, for this view
   const bool keep = parallel.AllOk(!this->AutoKey.empty() && key.str() == this->AutoKey && !finer &&
@@ -384,6 +414,16 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
     settings.UseOctree = this->AutoTraced.UseOctree;
     settings.AutoMeasuredError = this->AutoTraced.AutoMeasuredError;
     AutoChoice c = this->AutoKept;
+    if (otherFilm && pixel > 0)
+    {
+      std::ostringstream note;
+      note.precision(3);
+      note << "; kept for a " << settings.Resolution[0] << " x " << settings.Resolution[1]
+           << " film (the pilot's was " << this->AutoResolution[0] << " x " << this->AutoResolution[1]
+           << "; its landing error is " << this->AutoLanding / pixel << " pixel of this film)";
+      c.ExpectedLandingError = this->AutoLanding / pixel;
+      c.Report += note.str();
+    }
     // the same view and film as the pilot's: the choice is what the pilot would make again
     if (!pilotView)
     {
@@ -395,7 +435,7 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
     return c;
   }
   const TraceSettings asked = settings;
-  AutoChoice c = ResolveOnRankZero(parallel, volume, settings);
+  AutoChoice c = resolve(settings);
   ++this->PilotsRun;
   this->AutoKey = key.str();
   this->AutoTraced = settings;
@@ -408,6 +448,15 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
   }
   this->AutoResolution[0] = asked.Resolution[0];
   this->AutoResolution[1] = asked.Resolution[1];
+  this->AutoLanding = 0;
+  try
+  {
+    this->AutoLanding = c.ExpectedLandingError * MakeFilm(volume, asked).PixelSize;
+  }
+  catch (const Error&)
+  {
+    this->AutoLanding = 1e300; // no film to measure it on: any other film pilots again
+  }
   return c;
 }
 

@@ -225,13 +225,19 @@ private:
   std::string PiecesBackend, PiecesDevice; // what the kept sums were traced on
   /**
    * Auto's choice kept between camera moves (the whole-volume path). An update whose volume and
-   * settings other than ViewDirection, ViewUp and Resolution are the last pilot's, on a film no
-   * finer than the pilot's, keeps its choice: a camera move costs the trace, not the pilot. The
-   * pilot runs again where the camera has come to rest (an update with the same view as the last
-   * one, which kept a choice: the refinement's passes) or the film got finer (the refinement at
-   * full resolution after interactive half-size films), and for any other change.
+   * settings other than ViewDirection, ViewUp, Resolution, Passes, Seed and the jitter are the
+   * last pilot's keeps its choice: a camera move costs the trace, not the pilot, and so do
+   * another seed, more passes and another film size (issue 50), where the choice's landing error
+   * (the pilot's, in world units) stays within half a pixel of the new film. The pilot runs again
+   * where the camera has come to rest (an update with the same view as the last one, which kept
+   * a choice: the refinement's passes), where a film is so much finer that the landing is not
+   * within half its pixel, and for any other change (the volume, the tolerance, the cutoff...).
    */
   AutoChoice ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings);
+  /** The same for a volume whose version is `volumeKey` (not volume.Stamp: the pieces' key),
+   * resolved by `resolve` (the pieces' pilot, collective) where a pilot runs. */
+  AutoChoice ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings,
+    const std::string& volumeKey, const std::function<AutoChoice(TraceSettings&)>& resolve);
   /** Framing Silhouette: sets settings.FilmExtent from the frame kept or found now (see
    * TraceSettings::Frame); out says which; `say`: add the note (rank 0). The frame is found by
    * `find` (FrameSilhouette of the volume, or of the pieces: collective), again where any rank
@@ -246,6 +252,7 @@ private:
   double AutoView[6] = { 0, 0, 0, 0, 0, 0 }; // the last pilot's view
   double LastView[6] = { 0, 0, 0, 0, 0, 0 }; // the last update's
   int AutoResolution[2] = { 0, 0 };
+  double AutoLanding = 0; // the kept choice's landing error, world units (on the pilot's film)
   bool AutoChoiceKept = false; // the last update kept the choice for another view
   int PilotsRun = 0;
 };

@@ -2,6 +2,7 @@
 // TraceSession with the volume in pieces: each rank keeps its piece (and ghosts) and the rays are
 // handed between ranks (SchlierenDistributed.h); the other path, every rank with the whole volume,
 // is in SchlierenSession.cxx.
+#include "SchlierenEngineInternal.h"
 #include "SchlierenSession.h"
 #include "SchlierenSessionInternal.h"
 
@@ -115,7 +116,20 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     traced, out, rank == 0);
   AutoChoice choice;
   const bool autoAsked = settings.Method == Integrator::Auto;
-  traced = ResolveAutoDistributed(dv, traced, parallel, &choice);
+  if (autoAsked || settings.Recon == Reconstruction::Auto)
+  {
+    // the choice kept across seeds, passes, films and camera moves as on the whole volume
+    // (issue 50); the pieces' key stands for the volume
+    std::ostringstream vk;
+    vk << this->PiecesKey << ' ' << dv.Octree << ' ' << dv.Ghost;
+    choice = this->ResolveKept(parallel, dv.Whole(), traced, vk.str(), [&](TraceSettings& t) {
+      AutoChoice c;
+      t = ResolveAutoDistributed(dv, t, parallel, &c);
+      return c;
+    });
+  }
+  else
+    traced = ResolveAutoDistributed(dv, traced, parallel, &choice);
   if (!autoAsked)
   {
     choice.Method = traced.Method;
@@ -125,6 +139,12 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
   else if (rank == 0)
   {
     out.Notes.push_back({ false, choice.Report });
+    if (choice.PiecesBound && choice.StepSize >= AutoPiecesReach(traced.Recon == Reconstruction::Cubic))
+      out.Notes.push_back({ false,
+        "Auto on the pieces tried no step longer than " +
+          std::to_string(static_cast<int>(AutoPiecesReach(traced.Recon == Reconstruction::Cubic))) +
+          " voxels (the pieces' ghost layers hold no longer ones): one process (TraceInPieces off) "
+          "may choose a longer, cheaper step" });
     if (!choice.Met)
       out.Notes.push_back({ true, choice.Report });
   }

@@ -8,6 +8,9 @@
 #  --backends OpenCL,CPU --rays-per-item N --rows euler,octree,auto,onethread). The
 # reconstructions' case, the weak Gaussian on 64^3 to 512^3 under Auto at a fixed tolerance (512^3
 # needs about 5 GB of memory): --cases grids --grids 64,128,256,512 --tolerance 1e-3 --backends OpenCL
+# Auto's step (issue 50: Auto at its default tolerance and at 3e-8 rad beside the swept cheapest
+# setting and the line of sight at the feature's width, then the scaling table):
+# --cases autostep --grids 64,128,256,512 --backends OpenCL
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 schlieren_install "${SCHLIEREN_BUILD_PACKAGES[@]}"
 schlieren_build

@@ -342,6 +342,11 @@ void TestIntegrators()
   {
     TraceSettings s = BenchSettings(BenchSource::Slit, 1.0, 1.0, 1.0, 0.5);
     s.Method = m;
+    // Auto at the deflection's tolerance this test holds every integrator to (at its default, 1 %
+    // of the deflection, it takes one line-of-sight step across the slab since issue 50: 2e-8 rad
+    // off, within that default and not within this test's)
+    if (m == Integrator::Auto)
+      s.Tolerance = DeflectionTolerance() * eo;
     const TraceResult r = Trace(slab.V, s);
     double worst = 0;
     for (int j = 0; j < kFilm; ++j)

@@ -172,13 +172,15 @@ DistributedVolume PiecesFor(const Case& c, const TraceSettings& s, Piece piece, 
     HighOrder(s) ? SmoothLevelsFor(s) : 0);
 }
 
-/** Settings with Auto resolved as one process resolves it on `whole` (unchanged without Auto). */
+/** Settings with Auto resolved as one process resolves it on `whole` (unchanged without Auto),
+ * with the steps the pieces allow (issue 50: beyond 8 voxels trilinear, 64 tricubic, the whole
+ * volume's Auto may go further than the pieces' ghost layers hold). */
 TraceSettings Resolved(const Volume& whole, const TraceSettings& s)
 {
   if (s.Method != Integrator::Auto && s.Recon != Reconstruction::Auto)
     return s;
   AutoChoice choice;
-  const TraceSettings out = ResolveAuto(whole, s, &choice);
+  const TraceSettings out = ResolveAuto(whole, s, &choice, true);
   std::printf("  (one process's Auto: %s)\n", choice.Report.c_str());
   return out;
 }

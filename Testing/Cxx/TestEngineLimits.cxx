@@ -98,8 +98,8 @@ int main()
       const char* Expect;
     };
     const Case cases[] = {
-      { "StepSize", [](TraceSettings& t, double v) { t.StepSize = v; }, -1, "[0.01, 64]" },
-      { "StepSize", [](TraceSettings& t, double v) { t.StepSize = v; }, 1e4, "[0.01, 64]" },
+      { "StepSize", [](TraceSettings& t, double v) { t.StepSize = v; }, -1, "[0.01, 1000]" },
+      { "StepSize", [](TraceSettings& t, double v) { t.StepSize = v; }, 1e4, "[0.01, 1000]" },
       { "FilmDistance", [](TraceSettings& t, double v) { t.FilmDistance = v; }, -5, ">= 0" },
       { "FilmDistance", [](TraceSettings& t, double v) { t.FilmDistance = v; }, inf, "finite" },
       { "FilmDistance", [](TraceSettings& t, double v) { t.FilmDistance = v; },

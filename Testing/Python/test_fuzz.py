@@ -152,7 +152,7 @@ def fixed_cases():
             dict(source=dict(GAUSS, amp=1e-2), image=img(FilmDistance=3e6, Cutoff=cutoff)),
             dict(outcome=["warned"], phrases=["No photon reached the film", "FilmDistance"]))
     # out-of-range settings: errors naming the property and its range
-    for prop, value, rng in (("StepSize", -1, "[0.01, 64]"), ("StepSize", 1e4, "[0.01, 64]"),
+    for prop, value, rng in (("StepSize", -1, "[0.01, 1000]"), ("StepSize", 1e4, "[0.01, 1000]"),
                              ("FilmDistance", -5, ">= 0"), ("BackgroundDistance", -1, ">= 0"),
                              ("CutoffScale", -10, "[0, 1e12]"), ("Wavelength", 0, "[100, 100000]"),
                              ("Wavelength", -500, "[100, 100000]"), ("FilterWidth", -2, "[0.01, 64]"),
