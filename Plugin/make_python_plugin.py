@@ -39,6 +39,7 @@ LEFT_OUT = {
     # the GUI's (the C++ plugin's toolbar and render-view following)
     "SchlierenImage": {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView",
                        "PassLimit"},
+    "NumericalSchlieren": {"FollowCamera", "OpenImageView"},  # the GUI's
 }
 
 

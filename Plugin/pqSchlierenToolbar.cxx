@@ -69,6 +69,10 @@ constexpr double SameDirection = 1e-9;
 int InteractivePassesOf(vtkSMProxy* proxy)
 {
   static int said = 1; // the last value warned about (1: none)
+  if (!proxy->GetProperty("InteractivePasses"))
+  {
+    return 1; // NumericalSchlieren: no passes
+  }
   const int passes = vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt();
   const int used = std::min(256, std::max(1, passes));
   if (used != passes && passes != said)
@@ -83,6 +87,10 @@ int InteractivePassesOf(vtkSMProxy* proxy)
 double InteractiveScaleOf(vtkSMProxy* proxy)
 {
   static double said = 1; // the last value warned about (1: none)
+  if (!proxy->GetProperty("InteractiveScale"))
+  {
+    return 1; // NumericalSchlieren: the full film
+  }
   const double scale = vtkSMPropertyHelper(proxy, "InteractiveScale").GetAsDouble();
   const bool outside = !(scale >= 0.1 && scale <= 1);
   if (outside && scale != said)
@@ -98,8 +106,9 @@ double InteractiveScaleOf(vtkSMProxy* proxy)
 
 bool IsSchlierenImage(pqPipelineSource* source)
 {
-  return source && source->getProxy() &&
-    QString(source->getProxy()->GetXMLName()) == QLatin1String("SchlierenImage");
+  // SchlierenImage, and NumericalSchlieren shown and following the camera as it is
+  const QString name = source && source->getProxy() ? source->getProxy()->GetXMLName() : "";
+  return name == QLatin1String("SchlierenImage") || name == QLatin1String("NumericalSchlieren");
 }
 
 // ParaView processes events while a pipeline update reports progress: nothing here starts work
@@ -240,7 +249,8 @@ void pqSchlierenFollower::closeImageView()
   {
     return;
   }
-  QTimer::singleShot(0, [view]() {
+  QPointer<pqRenderView> view3D = this->View3D;
+  QTimer::singleShot(0, [view, view3D]() {
     if (!view)
     {
       return;
@@ -262,6 +272,12 @@ void pqSchlierenFollower::closeImageView()
       }
     }
     pqApplicationCore::instance()->getObjectBuilder()->destroy(view);
+    if (view3D && !pqActiveObjects::instance().activeView())
+    {
+      // the 3D view the image was made from is active again (no view active greys the camera
+      // toolbar and the view's controls)
+      pqActiveObjects::instance().setActiveView(view3D);
+    }
   });
 }
 
@@ -274,7 +290,11 @@ bool pqSchlierenFollower::following() const
 //------------------------------------------------------------------------------
 int pqSchlierenFollower::askedPasses() const
 {
-  return this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "Passes").GetAsInt() : 0;
+  // NumericalSchlieren has no passes: one update is the image
+  return !this->Image ? 0
+                      : this->Image->getProxy()->GetProperty("Passes")
+      ? vtkSMPropertyHelper(this->Image->getProxy(), "Passes").GetAsInt()
+      : 1;
 }
 
 //------------------------------------------------------------------------------
@@ -283,7 +303,7 @@ int pqSchlierenFollower::passes() const
   // the passes the filter traces: Passes, at most PassLimit where that is set
   const int asked = this->askedPasses();
   const int limit =
-    this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() : 0;
+    this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit", true).GetAsInt() : 0;
   return limit > 0 ? std::min(asked, limit) : asked;
 }
 
@@ -292,7 +312,8 @@ void pqSchlierenFollower::setPasses(int passes)
 {
   // the refinement's steps go to PassLimit: the Passes field keeps the user's target
   // (0: no limit)
-  if (vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() == passes)
+  if (!this->Image->getProxy()->GetProperty("PassLimit") ||
+    vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() == passes)
   {
     return;
   }
@@ -585,8 +606,8 @@ void pqSchlierenFollower::openImageView(pqRenderView* view3D)
   if (repr)
   {
     // ColorFilter, or a band of wavelengths: the rgb colours (until the image says)
-    const bool colour = vtkSMPropertyHelper(source, "Cutoff").GetAsInt() == 4 ||
-      vtkSMPropertyHelper(source, "WavelengthRange").GetAsDouble(1) > 0;
+    const bool colour = vtkSMPropertyHelper(source, "Cutoff", true).GetAsInt() == 4 ||
+      vtkSMPropertyHelper(source, "WavelengthRange", true).GetAsDouble(1) > 0;
     SetColouring(repr, colour);
   }
   if (view3D)

@@ -119,6 +119,7 @@ PYTHON_PLUGIN_PROXIES_LEFT_OUT = set()
 PYTHON_PLUGIN_LEFT_OUT = {
     "SchlierenImage": {"FollowCamera", "InteractivePasses", "InteractiveScale", "OpenImageView",
                        "PassLimit"},  # the GUI's
+    "NumericalSchlieren": {"FollowCamera", "OpenImageView"},  # the GUI's
     "RefractiveScene": {"TimeSteps", "TimestepValues"},  # the time series ParaView animates
     "RefractiveIndex": {"Body"},  # the optional second input, a body's surface
 }
