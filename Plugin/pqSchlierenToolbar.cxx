@@ -317,6 +317,9 @@ void pqSchlierenFollower::setPasses(int passes)
   {
     return;
   }
+  // the GUI's own bookkeeping, never an entry of the undo stack: undone, a PassLimit of an Apply
+  // would lift the limit of the image the Undo starts
+  SCOPED_UNDO_EXCLUDE();
   this->Guard = true;
   vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").Set(passes);
   this->Image->getProxy()->UpdateProperty("PassLimit");
@@ -359,11 +362,13 @@ void pqSchlierenFollower::log(const char* event) const
   }
   std::fprintf(stderr,
     "schlieren-gui %.6f %s %s passes=%d target=%d resolution=%dx%d seconds_per_pass=%.4f "
-    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g passes_property=%d passes_field=%s field_at=%d,%d\n",
+    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g passes_property=%d passes_field=%s field_at=%d,%d "
+    "view_shown=%d\n",
     QDateTime::currentMSecsSinceEpoch() / 1000.0, event,
     this->Image->getSMName().toLocal8Bit().constData(), this->passes(), this->Target, r[0], r[1],
     this->SecondsPerPass, d[0], d[1], d[2], u[0], u[1], u[2], this->askedPasses(),
-    field.toLocal8Bit().constData(), at.x(), at.y());
+    field.toLocal8Bit().constData(), at.x(), at.y(),
+    this->ImageView && this->ImageView->widget() && this->ImageView->widget()->isVisible() ? 1 : 0);
   std::fflush(stderr);
 }
 
@@ -827,6 +832,7 @@ void pqSchlierenFollower::onCameraModified()
   this->LastChunk = 1;
   this->Stopped = false;
   this->LastPasses = 0;
+  SCOPED_UNDO_EXCLUDE(); // the camera's own (Camera Undo has the camera)
   this->Guard = true;
   vtkSMPropertyHelper(proxy, "ViewDirection").Set(direction, 3);
   vtkSMPropertyHelper(proxy, "ViewUp").Set(up, 3);
@@ -1086,6 +1092,7 @@ void pqSchlierenFollower::restoreResolution()
   vtkSMProxy* proxy = this->Image->getProxy();
   int coarse[2];
   vtkSMPropertyHelper(proxy, "Resolution").Get(coarse, 2);
+  SCOPED_UNDO_EXCLUDE();
   this->Guard = true;
   vtkSMPropertyHelper(proxy, "Resolution").Set(this->FullResolution, 2);
   this->Guard = false;
@@ -1131,6 +1138,7 @@ void pqSchlierenFollower::stop()
       // limit is left behind (a larger Passes applied refines from here; a saved state holds
       // this image's passes).
       vtkSMProxy* proxy = this->Image->getProxy();
+      SCOPED_UNDO_EXCLUDE(); // the image's passes said, not a change of the user's to undo
       this->Guard = true;
       vtkSMPropertyHelper(proxy, "Passes").Set(done);
       vtkSMPropertyHelper(proxy, "PassLimit").Set(0);

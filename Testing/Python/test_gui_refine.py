@@ -17,7 +17,9 @@ The harness of test_gui_apply_stop.py (paraview with PV_PLUGIN_PATH, gui_drag_se
   3. an Apply of another setting (Knife Angle, through the panel's search box) while the image
      follows the camera is chunked too (it was one blocking trace of every pass): the File menu
      opens by a key while it refines, Stop ends it (no pass after it) and the panel and the image
-     agree again; the key-to-stop latency is printed;
+     agree again; the key-to-stop latency is printed; Undo (Ctrl+Z) of that Apply (ParaView restores the proxy as it
+     was before it: Knife Angle 0, Passes 64) is a new image traced the same way (its first pass,
+     then chunks), stopped again;
   4. the session saved (File > Save State) and loaded (File > Load State): the layout of two views
      is back while the image refines, in chunks, to the passes saved (the panel's Passes).
 Stop Refinement is enabled while the loaded image refines and greyed once it is done (the toolbar's
@@ -183,6 +185,34 @@ check(0 < stopped_c < TARGET, "the Apply while following was stopped mid-way (%d
 saved_passes = agree("after the second stop", fields_c, "stop2")
 shots.append(screenshot("gui_refine_stopped"))
 
+# -- Undo (Ctrl+Z, the focus first on the image view, away from the panel's line edit, which has an
+# undo of its own) of the Knife Angle: a new image, chunked to the Passes the panel says
+time.sleep(0.5)
+views = view_boxes(screenshot("gui_refine_before_undo"))
+if len(views) < 2:
+    fatal("two render views expected on the screen, found %s" % views)
+x, y, w, h = views[1]
+xdo("mousemove", x + w // 2, y + h // 2)
+xdo("click", 1)
+time.sleep(0.5)
+t_undo = time.time()
+xdo("key", "--clearmodifiers", "ctrl+z")
+# ParaView's Undo returns the proxy to its state before that Apply: Knife Angle 0 and Passes 64
+first = wait_for("the Undo's refinement", lambda: events_since(t_undo, "refine"), 60)
+undone_target = int(first[0][2]["target"])
+refines = chunks(t_undo, 2, undone_target)
+updated = events_since(t_undo, "updated")
+with lock:
+    say("Undo: events %s" % ["%.2f %s %s/%s" % (e[0] - t_undo, e[1], e[2].get("passes"), e[2].get("target"))
+                             for e in events if e[0] >= t_undo][:8])
+check(updated and int(updated[0][2]["passes"]) < undone_target and undone_target == TARGET,
+      "Undo of the Knife Angle Apply (back to Passes %d) traced %s pass(es) first, then chunks"
+      % (undone_target, updated[0][2]["passes"] if updated else "?"))
+wait_for("the Undo's refinement past 12 passes", lambda: [
+    e for e in events_since(t_undo, "refine") if int(e[2]["passes"]) >= 12], 60)
+stopped_u, fields_u, _ = stop("the Undo's refinement")
+saved_passes = agree("after the stop of the Undo's refinement", fields_u, "stop3")
+
 # -- 4. Save State, Load State: the layout at once, the image refined to the passes saved
 state = os.path.join(os.path.abspath(args.work), "refine.pvsm")
 menu(3, state)  # (the first Down highlights Open) Recent Files, (Reload Files, greyed) Load State, Save State
@@ -219,8 +249,9 @@ done = wait_for("the loaded image refined to the %d passes saved" % saved_passes
     e for e in events_since(t_load, "converged") if e[2]["passes"] == str(saved_passes)], 120)
 steps = [int(e[2]["passes"]) for e in events_since(t_load, "refine")]
 say("after Load State: chunks at %s" % steps)
-check(any(e[0] > shown for e in events_since(t_load, "refine")),
-      "the layout was on the screen while the loaded image refined (a chunk after it)")
+load_refines = events_since(t_load, "refine")
+check(load_refines and all(e[2]["view_shown"] == "1" for e in load_refines),
+      "the loaded image refined with its view on the screen (every chunk after the layout showed)")
 check(len(steps) >= 1 and done[0][2]["passes_property"] == str(saved_passes),
       "the loaded image refined in chunks to the %d passes saved (the panel says %s)"
       % (saved_passes, done[0][2]["passes_property"]))
