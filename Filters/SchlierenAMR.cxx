@@ -2,6 +2,7 @@
 // Overlapping AMR sampled onto an image grid, finest level first (SchlierenAMR.h).
 #include "SchlierenAMR.h"
 
+#include "vtkAMRBox.h"
 #include "vtkCellData.h"
 #include "vtkCharArray.h"
 #include "vtkDataArray.h"
@@ -17,6 +18,7 @@
 #include "SchlierenParallel.h"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <sstream>
@@ -167,6 +169,95 @@ bool Dimensions(schlieren::Parallel& parallel, vtkDataObject* data, const double
   }
   note = m.str();
   return true;
+}
+
+//------------------------------------------------------------------------------
+std::string OverlapProblem(vtkOverlappingAMR* data)
+{
+  if (!data)
+  {
+    return std::string();
+  }
+  for (unsigned int l = 0; l < data->GetNumberOfLevels(); ++l)
+  {
+    const unsigned int n = data->GetNumberOfDataSets(l);
+    // each box's cell range (an axis with no cells, a 2D box's, as one cell), swept along x
+    std::vector<std::array<int, 6>> boxes;
+    std::vector<unsigned int> ids;
+    for (unsigned int b = 0; b < n; ++b)
+    {
+      const vtkAMRBox& box = data->GetAMRBox(l, b);
+      if (box.IsInvalid())
+      {
+        continue;
+      }
+      const int* lo = box.GetLoCorner();
+      const int* hi = box.GetHiCorner();
+      std::array<int, 6> r;
+      for (int a = 0; a < 3; ++a)
+      {
+        r[2 * a] = lo[a];
+        r[2 * a + 1] = std::max(lo[a], hi[a]);
+      }
+      boxes.push_back(r);
+      ids.push_back(b);
+    }
+    std::vector<std::size_t> order(boxes.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      order[i] = i;
+    }
+    std::sort(order.begin(), order.end(),
+      [&](std::size_t x, std::size_t y) { return boxes[x][0] < boxes[y][0]; });
+    std::size_t pairs = 0;
+    double cells = 0;
+    std::ostringstream first;
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      const std::array<int, 6>& p = boxes[order[i]];
+      for (std::size_t j = i + 1; j < order.size() && boxes[order[j]][0] <= p[1]; ++j)
+      {
+        const std::array<int, 6>& q = boxes[order[j]];
+        double shared = 1;
+        for (int a = 0; a < 3 && shared > 0; ++a)
+        {
+          shared *= std::max(0, std::min(p[2 * a + 1], q[2 * a + 1]) - std::max(p[2 * a], q[2 * a]) + 1);
+        }
+        if (shared <= 0)
+        {
+          continue;
+        }
+        if (pairs == 0)
+        {
+          const unsigned int b0 = std::min(ids[order[i]], ids[order[j]]);
+          const unsigned int b1 = std::max(ids[order[i]], ids[order[j]]);
+          first << "boxes " << b0 << " and " << b1 << " share " << shared << " cells (cells";
+          for (int a = 0; a < 3; ++a)
+          {
+            first << ' ' << "ijk"[a] << ' ' << std::max(p[2 * a], q[2 * a]) << "-"
+                  << std::min(p[2 * a + 1], q[2 * a + 1]);
+          }
+          first << ")";
+        }
+        ++pairs;
+        cells += shared;
+      }
+    }
+    if (pairs > 0)
+    {
+      std::ostringstream m;
+      m << "RefractiveIndex: the AMR input's level " << l << " has boxes that overlap: " << first.str();
+      if (pairs > 1)
+      {
+        m << ", and " << pairs - 1 << " more pairs (" << cells << " cells in all)";
+      }
+      m << ". A level's boxes must tile it without overlap (each cell in one box); where two "
+           "overlap, which box's values to take is undefined. Fix the boxes (the writer's or "
+           "reader's AMR metadata), or resample the data onto an image first.";
+      return m.str();
+    }
+  }
+  return std::string();
 }
 
 //------------------------------------------------------------------------------

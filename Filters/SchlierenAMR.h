@@ -49,6 +49,14 @@ bool Dimensions(schlieren::Parallel& parallel, vtkDataObject* data, const double
   double bytesPerPoint, int dims[3], double finest[3], bool& capped, std::string& note);
 
 /**
+ * "" or the error where two boxes of one level overlap in cells (a level's boxes tile it: which
+ * box's values to take there is undefined; issue 48: one box's values were dropped without a
+ * word). Boxes that share a face share points, not cells, and are fine. Read from the AMR's
+ * metadata, which every rank holds, so every rank finds the same.
+ */
+std::string OverlapProblem(vtkOverlappingAMR* data);
+
+/**
  * The AMR `data` sampled at the points of `structure`: the arrays named in `names` (float, their
  * components kept) and vtkValidPointMask (1 where a box covers the point), the same on every
  * rank. `notes` receives what the user should know (levels used, cell data sampled as cells,

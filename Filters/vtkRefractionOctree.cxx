@@ -52,7 +52,9 @@ std::string ReadPiece(double tolerance, vtkImageData* input, vtkImageData* outpu
   {
     std::ostringstream msg;
     msg << "Tolerance is " << tolerance
-        << ": it must be in [0, 1] (a spread of n - 1, index units; 0: automatic).";
+        << ": it must be in [0, 1]: the largest spread of n - 1 (dimensionless) that a block may "
+           "hold and still be skipped (air's n - 1 is about 3e-4, so useful values are far below "
+           "1; 0: automatic, 1e-4 of the field's range).";
     return msg.str();
   }
   if (!input || !output)

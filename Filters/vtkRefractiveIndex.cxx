@@ -4,6 +4,7 @@
 
 #include "vtkBoundingBox.h"
 #include "vtkCellData.h"
+#include "vtkCellTypes.h"
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
@@ -1197,6 +1198,13 @@ int vtkRefractiveIndex::RequestData(
     // a time step computed before, with the same pipeline: not resampled again
     w.Output->ShallowCopy(kept);
     w.Output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), key.Time);
+    if (w.Resampled)
+    {
+      // the grid of that step (FollowMovingBounds may have moved it since): what SchlierenImage
+      // reads from the information must be the kept image's
+      w.OutInfo->Set(vtkDataObject::ORIGIN(), w.Output->GetOrigin(), 3);
+      w.OutInfo->Set(vtkDataObject::SPACING(), w.Output->GetSpacing(), 3);
+    }
     ++this->TimeCache->Served;
     CacheFields(w.Output, *this->TimeCache, true);
     return 1;
@@ -1287,6 +1295,14 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
   {
     w.Notes.push_back(this->WedgeNote);
   }
+  if (!w.Symmetric && w.Ranks.Rank() == 0)
+  {
+    const std::string wedge = this->WedgeWithoutSymmetry(w.Input);
+    if (!wedge.empty())
+    {
+      w.Warnings.push_back(wedge);
+    }
+  }
   if (!meshNote.empty())
   {
     w.Notes.push_back(meshNote);
@@ -1366,6 +1382,111 @@ std::string MissingArray(
 } // namespace
 
 //------------------------------------------------------------------------------
+namespace
+{
+/** "N cells: a of them 3D, b 2D, c 1D or 0D" of a data set or the leaves of a composite one. */
+std::string DescribeCells(vtkDataObject* data)
+{
+  vtkIdType counts[4] = { 0, 0, 0, 0 };
+  auto count = [&](vtkDataSet* ds) {
+    for (vtkIdType c = 0; c < ds->GetNumberOfCells(); ++c)
+    {
+      const int d = vtkCellTypes::GetDimension(static_cast<unsigned char>(ds->GetCellType(c)));
+      ++counts[std::max(0, std::min(3, d))];
+    }
+  };
+  if (auto* ds = vtkDataSet::SafeDownCast(data))
+  {
+    count(ds);
+  }
+  else if (auto* cds = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    vtkCompositeDataIterator* iter = cds->NewIterator();
+    for (iter->InitTraversal(); !iter->IsDoneWithTraversal(); iter->GoToNextItem())
+    {
+      if (auto* leaf = vtkDataSet::SafeDownCast(iter->GetCurrentDataObject()))
+      {
+        count(leaf);
+      }
+    }
+    iter->Delete();
+  }
+  std::ostringstream m;
+  m << counts[0] + counts[1] + counts[2] + counts[3] << " cells: " << counts[3] << " 3D, "
+    << counts[2] << " 2D (faces), " << counts[0] + counts[1] << " 1D or 0D";
+  return m.str();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void vtkRefractiveIndex::FollowMovingBounds(Work& w)
+{
+  // RequestInformation set the grid over the input's bounds then (the first time step it saw);
+  // a mesh that moves over time has other bounds now: the grid follows them, with the same
+  // points (the extent downstream asked for), so that each step is sampled over its own box
+  // (issue 48: the first step's box was kept, |dI| 0.2-0.5 against each step alone). Collective
+  // under MPI, as UpdatedInputBounds.
+  double local[6] = { 1, -1, 1, -1, 1, -1 };
+  const bool have = LocalBounds(w.Input, local);
+  double mins[3], maxs[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    mins[a] = have ? local[2 * a] : VTK_DOUBLE_MAX;
+    maxs[a] = have ? local[2 * a + 1] : -VTK_DOUBLE_MAX;
+  }
+  if (w.Ranks.Size() > 1)
+  {
+    w.Ranks.Min(mins, 3);
+    w.Ranks.Max(maxs, 3);
+  }
+  if (!(mins[0] <= maxs[0]))
+  {
+    return;
+  }
+  double bounds[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = mins[a];
+    bounds[2 * a + 1] = maxs[a];
+  }
+  vtkBoundingBox box(bounds);
+  box.ScaleAboutCenter(1.0 - 1e-6); // as SamplingGrid
+  box.GetBounds(bounds);
+  double origin[3], spacing[3];
+  w.OutInfo->Get(vtkDataObject::ORIGIN(), origin);
+  w.OutInfo->Get(vtkDataObject::SPACING(), spacing);
+  bool moved = false;
+  double newOrigin[3], newSpacing[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = w.Whole[2 * a + 1] - w.Whole[2 * a];
+    const double lo = origin[a] + w.Whole[2 * a] * spacing[a];
+    const double hi = origin[a] + w.Whole[2 * a + 1] * spacing[a];
+    const double size = std::max({ hi - lo, bounds[2 * a + 1] - bounds[2 * a], 1e-300 });
+    moved = moved || std::fabs(bounds[2 * a] - lo) > 1e-9 * size ||
+      (n > 0 && std::fabs(bounds[2 * a + 1] - hi) > 1e-9 * size);
+    newSpacing[a] = n > 0 && bounds[2 * a + 1] > bounds[2 * a] ? (bounds[2 * a + 1] - bounds[2 * a]) / n : spacing[a];
+    newOrigin[a] = (n > 0 ? bounds[2 * a] : 0.5 * (bounds[2 * a] + bounds[2 * a + 1])) - w.Whole[2 * a] * newSpacing[a];
+  }
+  if (!moved)
+  {
+    return;
+  }
+  w.OutInfo->Set(vtkDataObject::ORIGIN(), newOrigin, 3);
+  w.OutInfo->Set(vtkDataObject::SPACING(), newSpacing, 3);
+  std::ostringstream m;
+  m << "RefractiveIndex: the input's bounds are not those the sampling grid was set over (a mesh "
+       "that moves over time): the grid follows them, the same points over ["
+    << bounds[0] << ", " << bounds[1] << "] x [" << bounds[2] << ", " << bounds[3] << "] x ["
+    << bounds[4] << ", " << bounds[5] << "].";
+  w.Notes.push_back(m.str());
+  if (w.Ranks.Rank() == 0)
+  {
+    vtkOutputWindowDisplayText((m.str() + "\n").c_str());
+  }
+}
+
+//------------------------------------------------------------------------------
 std::string vtkRefractiveIndex::MakeGrid(Work& w)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
@@ -1385,6 +1506,10 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
       return this->SamplingError.empty()
         ? std::string("No resampling grid: the pipeline information was not updated.")
         : this->SamplingError;
+    }
+    if (!w.Symmetric && !this->UseSamplingBounds && !vtkOverlappingAMR::SafeDownCast(w.Input))
+    {
+      this->FollowMovingBounds(w);
     }
     vtkNew<vtkImageData> structure;
     structure->SetExtent(w.Whole);
@@ -1420,6 +1545,11 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
       if (!this->SamplingNote.empty())
       {
         notes.push_back(this->SamplingNote);
+      }
+      const std::string overlap = schlieren::amr::OverlapProblem(amr);
+      if (!overlap.empty())
+      {
+        return overlap; // the same on every rank (from the metadata): before the collective steps
       }
       w.Grid = schlieren::amr::Resample(w.Ranks, amr, structure, names, notes);
       double finest[3];
@@ -1479,13 +1609,27 @@ std::string vtkRefractiveIndex::EvaluateModel(Work& w)
   {
     const schlieren::FieldReport report =
       schlieren::ComputeFieldIndex(fields, ModelOf(this), w.NMinus1->GetPointer(0));
-    w.Warnings = report.Warnings;
+    w.Warnings.insert(w.Warnings.end(), report.Warnings.begin(), report.Warnings.end());
     if (w.AnyInvalid && report.ValidPoints == 0)
     {
-      return "No point of the " +
-        std::string(w.Resampled ? "sampling grid lies inside the input's cells"
-                                : "input is valid (vtkValidPointMask is 0 everywhere)") +
-        ": check SamplingBounds and the input.";
+      if (!w.Resampled)
+      {
+        return "No point of the input is valid (vtkValidPointMask is 0 everywhere): check the "
+               "filter that made the mask.";
+      }
+      if (this->UseSamplingBounds)
+      {
+        return "No point of the sampling grid lies inside the input's cells: SamplingBounds "
+               "(UseSamplingBounds on) lies outside the input's mesh; check SamplingBounds and "
+               "the input.";
+      }
+      // the grid is over the input's own bounds: its cells hold no volume to sample (issue 48:
+      // "check SamplingBounds" was said with SamplingBounds off)
+      return "No point of the sampling grid lies inside the input's cells, though the grid spans "
+             "the input's own bounds: its cells enclose no volume (" + DescribeCells(w.Input) +
+        "). A volume mesh is needed: an OpenFOAM case's internalMesh rather than its patches, a "
+        "wedge with an angle, cells with a thickness; a 2D result takes Symmetry Planar or "
+        "Axisymmetric.";
     }
   }
   catch (const schlieren::Error& e)

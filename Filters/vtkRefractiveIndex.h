@@ -586,6 +586,9 @@ private:
   std::string ReadInputs(Work& w);
   /** The grid the model runs on: the input image's (grown) piece, or the resampled grid. */
   std::string MakeGrid(Work& w);
+  /** A resampled input whose bounds moved since RequestInformation (a moving mesh over time): the
+   * grid's origin and spacing in the output information follow them (collective under MPI). */
+  void FollowMovingBounds(Work& w);
   /** n - 1 from the model on the grid, and the domain edge of the points this piece owns. */
   std::string EvaluateModel(Work& w);
   /** Under MPI: every rank learns whether any failed (given `failure`), and the whole edge. */
@@ -646,6 +649,11 @@ private:
    * sets the axis in use, its crossing and the sampled half plane's tilt, and WedgeNote.
    */
   schlieren::Wedge FindWedge(vtkDataObject* input);
+  /**
+   * NO_SYMMETRY: "" or the warning that the (non-image) input is an axisymmetric wedge, which
+   * traced as it is would be a slab of gas a few degrees thick (issue 48), and what to set.
+   */
+  std::string WedgeWithoutSymmetry(vtkDataObject* input);
   /** "" or the error of a NO_SYMMETRY input that is 2D (one message, naming Symmetry). */
   std::string FlatInputError(schlieren::Parallel& parallel, vtkDataObject* input);
   /**

@@ -901,6 +901,13 @@ bool vtkRefractiveIndex::SymmetricGrid(
       // plane whatever its thickness next to its sides.
       thick = !OnTwoPlanes(vtkDataSet::SafeDownCast(input), thin, 1e-6 * largest);
     }
+    if (thick && !wedge.Found && wedge.OnTwoPlanes)
+    {
+      // a wedge in shape (one cell across between two planes) that cannot be revolved as one:
+      // its own reason (a tilted axis, an angle past the limit), not "a 3D volume"
+      return fail("Symmetry Axisymmetric: the input is one cell across between two planes, as an "
+        "axisymmetric wedge, but it cannot be revolved as one: " + wedge.Why + ".");
+    }
     if (thick && !wedge.Found)
     {
       std::ostringstream m;
@@ -1287,6 +1294,47 @@ bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
        "are taken as a body.";
   note = m.str();
   return marked > 0;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkRefractiveIndex::WedgeWithoutSymmetry(vtkDataObject* input)
+{
+  double b[6];
+  if (!input || vtkImageData::SafeDownCast(input) || !this->AxisFromWedge || !BoundsOf(input, b))
+  {
+    return std::string();
+  }
+  // only a thin input can be a wedge (one of 10 deg is 0.18 of its radius across): a 3D mesh
+  // costs one look at its bounds
+  double sides[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
+  std::sort(sides, sides + 3);
+  if (!(sides[0] > 0) || sides[0] > 0.25 * sides[1])
+  {
+    return std::string();
+  }
+  std::vector<double> xyz;
+  ForEachLeaf(input, [&](vtkDataSet* ds) {
+    for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      ds->GetPoint(i, p);
+      xyz.insert(xyz.end(), p, p + 3);
+    }
+  });
+  const schlieren::Wedge wedge = schlieren::DetectWedge(xyz.data(), xyz.size() / 3);
+  if (!wedge.Found)
+  {
+    return std::string();
+  }
+  const double deg = 180.0 / 3.14159265358979323846;
+  std::ostringstream m;
+  m << "The input is an axisymmetric wedge (OpenFOAM's way: two planes " << wedge.Angle * deg
+    << " deg apart through the line along " << AxisNames[wedge.Axial] << " at "
+    << AxisNames[wedge.Radial] << " = " << wedge.AxisRadial << ", " << AxisNames[wedge.Thin]
+    << " = " << wedge.AxisThin << ", one cell across). With Symmetry None it is traced as it is: a "
+    << wedge.Angle * deg << " deg slab of gas, not the revolved flow. Set Symmetry to "
+    << "Axisymmetric (AxisFromWedge on) to revolve it about its axis.";
+  return m.str();
 }
 
 //------------------------------------------------------------------------------

@@ -41,31 +41,37 @@ vtkRefractiveScene::~vtkRefractiveScene() = default;
 //------------------------------------------------------------------------------
 bool vtkRefractiveScene::ComputeGrid(double origin[3], double spacing[3])
 {
-  // the numeric properties' ranges, those of their domains in Schlieren.xml: outside, an error
-  // naming the property, the value and the range (a clamp would change the scene silently)
-  const double inf = std::numeric_limits<double>::infinity();
-  const struct
+  // the numeric properties' ranges, those of their domains in Schlieren.xml, and finite vectors:
+  // the engine's check (schlieren::CheckSceneParameters), the same for every front end; outside,
+  // an error naming the property, the value and the range (a clamp would change the scene
+  // silently). TimeSteps is this filter's alone (the engine's scenes take one time).
+  schlieren::SceneParameters p;
+  p.Amplitude = this->Amplitude;
+  p.Width = this->Width;
+  p.Radius = this->Radius;
+  std::copy(this->Center, this->Center + 3, p.Center);
+  p.GradientA = this->GradientA;
+  p.GradientB = this->GradientB;
+  p.Mach = this->Mach;
+  p.Density = this->Density;
+  p.Time = this->Time;
+  schlieren::BodyParameters b;
+  b.Radius = this->BodyRadius;
+  std::copy(this->BodyCenter, this->BodyCenter + 3, b.Center);
+  std::copy(this->BodyAxis, this->BodyAxis + 3, b.Axis);
+  try
   {
-    const char* Name;
-    double Value, Min, Max;
-  } ranges[] = { { "Amplitude", this->Amplitude, -0.9, 10.0 }, { "Width", this->Width, 1e-12, inf },
-    { "Radius", this->Radius, 1e-12, inf }, { "Mach", this->Mach, 1.0, 100.0 },
-    { "Density", this->Density, 1e-12, 1e6 }, { "Time", this->Time, 1e-6, 1e6 },
-    { "TimeSteps", double(this->TimeSteps), 0, 10000 },
-    { "BodyRadius", this->BodyRadius, 1e-12, inf } };
-  for (const auto& r : ranges)
+    schlieren::CheckSceneParameters(p, b);
+  }
+  catch (const schlieren::Error& e)
   {
-    if (!(r.Value >= r.Min && r.Value <= r.Max) || std::isinf(r.Value))
-    {
-      std::ostringstream range;
-      range << "[" << r.Min << ", ";
-      if (std::isinf(r.Max))
-        range << "a finite value]";
-      else
-        range << r.Max << "]";
-      vtkErrorMacro(<< r.Name << " is " << r.Value << ": it must be in " << range.str() << ".");
-      return false;
-    }
+    vtkErrorMacro(<< e.what());
+    return false;
+  }
+  if (!(this->TimeSteps >= 0 && this->TimeSteps <= 10000))
+  {
+    vtkErrorMacro(<< "TimeSteps is " << this->TimeSteps << ": it must be in [0, 10000].");
+    return false;
   }
   // the enumerations' entries, those of their domains in Schlieren.xml
   for (const std::string& problem : { SchlierenEnumProblem("Scene", this->Scene,

@@ -605,6 +605,14 @@ std::string EnumerationProblem(vtkSchlierenImage* f)
     if (!problem.empty())
       return problem;
   }
+  // The XML domain's range (the engine takes any finite angle): outside it, an error, not a wrap;
+  // found here so that RequestData refuses it too (issue 48: it traced at that angle).
+  if (!(f->GetKnifeAngle() >= -180 && f->GetKnifeAngle() <= 180))
+  {
+    std::ostringstream msg;
+    msg << "KnifeAngle is " << f->GetKnifeAngle() << ": it must be in [-180, 180] degrees.";
+    return msg.str();
+  }
   return std::string();
 }
 } // namespace
@@ -628,17 +636,6 @@ int vtkSchlierenImage::RequestInformation(
     if (this->Internals->Fresh(problem, ErrorKey(this)))
     {
       vtkErrorMacro(<< problem);
-    }
-    return 0;
-  }
-  // The XML domain's range (the engine takes any finite angle): outside it, an error, not a wrap.
-  if (!(this->KnifeAngle >= -180 && this->KnifeAngle <= 180))
-  {
-    std::ostringstream msg;
-    msg << "KnifeAngle is " << this->KnifeAngle << ": it must be in [-180, 180] degrees.";
-    if (this->Internals->Fresh(msg.str(), ErrorKey(this)))
-    {
-      vtkErrorMacro(<< msg.str());
     }
     return 0;
   }

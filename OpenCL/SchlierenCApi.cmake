@@ -50,4 +50,12 @@ if(BUILD_TESTING)
   add_test(NAME engine.TestCApi COMMAND TestCApi)
   set_tests_properties(engine.TestCApi PROPERTIES LABELS engine
     ENVIRONMENT "SCHLIEREN_OPENCL_LIBRARY=/nonexistent/libOpenCL.so.1")
+  # the C interface fuzzed (issue 48): the crashers as named cases, then 4000 seeded random calls
+  # (a few seconds); the long run under AddressSanitizer: docs/FUZZING.md
+  find_package(Threads REQUIRED)
+  add_executable(TestCApiFuzz "${PROJECT_SOURCE_DIR}/Testing/Cxx/TestCApiFuzz.c")
+  target_link_libraries(TestCApiFuzz PRIVATE schlieren_engine m Threads::Threads)
+  add_test(NAME engine.TestCApiFuzz COMMAND TestCApiFuzz --cases 4000 --seed 48)
+  set_tests_properties(engine.TestCApiFuzz PROPERTIES LABELS engine TIMEOUT 300
+    ENVIRONMENT "SCHLIEREN_OPENCL_LIBRARY=/nonexistent/libOpenCL.so.1")
 endif()

@@ -5,13 +5,17 @@
 #define SCHLIEREN_C_BUILDING
 #include "schlieren_c.h"
 
+#include "SchlierenBodies.h"
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenNumerical.h"
 #include "SchlierenParallel.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,9 +24,11 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace
@@ -67,14 +73,17 @@ std::string Number(double v)
   return buf;
 }
 
-/** The numbers of a text value ("0 0 -1", "512,512"); false where one does not parse. */
-bool ParseNumbers(const char* text, std::vector<double>& out)
+/** The numbers of a text value ("0 0 -1", "512,512") and, where `tokens` is given, their text as
+ * typed (for messages: a value is reported as given); false where one does not parse. */
+bool ParseNumbers(const char* text, std::vector<double>& out, std::vector<std::string>* tokens = nullptr)
 {
   out.clear();
+  if (tokens)
+    tokens->clear();
   const char* p = text;
   while (*p)
   {
-    while (*p == ' ' || *p == ',' || *p == '\t' || *p == '\n' || *p == '[' || *p == ']' || *p == '(' || *p == ')')
+    while (*p == ' ' || *p == ',' || *p == '\t' || *p == '\n' || *p == '\r' || *p == '[' || *p == ']' || *p == '(' || *p == ')')
       ++p;
     if (!*p)
       break;
@@ -83,9 +92,56 @@ bool ParseNumbers(const char* text, std::vector<double>& out)
     if (end == p)
       return false;
     out.push_back(v);
+    if (tokens)
+      tokens->push_back(std::string(p, static_cast<std::size_t>(end - p)));
     p = end;
   }
   return true;
+}
+
+/** Levenshtein distance of two names, letters compared without case. */
+std::size_t Distance(const std::string& a, const std::string& b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      const std::size_t up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1) });
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/** " (the closest known name: 'X'; names are case-sensitive)" for the known name nearest to
+ * `given`, empty where none is near (more than half its letters differ). */
+template <typename Names>
+std::string Closest(const std::string& given, const Names& names)
+{
+  std::string best;
+  std::size_t bestDistance = std::string::npos;
+  for (const auto& n : names)
+  {
+    const std::string name(n);
+    const std::size_t d = Distance(given, name);
+    if (d < bestDistance)
+    {
+      best = name;
+      bestDistance = d;
+    }
+  }
+  if (best.empty() || bestDistance > std::max<std::size_t>(2, best.size() / 2))
+    return std::string();
+  return " (the closest known name: '" + best + "'" +
+    (bestDistance == 0 ? "; names are case-sensitive)" : ")");
 }
 
 /** A property of SchlierenImage as the interface takes it. */
@@ -223,11 +279,31 @@ std::string ValueText(const Property& p, const TraceSettings& s)
   return out;
 }
 
+/** The storage range of an integer property (Seed: unsigned 32 bits; bool 0/1; else int). */
+void IntegerRange(const Property& p, double& lo, double& hi)
+{
+  if (std::strcmp(p.Kind, "bool") == 0)
+  {
+    lo = 0;
+    hi = 1;
+  }
+  else if (std::strcmp(p.Name, "Seed") == 0)
+  {
+    lo = 0;
+    hi = 4294967295.0;
+  }
+  else
+  {
+    lo = std::numeric_limits<int>::min();
+    hi = std::numeric_limits<int>::max();
+  }
+}
+
 /** Sets `p` from text; returns an empty string or why not. */
 std::string SetProperty(const Property& p, TraceSettings& s, const char* text)
 {
   if (!text)
-    return std::string(p.Name) + ": no value given.";
+    return std::string(p.Name) + ": no value given (NULL).";
   if (p.SetText)
   {
     p.SetText(s, text);
@@ -251,19 +327,56 @@ std::string SetProperty(const Property& p, TraceSettings& s, const char* text)
     std::string list;
     for (const char* e : p.Entries)
       list += std::string(list.empty() ? "" : ", ") + e;
-    return std::string(p.Name) + " '" + text + "' is not one of: " + list + ".";
+    return std::string(p.Name) + " '" + text + "' is not one of: " + list + Closest(text, p.Entries) + ".";
   }
   std::vector<double> v;
-  if (!ParseNumbers(text, v) || static_cast<int>(v.size()) != p.Size)
+  std::vector<std::string> typed;
+  if (!ParseNumbers(text, v, &typed) || static_cast<int>(v.size()) != p.Size)
     return std::string(p.Name) + " '" + text + "': expected " + std::to_string(p.Size) + " " +
-      (p.Size == 1 ? "number" : "numbers") + ".";
-  for (double x : v)
+      (std::strcmp(p.Kind, "double") == 0 ? "" : "integer ") + (p.Size == 1 ? "number" : "numbers") + ".";
+  if (std::strcmp(p.Kind, "double") == 0)
   {
-    if (!std::isfinite(x) && std::strcmp(p.Kind, "double") != 0)
-      return std::string(p.Name) + " '" + text + "': not a finite number.";
-    if (std::strcmp(p.Kind, "double") != 0 &&
-      (x != std::floor(x) || x < std::numeric_limits<int>::min() || x > std::numeric_limits<unsigned>::max()))
-      return std::string(p.Name) + " '" + text + "': expected an integer.";
+    p.SetNumbers(s, v);
+    return std::string();
+  }
+  double lo = 0, hi = 0;
+  IntegerRange(p, lo, hi);
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    const double x = v[i];
+    if (!std::isfinite(x) || x != std::floor(x))
+      return std::string(p.Name) + " is " + typed[i] + ": " +
+        (std::strcmp(p.Kind, "bool") == 0 ? "it must be 0 or 1 (a boolean)." : "expected an integer.");
+    if (x >= lo && x <= hi)
+      continue;
+    if (std::strcmp(p.Kind, "bool") == 0)
+      return std::string(p.Name) + " is " + typed[i] + ": it must be 0 or 1 (a boolean).";
+    // out of the storage type: the engine's range for the property, with the value as given
+    // (not as the 32-bit integer it would have wrapped to)
+    std::vector<double> clamped = v;
+    for (double& c : clamped)
+      c = std::min(std::max(c, lo), hi);
+    TraceSettings trial = s;
+    p.SetNumbers(trial, clamped);
+    std::string message;
+    try
+    {
+      schlieren::CheckSettings(trial);
+    }
+    catch (const std::exception& e)
+    {
+      message = e.what();
+    }
+    std::ostringstream c;
+    c.precision(17);
+    c << clamped[i];
+    const std::size_t at = message.find(c.str());
+    if (message.compare(0, std::strlen(p.Name), p.Name) == 0 && at != std::string::npos)
+      return message.replace(at, c.str().size(), typed[i]);
+    std::ostringstream range;
+    range.precision(17);
+    range << p.Name << " is " << typed[i] << ": it must be an integer in [" << lo << ", " << hi << "].";
+    return range.str();
   }
   p.SetNumbers(s, v);
   return std::string();
@@ -273,6 +386,9 @@ std::string SetProperty(const Property& p, TraceSettings& s, const char* text)
 
 struct schlieren_session
 {
+  /** One call at a time: every entry point that takes the session holds this for its call (a
+   * second thread waits; the header says so). */
+  std::mutex Mutex;
   schlieren::TraceSession Session;
   TraceSettings Settings = Defaults();
   schlieren::VolumePiece Piece;
@@ -286,6 +402,123 @@ struct schlieren_session
   bool HasImage = false;
   std::string Error, Report, Text;
 };
+
+namespace
+{
+/** The live sessions: a handle not in it (freed, or not made here) is refused, not followed. The
+ * registry holds a reference, and each call holds its own for the call: a free from another
+ * thread during a call frees the session when that call ends. Never destroyed (calls may come
+ * from other threads' destructors at exit). */
+std::mutex& RegistryMutex()
+{
+  static std::mutex* m = new std::mutex;
+  return *m;
+}
+std::unordered_map<const schlieren_session*, std::shared_ptr<schlieren_session>>& Registry()
+{
+  static auto* r = new std::unordered_map<const schlieren_session*, std::shared_ptr<schlieren_session>>;
+  return *r;
+}
+
+std::shared_ptr<schlieren_session> Live(const schlieren_session* s)
+{
+  if (!s)
+    return nullptr;
+  std::lock_guard<std::mutex> lock(RegistryMutex());
+  const auto it = Registry().find(s);
+  return it == Registry().end() ? nullptr : it->second;
+}
+
+const char* NotLive(const schlieren_session* s)
+{
+  return s ? "not a live session: the handle was freed (schlieren_session_free) or was not made "
+             "by schlieren_session_new"
+           : "no session (NULL)";
+}
+
+/** A session held for one call (its mutex locked), or, where the handle is not live, nothing and
+ * the reason in schlieren_last_error(). */
+struct Held
+{
+  std::shared_ptr<schlieren_session> Session;
+  std::unique_lock<std::mutex> Lock;
+  Held(const schlieren_session* s, const char* function)
+    : Session(Live(s))
+  {
+    if (Session)
+      Lock = std::unique_lock<std::mutex>(Session->Mutex);
+    else
+      LastError = std::string(function) + ": " + NotLive(s) + ".";
+  }
+  explicit operator bool() const { return static_cast<bool>(Session); }
+  schlieren_session* operator->() const { return Session.get(); }
+  schlieren_session* get() const { return Session.get(); }
+};
+
+/** The points of a grid, refusing dimensions below 1 and products past 2^40 (before any
+ * allocation or loop sized by them). */
+std::int64_t GridPoints(const char* function, const int dims[3])
+{
+  if (!dims)
+    throw schlieren::Error(std::string(function) + ": dims is NULL.");
+  std::int64_t n = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] < 1)
+      throw schlieren::Error(std::string(function) + ": dims are " + std::to_string(dims[0]) + " " +
+        std::to_string(dims[1]) + " " + std::to_string(dims[2]) +
+        ": each must be at least 1 (points along x, y, z).");
+    // checked before the product (2^40 x 2^31 would overflow 64 bits)
+    if (n > (std::int64_t(1) << 40) / dims[a])
+      throw schlieren::Error(std::string(function) + ": dims " + std::to_string(dims[0]) + " x " +
+        std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
+        " make more than 2^40 points: no array of the engine can hold them.");
+    n *= dims[a];
+  }
+  return n;
+}
+
+std::string GridText(const int dims[3])
+{
+  return std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]);
+}
+
+/** An array and its length: NULL with length 0 is "not given" where `optional`; else the length
+ * must be `needed` (in `unit`s) and the pointer not NULL. */
+void CheckArray(const char* function, const char* array, const void* data, std::int64_t given,
+  std::int64_t needed, const std::string& per, bool optional, const char* unit = "values")
+{
+  if (given < 0)
+    throw schlieren::Error(std::string(function) + ": the length of " + array + " is " +
+      std::to_string(given) + ": a length is a count of " + unit + " (>= 0).");
+  if (!data)
+  {
+    if (optional && given == 0)
+      return;
+    throw schlieren::Error(std::string(function) + ": " + array + " is NULL" +
+      (optional ? " with a length of " + std::to_string(given) + " (give both, or NULL and 0)."
+                : ": it must be given (" + std::to_string(needed) + " " + unit + ")."));
+  }
+  if (given != needed)
+    throw schlieren::Error(std::string(function) + ": " + array + " holds " + std::to_string(given) +
+      " " + unit + "; " + per + " needs " + std::to_string(needed) + ".");
+}
+
+void CheckFinite3(const char* function, const char* name, const double* v)
+{
+  if (!v)
+    throw schlieren::Error(std::string(function) + ": " + name + " is NULL.");
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(v[a]))
+    {
+      std::ostringstream msg;
+      msg << function << ": " << name << " is " << v[0] << " " << v[1] << " " << v[2]
+          << ": give finite numbers.";
+      throw schlieren::Error(msg.str());
+    }
+}
+
+} // namespace
 
 namespace
 {
@@ -465,20 +698,38 @@ schlieren_session* schlieren_session_new(void)
 {
   try
   {
-    return new schlieren_session;
+    auto session = std::make_shared<schlieren_session>();
+    std::lock_guard<std::mutex> lock(RegistryMutex());
+    Registry()[session.get()] = session;
+    return session.get();
   }
   catch (...)
   {
-    LastError = "Out of memory.";
+    LastError = "schlieren_session_new: out of memory.";
     return nullptr;
   }
 }
 
 void schlieren_session_free(schlieren_session* s)
 {
+  if (!s)
+    return;
   try
   {
-    delete s;
+    std::shared_ptr<schlieren_session> gone;
+    {
+      std::lock_guard<std::mutex> lock(RegistryMutex());
+      const auto it = Registry().find(s);
+      if (it == Registry().end())
+      {
+        // a second free, or a foreign pointer: refused (not deleted twice)
+        LastError = std::string("schlieren_session_free: ") + NotLive(s) + ".";
+        return;
+      }
+      gone = std::move(it->second);
+      Registry().erase(it);
+    }
+    // freed here, or when a call still running on another thread ends
   }
   catch (...)
   {
@@ -487,24 +738,32 @@ void schlieren_session_free(schlieren_session* s)
 
 const char* schlieren_session_error(const schlieren_session* s)
 {
-  return s ? s->Error.c_str() : "no session (NULL)";
+  Held h(s, "schlieren_session_error");
+  if (!h)
+    return NotLive(s);
+  return h->Error.c_str();
 }
 
 int schlieren_session_set(schlieren_session* s, const char* name, const char* value)
 {
-  if (!s)
+  Held h(s, "schlieren_session_set");
+  if (!h)
     return 1;
-  return Guard(s->Error, [&] {
+  return Guard(h->Error, [&] {
     const Property* p = FindProperty(name);
     if (!p)
     {
       std::string list;
+      std::vector<const char*> names;
       for (const Property& q : Properties())
+      {
         list += std::string(list.empty() ? "" : ", ") + q.Name;
-      throw schlieren::Error(std::string("SchlierenImage has no property '") + (name ? name : "") +
-        "'; it has: " + list + ".");
+        names.push_back(q.Name);
+      }
+      throw schlieren::Error(std::string("SchlierenImage has no property '") + (name ? name : "(NULL)") +
+        "'" + (name ? Closest(name, names) : std::string()) + "; it has: " + list + ".");
     }
-    const std::string why = SetProperty(*p, s->Settings, value);
+    const std::string why = SetProperty(*p, h->Settings, value);
     if (!why.empty())
       throw schlieren::Error(why);
   });
@@ -512,31 +771,52 @@ int schlieren_session_set(schlieren_session* s, const char* name, const char* va
 
 const char* schlieren_session_get(schlieren_session* s, const char* name)
 {
-  if (!s)
+  Held h(s, "schlieren_session_get");
+  if (!h)
     return nullptr;
   const Property* p = FindProperty(name);
   if (!p)
+  {
+    std::vector<const char*> names;
+    for (const Property& q : Properties())
+      names.push_back(q.Name);
+    h->Error = std::string("SchlierenImage has no property '") + (name ? name : "(NULL)") + "'" +
+      (name ? Closest(name, names) : std::string()) + ".";
     return nullptr;
-  if (Guard(s->Error, [&] { s->Text = ValueText(*p, s->Settings); }))
+  }
+  if (Guard(h->Error, [&] { h->Text = ValueText(*p, h->Settings); }))
     return nullptr;
-  return s->Text.c_str();
+  return h->Text.c_str();
 }
 
-int schlieren_session_set_volume(schlieren_session* s, const int dims[3], const double origin[3],
-  const double spacing[3], const float* n_minus_1, const unsigned char* solid,
-  const unsigned char* levels, double level_tolerance, int max_level)
+int schlieren_session_set_volume(schlieren_session* handle, const int dims[3],
+  const double origin[3], const double spacing[3], const float* n_minus_1,
+  int64_t n_minus_1_count, const unsigned char* solid, int64_t solid_count,
+  const unsigned char* levels, int64_t levels_count, double level_tolerance, int max_level)
 {
-  if (!s)
+  Held h(handle, "schlieren_session_set_volume");
+  if (!h)
     return 1;
+  schlieren_session* s = h.get();
   return Guard(s->Error, [&] {
-    if (!dims || !origin || !spacing || !n_minus_1)
-      throw schlieren::Error("schlieren_session_set_volume: dims, origin, spacing and n_minus_1 "
-                             "must not be NULL.");
-    for (int a = 0; a < 3; ++a)
-      if (dims[a] < 1)
-        throw schlieren::Error("The volume's dimensions must be at least 1; got " +
-          std::to_string(dims[0]) + " " + std::to_string(dims[1]) + " " + std::to_string(dims[2]) + ".");
-    const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+    const char* f = "schlieren_session_set_volume";
+    const std::int64_t n = GridPoints(f, dims);
+    const std::string per = "a grid of " + GridText(dims) + " points";
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, n, per, false);
+    CheckArray(f, "solid", solid, solid_count, n, per, true);
+    CheckArray(f, "levels", levels, levels_count, n, per, true);
+    if (!(max_level >= 0 && max_level <= 10))
+      throw schlieren::Error(std::string(f) + ": max_level is " + std::to_string(max_level) +
+        ": it must be in [0, 10] (RefractionOctree's MaxLevel).");
+    if (std::isnan(level_tolerance))
+      throw schlieren::Error(std::string(f) + ": level_tolerance is NaN (< 0: unknown).");
+    // the copies, refused before they are made where they do not fit
+    schlieren::CheckHostMemory(double(n) * (4.0 + (solid ? 1 : 0) + (levels ? 1 : 0)),
+      "The session's copy of a volume of " + GridText(dims) + " points",
+      "Give a smaller volume (resample it).");
+    s->HasVolume = false;
     s->NMinus1.assign(n_minus_1, n_minus_1 + n);
     if (solid)
       s->Solid.assign(solid, solid + n);
@@ -576,10 +856,12 @@ int schlieren_session_set_volume(schlieren_session* s, const int dims[3], const 
   });
 }
 
-int schlieren_session_trace(schlieren_session* s)
+int schlieren_session_trace(schlieren_session* handle)
 {
-  if (!s)
+  Held h(handle, "schlieren_session_trace");
+  if (!h)
     return 1;
+  schlieren_session* s = h.get();
   s->Image = schlieren::SessionImage();
   s->HasImage = false;
   const int rc = Guard(s->Error, [&] {
@@ -591,16 +873,24 @@ int schlieren_session_trace(schlieren_session* s)
     s->Session.Update(schlieren::SerialParallel(), s->Piece, s->Settings, s->Image);
     s->HasImage = s->Image.HasImage;
   });
-  MakeReport(s, s->Error);
+  try
+  {
+    MakeReport(s, s->Error);
+  }
+  catch (...)
+  {
+    s->Report = "{\"field_data\": {}, \"notes\": [], \"error\": \"Out of memory.\"}";
+  }
   return rc;
 }
 
 const float* schlieren_session_array(
-  const schlieren_session* s, const char* name, int* components, int64_t* pixels)
+  const schlieren_session* handle, const char* name, int* components, int64_t* pixels)
 {
-  if (!s || !s->HasImage || !name)
+  Held h(handle, "schlieren_session_array");
+  if (!h || !h->HasImage || !name)
     return nullptr;
-  const schlieren::TraceResult& r = s->Image.Result;
+  const schlieren::TraceResult& r = h->Image.Result;
   const struct
   {
     const char* Name;
@@ -627,11 +917,18 @@ const float* schlieren_session_array(
 }
 
 int schlieren_session_film(
-  const schlieren_session* s, int size[2], double origin[2], double* pixel_size)
+  const schlieren_session* handle, int size[2], double origin[2], double* pixel_size)
 {
-  if (!s || !s->HasImage)
+  Held h(handle, "schlieren_session_film");
+  if (!h)
     return 1;
-  const schlieren::FilmGeometry& f = s->Image.Result.Film;
+  if (!h->HasImage)
+  {
+    h->Error = "schlieren_session_film: no image: the session has not traced one yet, or its last "
+               "trace failed (" + (h->Error.empty() ? std::string("no trace yet") : h->Error) + ").";
+    return 1;
+  }
+  const schlieren::FilmGeometry& f = h->Image.Result.Film;
   if (size)
   {
     size[0] = f.Size[0];
@@ -644,14 +941,18 @@ int schlieren_session_film(
   return 0;
 }
 
-int schlieren_session_plan_film(schlieren_session* s, const int dims[3], const double origin[3],
+int schlieren_session_plan_film(schlieren_session* handle, const int dims[3], const double origin[3],
   const double spacing[3], int size[2], double film_origin[2], double* pixel_size)
 {
-  if (!s)
+  Held h(handle, "schlieren_session_plan_film");
+  if (!h)
     return 1;
+  schlieren_session* s = h.get();
   return Guard(s->Error, [&] {
-    if (!dims || !origin || !spacing)
-      throw schlieren::Error("schlieren_session_plan_film: dims, origin and spacing must be given.");
+    const char* f = "schlieren_session_plan_film";
+    GridPoints(f, dims);
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
     schlieren::Volume v;
     for (int a = 0; a < 3; ++a)
     {
@@ -659,31 +960,42 @@ int schlieren_session_plan_film(schlieren_session* s, const int dims[3], const d
       v.Origin[a] = origin[a];
       v.Spacing[a] = spacing[a];
     }
-    const schlieren::FilmGeometry f = schlieren::PlannedFilm(v, s->Settings, s->Session);
+    const schlieren::FilmGeometry film = schlieren::PlannedFilm(v, s->Settings, s->Session);
     if (size)
     {
-      size[0] = f.Size[0];
-      size[1] = f.Size[1];
+      size[0] = film.Size[0];
+      size[1] = film.Size[1];
     }
     if (film_origin)
-      f.GetImageOrigin(film_origin);
+      film.GetImageOrigin(film_origin);
     if (pixel_size)
-      *pixel_size = f.PixelSize;
+      *pixel_size = film.PixelSize;
   });
 }
 
-const char* schlieren_session_report(const schlieren_session* s)
+const char* schlieren_session_report(const schlieren_session* handle)
 {
-  return s ? s->Report.c_str() : "";
+  Held h(handle, "schlieren_session_report");
+  if (!h)
+  {
+    Returned = "{\"field_data\": {}, \"notes\": [], \"error\": " +
+      Json(std::string("schlieren_session_report: ") + NotLive(handle) + ".") + "}";
+    return Returned.c_str();
+  }
+  return h->Report.c_str();
 }
 
 int schlieren_fill_scene(const char* settings, const int dims[3], const double origin[3],
-  const double spacing[3], float* n_minus_1, float* density, float* mixture_fraction,
+  const double spacing[3], int64_t count, float* n_minus_1, float* density, float* mixture_fraction,
   unsigned char* solid)
 {
   return Guard(LastError, [&] {
-    if (!dims || !origin || !spacing || !n_minus_1)
-      throw schlieren::Error("schlieren_fill_scene: dims, origin, spacing and n_minus_1 must not be NULL.");
+    const char* f = "schlieren_fill_scene";
+    const std::int64_t n = GridPoints(f, dims);
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    CheckArray(f, "n_minus_1 (and each array given)", n_minus_1, count, n,
+      "a grid of " + GridText(dims) + " points", false);
     static const char* scenes[] = { "Uniform", "GaussianSphere", "LuneburgLens", "LinearGradient",
       "NormalShock", "HeliumPlume", "BlastWave" };
     static const char* bodies[] = { "None", "Sphere", "Cylinder" };
@@ -700,14 +1012,15 @@ int schlieren_fill_scene(const char* settings, const int dims[3], const double o
       if (eq == std::string::npos)
         throw schlieren::Error("RefractiveScene setting '" + line + "': expected Name=value.");
       const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
-      auto pick = [&](const char* const* names, int count) {
-        for (int i = 0; i < count; ++i)
+      auto pick = [&](const char* const* names, int entries) {
+        for (int i = 0; i < entries; ++i)
           if (value == names[i])
             return i;
         std::string list;
-        for (int i = 0; i < count; ++i)
+        for (int i = 0; i < entries; ++i)
           list += std::string(i ? ", " : "") + names[i];
-        throw schlieren::Error(key + " '" + value + "' is not one of: " + list + ".");
+        throw schlieren::Error(key + " '" + value + "' is not one of: " + list +
+          Closest(value, std::vector<const char*>(names, names + entries)) + ".");
       };
       std::vector<double> v;
       auto numbers = [&](int n) {
@@ -738,11 +1051,19 @@ int schlieren_fill_scene(const char* settings, const int dims[3], const double o
           : key == "BodyRadius"          ? &b.Radius
                                          : nullptr;
         if (!to)
-          throw schlieren::Error("RefractiveScene has no engine setting '" + key + "'.");
+        {
+          static const char* known[] = { "Scene", "Amplitude", "Width", "Radius", "Center",
+            "GradientA", "GradientB", "Mach", "Density", "Time", "Body", "BodyRadius", "BodyCenter",
+            "BodyAxis" };
+          throw schlieren::Error("RefractiveScene has no engine setting '" + key + "'" +
+            Closest(key, known) + ".");
+        }
         numbers(1);
         *to = v[0];
       }
     }
+    // the ranges of RefractiveScene's properties, as the C++ filter checks them
+    schlieren::CheckSceneParameters(p, b);
     schlieren::FillScene(scene, p, dims, origin, spacing, n_minus_1, density, mixture_fraction);
     if (solid && b.Shape != schlieren::Body::None)
       schlieren::FillBody(b, dims, origin, spacing, solid);
@@ -750,14 +1071,19 @@ int schlieren_fill_scene(const char* settings, const int dims[3], const double o
 }
 
 int schlieren_numerical(const char* settings, const int dims[3], const double origin[3],
-  const double spacing[3], const float* values, const unsigned char* solid,
-  const unsigned char* excluded, int size[2], double film_origin[2], double* pixel_size,
-  int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
-  double maximum_largest[2])
+  const double spacing[3], const float* values, int64_t values_count, const unsigned char* solid,
+  int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
+  double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
+  unsigned char* blocked, double maximum_largest[2])
 {
   return Guard(LastError, [&] {
-    if (!dims || !origin || !spacing)
-      throw schlieren::Error("schlieren_numerical: dims, origin and spacing must not be NULL.");
+    const char* f = "schlieren_numerical";
+    const std::int64_t points = GridPoints(f, dims);
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    if (capacity < 0)
+      throw schlieren::Error("schlieren_numerical: capacity is " + std::to_string(capacity) +
+        ": a count of pixels (>= 0).");
     schlieren::NumericalSettings ns;
     std::istringstream lines(settings ? settings : "");
     std::string line;
@@ -781,7 +1107,8 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
         const char* a = mode ? "Slice" : "Magnitude";
         const char* b = mode ? "LineOfSight" : "KnifeComponent";
         if (value != a && value != b)
-          throw schlieren::Error(key + " '" + value + "' is not one of: " + a + ", " + b + ".");
+          throw schlieren::Error(key + " '" + value + "' is not one of: " + a + ", " + b +
+            Closest(value, std::vector<const char*>{ a, b }) + ".");
         if (mode)
           ns.Mode = value == a ? schlieren::NumericalMode::Slice : schlieren::NumericalMode::LineOfSight;
         else
@@ -814,7 +1141,13 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
           : key == "GradientMaximum"        ? &ns.Maximum
                                             : nullptr;
         if (!to)
-          throw schlieren::Error("NumericalSchlieren has no engine setting '" + key + "'.");
+        {
+          static const char* known[] = { "Mode", "Gradient", "ViewDirection", "ViewUp",
+            "Resolution", "KnifeAngle", "SliceOffset", "StepSize", "C0", "C1", "K",
+            "GradientMaximum" };
+          throw schlieren::Error("NumericalSchlieren has no engine setting '" + key + "'" +
+            Closest(key, known) + ".");
+        }
         numbers(1);
         *to = v[0];
       }
@@ -842,8 +1175,13 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
         *pixel_size = f.PixelSize;
       return;
     }
-    if (!values || !gradient || !blocked)
-      throw schlieren::Error("schlieren_numerical: values, intensity, gradient and blocked must be given.");
+    if (!gradient || !blocked)
+      throw schlieren::Error("schlieren_numerical: intensity, gradient and blocked must be given "
+                             "together (each of `capacity` pixels).");
+    const std::string per = "a grid of " + GridText(dims) + " points";
+    CheckArray(f, "values", values, values_count, points, per, false);
+    CheckArray(f, "solid", solid, solid_count, points, per, true);
+    CheckArray(f, "excluded", excluded, excluded_count, points, per, true);
     grid.Values = values;
     grid.Solid = solid;
     grid.Excluded = excluded;
@@ -872,23 +1210,42 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
   });
 }
 
-int schlieren_octree_levels(const int dims[3], const float* n_minus_1, double tolerance,
-  int max_level, unsigned char* levels, double* fraction)
+int schlieren_octree_levels(const int dims[3], const float* n_minus_1, int64_t count,
+  double tolerance, int max_level, unsigned char* levels, double* fraction)
 {
   return Guard(LastError, [&] {
-    if (!dims || !n_minus_1 || !levels)
-      throw schlieren::Error("schlieren_octree_levels: dims, n_minus_1 and levels must not be NULL.");
-    const double f = schlieren::ComputeOctreeLevels(dims, n_minus_1, tolerance, levels, max_level);
+    const char* f = "schlieren_octree_levels";
+    const std::int64_t n = GridPoints(f, dims);
+    const std::string per = "a grid of " + GridText(dims) + " points";
+    CheckArray(f, "n_minus_1 (and levels)", n_minus_1, count, n, per, false);
+    if (!levels)
+      throw schlieren::Error("schlieren_octree_levels: levels is NULL: it must hold `count` bytes.");
+    if (!(max_level >= 0 && max_level <= 10))
+      throw schlieren::Error("schlieren_octree_levels: max_level is " + std::to_string(max_level) +
+        ": it must be in [0, 10] (RefractionOctree's MaxLevel).");
+    if (!(tolerance >= 0) || !std::isfinite(tolerance))
+    {
+      std::ostringstream msg;
+      msg << "schlieren_octree_levels: tolerance is " << tolerance
+          << ": it must be a finite n - 1 difference >= 0.";
+      throw schlieren::Error(msg.str());
+    }
+    const double share = schlieren::ComputeOctreeLevels(dims, n_minus_1, tolerance, levels, max_level);
     if (fraction)
-      *fraction = f;
+      *fraction = share;
   });
 }
 
-int schlieren_gradient(const int dims[3], const double spacing[3], const float* n_minus_1, float* grad3)
+int schlieren_gradient(const int dims[3], const double spacing[3], const float* n_minus_1,
+  int64_t count, float* grad3, int64_t grad3_count)
 {
   return Guard(LastError, [&] {
-    if (!dims || !spacing || !n_minus_1 || !grad3)
-      throw schlieren::Error("schlieren_gradient: no argument may be NULL.");
+    const char* f = "schlieren_gradient";
+    const std::int64_t n = GridPoints(f, dims);
+    const std::string per = "a grid of " + GridText(dims) + " points";
+    CheckFinite3(f, "spacing", spacing);
+    CheckArray(f, "n_minus_1", n_minus_1, count, n, per, false);
+    CheckArray(f, "grad3", grad3, grad3_count, 3 * n, per + " (3 floats a point)", false, "floats");
     schlieren::ComputeGradient(dims, spacing, n_minus_1, grad3);
   });
 }
@@ -899,8 +1256,14 @@ int schlieren_field_index(const char* model, const float* input, int64_t count, 
   if (report)
     *report = "";
   return Guard(LastError, [&] {
-    if (!model || !input || !n_minus_1 || count < 0)
-      throw schlieren::Error("schlieren_field_index: model, input and n_minus_1 must be given.");
+    if (count < 0)
+      throw schlieren::Error("schlieren_field_index: count is " + std::to_string(count) +
+        ": the number of points in input and n_minus_1 (>= 0).");
+    if (!model)
+      throw schlieren::Error("schlieren_field_index: model is NULL: give Passthrough or GladstoneDale.");
+    if (count > 0 && (!input || !n_minus_1))
+      throw schlieren::Error(std::string("schlieren_field_index: ") + (!input ? "input" : "n_minus_1") +
+        " is NULL with a count of " + std::to_string(count) + ".");
     schlieren::FieldModel m;
     schlieren::FieldArrays a;
     a.Count = static_cast<std::size_t>(count);
@@ -931,7 +1294,8 @@ int schlieren_field_index(const char* model, const float* input, int64_t count, 
       a.Density.Name = "density";
     }
     else
-      throw schlieren::Error("Model '" + name + "': this interface takes Passthrough or GladstoneDale.");
+      throw schlieren::Error("Model '" + name + "': this interface takes Passthrough or GladstoneDale" +
+        Closest(name, std::vector<const char*>{ "Passthrough", "GladstoneDale" }) + ".");
     const schlieren::FieldReport r = schlieren::ComputeFieldIndex(a, m, n_minus_1);
     Returned.clear();
     for (const std::string& w : r.Warnings)
@@ -941,15 +1305,261 @@ int schlieren_field_index(const char* model, const float* input, int64_t count, 
   });
 }
 
-int schlieren_extend_into_invalid(
-  const int dims[3], const unsigned char* valid, float* n_minus_1, int64_t* filled)
+namespace
+{
+/** An entry's text among `names` (its index), else an Error naming the property and the entries. */
+int EntryOf(const std::string& property, const std::string& text, std::vector<std::string> names)
+{
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == text)
+      return static_cast<int>(i);
+  std::string all;
+  for (const std::string& n : names)
+    all += (all.empty() ? "" : ", ") + n;
+  throw schlieren::Error(property + " '" + text + "' is not one of: " + all + ".");
+}
+
+/** `count` numbers of a property's text, else an Error naming it. */
+std::vector<double> NumbersOf(const std::string& property, const std::string& text, std::size_t count)
+{
+  std::vector<double> v;
+  if (!ParseNumbers(text.c_str(), v) || v.size() != count)
+    throw schlieren::Error(property + " '" + text + "': " + std::to_string(count) +
+      (count == 1 ? " number" : " numbers") + " expected.");
+  return v;
+}
+
+/** A gas by the proxy's number (-1 Custom with K and M, 0 Air, 1 He, ...: SpeciesGases). */
+schlieren::GasChoice GasByNumber(const std::string& property, double number, double K, double M)
+{
+  const int g = static_cast<int>(number);
+  if (g != number || g < -1 || g >= static_cast<int>(schlieren::Gas::NumberOfGases))
+    throw schlieren::Error(property + ": " + std::to_string(number) + " is not a gas number (-1 "
+      "Custom, 0 to " + std::to_string(static_cast<int>(schlieren::Gas::NumberOfGases) - 1) + ").");
+  return g < 0 ? schlieren::GasChoice::Typed(K, M)
+               : schlieren::GasChoice::Table(static_cast<schlieren::Gas>(g));
+}
+} // namespace
+
+int schlieren_index_model(const char* settings, int64_t count, int number_of_arrays,
+  const char* const* roles, const float* const* arrays, const unsigned char* valid,
+  float* n_minus_1, const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    if (count < 0)
+      throw schlieren::Error("schlieren_index_model: count is " + std::to_string(count) +
+        ": the number of points in every array and n_minus_1 (>= 0).");
+    if (!settings || (count > 0 && !n_minus_1) || number_of_arrays < 0 ||
+      (number_of_arrays > 0 && (!roles || !arrays)))
+      throw schlieren::Error("schlieren_index_model: settings, the arrays and n_minus_1 must be "
+                             "given.");
+    // the proxy's properties, as Name=value lines (entries by their text)
+    std::map<std::string, std::string> p;
+    std::istringstream lines(settings);
+    for (std::string line; std::getline(lines, line);)
+    {
+      const std::size_t eq = line.find('=');
+      if (line.empty())
+        continue;
+      if (eq == std::string::npos)
+        throw schlieren::Error("schlieren_index_model: '" + line + "' is not Name=value.");
+      p[line.substr(0, eq)] = line.substr(eq + 1);
+    }
+    static const std::vector<std::string> known = { "Model", "PassthroughHoldsN", "Gas",
+      "GladstoneDaleConstant", "MolarMass", "MixtureComposition", "IdealGasComposition",
+      "MixtureGas0", "MixtureGas1", "NumberOfSpecies", "SpeciesGases", "SpeciesGladstoneDale",
+      "SpeciesMolarMass", "BalanceGas", "BalanceGladstoneDale", "BalanceMolarMass",
+      "DensityReference", "TemperatureUnit", "TemperatureReference", "PressureUnit",
+      "PressureReference", "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength" };
+    for (const auto& kv : p)
+      if (std::find(known.begin(), known.end(), kv.first) == known.end())
+        throw schlieren::Error("schlieren_index_model: unknown setting '" + kv.first + "'.");
+    auto text = [&](const char* name, const char* fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? std::string(fallback) : it->second;
+    };
+    auto number = [&](const char* name, double fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? fallback : NumbersOf(name, it->second, 1)[0];
+    };
+    auto gas = [&](const char* name, const std::string& value, double K, double M) {
+      if (value == "Custom")
+        return schlieren::GasChoice::Typed(K, M);
+      try
+      {
+        return schlieren::GasChoice::Table(schlieren::ParseGas(value));
+      }
+      catch (const schlieren::Error& e)
+      {
+        throw schlieren::Error(std::string(name) + ": " + e.what());
+      }
+    };
+    schlieren::FieldModel m;
+    m.Model = static_cast<schlieren::IndexModel>(EntryOf("Model", text("Model", "Passthrough"),
+      { "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas", "Ciddor" }));
+    m.IndexIsN = number("PassthroughHoldsN", 0) != 0;
+    m.SingleGas = gas("Gas", text("Gas", "Air"), number("GladstoneDaleConstant", 2.256e-4),
+      number("MolarMass", 0.0289641));
+    if (m.Model == schlieren::IndexModel::GladstoneDaleMixture)
+      m.Mixture = static_cast<schlieren::Composition>(1 +
+        EntryOf("MixtureComposition", text("MixtureComposition", "MixtureFraction"),
+          { "MixtureFraction", "Species" }));
+    else if (m.Model == schlieren::IndexModel::IdealGas)
+      m.Mixture = static_cast<schlieren::Composition>(EntryOf("IdealGasComposition",
+        text("IdealGasComposition", "Gas"), { "Gas", "MixtureFraction", "Species" }));
+    else
+      m.Mixture = schlieren::Composition::SingleGas;
+    m.Gas0 = gas("MixtureGas0", text("MixtureGas0", "Air"), 0, 0).Preset;
+    m.GasF = gas("MixtureGas1", text("MixtureGas1", "He"), 0, 0).Preset;
+    m.NumberOfSpecies = static_cast<int>(number("NumberOfSpecies", 1));
+    const std::vector<double> gases = NumbersOf("SpeciesGases", text("SpeciesGases", "6 8 1 5"), 4);
+    const std::vector<double> K =
+      NumbersOf("SpeciesGladstoneDale", text("SpeciesGladstoneDale", "2.256e-4 2.256e-4 2.256e-4 2.256e-4"), 4);
+    const std::vector<double> M =
+      NumbersOf("SpeciesMolarMass", text("SpeciesMolarMass", "0.0289641 0.0289641 0.0289641 0.0289641"), 4);
+    for (int s = 0; s < schlieren::MaxSpecies; ++s)
+      m.Species[s] = GasByNumber("SpeciesGases", gases[s], K[s], M[s]);
+    const std::string balance = text("BalanceGas", "Air");
+    m.HasBalance = balance != "None";
+    m.Balance = m.HasBalance ? gas("BalanceGas", balance, number("BalanceGladstoneDale", 2.256e-4),
+                                 number("BalanceMolarMass", 0.0289641))
+                             : schlieren::GasChoice::Table(schlieren::Gas::Air);
+    m.DensityReference = number("DensityReference", 1.0);
+    m.TemperatureReference = number("TemperatureReference", 1.0);
+    m.TemperatureUnits = static_cast<schlieren::TemperatureUnit>(
+      EntryOf("TemperatureUnit", text("TemperatureUnit", "Kelvin"), { "Kelvin", "Celsius" }));
+    m.PressureReference = number("PressureReference", 1.0);
+    m.PressureOffset = number("PressureOffset", 0.0);
+    m.PressureUnits = static_cast<schlieren::PressureUnit>(
+      EntryOf("PressureUnit", text("PressureUnit", "Pa"), { "Pa", "kPa", "atm", "bar" }));
+    m.Humidity = number("Humidity", 0.0);
+    m.HumidityKind = static_cast<schlieren::HumidityMeasure>(EntryOf("HumidityMeasure",
+      text("HumidityMeasure", "RelativeHumidity"), { "RelativeHumidity", "WaterMoleFraction" }));
+    m.CO2 = number("CO2", 450.0);
+    m.Wavelength = number("Wavelength", 632.8);
+    // the arrays, by role
+    schlieren::FieldArrays a;
+    a.Count = static_cast<std::size_t>(count);
+    a.Valid = valid;
+    for (int i = 0; i < number_of_arrays; ++i)
+    {
+      if (!roles[i] || !arrays[i])
+        throw schlieren::Error("schlieren_index_model: array " + std::to_string(i) +
+          " has no role or no values.");
+      const std::string role = roles[i];
+      // "role:name": the name is the input array's, for messages
+      const std::size_t colon = role.find(':');
+      const std::string kind = role.substr(0, colon);
+      const std::string name = colon == std::string::npos ? kind : role.substr(colon + 1);
+      schlieren::NamedArray* slot = nullptr;
+      if (kind == "index")
+        slot = &a.Index;
+      else if (kind == "density")
+        slot = &a.Density;
+      else if (kind == "temperature")
+        slot = &a.Temperature;
+      else if (kind == "pressure")
+        slot = &a.Pressure;
+      else if (kind == "mixture_fraction")
+        slot = &a.MixtureFraction;
+      else if (kind.size() == 8 && kind.compare(0, 7, "species") == 0 && kind[7] >= '1' &&
+        kind[7] <= '4')
+        slot = &a.Species[kind[7] - '1'];
+      else if (kind == "humidity")
+        slot = &a.Humidity;
+      else if (kind == "co2")
+        slot = &a.CO2;
+      else
+        throw schlieren::Error("schlieren_index_model: unknown array role '" + kind + "' (index, "
+          "density, temperature, pressure, mixture_fraction, species1-4, humidity, co2).");
+      slot->Data = arrays[i];
+      slot->Name = name;
+    }
+    const schlieren::FieldReport r = schlieren::ComputeFieldIndex(a, m, n_minus_1);
+    Returned.clear();
+    for (const std::string& w : r.Warnings)
+      Returned += w + "\n";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
+int schlieren_extend_into_invalid(const int dims[3], const unsigned char* valid, int64_t count,
+  float* n_minus_1, int64_t* filled)
 {
   return Guard(LastError, [&] {
-    if (!dims || !valid || !n_minus_1)
-      throw schlieren::Error("schlieren_extend_into_invalid: no argument may be NULL.");
-    const std::size_t n = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
+    const char* f = "schlieren_extend_into_invalid";
+    const std::int64_t n = GridPoints(f, dims);
+    CheckArray(f, "valid (and n_minus_1)", valid, count, n, "a grid of " + GridText(dims) + " points", false);
+    if (!n_minus_1)
+      throw schlieren::Error("schlieren_extend_into_invalid: n_minus_1 is NULL: it must hold `count` floats.");
+    const std::size_t done = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
+    if (filled)
+      *filled = static_cast<int64_t>(done);
+  });
+}
+
+int schlieren_fill_ambient(const int dims[3], const unsigned char* valid, int64_t count_given,
+  float* n_minus_1, const char* mode, double value, double* ambient, int64_t* filled)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_fill_ambient";
+    const std::int64_t points = GridPoints(f, dims);
+    CheckArray(f, "valid (and n_minus_1)", valid, count_given, points,
+      "a grid of " + GridText(dims) + " points", false);
+    if (!n_minus_1 || !mode)
+      throw schlieren::Error("schlieren_fill_ambient: n_minus_1 and mode must be given.");
+    const std::string m = mode;
+    const std::size_t count = static_cast<std::size_t>(points);
+    double used = std::numeric_limits<double>::quiet_NaN();
+    std::size_t n = 0;
+    if (m == "Extend")
+      n = schlieren::ExtendIntoInvalid(dims, valid, n_minus_1);
+    else if (m == "DomainEdgeMedian" || m == "Value")
+    {
+      used = value;
+      if (m == "DomainEdgeMedian")
+      {
+        // the RefractiveIndex filter's: the median of n - 1 at the flow domain's edge, else (no
+        // valid point touches an invalid one) of every valid point
+        std::vector<float> edge;
+        schlieren::CollectDomainEdge(dims, valid, n_minus_1, nullptr, edge);
+        used = schlieren::Median(edge);
+        if (!std::isfinite(used))
+        {
+          std::vector<float> values;
+          for (std::size_t i = 0; i < count; ++i)
+            if (valid[i])
+              values.push_back(n_minus_1[i]);
+          used = schlieren::Median(values);
+        }
+      }
+      n = schlieren::FillInvalid(count, valid, used, n_minus_1);
+    }
+    else
+      throw schlieren::Error("AmbientMode '" + m + "' is not one of: Extend, DomainEdgeMedian, Value.");
+    if (ambient)
+      *ambient = used;
     if (filled)
       *filled = static_cast<int64_t>(n);
+  });
+}
+
+int schlieren_enclosed_invalid(const int dims[3], const unsigned char* valid, int64_t count,
+  const int wall_faces[6], unsigned char* solid, int64_t* solid_points)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_enclosed_invalid";
+    const std::int64_t points = GridPoints(f, dims);
+    CheckArray(f, "valid (and solid)", valid, count, points,
+      "a grid of " + GridText(dims) + " points", false);
+    if (!solid)
+      throw schlieren::Error("schlieren_enclosed_invalid: solid is NULL: it must hold `count` bytes.");
+    const std::size_t n = schlieren::EnclosedInvalidPoints(dims, valid, wall_faces, solid);
+    if (solid_points)
+      *solid_points = static_cast<int64_t>(n);
   });
 }
 
@@ -959,6 +1569,19 @@ int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims
     if (!bounds || !dims)
       throw schlieren::Error("schlieren_automatic_dimensions: no argument may be NULL.");
     schlieren::AutomaticDimensions(bounds, longest, dims);
+  });
+}
+
+int schlieren_check_memory(double bytes, const char* what, const char* hint)
+{
+  return Guard(LastError, [&] {
+    if (!(bytes >= 0))
+    {
+      std::ostringstream msg;
+      msg << "schlieren_check_memory: bytes is " << bytes << ": give a count of bytes (>= 0).";
+      throw schlieren::Error(msg.str());
+    }
+    schlieren::CheckHostMemory(bytes, what ? what : "This", hint ? hint : "");
   });
 }
 

@@ -1178,10 +1178,33 @@ std::size_t ExtendIntoInvalid(const int dims[3], const unsigned char* valid, flo
         const std::size_t i = id % sy, j = (id / sy) % dims[1], k = id / sz;
         if (static_cast<int>((i + j + k) % 2) != colour)
           continue;
-        // An interior point: all six neighbours exist.
-        const double sum = static_cast<double>(nMinus1[id - 1]) + nMinus1[id + 1] +
-          nMinus1[id - sy] + nMinus1[id + sy] + nMinus1[id - sz] + nMinus1[id + sz];
-        const double change = omega * (sum / 6.0 - nMinus1[id]);
+        // A point off the faces: both neighbours exist along every axis the grid extends along.
+        // An axis one point thick has none (a 2D grid is smoothed in its plane; reading across it
+        // read outside the array: issue 48's fuzz, under AddressSanitizer). The sum in the order
+        // it had (a 3D grid's fill is unchanged, bit for bit).
+        double sum = 0.0;
+        int terms = 0;
+        if (dims[0] > 1)
+        {
+          sum += nMinus1[id - 1];
+          sum += nMinus1[id + 1];
+          terms += 2;
+        }
+        if (dims[1] > 1)
+        {
+          sum += nMinus1[id - sy];
+          sum += nMinus1[id + sy];
+          terms += 2;
+        }
+        if (dims[2] > 1)
+        {
+          sum += nMinus1[id - sz];
+          sum += nMinus1[id + sz];
+          terms += 2;
+        }
+        if (terms == 0)
+          continue;
+        const double change = omega * (sum / terms - nMinus1[id]);
         nMinus1[id] = static_cast<float>(nMinus1[id] + change);
         largest = std::max(largest, std::fabs(change));
       }

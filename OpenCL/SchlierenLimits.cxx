@@ -159,6 +159,11 @@ void* AllocatePages(std::size_t bytes)
   return p;
 }
 
+double MaxSourceOverF1()
+{
+  return 0.2; // docs/BENCH.md "Where the closed forms hold"
+}
+
 double MaxStepsAcross()
 {
   return 4194304.0; // 2^22
@@ -189,8 +194,10 @@ void CheckSettings(const TraceSettings& s)
     OutOfRange("Tolerance", s.Tolerance, "in [0, 1] radians (0: automatic, 1 % of the largest deflection)");
   if (!(s.CutoffScale >= 0 && s.CutoffScale <= 1e12))
     OutOfRange("CutoffScale", s.CutoffScale, "in [0, 1e12] (0: automatic)");
-  if (!std::isfinite(s.KnifeAngle))
-    OutOfRange("KnifeAngle", s.KnifeAngle, "a finite angle in degrees");
+  // the SchlierenImage proxy's domain (Schlieren.xml), for every front end: outside it an
+  // error, not a wrap
+  if (!(s.KnifeAngle >= -180 && s.KnifeAngle <= 180))
+    OutOfRange("KnifeAngle", s.KnifeAngle, "in [-180, 180] degrees");
   const int frame = static_cast<int>(s.Frame);
   if (frame < 0 || frame > static_cast<int>(Framing::Silhouette))
     OutOfRange("Framing", frame, "0 (Volume) or 1 (Silhouette)");
@@ -221,6 +228,26 @@ void CheckSettings(const TraceSettings& s)
       "Disc or Gaussian source, not a " + (s.Source == BenchSource::Slit ? "Slit" : "Rectangle") +
       ": a slit's image is cut by a knife (Cutoff KnifeEdge). Choose Source Disc (a pinhole) or set "
       "StopDiameter to 0.");
+  // The bench's closed forms are paraxial: the source (height h at the collimator's focus)
+  // subtends h / f1 rad, its image a0 = h f2 / f1 in the cutoff plane spans a0 / f2 = h / f1 rad
+  // of deflection. They hold where tan(x) ~ x over half that angle: h / f1 <= 0.2 (a half-angle of
+  // 0.1 rad, tan's relative error x^2 / 3 = 0.33 %); past it the film, the range and the
+  // resolvable deflection are read outside the model (h / f1 = 1e4 gave a flat film and a
+  // resolvable deflection of 39 rad). Checked only where the finite source is used.
+  const bool stop = s.StopDiameter > 0 &&
+    (s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular || s.Mode == Cutoff::ColorFilter);
+  if (s.Source != BenchSource::Point && (s.Mode == Cutoff::KnifeEdge || stop) &&
+    s.CollimatorFocalLength > 0 && !(s.SourceSize[0] * 1e-3 / s.CollimatorFocalLength <= MaxSourceOverF1()))
+  {
+    std::ostringstream msg;
+    msg << "SourceSize " << Num(s.SourceSize[0]) << " mm (across the knife) at a CollimatorFocalLength of "
+        << Num(s.CollimatorFocalLength) << " m subtends h/f1 = " << Num(s.SourceSize[0] * 1e-3 / s.CollimatorFocalLength)
+        << " rad: the bench's closed forms assume a source small beside its mirror's focal length "
+        << "(paraxial, h/f1 <= " << Num(MaxSourceOverF1()) << "; tan's error 0.33 % at its edge). "
+        << "Give the source's size in mm and the focal length in m, or a smaller source (at most "
+        << Num(MaxSourceOverF1() * s.CollimatorFocalLength * 1e3) << " mm here).";
+    throw Error(msg.str());
+  }
   if (s.BitDepth < 1 || s.BitDepth > 32)
     OutOfRange("BitDepth", s.BitDepth, "in [1, 32] bits");
   if (!(s.SaturationWarning >= 0 && s.SaturationWarning <= 1))
@@ -375,6 +402,40 @@ void CheckPrecision(const Volume& volume, const TraceSettings& s)
         << Num(diag) << " world units) from its centre: there a deflection of a micro-radian moves a "
         << "photon by more than the film's width. Use a focus plane within " << Num(1e6 * diag) << ".";
     throw Error(msg.str());
+  }
+  if (s.Camera != CameraModel::None)
+  {
+    // the lens must be outside the test section: the volume's half-depth along the beam (its
+    // box projected on ViewDirection) is where its last point toward the camera lies (issue 48:
+    // CameraDistance 0.05 m in a 2 m box was traced)
+    double depth = 0;
+    for (int a = 0; a < 3; ++a)
+      if (dlen > 0)
+        depth += h[a] * std::fabs(s.ViewDirection[a]) / dlen;
+    if (!(s.CameraDistance >= depth * (1 - 1e-6))) // at the box's face (the default camera of a unit box): outside
+    {
+      std::ostringstream msg;
+      msg << "CameraDistance " << Num(s.CameraDistance) << " m puts the lens inside the volume: "
+          << "the lens is that far from the volume's centre, and the volume reaches " << Num(depth)
+          << " world units (m) toward it along the beam. The thin-lens camera is outside the test "
+          << "section: set CameraDistance to at least " << Num(depth) << " m.";
+      throw Error(msg.str());
+    }
+    // BOS's read-outs refer the background's shift to the volume's centre plane, imaged with
+    // M_A = f / (Z_A - f): a centre at or within the focal length has no real image
+    if (s.Mode == Cutoff::BOS && !(s.CameraDistance > s.CameraFocalLength))
+    {
+      std::ostringstream msg;
+      msg << "Cutoff BOS with a camera: CameraDistance (Z_A, the lens to the volume's centre) "
+          << Num(s.CameraDistance) << " m is not more than CameraFocalLength " << Num(s.CameraFocalLength)
+          << " m. A volume at or within the focal length has no real image (M_A = f / (Z_A - f) = "
+          << (s.CameraDistance == s.CameraFocalLength ? std::string("inf")
+                                                       : Num(s.CameraFocalLength / (s.CameraDistance - s.CameraFocalLength)))
+          << "), so the displacement and blur on the sensor (bos_pixels_per_radian, bos_blur_pixels) "
+          << "would be meaningless. Move the camera beyond its focal length (CameraDistance > "
+          << Num(s.CameraFocalLength) << " m) or use a shorter CameraFocalLength.";
+      throw Error(msg.str());
+    }
   }
 }
 

@@ -126,6 +126,10 @@ using AlignedBytes = std::vector<unsigned char, PageAlignedAllocator<unsigned ch
 /** The most base steps a ray may need across the volume's diagonal (CheckPrecision refuses more). */
 double MaxStepsAcross();
 
+/** The largest source size over collimator focal length, h / f1, that the bench's paraxial closed
+ * forms take (CheckSettings refuses more for a finite source in use; docs/BENCH.md). */
+double MaxSourceOverF1();
+
 } // namespace schlieren
 
 #endif

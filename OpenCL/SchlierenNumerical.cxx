@@ -148,6 +148,34 @@ struct Sampler
   }
 };
 
+/**
+ * Refuses a field with NaN or Inf at a point of the flow (not solid, not excluded), as
+ * SchlierenImage refuses such an n - 1 (ValidateIndex): the differences beside it would be NaN,
+ * the automatic maximum ignores NaN, and the image would come out white or NaN without a word.
+ */
+void CheckFiniteField(const ScalarGrid& g)
+{
+  const std::size_t n = std::size_t(g.Dimensions[0]) * g.Dimensions[1] * g.Dimensions[2];
+  std::size_t bad = 0, first = n;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (std::isfinite(g.Values[i]) || (g.Solid && g.Solid[i]) || (g.Excluded && g.Excluded[i]))
+      continue;
+    ++bad;
+    first = std::min(first, i);
+  }
+  if (bad == 0)
+    return;
+  const std::size_t nx = g.Dimensions[0], ny = g.Dimensions[1];
+  std::ostringstream msg;
+  msg << "NumericalSchlieren: the field is not usable: " << bad << " of " << n
+      << " points of the flow are NaN or Inf (first at point " << first << ", i j k = "
+      << first % nx << " " << (first / nx) % ny << " " << first / (nx * ny)
+      << "). Check the density array (and the filters before it) for invalid values, or mask "
+         "them (vtkValidPointMask 0, or a solid) before imaging.";
+  throw Error(msg.str());
+}
+
 template <typename F>
 void ParallelRows(int rows, F&& f)
 {
@@ -207,6 +235,7 @@ NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSetting
   const FilmGeometry& f = out.Film;
   if (!grid.Values)
     throw Error("NumericalSchlieren needs the field's values.");
+  CheckFiniteField(grid);
   const double points = double(grid.Dimensions[0]) * grid.Dimensions[1] * grid.Dimensions[2];
   const double pixels = double(f.Size[0]) * f.Size[1];
   CheckHostMemory(points * 12.0 + pixels * 9.0, "NumericalSchlieren's gradient and image",

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace schlieren
@@ -166,6 +167,14 @@ std::size_t FillBody(const BodyParameters& b, const int dims[3], const double or
   std::fill(solid, solid + n, static_cast<unsigned char>(0));
   if (b.Shape == Body::None)
     return 0;
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(b.Center[a]))
+    {
+      // a NaN centre compares false everywhere: the body would vanish without a word
+      std::ostringstream msg;
+      msg << "BodyCenter has a non-finite component (" << b.Center[a] << "): give finite numbers.";
+      throw Error(msg.str());
+    }
   if (!(b.Radius > 0) || !std::isfinite(b.Radius))
   {
     std::ostringstream msg;
@@ -212,6 +221,47 @@ const char* BodyName(Body body)
       return "Cylinder";
   }
   return "?";
+}
+
+void CheckSceneParameters(const SceneParameters& p, const BodyParameters& b)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  const struct
+  {
+    const char* Name;
+    double Value, Min, Max;
+  } ranges[] = { { "Amplitude", p.Amplitude, -0.9, 10.0 }, { "Width", p.Width, 1e-12, inf },
+    { "Radius", p.Radius, 1e-12, inf }, { "Mach", p.Mach, 1.0, 100.0 },
+    { "Density", p.Density, 1e-12, 1e6 }, { "Time", p.Time, 1e-6, 1e6 },
+    { "BodyRadius", b.Radius, 1e-12, inf } };
+  for (const auto& r : ranges)
+    if (!(r.Value >= r.Min && r.Value <= r.Max) || std::isinf(r.Value))
+    {
+      std::ostringstream msg;
+      msg << r.Name << " is " << r.Value << ": it must be in [" << r.Min << ", ";
+      if (std::isinf(r.Max))
+        msg << "a finite value]";
+      else
+        msg << r.Max << "]";
+      msg << ".";
+      throw Error(msg.str());
+    }
+  const struct
+  {
+    const char* Name;
+    const double* Values;
+    int Count;
+  } vectors[] = { { "Center", p.Center, 3 }, { "GradientA", &p.GradientA, 1 },
+    { "GradientB", &p.GradientB, 1 }, { "BodyCenter", b.Center, 3 }, { "BodyAxis", b.Axis, 3 } };
+  for (const auto& v : vectors)
+    for (int i = 0; i < v.Count; ++i)
+      if (!std::isfinite(v.Values[i]))
+      {
+        std::ostringstream msg;
+        msg << v.Name << (v.Count > 1 ? " has a non-finite component (" : " is not finite (")
+            << v.Values[i] << "): give finite numbers.";
+        throw Error(msg.str());
+      }
 }
 
 } // namespace schlieren

@@ -100,6 +100,12 @@ std::size_t FillBody(const BodyParameters& b, const int dims[3], const double or
 
 const char* BodyName(Body body);
 
+/** RefractiveScene's property ranges (its domains in Schlieren.xml, the C++ filter's table):
+ * Amplitude [-0.9, 10], Width, Radius, BodyRadius > 0 and finite, Mach [1, 100], Density
+ * [1e-12, 1e6], Time [1e-6, 1e6], and finite Center, GradientA, GradientB, BodyCenter and BodyAxis.
+ * Throws schlieren::Error naming the property, the value and the range (every front end's check). */
+void CheckSceneParameters(const SceneParameters& p, const BodyParameters& b);
+
 } // namespace schlieren
 
 #endif

@@ -157,8 +157,35 @@ Wedge DetectWedge(const double* xyz, std::size_t n)
     w.Why = "no two planes could be fitted to the mesh's points";
     return w;
   }
-  const Candidate& c = *std::min_element(found.begin(), found.end(),
+  const Candidate* best = &*std::min_element(found.begin(), found.end(),
     [](const Candidate& x, const Candidate& y) { return x.residual < y.residual; });
+  // the line where the two planes meet, from their normals (t - c1 r - c2 a = c0): both
+  // candidates fit the same two planes, so the one whose axial axis is along that line is taken
+  double line[3] = { 0, 0, 0 }, length = 0;
+  {
+    double nu[3], nl[3];
+    nu[best->r] = -best->upper[1];
+    nu[best->a] = -best->upper[2];
+    nu[thin] = 1;
+    nl[best->r] = -best->lower[1];
+    nl[best->a] = -best->lower[2];
+    nl[thin] = 1;
+    line[0] = nu[1] * nl[2] - nu[2] * nl[1];
+    line[1] = nu[2] * nl[0] - nu[0] * nl[2];
+    line[2] = nu[0] * nl[1] - nu[1] * nl[0];
+    length = std::sqrt(line[0] * line[0] + line[1] * line[1] + line[2] * line[2]);
+  }
+  int along = best->a;
+  if (length > 1e-12)
+  {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(line[k]) > std::abs(line[along]))
+        along = k;
+    for (const Candidate& other : found)
+      if (other.a == along && other.residual <= best->residual + 1e-9 * largest)
+        best = &other;
+  }
+  const Candidate& c = *best;
   w.Axial = c.a;
   w.Radial = c.r;
   w.Thin = thin;
@@ -172,11 +199,26 @@ Wedge DetectWedge(const double* xyz, std::size_t n)
     w.Why = why.str();
     return w;
   }
+  w.OnTwoPlanes = true;
   const double axialRun = size[c.a];
-  if (std::abs(c.upper[2] - c.lower[2]) * axialRun > tolerance)
+  // the planes' common line must run along the axial axis: sloped alike along it (the line
+  // tilted toward the thin axis: a wedge turned about its radial axis) or differently (tilted
+  // within the mid-plane), measured as the drift across the axial run against the tolerance
+  // (issue 48: a wedge turned 20 deg about its radial axis was revolved about x, 10 % valid)
+  const double common = 0.5 * (c.upper[2] + c.lower[2]), apart = c.upper[2] - c.lower[2];
+  if (along == thin || std::abs(common) * axialRun > tolerance || std::abs(apart) * axialRun > tolerance)
   {
-    why << "its two planes meet along a line that is not parallel to " << Names[c.a]
-        << " (nor to another coordinate axis); give the r-z plane, or revolve it by hand";
+    const double cosine = length > 0 ? std::min(1.0, std::abs(line[along]) / length) : 1.0;
+    why.precision(3);
+    why << "its two planes meet along a line tilted " << std::acos(cosine) * 180.0 / 3.14159265358979323846
+        << " deg from " << Names[along];
+    if (length > 0)
+    {
+      auto component = [&](int k) { return std::abs(line[k]) < 1e-6 * length ? 0.0 : line[k] / length; };
+      why << " (direction " << component(0) << ", " << component(1) << ", " << component(2) << ")";
+    }
+    why << ": its axis is not along x, y or z; rotate the mesh so that its axis lies along a "
+        << "coordinate axis (Transform), or give the r-z plane";
     w.Why = why.str();
     return w;
   }
@@ -192,7 +234,9 @@ Wedge DetectWedge(const double* xyz, std::size_t n)
   if (w.Angle > WedgeMaxAngleDegrees * 3.14159265358979323846 / 180.0)
   {
     why << "its two planes are " << w.Angle * 180.0 / 3.14159265358979323846
-        << " deg apart, more than the " << WedgeMaxAngleDegrees << " deg of a small-angle wedge";
+        << " deg apart, more than the " << WedgeMaxAngleDegrees << " deg of a small-angle wedge "
+        << "(the largest taken as one: a wedge's cells are revolved from its mid-plane, which "
+        << "holds for a few degrees); give the r-z plane (a Slice through the axis) instead";
     w.Why = why.str();
     return w;
   }

@@ -22,6 +22,9 @@ namespace schlieren
 struct Wedge
 {
   bool Found = false;
+  /** Every point lies on one of two fitted planes (one cell across): a wedge in shape, found or
+   * not (not where its axis is tilted, its angle too large or the mesh on both sides). */
+  bool OnTwoPlanes = false;
   std::string Why;  ///< where not found: the reason, for the user
   int Axial = 0;    ///< the world axis the symmetry axis is parallel to
   int Radial = 1;   ///< the in-plane axis across it

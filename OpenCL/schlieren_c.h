@@ -17,9 +17,27 @@
  * - OpenCL is opened at run time (libOpenCL.so.1): without it the library loads and traces on the
  *   CPU backend (Backend Auto falls back with a warning).
  * - Strings returned are UTF-8, NUL-terminated, and owned by the library.
+ * - Every array comes with its length (a count of values, or of points where the function says
+ *   so); a length that is not the one needed is an error naming the array, the length given and
+ *   the length needed, before anything is read or written. Grid dimensions below 1, or making
+ *   more than 2^40 points, are refused before any allocation; an allocation that fails is an
+ *   error ("... needs N GiB"), never an abort.
+ * - A session handle that was freed, or not made by schlieren_session_new, is refused (the call
+ *   fails, schlieren_session_error() and schlieren_last_error() say so) as long as its address
+ *   has not been given to a new session since: a registry of the live sessions.
+ * - Threads: a session is serialised, not refused: every function taking a session holds the
+ *   session's mutex for its call, so a second thread calling into the same session waits for the
+ *   first call to end (two threads tracing one session make one image after the other, never a
+ *   torn one). The strings and arrays a session returns stay valid until the next call on that
+ *   session from any thread: a program that shares a session between threads keeps its own lock
+ *   over a call and the reading of what it returned. Different sessions run in parallel.
+ * - Names are case-sensitive; an unknown property, setting or entry is an error naming the
+ *   closest known name. Integers are read as 64-bit and an out-of-range value is reported as it
+ *   was given. Settings' ranges are the engine's, the same for every front end (the C++ plugin's).
  *
  * SCHLIEREN_C_API_VERSION changes only when an existing function changes; functions are added
- * without changing it.
+ * without changing it. Version 2: the array lengths (set_volume, fill_scene, numerical,
+ * octree_levels, gradient, extend_into_invalid).
  */
 #ifndef schlieren_c_h
 #define schlieren_c_h
@@ -37,7 +55,7 @@
 #define SCHLIEREN_C_API __attribute__((visibility("default")))
 #endif
 
-#define SCHLIEREN_C_API_VERSION 1
+#define SCHLIEREN_C_API_VERSION 2
 
 #ifdef __cplusplus
 extern "C" {
@@ -64,28 +82,33 @@ typedef struct schlieren_session schlieren_session;
 
 /** A new session with the SchlierenImage defaults; NULL only where memory is exhausted. */
 SCHLIEREN_C_API schlieren_session* schlieren_session_new(void);
-/** Frees the session and what the engine keeps for it (NULL: nothing). */
+/** Frees the session and what the engine keeps for it (NULL: nothing; a handle already freed:
+ * nothing, and schlieren_last_error() says so). A call running on another thread finishes first. */
 SCHLIEREN_C_API void schlieren_session_free(schlieren_session* s);
-/** The message of the session's last failure ("" if its last call succeeded). */
+/** The message of the session's last failure ("" if its last call succeeded); for a freed or
+ * foreign handle, a message saying so. */
 SCHLIEREN_C_API const char* schlieren_session_error(const schlieren_session* s);
 
-/** Sets a property (see schlieren_properties) from text. Non-zero: an unknown name or a value
- * that does not parse (the message names the property and what it takes). Ranges are checked by
- * the trace, as the C++ plugin does. */
+/** Sets a property (see schlieren_properties) from text. Non-zero: an unknown name or entry (the
+ * message names the closest known one), a value that does not parse, a boolean other than 0/1, an
+ * integer outside its type (the message gives the property's range and the value as typed).
+ * Other ranges are checked by the trace and schlieren_session_plan_film, as the C++ plugin does. */
 SCHLIEREN_C_API int schlieren_session_set(schlieren_session* s, const char* name, const char* value);
 /** A property's value as text (owned by the session until the next call); NULL: unknown name. */
 SCHLIEREN_C_API const char* schlieren_session_get(schlieren_session* s, const char* name);
 
 /**
  * The volume to trace: a regular grid of dims[0] x dims[1] x dims[2] points at `origin` with
- * `spacing`, n - 1 per point (float). Optional (NULL: none): `solid`, a byte per point, non-zero in
- * a solid body; `levels`, RefractionOctree's level per point, built for `level_tolerance` (< 0:
- * unknown) with at most `max_level` levels. The arrays are copied; every call counts as a new
- * volume (packed again on the next trace), so call it only when the data changed.
+ * `spacing`, n - 1 per point (float, `n_minus_1_count` values: the grid's points). Optional (NULL
+ * and 0: none): `solid`, a byte per point, non-zero in a solid body; `levels`, RefractionOctree's
+ * level per point, built for `level_tolerance` (< 0: unknown) with at most `max_level` (0 to 10)
+ * levels; each with its count, the grid's points. The arrays are copied; every call counts as a
+ * new volume (packed again on the next trace), so call it only when the data changed.
  */
 SCHLIEREN_C_API int schlieren_session_set_volume(schlieren_session* s, const int dims[3],
   const double origin[3], const double spacing[3], const float* n_minus_1,
-  const unsigned char* solid, const unsigned char* levels, double level_tolerance, int max_level);
+  int64_t n_minus_1_count, const unsigned char* solid, int64_t solid_count,
+  const unsigned char* levels, int64_t levels_count, double level_tolerance, int max_level);
 
 /** Traces the volume with the settings (continuing the kept passes where it can). 0: done. */
 SCHLIEREN_C_API int schlieren_session_trace(schlieren_session* s);
@@ -119,35 +142,40 @@ SCHLIEREN_C_API const char* schlieren_session_report(const schlieren_session* s)
 /**
  * RefractiveScene's analytic scenes: `settings` is text of "Name=value" lines with the proxy's
  * property names (Scene, Amplitude, Width, Radius, Center, GradientA, GradientB, Mach, Density,
- * Time; Body, BodyRadius, BodyCenter, BodyAxis). Writes n - 1 (and where not NULL the density,
- * the mixture fraction and, where a Body is set, the solid points) at the grid's points.
+ * Time; Body, BodyRadius, BodyCenter, BodyAxis), checked against the C++ filter's ranges. Writes
+ * n - 1 (and where not NULL the density, the mixture fraction and, where a Body is set, the solid
+ * points) at the grid's points: every array given holds `count` values, the grid's points.
  * Returns 0, or non-zero with schlieren_last_error().
  */
 SCHLIEREN_C_API int schlieren_fill_scene(const char* settings, const int dims[3],
-  const double origin[3], const double spacing[3], float* n_minus_1, float* density,
-  float* mixture_fraction, unsigned char* solid);
-/** RefractionOctree: a level per point for `tolerance` (see ComputeOctreeLevels); `fraction` (may
- * be NULL) gets the fraction of cells at level >= 1. */
+  const double origin[3], const double spacing[3], int64_t count, float* n_minus_1,
+  float* density, float* mixture_fraction, unsigned char* solid);
+/** RefractionOctree: a level per point for `tolerance` (>= 0; see ComputeOctreeLevels) with at
+ * most `max_level` (0 to 10); `n_minus_1` and `levels` hold `count` values (the grid's points);
+ * `fraction` (may be NULL) gets the fraction of cells at level >= 1. */
 SCHLIEREN_C_API int schlieren_octree_levels(const int dims[3], const float* n_minus_1,
-  double tolerance, int max_level, unsigned char* levels, double* fraction);
+  int64_t count, double tolerance, int max_level, unsigned char* levels, double* fraction);
 /**
  * NumericalSchlieren (the textbook image from the gradient of a scalar: Slice or LineOfSight) on a
  * grid of `values` (density or n - 1, x fastest). `settings`: the proxy's properties as
  * "Name=value" lines (Mode Slice/LineOfSight, Gradient Magnitude/KnifeComponent by entry text;
  * ViewDirection, ViewUp, Resolution, KnifeAngle, SliceOffset, StepSize, C0, C1, K,
- * GradientMaximum). `solid`, `excluded` (may be NULL): non-zero at a body's points, at points
- * outside the input's cells. With `intensity` NULL only the film is planned (size, film_origin,
- * pixel_size); else `capacity` pixels of intensity, gradient and blocked are written and
- * maximum_largest (may be NULL) gets the qmax used and the largest q.
+ * GradientMaximum). `values` holds `values_count` values (the grid's points); `solid`, `excluded`
+ * (NULL and 0: none; else the grid's points): non-zero at a body's points, at points outside the
+ * input's cells. With `intensity` NULL only the film is planned (size, film_origin, pixel_size);
+ * else `capacity` pixels of intensity, gradient and blocked are written and maximum_largest (may be
+ * NULL) gets the qmax used and the largest q.
  */
 SCHLIEREN_C_API int schlieren_numerical(const char* settings, const int dims[3],
-  const double origin[3], const double spacing[3], const float* values,
-  const unsigned char* solid, const unsigned char* excluded, int size[2], double film_origin[2],
-  double* pixel_size, int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
+  const double origin[3], const double spacing[3], const float* values, int64_t values_count,
+  const unsigned char* solid, int64_t solid_count, const unsigned char* excluded,
+  int64_t excluded_count, int size[2], double film_origin[2], double* pixel_size,
+  int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
   double maximum_largest[2]);
-/** The gradient of n - 1 in world units, 3 floats per point (RefractiveIndex's grad_n). */
-SCHLIEREN_C_API int schlieren_gradient(
-  const int dims[3], const double spacing[3], const float* n_minus_1, float* grad3);
+/** The gradient of n - 1 in world units, 3 floats per point (RefractiveIndex's grad_n):
+ * `n_minus_1` holds `count` values (the grid's points), `grad3` `grad3_count` floats (3 a point). */
+SCHLIEREN_C_API int schlieren_gradient(const int dims[3], const double spacing[3],
+  const float* n_minus_1, int64_t count, float* grad3, int64_t grad3_count);
 /**
  * RefractiveIndex's models on arrays of `count` points: `model` "Passthrough" (`input` is n - 1,
  * or n where `index_is_n`) or "GladstoneDale" (`input` is density, times `density_reference`,
@@ -159,13 +187,51 @@ SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input,
   int index_is_n, double density_reference, const char* gas, float* n_minus_1,
   const char** report);
 
+/**
+ * RefractiveIndex's index models, every one (the engine's ComputeFieldIndex, which the C++ filter
+ * calls): `settings` are the proxy's properties as "Name=value" lines (entries by their text:
+ * Model, PassthroughHoldsN, Gas, GladstoneDaleConstant, MolarMass, MixtureComposition,
+ * IdealGasComposition, MixtureGas0, MixtureGas1, NumberOfSpecies, SpeciesGases (4 numbers: -1
+ * Custom, 0 Air, 1 He, ...), SpeciesGladstoneDale, SpeciesMolarMass (4 each), BalanceGas (None,
+ * Custom or a gas), BalanceGladstoneDale, BalanceMolarMass, DensityReference, TemperatureUnit,
+ * TemperatureReference, PressureUnit, PressureReference, PressureOffset, Humidity,
+ * HumidityMeasure, CO2, Wavelength; absent: the proxy's default). `number_of_arrays` arrays of
+ * `count` floats, each with a role ("index", "density", "temperature", "pressure",
+ * "mixture_fraction", "species1".."species4", "humidity", "co2"; "role:name" names the input array
+ * in messages); `valid` (may be NULL) marks the points to compute. Writes n - 1 of the valid
+ * points; `report` (may be NULL) gets the warnings as lines.
+ */
+SCHLIEREN_C_API int schlieren_index_model(const char* settings, int64_t count,
+  int number_of_arrays, const char* const* roles, const float* const* arrays,
+  const unsigned char* valid, float* n_minus_1, const char** report);
 /** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
- * RefractiveIndex filter's AmbientMode Extend); `filled` (may be NULL) gets how many. */
-SCHLIEREN_C_API int schlieren_extend_into_invalid(
-  const int dims[3], const unsigned char* valid, float* n_minus_1, int64_t* filled);
+ * RefractiveIndex filter's AmbientMode Extend); `valid` and `n_minus_1` hold `count` values (the
+ * grid's points); `filled` (may be NULL) gets how many. */
+SCHLIEREN_C_API int schlieren_extend_into_invalid(const int dims[3], const unsigned char* valid,
+  int64_t count, float* n_minus_1, int64_t* filled);
+/** The points with valid[i] == 0 filled as RefractiveIndex's AmbientMode says: "Extend" (as
+ * schlieren_extend_into_invalid), "DomainEdgeMedian" (the median of n - 1 at the flow domain's
+ * edge) or "Value" (`value`). `valid` and `n_minus_1` hold `count` values (the grid's points);
+ * `ambient` (may be NULL) gets the value used (NaN for Extend), `filled` (may be NULL) how many
+ * points. */
+SCHLIEREN_C_API int schlieren_fill_ambient(const int dims[3], const unsigned char* valid,
+  int64_t count, float* n_minus_1, const char* mode, double value, double* ambient,
+  int64_t* filled);
+/** RefractiveIndex's bodies from the grid's holes (BodyFromGrid): marks in `solid` (a byte per
+ * point) the points with valid[i] == 0 whose region of invalid points reaches no face of the grid
+ * but those with wall_faces[f] != 0 (xmin, xmax, ymin, ymax, zmin, zmax; may be NULL: none).
+ * `valid` and `solid` hold `count` values (the grid's points); `solid_points` (may be NULL) gets
+ * how many are solid. */
+SCHLIEREN_C_API int schlieren_enclosed_invalid(const int dims[3], const unsigned char* valid,
+  int64_t count, const int wall_faces[6], unsigned char* solid, int64_t* solid_points);
 /** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
  * side, about the same spacing along the others. */
 SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);
+/** 0 where `bytes` fit in the memory this process may still use (the engine's measure: available
+ * memory, the address-space limit, SCHLIEREN_MEMORY_LIMIT); else non-zero and
+ * schlieren_last_error() says "<what> needs N GiB of memory; this machine has M available. <hint>":
+ * for front ends that allocate arrays the engine fills. */
+SCHLIEREN_C_API int schlieren_check_memory(double bytes, const char* what, const char* hint);
 
 #ifdef __cplusplus
 }

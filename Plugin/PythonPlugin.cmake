@@ -13,9 +13,11 @@ if(SCHLIEREN_PLUGIN_PYTHON3)
       --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml"
       --package "${PROJECT_SOURCE_DIR}/Python/schlieren"
       --output "${_pyplugin_dir}/SchlierenPython.py"
+      --view "${PROJECT_SOURCE_DIR}/Plugin/schlieren_view.py"
     COMMAND "${CMAKE_COMMAND}" -E copy "$<TARGET_FILE:schlieren_engine>"
       "${_pyplugin_dir}/libschlieren_engine.so.1"
     DEPENDS "${PROJECT_SOURCE_DIR}/Plugin/make_python_plugin.py"
+      "${PROJECT_SOURCE_DIR}/Plugin/schlieren_view.py"
       "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml" ${_pyplugin_package} schlieren_engine
     COMMENT "Generating the ParaView Python plugin SchlierenPython.py")
   add_custom_target(SchlierenPythonPlugin ALL DEPENDS "${_pyplugin_dir}/SchlierenPython.py")

@@ -42,6 +42,8 @@ class CameraFollower:
         self.moved = 0  # camera changes seen
         self._tags = [self.camera.AddObserver("ModifiedEvent", self._on_camera)]
         self._timer = None
+        self.also_render = []  # views besides `view` to render after each refinement
+        self.alive = None  # a callable: False once the image is gone (then the follower stops)
         self.sync()
 
     # the camera's line of sight, as the filter's properties
@@ -57,7 +59,15 @@ class CameraFollower:
         self.image.ViewUp = up
         self.image.Passes = self.interactive_passes
 
+    def _gone(self):
+        if self.alive is not None and not self.alive():
+            self.stop()
+            return True
+        return False
+
     def _on_camera(self, caller, event):
+        if self._gone():
+            return
         direction, up = self.camera_vectors()
         current = list(self.image.ViewDirection), list(self.image.ViewUp)
         if all(abs(a - b) < 1e-12 for a, b in zip(current[0] + current[1], direction + up)):
@@ -83,14 +93,18 @@ class CameraFollower:
         self._timer = interactor.CreateRepeatingTimer(interval_ms)
 
         def on_timer(caller, event):
-            if self.refine():
+            if not self._gone() and self.refine():
                 self.view.StillRender()
+                for view in self.also_render:  # other views showing the image (the Python plugin's)
+                    view.StillRender()
 
         self._tags.append(interactor.AddObserver("TimerEvent", on_timer))
         return True
 
     def stop(self):
         """Stops following the camera."""
+        if not self._tags:
+            return
         self.camera.RemoveObserver(self._tags[0])
         if self._timer is not None:
             interactor = self.view.GetRenderWindow().GetInteractor()

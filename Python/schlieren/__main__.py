@@ -4,7 +4,11 @@ python -m schlieren info
 
 demo: the project's demo image (README): a knife-edge schlieren of a Gaussian sphere of denser
 air, n = 1 + 1e-4 exp(-r^2/s^2), s = 0.25, on a 128^3 grid; engine and NumPy only (no VTK).
-info: the version, the library loaded and the OpenCL device the engine would use."""
+info: the version, the library loaded and the OpenCL device the engine would use.
+
+Errors are one line on stderr: exit code 2 for bad arguments (a resolution or a number of passes
+the engine refuses, an output folder that does not exist, an output that is a folder), 1 for a
+failure of the engine or of writing the image."""
 import argparse
 import os
 import sys
@@ -13,16 +17,40 @@ from . import _engine
 from .png import write_png
 
 
+class UsageError(Exception):
+    """A bad argument: one line on stderr, exit code 2."""
+
+
 def demo(args):
     dims, origin = [128, 128, 128], [-1.0, -1.0, -1.0]
     spacing = [2.0 / 127] * 3
+    out = os.path.abspath(args.output)
+    if os.path.isdir(out):
+        raise UsageError("--output %s is a folder: give a file name (e.g. %s)"
+                         % (args.output, os.path.join(args.output, "schlieren.png")))
+    if not os.path.isdir(os.path.dirname(out)):
+        raise UsageError("--output %s: the folder %s does not exist"
+                         % (args.output, os.path.dirname(out)))
+    s = _engine.Session()
+    # the arguments the engine refuses (its ranges, as every front end's): before any work
+    for k, v, arg in (("Resolution", [args.resolution] * 2, "--resolution %d" % args.resolution),
+                      ("Passes", args.passes, "--passes %d" % args.passes),
+                      ("Backend", args.backend, "--backend %s" % args.backend)):
+        try:
+            s.set(k, v)
+        except _engine.EngineError as e:
+            raise UsageError("%s: %s" % (arg, e))
+    s.set("Cutoff", "KnifeEdge")
+    s.set("KnifeAngle", 0.0)
+    try:
+        s.plan_film(dims, origin, spacing)
+    except _engine.EngineError as e:
+        which = "--resolution" if "Resolution" in str(e) else \
+            "--passes" if "Passes" in str(e) else "an argument"
+        raise UsageError("%s: %s" % (which, e))
     scene = _engine.fill_scene(dict(Scene="GaussianSphere", Amplitude=1e-4, Width=0.25), dims,
                                origin, spacing)
-    s = _engine.Session()
     s.set_volume(dims, origin, spacing, scene["n_minus_1"])
-    for k, v in dict(Cutoff="KnifeEdge", KnifeAngle=0.0, Resolution=[args.resolution] * 2,
-                     Passes=args.passes, Backend=args.backend).items():
-        s.set(k, v)
     report = s.trace()
     for note in report["notes"]:
         if note["warning"]:
@@ -47,9 +75,26 @@ def info(args):
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        # one line, not the usage block (python -m schlieren --help shows that)
+        raise UsageError(message)
+
+
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="python -m schlieren", description=__doc__.splitlines()[0])
-    sub = ap.add_subparsers(dest="command", required=True)
+    try:
+        return _main(argv)
+    except UsageError as e:
+        print("python -m schlieren: error: %s" % " ".join(str(e).split()), file=sys.stderr)
+        return 2
+    except (_engine.EngineError, OSError, MemoryError) as e:
+        print("python -m schlieren: %s" % " ".join(str(e).split()), file=sys.stderr)
+        return 1
+
+
+def _main(argv):
+    ap = _Parser(prog="python -m schlieren", description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="command", required=True, parser_class=_Parser)
     d = sub.add_parser("demo", help="write the demo image")
     d.add_argument("--output", default="schlieren.png")
     d.add_argument("--backend", default="Auto", choices=["Auto", "OpenCL", "CPU"])

@@ -10,7 +10,7 @@ import os
 
 import numpy as np
 
-API_VERSION = 1
+API_VERSION = 2
 
 _c_int3 = ctypes.c_int * 3
 _c_double3 = ctypes.c_double * 3
@@ -20,6 +20,14 @@ _u8p = ctypes.POINTER(ctypes.c_ubyte)
 
 class EngineError(RuntimeError):
     """An error the engine reported (the message says what and what to do)."""
+
+
+class ArgumentError(EngineError, ValueError):
+    """An argument refused before the engine is called (a shape, a size, an order), named."""
+
+
+class ArgumentTypeError(EngineError, TypeError):
+    """An argument of a type or dtype that cannot be converted without changing it, named."""
 
 
 def _load():
@@ -63,8 +71,9 @@ _sig("schlieren_session_free", None, ctypes.c_void_p)
 _sig("schlieren_session_error", ctypes.c_char_p, ctypes.c_void_p)
 _sig("schlieren_session_set", ctypes.c_int, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p)
 _sig("schlieren_session_get", ctypes.c_char_p, ctypes.c_void_p, ctypes.c_char_p)
+_i64 = ctypes.c_int64
 _sig("schlieren_session_set_volume", ctypes.c_int, ctypes.c_void_p, _c_int3, _c_double3,
-     _c_double3, _f32p, _u8p, _u8p, ctypes.c_double, ctypes.c_int)
+     _c_double3, _f32p, _i64, _u8p, _i64, _u8p, _i64, ctypes.c_double, ctypes.c_int)
 _sig("schlieren_session_trace", ctypes.c_int, ctypes.c_void_p)
 _sig("schlieren_session_array", _f32p, ctypes.c_void_p, ctypes.c_char_p,
      ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int64))
@@ -74,19 +83,21 @@ _sig("schlieren_session_plan_film", ctypes.c_int, ctypes.c_void_p, _c_int3, _c_d
      _c_double3, ctypes.c_int * 2, ctypes.c_double * 2, ctypes.POINTER(ctypes.c_double))
 _sig("schlieren_session_report", ctypes.c_char_p, ctypes.c_void_p)
 _sig("schlieren_fill_scene", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3, _c_double3,
-     _f32p, _f32p, _f32p, _u8p)
-_sig("schlieren_octree_levels", ctypes.c_int, _c_int3, _f32p, ctypes.c_double, ctypes.c_int,
+     _i64, _f32p, _f32p, _f32p, _u8p)
+_sig("schlieren_octree_levels", ctypes.c_int, _c_int3, _f32p, _i64, ctypes.c_double, ctypes.c_int,
      _u8p, ctypes.POINTER(ctypes.c_double))
-_sig("schlieren_gradient", ctypes.c_int, _c_int3, _c_double3, _f32p, _f32p)
+_sig("schlieren_gradient", ctypes.c_int, _c_int3, _c_double3, _f32p, _i64, _f32p, _i64)
 _sig("schlieren_field_index", ctypes.c_int, ctypes.c_char_p, _f32p, ctypes.c_int64, ctypes.c_int,
      ctypes.c_double, ctypes.c_char_p, _f32p, ctypes.POINTER(ctypes.c_char_p))
 
 _sig("schlieren_numerical", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3, _c_double3, _f32p,
-     _u8p, _u8p, ctypes.c_int * 2, ctypes.c_double * 2, ctypes.POINTER(ctypes.c_double),
-     ctypes.c_int64, _f32p, _f32p, _u8p, ctypes.POINTER(ctypes.c_double))
-_sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _f32p,
+     _i64, _u8p, _i64, _u8p, _i64, ctypes.c_int * 2, ctypes.c_double * 2,
+     ctypes.POINTER(ctypes.c_double), ctypes.c_int64, _f32p, _f32p, _u8p,
+     ctypes.POINTER(ctypes.c_double))
+_sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
+_sig("schlieren_check_memory", ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_char_p)
 
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
@@ -97,8 +108,70 @@ def _text(b):
     return b.decode("utf-8") if b is not None else ""
 
 
-def _floats(a):
-    a = np.ascontiguousarray(a, dtype=np.float32)
+def _dims(dims, name="dims"):
+    """[nx, ny, nz] as ints >= 1, and the number of points."""
+    try:
+        d = [int(x) for x in dims]
+        exact = all(float(x) == int(x) for x in dims)
+    except (TypeError, ValueError, OverflowError):
+        raise ArgumentTypeError("%s is %r: give three integers (points along x, y, z)"
+                                % (name, dims))
+    if len(d) != 3 or not exact:
+        raise ArgumentError("%s is %r: give three integers (points along x, y, z)" % (name, dims))
+    if min(d) < 1 or max(d) > 2 ** 31 - 1:
+        raise ArgumentError("%s is %s: each must be at least 1 (and fit a 32-bit integer)"
+                            % (name, d))
+    return d, d[0] * d[1] * d[2]
+
+
+def _grid_text(d):
+    return "%d x %d x %d" % tuple(d)
+
+
+def _point_array(a, name, dims, dtype, optional=False, mask=False):
+    """`a` as a C-contiguous 1D array of `dtype` over the grid's points, x fastest: a 1D array of
+    nx*ny*nz values, or a 3D array shaped (nz, ny, nx) (indexed [z, y, x], any memory order: it
+    is copied in C order). Other shapes, sizes and dtypes are refused naming the argument; `mask`:
+    any real dtype, non-zero is 1."""
+    if a is None:
+        if optional:
+            return None
+        raise ArgumentError("%s must be given" % name)
+    d, n = _dims(dims)
+    a = np.asarray(a)
+    if a.dtype.kind not in "biuf":
+        raise ArgumentTypeError("%s has dtype %s: give real numbers (%s is used)"
+                                % (name, a.dtype, np.dtype(dtype).name))
+    nx, ny, nz = d
+    if a.ndim == 3:
+        if a.shape != (nz, ny, nx):
+            hint = ""
+            if a.shape == (nx, ny, nz):
+                hint = " (this array is shaped (nx, ny, nz): give its transpose, a.T, or " \
+                       "a.ravel(order='F') if x is its first index)"
+            raise ArgumentError("%s has shape %s; a grid of %s points (nx x ny x nz) needs a 3D "
+                                "array shaped (nz, ny, nx) = %s, indexed [z, y, x], or a 1D array "
+                                "of %d values, x fastest%s"
+                                % (name, a.shape, _grid_text(d), (nz, ny, nx), n, hint))
+    elif a.ndim != 1:
+        raise ArgumentError("%s has shape %s: give a 1D array of %d values (x fastest) or a 3D "
+                            "array shaped (nz, ny, nx) = %s" % (name, a.shape, n, (nz, ny, nx)))
+    if a.size != n:
+        raise ArgumentError("%s holds %d values; a grid of %s points needs %d"
+                            % (name, a.size, _grid_text(d), n))
+    if mask:
+        a = a != 0
+    elif np.dtype(dtype).kind in "iu" and a.dtype.kind == "f":
+        raise ArgumentTypeError("%s has dtype %s: give integers" % (name, a.dtype))
+    return np.ascontiguousarray(a, dtype=dtype).reshape(-1)
+
+
+def _floats(a, name="values"):
+    a = np.asarray(a)
+    if a.dtype.kind not in "biuf":
+        raise ArgumentTypeError("%s has dtype %s: give real numbers (float32 is used)"
+                                % (name, a.dtype))
+    a = np.ascontiguousarray(a, dtype=np.float32).reshape(-1)
     return a, a.ctypes.data_as(_f32p)
 
 
@@ -109,9 +182,27 @@ def _bytes(a):
     return a, a.ctypes.data_as(_u8p)
 
 
+def _fp(a):
+    return None if a is None else a.ctypes.data_as(_f32p)
+
+
+def _up(a):
+    return None if a is None else a.ctypes.data_as(_u8p)
+
+
+def _size(a):
+    return 0 if a is None else a.size
+
+
 def _check(rc):
     if rc:
         raise EngineError(_text(_lib.schlieren_last_error()))
+
+
+def check_memory(nbytes, what, hint=""):
+    """Raises EngineError ("<what> needs N GiB of memory; this machine has M available. <hint>")
+    where `nbytes` do not fit in the memory this process may still use (the engine's measure)."""
+    _check(_lib.schlieren_check_memory(float(nbytes), what.encode(), hint.encode()))
 
 
 def version():
@@ -130,27 +221,39 @@ def opencl_device(name=""):
 
 
 def _grid(dims, origin, spacing):
-    return (_c_int3(*[int(d) for d in dims]), _c_double3(*[float(o) for o in origin]),
-            _c_double3(*[float(s) for s in spacing]))
+    d, _ = _dims(dims)
+    try:
+        o = [float(x) for x in origin]
+        sp = [float(x) for x in spacing]
+    except (TypeError, ValueError):
+        raise ArgumentTypeError("origin and spacing take three numbers each; got %r and %r"
+                                % (origin, spacing))
+    if len(o) != 3 or len(sp) != 3:
+        raise ArgumentError("origin and spacing take three numbers each; got %r and %r"
+                            % (origin, spacing))
+    return _c_int3(*d), _c_double3(*o), _c_double3(*sp)
 
 
 def fill_scene(settings, dims, origin, spacing, body=False):
     """RefractiveScene's scene on a grid: a dict of point arrays (x fastest), float32 n_minus_1
     and density (mixture_fraction for HeliumPlume, solid where a Body is set)."""
-    count = int(np.prod(dims))
-    out = {"n_minus_1": np.empty(count, np.float32), "density": np.empty(count, np.float32)}
+    d, count = _dims(dims)
     plume = settings.get("Scene") == "HeliumPlume"
+    has_body = settings.get("Body", "None") != "None"
+    floats = 3 if plume else 2
+    # the arrays are this process's to allocate: refused before, as the C++ filter does
+    check_memory(count * (4.0 * floats + (1 if has_body else 0)),
+                 "RefractiveScene's grid of %s points (%d float arrays)" % (_grid_text(d), floats),
+                 "Lower Dimensions.")
+    out = {"n_minus_1": np.empty(count, np.float32), "density": np.empty(count, np.float32)}
     if plume:
         out["mixture_fraction"] = np.empty(count, np.float32)
-    has_body = settings.get("Body", "None") != "None"
     if has_body:
         out["solid"] = np.zeros(count, np.uint8)
     text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items())
     _check(_lib.schlieren_fill_scene(
-        text.encode(), *_grid(dims, origin, spacing), out["n_minus_1"].ctypes.data_as(_f32p),
-        out["density"].ctypes.data_as(_f32p),
-        out["mixture_fraction"].ctypes.data_as(_f32p) if plume else None,
-        out["solid"].ctypes.data_as(_u8p) if has_body else None))
+        text.encode(), *_grid(dims, origin, spacing), count, _fp(out["n_minus_1"]),
+        _fp(out["density"]), _fp(out.get("mixture_fraction")), _up(out.get("solid"))))
     return out
 
 
@@ -160,25 +263,27 @@ def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded
     maximum (the qmax used) and largest (the largest q)."""
     text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items()).encode()
     size, film_origin, pixel = (ctypes.c_int * 2)(), (ctypes.c_double * 2)(), ctypes.c_double()
+    grid = _grid(dims, origin, spacing)
     if values is None:
-        _check(_lib.schlieren_numerical(text, *_grid(dims, origin, spacing), None, None, None, size,
+        _check(_lib.schlieren_numerical(text, *grid, None, 0, None, 0, None, 0, size,
                                         film_origin, ctypes.byref(pixel), 0, None, None, None,
                                         None))
         return list(size), list(film_origin), pixel.value
-    a, p = _floats(values)
-    s_keep, s_p = _bytes(solid)
-    e_keep, e_p = _bytes(excluded)
-    _check(_lib.schlieren_numerical(text, *_grid(dims, origin, spacing), None, None, None, size,
+    a = _point_array(values, "values", dims, np.float32)
+    s = _point_array(solid, "solid", dims, np.uint8, optional=True, mask=True)
+    e = _point_array(excluded, "excluded", dims, np.uint8, optional=True, mask=True)
+    _check(_lib.schlieren_numerical(text, *grid, None, 0, None, 0, None, 0, size,
                                     film_origin, ctypes.byref(pixel), 0, None, None, None, None))
     n = size[0] * size[1]
+    check_memory(9.0 * n, "NumericalSchlieren's film of %d x %d pixels" % (size[0], size[1]),
+                 "Lower Resolution.")
     out = {"intensity": np.empty(n, np.float32), "numerical_gradient": np.empty(n, np.float32),
            "blocked": np.empty(n, np.uint8)}
     ml = (ctypes.c_double * 2)()
-    _check(_lib.schlieren_numerical(text, *_grid(dims, origin, spacing), p, s_p, e_p, size,
-                                    film_origin, ctypes.byref(pixel), n,
-                                    out["intensity"].ctypes.data_as(_f32p),
-                                    out["numerical_gradient"].ctypes.data_as(_f32p),
-                                    out["blocked"].ctypes.data_as(_u8p), ml))
+    _check(_lib.schlieren_numerical(text, *grid, _fp(a), a.size, _up(s), _size(s), _up(e),
+                                    _size(e), size, film_origin, ctypes.byref(pixel), n,
+                                    _fp(out["intensity"]), _fp(out["numerical_gradient"]),
+                                    _up(out["blocked"]), ml))
     out.update(size=list(size), origin=list(film_origin), pixel=pixel.value, maximum=ml[0],
                largest=ml[1])
     return out
@@ -186,20 +291,23 @@ def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded
 
 def octree_levels(dims, n_minus_1, tolerance, max_level=7):
     """RefractionOctree's level per point, and the fraction of cells at level >= 1."""
-    a, p = _floats(n_minus_1)
+    a = _point_array(n_minus_1, "n_minus_1", dims, np.float32)
     levels = np.zeros(a.size, np.uint8)
     fraction = ctypes.c_double(0)
-    _check(_lib.schlieren_octree_levels(_c_int3(*dims), p, float(tolerance), int(max_level),
-                                        levels.ctypes.data_as(_u8p), ctypes.byref(fraction)))
+    _check(_lib.schlieren_octree_levels(_grid(dims, [0] * 3, [1] * 3)[0], _fp(a), a.size,
+                                        float(tolerance), int(max_level), _up(levels),
+                                        ctypes.byref(fraction)))
     return levels, fraction.value
 
 
 def gradient(dims, spacing, n_minus_1):
     """grad n in world units, (points, 3) float32."""
-    a, p = _floats(n_minus_1)
+    a = _point_array(n_minus_1, "n_minus_1", dims, np.float32)
+    check_memory(12.0 * a.size, "The gradient of %s points" % _grid_text(_dims(dims)[0]),
+                 "Give a smaller grid.")
     g = np.empty((a.size, 3), np.float32)
-    _check(_lib.schlieren_gradient(_c_int3(*dims), _c_double3(*spacing), p,
-                                   g.ctypes.data_as(_f32p)))
+    grid = _grid(dims, [0] * 3, spacing)
+    _check(_lib.schlieren_gradient(grid[0], grid[2], _fp(a), a.size, _fp(g), g.size))
     return g
 
 
@@ -208,29 +316,98 @@ def field_index(model, values, index_is_n=False, density_reference=1.0, gas=None
     a, p = _floats(values)
     out = np.empty(a.size, np.float32)
     report = ctypes.c_char_p()
-    _check(_lib.schlieren_field_index(model.encode(), p, a.size, int(bool(index_is_n)),
+    _check(_lib.schlieren_field_index(str(model).encode(), p, a.size, int(bool(index_is_n)),
                                       float(density_reference), gas.encode() if gas else None,
                                       out.ctypes.data_as(_f32p), ctypes.byref(report)))
+    return out, [w for w in _text(report.value).split("\n") if w]
+
+
+def index_model(settings, arrays, valid=None):
+    """RefractiveIndex's index models, every one (the C interface's schlieren_index_model):
+    `settings` the proxy's properties by name (entries by their text), `arrays` role -> values
+    (roles: index, density, temperature, pressure, mixture_fraction, species1-4, humidity, co2;
+    "role:name" names the input array in messages). Returns (n - 1 float32, warnings)."""
+    f = _sig("schlieren_index_model", ctypes.c_int, ctypes.c_char_p, ctypes.c_int64, ctypes.c_int,
+             ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(_f32p), _u8p,
+             _f32p, ctypes.POINTER(ctypes.c_char_p))
+    kept = [np.ascontiguousarray(v, dtype=np.float32) for v in arrays.values()]
+    count = kept[0].size if kept else (0 if valid is None else np.asarray(valid).size)
+    for role, a in zip(arrays, kept):
+        if a.size != count:
+            raise EngineError("index_model: array %s has %d values, not %d" % (role, a.size,
+                                                                              count))
+    roles = (ctypes.c_char_p * max(1, len(kept)))(*[r.encode() for r in arrays])
+    ptrs = (_f32p * max(1, len(kept)))(*[a.ctypes.data_as(_f32p) for a in kept])
+    v, vp = _bytes(valid)
+    out = np.zeros(count, np.float32)
+    text = "\n".join("%s=%s" % (k, _value_text(x)) for k, x in settings.items()).encode()
+    report = ctypes.c_char_p()
+    _check(f(text, count, len(kept), roles, ptrs, vp, out.ctypes.data_as(_f32p),
+             ctypes.byref(report)))
     return out, [w for w in _text(report.value).split("\n") if w]
 
 
 def extend_into_invalid(dims, valid, n_minus_1):
     """Fills n - 1 (float32, changed in place) where valid == 0 by the engine's smooth
     continuation of the flow; returns how many points were filled."""
+    n_minus_1 = np.asarray(n_minus_1)
     if n_minus_1.dtype != np.float32 or not n_minus_1.flags.c_contiguous:
-        raise TypeError("n_minus_1 must be a contiguous float32 array (it is filled in place)")
-    v, vp = _bytes(valid)
+        raise ArgumentTypeError("n_minus_1 must be a C-contiguous float32 array (it is filled in "
+                                "place); got %s%s" % (n_minus_1.dtype, "" if
+                                                      n_minus_1.flags.c_contiguous else
+                                                      ", not C-contiguous"))
+    _point_array(n_minus_1, "n_minus_1", dims, np.float32)  # the shape and size checks
+    v = _point_array(valid, "valid", dims, np.uint8, mask=True)
     filled = ctypes.c_int64(0)
-    _check(_lib.schlieren_extend_into_invalid(_c_int3(*dims), vp,
+    _check(_lib.schlieren_extend_into_invalid(_grid(dims, [0] * 3, [1] * 3)[0], _up(v), v.size,
                                               n_minus_1.ctypes.data_as(_f32p),
                                               ctypes.byref(filled)))
     return filled.value
 
 
+def fill_ambient(dims, valid, n_minus_1, mode, value=0.0):
+    """Fills n - 1 (float32, in place) where valid == 0 as RefractiveIndex's AmbientMode says
+    (Extend, DomainEdgeMedian, Value); returns (the value used, NaN for Extend; points filled)."""
+    f = _sig("schlieren_fill_ambient", ctypes.c_int, _c_int3, _u8p, ctypes.c_int64, _f32p,
+             ctypes.c_char_p, ctypes.c_double, ctypes.POINTER(ctypes.c_double),
+             ctypes.POINTER(ctypes.c_int64))
+    n_minus_1 = np.asarray(n_minus_1)
+    if n_minus_1.dtype != np.float32 or not n_minus_1.flags.c_contiguous:
+        raise ArgumentTypeError("n_minus_1 must be a C-contiguous float32 array (it is filled in "
+                                "place)")
+    _point_array(n_minus_1, "n_minus_1", dims, np.float32)  # the shape and size checks
+    v = _point_array(valid, "valid", dims, np.uint8, mask=True)
+    used, filled = ctypes.c_double(0.0), ctypes.c_int64(0)
+    _check(f(_grid(dims, [0] * 3, [1] * 3)[0], _up(v), v.size, n_minus_1.ctypes.data_as(_f32p),
+             mode.encode(), float(value), ctypes.byref(used), ctypes.byref(filled)))
+    return used.value, filled.value
+
+
+def enclosed_invalid(dims, valid, wall_faces=None):
+    """RefractiveIndex's bodies from the grid's holes: a uint8 array, 1 at the invalid points that
+    the flow encloses (their region reaches no face of the grid but the wall faces)."""
+    f = _sig("schlieren_enclosed_invalid", ctypes.c_int, _c_int3, _u8p, ctypes.c_int64,
+             ctypes.POINTER(ctypes.c_int), _u8p, ctypes.POINTER(ctypes.c_int64))
+    v = _point_array(valid, "valid", dims, np.uint8, mask=True)
+    solid = np.zeros(v.size, np.uint8)
+    walls = None if wall_faces is None else (ctypes.c_int * 6)(*[int(w) for w in wall_faces])
+    count = ctypes.c_int64(0)
+    _check(f(_grid(dims, [0] * 3, [1] * 3)[0], _up(v), v.size, walls,
+             solid.ctypes.data_as(_u8p), ctypes.byref(count)))
+    return solid
+
+
 def automatic_dimensions(bounds, longest):
     """RefractiveIndex's automatic sampling dimensions of a box."""
     dims = _c_int3()
-    _check(_lib.schlieren_automatic_dimensions((ctypes.c_double * 6)(*bounds), int(longest), dims))
+    try:
+        longest = int(longest)
+    except (TypeError, ValueError):
+        raise ArgumentTypeError("AutomaticDimension is %r: give an integer" % (longest,))
+    if not -2 ** 31 <= longest < 2 ** 31:
+        raise ArgumentError("AutomaticDimension is %d: it must fit a 32-bit integer (and be "
+                            "at least 2)" % longest)
+    _check(_lib.schlieren_automatic_dimensions((ctypes.c_double * 6)(*bounds), longest, dims))
     return list(dims)
 
 
@@ -245,48 +422,65 @@ def _value_text(v):
 
 
 class Session:
-    """A trace session (schlieren_c.h): the volume, the settings, repeated traces."""
+    """A trace session (schlieren_c.h): the volume, the settings, repeated traces.
+
+    One call at a time: the engine serialises the calls of two threads on one session (the
+    second waits), so a session shared by threads traces one image after the other."""
 
     def __init__(self):
         self._s = _lib.schlieren_session_new()
         if not self._s:
-            raise MemoryError("schlieren_session_new failed")
+            raise MemoryError("schlieren_session_new failed: " + _text(_lib.schlieren_last_error()))
 
-    def __del__(self):
+    def free(self):
+        """Frees the engine's session now (also done when the object is collected); any later
+        call raises EngineError."""
         s, self._s = getattr(self, "_s", None), None
         if s and _lib is not None:
             _lib.schlieren_session_free(s)
+
+    def __del__(self):
+        self.free()
+
+    def _live(self, what):
+        if not self._s:
+            raise EngineError("Session.%s: this session was freed (Session.free()); make a new "
+                              "Session" % what)
+        return self._s
 
     def _error(self):
         return EngineError(_text(_lib.schlieren_session_error(self._s)))
 
     def set(self, name, value):
-        if _lib.schlieren_session_set(self._s, name.encode(), _value_text(value).encode()):
+        s = self._live("set")
+        if _lib.schlieren_session_set(s, str(name).encode(), _value_text(value).encode()):
             raise self._error()
 
     def get(self, name):
-        v = _lib.schlieren_session_get(self._s, name.encode())
+        s = self._live("get")
+        v = _lib.schlieren_session_get(s, str(name).encode())
         if v is None:
-            raise self._error() if _text(_lib.schlieren_session_error(self._s)) else \
-                KeyError(name)
+            raise self._error()
         return _text(v)
 
     def set_volume(self, dims, origin, spacing, n_minus_1, solid=None, levels=None,
                    level_tolerance=-1.0, max_level=7):
-        a, p = _floats(n_minus_1)
-        if a.size != int(np.prod(dims)):
-            raise EngineError("n_minus_1 has %d values for a grid of %d points"
-                              % (a.size, int(np.prod(dims))))
-        s, sp = _bytes(solid)
-        lv, lp = _bytes(levels)
-        if _lib.schlieren_session_set_volume(self._s, *_grid(dims, origin, spacing), p, sp, lp,
+        """The volume: n_minus_1 (and solid, levels where given) as 1D arrays of nx*ny*nz values,
+        x fastest, or 3D arrays shaped (nz, ny, nx); other shapes and sizes are refused."""
+        s = self._live("set_volume")
+        a = _point_array(n_minus_1, "n_minus_1", dims, np.float32)
+        sol = _point_array(solid, "solid", dims, np.uint8, optional=True, mask=True)
+        lv = _point_array(levels, "levels", dims, np.uint8, optional=True)
+        if _lib.schlieren_session_set_volume(s, *_grid(dims, origin, spacing), _fp(a), a.size,
+                                             _up(sol), _size(sol), _up(lv), _size(lv),
                                              float(level_tolerance), int(max_level)):
             raise self._error()
 
     def trace(self):
         """Traces; returns the report (dict: field_data, notes, error). Raises EngineError."""
-        rc = _lib.schlieren_session_trace(self._s)
-        report = json.loads(_text(_lib.schlieren_session_report(self._s)))
+        s = self._live("trace")
+        rc = _lib.schlieren_session_trace(s)
+        report = json.loads(_text(_lib.schlieren_session_report(s)))
         if rc:
             err = self._error()
             err.report = report
@@ -295,8 +489,9 @@ class Session:
 
     def array(self, name):
         """An image array of the last trace, (pixels, components) float32 copy, or None."""
+        s = self._live("array")
         comps, pixels = ctypes.c_int(0), ctypes.c_int64(0)
-        p = _lib.schlieren_session_array(self._s, name.encode(), ctypes.byref(comps),
+        p = _lib.schlieren_session_array(s, str(name).encode(), ctypes.byref(comps),
                                          ctypes.byref(pixels))
         if not p:
             return None
@@ -305,15 +500,17 @@ class Session:
 
     def plan_film(self, dims, origin, spacing):
         """The film a trace of this grid would make: (size, origin, pixel size)."""
+        s = self._live("plan_film")
         size, o, px = (ctypes.c_int * 2)(), (ctypes.c_double * 2)(), ctypes.c_double()
-        if _lib.schlieren_session_plan_film(self._s, *_grid(dims, origin, spacing), size, o,
+        if _lib.schlieren_session_plan_film(s, *_grid(dims, origin, spacing), size, o,
                                             ctypes.byref(px)):
             raise self._error()
         return list(size), list(o), px.value
 
     def film(self):
         """(size [nx, ny], origin of pixel (0, 0) [x, y], pixel size) of the last trace."""
+        s = self._live("film")
         size, origin, px = (ctypes.c_int * 2)(), (ctypes.c_double * 2)(), ctypes.c_double()
-        if _lib.schlieren_session_film(self._s, size, origin, ctypes.byref(px)):
-            raise EngineError("no image traced yet")
+        if _lib.schlieren_session_film(s, size, origin, ctypes.byref(px)):
+            raise self._error()
         return list(size), list(origin), px.value

@@ -10,16 +10,42 @@
 
 Property names, defaults and entries are the ParaView proxies'; they are keyword arguments and
 attributes (setting one marks the algorithm modified). Inputs may be any vtkDataSet: what is not
-an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first.
+an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first by RefractiveIndex
+(a composite data set, a PLOT3D multiblock for example, too: its blocks onto one image);
+RefractionOctree, NumericalSchlieren and SchlierenImage take an axis-aligned vtkImageData and
+refuse anything else with the C++ filters' reason. Every output is one vtkImageData, whatever the
+input (no per-block multiblock); a failed request leaves it empty and says why (a VTK error, the
+message kept in LastError), never a Python traceback.
 """
 import numpy as np
 from vtkmodules.util import numpy_support
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
-from vtkmodules.vtkCommonDataModel import vtkDataSet, vtkImageData
+from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkDataObject, vtkDataSet,
+                                           vtkImageData)
+from vtkmodules.vtkCommonExecutionModel import vtkDemandDrivenPipeline as DDP
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
 
 from . import _engine
 from ._engine import EngineError
+
+
+def _is_number(v):
+    return isinstance(v, (int, float, np.integer, np.floating, np.bool_))
+
+
+def _closest(name, names):
+    """" (the closest known name: 'X'...)" for the known name nearest to `name`, or ""."""
+    import difflib
+    names = list(names)
+    same = [n for n in names if n.lower() == str(name).lower()]
+    if same:
+        return " (the closest known name: %r; names are case-sensitive)" % same[0]
+    near = difflib.get_close_matches(str(name), names, n=1, cutoff=0.75) or \
+        difflib.get_close_matches(str(name).lower(), [n.lower() for n in names], n=1, cutoff=0.75)
+    if near:
+        match = [n for n in names if n == near[0] or n.lower() == near[0]][0]
+        return " (the closest known name: %r)" % match
+    return ""
 
 
 class _Properties(VTKPythonAlgorithmBase):
@@ -31,6 +57,8 @@ class _Properties(VTKPythonAlgorithmBase):
     def __init__(self, nInputPorts, outputType="vtkImageData", **kwargs):
         object.__setattr__(self, "_values", dict(self._defaults))
         object.__setattr__(self, "LastError", "")  # the message of the last failed request
+        # values refused by SetProperty (the ParaView plugin's setters): name -> the reason
+        object.__setattr__(self, "_refused", {})
         VTKPythonAlgorithmBase.__init__(self, nInputPorts=nInputPorts, nOutputPorts=1,
                                         outputType=outputType)
         object.__setattr__(self, "_ready", True)
@@ -45,29 +73,90 @@ class _Properties(VTKPythonAlgorithmBase):
 
     def __setattr__(self, name, value):
         if name in self._defaults:
-            self._values[name] = self._check(name, value)
+            try:
+                self._values[name] = self._check(name, value)
+            except (TypeError, ValueError) as e:
+                object.__setattr__(self, "LastError", str(e))
+                raise
             self.Modified()
-        elif not self.__dict__.get("_ready") or not name[:1].isupper() or \
-                hasattr(type(self), name):
+        elif not self.__dict__.get("_ready") or hasattr(type(self), name) or \
+                (not name[:1].isupper() and (name.startswith("_") or
+                                             not _closest(name, self._defaults))):
             # the base class's own attributes (InputType, ...) and private state
             object.__setattr__(self, name, value)
         else:
-            raise AttributeError("%s has no property %r; its properties: %s"
-                                 % (type(self).__name__, name, ", ".join(self._defaults)))
+            # a property's name mistyped or wrongly cased (cutoff=...): an error, not an
+            # attribute the trace never reads
+            raise AttributeError("%s has no property %r%s; its properties: %s"
+                                 % (type(self).__name__, name, _closest(name, self._defaults),
+                                    ", ".join(self._defaults)))
 
     def _check(self, name, value):
         default = self._defaults[name]
         if name in self._entries:
             if value not in self._entries[name]:
-                raise ValueError("%s %r is not one of: %s" % (name, value,
-                                                             ", ".join(self._entries[name])))
+                raise ValueError("%s %r is not one of: %s%s" % (
+                    name, value, ", ".join(self._entries[name]),
+                    _closest(str(value), self._entries[name])))
             return value
         if isinstance(default, (list, tuple)):
-            value = list(np.asarray(value).ravel().tolist())
+            try:
+                value = list(np.asarray(value).ravel().tolist())
+            except Exception:
+                raise ValueError("%s takes %d numbers, got %r" % (name, len(default), value))
             if len(value) != len(default):
                 raise ValueError("%s takes %d values, got %d" % (name, len(default), len(value)))
+            if all(_is_number(d) for d in default) and not all(_is_number(v) for v in value):
+                raise ValueError("%s takes %d numbers, got %r" % (name, len(default), value))
             return value
+        if _is_number(default) and not _is_number(value):
+            raise ValueError("%s is %r: it takes a number" % (name, value))
         return value
+
+    def SetProperty(self, name, value):
+        """Sets a property as ParaView's setters do: a value this front end refuses is kept as an
+        error instead of raised (no traceback out of a proxy's setter). Until a good value is
+        set, every request fails with that error and an empty output, so that no image shows
+        that seems to use the refused value."""
+        try:
+            setattr(self, name, value)
+        except (ValueError, TypeError, EngineError) as e:
+            self._refused[name] = str(e)
+            self.Modified()
+            return False
+        if self._refused.pop(name, None) is not None:
+            self.Modified()
+        return True
+
+    def ProcessRequest(self, request, inInfo, outInfo):
+        """VTKPythonAlgorithmBase's dispatch with the errors a C++ filter gives: a refused value
+        or an exception of any kind becomes a VTK error (ParaView's Output Messages) and an
+        empty output, never a traceback."""
+        is_data = request.Has(DDP.REQUEST_DATA())
+        try:
+            if self._refused and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
+                if not is_data:
+                    # said once, by the data request; the output's extent is empty until then
+                    info = outInfo.GetInformationObject(0)
+                    if info.Has(SDDP.WHOLE_EXTENT()):
+                        info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
+                    return 1
+                ok = self._fail("; ".join(self._refused.values()) + " (the output stays empty "
+                                "until the value is changed)")
+            else:
+                ok = VTKPythonAlgorithmBase.ProcessRequest(self, request, inInfo, outInfo)
+        except Exception as e:  # noqa: BLE001 -- a message, not a traceback, whatever it is
+            ok = self._fail(str(e) if isinstance(e, EngineError) else
+                            "%s: %s" % (type(e).__name__, e))
+        if not ok and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
+            # no image from before left as if it were this request's (a failed information
+            # request is not followed by a data request)
+            out = outInfo.GetInformationObject(0).Get(vtkDataObject.DATA_OBJECT())
+            if out is not None:
+                out.Initialize()
+        elif is_data:
+            object.__setattr__(self, "_said", None)  # a later failure is said again
+        return ok
 
     def GetOutput(self, port=0):
         """The output data object (vtkImageData), as vtkImageAlgorithm::GetOutput gives it."""
@@ -85,28 +174,92 @@ class _Properties(VTKPythonAlgorithmBase):
         LastError for scripts; returns 0 for the pipeline (the request failed)."""
         from vtkmodules.vtkCommonCore import vtkOutputWindow
         object.__setattr__(self, "LastError", message)
-        vtkOutputWindow.GetInstance().DisplayErrorText(
-            "ERROR: In %s: %s\n" % (type(self).__name__, message))
+        # said once, as the C++ filters do: not again for the same settings (a failed request
+        # is asked again by every update and Fetch)
+        key = (message, self.GetMTime())
+        if self.__dict__.get("_said") != key:
+            object.__setattr__(self, "_said", key)
+            vtkOutputWindow.GetInstance().DisplayErrorText(
+                "ERROR: In %s: %s\n" % (type(self).__name__, message))
         return 0
 
+    def _warn(self, message):
+        """A VTK warning (ParaView's Output Messages, as vtkWarningMacro writes)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        vtkOutputWindow.GetInstance().DisplayWarningText(
+            "Warning: In %s: %s\n" % (type(self).__name__, message))
 
-def _image_input(data, dims=None):
+
+def _axis_aligned_image(data, what):
+    """`data` if it is a vtkImageData without a direction matrix; else an EngineError with the
+    reason the C++ SchlierenImage gives."""
+    if not isinstance(data, vtkImageData):
+        raise EngineError(
+            "%s needs a vtkImageData input with the point array 'n_minus_1'; got %s. Resample "
+            "the data onto an image and apply RefractiveIndex first."
+            % (what, data.GetClassName() if data is not None else "nothing"))
+    direction = getattr(data, "GetDirectionMatrix", None)
+    if direction is not None and not direction().IsIdentity():
+        raise EngineError("%s traces axis-aligned images only; this one has a direction matrix. "
+                          "Resample it onto an axis-aligned image first." % what)
+    return data
+
+
+def _first_point(image):
+    """The world position of an image's first point (its extent may not start at 0)."""
+    e, o, s = image.GetExtent(), image.GetOrigin(), image.GetSpacing()
+    return [o[a] + e[2 * a] * s[a] for a in range(3)]
+
+
+def _bounds(data):
+    """The bounds of a data set or of a composite data set's blocks."""
+    if isinstance(data, vtkCompositeDataSet):
+        b = [0.0] * 6
+        data.GetBounds(b)
+        return b
+    return data.GetBounds()
+
+
+def _image_input(data, dims=None, bounds=None):
     """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
-    or resampled with vtkResampleToImage onto `dims` points over its bounds."""
+    or resampled with vtkResampleToImage onto `dims` points over its bounds (or `bounds`)."""
     if isinstance(data, vtkImageData):
         return data, None
     from vtkmodules.vtkFiltersCore import vtkResampleToImage
     r = vtkResampleToImage()
     r.SetInputDataObject(data)
+    if bounds is not None:
+        r.SetUseInputBounds(0)
+        r.SetSamplingBounds(*[float(b) for b in bounds])
     if dims is None:
-        dims = _engine.automatic_dimensions(data.GetBounds(), 128)
+        dims = _engine.automatic_dimensions(_bounds(data), 128)
     r.SetSamplingDimensions(*dims)
     r.Update()
     out = vtkImageData()
     out.ShallowCopy(r.GetOutput())
     mask = _point_array(out, r.GetMaskArrayName())
-    out.GetPointData().RemoveArray(r.GetMaskArrayName())
+    if mask is None or mask.all():
+        # kept where it says something, as the C++ filter does: NumericalSchlieren leaves the
+        # points outside the input's cells out of its gradients
+        out.GetPointData().RemoveArray(r.GetMaskArrayName())
     return out, (None if mask is None or mask.all() else np.ascontiguousarray(mask, np.uint8))
+
+
+def _image_validity(image):
+    """The flow's points of an image input as the C++ filter's Validity reads them (a uint8 array,
+    1 in the flow), or None where all are: vtkValidPointMask 0 and hidden points (ghost array)
+    are outside it."""
+    n = image.GetNumberOfPoints()
+    valid = np.ones(n, np.uint8)
+    mask = _point_array(image, "vtkValidPointMask")
+    if mask is not None and mask.ndim == 1:
+        valid[mask == 0] = 0
+    ghosts = image.GetPointData().GetArray("vtkGhostType")
+    if ghosts is not None:
+        from vtkmodules.vtkCommonDataModel import vtkDataSetAttributes
+        g = numpy_support.vtk_to_numpy(ghosts)
+        valid[(g.astype(np.int64) & vtkDataSetAttributes.HIDDENPOINT) != 0] = 0
+    return None if valid.all() else valid
 
 
 def _point_array(image, name):
@@ -166,8 +319,9 @@ class RefractiveScene(_Properties):
         origin, spacing = [0.0] * 3, [0.0] * 3
         for a in range(3):
             lo, hi = float(self.Bounds[2 * a]), float(self.Bounds[2 * a + 1])
-            if dims[a] < 1:
-                raise EngineError("Dimensions must be at least 1 along each axis; got %s." % dims)
+            if dims[a] < 1 or dims[a] > 2 ** 31 - 1:
+                raise EngineError("Dimensions must be at least 1 along each axis (and fit a "
+                                  "32-bit integer); got %s." % dims)
             if dims[a] > 1 and not hi > lo:
                 raise EngineError("Bounds along axis %d are [%g, %g]: the max must exceed the "
                                   "min." % (a, lo, hi))
@@ -210,15 +364,19 @@ class RefractiveScene(_Properties):
 
 
 class RefractiveIndex(_Properties):
-    """n - 1 from CFD fields (Passthrough, GladstoneDale), resampled onto an image as needed.
+    """n - 1 from CFD fields by every index model of the engine (Passthrough, GladstoneDale,
+    GladstoneDaleMixture, IdealGas, Ciddor), resampled onto an image as needed.
 
-    Model Automatic takes GladstoneDale on an array named like density (density, rho, Density),
-    else Passthrough on n_minus_1. InputArray names the array (empty: the automatic choice).
+    Model Automatic chooses as the C++ filter does: Passthrough on an array named as n - 1, else
+    GladstoneDale on one named as a density, else IdealGas on a temperature and a pressure, else
+    Passthrough of n; a named InputArray decides by its name. An empty array property takes the
+    first array named as what it holds (the C++ filter's names).
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
-    names: SelectInputArray is InputArray); those this front end does not implement (the mixture
-    and ideal-gas models, Symmetry, sampling bounds, ambient values, bodies) take their default
-    only, and another value is refused by name (the C++ plugin has them)."""
+    names: SelectInputArray is InputArray); those this front end does not implement (Symmetry and
+    its axis, span and wedge) take their default only, and another value is refused by name (the
+    C++ plugin has them). Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), a solid
+    array (SolidArray, an upstream `solid`); not from a mesh's walls or a body surface input."""
 
     _defaults = dict(
         Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
@@ -247,17 +405,33 @@ class RefractiveIndex(_Properties):
         HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"],
         Symmetry=["None", "Planar", "Axisymmetric"], SymmetryAxis=["X", "Y", "Z"],
         AmbientMode=["Extend", "DomainEdgeMedian", "Value"])
-    # implemented here: these properties (Model: the first three entries); the others are held at
-    # their defaults (BodyFromGrid's default is taken, but no body is found in the grid's holes)
-    _implemented = {"Model", "InputArray", "PassthroughHoldsN", "Gas", "GladstoneDaleConstant",
-                    "MolarMass", "DensityReference", "SamplingDimensions", "AutomaticDimension",
-                    "AmbientMode", "BodyFromGrid"}
-    _implemented_entries = dict(Model=["Automatic", "Passthrough", "GladstoneDale"],
-                                AmbientMode=["Extend"])
+    # implemented here: the properties in _implemented (the others are held at their defaults)
+    # the index models' settings, handed to the engine by name (schlieren_index_model)
+    _model_settings = ("PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
+                       "MixtureComposition", "IdealGasComposition", "MixtureGas0", "MixtureGas1",
+                       "NumberOfSpecies", "SpeciesGases", "SpeciesGladstoneDale",
+                       "SpeciesMolarMass", "BalanceGas", "BalanceGladstoneDale",
+                       "BalanceMolarMass", "DensityReference", "TemperatureUnit",
+                       "TemperatureReference", "PressureUnit", "PressureReference",
+                       "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength")
+    _implemented = {"Model", "InputArray", "SamplingDimensions", "AutomaticDimension",
+                    "UseSamplingBounds", "SamplingBounds", "BodyWallFaces", "SolidArray",
+                    "AmbientMode", "AmbientValue", "BodyFromGrid", "TemperatureArray",
+                    "PressureArray",
+                    "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
+                    "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray",
+                    "CO2FromArray"} | set(_model_settings)
+    _implemented_entries = {}
+    # the names an empty array property takes, in order (the C++ filter's, lower case)
+    _candidates = dict(TemperatureArray=("temperature", "temp", "t", "static_temperature",
+                                         "t_static"),
+                       PressureArray=("pressure", "pres", "press", "p", "static_pressure",
+                                      "p_static"),
+                       MixtureFractionArray=("mixture_fraction", "mixturefraction", "f", "z"))
 
     def _check(self, name, value):
         value = _Properties._check(self, name, value)
-        if name in ("InputArray",) and isinstance(value, (list, tuple)):
+        if name.endswith("Array") and isinstance(value, (list, tuple)):
             value = value[-1]  # ParaView's ["POINTS", name]
         if name in self._implemented_entries and value not in self._implemented_entries[name]:
             raise ValueError("RefractiveIndex: %s %r is not available in the Python front end "
@@ -275,69 +449,314 @@ class RefractiveIndex(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
+        # a data set or a composite data set as one input (the C++ filter's types): the blocks
+        # are resampled onto one image, not executed one by one into a multiblock of images
         info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet")
+        info.Append(self.INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet")
         return 1
+
+    def RequestInformation(self, request, inInfo, outInfo):
+        # an image's grid is the input's (the executive copied it); a resampled input's grid is
+        # known from its bounds, known once it has executed: it is updated now, as the C++ filter
+        # does, and the grid vtkResampleToImage will make is given downstream (SchlierenImage
+        # plans its film from it; without it a view asks for an empty extent and shows nothing)
+        src = inInfo[0].GetInformationObject(0)
+        info = outInfo.GetInformationObject(0)
+        if isinstance(vtkDataObject.GetData(src), vtkImageData):
+            return 1  # (the data object exists, empty, before the input executes)
+        connection = self.GetInputConnection(0, 0) if self.GetNumberOfInputConnections(0) else None
+        if connection is not None and src.Has(SDDP.WHOLE_EXTENT()):
+            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        if connection is not None:
+            connection.GetProducer().Update(connection.GetIndex())
+        data = vtkDataObject.GetData(src)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
+        if not isinstance(data, (vtkDataSet, vtkCompositeDataSet)) or \
+                data.GetNumberOfPoints() == 0:
+            return 1  # RequestData says why
+        # the grid vtkResampleToImage makes (it says its origin and spacing in RequestData
+        # only): the bounds pulled in by a hair about their centre, as the C++ filter's
+        from vtkmodules.vtkCommonDataModel import vtkBoundingBox
+        dims = self._dims(data)
+        b = self._sampling_bounds()
+        if b is None:
+            box = vtkBoundingBox(_bounds(data))
+            box.ScaleAboutCenter(1.0 - 1e-6)
+            b = [0.0] * 6
+            box.GetBounds(b)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
+        info.Set(vtkImageData.ORIGIN(), b[0], b[2], b[4])
+        info.Set(vtkImageData.SPACING(), *[(b[2 * a + 1] - b[2 * a]) / (dims[a] - 1)
+                                           if dims[a] > 1 else 1.0 for a in range(3)])
+        return 1
+
+    def RequestUpdateExtent(self, request, inInfo, outInfo):
+        # the whole input: resampling (or the gradient at the borders) needs all of it
+        src = inInfo[0].GetInformationObject(0)
+        if src.Has(SDDP.WHOLE_EXTENT()):
+            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        return 1
+
+    # what a name says an array holds (lower case, in order of preference: the C++ filter's)
+    _kinds = dict(n_minus_1=("n_minus_1", "nminus1", "n-1", "refractivity"),
+                  n=("n", "refractive_index", "refractiveindex", "index_of_refraction"),
+                  density=("density", "rho", "dens", "mass_density"),
+                  temperature=_candidates["TemperatureArray"],
+                  pressure=_candidates["PressureArray"])
+
+    @classmethod
+    def _kind_of(cls, name):
+        low = name.lower()
+        return next((k for k, v in cls._kinds.items() if low in v), None)
+
+    @classmethod
+    def _find(cls, names, kind):
+        """The first of `names` named as `kind` (by the order of preference), or ""."""
+        for want in cls._kinds[kind]:
+            for n in names:
+                if n.lower() == want:
+                    return n
+        return ""
+
+    def _choose(self, names, pd):
+        """Model Automatic's choice and the input array, as the C++ filter's ChooseModel and its
+        automatic arrays: (model, input array name or None, holds n, {property: array name})."""
+        model, name, holds_n, chosen = self.Model, self.InputArray, bool(self.PassthroughHoldsN), {}
+        if model == "Automatic":
+            holds_n = False
+            if name:
+                kind = self._kind_of(name)
+                model = {"n": "Passthrough", "density": "GladstoneDale", "temperature": "IdealGas",
+                         "pressure": "IdealGas"}.get(kind, "Passthrough")
+                holds_n = kind == "n"
+                if kind in ("temperature", "pressure"):
+                    chosen[kind.capitalize() + "Array"] = name
+            elif self._find(names, "n_minus_1"):
+                model, name = "Passthrough", self._find(names, "n_minus_1")
+            elif self._find(names, "density"):
+                model, name = "GladstoneDale", self._find(names, "density")
+            elif self._find(names, "temperature") and self._find(names, "pressure"):
+                model = "IdealGas"
+            elif self._find(names, "n"):
+                model, name, holds_n = "Passthrough", self._find(names, "n"), True
+            else:
+                raise EngineError(
+                    "Model Automatic found no array named as a refractive index (n_minus_1, n), "
+                    "a density (density, rho) or a temperature and a pressure (temperature, Temp, "
+                    "T; pressure, Pres, p) among the input's arrays: %s. Choose the Model and its "
+                    "arrays." % (", ".join(names) or "none"))
+        if model in ("IdealGas", "Ciddor"):
+            return model, None, holds_n, chosen
+        if not name and model == "Passthrough":
+            name = self._find(names, "n" if holds_n else "n_minus_1")
+        elif not name:
+            name = self._find(names, "density")
+        if not name:
+            # no name known: the active point scalars, else the first point array
+            scalars = pd.GetScalars()
+            name = scalars.GetName() if scalars is not None and scalars.GetName() else \
+                (names[0] if names else "n_minus_1")
+        return model, name, holds_n, chosen
+
+    def _index_model(self, model, image, names, valid, chosen=None):
+        """n - 1 by GladstoneDaleMixture, IdealGas or Ciddor: the engine's models (the C++
+        filter's) on the arrays the properties name (an empty name: the C++ filter's choice among
+        the usual names), with the proxy's settings."""
+        automatic = chosen or {}
+
+        def pick(prop, role, required=True):
+            chosen = automatic.get(prop) or getattr(self, prop)
+            if not chosen:
+                lower = {n.lower(): n for n in reversed(names)}
+                chosen = next((lower[c] for c in self._candidates.get(prop, ()) if c in lower),
+                              "")
+            if not chosen:
+                if required:
+                    raise EngineError("RefractiveIndex: Model %s needs %s (a point array); the "
+                                      "input has: %s" % (model, prop, ", ".join(names) or "none"))
+                return
+            a = _point_array(image, chosen)
+            if a is None or a.ndim != 1:
+                raise EngineError("RefractiveIndex: %s is '%s': the input has no one-component "
+                                  "point array of that name (it has: %s)"
+                                  % (prop, chosen, ", ".join(names) or "none"))
+            arrays["%s:%s" % (role, chosen)] = a
+        arrays = {}
+        composition = {"GladstoneDaleMixture": self.MixtureComposition,
+                       "IdealGas": self.IdealGasComposition}.get(model, "Gas")
+        if model == "GladstoneDaleMixture" and self.InputArray:
+            pick("InputArray", "density")
+        elif model == "GladstoneDaleMixture":
+            density = self._find(names, "density")
+            if not density:
+                raise EngineError("RefractiveIndex: Model GladstoneDaleMixture needs a density "
+                                  "array (InputArray); the input has: %s" % ", ".join(names))
+            arrays["density:" + density] = _point_array(image, density)
+        if model in ("IdealGas", "Ciddor"):
+            pick("TemperatureArray", "temperature")
+            pick("PressureArray", "pressure")
+        if composition == "MixtureFraction":
+            pick("MixtureFractionArray", "mixture_fraction")
+        elif composition == "Species":
+            for k in range(int(self.NumberOfSpecies)):
+                pick("Species%dArray" % (k + 1), "species%d" % (k + 1))
+        if model == "Ciddor":
+            if self.HumidityFromArray:
+                pick("HumidityArray", "humidity")
+            if self.CO2FromArray:
+                pick("CO2Array", "co2")
+        settings = {k: self._values[k] for k in self._model_settings}
+        settings["Model"] = model
+        n1, warnings = _engine.index_model(settings, arrays, valid)
+        object.__setattr__(self, "_read", [k.split(":", 1)[1] for k in arrays])
+        return n1, warnings
+
+    def _sampling_bounds(self):
+        """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
+        None (the input's bounds)."""
+        if not self.UseSamplingBounds:
+            return None
+        b = [float(v) for v in self.SamplingBounds]
+        if not all(np.isfinite(b)) or any(b[2 * a + 1] <= b[2 * a] for a in range(3)):
+            raise EngineError("RefractiveIndex: SamplingBounds %s: each max must exceed its min "
+                              "(SamplingBounds: xmin xmax ymin ymax zmin zmax)" % b)
+        return b
+
+    def _solid(self, image, dims, valid, resampled):
+        """The output's `solid` (uint8, 1: body) as the C++ filter's ComputeSolid makes it, or
+        None where there is no body: the holes of a resampled grid that the flow encloses
+        (BodyFromGrid, with BodyWallFaces; the engine's), a `solid` array the input carries and
+        SolidArray (non-zero, or at least 0.5 where resampled). Not here: the voids beside a
+        mesh's walls found from its velocity (the C++ filter's BodiesBesideWalls)."""
+        solid = np.zeros(int(np.prod(dims)), np.uint8)
+        if self.BodyFromGrid and valid is not None:
+            solid |= _engine.enclosed_invalid(dims, valid, self.BodyWallFaces)
+
+        def mark(values):
+            values = np.asarray(values)
+            solid[(values >= 0.5) if resampled else (values != 0)] = 1
+        upstream = _point_array(image, "solid")
+        if upstream is not None and upstream.ndim == 1:
+            mark(upstream)
+        name = self.SolidArray
+        if name and name != "None":
+            mask = _point_array(image, name)
+            if mask is None:
+                pd = image.GetPointData()
+                raise EngineError("SolidArray '%s' is not a point array of the input. Point "
+                                  "arrays present: %s." % (name, ", ".join(
+                                      pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays()))))
+            if mask.ndim != 1:
+                raise EngineError("SolidArray '%s' has %d components; it must be a scalar "
+                                  "(non-zero: solid)." % (name, mask.shape[1]))
+            mark(mask)
+        return solid if solid.any() else None
 
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
-        if min(dims) > 0:
-            return dims
-        return _engine.automatic_dimensions(data.GetBounds(), int(self.AutomaticDimension))
+        automatic = min(dims) <= 0
+        if automatic:
+            dims = _engine.automatic_dimensions(self._sampling_bounds() or _bounds(data),
+                                                int(self.AutomaticDimension))
+        # the resampled image is this process's to allocate: refused before, as the C++ filter
+        # does (its arrays, the mask, and the engine's per-point share; a composite input: a few
+        # double arrays, as the C++ filter counts it)
+        if isinstance(data, vtkDataSet):
+            pd = data.GetPointData()
+            per_point = 1.0 + 21.0 + sum(
+                pd.GetArray(i).GetNumberOfComponents() * pd.GetArray(i).GetDataTypeSize()
+                for i in range(pd.GetNumberOfArrays()) if pd.GetArray(i) is not None)
+        else:
+            per_point = 1.0 + 21.0 + 64.0
+        _engine.check_memory(float(dims[0]) * dims[1] * dims[2] * per_point,
+                             "Resampling onto %d x %d x %d points" % tuple(dims),
+                             "Lower AutomaticDimension (points along the longest side)."
+                             if automatic else "Lower SamplingDimensions.")
+        return dims
 
     def RequestData(self, request, inInfo, outInfo):
-        data = vtkDataSet.GetData(inInfo[0])
+        data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
         try:
-            image, valid = _image_input(data, None if isinstance(data, vtkImageData)
-                                        else self._dims(data))
+            if data is None or not isinstance(data, (vtkDataSet, vtkCompositeDataSet)):
+                raise EngineError("RefractiveIndex needs a data set or a composite data set; "
+                                  "got %s." % (data.GetClassName() if data else "nothing"))
+            if isinstance(data, vtkCompositeDataSet) and \
+                    data.GetNumberOfPoints() == 0:
+                raise EngineError("RefractiveIndex: the input (%s) has no points."
+                                  % data.GetClassName())
+            resampled = not isinstance(data, vtkImageData)
+            image, valid = _image_input(data, None if not resampled else self._dims(data),
+                                        self._sampling_bounds())
+            if not resampled:
+                valid = _image_validity(image)
             pd = image.GetPointData()
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
-            model, name = self.Model, self.InputArray
-            if model == "Automatic":
-                density = [n for n in names if n in ("density", "rho", "Density", "Rho")]
-                if name:
-                    model = "Passthrough" if name in ("n_minus_1", "n") else "GladstoneDale"
-                elif density:
-                    model, name = "GladstoneDale", density[0]
-                else:
-                    model = "Passthrough"
-            if not name:
-                name = "n_minus_1" if model == "Passthrough" else "density"
-            values = _point_array(image, name)
-            if values is None or values.ndim != 1:
+            names = [n for n in names if n and n != "vtkValidPointMask"]
+            model, name, holds_n, chosen = self._choose(names, pd)
+            if model in ("GladstoneDaleMixture", "IdealGas", "Ciddor"):
+                n1, warnings = self._index_model(model, image, names, valid, chosen)
+                read = self._read
+                name = None
+            else:
+                read = [name]
+            values = None if name is None else _point_array(image, name)
+            if name is not None and (values is None or values.ndim != 1):
                 raise EngineError("RefractiveIndex needs the one-component point array %r; the "
                                   "input has: %s" % (name, ", ".join(names) or "none"))
-            if valid is not None:
+            if name is None:
+                pass
+            elif valid is not None:
                 if not valid.any():
                     raise EngineError("RefractiveIndex: no point of the sampling grid lies inside "
                                       "the input's cells.")
                 # the points outside the input's cells are filled below: not checked as flow
                 values = np.where(valid != 0, values, values[np.argmax(valid)])
-            n1, warnings = _engine.field_index(model, values,
-                                               index_is_n=bool(self.PassthroughHoldsN),
-                                               density_reference=self.DensityReference,
-                                               gas=("Custom %r %r" % (
-                                                   float(self.GladstoneDaleConstant),
-                                                   float(self.MolarMass))
-                                                    if self.Gas == "Custom" else self.Gas))
+            if name is not None:
+                n1, warnings = _engine.field_index(model, values, index_is_n=holds_n,
+                                                   density_reference=self.DensityReference,
+                                                   gas=("Custom %r %r" % (
+                                                       float(self.GladstoneDaleConstant),
+                                                       float(self.MolarMass))
+                                                       if self.Gas == "Custom" else self.Gas))
             dims = list(image.GetDimensions())
-            if valid is not None:
+            ambient = None
+            if valid is not None and self.AmbientMode == "Extend":
                 _engine.extend_into_invalid(dims, valid, n1)
+            elif valid is not None:
+                ambient, _ = _engine.fill_ambient(dims, valid, n1, self.AmbientMode,
+                                                  self.AmbientValue)
             grad = _engine.gradient(dims, image.GetSpacing(), n1)
+            solid = self._solid(image, dims, valid, resampled)
         except EngineError as e:
             return self._fail(str(e))
         out.ShallowCopy(image)
+        if not isinstance(data, vtkImageData):
+            e = out.GetExtent()  # the resampled grid's, known only now
+            outInfo.GetInformationObject(0).Set(SDDP.WHOLE_EXTENT(), e, 6)
         a = _add(out, "n_minus_1", n1)
-        out.GetPointData().SetScalars(a)
+        # active, not SetScalars: that would drop the input's active scalars (the blunt fin's
+        # Density), which the C++ filter keeps (and NumericalSchlieren prefers a density)
+        out.GetPointData().SetActiveScalars(a.GetName())
         _add(out, "grad_n", grad)
+        if solid is not None:
+            out.GetPointData().RemoveArray("solid")
+            _add(out, "solid", solid)
+        # the C++ filter's field data (less its notes and per-model numbers)
+        if ambient is not None:
+            _field_number(out, "ambient_n_minus_1", ambient)
         _field_string(out, "index_model", model)
-        if valid is not None and self.BodyFromGrid:
-            warnings = list(warnings) + [
-                "BodyFromGrid: the Python front end finds no bodies in the grid's holes; the "
-                "points outside the input's cells are filled as the flow (AmbientMode Extend)."]
+        from vtkmodules.vtkCommonCore import vtkStringArray
+        arrays = vtkStringArray()
+        arrays.SetName("index_arrays")
+        for r in read:
+            arrays.InsertNextValue(r)
+        out.GetFieldData().AddArray(arrays)
+        invalid = 0 if valid is None else int(np.count_nonzero(valid == 0))
+        _field_number(out, "valid_point_fraction", 1.0 - invalid / n1.size if n1.size else 0.0)
+        _field_number(out, "solid_points", 0 if solid is None else int(solid.sum()))
         for w in warnings:
-            import warnings as _w
-            _w.warn("RefractiveIndex: " + w)
+            self._warn(w)
         return 1
 
 
@@ -351,12 +770,18 @@ class RefractionOctree(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
-        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        # any data object, refused below unless an image: a multiblock must not be executed
+        # block by block into a multiblock output (the output is one image or empty)
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject")
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
-        image = vtkImageData.GetData(inInfo[0])
+        image = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
+        if not isinstance(image, vtkImageData):
+            return self._fail("RefractionOctree needs a vtkImageData input with the point "
+                              "array 'n_minus_1' (the output of RefractiveIndex); got %s."
+                              % (image.GetClassName() if image is not None else "nothing"))
         if not 0 <= int(self.MaxLevel) <= 10:
             return self._fail("MaxLevel is %d: it must be in [0, 10]." % int(self.MaxLevel))
         n1 = _point_array(image, "n_minus_1")
@@ -397,7 +822,15 @@ class NumericalSchlieren(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
-        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject")  # one image out, see above
+        return 1
+
+    def RequestUpdateExtent(self, request, inInfo, outInfo):
+        # the whole volume (not the film's extent, which the pipeline would copy upstream and
+        # then report as outside the input's whole extent)
+        src = inInfo[0].GetInformationObject(0)
+        if src.Has(SDDP.WHOLE_EXTENT()):
+            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
 
     def _settings(self):
@@ -433,8 +866,18 @@ class NumericalSchlieren(_Properties):
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
-        image = vtkImageData.GetData(inInfo[0])
+        image = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
+        if image is not None and not isinstance(image, vtkImageData):
+            return self._fail("NumericalSchlieren needs a vtkImageData input (for example the "
+                              "output of RefractiveIndex or RefractiveScene); got %s. Resample "
+                              "the data onto an image with RefractiveIndex first."
+                              % image.GetClassName())
+        try:
+            _axis_aligned_image(image, "NumericalSchlieren")
+        except EngineError as e:
+            if image is not None:
+                return self._fail(str(e))
         if image is None or image.GetNumberOfPoints() == 0:
             return self._fail("NumericalSchlieren needs a non-empty image (vtkImageData), for "
                               "example the output of RefractiveIndex or RefractiveScene.")
@@ -482,6 +925,15 @@ class NumericalSchlieren(_Properties):
         return 1
 
 
+def _python_advice(message):
+    """The engine's message with its advice made this front end's: its RefractiveIndex has
+    Symmetry None only (the engine's advice names the C++ plugin's Symmetry)."""
+    if "Symmetry" in message:
+        message += (" (Symmetry is the C++ plugin's RefractiveIndex: the Python front end's "
+                    "takes None only; give SchlierenImage a 3D volume here.)")
+    return message
+
+
 def _image_properties():
     props = _engine.properties()
     return ({p["name"]: p["default"] for p in props},
@@ -505,15 +957,18 @@ class SchlierenImage(_Properties):
         _Properties.__init__(self, 1, **kwargs)
 
     def FillInputPortInformation(self, port, info):
-        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet")
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject")  # one image out, see above
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
-        data = vtkDataSet.GetData(inInfo[0])
+        data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
         s = self._session
         try:
-            image, _ = _image_input(data)
+            # the C++ filter's refusals: not an image (an unstructured grid traced as vacuum
+            # outside its cells would be a wrong image: RefractiveIndex resamples it with the
+            # validity mask and fills those points), or a turned one
+            image = _axis_aligned_image(data, "SchlierenImage")
             n1 = _point_array(image, "n_minus_1")
             if n1 is None:
                 pd = image.GetPointData()
@@ -533,7 +988,7 @@ class SchlierenImage(_Properties):
                 fd = image.GetFieldData()
                 tol = fd.GetArray("octree_tolerance")
                 maxl = fd.GetArray("octree_max_level")
-                s.set_volume(image.GetDimensions(), image.GetOrigin(), image.GetSpacing(), n1,
+                s.set_volume(image.GetDimensions(), _first_point(image), image.GetSpacing(), n1,
                              None if solid is None else (solid != 0).astype(np.uint8),
                              None if levels is None else np.clip(levels, 0, 10).astype(np.uint8),
                              tol.GetValue(0) if tol is not None else -1.0,
@@ -544,13 +999,12 @@ class SchlierenImage(_Properties):
             report = s.trace()
         except EngineError as e:
             object.__setattr__(self, "LastReport", getattr(e, "report", None))
-            return self._fail(str(e))
+            return self._fail(_python_advice(str(e)))
         object.__setattr__(self, "LastReport", report)
         object.__setattr__(self, "LastError", "")
-        import warnings
         for note in report["notes"]:
             if note["warning"]:
-                warnings.warn("SchlierenImage: " + note["text"])
+                self._warn(note["text"])
         size, origin, pixel = s.film()
         # only the image and the report, as the C++ filter's output (the pipeline passed the
         # input's field data on: RefractiveIndex's index_* are not this image's)
@@ -582,20 +1036,24 @@ class SchlierenImage(_Properties):
         # (a non-image input is resampled in RequestData; its film is known only then)
         src = inInfo[0].GetInformationObject(0)
         info = outInfo.GetInformationObject(0)
-        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING())):
+        # empty until the film is known (not the input's extent, which the executive copied)
+        info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
+        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING()) and
+                src.Has(vtkImageData.ORIGIN())):
             return 1
         e = src.Get(SDDP.WHOLE_EXTENT())
         dims = [e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1]
         if min(dims) < 1:
             return self._fail("The input volume is empty: nothing to trace. If a filter upstream "
                               "reported an error, that is the cause; fix it there.")
+        spacing = src.Get(vtkImageData.SPACING())
+        first = [src.Get(vtkImageData.ORIGIN())[a] + e[2 * a] * spacing[a] for a in range(3)]
         try:
             for name, value in self._values.items():
                 self._session.set(name, value)
-            size, origin, pixel = self._session.plan_film(dims, src.Get(vtkImageData.ORIGIN()),
-                                                          src.Get(vtkImageData.SPACING()))
+            size, origin, pixel = self._session.plan_film(dims, first, spacing)
         except EngineError as err:
-            return self._fail(str(err))
+            return self._fail(_python_advice(str(err)))
         info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
         info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
         info.Set(vtkImageData.ORIGIN(), origin[0], origin[1], 0.0)

@@ -44,13 +44,13 @@ int main(void)
   CHECK(schlieren_api_version() == SCHLIEREN_C_API_VERSION, "API version %d", schlieren_api_version());
   CHECK(strstr(schlieren_properties(), "\"Cutoff\"") != NULL, "the property list names Cutoff");
   CHECK(schlieren_fill_scene("Scene=GaussianSphere\nAmplitude=1e-4\nWidth=0.25", dims, origin,
-          spacing, n1, NULL, NULL, NULL) == 0,
+          spacing, (int64_t)n, n1, NULL, NULL, NULL) == 0,
     "fill_scene: %s", schlieren_last_error());
   CHECK(fabs(n1[16 + 33 * (16 + 33 * 16)] - 1e-4f) < 1e-9f, "n - 1 at the centre %g", n1[16 + 33 * (16 + 33 * 16)]);
-  CHECK(schlieren_fill_scene("Scene=Sphere", dims, origin, spacing, n1, NULL, NULL, NULL) != 0 &&
+  CHECK(schlieren_fill_scene("Scene=Sphere", dims, origin, spacing, (int64_t)n, n1, NULL, NULL, NULL) != 0 &&
       strstr(schlieren_last_error(), "GaussianSphere") != NULL,
     "a bad scene names the scenes: %s", schlieren_last_error());
-  schlieren_fill_scene("Scene=GaussianSphere", dims, origin, spacing, n1, NULL, NULL, NULL);
+  schlieren_fill_scene("Scene=GaussianSphere", dims, origin, spacing, (int64_t)n, n1, NULL, NULL, NULL);
 
   s = schlieren_session_new();
   CHECK(schlieren_session_trace(s) != 0 && strstr(schlieren_session_error(s), "volume") != NULL,
@@ -67,7 +67,7 @@ int main(void)
   CHECK(schlieren_session_set(s, "Resolution", "64 48") == 0 &&
       schlieren_session_set(s, "Passes", "2") == 0 && schlieren_session_set(s, "Cutoff", "KnifeEdge") == 0,
     "settings taken");
-  CHECK(schlieren_session_set_volume(s, dims, origin, spacing, n1, NULL, NULL, -1, 7) == 0,
+  CHECK(schlieren_session_set_volume(s, dims, origin, spacing, n1, (int64_t)n, NULL, 0, NULL, 0, -1, 7) == 0,
     "set_volume");
   free(n1); /* copied */
   CHECK(schlieren_session_trace(s) == 0, "trace: %s", schlieren_session_error(s));
@@ -114,15 +114,15 @@ int main(void)
       for (y = 0; y < 33; ++y)
         for (x = 0; x < 33; ++x)
           rho[x + 33 * (y + 33 * z)] = (float)(1.0 + 0.5 * (origin[0] + x * spacing[0]));
-    CHECK(schlieren_numerical(settings, dims, origin, spacing, NULL, NULL, NULL, nsize, norigin,
+    CHECK(schlieren_numerical(settings, dims, origin, spacing, NULL, 0, NULL, 0, NULL, 0, nsize, norigin,
             &npixel, 0, NULL, NULL, NULL, NULL) == 0 && nsize[0] == 24 && nsize[1] == 20 && npixel > 0,
       "numerical: the film planned, %d x %d pixels of %g (%s)", nsize[0], nsize[1], npixel,
       schlieren_last_error());
     ni = malloc(24 * 20 * sizeof(float));
     ng = malloc(24 * 20 * sizeof(float));
     nb = malloc(24 * 20);
-    CHECK(schlieren_numerical(settings, dims, origin, spacing, rho, NULL, NULL, nsize, norigin, &npixel,
-            24 * 20, ni, ng, nb, ml) == 0, "numerical: traced (%s)", schlieren_last_error());
+    CHECK(schlieren_numerical(settings, dims, origin, spacing, rho, (int64_t)n, NULL, 0, NULL, 0, nsize,
+            norigin, &npixel, 24 * 20, ni, ng, nb, ml) == 0, "numerical: traced (%s)", schlieren_last_error());
     for (i = 0; i < 24 * 20; ++i)
       if (ng[i] > 0)
       {
@@ -131,11 +131,11 @@ int main(void)
       }
     CHECK(flow > 24 * 20 / 2 && worst < 1e-5, "numerical: |grad rho| = 0.5 on %d pixels (worst relative "
       "error %.2g; largest %g)", flow, worst, ml[1]);
-    CHECK(schlieren_numerical("Mode=Sideways", dims, origin, spacing, NULL, NULL, NULL, nsize, norigin,
-            &npixel, 0, NULL, NULL, NULL, NULL) != 0 && strstr(schlieren_last_error(), "Mode") != NULL,
+    CHECK(schlieren_numerical("Mode=Sideways", dims, origin, spacing, NULL, 0, NULL, 0, NULL, 0, nsize,
+            norigin, &npixel, 0, NULL, NULL, NULL, NULL) != 0 && strstr(schlieren_last_error(), "Mode") != NULL,
       "numerical: a bad Mode is refused by name: %s", schlieren_last_error());
-    CHECK(schlieren_numerical(settings, dims, origin, spacing, rho, NULL, NULL, nsize, norigin, &npixel,
-            10, ni, ng, nb, ml) != 0 && strstr(schlieren_last_error(), "buffers") != NULL,
+    CHECK(schlieren_numerical(settings, dims, origin, spacing, rho, (int64_t)n, NULL, 0, NULL, 0, nsize,
+            norigin, &npixel, 10, ni, ng, nb, ml) != 0 && strstr(schlieren_last_error(), "buffers") != NULL,
       "numerical: buffers too small are refused: %s", schlieren_last_error());
     free(rho);
     free(ni);

@@ -584,6 +584,41 @@ void TestErrors()
   }), { "circular stop", "Disc" });
   schtest::ExpectError("Source 7", run([](TraceSettings& s) { s.Source = static_cast<BenchSource>(7); }),
     { "Source", "Gaussian" });
+  // issue 48: a source far larger than its mirror (h/f1 = 1e4 gave a flat film and a resolvable
+  // deflection of 39 rad) is outside the paraxial closed forms: refused, naming h/f1 and the limit
+  schtest::ExpectError("h/f1 = 1e4", run([](TraceSettings& s) {
+    s.SourceSize[0] = 1e4;
+    s.SourceSize[1] = 1;
+    s.CollimatorFocalLength = 1e-3;
+  }), { "h/f1 = 10000", "h/f1 <= 0.2", "SourceSize", "CollimatorFocalLength" });
+  schtest::ExpectError("a disc at h/f1 = 0.21 with a stop", run([](TraceSettings& s) {
+    s.Source = BenchSource::Disc;
+    s.Mode = Cutoff::Circular;
+    s.StopDiameter = 300;
+    s.SourceSize[0] = 210;
+    s.SourceSize[1] = 1;
+  }), { "h/f1 = 0.21", "at most 200 mm" });
+  for (BenchSource src : { BenchSource::Slit, BenchSource::Disc, BenchSource::Gaussian })
+  {
+    // at the limit: traced, the read-outs those of the closed form (slit: a0/((2^8 - 1) f2))
+    TraceSettings s = BenchSettings(src, 200, 1, 1, 0.5);
+    bool traced = false;
+    try
+    {
+      traced = !Trace(slab.V, s).Intensity.empty();
+    }
+    catch (const Error&)
+    {
+    }
+    CHECK(traced, "h/f1 = 0.2 (a 200 mm source at f1 = 1 m): traced");
+  }
+  {
+    // the point source does not use SourceSize: any h/f1 is accepted
+    TraceSettings s = BenchSettings(BenchSource::Point, 5e3, 1e-3, 1, 0.5);
+    CHECK(!Trace(slab.V, s).Intensity.empty(), "Point with h/f1 = 5e3 set: traced (the size is not used)");
+    const BenchResponse b = ComputeBench(BenchSettings(BenchSource::Slit, 200, 1, 1, 0.5));
+    CHECK_NEAR(b.Resolvable, 0.2 / 255, 1e-12, "h/f1 = 0.2: resolvable deflection a0 / (255 f2)");
+  }
 }
 }
 

@@ -396,6 +396,37 @@ void TestErrors()
     s.CameraDistance = 0.5;
     s.FocusPlane = 0.45;
   }), { "CameraDistance", "FocusPlane", "CameraFocalLength" });
+  // issue 48: a lens inside the test section (the sphere's box reaches 0.01 m toward the camera)
+  // and BOS read-outs with the volume's centre within the focal length (M_A = f / (Z_A - f) < 0)
+  for (CameraModel m : { CameraModel::Ideal, CameraModel::Lens })
+    schtest::ExpectError("the lens inside the volume", run([m](TraceSettings& s) {
+      s.Camera = m;
+      s.CameraFocalLength = 0.002;
+      s.CameraDistance = 0.005;
+      s.FocusPlane = 0.0;
+    }), { "CameraDistance 0.005 m puts the lens inside the volume", "at least 0.01 m" });
+  {
+    // just outside the box: traced
+    TraceSettings s = Base(8, 8);
+    s.Camera = CameraModel::Ideal;
+    s.CameraFocalLength = 0.002;
+    s.CameraDistance = 0.01;
+    CHECK(!Trace(g.V, s).Intensity.empty(), "the lens at the face of a box of half-depth 0.01 m: traced");
+  }
+  schtest::ExpectError("BOS within the focal length", run([](TraceSettings& s) {
+    s.Mode = Cutoff::BOS;
+    s.Camera = CameraModel::Ideal;
+    s.CameraFocalLength = 0.1;
+    s.CameraDistance = 0.05;
+    s.FocusPlane = -0.2; // focused on a background: Z_F = 0.25 m > f
+  }), { "Cutoff BOS", "CameraDistance", "0.05 m is not more than CameraFocalLength 0.1 m", "M_A = f / (Z_A - f) = -2" });
+  schtest::ExpectError("BOS at the focal length", run([](TraceSettings& s) {
+    s.Mode = Cutoff::BOS;
+    s.Camera = CameraModel::Lens;
+    s.CameraFocalLength = 0.1;
+    s.CameraDistance = 0.1;
+    s.FocusPlane = -0.2;
+  }), { "M_A = f / (Z_A - f) = inf" });
 }
 }
 

@@ -8,6 +8,7 @@
 #include "SchlierenTesting.h"
 
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 using namespace schlieren;
@@ -185,6 +186,65 @@ int main()
       agreed = agreed && said[r] == "another rank (0) failed: " + expected;
     CHECK(agreed, "points no rank holds on " + std::to_string(n) + " ranks: every rank says so (" +
         said[0] + ")");
+  }
+
+  // Issue 48: NaN or Inf at a point of the flow is refused, as SchlierenImage refuses it (it gave
+  // NaN pixels or a white image and a maximum of 0); at a solid or excluded point it is no part
+  // of the image and is accepted.
+  {
+    Whole bad = MakeWhole();
+    const std::size_t at = (std::size_t(13) * NY + 9) * NX + 11; // a flow point in rank 3's slab
+    CHECK(!bad.Solid[at] && !bad.Excluded[at], "the NaN's point is a flow point");
+    bad.Values[at] = std::numeric_limits<float>::quiet_NaN();
+    bad.Values[at + 1] = std::numeric_limits<float>::infinity();
+    bad.Grid.Values = bad.Values.data();
+    schtest::ExpectError("NumericalSchlieren of a field with NaN and Inf",
+      [&] { NumericalSchlieren(bad.Grid, NumericalSettings()); },
+      { "2 of " + std::to_string(NX * NY * NZ) + " points of the flow are NaN or Inf",
+        "i j k = 11 9 13" });
+    Whole masked = MakeWhole();
+    for (std::size_t p = 0; p < masked.Values.size(); ++p)
+      if (masked.Solid[p] || masked.Excluded[p])
+        masked.Values[p] = std::numeric_limits<float>::quiet_NaN();
+    NumericalSettings s;
+    s.Resolution[0] = 40;
+    s.Resolution[1] = 36;
+    const NumericalImage a = NumericalSchlieren(masked.Grid, s), b = NumericalSchlieren(w.Grid, s);
+    CHECK(a.Intensity == b.Intensity && a.Maximum == b.Maximum && a.Maximum > 0,
+      "NaN at solid and excluded points only: the image of the field without them, bit for bit");
+
+    // on 4 ranks, the NaN in rank 3's piece: every rank stops with the one message, no hang
+    const int n = 4;
+    std::mutex m;
+    std::vector<std::string> said(n);
+    const auto slabs = Slabs(n, false);
+    try
+    {
+      RunInProcessRanks(n, [&](Parallel& p) {
+        int offset[3];
+        const ScalarGrid piece = Slab(bad, slabs[p.Rank()].first, slabs[p.Rank()].second, offset);
+        ScalarGrid geometry = bad.Grid;
+        geometry.Values = nullptr;
+        geometry.Solid = geometry.Excluded = nullptr;
+        NumericalImage image;
+        try
+        {
+          NumericalSchlierenOfPieces(p, piece, offset, geometry, NumericalSettings(), image);
+        }
+        catch (const Error& e)
+        {
+          std::lock_guard<std::mutex> lock(m);
+          said[p.Rank()] = e.what();
+        }
+      });
+    }
+    catch (const Error&)
+    {
+    }
+    bool agreed = said[0].find("points of the flow are NaN or Inf") != std::string::npos;
+    for (int r = 1; r < n; ++r)
+      agreed = agreed && said[r] == "another rank (0) failed: " + said[0];
+    CHECK(agreed, "NaN in one piece of 4: every rank says so (" + said[0] + ")");
   }
   return schtest::Finish();
 }

@@ -26,6 +26,17 @@ foreach(_which NEWEST OLDEST)
       RESOURCE_LOCK python_venvs)
   set_property(TEST python.frontend_vtk_${_lower} APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+  # inputs and errors in plain VTK: a multiblock to RefractiveIndex gives one image, the C++
+  # SchlierenImage's refusals, an extent not starting at 0, no image left by a failed request
+  schlieren_python_test(frontend_inputs_vtk_${_lower}
+    COMMAND "${_python}" "${_here}/frontend_venv.py" --venv "${_venvs}/vtk-${_lower}"
+      --requirements "${SCHLIEREN_FRONTEND_VTK_${_which}}"
+      --pythonpath "${PROJECT_SOURCE_DIR}/Python"
+      -- "${_here}/test_frontend_inputs.py"
+    TIMEOUT 900
+    PROPERTIES SKIP_RETURN_CODE 77 RESOURCE_LOCK python_venvs)
+  set_property(TEST python.frontend_inputs_vtk_${_lower} APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endforeach()
 
 # the examples, in the newest venv (PyVista from PyPI there)
@@ -68,6 +79,17 @@ if(SCHLIEREN_PYTHON_PLUGIN)
     PROPERTIES FIXTURES_REQUIRED frontend_reference)
   # the Python front end's package beside the C++ plugin's schlieren_vtk, in one session
   set_property(TEST python.python_plugin APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+  # where a user meets it, against the C++ plugin's compiled filters in the same pvpython: one
+  # vtkImageData for any input (the blunt fin's multiblock), errors as VTK errors with an empty
+  # output (no traceback), NumericalSchlieren's update extent, schlieren_view embedded
+  # (Examples/first_light.py), the C++ filter's refusals and an extent not starting at 0
+  schlieren_python_test(python_plugin_parity
+    COMMAND "${_pvpython}" "${_here}/test_python_plugin_parity.py"
+      --plugin "${SCHLIEREN_PYTHON_PLUGIN}" --cxx-plugin "${_plugin}" --pvpython "${_pvpython}"
+      --example "${PROJECT_SOURCE_DIR}/Examples/first_light.py"
+      --work "${_temp}/python_plugin_parity")
+  set_property(TEST python.python_plugin_parity APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endif()
 

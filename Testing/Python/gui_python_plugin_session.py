@@ -5,7 +5,8 @@ plugin loads under Python 3.11 (docs/PYTHON.md: the user types it into View > Py
 answers the driver's commands (cmd-<n>.txt in $SCHLIEREN_GUI_WORK) from a timer of the render view:
 `state <tag>` (which Schlieren proxies ParaView knows, the pipeline's sources, their property
 lists), `set <json>` (properties of the active source, the settings the driver could type),
-`dump <tag>` (the SchlierenImage1 output's arrays, film and field data, as .npz), `quit`.
+`dump <tag>` (the SchlierenImage1 output's arrays, film and field data, as .npz), `image <tag>`
+(its ViewDirection, Passes, whether Follow Camera's follower runs, a hash of its intensity), `quit`.
 Nothing here loads the plugin, creates a proxy or presses Apply: the driver does, with X events.
 """
 import collections
@@ -76,6 +77,23 @@ try:
             out["field_data"] = np.array(json.dumps(cases.field_data_list(img.GetFieldData())))
             np.savez(os.path.join(work, words[1] + ".npz"), **out)
             write_json("dumped-%s.json" % words[1], {})
+        elif words[0] == "image":
+            # the SchlierenImage1 proxy's line of sight and passes, its follower, its film's mean
+            image = FindSource("SchlierenImage1")
+            alg = image.GetClientSideObject()
+            follower = alg.__dict__.get("_follower")
+            img = servermanager.Fetch(image)
+            a = img.GetPointData().GetArray("intensity") if img else None
+            import numpy as np
+            from vtkmodules.util import numpy_support
+            write_json("image-%s.json" % words[1], {
+                "ViewDirection": list(image.ViewDirection), "ViewUp": list(image.ViewUp),
+                "Passes": int(image.Passes), "following": follower is not None,
+                "moved": follower.moved if follower is not None else 0,
+                "passes_done": [float(img.GetFieldData().GetArray("passes").GetValue(0))]
+                if img and img.GetFieldData().GetArray("passes") else [],
+                "intensity_sha": __import__("hashlib").sha256(
+                    numpy_support.vtk_to_numpy(a).tobytes()).hexdigest() if a else ""})
         elif words[0] == "quit":
             os._exit(0)
 

@@ -164,6 +164,38 @@ check(compared >= 1, "images compared: %d" % compared)
 shot = screenshot("image")
 say("the pipeline after Apply: %s" % shot)
 
+# -- 2b. Follow Camera from the panel's property (no Python typed): a mouse drag in the 3D view
+# turns the image's line of sight with the camera; when the camera rests the passes come back
+polls2 = [0]
+
+
+def image_state():
+    polls2[0] += 1
+    gd.send("image %d" % polls2[0])
+    return gd.read_json("image-%d.json" % polls2[0])
+
+
+set_active({"FollowCamera": 1, "Passes": 4, "Backend": "CPU"})
+xdo("key", "--clearmodifiers", "alt+a")
+before = gd.wait_for("the follower to start", lambda: (lambda s: s if s["following"] else None)(
+    image_state()), 30)
+boxes = gui_driver.view_boxes(shot)
+check(len(boxes) >= 1, "the 3D view found on the screen (%s)" % boxes)
+if boxes:
+    gd.drag(max(boxes, key=lambda b: b[2] * b[3]), 160, 8)
+    after = gd.wait_for("the image to follow the drag and refine back to 4 passes", lambda: (
+        lambda s: s if s["moved"] > 0 and s["Passes"] == 4 and s["passes_done"] == [4.0] else
+        None)(image_state()), 60)
+    turn = np.degrees(np.arccos(np.clip(np.dot(before["ViewDirection"], after["ViewDirection"]) /
+                                        np.linalg.norm(before["ViewDirection"]) /
+                                        np.linalg.norm(after["ViewDirection"]), -1, 1)))
+    check(turn > 5 and after["intensity_sha"] != before["intensity_sha"],
+          "Follow Camera: a drag of 160 pixels turned the line of sight by %.1f degrees (%s -> %s, "
+          "%d camera changes seen), the image was traced again and refined to %s passes"
+          % (turn, [round(v, 3) for v in before["ViewDirection"]],
+             [round(v, 3) for v in after["ViewDirection"]], after["moved"], after["passes_done"]))
+    say("after the drag: %s" % screenshot("follow"))
+
 # -- 3. the property lists: the GUI's proxies against the C++ plugin's in pvpython
 gui = state()["sources"]
 code = ("import json, sys\n"

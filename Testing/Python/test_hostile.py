@@ -3,7 +3,7 @@
 naming what was expected, with an empty output.
 
 - RefractiveScene BodyRadius < 0 (it was clamped to 1e-12: no body, no message): an error naming
-  BodyRadius and the value.
+  BodyRadius and the value; a NaN BodyCenter (the body dropped) an error naming BodyCenter.
 - A full 3D volume (an image 16 x 16 x 16) given Symmetry Planar or Axisymmetric (it was cut to one
   plane and extruded or revolved): an error saying a 2D plane normal to x, y or z was expected
   (for Axisymmetric an r-x half plane) and that this is a 3D volume.
@@ -51,6 +51,15 @@ for radius in (-0.1, 0.0):
             "BodyRadius %g: an error naming BodyRadius and the value, no output (%d points; %s)"
             % (radius, points, text.strip()[-300:]))
     Delete(scene)
+# a NaN BodyCenter (issue 48: the body was dropped without a word): the engine's check, the one the
+# C interface makes
+scene = RefractiveScene(Scene="GaussianSphere", Dimensions=[16] * 3, Body="Sphere",
+                        BodyCenter=[float("nan"), 0, 0])
+_, points, text = fetch(scene)
+T.check(points == 0 and "BodyCenter has a non-finite component" in text,
+        "BodyCenter NaN: an error naming BodyCenter, no output (%d points; %s)"
+        % (points, text.strip()[-200:]))
+Delete(scene)
 scene = RefractiveScene(Scene="GaussianSphere", Dimensions=[16] * 3, Body="Sphere", BodyRadius=0.25)
 data, points, text = fetch(scene)
 solid = data.GetPointData().GetArray("solid") if points else None

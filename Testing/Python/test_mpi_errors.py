@@ -9,7 +9,8 @@ RefractiveScene LinearGradient (n^2 = 1 + 0.01 (y - c), c = -0.5, 24 points alon
 axis, so the 2 pieces split y near 0) gives n - 1 < 0 exactly where y < c, which lies in rank 0's piece
 only. Two steps read it where negative values are an error:
 - RefractiveIndex IdealGas with n_minus_1 as the temperature (T <= 0 on rank 0's piece);
-- RefractionOctree on n_minus_1 = -2 where y < c (n <= 0 on rank 0's piece).
+- RefractionOctree on n_minus_1 = -2 where y < c (n <= 0 on rank 0's piece);
+- NumericalSchlieren on a density that is NaN where y < c (issue 48: it was imaged).
 Rank 0 must report its own error; rank 1, whose piece is fine, must report "another rank (0)
 failed: " followed by rank 0's error (schlieren::Parallel::Failure); both outputs are empty. With
 c = -2 (n - 1 > 0 everywhere) the same RefractiveIndex runs with no error on either rank.
@@ -50,7 +51,8 @@ def errors_of(text, cls):
 
 def check_agreed(case, text, points, own_phrase):
     """Rank 0 (the failing piece) says its own error; rank 1 says rank 0's, named as such."""
-    cls = "vtkRefractionOctree" if case == "RefractionOctree" else "vtkRefractiveIndex"
+    cls = {"RefractionOctree": "vtkRefractionOctree",
+           "NumericalSchlieren": "vtkNumericalSchlieren"}.get(case, "vtkRefractiveIndex")
     errors = errors_of(text, cls)
     T.check(points == 0, "%s, rank %d: empty output (%d points)" % (case, rank, points))
     if rank == 0:
@@ -85,6 +87,14 @@ check_agreed("RefractiveIndex", text, points, "at or below absolute zero")
 calc = Calculator(Input=scene, ResultArrayName="n_minus_1", Function="-2*(coordsY<-0.5)")
 points, text = run(RefractionOctree(Input=calc))
 check_agreed("RefractionOctree", text, points, "have n <= 0")
+
+# issue 48: NumericalSchlieren with NaN in rank 0's piece of the density (where y < c): rank 0,
+# which images the gathered pieces, refuses it; rank 1 says so as another rank's (it gave NaN
+# pixels or a white image)
+nan_density = PythonCalculator(Input=scene, ArrayName="rho_nan",
+                               Expression="where(n_minus_1 < 0, float('nan'), density)")
+points, text = run(NumericalSchlieren(Input=nan_density, DensityArray="rho_nan", Resolution=[16, 16]))
+check_agreed("NumericalSchlieren", text, points, "points of the flow are NaN or Inf")
 
 # the control: the same model where no piece fails
 fine = RefractiveIndex(Input=gradient(-2.0), Model="IdealGas")

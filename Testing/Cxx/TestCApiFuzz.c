@@ -1,0 +1,802 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* A seeded fuzz of the engine's C interface (schlieren_c.h) from C, the way a hostile or careless
+ * caller meets it: every exported function called with random lengths (right, off by one, zero,
+ * negative, huge), NULLs, NaN/inf, huge and negative dimensions, unknown and wrongly cased names,
+ * integers past 32 bits, freed and foreign session handles, and two threads on one session.
+ *
+ *   TestCApiFuzz [--cases N] [--seed S] [--verbose]
+ *
+ * The fuzz never lies about a buffer it owns: where it passes a length, the buffer holds that many
+ * values (a length the function must refuse is the point); what it varies is whether the length is
+ * the one the function needs. Every call must return (a crash or a sanitizer report fails the
+ * test), and every refusal must come with a message (an empty one fails). The issue's crashers are
+ * fixed cases first, each with the message it must give (one more, a read outside the array in
+ * ExtendIntoInvalid on a grid one point thick, was found by this fuzz under AddressSanitizer). A table of outcomes per function ends the
+ * run. ctest runs the fixed cases and 4000 random ones (a few seconds); the longer run under
+ * AddressSanitizer is in docs/FUZZING.md. Traces are kept small (a film of at most 24 x 24, a pass
+ * or two, a grid of at most 12 points a side): long but legitimate traces are the plugin fuzz's
+ * (Testing/Python/test_fuzz.py) and the benchmark's business. */
+#include "schlieren_c.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int failures = 0;
+static int verbose = 0;
+
+/* ---- the random source: xorshift64*, seeded (the same cases on every machine) ---- */
+static uint64_t state = 88172645463325252ull;
+static uint64_t next(void)
+{
+  state ^= state >> 12;
+  state ^= state << 25;
+  state ^= state >> 27;
+  return state * 2685821657736338717ull;
+}
+static int below(int n)
+{
+  return (int)(next() % (uint64_t)n);
+}
+static double uniform(void)
+{
+  return (next() >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* ---- the outcomes, per function ---- */
+enum
+{
+  F_SET_VOLUME,
+  F_SET,
+  F_GET,
+  F_TRACE,
+  F_ARRAY,
+  F_FILM,
+  F_PLAN,
+  F_REPORT,
+  F_FREE,
+  F_FILL,
+  F_OCTREE,
+  F_GRADIENT,
+  F_NUMERICAL,
+  F_FIELD,
+  F_EXTEND,
+  F_AUTODIMS,
+  F_MEMORY,
+  F_MISC,
+  F_THREADS,
+  F_COUNT
+};
+static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
+  "session_trace", "session_array", "session_film", "session_plan_film", "session_report",
+  "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
+  "extend_into_invalid", "automatic_dimensions", "check_memory", "version/properties/device",
+  "two threads, one session" };
+static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
+
+/* rc 0: done; else the message must say something */
+static void outcome(int f, int rc, const char* message, const char* what)
+{
+  ++calls[f];
+  if (rc == 0)
+  {
+    ++done[f];
+    return;
+  }
+  ++refused[f];
+  if (!message || !*message || strstr(message, "Unknown engine error"))
+  {
+    ++unclear[f];
+    ++failures;
+    printf("FAIL %s: %s refused without a clear message ('%s')\n", fnames[f], what,
+      message ? message : "(NULL)");
+  }
+  else if (verbose)
+    printf("     %s: %s -> %s\n", fnames[f], what, message);
+}
+
+static void expect(int ok, const char* name, const char* message)
+{
+  printf("%s %s%s%s\n", ok ? "ok  " : "FAIL", name, message ? ": " : "", message ? message : "");
+  if (!ok)
+    ++failures;
+}
+
+/* the condition first, then the message it left (C leaves the order of arguments open) */
+#define EXPECT(cond, name, message)                                                               \
+  do                                                                                              \
+  {                                                                                               \
+    const int ok_ = (cond) ? 1 : 0;                                                               \
+    expect(ok_, name, message);                                                                   \
+  } while (0)
+
+static int has(const char* text, const char* part)
+{
+  return text && strstr(text, part) != NULL;
+}
+
+/* ---- the fixed cases: the crashers and silent-wrong answers of issue 48, named ---- */
+static void fixed_cases(void)
+{
+  const int d40[3] = { 40, 40, 40 }, d400[3] = { 400, 400, 400 }, d8[3] = { 8, 8, 8 };
+  const int neg[3] = { -5, 4, 4 }, huge[3] = { 8192, 8192, 8192 };
+  const double o[3] = { 0, 0, 0 }, h[3] = { 1, 1, 1 }, nan3[3] = { NAN, 0, 0 };
+  float small[10] = { 0 };
+  unsigned char bytes[10] = { 0 };
+  float* grid = calloc(64000, sizeof(float));
+  float* grad = calloc(3 * 64000, sizeof(float));
+  unsigned char* levels = calloc(64000, 1);
+  schlieren_session* s = schlieren_session_new();
+  schlieren_session* gone;
+  int64_t filled = 0;
+
+  EXPECT(schlieren_gradient(d400, h, small, 10, grad, 3 * 10) != 0 &&
+      has(schlieren_last_error(), "n_minus_1 holds 10 values") && has(schlieren_last_error(), "64000000"),
+    "fixed: gradient of a 400^3 grid given 10 values (a segfault before)", schlieren_last_error());
+  EXPECT(schlieren_octree_levels(d40, small, 10, 1e-6, 7, levels, NULL) != 0 &&
+      has(schlieren_last_error(), "holds 10 values") && has(schlieren_last_error(), "64000"),
+    "fixed: octree_levels given 10 values for 40^3", schlieren_last_error());
+  EXPECT(schlieren_extend_into_invalid(d40, bytes, 10, grid, &filled) != 0 &&
+      has(schlieren_last_error(), "valid"),
+    "fixed: extend_into_invalid given 10 valid flags for 40^3", schlieren_last_error());
+  EXPECT(schlieren_numerical("", d40, o, h, small, 10, NULL, 0, NULL, 0, NULL, NULL, NULL, 16,
+           small, small, bytes, NULL) != 0 && has(schlieren_last_error(), "values holds 10"),
+    "fixed: numerical given 10 values for 40^3", schlieren_last_error());
+  EXPECT(schlieren_session_set_volume(s, d40, o, h, grid, 64000, bytes, 10, NULL, 0, -1, 7) != 0 &&
+      has(schlieren_session_error(s), "solid holds 10 values"),
+    "fixed: set_volume with a solid mask of 10 for 40^3 (a segfault before)", schlieren_session_error(s));
+  EXPECT(schlieren_session_set_volume(s, d40, o, h, grid, 64000, NULL, 0, levels, 63999, -1, 7) != 0 &&
+      has(schlieren_session_error(s), "levels holds 63999 values") && has(schlieren_session_error(s), "64000"),
+    "fixed: set_volume with levels one short (heap garbage traced before)", schlieren_session_error(s));
+  EXPECT(schlieren_session_set_volume(s, d40, o, h, grid, 63999, NULL, 0, NULL, 0, -1, 7) != 0,
+    "fixed: set_volume with n_minus_1 one short", schlieren_session_error(s));
+  EXPECT(schlieren_session_set_volume(s, huge, o, h, grid, (int64_t)8192 * 8192 * 8192, NULL, 0, NULL,
+           0, -1, 7) != 0 && has(schlieren_session_error(s), "needs"),
+    "fixed: set_volume of 8192^3 points: refused for memory before the copy", schlieren_session_error(s));
+  EXPECT(schlieren_fill_scene("", neg, o, h, 80, grid, NULL, NULL, NULL) != 0 &&
+      has(schlieren_last_error(), "-5 4 4"),
+    "fixed: fill_scene with negative dims (uninitialised memory as n - 1 before)", schlieren_last_error());
+  EXPECT(schlieren_fill_scene("Body=Sphere\nBodyCenter=nan 0 0", d8, o, h, 512, grid, NULL, NULL,
+           bytes) != 0 && has(schlieren_last_error(), "BodyCenter"),
+    "fixed: a BodyCenter with NaN refused (the body silently dropped before)", schlieren_last_error());
+  EXPECT(schlieren_session_plan_film(s, d8, nan3, h, NULL, NULL, NULL) != 0 &&
+      has(schlieren_session_error(s), "origin"),
+    "fixed: plan_film with a NaN origin", schlieren_session_error(s));
+  EXPECT(schlieren_field_index("Passthrough", small, -1, 0, 1, NULL, small, NULL) != 0 &&
+      has(schlieren_last_error(), "count is -1"),
+    "fixed: field_index with count -1 says what is wrong", schlieren_last_error());
+  /* found by this fuzz under AddressSanitizer: the smoothing of the fill read across an axis one
+   * point thick (outside the array); a harmonic fill stays within its edge's values */
+  {
+    const int flat[3] = { 7, 6, 1 };
+    float values[42];
+    unsigned char inside[42];
+    int i, bounded = 1;
+    for (i = 0; i < 42; ++i)
+    {
+      const int x = i % 7, y = i / 7;
+      inside[i] = (unsigned char)(x == 0 || y == 0 || x == 6 || y == 5);
+      values[i] = inside[i] ? (float)(1e-4 * (1 + 0.1 * x + 0.05 * y)) : -1.0f;
+    }
+    EXPECT(schlieren_extend_into_invalid(flat, inside, 42, values, &filled) == 0 && filled == 20,
+      "fixed: extend_into_invalid on a 7 x 6 x 1 grid with a hole of 20 points", schlieren_last_error());
+    for (i = 0; i < 42; ++i)
+      bounded = bounded && isfinite(values[i]) && values[i] >= 0.99e-4f && values[i] <= 1.9e-4f;
+    EXPECT(bounded, "fixed: the 2D fill stays within its edge's values (read outside the array before)",
+      NULL);
+  }
+  /* names and numbers */
+  EXPECT(schlieren_session_set(s, "cutoff", "Shadowgraph") != 0 &&
+      has(schlieren_session_error(s), "closest known name: 'Cutoff'"),
+    "fixed: a wrongly cased property name names the closest", schlieren_session_error(s));
+  EXPECT(schlieren_session_set(s, "Cutoff", "shadowgraph") != 0 &&
+      has(schlieren_session_error(s), "closest known name: 'Shadowgraph'"),
+    "fixed: a wrongly cased entry names the closest", schlieren_session_error(s));
+  EXPECT(schlieren_session_set(s, "Passes", "3000000000") != 0 &&
+      has(schlieren_session_error(s), "Passes is 3000000000") && !has(schlieren_session_error(s), "-2147483648"),
+    "fixed: Passes 3e9 reported as given", schlieren_session_error(s));
+  EXPECT(schlieren_session_set(s, "Seed", "4294967296") != 0 &&
+      has(schlieren_session_error(s), "Seed is 4294967296") && has(schlieren_session_error(s), "4294967295"),
+    "fixed: a seed past 2^32 reported with its range", schlieren_session_error(s));
+  EXPECT(schlieren_session_set(s, "Seed", "4294967295") == 0 &&
+      strcmp(schlieren_session_get(s, "Seed"), "4294967295") == 0,
+    "fixed: the largest seed taken", NULL);
+  EXPECT(schlieren_session_set(s, "UseOctree", "2") != 0 && has(schlieren_session_error(s), "0 or 1"),
+    "fixed: a boolean 2 refused (as the C++ plugin does)", schlieren_session_error(s));
+  EXPECT(schlieren_session_set(s, "KnifeAngle", "1e300") == 0 &&
+      schlieren_session_plan_film(s, d8, o, h, NULL, NULL, NULL) != 0 &&
+      has(schlieren_session_error(s), "KnifeAngle is 1e+300") && has(schlieren_session_error(s), "[-180, 180]"),
+    "fixed: KnifeAngle 1e300 refused as the C++ plugin refuses it", schlieren_session_error(s));
+  /* handles */
+  gone = schlieren_session_new();
+  schlieren_session_free(gone);
+  EXPECT(schlieren_session_trace(gone) != 0 && has(schlieren_last_error(), "schlieren_session_trace") &&
+      has(schlieren_session_error(gone), "freed") && has(schlieren_session_report(gone), "freed"),
+    "fixed: a trace on a freed session refused", schlieren_session_error(gone));
+  schlieren_session_free(gone);
+  EXPECT(has(schlieren_last_error(), "schlieren_session_free"), "fixed: a second free refused",
+    schlieren_last_error());
+  EXPECT(schlieren_session_set((schlieren_session*)(void*)bytes, "Passes", "2") != 0 &&
+      schlieren_session_get((schlieren_session*)(void*)bytes, "Passes") == NULL &&
+      schlieren_session_film((schlieren_session*)(void*)bytes, NULL, NULL, NULL) != 0,
+    "fixed: a foreign pointer refused, not followed", schlieren_last_error());
+  EXPECT(schlieren_session_film(s, NULL, NULL, NULL) != 0 && has(schlieren_session_error(s), "no image"),
+    "fixed: film before a trace says there is no image", schlieren_session_error(s));
+  schlieren_session_free(s);
+  free(grid);
+  free(grad);
+  free(levels);
+}
+
+/* ---- two threads on one session: serialised, each image the one a single thread makes ---- */
+struct shared
+{
+  schlieren_session* s;
+  int rc;
+};
+static void* trace_thread(void* p)
+{
+  struct shared* t = (struct shared*)p;
+  t->rc = schlieren_session_trace(t->s);
+  return NULL;
+}
+
+static double image_sum(schlieren_session* s, int64_t* n)
+{
+  double sum = 0;
+  int64_t i;
+  const float* a = schlieren_session_array(s, "intensity", NULL, n);
+  for (i = 0; a && i < *n; ++i)
+    sum += a[i];
+  return a ? sum : -1;
+}
+
+static void threads_case(void)
+{
+  const int dims[3] = { 17, 17, 17 };
+  const double o[3] = { -1, -1, -1 }, h[3] = { 0.125, 0.125, 0.125 };
+  float* n1 = malloc(17 * 17 * 17 * sizeof(float));
+  schlieren_session* s = schlieren_session_new();
+  struct shared a = { s, -1 }, b = { s, -1 };
+  pthread_t ta, tb;
+  double single, both;
+  int64_t n = 0, m = 0;
+  schlieren_fill_scene("Scene=GaussianSphere", dims, o, h, 17 * 17 * 17, n1, NULL, NULL, NULL);
+  schlieren_session_set(s, "Resolution", "48 48");
+  schlieren_session_set(s, "Passes", "4");
+  schlieren_session_set(s, "Backend", "CPU");
+  schlieren_session_set_volume(s, dims, o, h, n1, 17 * 17 * 17, NULL, 0, NULL, 0, -1, 7);
+  schlieren_session_trace(s);
+  single = image_sum(s, &n);
+  /* a new volume (the same values): both threads trace it from the start, one after the other;
+   * the second finds the passes done. Unserialised, the two traces wrote one film at once. */
+  schlieren_session_set_volume(s, dims, o, h, n1, 17 * 17 * 17, NULL, 0, NULL, 0, -1, 7);
+  pthread_create(&ta, NULL, trace_thread, &a);
+  pthread_create(&tb, NULL, trace_thread, &b);
+  pthread_join(ta, NULL);
+  pthread_join(tb, NULL);
+  both = image_sum(s, &m);
+  ++calls[F_THREADS];
+  ++done[F_THREADS];
+  printf("%s fixed: two threads tracing one session: rc %d %d, intensity sum %.9g, one thread's "
+         "%.9g (%lld pixels)\n",
+    a.rc == 0 && b.rc == 0 && n > 0 && m == n && both == single ? "ok  " : "FAIL", a.rc, b.rc, both,
+    single, (long long)n);
+  if (!(a.rc == 0 && b.rc == 0 && n > 0 && m == n && both == single))
+    ++failures;
+  schlieren_session_free(s);
+  free(n1);
+}
+
+/* ---- the random part ---- */
+static const char* const property_names[] = { "ViewDirection", "ViewUp", "Resolution", "Framing",
+  "Passes", "StepSize", "Integrator", "Reconstruction", "Tolerance", "KeepInvariant",
+  "EstimateError", "UseOctree", "Cutoff", "KnifeAngle", "CutoffScale", "FilmDistance",
+  "Wavelength", "ReferenceTilt", "WavelengthRange", "WavelengthBins", "Dispersion",
+  "BackgroundDistance", "BackgroundPattern", "BackgroundPeriod", "Filter", "FilterWidth",
+  "RussianRoulette", "Jitter", "JitterPattern", "Seed", "Backend", "DeviceName", "Threads",
+  "TraceInPieces", "Source", "SourceSize", "CollimatorFocalLength", "SchlierenFocalLength",
+  "KnifeCut", "StopDiameter", "BitDepth", "SaturationWarning", "Camera", "CameraFocalLength",
+  "FNumber", "CameraDistance", "FocusPlane", "SourceGridDistance" };
+#define NPROPS ((int)(sizeof(property_names) / sizeof(property_names[0])))
+static const char* const values[] = { "0", "1", "-1", "2", "0.5", "1e300", "-1e300", "nan", "inf",
+  "-inf", "3000000000", "-3000000000", "4294967296", "18446744073709551617", "1e-320", "64 48",
+  "0 0 -1", "0 1 0", "1 2 3 4", "", " ", "abc", "KnifeEdge", "knifeedge", "Shadowgraph", "RK4",
+  "Cubic", "CPU", "OpenCL", "Auto", "Lens", "Disc", "0x10", "1,2", "[1 2]", "1e9 1e9",
+  "2147483648 2", "-2147483649", "\xff\xfe", "Euler", "BOS", "Gaussian" };
+#define NVALUES ((int)(sizeof(values) / sizeof(values[0])))
+
+static char scratch[256];
+static const char* random_name(const char* const* names, int count)
+{
+  const char* base = names[below(count)];
+  size_t n = strlen(base), i;
+  switch (below(6))
+  {
+    case 0: /* wrongly cased */
+      for (i = 0; i < n && i < sizeof(scratch) - 1; ++i)
+        scratch[i] = (char)((base[i] >= 'A' && base[i] <= 'Z') ? base[i] + 32 : base[i]);
+      scratch[i] = 0;
+      return scratch;
+    case 1: /* a letter dropped */
+      snprintf(scratch, sizeof(scratch), "%s", base);
+      if (n > 1)
+        memmove(scratch + n / 2, scratch + n / 2 + 1, n - n / 2);
+      return scratch;
+    case 2:
+      return below(4) ? "NoSuchProperty" : NULL;
+    default:
+      return base;
+  }
+}
+
+static int64_t random_count(int64_t needed)
+{
+  switch (below(16))
+  {
+    case 0: return needed + 1;
+    case 1: return needed - 1;
+    case 2: return 0;
+    case 3: return -1;
+    case 4: return INT64_MIN;
+    case 5: return INT64_MAX;
+    case 6: return below(100);
+    default: return needed;
+  }
+}
+
+/* a buffer that truly holds `count` values where it can (the caller does not lie): NULL where the
+ * count is negative or past a million (then the function must refuse it: no grid here is that big
+ * unless the fuzz chose a huge one, whose count it never gives as the needed one) */
+static void* buffer(int64_t count, size_t size, int may_null)
+{
+  if (may_null && below(30) == 0)
+    return NULL;
+  if (count < 0 || count > 1000000)
+    return malloc(16 * size); /* the function must refuse the count before reading */
+  return calloc((size_t)(count ? count : 1), size);
+}
+
+static void random_grid(int dims[3], int64_t* needed, int* valid)
+{
+  int a;
+  *valid = 1;
+  for (a = 0; a < 3; ++a)
+  {
+    switch (below(40))
+    {
+      case 0: dims[a] = 0; break;
+      case 1: dims[a] = -below(5) - 1; break;
+      case 2: dims[a] = 2147483647; break;
+      case 3: dims[a] = -2147483647 - 1; break;
+      default: dims[a] = below(8) ? 2 + below(11) : 1;
+    }
+    if (dims[a] < 1 || dims[a] > 12)
+      *valid = 0;
+  }
+  *needed = *valid ? (int64_t)dims[0] * dims[1] * dims[2] : 64;
+}
+
+/* a count for a grid: a huge grid never gets its true count (the fuzz has no such buffer) */
+static int64_t grid_count(int64_t needed, int valid)
+{
+  int64_t c = random_count(needed);
+  if (!valid && c > 1000000)
+    c = 64;
+  return c;
+}
+
+static void random_point(double v[3])
+{
+  int a;
+  for (a = 0; a < 3; ++a)
+  {
+    switch (below(60))
+    {
+      case 0: v[a] = NAN; break;
+      case 1: v[a] = INFINITY; break;
+      case 2: v[a] = -1e308; break;
+      case 3: v[a] = 0; break;
+      case 4: v[a] = -uniform(); break;
+      default: v[a] = 0.05 + uniform();
+    }
+  }
+}
+
+#define POOL 4
+static schlieren_session* pool[POOL];
+static schlieren_session* freed[POOL];
+
+static schlieren_session* random_session(void)
+{
+  static int foreign = 0;
+  switch (below(30))
+  {
+    case 0: return NULL;
+    case 1: return freed[below(POOL)]; /* maybe NULL; maybe an address a new session reuses */
+    case 2: return (schlieren_session*)(void*)&foreign;
+    default: return pool[below(POOL)];
+  }
+}
+
+/* settings a trace may take without running long */
+static void keep_small(schlieren_session* s)
+{
+  schlieren_session_set(s, "Resolution", below(2) ? "16 12" : "24 24");
+  schlieren_session_set(s, "Passes", below(2) ? "1" : "2");
+  schlieren_session_set(s, "WavelengthBins", "2");
+  schlieren_session_set(s, "Threads", below(2) ? "0" : "2");
+  schlieren_session_set(s, "Backend", "CPU");
+  schlieren_session_set(s, "Framing", "Volume");
+}
+
+static void random_case(int k)
+{
+  char what[160];
+  int dims[3], valid, f = below(20), rc;
+  int64_t needed, count, count2, count3;
+  double o[3], h[3];
+  schlieren_session* s = random_session();
+  random_grid(dims, &needed, &valid);
+  random_point(o);
+  random_point(h);
+  if (below(2))
+  {
+    o[0] = o[1] = o[2] = -1;
+    h[0] = h[1] = h[2] = 0.2;
+  }
+  snprintf(what, sizeof(what), "case %d: dims %d %d %d", k, dims[0], dims[1], dims[2]);
+  if (verbose)
+    printf("  %s\n", what), fflush(stdout);
+  switch (f)
+  {
+    case 0:
+    case 1:
+    {
+      float* n1;
+      unsigned char *solid, *levels;
+      count = grid_count(needed, valid);
+      count2 = below(2) ? 0 : grid_count(needed, valid);
+      count3 = below(2) ? 0 : grid_count(needed, valid);
+      n1 = buffer(count, sizeof(float), 1);
+      solid = count2 ? buffer(count2, 1, 1) : NULL;
+      levels = count3 ? buffer(count3, 1, 1) : NULL;
+      if (solid && count2 > 0 && count2 <= 1000000)
+        memset(solid, 0, (size_t)count2), solid[below((int)count2)] = 1;
+      if (levels && count3 > 0 && count3 <= 1000000)
+        memset(levels, below(2) ? 0 : below(12), (size_t)count3);
+      if (n1 && count >= 0 && count <= 1000000)
+      {
+        int64_t i;
+        for (i = 0; i < count; ++i)
+          n1[i] = below(50) == 0 ? NAN : (float)(1e-4 * uniform());
+      }
+      rc = schlieren_session_set_volume(s, dims, o, h, n1, count, solid, count2, levels, count3,
+        below(3) ? -1 : (below(4) ? 1e-6 : NAN), below(4) ? 7 : below(40) - 20);
+      outcome(F_SET_VOLUME, rc, schlieren_session_error(s), what);
+      free(n1);
+      free(solid);
+      free(levels);
+      break;
+    }
+    case 2:
+    case 3:
+    case 4:
+    {
+      const char* name = random_name(property_names, NPROPS);
+      const char* value = below(20) ? values[below(NVALUES)] : NULL;
+      rc = schlieren_session_set(s, name, value);
+      outcome(F_SET, rc, schlieren_session_error(s), what);
+      break;
+    }
+    case 5:
+    {
+      const char* v = schlieren_session_get(s, random_name(property_names, NPROPS));
+      outcome(F_GET, v == NULL, v ? "" : schlieren_session_error(s), what);
+      break;
+    }
+    case 6:
+      if (s == pool[0] || s == pool[1] || s == pool[2] || s == pool[3])
+        keep_small(s);
+      rc = schlieren_session_trace(s);
+      outcome(F_TRACE, rc, schlieren_session_error(s), what);
+      break;
+    case 7:
+    {
+      /* a fresh session, a volume it takes, a few settings, a trace, its image read whole */
+      schlieren_session* t = schlieren_session_new();
+      const int d[3] = { 2 + below(10), 2 + below(10), 2 + below(10) };
+      const int64_t n = (int64_t)d[0] * d[1] * d[2];
+      const double oo[3] = { -1, -1, -1 }, hh[3] = { 0.2, 0.2 * (0.5 + uniform()), 0.2 };
+      float* n1 = malloc((size_t)n * sizeof(float));
+      unsigned char* solid = below(4) ? NULL : calloc((size_t)n, 1);
+      int i, m = below(4), comps = 0;
+      int64_t pixels = 0, j;
+      double sum = 0;
+      const float* img;
+      schlieren_fill_scene(below(2) ? "Scene=GaussianSphere" : "Scene=BlastWave", d, oo, hh, n, n1,
+        NULL, NULL, NULL);
+      if (solid)
+        solid[below((int)n)] = 1;
+      schlieren_session_set_volume(t, d, oo, hh, n1, n, solid, solid ? n : 0, NULL, 0, -1, 7);
+      for (i = 0; i < m; ++i)
+        schlieren_session_set(t, property_names[below(NPROPS)], values[below(NVALUES)]);
+      keep_small(t);
+      rc = schlieren_session_trace(t);
+      outcome(F_TRACE, rc, schlieren_session_error(t), what);
+      img = schlieren_session_array(t, below(2) ? "intensity" : "deflection", &comps, &pixels);
+      for (j = 0; img && j < pixels * comps; ++j)
+        sum += img[j];
+      if (rc == 0 && !img)
+      {
+        ++failures;
+        printf("FAIL %s: a trace that succeeded has no intensity/deflection\n", what);
+      }
+      (void)sum;
+      schlieren_session_free(t);
+      free(n1);
+      free(solid);
+      break;
+    }
+    case 8:
+    {
+      static const char* arrays[] = { "intensity", "deflection", "rgb", "phase", "bos_displacement",
+        "error_estimate", "blocked", "Intensity", "", NULL };
+      int comps = 0;
+      int64_t pixels = 0, i;
+      const float* a = schlieren_session_array(s, arrays[below(10)], below(2) ? &comps : NULL, &pixels);
+      double sum = 0;
+      for (i = 0; a && i < pixels * (comps ? comps : 1); ++i)
+        sum += a[i]; /* read it all: the sanitizer sees an array shorter than it says */
+      ++calls[F_ARRAY];
+      ++done[F_ARRAY];
+      (void)sum;
+      break;
+    }
+    case 9:
+    {
+      int size[2];
+      double origin[2], px;
+      rc = schlieren_session_film(s, below(4) ? size : NULL, origin, below(2) ? &px : NULL);
+      outcome(F_FILM, rc, schlieren_session_error(s), what);
+      rc = schlieren_session_plan_film(s, dims, o, h, size, origin, &px);
+      outcome(F_PLAN, rc, schlieren_session_error(s), what);
+      break;
+    }
+    case 10:
+    {
+      const char* r = schlieren_session_report(s);
+      outcome(F_REPORT, r == NULL, "no report", what);
+      break;
+    }
+    case 11:
+    {
+      int i = below(POOL);
+      if (below(3) == 0)
+      {
+        schlieren_session_free(pool[i]);
+        freed[i] = pool[i];
+        pool[i] = schlieren_session_new();
+      }
+      else
+      {
+        /* freed, foreign, NULL: refused (a freed address a new session took is that session) */
+        static int foreign = 0;
+        schlieren_session* bad = below(3) == 0 ? NULL : (below(2) ? freed[below(POOL)] : (schlieren_session*)(void*)&foreign);
+        for (i = 0; i < POOL; ++i)
+          if (bad == pool[i])
+            bad = NULL;
+        schlieren_session_free(bad);
+      }
+      ++calls[F_FREE];
+      ++done[F_FREE];
+      break;
+    }
+    case 12:
+    {
+      static const char* lines[] = { "Scene=GaussianSphere", "Scene=HeliumPlume", "Scene=BlastWave",
+        "Scene=gaussiansphere", "Scene=NoScene", "Amplitude=1e300", "Amplitude=nan", "Amplitude=big",
+        "Width=0", "Width=-1", "Radius=inf", "Mach=0.5", "Density=1e7", "Time=0", "Body=Sphere",
+        "Body=Cylinder", "BodyCenter=nan 0 0", "BodyCenter=0 0", "BodyAxis=0 0 0", "BodyRadius=-1",
+        "Center=inf 0 0", "GradientB=1e300", "Nonsense", "Bogus=1", "=1", "Scene=LinearGradient" };
+      char settings[512] = "";
+      int i, n = below(4);
+      float *n1, *density, *mix;
+      unsigned char* solid;
+      for (i = 0; i < n; ++i)
+      {
+        strcat(settings, lines[below((int)(sizeof(lines) / sizeof(lines[0])))]);
+        strcat(settings, "\n");
+      }
+      count = grid_count(needed, valid);
+      n1 = buffer(count, sizeof(float), 1);
+      density = below(2) ? buffer(count, sizeof(float), 0) : NULL;
+      mix = below(2) ? buffer(count, sizeof(float), 0) : NULL;
+      solid = below(2) ? buffer(count, 1, 0) : NULL;
+      rc = schlieren_fill_scene(below(10) ? settings : NULL, dims, o, h, count, n1, density, mix, solid);
+      outcome(F_FILL, rc, schlieren_last_error(), what);
+      free(n1);
+      free(density);
+      free(mix);
+      free(solid);
+      break;
+    }
+    case 13:
+    {
+      float* n1;
+      unsigned char* levels;
+      double fraction;
+      count = grid_count(needed, valid);
+      n1 = buffer(count, sizeof(float), 1);
+      levels = buffer(count, 1, 1);
+      rc = schlieren_octree_levels(dims, n1, count, below(4) ? uniform() * 1e-5 : (below(2) ? NAN : -1),
+        below(3) ? 7 : below(40) - 20, levels, below(2) ? &fraction : NULL);
+      outcome(F_OCTREE, rc, schlieren_last_error(), what);
+      free(n1);
+      free(levels);
+      break;
+    }
+    case 14:
+    {
+      float *n1, *g;
+      count = grid_count(needed, valid);
+      count2 = below(4) ? (count >= 0 && count < 1000000 ? 3 * count : count) : random_count(3 * needed);
+      if (!valid && count2 > 1000000)
+        count2 = 3;
+      n1 = buffer(count, sizeof(float), 1);
+      g = buffer(count2, sizeof(float), 1);
+      rc = schlieren_gradient(dims, below(8) ? h : NULL, n1, count, g, count2);
+      outcome(F_GRADIENT, rc, schlieren_last_error(), what);
+      free(n1);
+      free(g);
+      break;
+    }
+    case 15:
+    {
+      static const char* settings[] = { "", "Mode=Slice", "Mode=LineOfSight", "Mode=slice",
+        "Resolution=24 20", "Resolution=0 0", "Resolution=1e300 2", "KnifeAngle=1e300",
+        "Gradient=KnifeComponent", "StepSize=0", "Bogus=1", "ViewDirection=0 0 0",
+        "GradientMaximum=nan" };
+      float *values, *out, *grad;
+      unsigned char *solid, *excluded, *blocked;
+      int64_t capacity = below(3) ? 24 * 20 : random_count(24 * 20);
+      int size[2];
+      double film_origin[2], px, ml[2];
+      if (capacity < 0 || capacity > 1000000)
+        capacity = below(2) ? 10 : -1;
+      count = grid_count(needed, valid);
+      count2 = below(2) ? 0 : grid_count(needed, valid);
+      count3 = below(2) ? 0 : grid_count(needed, valid);
+      values = buffer(count, sizeof(float), 1);
+      solid = count2 ? buffer(count2, 1, 1) : NULL;
+      excluded = count3 ? buffer(count3, 1, 1) : NULL;
+      out = below(6) ? calloc((size_t)(capacity > 0 ? capacity : 1), sizeof(float)) : NULL;
+      grad = calloc((size_t)(capacity > 0 ? capacity : 1), sizeof(float));
+      blocked = below(6) ? calloc((size_t)(capacity > 0 ? capacity : 1), 1) : NULL;
+      rc = schlieren_numerical(settings[below(13)], dims, o, h, values, count, solid, count2,
+        excluded, count3, size, film_origin, &px, capacity, out, grad, blocked, below(2) ? ml : NULL);
+      outcome(F_NUMERICAL, rc, schlieren_last_error(), what);
+      free(values);
+      free(solid);
+      free(excluded);
+      free(out);
+      free(grad);
+      free(blocked);
+      break;
+    }
+    case 16:
+    {
+      static const char* models[] = { "Passthrough", "GladstoneDale", "passthrough", "Ciddor", "", NULL };
+      static const char* gases[] = { NULL, "", "Air", "He", "air", "Custom 2.256e-4 0.029",
+        "Custom nan 1", "Custom 1", "Unobtainium" };
+      int64_t c = random_count(below(100));
+      float *in, *out;
+      const char* report = NULL;
+      if (c > 1000000)
+        c = -5;
+      in = buffer(c, sizeof(float), 1);
+      out = buffer(c, sizeof(float), 1);
+      if (in && c > 0)
+      {
+        int64_t i;
+        for (i = 0; i < c; ++i)
+          in[i] = below(10) ? (float)uniform() : (below(2) ? NAN : -1.0f);
+      }
+      rc = schlieren_field_index(models[below(6)], in, c, below(2), below(4) ? 1.0 : NAN,
+        gases[below(9)], out, below(2) ? &report : NULL);
+      outcome(F_FIELD, rc, schlieren_last_error(), what);
+      free(in);
+      free(out);
+      break;
+    }
+    case 17:
+    {
+      unsigned char* v;
+      float* n1;
+      int64_t filled;
+      count = grid_count(needed, valid);
+      v = buffer(count, 1, 1);
+      n1 = buffer(count, sizeof(float), 1);
+      if (v && count > 0 && count <= 1000000)
+      {
+        int64_t i;
+        for (i = 0; i < count; ++i)
+          v[i] = (unsigned char)(below(3) != 0);
+      }
+      rc = schlieren_extend_into_invalid(dims, v, count, n1, below(2) ? &filled : NULL);
+      outcome(F_EXTEND, rc, schlieren_last_error(), what);
+      free(v);
+      free(n1);
+      break;
+    }
+    case 18:
+    {
+      double b[6];
+      int out[3], i, longest;
+      static const int longs[] = { 128, 2, 1, 0, -5, 2147483647, -2147483647 - 1, 4096 };
+      for (i = 0; i < 6; ++i)
+        b[i] = below(10) ? (i % 2 ? 1.0 : -1.0) * uniform() * 10 : (below(2) ? NAN : INFINITY);
+      longest = longs[below(8)];
+      rc = schlieren_automatic_dimensions(below(10) ? b : NULL, longest, below(10) ? out : NULL);
+      outcome(F_AUTODIMS, rc, schlieren_last_error(), what);
+      rc = schlieren_check_memory(below(2) ? 1e20 : (below(2) ? NAN : -1.0), below(2) ? "A thing" : NULL,
+        below(2) ? "Lower it." : NULL);
+      outcome(F_MEMORY, rc, schlieren_last_error(), what);
+      break;
+    }
+    default:
+    {
+      const char* text;
+      text = schlieren_version();
+      text = schlieren_properties();
+      text = schlieren_opencl_device(below(2) ? NULL : (below(2) ? "" : "no such device \xff"));
+      text = schlieren_session_error(s);
+      ++calls[F_MISC];
+      ++done[F_MISC];
+      (void)text;
+      break;
+    }
+  }
+}
+
+int main(int argc, char** argv)
+{
+  long cases = 4000, seed = 48, k;
+  int i, f;
+  long total = 0, total_refused = 0, total_done = 0;
+  for (i = 1; i < argc; ++i)
+  {
+    if (strcmp(argv[i], "--cases") == 0 && i + 1 < argc)
+      cases = atol(argv[++i]);
+    else if (strcmp(argv[i], "--seed") == 0 && i + 1 < argc)
+      seed = atol(argv[++i]);
+    else if (strcmp(argv[i], "--verbose") == 0)
+      verbose = 1;
+  }
+  state ^= (uint64_t)seed * 0x9E3779B97F4A7C15ull;
+  if (!state)
+    state = 1;
+  fixed_cases();
+  threads_case();
+  for (i = 0; i < POOL; ++i)
+    pool[i] = schlieren_session_new();
+  for (k = 0; k < cases; ++k)
+    random_case((int)k);
+  for (i = 0; i < POOL; ++i)
+    schlieren_session_free(pool[i]);
+  printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");
+  for (f = 0; f < F_COUNT; ++f)
+  {
+    printf("%-28s %8ld %8ld %8ld %8ld\n", fnames[f], calls[f], done[f], refused[f], unclear[f]);
+    total += calls[f];
+    total_done += done[f];
+    total_refused += refused[f];
+  }
+  printf("%ld random cases (seed %ld), %ld calls: %ld done, %ld refused with a message, crashes 0 "
+         "(the run ended), %d failures\n",
+    cases, seed, total, total_done, total_refused, failures);
+  return failures ? 1 : 0;
+}

@@ -1,0 +1,538 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The ParaView Python plugin (SchlierenPython.py) where a user meets it, against the C++ plugin's
+filters (the compiled classes of schlieren_vtk, in the same pvpython):
+
+  1. outputs are one vtkImageData for any input: RefractiveIndex on the blunt fin (PLOT3D, a
+     multiblock) gives the C++ filter's grid (extent, origin, spacing), n - 1 and grad n bit for
+     bit, also over the example's SamplingBounds, with AmbientMode DomainEdgeMedian and Value, and
+     with the fin as a body (BodyWallFaces: solid bit for bit, the field data's counts equal);
+     its information has the grid before RequestData (a Slice of the image has points), and
+     SchlierenImage and NumericalSchlieren on it give the C++ filters' images bit for bit (not
+     multiblocks); SchlierenImage straight on the multiblock gives an empty image and the C++
+     filter's reason;
+  2. errors are VTK errors (ParaView's Output Messages), never a Python traceback; a refused value
+     (Symmetry Planar, Resolution 1 x 1) leaves an empty output, and a good value set after it
+     gives the image again;
+  3. NumericalSchlieren logs no update-extent error;
+  4. `import schlieren_view` works after LoadPlugin, and Examples/first_light.py runs with the
+     Python plugin (its PNG equals the C++ plugin's bit for bit);
+  5. what the C++ SchlierenImage refuses the Python one refuses with the same reason (a direction
+     matrix; an unstructured grid given straight to it), and an image whose extent does not start
+     at 0 is traced to the C++ filter's film, bit for bit (intensity, origin), which is also the
+     film of the same grid given with its extent from 0;
+  6. RefractiveIndex's index models (Model Automatic's choice: n - 1 before a density, IdealGas
+     from a temperature and a pressure, Passthrough of an array named n; GladstoneDaleMixture by
+     mixture fraction and by species, IdealGas with one gas, a mixture fraction and species with
+     a custom gas, Ciddor with constant and array humidity and CO2; a SolidArray) give the C++
+     filter's n - 1 and grad n bit for bit on the same arrays (the engine's ComputeFieldIndex
+     through schlieren_index_model).
+
+    pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
+        --example Examples/first_light.py --work DIR [--data ../shared/data]
+
+The blunt fin part is skipped (said so) when ../shared/data (or SCHLIEREN_DATA) has no blunt fin.
+ParaView 5.11.0 under Python 3.11 needs the getargspec shim below before any Python plugin loads
+(docs/PYTHON.md)."""
+import argparse
+import collections
+import inspect
+import os
+import subprocess
+import sys
+import tempfile
+
+if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11
+    _ArgSpec = collections.namedtuple("ArgSpec", "args varargs keywords defaults")
+    inspect.getargspec = lambda f: _ArgSpec(*inspect.getfullargspec(f)[:4])
+
+import numpy as np  # noqa: E402
+from paraview import servermanager  # noqa: E402
+from paraview.simple import Delete, LoadPlugin, PLOT3DReader, PVTrivialProducer, Slice  # noqa: E402
+from vtkmodules.util import numpy_support  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ap = argparse.ArgumentParser()
+ap.add_argument("--plugin", required=True, help="SchlierenPython.py")
+ap.add_argument("--cxx-plugin", required=True, help="Schlieren.so (for first_light.py's reference)")
+ap.add_argument("--example", required=True, help="Examples/first_light.py")
+ap.add_argument("--work", required=True)
+ap.add_argument("--pvpython", default="pvpython", help="to run the example")
+ap.add_argument("--data", default=os.environ.get("SCHLIEREN_DATA") or
+                os.path.join(HERE, "..", "..", "..", "shared", "data"))
+args = ap.parse_args()
+os.makedirs(args.work, exist_ok=True)
+
+LoadPlugin(args.plugin, remote=False, ns=globals())
+ns = globals()
+import schlieren_vtk as cxx  # noqa: E402  the C++ plugin's filters, compiled
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+class Captured:
+    """What the process writes to its standard error (file descriptor 2: VTK's output window and
+    Python's tracebacks) while the block runs."""
+
+    def __enter__(self):
+        sys.stderr.flush()
+        self._file = tempfile.TemporaryFile(mode="w+b")
+        self._saved = os.dup(2)
+        os.dup2(self._file.fileno(), 2)
+        return self
+
+    def __exit__(self, *exc):
+        sys.stderr.flush()
+        os.dup2(self._saved, 2)
+        os.close(self._saved)
+        self._file.seek(0)
+        self.text = self._file.read().decode("utf-8", "replace")
+        self._file.close()
+        sys.stderr.write(self.text)  # still in the test's log
+        return False
+
+
+def array(data, name):
+    a = data.GetPointData().GetArray(name) if data is not None else None
+    return None if a is None else numpy_support.vtk_to_numpy(a)
+
+
+def producer(data):
+    """A pipeline source (paraview.simple) that hands out `data`."""
+    p = PVTrivialProducer()
+    p.GetClientSideObject().SetOutput(data)
+    return p
+
+
+def cxx_image(data, **settings):
+    """The C++ SchlierenImage's output for `data` (a copy) and whether it succeeded."""
+    f = cxx.vtkSchlierenImage()
+    f.SetInputData(data)
+    f.SetBackend(cxx.vtkSchlierenImage.CPU)
+    f.SetResolution(*settings.get("Resolution", [48, 40]))
+    f.SetPasses(settings.get("Passes", 1))
+    f.SetViewDirection(*settings.get("ViewDirection", [0, 0, -1]))
+    f.SetViewUp(*settings.get("ViewUp", [0, 1, 0]))
+    ok = f.GetExecutive().Update()
+    out = vtkImageData()
+    out.DeepCopy(f.GetOutput())
+    return out, ok
+
+
+def py_image(data, **settings):
+    """The Python plugin's SchlierenImage proxy on `data`: (output copy, stderr text)."""
+    kw = dict(Resolution=[48, 40], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+    kw.update(settings)
+    src = producer(data)
+    img = ns["SchlierenImage"](Input=src, Backend="CPU", **kw)
+    with Captured() as c:
+        img.UpdatePipeline()
+    out = servermanager.Fetch(img)
+    return out, c.text
+
+
+def same_film(a, b):
+    ia, ib = array(a, "intensity"), array(b, "intensity")
+    return (ia is not None and ib is not None and a.GetExtent() == b.GetExtent() and
+            a.GetOrigin() == b.GetOrigin() and a.GetSpacing() == b.GetSpacing() and
+            np.array_equal(ia.view(np.uint32), ib.view(np.uint32)))
+
+
+# a small volume with n_minus_1 from the C++ RefractiveScene (a Gaussian sphere)
+scene = cxx.vtkRefractiveScene()
+scene.SetDimensions(24, 20, 16)
+scene.Update()
+volume = vtkImageData()
+volume.DeepCopy(scene.GetOutput())
+
+# -- 1. one vtkImageData for any input: the blunt fin (a PLOT3D multiblock)
+xyz, q = os.path.join(args.data, "bluntfinxyz.bin"), os.path.join(args.data, "bluntfinq.bin")
+if not (os.path.exists(xyz) and os.path.exists(q)):
+    print("SKIP the blunt fin part: no bluntfinxyz.bin/bluntfinq.bin in %s (set SCHLIEREN_DATA)"
+          % os.path.abspath(args.data))
+else:
+    reader = PLOT3DReader(FileName=xyz, QFileName=[q])
+    index = ns["RefractiveIndex"](Input=reader, Model="GladstoneDale", Gas="Air",
+                                  DensityReference=1.2, AutomaticDimension=48, BodyFromGrid=1)
+    index.InputArray = ["POINTS", "Density"]
+    index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    blocks = servermanager.Fetch(reader)
+    ref = cxx.vtkRefractiveIndex()
+    ref.SetInputData(blocks)
+    ref.SetModel(cxx.vtkRefractiveIndex.GLADSTONE_DALE)
+    ref.SetGas(cxx.vtkRefractiveIndex.AIR)
+    ref.SetDensityReference(1.2)
+    ref.SetAutomaticDimension(48)
+    ref.SetBodyFromGrid(0)  # the Python front end finds no body in the grid's holes (yet)
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "Density")
+    ref.Update()
+    theirs = ref.GetOutput()
+    check(mine.GetClassName() == "vtkImageData",
+          "RefractiveIndex on the blunt fin's %s: one %s" % (blocks.GetClassName(),
+                                                           mine.GetClassName()))
+    check(mine.GetExtent() == theirs.GetExtent() and
+          np.allclose(mine.GetOrigin(), theirs.GetOrigin(), rtol=0, atol=1e-12) and
+          np.allclose(mine.GetSpacing(), theirs.GetSpacing(), rtol=1e-12, atol=0),
+          "its grid is the C++ filter's (extent %s, origin %s, spacing %s; C++ %s %s %s)"
+          % (mine.GetExtent(), mine.GetOrigin(), mine.GetSpacing(), theirs.GetExtent(),
+             theirs.GetOrigin(), theirs.GetSpacing()))
+    for name in ("n_minus_1", "grad_n"):
+        a, b = array(mine, name), array(theirs, name)
+        check(a is not None and b is not None and a.shape == b.shape and
+              np.array_equal(a.view(np.uint32), b.view(np.uint32)),
+              "%s bit for bit with the C++ filter's (BodyFromGrid off there: the Python front "
+              "end finds no body in the grid's holes yet)" % name)
+    # the box the example samples (Examples/bluntfin.py), AutomaticDimension over it
+    boxed = ns["RefractiveIndex"](Input=reader, Model="GladstoneDale", Gas="Air",
+                                  DensityReference=1.2, AutomaticDimension=48, UseSamplingBounds=1,
+                                  SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7])
+    boxed.InputArray = ["POINTS", "Density"]
+    boxed.UpdatePipeline()
+    mine_boxed = servermanager.Fetch(boxed)
+    ref.SetUseSamplingBounds(1)
+    ref.SetSamplingBounds(-2.5, 7.5, 0.0, 5.0, 0.0, 5.7)
+    ref.Update()
+    theirs_boxed = ref.GetOutput()
+    check(mine_boxed.GetExtent() == theirs_boxed.GetExtent() and
+          mine_boxed.GetOrigin() == theirs_boxed.GetOrigin() and
+          mine_boxed.GetSpacing() == theirs_boxed.GetSpacing() and
+          all(array(mine_boxed, n) is not None and array(theirs_boxed, n) is not None and
+              np.array_equal(array(mine_boxed, n).view(np.uint32),
+                             array(theirs_boxed, n).view(np.uint32))
+              for n in ("n_minus_1", "grad_n")) and
+          tuple(int(v) for v in boxed.GetDataInformation().DataInformation.GetExtent()) ==
+          theirs_boxed.GetExtent(),
+          "SamplingBounds -2.5 7.5 0 5 0 5.7: the C++ filter's grid %s, n_minus_1 and grad_n bit "
+          "for bit, the same extent in the pipeline's information" % (theirs_boxed.GetExtent(),))
+    # the points outside the grid (the fin's hole, the box's corners) by each AmbientMode
+    for mode, number in (("DomainEdgeMedian", 1), ("Value", 2)):
+        boxed.AmbientMode = mode
+        boxed.AmbientValue = 2.5e-4
+        boxed.UpdatePipeline()
+        mine_boxed = servermanager.Fetch(boxed)
+        ref.SetAmbientMode(number)
+        ref.SetAmbientValue(2.5e-4)
+        ref.Update()
+        theirs_boxed = ref.GetOutput()
+        check(all(array(mine_boxed, n) is not None and array(theirs_boxed, n) is not None and
+                  np.array_equal(array(mine_boxed, n).view(np.uint32),
+                                 array(theirs_boxed, n).view(np.uint32))
+                  for n in ("n_minus_1", "grad_n")),
+              "AmbientMode %s: n_minus_1 and grad_n bit for bit the C++ filter's" % mode)
+    ref.SetAmbientMode(0)
+    # the fin as a body: the grid's hole the flow encloses, through the wall faces of
+    # Examples/bluntfin.py (the fin runs past x max, the plane y = 0 cuts it, it stands on z = 0
+    # and reaches the top), as the example's silhouette
+    boxed.AmbientMode = "Extend"
+    boxed.BodyWallFaces = [0, 1, 1, 0, 1, 1]
+    boxed.UpdatePipeline()
+    mine_boxed = servermanager.Fetch(boxed)
+    ref.SetBodyFromGrid(1)
+    ref.SetBodyWallFaces(0, 1, 1, 0, 1, 1)
+    ref.Update()
+    theirs_boxed = ref.GetOutput()
+    solid = array(theirs_boxed, "solid")
+    check(all(array(mine_boxed, n) is not None and array(theirs_boxed, n) is not None and
+              np.array_equal(array(mine_boxed, n).view(np.uint8),
+                             array(theirs_boxed, n).view(np.uint8))
+              for n in ("n_minus_1", "grad_n", "solid")) and solid is not None and
+          solid.sum() > 100,
+          "BodyFromGrid with BodyWallFaces 0 1 1 0 1 1: the fin's %s solid points, solid, n_minus_1 "
+          "and grad_n bit for bit the C++ filter's" % (None if solid is None else int(solid.sum())))
+    fields_of = (lambda d: {n: [d.GetFieldData().GetAbstractArray(n).GetVariantValue(i).ToString()
+                                for i in range(d.GetFieldData().GetAbstractArray(n)
+                                               .GetNumberOfValues())]
+                            for n in ("index_model", "index_arrays", "valid_point_fraction",
+                                      "solid_points")
+                            if d.GetFieldData().GetAbstractArray(n) is not None})
+    check(fields_of(mine_boxed) == fields_of(theirs_boxed) and len(fields_of(theirs_boxed)) == 4,
+          "its field data index_model, index_arrays, valid_point_fraction, solid_points: the C++ "
+          "filter's (%s)" % fields_of(mine_boxed))
+    ref.SetBodyFromGrid(0)
+    ref.SetBodyWallFaces(0, 0, 0, 0, 0, 0)
+    ref.SetUseSamplingBounds(0)
+    ref.Update()
+    settings = dict(Resolution=[64, 48], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+    image = ns["SchlierenImage"](Input=index, Backend="CPU", **settings)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    film, _ = cxx_image(theirs, **settings)
+    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() == 64 * 48 and
+          same_film(out, film),
+          "SchlierenImage on it: a %s, the C++ filter's film %s bit for bit (got %s)"
+          % (out.GetClassName(), film.GetExtent(), out.GetExtent()))
+    # what a view asks for: the pipeline's information (not Fetch, which asks for everything)
+    # gives the film's extent, so a Slice (as a 2D view's slice representation) has points
+    slicer = Slice(Input=image)
+    slicer.SliceType.Normal = [1, 0, 0]
+    slicer.UpdatePipeline()
+    extent = tuple(int(v) for v in image.GetDataInformation().DataInformation.GetExtent())
+    check(extent == film.GetExtent() and slicer.GetDataInformation().GetNumberOfPoints() == 48,
+          "the image's data information has the film's extent %s and a Slice across it has its "
+          "48 points (%d)" % (extent, slicer.GetDataInformation().GetNumberOfPoints()))
+    numerical = ns["NumericalSchlieren"](Input=index, Resolution=[64, 48])
+    with Captured() as c:
+        numerical.UpdatePipeline()
+    out = servermanager.Fetch(numerical)
+    ref_numerical = cxx.vtkNumericalSchlieren()
+    ref_numerical.SetInputData(theirs)
+    ref_numerical.SetResolution(64, 48)
+    ref_numerical.Update()
+    want = ref_numerical.GetOutput()
+    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() > 0 and
+          out.GetExtent() == want.GetExtent() and out.GetOrigin() == want.GetOrigin() and
+          all(array(out, n) is not None and array(want, n) is not None and
+              np.array_equal(array(out, n).view(np.uint8), array(want, n).view(np.uint8))
+              for n in ("intensity", "numerical_gradient", "blocked")),
+          "NumericalSchlieren on it: a %s of %d points, the C++ filter's image bit for bit"
+          % (out.GetClassName(), out.GetNumberOfPoints()))
+    # -- 3. no update-extent error (the film's extent is not the volume's)
+    check("update extent" not in c.text.lower() and "ERR" not in c.text,
+          "NumericalSchlieren logs no update-extent error (stderr: %r)" % c.text[-300:])
+    direct = ns["SchlierenImage"](Input=reader, Backend="CPU", Resolution=[32, 32], Passes=1)
+    with Captured() as c:
+        direct.UpdatePipeline()
+    out = servermanager.Fetch(direct)
+    check(out.GetClassName() == "vtkImageData" and out.GetNumberOfPoints() == 0 and
+          "SchlierenImage needs a vtkImageData input with the point array 'n_minus_1'; got "
+          "vtkMultiBlockDataSet" in c.text and "Traceback" not in c.text,
+          "SchlierenImage straight on the multiblock: an empty %s and the C++ filter's reason"
+          % out.GetClassName())
+
+# -- 2. errors: VTK errors, no traceback; a refused value leaves an empty output
+src = producer(volume)
+index = ns["RefractiveIndex"](Input=src, Model="Passthrough")
+index.UpdatePipeline()
+check(servermanager.Fetch(index).GetNumberOfPoints() == 24 * 20 * 16, "RefractiveIndex runs")
+with Captured() as c:
+    index.Symmetry = "Planar"  # the Python front end refuses it (so far)
+    index.UpdatePipeline()
+out = servermanager.Fetch(index)
+check("Traceback" not in c.text and "ERROR: In RefractiveIndex" in c.text and
+      "Symmetry is not available" in c.text and out.GetNumberOfPoints() == 0,
+      "Symmetry Planar: an error naming it, no traceback, an empty output (%d points; %r)"
+      % (out.GetNumberOfPoints(), c.text.strip().splitlines()[:1]))
+with Captured() as c:
+    index.Symmetry = "None"
+    index.UpdatePipeline()
+check("ERR" not in c.text and servermanager.Fetch(index).GetNumberOfPoints() == 24 * 20 * 16,
+      "Symmetry None again: the output is back, no error")
+image = ns["SchlierenImage"](Input=index, Backend="CPU", Resolution=[32, 32], Passes=1)
+image.UpdatePipeline()
+good = servermanager.Fetch(image).GetNumberOfPoints()
+with Captured() as c:
+    image.Resolution = [1, 1]
+    image.UpdatePipeline()
+out = servermanager.Fetch(image)
+check(good == 32 * 32 and out.GetNumberOfPoints() == 0 and "Traceback" not in c.text and
+      "Resolution is 1 x 1 pixels" in c.text,
+      "SchlierenImage Resolution 1 x 1: the engine's error, no traceback, no image left from "
+      "before (%d points after, %d before)" % (out.GetNumberOfPoints(), good))
+
+# -- 5. the C++ filter's refusals, and an extent that does not start at 0
+turned = vtkImageData()
+turned.DeepCopy(volume)
+turned.SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1)
+out, text = py_image(turned)
+_, ok = cxx_image(turned)
+check(not ok and out.GetNumberOfPoints() == 0 and "has a direction matrix" in text and
+      "Traceback" not in text,
+      "a direction matrix: refused by both, with the C++ filter's reason, an empty output")
+shifted = vtkImageData()
+shifted.DeepCopy(volume)
+shifted.SetExtent(5, 28, -3, 16, 2, 17)
+mine, text = py_image(shifted)
+theirs, ok = cxx_image(shifted)
+check(ok and same_film(mine, theirs),
+      "extent %s: the C++ filter's film bit for bit (origin %s, C++ %s)"
+      % (shifted.GetExtent(), mine.GetOrigin(), theirs.GetOrigin()))
+moved = vtkImageData()
+moved.DeepCopy(volume)
+moved.SetOrigin([volume.GetOrigin()[a] + e * volume.GetSpacing()[a]
+                 for a, e in enumerate((5, -3, 2))])
+check(same_film(mine, py_image(moved)[0]),
+      "and the film of the same grid with its extent from 0 (placed where the points are)")
+from vtkmodules.vtkFiltersCore import vtkAppendFilter  # noqa: E402
+append = vtkAppendFilter()
+append.SetInputData(volume)
+append.Update()
+grid = append.GetOutput()
+out, text = py_image(grid)
+_, ok = cxx_image(grid)
+check(not ok and out.GetNumberOfPoints() == 0 and
+      "needs a vtkImageData input with the point array 'n_minus_1'; got vtkUnstructuredGrid" in
+      text and "Traceback" not in text,
+      "an unstructured grid straight to SchlierenImage: refused by both with the reason "
+      "(RefractiveIndex resamples it), an empty output")
+
+# -- 6. RefractiveIndex's index models: the engine's (schlieren_index_model), bit for bit the C++
+# filter's n - 1 and grad n on the same arrays
+fields = vtkImageData()
+fields.SetDimensions(14, 11, 9)
+fields.SetSpacing(0.01, 0.012, 0.015)
+fields.SetOrigin(-0.07, -0.06, -0.06)
+count = fields.GetNumberOfPoints()
+x = np.linspace(0.0, 1.0, count)
+wave = np.sin(7.0 * x) * np.cos(3.0 * x)
+for field, values in (("density", 1.2 + 0.3 * wave), ("T", 300.0 - 40.0 * wave),
+                      ("p", 101.325 * (1.0 + 0.2 * wave)), ("mix", 0.5 + 0.4 * wave),
+                      ("Y1", 0.05 + 0.04 * wave), ("Y2", 0.2 - 0.1 * wave),
+                      ("rh", 0.5 + 0.3 * wave), ("co2", 450.0 + 100.0 * wave),
+                      ("blk", (wave > 0.3).astype(float))):
+    a = numpy_support.numpy_to_vtk(values.astype(np.float32), deep=1)
+    a.SetName(field)
+    fields.GetPointData().AddArray(a)
+RI = cxx.vtkRefractiveIndex
+ARRAY_INDEX = dict(InputArray=0, TemperatureArray=1, PressureArray=2, MixtureFractionArray=3,
+                   Species1Array=4, Species2Array=5, HumidityArray=8, CO2Array=9)
+ENUMS = dict(AmbientMode=["Extend", "DomainEdgeMedian", "Value"],
+             Model={"Automatic": -1, "Passthrough": 0, "GladstoneDale": 1,
+                    "GladstoneDaleMixture": 2, "IdealGas": 3, "Ciddor": 4},
+             MixtureComposition={"MixtureFraction": 1, "Species": 2},
+             IdealGasComposition={"Gas": 0, "MixtureFraction": 1, "Species": 2},
+             PressureUnit=["Pa", "kPa", "atm", "bar"], TemperatureUnit=["Kelvin", "Celsius"],
+             HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"])
+GASES = ["Air", "He", "N2", "O2", "Ar", "CO2", "H2", "H2O", "CH4", "CO"]
+MODELS = {
+    "mixture_fraction": dict(Model="GladstoneDaleMixture", InputArray="density",
+                             MixtureComposition="MixtureFraction", MixtureFractionArray="mix",
+                             MixtureGas0="Air", MixtureGas1="He"),
+    "mixture_species": dict(Model="GladstoneDaleMixture", InputArray="density",
+                            MixtureComposition="Species", NumberOfSpecies=2,
+                            SpeciesGases=[6, 8, 1, 5], Species1Array="Y1", Species2Array="Y2",
+                            BalanceGas="N2"),
+    "ideal_gas": dict(Model="IdealGas", Gas="CO2", TemperatureArray="T", PressureArray="p",
+                      PressureUnit="kPa"),
+    "ideal_gas_mixture": dict(Model="IdealGas", IdealGasComposition="MixtureFraction",
+                              TemperatureArray="T", PressureArray="p", PressureUnit="kPa",
+                              MixtureFractionArray="mix", MixtureGas0="N2", MixtureGas1="Ar"),
+    "ideal_gas_species": dict(Model="IdealGas", IdealGasComposition="Species", NumberOfSpecies=2,
+                              SpeciesGases=[-1, 8, 1, 5], SpeciesGladstoneDale=[3e-4, 2.2e-4,
+                                                                                 2e-4, 2e-4],
+                              SpeciesMolarMass=[0.04, 0.03, 0.004, 0.044],
+                              Species1Array="Y1", Species2Array="Y2", TemperatureArray="T",
+                              PressureArray="p", PressureUnit="kPa", TemperatureReference=1.1),
+    "ciddor": dict(Model="Ciddor", TemperatureArray="T", PressureArray="p", PressureUnit="kPa",
+                   Humidity=0.4, CO2=500.0, Wavelength=550.0),
+    "ciddor_arrays": dict(Model="Ciddor", TemperatureArray="T", PressureArray="p",
+                          PressureUnit="kPa", HumidityFromArray=1, HumidityArray="rh",
+                          CO2FromArray=1, CO2Array="co2", TemperatureUnit="Kelvin"),
+    # Model Automatic: n - 1 before a density (a scene has both), a temperature and a pressure
+    # (IdealGas, arrays found by name), an array named n (Passthrough of n)
+    "automatic_n_minus_1": dict(Model="Automatic", _input="scene"),
+    "automatic_ideal_gas": dict(Model="Automatic", PressureUnit="kPa", Gas="Ar", _input="tp"),
+    "automatic_n": dict(Model="Automatic", _input="n"),
+    "automatic_named_temperature": dict(Model="Automatic", InputArray="T", PressureUnit="kPa",
+                                        _input="tp"),
+    # a solid mask array (SolidArray): its non-zero points are the output's solid
+    "solid_array": dict(Model="GladstoneDale", InputArray="density", SolidArray="blk"),
+    # an image with points outside the flow (vtkValidPointMask 0: a hole the flow encloses, a
+    # notch open to a face): filled by AmbientMode, the hole a body (BodyFromGrid)
+    "image_mask_extend": dict(Model="Passthrough", InputArray="n_minus_1", _input="masked"),
+    "image_mask_median": dict(Model="Passthrough", InputArray="n_minus_1",
+                              AmbientMode="DomainEdgeMedian", _input="masked"),
+}
+inputs = dict(fields=fields, scene=volume)
+inputs["masked"] = vtkImageData()
+inputs["masked"].DeepCopy(volume)
+flow = np.ones((16, 20, 24), np.int8)  # z, y, x
+flow[6:10, 8:12, 9:14] = 0  # enclosed
+flow[0:3, 0:4, 0:5] = 0  # open to the faces
+mask = numpy_support.numpy_to_vtk(flow.ravel(), deep=1, array_type=numpy_support.get_vtk_array_type(
+    np.int8))
+mask.SetName("vtkValidPointMask")
+inputs["masked"].GetPointData().AddArray(mask)
+for which, keep in (("tp", ("T", "p")), ("n", ())):
+    inputs[which] = vtkImageData()
+    inputs[which].CopyStructure(fields)
+    for field in keep:
+        inputs[which].GetPointData().AddArray(fields.GetPointData().GetArray(field))
+n_array = numpy_support.numpy_to_vtk((1.0 + 3e-4 * (1 + wave)).astype(np.float32), deep=1)
+n_array.SetName("n")
+inputs["n"].GetPointData().AddArray(n_array)
+sources = {k: producer(v) for k, v in inputs.items()}
+for case, props in MODELS.items():
+    props = dict(props)
+    which = props.pop("_input", "fields")
+    source = sources[which]
+    ref = RI()
+    ref.SetInputData(inputs[which])
+    if which == "masked":
+        ref.SetBodyFromGrid(1)
+    for k, v in props.items():
+        if k in ARRAY_INDEX:
+            ref.SetInputArrayToProcess(ARRAY_INDEX[k], 0, 0, 0, v)
+        elif k in ENUMS:
+            e = ENUMS[k]
+            getattr(ref, "Set" + k)(e[v] if isinstance(e, dict) else e.index(v))
+        elif k in ("Gas", "MixtureGas0", "MixtureGas1", "BalanceGas"):
+            getattr(ref, "Set" + k)(GASES.index(v))
+        elif isinstance(v, list):
+            getattr(ref, "Set" + k)(*v)
+        else:
+            getattr(ref, "Set" + k)(v)
+    ok = ref.GetExecutive().Update()
+    theirs = ref.GetOutput()
+    index = ns["RefractiveIndex"](Input=source)
+    for k, v in props.items():
+        index.GetProperty(k).SetData(["POINTS", v] if k in ARRAY_INDEX else v)
+    with Captured() as c:
+        index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    same = ok and all(
+        array(mine, n) is not None and array(theirs, n) is not None and
+        np.array_equal(array(mine, n).view(np.uint32), array(theirs, n).view(np.uint32))
+        for n in ("n_minus_1", "grad_n")) and (
+        array(theirs, "solid") is None if "SolidArray" not in props and which != "masked" else (
+            array(mine, "solid") is not None and array(theirs, "solid") is not None and
+            np.array_equal(array(mine, "solid"), array(theirs, "solid"))))
+    b = array(theirs, "n_minus_1")
+    model = mine.GetFieldData().GetAbstractArray("index_model")
+    check(same and "ERR" not in c.text,
+          "RefractiveIndex %s: n_minus_1 and grad_n bit for bit the C++ filter's (model %s, n - 1 "
+          "%.6g..%.6g%s)" % (case, model.GetValue(0) if model else None,
+                             b.min() if b is not None else float("nan"),
+                   b.max() if b is not None else float("nan"),
+                   "" if "ERR" not in c.text else "; " + c.text.strip().splitlines()[0][:200]))
+    Delete(index)
+
+# -- 4. schlieren_view embedded; Examples/first_light.py with the Python plugin
+try:
+    import schlieren_view
+    check(hasattr(schlieren_view, "follow_camera"), "import schlieren_view after LoadPlugin")
+except ImportError as e:
+    check(False, "import schlieren_view after LoadPlugin (%s)" % e)
+shim = os.path.join(args.work, "first_light_shim.py")
+with open(shim, "w") as f:
+    f.write("import collections, inspect, runpy, sys\n"
+            "if not hasattr(inspect, 'getargspec'):\n"
+            "    A = collections.namedtuple('ArgSpec', 'args varargs keywords defaults')\n"
+            "    inspect.getargspec = lambda f: A(*inspect.getfullargspec(f)[:4])\n"
+            "sys.argv = sys.argv[1:]\n"
+            "runpy.run_path(sys.argv[0], run_name='__main__')\n")
+pngs, runs = {}, {}
+for which, plugin in (("python", args.plugin), ("cxx", args.cxx_plugin)):  # the two at once
+    pngs[which] = os.path.join(args.work, "first_light_%s.png" % which)
+    if os.path.exists(pngs[which]):
+        os.remove(pngs[which])
+    runs[which] = subprocess.Popen(
+        [args.pvpython, shim, args.example, "--plugin", plugin, "--output", pngs[which],
+         "--backend", "CPU", "--resolution", "64", "--passes", "1"],
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+for which, p in runs.items():
+    output = p.communicate(timeout=300)[0]
+    check(p.returncode == 0 and os.path.exists(pngs[which]),
+          "Examples/first_light.py with the %s plugin (rc %d%s)"
+          % (which, p.returncode, "" if p.returncode == 0 else ": " + output[-400:]))
+if all(os.path.exists(p) for p in pngs.values()):
+    with open(pngs["python"], "rb") as f, open(pngs["cxx"], "rb") as g:
+        check(f.read() == g.read(), "its PNG equals the C++ plugin's bit for bit")
+print("%d failures" % len(failures))
+sys.exit(1 if failures else 0)
