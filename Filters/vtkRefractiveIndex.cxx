@@ -1150,6 +1150,22 @@ struct vtkRefractiveIndex::Work
 };
 
 //------------------------------------------------------------------------------
+void vtkRefractiveIndex::SayNote(const std::string& note)
+{
+  // the notes said belong to the settings they were said for (time steps repeat none: issue 49
+  // saw the three lines of Model Automatic's choice added again at every step)
+  if (this->GetMTime() != this->SaidNotesTime)
+  {
+    this->SaidNotes.clear();
+    this->SaidNotesTime = this->GetMTime();
+  }
+  if (this->SaidNotes.insert(note).second)
+  {
+    vtkOutputWindowDisplayText((note + "\n").c_str());
+  }
+}
+
+//------------------------------------------------------------------------------
 int vtkRefractiveIndex::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -1322,7 +1338,7 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
     {
       if (w.Ranks.Rank() == 0) // the same on every rank: said once
       {
-        vtkOutputWindowDisplayText((note + "\n").c_str());
+        this->SayNote(note);
       }
     }
     if (w.PointInput != w.Input)
@@ -1546,7 +1562,7 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
       {
         if (w.Ranks.Rank() == 0)
         {
-          vtkOutputWindowDisplayText((note + "\n").c_str());
+          this->SayNote(note);
         }
         w.Notes.push_back(note);
       }
@@ -2018,7 +2034,7 @@ std::string vtkRefractiveIndex::ComputeSolid(Work& w, std::string& note)
     any = this->BodiesBesideWalls(w.Mesh, grid, valid.data(), solid.data(), wallNote) || any;
     if (!wallNote.empty())
     {
-      vtkOutputWindowDisplayText((wallNote + "\n").c_str());
+      this->SayNote(wallNote);
       w.Notes.push_back(wallNote);
     }
   }

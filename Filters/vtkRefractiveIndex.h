@@ -83,6 +83,7 @@
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
 #include <memory> // for std::shared_ptr
+#include <set>    // for std::set
 #include <string> // for std::string
 #include <vector> // for std::vector
 
@@ -608,6 +609,13 @@ private:
   /** The requested extent of the grid, with the new arrays and the field data. */
   void WriteOutput(Work& w);
   vtkSmartPointer<vtkFieldData> OutputFieldData(Work& w);
+  /**
+   * Shows an information note in the Output Messages once until a property changes: a new time
+   * step (or any update of the same settings) repeats none of the notes said.
+   */
+  void SayNote(const std::string& note);
+  std::set<std::string> SaidNotes;
+  vtkMTimeType SaidNotesTime = 0;
   /** Why the last RequestInformation could not set up the resampling grid (for RequestData). */
   std::string SamplingError;
   // the automatic grid of an AMR input: what it was chosen from, and whether memory capped it

@@ -44,6 +44,7 @@ LEFT_OUT = {
     "RefractiveScene": {"TimeSteps"},  # the time steps ParaView's animation reads
     # the C++ plugin's toolbar's (its interactive film scale, its own image view, its pass limit)
     "SchlierenImage": {"InteractiveScale", "OpenImageView", "PassLimit"},
+    "NumericalSchlieren": {"FollowCamera", "OpenImageView"},  # the C++ plugin's toolbar's
 }
 # properties of the plugin alone (not the package's): their setters are written below
 GUI_PROPERTIES = {"SchlierenImage": {"FollowCamera": "_set_follow_camera",

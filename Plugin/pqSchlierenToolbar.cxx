@@ -11,7 +11,10 @@
 #include "pqPipelineSource.h"
 #include "pqProgressManager.h"
 #include "pqRenderView.h"
+#include "pqServer.h"
 #include "pqServerManagerModel.h"
+#include "pqTimeKeeper.h"
+#include "pqUndoStack.h"
 #include "pqRepresentation.h"
 #include "pqView.h"
 
@@ -20,6 +23,7 @@
 #include "vtkDataObject.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
+#include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
@@ -65,6 +69,10 @@ constexpr double SameDirection = 1e-9;
 int InteractivePassesOf(vtkSMProxy* proxy)
 {
   static int said = 1; // the last value warned about (1: none)
+  if (!proxy->GetProperty("InteractivePasses"))
+  {
+    return 1; // NumericalSchlieren: no passes
+  }
   const int passes = vtkSMPropertyHelper(proxy, "InteractivePasses").GetAsInt();
   const int used = std::min(256, std::max(1, passes));
   if (used != passes && passes != said)
@@ -79,6 +87,10 @@ int InteractivePassesOf(vtkSMProxy* proxy)
 double InteractiveScaleOf(vtkSMProxy* proxy)
 {
   static double said = 1; // the last value warned about (1: none)
+  if (!proxy->GetProperty("InteractiveScale"))
+  {
+    return 1; // NumericalSchlieren: the full film
+  }
   const double scale = vtkSMPropertyHelper(proxy, "InteractiveScale").GetAsDouble();
   const bool outside = !(scale >= 0.1 && scale <= 1);
   if (outside && scale != said)
@@ -94,8 +106,9 @@ double InteractiveScaleOf(vtkSMProxy* proxy)
 
 bool IsSchlierenImage(pqPipelineSource* source)
 {
-  return source && source->getProxy() &&
-    QString(source->getProxy()->GetXMLName()) == QLatin1String("SchlierenImage");
+  // SchlierenImage, and NumericalSchlieren shown and following the camera as it is
+  const QString name = source && source->getProxy() ? source->getProxy()->GetXMLName() : "";
+  return name == QLatin1String("SchlierenImage") || name == QLatin1String("NumericalSchlieren");
 }
 
 // ParaView processes events while a pipeline update reports progress: nothing here starts work
@@ -104,6 +117,36 @@ int UpdatesInProgress = 0;
 bool Idle()
 {
   return UpdatesInProgress == 0;
+}
+
+// The image view's colouring: rgb as the colours themselves (MapScalars off), or intensity
+// through a grey map over [0, 1]. The member SetScalarColoring (the static form is gone from
+// ParaView 5.12 on).
+void SetColouring(vtkSMProxy* repr, bool colour)
+{
+  auto* pv = vtkSMPVRepresentationProxy::SafeDownCast(repr);
+  if (!pv)
+  {
+    return;
+  }
+  if (colour)
+  {
+    pv->SetScalarColoring("rgb", vtkDataObject::POINT);
+    vtkSMPropertyHelper(repr, "MapScalars", true).Set(0); // rgb in [0, 1] as colours
+  }
+  else
+  {
+    pv->SetScalarColoring("intensity", vtkDataObject::POINT);
+    vtkSMPropertyHelper(repr, "MapScalars", true).Set(1);
+    if (vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy())
+    {
+      vtkSMTransferFunctionProxy::ApplyPreset(lut, "Grayscale", false);
+      vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode", true).Set(-1); // Never
+      vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, 0.0, 1.0, false);
+      lut->UpdateVTKObjects();
+    }
+  }
+  repr->UpdateVTKObjects();
 }
 
 void StatusMessage(const QString& text)
@@ -130,11 +173,13 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
     if (!this->Busy)
     {
       this->LastPasses = this->passes();
+      this->log("updated"); // an update made elsewhere (Apply, Load State, a script)
       if (this->Progressive && !this->Stopped && this->LastPasses < this->Target)
       {
-        this->RestTimer.start(0); // the rest of an applied trace, in chunks
+        this->RestTimer.start(0); // the rest of the image, in chunks
       }
     }
+    this->applyColouring();
   });
   QObject::connect(image, &pqProxy::modifiedStateChanged, this, [this]() {
     // made in the GUI (the pipeline browser's "uninitialised" state until its first Apply)
@@ -145,8 +190,6 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
     this->onApplied();
   });
   vtkSMProxy* proxy = image->getProxy();
-  pqCoreUtilities::connect(
-    proxy->GetProperty("Passes"), vtkCommand::ModifiedEvent, this, SLOT(onPassesModified()));
   pqCoreUtilities::connect(proxy->GetProperty("FollowCamera"), vtkCommand::ModifiedEvent, this,
     SLOT(onFollowModified()));
   pqCoreUtilities::connect(proxy->GetProperty("Resolution"), vtkCommand::ModifiedEvent, this,
@@ -173,6 +216,18 @@ pqSchlierenFollower::pqSchlierenFollower(pqPipelineSource* image, QObject* paren
   });
   this->RefineTimer.setInterval(1);
   QObject::connect(&this->RefineTimer, SIGNAL(timeout()), this, SLOT(refineStep()));
+  if (pqTimeKeeper* keeper = image->getServer() ? image->getServer()->getTimeKeeper() : nullptr)
+  {
+    QObject::connect(keeper, &pqTimeKeeper::timeChanged, this, &pqSchlierenFollower::onTimeChanged);
+  }
+  if (pqApplicationCore::instance()->isLoadingState())
+  {
+    // File > Load State: the image of the state (its Passes, the passes it had when it was
+    // saved) is reached in chunks like any other, its first pass traced when the views show
+    this->startImage("loading", false);
+    proxy->UpdateVTKObjects();
+    this->Loading.start();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -194,7 +249,8 @@ void pqSchlierenFollower::closeImageView()
   {
     return;
   }
-  QTimer::singleShot(0, [view]() {
+  QPointer<pqRenderView> view3D = this->View3D;
+  QTimer::singleShot(0, [view, view3D]() {
     if (!view)
     {
       return;
@@ -216,6 +272,12 @@ void pqSchlierenFollower::closeImageView()
       }
     }
     pqApplicationCore::instance()->getObjectBuilder()->destroy(view);
+    if (view3D && !pqActiveObjects::instance().activeView())
+    {
+      // the 3D view the image was made from is active again (no view active greys the camera
+      // toolbar and the view's controls)
+      pqActiveObjects::instance().setActiveView(view3D);
+    }
   });
 }
 
@@ -228,7 +290,11 @@ bool pqSchlierenFollower::following() const
 //------------------------------------------------------------------------------
 int pqSchlierenFollower::askedPasses() const
 {
-  return this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "Passes").GetAsInt() : 0;
+  // NumericalSchlieren has no passes: one update is the image
+  return !this->Image ? 0
+                      : this->Image->getProxy()->GetProperty("Passes")
+      ? vtkSMPropertyHelper(this->Image->getProxy(), "Passes").GetAsInt()
+      : 1;
 }
 
 //------------------------------------------------------------------------------
@@ -237,7 +303,7 @@ int pqSchlierenFollower::passes() const
   // the passes the filter traces: Passes, at most PassLimit where that is set
   const int asked = this->askedPasses();
   const int limit =
-    this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() : 0;
+    this->Image ? vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit", true).GetAsInt() : 0;
   return limit > 0 ? std::min(asked, limit) : asked;
 }
 
@@ -246,12 +312,17 @@ void pqSchlierenFollower::setPasses(int passes)
 {
   // the refinement's steps go to PassLimit: the Passes field keeps the user's target
   // (0: no limit)
-  if (vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() == passes)
+  if (!this->Image->getProxy()->GetProperty("PassLimit") ||
+    vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").GetAsInt() == passes)
   {
     return;
   }
+  // the GUI's own bookkeeping, never an entry of the undo stack: undone, a PassLimit of an Apply
+  // would lift the limit of the image the Undo starts
+  SCOPED_UNDO_EXCLUDE();
   this->Guard = true;
   vtkSMPropertyHelper(this->Image->getProxy(), "PassLimit").Set(passes);
+  this->Image->getProxy()->UpdateProperty("PassLimit");
   this->Guard = false;
 }
 
@@ -291,11 +362,13 @@ void pqSchlierenFollower::log(const char* event) const
   }
   std::fprintf(stderr,
     "schlieren-gui %.6f %s %s passes=%d target=%d resolution=%dx%d seconds_per_pass=%.4f "
-    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g passes_property=%d passes_field=%s field_at=%d,%d\n",
+    "dir=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g passes_property=%d passes_field=%s field_at=%d,%d "
+    "view_shown=%d\n",
     QDateTime::currentMSecsSinceEpoch() / 1000.0, event,
     this->Image->getSMName().toLocal8Bit().constData(), this->passes(), this->Target, r[0], r[1],
     this->SecondsPerPass, d[0], d[1], d[2], u[0], u[1], u[2], this->askedPasses(),
-    field.toLocal8Bit().constData(), at.x(), at.y());
+    field.toLocal8Bit().constData(), at.x(), at.y(),
+    this->ImageView && this->ImageView->widget() && this->ImageView->widget()->isVisible() ? 1 : 0);
   std::fflush(stderr);
 }
 
@@ -537,26 +610,10 @@ void pqSchlierenFollower::openImageView(pqRenderView* view3D)
   vtkSMProxy* repr = controller->Show(source, 0, vtkSMViewProxy::SafeDownCast(viewProxy));
   if (repr)
   {
-    // ColorFilter, or a band of wavelengths: the rgb colours
-    const bool colour = vtkSMPropertyHelper(source, "Cutoff").GetAsInt() == 4 ||
-      vtkSMPropertyHelper(source, "WavelengthRange").GetAsDouble(1) > 0;
-    if (colour)
-    {
-      vtkSMPVRepresentationProxy::SetScalarColoring(repr, "rgb", vtkDataObject::POINT);
-      vtkSMPropertyHelper(repr, "MapScalars", true).Set(0); // rgb in [0, 1] as colours
-    }
-    else
-    {
-      vtkSMPVRepresentationProxy::SetScalarColoring(repr, "intensity", vtkDataObject::POINT);
-      if (vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy())
-      {
-        vtkSMTransferFunctionProxy::ApplyPreset(lut, "Grayscale", false);
-        vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode", true).Set(-1); // Never
-        vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, 0.0, 1.0, false);
-        lut->UpdateVTKObjects();
-      }
-    }
-    repr->UpdateVTKObjects();
+    // ColorFilter, or a band of wavelengths: the rgb colours (until the image says)
+    const bool colour = vtkSMPropertyHelper(source, "Cutoff", true).GetAsInt() == 4 ||
+      vtkSMPropertyHelper(source, "WavelengthRange", true).GetAsDouble(1) > 0;
+    SetColouring(repr, colour);
   }
   if (view3D)
   {
@@ -568,6 +625,7 @@ void pqSchlierenFollower::openImageView(pqRenderView* view3D)
     }
   }
   this->ImageView->widget()->installEventFilter(this);
+  this->applyColouring();
   this->fitImageView();
   this->ImageView->render();
   if (view3D)
@@ -627,6 +685,102 @@ void pqSchlierenFollower::fitImageView()
 }
 
 //------------------------------------------------------------------------------
+void pqSchlierenFollower::applyColouring()
+{
+  // the image view colours what the image holds: rgb (a colour filter, a band of wavelengths) as
+  // colours, intensity in grey otherwise, switched when a change of the settings changes it; an
+  // array the user picked (neither of the two) is left alone
+  if (!this->ImageView || !this->Image)
+  {
+    return;
+  }
+  pqDataRepresentation* repr = this->Image->getRepresentation(this->ImageView);
+  vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+  if (!repr || !info || info->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  const bool colour = info->GetArrayInformation("rgb", vtkDataObject::POINT) != nullptr;
+  vtkSMProxy* proxy = repr->getProxy();
+  vtkSMPropertyHelper colorBy(proxy, "ColorArrayName", true);
+  const char* shown = colorBy.GetInputArrayNameToProcess();
+  const std::string now = shown ? shown : "";
+  const bool mapped = vtkSMPropertyHelper(proxy, "MapScalars", true).GetAsInt() != 0;
+  if ((colour && now == "rgb" && !mapped) || (!colour && now == "intensity"))
+  {
+    return;
+  }
+  if (!now.empty() && now != "rgb" && now != "intensity")
+  {
+    return;
+  }
+  SetColouring(proxy, colour);
+  this->log(colour ? "colour-rgb" : "colour-intensity");
+}
+
+//------------------------------------------------------------------------------
+bool pqSchlierenFollower::refining() const
+{
+  return this->RefineTimer.isActive() || (this->Progressive && !this->Stopped) ||
+    (this->following() && !this->Stopped && this->RestTimer.isActive());
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::startImage(const char* why, bool keepPasses)
+{
+  // The one rule of every image the GUI starts (an Apply, Undo, Load State, a time step; the
+  // camera's own handler does the same): the first InteractivePasses passes in the update that
+  // follows, the rest up to the Passes asked for in chunks between which the event loop runs.
+  // PassLimit holds the chunk's end while the refinement runs and goes back to 0 (no limit)
+  // when it converges or is stopped, so it never caps an image in silence.
+  if (!this->Image)
+  {
+    return;
+  }
+  vtkSMProxy* proxy = this->Image->getProxy();
+  this->Target = std::max(1, this->askedPasses());
+  this->RefineTimer.stop();
+  this->LastChunk = 1;
+  this->Stopped = false;
+  const int first = std::min(this->Target, InteractivePassesOf(proxy));
+  // a larger Passes alone refines the image shown from the passes it has
+  const int from = keepPasses && this->LastPasses < this->Target
+    ? std::max(first, this->LastPasses)
+    : first;
+  if (!keepPasses || this->LastPasses >= this->Target)
+  {
+    this->LastPasses = 0; // the image shown is not this image
+  }
+  if (this->Target <= from)
+  {
+    this->Progressive = false;
+    this->setPasses(0);
+  }
+  else
+  {
+    this->Progressive = true;
+    this->setPasses(from);
+  }
+  this->log(why);
+  Q_EMIT this->stateChanged();
+}
+
+//------------------------------------------------------------------------------
+void pqSchlierenFollower::onTimeChanged()
+{
+  // a new time step: a new image, when the image's data changes with time
+  if (!this->Image || this->Busy)
+  {
+    return;
+  }
+  vtkPVDataInformation* info = this->Image->getOutputPort(0)->getDataInformation();
+  if (info && info->GetNumberOfTimeSteps() > 1)
+  {
+    this->startImage("time", false);
+  }
+}
+
+//------------------------------------------------------------------------------
 void pqSchlierenFollower::onCameraModified()
 {
   auto* camera = vtkCamera::SafeDownCast(this->Camera);
@@ -677,8 +831,12 @@ void pqSchlierenFollower::onCameraModified()
   this->RefineTimer.stop();
   this->LastChunk = 1;
   this->Stopped = false;
+  this->LastPasses = 0;
+  SCOPED_UNDO_EXCLUDE(); // the camera's own (Camera Undo has the camera)
+  this->Guard = true;
   vtkSMPropertyHelper(proxy, "ViewDirection").Set(direction, 3);
   vtkSMPropertyHelper(proxy, "ViewUp").Set(up, 3);
+  this->Guard = false;
   this->setPasses(
     std::min(this->Target, InteractivePassesOf(proxy)));
   const double scale = InteractiveScaleOf(proxy);
@@ -785,11 +943,25 @@ void pqSchlierenFollower::refineStep()
   {
     return; // the next tick
   }
+  if (this->Loading.isValid())
+  {
+    // Load State: ParaView lays out the state's views after its first update; chunks that
+    // follow each other at once would hold that back to the end of the refinement. The chunks
+    // start once the image view is on the screen (or after 10 s, a view in a hidden tab).
+    QWidget* widget = this->ImageView ? this->ImageView->widget() : nullptr;
+    if (!(widget && widget->isVisible()) && this->Loading.elapsed() < 10000)
+    {
+      return;
+    }
+    this->Loading.invalidate();
+  }
   const int now = this->LastPasses; // the passes of the image shown (0: none on this film yet)
   if (now >= this->Target)
   {
     this->RefineTimer.stop();
     this->Progressive = false;
+    // no limit left behind: the filter's Passes is the image's (the next update traces nothing)
+    this->setPasses(0);
     this->log("converged");
     Q_EMIT this->stateChanged();
     return;
@@ -807,47 +979,15 @@ void pqSchlierenFollower::refineStep()
 }
 
 //------------------------------------------------------------------------------
-void pqSchlierenFollower::onPassesModified()
-{
-  if (this->Guard || !this->Image)
-  {
-    return;
-  }
-  const int asked = this->askedPasses();
-  this->Target = std::max(1, asked);
-  this->Stopped = false;
-  if (!this->following())
-  {
-    // a script's Passes is traced as it is; the panel's Apply sets its own limit next
-    // (onPropertyModified)
-    this->setPasses(0);
-    return;
-  }
-  // following: the new target is reached in chunks (so that it can be stopped), starting from
-  // the passes the image has
-  const int start = std::max(
-    InteractivePassesOf(this->Image->getProxy()),
-    this->LastPasses);
-  if (asked > start)
-  {
-    this->setPasses(start);
-    this->RestTimer.start(0);
-  }
-  this->log("target");
-}
-
-//------------------------------------------------------------------------------
 void pqSchlierenFollower::onPropertyModified(vtkObject* property)
 {
-  // Follow Camera off: a property pushed by the Properties panel's Apply (the proxy is modified
-  // or not yet applied while the panel pushes; a script's change to an applied proxy is left
-  // alone). ParaView runs the trace that follows as one pipeline update that blocks the GUI's
-  // input to its end, so that update traces the interactive passes only, and the passes asked
-  // for are added afterwards in chunks between which the event loop runs (Stop Refinement acts
-  // within one chunk and keeps the passes done). Following, the camera's and Passes' handlers do
-  // the same.
-  if (this->Guard || this->Busy || !this->Image || this->following() ||
-    this->Image->modifiedState() == pqProxy::UNMODIFIED)
+  // A property of the image changed. Pushed by the GUI (the Properties panel's Apply, while the
+  // proxy is modified or not yet applied; Undo and Redo; Load State) or while the image follows
+  // the camera: a new image by the one rule (startImage), whether Follow Camera is on or off.
+  // ParaView runs the trace that follows as one pipeline update that blocks the GUI's input to
+  // its end, so that update traces the interactive passes only. A script's change to an applied
+  // image is traced as it asks, in one update, with no limit.
+  if (this->Guard || this->Busy || !this->Image)
   {
     return;
   }
@@ -858,7 +998,7 @@ void pqSchlierenFollower::onPropertyModified(vtkObject* property)
     return;
   }
   static const char* const ignored[] = { "FollowCamera", "OpenImageView", "InteractivePasses",
-    "InteractiveScale" };
+    "InteractiveScale", "PassLimit" };
   for (const char* other : ignored)
   {
     if (std::strcmp(name, other) == 0)
@@ -866,28 +1006,41 @@ void pqSchlierenFollower::onPropertyModified(vtkObject* property)
       return;
     }
   }
-  vtkSMProxy* proxy = this->Image->getProxy();
-  if (std::strcmp(name, "Passes") == 0)
+  const bool passes = std::strcmp(name, "Passes") == 0;
+  pqApplicationCore* core = pqApplicationCore::instance();
+  pqUndoStack* undo = core->getUndoStack();
+  const bool gui = this->Image->modifiedState() != pqProxy::UNMODIFIED ||
+    (undo && (undo->getInUndo() || undo->getInRedo())) || core->isLoadingState() ||
+    this->following();
+  if (!gui)
   {
     this->Target = std::max(1, this->askedPasses());
-  }
-  const int start =
-    InteractivePassesOf(proxy);
-  if (this->Target <= start)
-  {
+    this->RefineTimer.stop();
     this->Progressive = false;
+    this->Stopped = false;
     this->setPasses(0);
+    this->log("script");
+    Q_EMIT this->stateChanged();
     return;
   }
-  this->Stopped = false;
-  this->Progressive = true;
-  this->RefineTimer.stop();
-  this->LastChunk = 1;
-  if (this->passes() != start)
+  if (!passes)
   {
-    this->setPasses(start);
+    // the same Apply (or Undo) may change Passes too: the image is new all the same
+    this->NewImage = true;
+    QTimer::singleShot(0, this, [this]() { this->NewImage = false; });
   }
-  this->log("progressive");
+  const bool keep = passes && !this->NewImage;
+  this->startImage(core->isLoadingState() ? "loading" : (passes ? "target" : "progressive"), keep);
+  if (core->isLoadingState())
+  {
+    this->Loading.start();
+  }
+  if (keep && this->Progressive && this->following() &&
+    this->Image->modifiedState() == pqProxy::UNMODIFIED)
+  {
+    // a script's larger Passes while following: no update may follow, the chunks start here
+    this->RestTimer.start(0);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -939,6 +1092,7 @@ void pqSchlierenFollower::restoreResolution()
   vtkSMProxy* proxy = this->Image->getProxy();
   int coarse[2];
   vtkSMPropertyHelper(proxy, "Resolution").Get(coarse, 2);
+  SCOPED_UNDO_EXCLUDE();
   this->Guard = true;
   vtkSMPropertyHelper(proxy, "Resolution").Set(this->FullResolution, 2);
   this->Guard = false;
@@ -969,17 +1123,40 @@ void pqSchlierenFollower::onResolutionModified()
 //------------------------------------------------------------------------------
 void pqSchlierenFollower::stop()
 {
-  const bool was = this->RefineTimer.isActive() || this->RestTimer.isActive();
+  const bool was = this->refining();
   this->RefineTimer.stop();
   this->RestTimer.stop();
   this->Stopped = true;
   this->Progressive = false;
   if (was && this->Image)
   {
-    StatusMessage(QString("%1: refinement stopped at %2 of %3 passes")
-                    .arg(this->Image->getSMName())
-                    .arg(this->passes())
-                    .arg(this->Target));
+    const int done = this->LastPasses; // the passes of the image shown
+    const int asked = this->Target;
+    if (done > 0 && done < asked && !this->Coarse)
+    {
+      // The image keeps the passes traced, and the panel says so: Passes becomes them, and no
+      // limit is left behind (a larger Passes applied refines from here; a saved state holds
+      // this image's passes).
+      vtkSMProxy* proxy = this->Image->getProxy();
+      SCOPED_UNDO_EXCLUDE(); // the image's passes said, not a change of the user's to undo
+      this->Guard = true;
+      vtkSMPropertyHelper(proxy, "Passes").Set(done);
+      vtkSMPropertyHelper(proxy, "PassLimit").Set(0);
+      proxy->UpdateVTKObjects();
+      this->Guard = false;
+      this->Target = done;
+      StatusMessage(QString("%1: stopped at %2 of %3 passes; Passes is now %2")
+                      .arg(this->Image->getSMName())
+                      .arg(done)
+                      .arg(asked));
+    }
+    else
+    {
+      StatusMessage(QString("%1: refinement stopped at %2 of %3 passes")
+                      .arg(this->Image->getSMName())
+                      .arg(this->passes())
+                      .arg(asked));
+    }
   }
   this->log("stopped");
   Q_EMIT this->stateChanged();
@@ -1080,7 +1257,18 @@ void pqSchlierenToolbar::updateActions()
   this->FollowAction->blockSignals(true);
   this->FollowAction->setChecked(follower && follower->following());
   this->FollowAction->blockSignals(false);
-  this->StopAction->setEnabled(!this->Followers.isEmpty());
+  // Stop Refinement: only while an image refines
+  bool refining = false;
+  for (const auto& f : this->Followers)
+  {
+    refining = refining || (f && f->refining());
+  }
+  if (std::getenv("SCHLIEREN_GUI_TRACE") && refining != this->StopAction->isEnabled())
+  {
+    std::fprintf(stderr, "schlieren-gui %.6f actions toolbar stop=%d\n",
+      QDateTime::currentMSecsSinceEpoch() / 1000.0, refining ? 1 : 0);
+  }
+  this->StopAction->setEnabled(refining);
   this->ViewAction->setEnabled(follower != nullptr);
 }
 

@@ -46,7 +46,8 @@ public:
   pqPipelineSource* image() const { return this->Image; }
   pqRenderView* imageView() const { return this->ImageView; }
   bool following() const;
-  bool refining() const { return this->RefineTimer.isActive(); }
+  /// A refinement is under way or about to start (Stop Refinement acts on it).
+  bool refining() const;
   /// Sets FollowCamera (the property, so that the panel and pvpython see it).
   void setFollowing(bool on);
   /// Opens (or re-opens) the image's 2D view beside `view3D` (or the view it was shown in).
@@ -67,13 +68,13 @@ protected:
 private Q_SLOTS:
   void onRepresentationAdded(pqPipelineSource*, pqDataRepresentation*, int);
   void onCameraModified();
-  void onPassesModified();
   void onFollowModified();
   void onResolutionModified();
   void onPropertyModified(vtkObject* property);
   void retrace();
   void refineStep();
   void fitImageView();
+  void onTimeChanged();
 
 private:
   void watchCamera(pqRenderView* view);
@@ -83,6 +84,11 @@ private:
   void onApplied();
   void openAfterApply(int tries);
   void setPasses(int passes);
+  /// A new image by the one rule: InteractivePasses first, then chunks up to Passes
+  /// (keepPasses: from the passes the image shown has, for a larger Passes alone).
+  void startImage(const char* why, bool keepPasses);
+  /// The image view colours rgb as colours where the image has them, intensity in grey otherwise.
+  void applyColouring();
   void restoreResolution();
   int passes() const;
   int askedPasses() const;
@@ -104,12 +110,14 @@ private:
   bool RetracePending = false;
   bool Progressive = false; // an applied trace (Follow Camera off) is reached in chunks
   bool Busy = false; // inside our own pipeline update
+  bool NewImage = false; // a property other than Passes changed in this event
   double SecondsPerPass = 0; // measured on the last update
   int LastPasses = 0;        // the passes of the image shown
   int LastChunk = 1;         // passes added by the last refinement chunk
   int FullResolution[2] = { 512, 512 }; // the film the user asked for
   bool Coarse = false;       // the film is InteractiveScale of it (the view is turning)
   double FilmBounds[4] = { 0, 0, 0, 0 };
+  QElapsedTimer Loading; // valid from a Load State until its image view is on the screen
   QTimer RestTimer;   // the camera rested: start refining
   QTimer RefineTimer; // one chunk of passes per tick
 };

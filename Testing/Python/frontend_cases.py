@@ -119,6 +119,7 @@ PYTHON_PLUGIN_PROXIES_LEFT_OUT = set()
 PYTHON_PLUGIN_LEFT_OUT = {
     # the C++ plugin's toolbar's (the Python plugin has FollowCamera and InteractivePasses)
     "SchlierenImage": {"InteractiveScale", "OpenImageView", "PassLimit"},
+    "NumericalSchlieren": {"FollowCamera", "OpenImageView"},  # the C++ plugin's toolbar's
     "RefractiveScene": {"TimeSteps", "TimestepValues"},  # the time series ParaView animates
     "RefractiveIndex": {"Body"},  # the optional second input, a body's surface
 }

@@ -6,7 +6,13 @@ import os
 
 
 def volume(simple, data):
-    """Returns (proxy, name); `simple` is paraview.simple (the plugin loaded)."""
+    """Returns (proxy, name); `simple` is paraview.simple (the plugin loaded). With
+    SCHLIEREN_GUI_SCENE=blast: the built-in blast wave with 4 time steps (ParaView's animation
+    steps through them), whatever the data."""
+    if os.environ.get("SCHLIEREN_GUI_SCENE") == "blast":
+        scene = simple.RefractiveScene(registrationName="RefractiveScene1", Scene="BlastWave",
+                                       Dimensions=[48, 48, 48], TimeSteps=4)
+        return scene, "blast"
     xyz, q = os.path.join(data, "bluntfinxyz.bin"), os.path.join(data, "bluntfinq.bin")
     if os.path.exists(xyz) and os.path.exists(q):
         reader = simple.PLOT3DReader(registrationName="bluntfin", FileName=xyz, QFileName=[q])

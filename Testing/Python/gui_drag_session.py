@@ -69,14 +69,14 @@ try:
         """The driver made a Schlieren Image from the GUI (quick launch): the test's settings, the
         3D view's line of sight, before the user's Apply."""
         global image
-        image = FindSource("SchlierenImage1")
+        image = FindSource(settings.get("filter", "SchlierenImage") + "1")
         if image is None:
             return False
         for key, value in settings["image"].items():
             setattr(image, key, value)
         image.ViewDirection = direction.tolist()
         image.ViewUp = list(camera.GetViewUp())
-        write_json("configured.json", {"passes": int(image.Passes)})
+        write_json("configured.json", {"passes": int(image.Passes) if hasattr(image, "Passes") else 1})
         note("configured %s for the test" % image.GetXMLName())
         return True
 
@@ -90,7 +90,8 @@ try:
         if a is None or out.GetNumberOfPoints() == 0:
             return None
         nx, ny, _ = out.GetDimensions()
-        return vtk_to_numpy(a).reshape(ny, nx).copy(), int(out.GetFieldData().GetArray("passes").GetValue(0))
+        passes = out.GetFieldData().GetArray("passes")  # (NumericalSchlieren has none: one update)
+        return vtk_to_numpy(a).reshape(ny, nx).copy(), int(passes.GetValue(0)) if passes is not None else 1
 
     def current():
         """The image the GUI shows: its intensity and passes."""
@@ -116,6 +117,8 @@ try:
     def traced_passes():
         """The passes the filter traces: Passes (the user's target, as the panel shows it), at
         most the plugin's PassLimit while it refines."""
+        if image.SMProxy.GetProperty("PassLimit") is None:
+            return 1  # NumericalSchlieren
         limit = image.SMProxy.GetProperty("PassLimit").GetElement(0)
         return min(int(image.Passes), limit) if limit > 0 else int(image.Passes)
 
@@ -227,7 +230,7 @@ try:
 
     def on_render_3d(caller, event):
         shown_3d["renders"] += 1
-        im = FindSource("SchlierenImage1")
+        im = FindSource(settings.get("filter", "SchlierenImage") + "1")
         if im is None:
             return
         for r in view.Representations:

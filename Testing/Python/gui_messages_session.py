@@ -61,6 +61,7 @@ try:
             notes = idx.GetClientSideObject().GetOutputDataObject(0).GetFieldData().GetAbstractArray("index_notes")
             write_json("state-%s.json" % words[1], {
                 "views": len(GetViews()),
+                "active_view": GetActiveView() is not None,
                 "image": image is not None,
                 "image_points": image.GetDataInformation().GetNumberOfPoints() if image is not None else None,
                 "resolution": list(image.Resolution) if image is not None else None,

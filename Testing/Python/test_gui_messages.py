@@ -12,8 +12,8 @@ blunt fin's PLOT3D reader. As a user: searches the Properties panel of Refractiv
 by quick launch, types Resolution 1 1 and applies (one error naming Resolution, 1 x 1 and the
 least allowed 2 x 2; none of the pipeline's "returned failure" lines; no image view opened),
 types 96 96 and applies (the view opens; one warning: the largest deflection below 1e-7 rad,
-with the automatic scale's full-contrast deflection), deletes the image with the
-panel's Delete (its view goes, the layout back to one view), selects the
+with the automatic scale's full-contrast deflection), deletes the image with the panel's Delete
+(its view goes, the layout back to one view, the 3D view active), selects the
 PLOT3D reader (the greyed Schlieren Image entry's tip says to apply RefractiveIndex first).
 Skipped (exit 0, a message) without ../shared/data.
 """
@@ -155,6 +155,7 @@ time.sleep(3.0)
 gone = state("deleted")
 check(not gone["image"] and gone["views"] == 1,
       "after the image is deleted: image %s, %d view(s)" % (gone["image"], gone["views"]))
+check(gone["active_view"], "after the image is deleted a view is active (the 3D view), not none")
 screenshot("gui_messages_deleted")
 
 # 5. the PLOT3D reader selected: the greyed Schlieren Image entry says what to do

@@ -2,7 +2,8 @@
 """What the filters say, checked for its text: the weak-field warning (a deflection below what a
 laboratory bench resolves) with the causes and the properties to set, the automatic scale's
 full-contrast deflection, Model Automatic's note in plain words (the gas, the units, PLOT3D's
-non-dimensional density), the Resolution error, each said once per update, and the domains the GUI's
+non-dimensional density), the Resolution error, each said once per update (RefractiveIndex's notes once
+per settings, not again at each time step), and the domains the GUI's
 sliders and fields use. The reactor and the blunt fin come from ../shared/data (skipped there, with a
 message, where it is absent). The process exits 0.
 
@@ -83,6 +84,25 @@ w = index_probe.GetProperty("Wavelength").GetDomain("range")
 T.check(w.GetMinimum(0) == 100, "RefractiveIndex's Wavelength slider starts at %g nm, not 0" % w.GetMinimum(0))
 Delete(index_probe)
 Delete(probe)
+
+# --- 3b. RefractiveIndex's notes: said once per settings, not again at every time step (issue 49) --
+blast = RefractiveScene(Scene="BlastWave", Dimensions=[16, 16, 16], TimeSteps=3)
+index = RefractiveIndex(Input=blast)
+times = list(blast.TimestepValues)
+said = []
+for t in times[:2]:
+    with st.CapturedOutput() as out:
+        index.UpdatePipeline(t)
+    said.append(out.text.count("Model Automatic chose"))
+index.Wavelength = 589.0  # a new setting: the choice is said again
+with st.CapturedOutput() as out:
+    index.UpdatePipeline(times[2])
+said.append(out.text.count("Model Automatic chose"))
+T.check(len(times) == 3 and said == [1, 0, 1],
+        "Model Automatic's note: said at the first time step, not at the next, again after a property "
+        "changed (%s over times %s)" % (said, times))
+Delete(index)
+Delete(blast)
 
 # --- 4. the reactor's Pres read as an absolute pressure in Pa (Model Automatic) -------------------
 path = os.path.join(ct.data_dir(), "disk_out_ref.ex2")
