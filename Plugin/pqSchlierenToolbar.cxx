@@ -542,12 +542,18 @@ void pqSchlierenFollower::openImageView(pqRenderView* view3D)
       vtkSMPropertyHelper(source, "WavelengthRange").GetAsDouble(1) > 0;
     if (colour)
     {
-      vtkSMPVRepresentationProxy::SetScalarColoring(repr, "rgb", vtkDataObject::POINT);
+      if (auto* pv = vtkSMPVRepresentationProxy::SafeDownCast(repr)) // the static form is gone after 5.11
+      {
+        pv->SetScalarColoring("rgb", vtkDataObject::POINT);
+      }
       vtkSMPropertyHelper(repr, "MapScalars", true).Set(0); // rgb in [0, 1] as colours
     }
     else
     {
-      vtkSMPVRepresentationProxy::SetScalarColoring(repr, "intensity", vtkDataObject::POINT);
+      if (auto* pv = vtkSMPVRepresentationProxy::SafeDownCast(repr)) // the static form is gone after 5.11
+      {
+        pv->SetScalarColoring("intensity", vtkDataObject::POINT);
+      }
       if (vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy())
       {
         vtkSMTransferFunctionProxy::ApplyPreset(lut, "Grayscale", false);

@@ -3,7 +3,7 @@
 
 Run by test_install.py as
 
-    PV_PLUGIN_CONFIG_FILE=<prefix>/<libdir>/paraview-5.11/plugins/Schlieren.plugins \\
+    PV_PLUGIN_CONFIG_FILE=<prefix>/<libdir>/paraview-X.Y/plugins/Schlieren.plugins \\
     PYTHONPATH=<prefix>/lib/python3/dist-packages \\
         pvpython install_check.py --prefix <prefix> --plugin-dir <the installed plugin folder>
 
