@@ -1,6 +1,6 @@
 """The helium plume under a Z-type schlieren bench: a slit cut 30, 50 and 70 %, a pinhole, and stops in mm.
 
-    pvpython Examples/bench_gallery.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/bench_gallery.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/bench
 
 The bench (docs/BENCH.md): two 1 m focal-length mirrors (f1 = f2 = 1 m), a slit 1.5 mm high (its

@@ -1,6 +1,6 @@
 """An animation over time: the shadowgraph of a spherical blast wave, one PNG per time step.
 
-    pvpython Examples/blast_animation.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/blast_animation.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/blast
 
 RefractiveScene's BlastWave is a time series (TimeSteps times up to Time, the Sedov-Taylor radius

@@ -1,6 +1,6 @@
 """The NASA blunt fin (Hung and Buning, Mach 2.95): a knife-edge schlieren of its bow shock, to a PNG.
 
-    pvpython Examples/bluntfin.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/bluntfin.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/bluntfin.png [--data ../shared/data] [--view top|side]
 
 The data (bluntfinxyz.bin, bluntfinq.bin; PLOT3D, from the VTK data collection) is a curvilinear

@@ -1,7 +1,7 @@
 """The camera: the helium plume seen by a lens focused in front of, on and behind the flow, a
 shadowgraph as defocus, and a focusing-schlieren slice sweep through three spheres at three depths.
 
-    pvpython Examples/camera_gallery.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/camera_gallery.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/camera
 
 The camera (docs/BENCH.md "Camera"): a thin lens CameraDistance from the volume's centre, focused

@@ -1,7 +1,7 @@
 """An axisymmetric result as a laboratory sees it: the Mach 2 flow over a 15 degree cone, given as
 an r-x half plane, revolved about its axis and imaged across it (knife edge) and along it, to PNGs.
 
-    pvpython Examples/cone.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/cone.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/cone.png
 
 The data (cone_m2_15deg.vtu, 67731 points, 1 MB, written next to the output by

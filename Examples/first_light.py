@@ -1,6 +1,6 @@
 """First light: a knife-edge schlieren image of a built-in scene, written to a PNG.
 
-    pvpython Examples/first_light.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/first_light.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/schlieren.png
 
 The scene is a Gaussian sphere of denser air, n = 1 + A exp(-r^2/s^2) with A = 1e-4, s = 0.25 m on a

@@ -1,6 +1,6 @@
 """The gallery: one helium plume seen the ways a laboratory sees it.
 
-    pvpython Examples/gallery.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/gallery.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/gallery
 
 Writes into the --output folder one PNG per image, from the SchlierenImage arrays (no render view,

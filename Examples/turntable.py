@@ -1,6 +1,6 @@
 """A turntable: the knife-edge schlieren of a helium jet seen from all around, one PNG per angle.
 
-    pvpython Examples/turntable.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/turntable.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/turntable
 
 The beam turns about the jet's axis (y); each frame sets SchlierenImage's ViewDirection. (In the

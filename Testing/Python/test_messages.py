@@ -6,7 +6,7 @@ non-dimensional density), the Resolution error, each said once per update, and t
 sliders and fields use. The reactor and the blunt fin come from ../shared/data (skipped there, with a
 message, where it is absent). The process exits 0.
 
-Run: pvpython test_messages.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_messages.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import os
 import sys
