@@ -93,8 +93,8 @@ schlieren_paraview_dev_links() {
     [ -e "$f" ] && continue
     real="$(ls "${f%.so}".cpython-*.so 2>/dev/null | head -n 1 || true)"
     [ -n "$real" ] && missing+=("$f=$real")
-  done < <(grep -rhoE '"/usr/lib/[^"]*/python3[^"]*\.so"' "${dirs[@]}" --include='*-targets-*.cmake' 2>/dev/null |
-           tr -d '"' | sort -u)
+  done < <(grep -rhoE '"(\$\{_IMPORT_PREFIX\}|/usr)/lib/python3[^"]*\.so"' "${dirs[@]}" --include='*-targets-*.cmake' 2>/dev/null |
+           tr -d '"' | sed 's|^${_IMPORT_PREFIX}|/usr|' | sort -u)  # Debian's prefix is /usr
   [ ${#missing[@]} -eq 0 ] && return 0
   if [ "$(id -u)" -ne 0 ]; then
     echo "Debian's paraview-dev names ${#missing[@]} Python modules without their suffix; run as root once" >&2
