@@ -41,7 +41,7 @@ tests="${SCHLIEREN_OTHER_TESTS:-^(engine\..*|filters\..*|python\.(pipeline|error
 # the mirror apt uses here (deb822 "URIs:" or one-line "deb URL"), not the security one
 mirror="$(cat /etc/apt/sources.list /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources 2>/dev/null |
   sed -n -e 's/^URIs: *\([^ ]*\).*/\1/p' -e 's/^deb  *\(\[[^]]*\] *\)\{0,1\}\([^ ]*\).*/\2/p' |
-  grep '/debian/\{0,1\}$' | grep -v security | head -n 1)"
+  grep '/debian/\{0,1\}$' | grep -v security | head -n 1 || true)"
 mirror="${mirror:-http://deb.debian.org/debian}"
 
 if [ ! -x "$root/usr/bin/apt-get" ]; then
