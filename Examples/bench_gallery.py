@@ -60,7 +60,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
-    from schlieren_view import write_png  # embedded in the plugin
+    from schlieren_view import write_png  # beside the plugin, importable after LoadPlugin
     half = 0.02
     plume = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[args.grid] * 3, Bounds=[-half, half] * 3,
                                   Center=[0, 0, 0], Radius=0.003, Width=2 * half, Amplitude=1.0)

@@ -88,7 +88,7 @@ def main():
     out = servermanager.Fetch(image)
     if out is None or out.GetPointData().GetArray("intensity") is None:
         sys.exit("bluntfin: the trace produced no image (see the errors above)")
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
 
     schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), args.output)
     grid = servermanager.Fetch(index)

@@ -52,7 +52,7 @@ def main():
         make_cone_flow.write(data)
     LoadPlugin(args.plugin, remote=False, ns=globals())
     import numpy as np
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
     from vtkmodules.util.numpy_support import vtk_to_numpy
 
     reader = XMLUnstructuredGridReader(FileName=[data])

@@ -41,7 +41,7 @@ def main():
     device = fd.GetAbstractArray("device")
     k = fd.GetArray("cutoff_scale")
 
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
 
     schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), args.output)
     rng = out.GetPointData().GetArray("intensity").GetRange()

@@ -53,7 +53,7 @@ def main():
         print("SKIP: the case %s is not there (is OpenFOAM installed? see Testing/Python/openfoam_cases.py)" % case)
         sys.exit(125)
     LoadPlugin(args.plugin, remote=False, ns=globals())
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
 
     reader = OpenFOAMReader(FileName=case)
     reader.SkipZeroTime = 0  # a converged solution given as time 0 is read too

@@ -24,7 +24,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
-    import schlieren_view  # embedded in the plugin: film_array, write_png
+    import schlieren_view  # beside the plugin, importable after LoadPlugin: film_array, write_png
     jet = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[96] * 3, Bounds=[-0.02, 0.02] * 3,
                                 Radius=0.003, Width=0.04, Amplitude=1.0)
     image = ns["SchlierenImage"](Input=ns["RefractionOctree"](Input=jet), Cutoff="KnifeEdge",

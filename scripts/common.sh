@@ -31,7 +31,7 @@ SCHLIEREN_DEBIAN_RELEASE="$(schlieren_debian_release)"
 SCHLIEREN_BUILD_PACKAGES=(
   build-essential cmake ninja-build
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
-  paraview paraview-dev python3-paraview
+  paraview paraview-dev python3-paraview python3-dev
   openmpi-bin libopenmpi-dev
   libdouble-conversion-dev liblz4-dev libutfcpp-dev
   libglew-dev libxml2-dev libhdf5-dev libboost-dev libnetcdf-dev libtiff-dev
@@ -42,10 +42,10 @@ case "$SCHLIEREN_DEBIAN_RELEASE" in
     SCHLIEREN_BUILD_PACKAGES+=(qtbase5-dev qttools5-dev qttools5-dev-tools libqt5svg5-dev
       qhelpgenerator-qt5 qtxmlpatterns5-dev-tools) ;;
   trixie)  # ParaView 5.13 is built with Qt 6; its CMake files also look for FreeType
-    SCHLIEREN_BUILD_PACKAGES+=(qt6-base-dev qt6-tools-dev qt6-tools-dev-tools qt6-svg-dev
+    SCHLIEREN_BUILD_PACKAGES+=(qt6-base-dev qt6-tools-dev qt6-tools-dev-tools qt6-svg-dev qt6-5compat-dev
       qt6-documentation-tools libfreetype-dev xsltproc) ;;
   *)  # sid: ParaView 6.1 on Debian's own VTK 9.6 (libvtk9-dev) with Qt 6
-    SCHLIEREN_BUILD_PACKAGES+=(qt6-base-dev qt6-tools-dev qt6-tools-dev-tools qt6-svg-dev
+    SCHLIEREN_BUILD_PACKAGES+=(qt6-base-dev qt6-tools-dev qt6-tools-dev-tools qt6-svg-dev qt6-5compat-dev
       qt6-documentation-tools libfreetype-dev libvtk9-dev xsltproc) ;;
 esac
 # Only the tests need these: an X server for rendering tests; a window manager, xdotool (real mouse

@@ -96,6 +96,8 @@ plugins = os.path.join(args.libdir, args.paraview_subdir, "plugins")
 expected = {
     os.path.join(plugins, "Schlieren", "Schlieren.so"),
     os.path.join(plugins, "Schlieren", "libSchlierenFilters.so"),
+    # `import schlieren_view` after LoadPlugin: the plugin puts its own folder on sys.path
+    os.path.join(plugins, "Schlieren", "schlieren_view.py"),
     os.path.join(plugins, "Schlieren.plugins"),
     os.path.join(args.python_dir, "schlieren_vtk", "__init__.py"),
     os.path.join(args.python_dir, "schlieren_vtk", "SchlierenFilters.so"),
