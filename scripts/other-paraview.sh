@@ -13,7 +13,8 @@
 #    (which also makes the links past Debian's paraview-dev suffix bug), configures and builds;
 # 4. runs a named part of the suite (SCHLIEREN_OTHER_TESTS, a ctest -R expression; the default
 #    below: the engine tests, the filters' values, the pvpython pipelines with their baselines,
-#    the plugin's install, MPI on 2 ranks and a GUI smoke test under Xvfb), then traces the
+#    the plugin's install, MPI on 2 ranks and two GUI tests under Xvfb: python.gui, a script run
+#    inside the GUI, and python.gui_apply_stop, X key and mouse events), then traces the
 #    first-light image and the blunt fin (scripts/other_paraview_images.py) into
 #    <chroot>/work/out/images;
 # 5. when this machine has a build of its own (build/, e.g. Debian 12's), traces the same there and
@@ -36,7 +37,7 @@ command -v debootstrap > /dev/null || { echo "debootstrap is needed: apt-get ins
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 root="${SCHLIEREN_CHROOT:-$(dirname "$here")/chroot-$release}"
 clone_from="${SCHLIEREN_CLONE_FROM:-$here}"
-tests="${SCHLIEREN_OTHER_TESTS:-^(engine\..*|filters\..*|python\.(pipeline|errors|baseline|example_first_light|example_bluntfin|amr|install|mpi|mpi_compare|gui_apply_stop))$}"
+tests="${SCHLIEREN_OTHER_TESTS:-^(engine\..*|filters\..*|python\.(pipeline|errors|baseline|example_first_light|example_bluntfin|amr|install|mpi|mpi_compare|gui|gui_apply_stop))$}"
 
 # the mirror apt uses here (deb822 "URIs:" or one-line "deb URL"), not the security one
 mirror="$(cat /etc/apt/sources.list /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources 2>/dev/null |
@@ -95,7 +96,7 @@ echo "== $(date -u "+%Y-%m-%d %H:%M UTC"), Debian $SCHLIEREN_DEBIAN_RELEASE ($(c
 schlieren_install "${SCHLIEREN_BUILD_PACKAGES[@]}" xvfb xauth openbox xdotool x11-utils imagemagick \
   python3-numpy pkg-config
 version() { dpkg-query -W -f="\${Version}" "$1" 2> /dev/null || echo "?"; }
-echo "== versions: ParaView $(version paraview), VTK $(version libvtk9-dev), Qt $(dpkg-query -W -f="\${Version}" "libqt[56]core[56]*" 2> /dev/null)," \
+echo "== versions: ParaView $(version paraview), VTK $(version libvtk9-dev), Qt $(dpkg-query -W -f="\${Package} \${Version}\n" "libqt[56]core[56]*" 2> /dev/null | grep -v compat | head -n 1 | cut -d" " -f2)," \
   "glibc $(version libc6), GCC $(version gcc), CMake $(version cmake), Python $(version python3)," \
   "PoCL $(version pocl-opencl-icd), Open MPI $(version openmpi-bin)"
 start=$(date +%s)
