@@ -96,7 +96,7 @@ echo "== $(date -u "+%Y-%m-%d %H:%M UTC"), Debian $SCHLIEREN_DEBIAN_RELEASE ($(c
 schlieren_install "${SCHLIEREN_BUILD_PACKAGES[@]}" xvfb xauth openbox xdotool x11-utils imagemagick \
   python3-numpy pkg-config
 version() { dpkg-query -W -f="\${Version}" "$1" 2> /dev/null || echo "?"; }
-echo "== versions: ParaView $(version paraview), VTK $(version libvtk9-dev), Qt $(dpkg-query -W -f="\${Package} \${Version}\n" "libqt[56]core[56]*" 2> /dev/null | grep -v compat | head -n 1 | cut -d" " -f2)," \
+echo "== versions: ParaView $(version paraview), VTK $(version libvtk9-dev), Qt $(dpkg-query -W -f="\${Package} \${Version}\n" "libqt[56]core[56]*" 2> /dev/null | awk "\$2 != \"\" && \$1 !~ /compat/ { v = \$2 } END { print v }")," \
   "glibc $(version libc6), GCC $(version gcc), CMake $(version cmake), Python $(version python3)," \
   "PoCL $(version pocl-opencl-icd), Open MPI $(version openmpi-bin)"
 start=$(date +%s)
