@@ -1,6 +1,6 @@
 """The helium plume under a Z-type schlieren bench: a slit cut 30, 50 and 70 %, a pinhole, and stops in mm.
 
-    pvpython Examples/bench_gallery.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/bench_gallery.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/bench
 
 The bench (docs/BENCH.md): two 1 m focal-length mirrors (f1 = f2 = 1 m), a slit 1.5 mm high (its
@@ -60,7 +60,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
-    from schlieren_view import write_png  # embedded in the plugin
+    from schlieren_view import write_png  # beside the plugin, importable after LoadPlugin
     half = 0.02
     plume = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[args.grid] * 3, Bounds=[-half, half] * 3,
                                   Center=[0, 0, 0], Radius=0.003, Width=2 * half, Amplitude=1.0)

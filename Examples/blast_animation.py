@@ -1,6 +1,6 @@
 """An animation over time: the shadowgraph of a spherical blast wave, one PNG per time step.
 
-    pvpython Examples/blast_animation.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/blast_animation.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/blast
 
 RefractiveScene's BlastWave is a time series (TimeSteps times up to Time, the Sedov-Taylor radius
@@ -24,7 +24,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
-    import schlieren_view  # embedded in the plugin: film_array, write_png
+    import schlieren_view  # beside the plugin, importable after LoadPlugin: film_array, write_png
     scene = ns["RefractiveScene"](Scene="BlastWave", Dimensions=[96, 96, 96], Bounds=[-1, 1] * 3,
                                   Radius=0.7, Width=0.015, Time=1.0, TimeSteps=args.steps)
     scene.UpdatePipelineInformation()

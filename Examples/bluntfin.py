@@ -1,6 +1,6 @@
 """The NASA blunt fin (Hung and Buning, Mach 2.95): a knife-edge schlieren of its bow shock, to a PNG.
 
-    pvpython Examples/bluntfin.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/bluntfin.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/bluntfin.png [--data ../shared/data] [--view top|side]
 
 The data (bluntfinxyz.bin, bluntfinq.bin; PLOT3D, from the VTK data collection) is a curvilinear
@@ -88,7 +88,7 @@ def main():
     out = servermanager.Fetch(image)
     if out is None or out.GetPointData().GetArray("intensity") is None:
         sys.exit("bluntfin: the trace produced no image (see the errors above)")
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
 
     schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), args.output)
     grid = servermanager.Fetch(index)

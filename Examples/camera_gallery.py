@@ -1,7 +1,7 @@
 """The camera: the helium plume seen by a lens focused in front of, on and behind the flow, a
 shadowgraph as defocus, and a focusing-schlieren slice sweep through three spheres at three depths.
 
-    pvpython Examples/camera_gallery.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/camera_gallery.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/camera
 
 The camera (docs/BENCH.md "Camera"): a thin lens CameraDistance from the volume's centre, focused
@@ -87,7 +87,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
-    from schlieren_view import write_png  # embedded in the plugin
+    from schlieren_view import write_png  # beside the plugin, importable after LoadPlugin
     half = 0.02
     plume = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[args.grid] * 3, Bounds=[-half, half] * 3,
                                   Center=[0, 0, 0], Radius=0.003, Width=2 * half, Amplitude=1.0)

@@ -1,7 +1,7 @@
 """An axisymmetric result as a laboratory sees it: the Mach 2 flow over a 15 degree cone, given as
 an r-x half plane, revolved about its axis and imaged across it (knife edge) and along it, to PNGs.
 
-    pvpython Examples/cone.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/cone.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/cone.png
 
 The data (cone_m2_15deg.vtu, 67731 points, 1 MB, written next to the output by
@@ -52,7 +52,7 @@ def main():
         make_cone_flow.write(data)
     LoadPlugin(args.plugin, remote=False, ns=globals())
     import numpy as np
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
     from vtkmodules.util.numpy_support import vtk_to_numpy
 
     reader = XMLUnstructuredGridReader(FileName=[data])

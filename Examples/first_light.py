@@ -1,6 +1,6 @@
 """First light: a knife-edge schlieren image of a built-in scene, written to a PNG.
 
-    pvpython Examples/first_light.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/first_light.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/schlieren.png
 
 The scene is a Gaussian sphere of denser air, n = 1 + A exp(-r^2/s^2) with A = 1e-4, s = 0.25 m on a
@@ -41,7 +41,7 @@ def main():
     device = fd.GetAbstractArray("device")
     k = fd.GetArray("cutoff_scale")
 
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
 
     schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), args.output)
     rng = out.GetPointData().GetArray("intensity").GetRange()

@@ -1,6 +1,6 @@
 """The gallery: one helium plume seen the ways a laboratory sees it.
 
-    pvpython Examples/gallery.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/gallery.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/gallery
 
 Writes into the --output folder one PNG per image, from the SchlierenImage arrays (no render view,
@@ -61,7 +61,7 @@ def main():
 
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
-    from schlieren_view import write_png  # embedded in the plugin
+    from schlieren_view import write_png  # beside the plugin, importable after LoadPlugin
     half, nozzle = 0.02, 0.003
     plume = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[args.grid] * 3,
                                   Bounds=[-half, half] * 3, Center=[0, 0, 0], Radius=nozzle,

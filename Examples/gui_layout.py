@@ -1,7 +1,7 @@
 """The README's GUI screenshot: the ParaView GUI with the blunt fin's resampled volume (3D view) and
 its knife-edge schlieren image side by side, saved from the GUI's own layout.
 
-    SCHLIEREN_PLUGIN=build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so SCHLIEREN_DATA=../shared/data \
+    SCHLIEREN_PLUGIN=$(echo build/lib/paraview-*/plugins/Schlieren/Schlieren.so) SCHLIEREN_DATA=../shared/data \
     SCHLIEREN_SCREENSHOT=docs/gui_layout.png Testing/with_xvfb.sh paraview --dr --script=Examples/gui_layout.py
 """
 import os

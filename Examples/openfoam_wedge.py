@@ -2,7 +2,7 @@
 axis typed: OpenFOAM gives an axisymmetric flow as a wedge one cell thick between two `wedge`
 patches; RefractiveIndex finds the wedge and its axis from the mesh and revolves its mid-plane.
 
-    pvpython Examples/openfoam_wedge.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/openfoam_wedge.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --case path/to/case.foam --output out/jet.png
 
 Without --case it meshes Debian's rhoCentralFoam/LadenburgJet60psi tutorial (openfoam,
@@ -53,7 +53,7 @@ def main():
         print("SKIP: the case %s is not there (is OpenFOAM installed? see Testing/Python/openfoam_cases.py)" % case)
         sys.exit(125)
     LoadPlugin(args.plugin, remote=False, ns=globals())
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
 
     reader = OpenFOAMReader(FileName=case)
     reader.SkipZeroTime = 0  # a converged solution given as time 0 is read too

@@ -1,7 +1,7 @@
 """ParaView's CVD reactor (disk_out_ref.ex2): a knife-edge schlieren of the hot hydrogen over the
 heated disk, to a PNG.
 
-    pvpython Examples/reactor.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/reactor.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/reactor.png [--data ../shared/data]
 
 The data is the ParaView tutorial's reactor (Exodus II, 8499 points, unstructured): gas flows
@@ -63,7 +63,7 @@ def main():
     out = servermanager.Fetch(image)
     if out is None or out.GetPointData().GetArray("intensity") is None:
         sys.exit("reactor: the trace produced no image (see the errors above)")
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
 
     schlieren_view.write_png(schlieren_view.film_array(out, "intensity"), args.output)
     grid = servermanager.Fetch(index)

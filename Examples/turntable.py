@@ -1,6 +1,6 @@
 """A turntable: the knife-edge schlieren of a helium jet seen from all around, one PNG per angle.
 
-    pvpython Examples/turntable.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Examples/turntable.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/turntable
 
 The beam turns about the jet's axis (y); each frame sets SchlierenImage's ViewDirection. (In the
@@ -24,7 +24,7 @@ def main():
     os.makedirs(args.output, exist_ok=True)
     ns = globals()
     LoadPlugin(args.plugin, remote=False, ns=ns)
-    import schlieren_view  # embedded in the plugin: film_array, write_png
+    import schlieren_view  # beside the plugin, importable after LoadPlugin: film_array, write_png
     jet = ns["RefractiveScene"](Scene="HeliumPlume", Dimensions=[96] * 3, Bounds=[-0.02, 0.02] * 3,
                                 Radius=0.003, Width=0.04, Amplitude=1.0)
     image = ns["SchlierenImage"](Input=ns["RefractionOctree"](Input=jet), Cutoff="KnifeEdge",

@@ -13,6 +13,7 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPointData.h"
 #include "vtkUniformGrid.h"
+#include "vtkVersionMacros.h"
 
 #include "SchlierenLimits.h"
 #include "SchlierenParallel.h"
@@ -26,6 +27,27 @@
 namespace
 {
 const char* const MaskName = "vtkValidPointMask";
+
+// A level's blocks. VTK 9.6 deprecates GetNumberOfDataSets(level) and GetDataSet(level, index)
+// for GetNumberOfBlocks(level) and GetDataSetAsImageData(level, index), which VTK 9.2
+// (ParaView 5.11) and 9.3/9.4 (ParaView 5.13) do not have.
+unsigned int BlocksOf(vtkOverlappingAMR* amr, unsigned int level)
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  return amr->GetNumberOfBlocks(level);
+#else
+  return amr->GetNumberOfDataSets(level);
+#endif
+}
+
+vtkImageData* BlockOf(vtkOverlappingAMR* amr, unsigned int level, unsigned int index)
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  return amr->GetDataSetAsImageData(level, index);
+#else
+  return amr->GetDataSet(level, index);
+#endif
+}
 
 /** One axis of a trilinear stencil: the lower index and the weight of the upper one. */
 struct Stencil
@@ -92,9 +114,9 @@ bool FinestSpacing(
     found[1] = amr->GetNumberOfLevels();
     for (int l = static_cast<int>(amr->GetNumberOfLevels()) - 1; l >= 0 && found[0] < 0; --l)
     {
-      for (unsigned int b = 0; b < amr->GetNumberOfDataSets(l); ++b)
+      for (unsigned int b = 0; b < BlocksOf(amr, l); ++b)
       {
-        if (vtkUniformGrid* g = amr->GetDataSet(l, b))
+        if (vtkImageData* g = BlockOf(amr, l, b))
         {
           found[0] = l;
           g->GetSpacing(h);
@@ -279,9 +301,9 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkOverlap
   std::vector<float> copy;
   for (int l = 0; l < levels; ++l)
   {
-    for (unsigned int b = 0; b < data->GetNumberOfDataSets(l); ++b)
+    for (unsigned int b = 0; b < BlocksOf(data, l); ++b)
     {
-      vtkUniformGrid* g = data->GetDataSet(l, b);
+      vtkImageData* g = BlockOf(data, l, b);
       if (!g || g->GetNumberOfPoints() == 0)
       {
         continue;

@@ -2,7 +2,8 @@
 re-traces along the new line of sight, coarse while the camera moves, refined pass after pass when
 it stops (the paper's section 7).
 
-Embedded in the Schlieren plugin: after LoadPlugin, in pvpython, pvbatch or the GUI's Python shell,
+Installed beside the Schlieren plugin, which puts its folder on sys.path when loaded: after
+LoadPlugin, in pvpython, pvbatch or the GUI's Python shell,
 
     import schlieren_view
     follower = schlieren_view.follow_camera(view, image, target_passes=32)

@@ -1,6 +1,6 @@
 """RefractiveIndex's resampling of a large unstructured grid beside ParaView's ResampleToImage.
 
-    pvpython Testing/Benchmarks/resampling.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Testing/Benchmarks/resampling.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         [--extent 25] [--dims 100] [--repeats 2] [--no-probe]
 
 (--extent 63: 1.0e7 tetrahedra, the size of the issue's large unstructured results; --no-probe

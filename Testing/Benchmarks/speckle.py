@@ -3,7 +3,7 @@
 the passes, without and with the Cone film filter, and with JitterPattern Lattice, on
 gui_drag_scene.py's volume (the blunt fin).
 
-    pvpython Testing/Benchmarks/speckle.py build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so [film] [png]
+    pvpython Testing/Benchmarks/speckle.py build/lib/paraview-*/plugins/Schlieren/Schlieren.so [film] [png]
 
 With png: also writes one pass Random, one pass Lattice and 64 passes Random side by side (320^2,
 OpenCL, intensity clipped to [0, 1]) and prints their RMS against the 64-pass image.

@@ -1,7 +1,7 @@
 """Time per frame of an animation played twice: the first play resamples and packs every frame
 (what every play cost before the per-time-step caches), the second takes both from the caches.
 
-    pvpython Testing/Benchmarks/time_series.py --plugin build/lib/paraview-5.11/plugins/Schlieren/Schlieren.so \
+    pvpython Testing/Benchmarks/time_series.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         [--frames 6] [--scene 48] [--grid 96] [--resolution 256]
 
 The series: RefractiveScene BlastWave (scene^3 points) made an unstructured grid (AppendDatasets)

@@ -3,7 +3,7 @@
 
 Run by test_install.py as
 
-    PV_PLUGIN_CONFIG_FILE=<prefix>/<libdir>/paraview-5.11/plugins/Schlieren.plugins \\
+    PV_PLUGIN_CONFIG_FILE=<prefix>/<libdir>/paraview-X.Y/plugins/Schlieren.plugins \\
     PYTHONPATH=<prefix>/lib/python3/dist-packages \\
         pvpython install_check.py --prefix <prefix> --plugin-dir <the installed plugin folder>
 
@@ -59,10 +59,12 @@ if failures or "SchlierenImage" not in globals():
     check("SchlierenImage" in globals(), "the plugin's SchlierenImage is defined after the load")
     sys.exit(1)
 try:
-    import schlieren_view  # noqa: F401  (the plugin's embedded Python module, importable once loaded)
-    check(True, "the plugin's embedded Python module schlieren_view imports")
+    import schlieren_view  # the plugin's Python module, beside Schlieren.so, importable once loaded
+    where = os.path.dirname(os.path.realpath(schlieren_view.__file__))
+    check(where == os.path.dirname(plugin_so),
+          "the plugin's Python module schlieren_view imports from the plugin's folder (%s)" % where)
 except ImportError as e:
-    check(False, "the plugin's embedded Python module schlieren_view does not import: %s" % e)
+    check(False, "the plugin's Python module schlieren_view does not import: %s" % e)
 
 # -- a trace through the installed plugin: the weak Gaussian sphere, knife edge along x
 A, S, K = 1e-4, 0.25, 1000.0

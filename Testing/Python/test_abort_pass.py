@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """An abort within a single pass ends the work and keeps the image the filter had.
 
-Run: pvpython test_abort_pass.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_abort_pass.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 A 64^2 image of a Gaussian sphere is traced (1 pass); then the view turns and the film grows to
 512^2, RK4, still 1 pass (one long pass). A progress observer sets AbortExecute once about a

@@ -2,7 +2,7 @@
 """Tracing accuracy in pvpython: RefractionOctree, the integrators, Auto, the
 step-doubling error estimate, the ray invariant, and a shock crossed with long steps.
 
-Run: pvpython test_accuracy.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_accuracy.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 Known answers (ORACLES.md):
 - weak Gaussian sphere n = 1 + A exp(-r^2/s^2), beam along -z:

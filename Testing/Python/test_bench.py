@@ -2,7 +2,7 @@
 """The bench on SchlierenImage through the plugin (docs/BENCH.md): a finite source cut by the
 knife, its read-outs in the field data, its errors, and Point unchanged.
 
-Run: pvpython test_bench.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_bench.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 The scene is the weak Gaussian sphere of ORACLES.md, n = 1 + A exp(-r^2/s^2), A = 1e-4, s = 0.25,
 on 64^3 over [-1, 1]^3 (metres), beam along -z, knife normal along film x (KnifeAngle 0): light

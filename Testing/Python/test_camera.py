@@ -3,7 +3,7 @@
 the images of before bit for bit, the read-outs in the field data are their closed forms, a
 camera focused where FilmDistance put the film is that film, and bad values are refused by name.
 
-Run: pvpython test_camera.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_camera.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 The known answers of the camera's images (shadowgraph as defocus, the depth of field's
 2 J1(x)/x) are asserted on the engine by engine.TestEngineCamera; this checks the proxy's path.

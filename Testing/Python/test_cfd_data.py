@@ -23,7 +23,7 @@ over an operating pressure of 101325 Pa):
 
 Skips (exit status 125) when ../shared/data (or $SCHLIEREN_DATA) is absent.
 
-Run: pvpython test_cfd_data.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_cfd_data.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import os
 import sys

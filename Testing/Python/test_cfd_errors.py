@@ -3,7 +3,7 @@
 the array, the number of points and what to do; the output is empty after an error, ParaView
 survives, and fixing the property recovers. The process exits 0.
 
-Run: pvpython test_cfd_errors.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_cfd_errors.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import os
 import sys

@@ -12,7 +12,7 @@
 4. time: a time-varying input (image and unstructured) passes its time steps and each update
    computes that step.
 
-Run: pvpython test_cfd_index.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_cfd_index.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import math
 import os

@@ -12,7 +12,7 @@
 4. cell arrays become point arrays (vtkCellDataToPointData) on images and on unstructured grids
    alike, and the filter says so; integer arrays and ids (ObjectId) are refused with their name.
 
-Run: pvpython test_defaults.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_defaults.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import os
 import sys

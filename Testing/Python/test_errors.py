@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Bad inputs give clear errors, empty outputs and no crash; the process then exits 0.
 
-Run: pvpython test_errors.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_errors.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 Each case captures VTK's output window (vtkStringOutputWindow) around the update and checks that
 the error names what is wrong (and, for a missing array, the arrays that are there).

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Framing Silhouette through the plugin (docs/GUI.md "Framing"): the film framed to the data.
 
-Run: pvpython test_framing.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_framing.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 - The blunt fin as a GUI user opens it (PLOT3DReader -> RefractiveIndex with its defaults ->
   SchlierenImage, 256 x 256, seen from the side): Framing Volume puts the 22 x 5.7 box on a square

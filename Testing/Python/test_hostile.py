@@ -18,7 +18,7 @@ naming what was expected, with an empty output.
 Controls: BodyRadius 0.25 makes solid points; a 2D image (16 x 16 x 1) under Planar and a
 one-cell-thick image (16 x 16 x 2) make a volume with no error.
 
-Run: pvpython test_hostile.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_hostile.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import math
 import os

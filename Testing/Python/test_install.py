@@ -8,8 +8,8 @@ Run with Debian's Python (ctest does):
 
 Checks:
   1. `cmake --install <build> --prefix <prefix>` succeeds and installs exactly what a user needs:
-     the plugin folder <libdir>/paraview-5.11/plugins/Schlieren/ (Schlieren.so and the module
-     library libSchlierenFilters.so), the plugin list <libdir>/paraview-5.11/plugins/Schlieren.plugins
+     the plugin folder <libdir>/paraview-X.Y/plugins/Schlieren/ (Schlieren.so and the module
+     library libSchlierenFilters.so), the plugin list <libdir>/paraview-X.Y/plugins/Schlieren.plugins
      the `schlieren_vtk` Python package (the compiled classes) and the `schlieren` one (the Python
      front end, its engine library beside it), the engine library, its C header and pkg-config
      file; no other header, no static archive, no CMake package file;
@@ -40,6 +40,8 @@ parser.add_argument("--build", required=True, help="the configured and built bui
 parser.add_argument("--prefix", required=True, help="an install prefix (emptied first)")
 parser.add_argument("--libdir", required=True, help="CMAKE_INSTALL_LIBDIR, relative to the prefix")
 parser.add_argument("--python-dir", required=True, help="SCHLIEREN_PYTHON_DESTINATION, relative to the prefix")
+parser.add_argument("--paraview-subdir", required=True,
+                    help="paraview-<major>.<minor> of the ParaView built against (CMake's SCHLIEREN_PARAVIEW_SUBDIR)")
 parser.add_argument("--pvpython", required=True)
 parser.add_argument("--python", default="/usr/bin/python3", help="Debian's Python for the VTK import check")
 args = parser.parse_args()
@@ -90,10 +92,12 @@ for root, dirs, files in os.walk(prefix):
     for name in files + [d for d in dirs if os.path.islink(os.path.join(root, d))]:
         installed.add(os.path.relpath(os.path.join(root, name), prefix))
 print("installed files:\n  " + "\n  ".join(sorted(installed)))
-plugins = os.path.join(args.libdir, "paraview-5.11", "plugins")
+plugins = os.path.join(args.libdir, args.paraview_subdir, "plugins")
 expected = {
     os.path.join(plugins, "Schlieren", "Schlieren.so"),
     os.path.join(plugins, "Schlieren", "libSchlierenFilters.so"),
+    # `import schlieren_view` after LoadPlugin: the plugin puts its own folder on sys.path
+    os.path.join(plugins, "Schlieren", "schlieren_view.py"),
     os.path.join(plugins, "Schlieren.plugins"),
     os.path.join(args.python_dir, "schlieren_vtk", "__init__.py"),
     os.path.join(args.python_dir, "schlieren_vtk", "SchlierenFilters.so"),

@@ -8,7 +8,7 @@ installed into <prefix> (ctest: the fixture schlieren_install):
         --paraview paraview --prefix <prefix> --libdir lib --work <folder>
 
 Starts `paraview` as a user of the installed prefix starts it (PV_PLUGIN_CONFIG_FILE=<prefix>/
-<libdir>/paraview-5.11/plugins/Schlieren.plugins, nothing of the build tree in the environment, a
+<libdir>/paraview-X.Y/plugins/Schlieren.plugins, nothing of the build tree in the environment, a
 fresh HOME so that no earlier session's settings list the plugin), then with xdotool's X key events:
 Alt+T opens the Tools menu, Down x3 + Return opens "Manage Plugins..."; in the dialog the user types
 "vtkPV" (the tree's keyboard search selects the first row, ParaView's own vtkPVInitializerPlugin),
@@ -41,14 +41,16 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--paraview", required=True)
 parser.add_argument("--prefix", required=True, help="the prefix test_install.py installed into")
 parser.add_argument("--libdir", required=True, help="CMAKE_INSTALL_LIBDIR, relative to the prefix")
+parser.add_argument("--paraview-subdir", required=True,
+                    help="paraview-<major>.<minor> of the ParaView built against (CMake's SCHLIEREN_PARAVIEW_SUBDIR)")
 parser.add_argument("--work", required=True, help="a folder for the session's files (emptied)")
 args = parser.parse_args()
 
 T0 = time.time()
 failures = []
 prefix = os.path.abspath(args.prefix)
-plugins_file = os.path.join(prefix, args.libdir, "paraview-5.11", "plugins", "Schlieren.plugins")
-plugin_so = os.path.join(prefix, args.libdir, "paraview-5.11", "plugins", "Schlieren", "Schlieren.so")
+plugins_file = os.path.join(prefix, args.libdir, args.paraview_subdir, "plugins", "Schlieren.plugins")
+plugin_so = os.path.join(prefix, args.libdir, args.paraview_subdir, "plugins", "Schlieren", "Schlieren.so")
 SELECTION = np.array([48, 140, 198])  # Qt's Fusion selection colour for the current row
 
 

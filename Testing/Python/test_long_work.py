@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Long work says how long it will take and stops on abort.
 
-Run: pvpython test_long_work.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_long_work.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 Passes = 100000 on a 16 x 16 film of a 16^3 Gaussian sphere (Backend CPU: tens of seconds). A
 ProgressEvent observer reads the progress text and, half a second after the first estimate,

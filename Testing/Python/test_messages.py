@@ -7,7 +7,7 @@ per settings, not again at each time step), and the domains the GUI's
 sliders and fields use. The reactor and the blunt fin come from ../shared/data (skipped there, with a
 message, where it is absent). The process exits 0.
 
-Run: pvpython test_messages.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_messages.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import os
 import sys

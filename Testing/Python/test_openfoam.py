@@ -209,7 +209,7 @@ for c2p in (True, False):
                 "a grid spacing (%.4f m), m" % h)
         T.check(float(blocked[X < -0.002].max()) == 0.0 and float(blocked[Y > 0.09].max()) == 0.0,
                 "wedge15Ma5: nothing blocked upstream of the apex or above the wedge's top")
-        import schlieren_view  # embedded in the plugin
+        import schlieren_view  # beside the plugin, importable after LoadPlugin
         schlieren_view.write_png(schlieren_view.film_array(out, "intensity"),
                                  os.path.join(OUTPUT, "wedge15Ma5_knife.png"))
         # The numerical schlieren of the same case on the same film: its shock (the largest
@@ -273,7 +273,7 @@ for tag, vd, res in (("across", [0, 0, -1], [240, 80]), ("along", [-1, 0, 0], [8
     else:
         along_r = np.hypot(X, Y)
         along_er = (deflection[..., 0] * X + deflection[..., 1] * Y) / np.maximum(along_r, 1e-12)
-    import schlieren_view  # embedded in the plugin
+    import schlieren_view  # beside the plugin, importable after LoadPlugin
     schlieren_view.write_png(schlieren_view.film_array(out, "intensity"),
                              os.path.join(OUTPUT, "LadenburgJet60psi_%s.png" % tag))
     Delete(image)
@@ -461,7 +461,7 @@ out, _ = fetch(image, 2.0)
 T.check("are walls" in text and "taken as a body" in text, "forwardStep: the step from the walls: %s"
         % [l for l in text.splitlines() if "walls" in l][:1])
 X, Y, intensity, deflection, fields = st.image_arrays(out)
-import schlieren_view  # embedded in the plugin
+import schlieren_view  # beside the plugin, importable after LoadPlugin
 blocked = schlieren_view.film_array(out, "blocked").astype(float)
 h = grid.GetSpacing()[0]
 tops, faces = [], []
@@ -553,7 +553,7 @@ image = SchlierenImage(Input=index, Cutoff="KnifeEdge", KnifeAngle=90, Resolutio
                        ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
 out, _ = fetch(image, 0.0)
 X, Y, intensity, deflection, fields = st.image_arrays(out)
-import schlieren_view  # embedded in the plugin
+import schlieren_view  # beside the plugin, importable after LoadPlugin
 blocked = schlieren_view.film_array(out, "blocked").astype(float)
 spacing = grid.GetSpacing()[1]
 # the mesh's own cone wall, r(x)

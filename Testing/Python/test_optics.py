@@ -2,7 +2,7 @@
 """Image formation in pvpython: every cutoff, interferometry, BOS, the film filters,
 passes, seeds and photon killing, against known answers.
 
-Run: pvpython test_optics.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_optics.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 The scene is the weak Gaussian sphere of ORACLES.md, n = 1 + A exp(-r^2/s^2), s = 0.25, on 128^3
 over [-1, 1]^3, beam along -z: eps = -(2 sqrt(pi) A / s) (x, y) exp(-rho^2/s^2), max |eps| =

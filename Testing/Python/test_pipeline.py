@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """RefractiveScene -> RefractiveIndex -> SchlierenImage in pvpython, against known answers.
 
-Run: pvpython test_pipeline.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_pipeline.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 
 Known answers (ORACLES.md, "Weak Gaussian sphere"): for n = 1 + A exp(-r^2/s^2) and a beam along
 -z, eps = -(2 sqrt(pi) A / s) (x, y) exp(-rho^2/s^2), max |eps| = sqrt(2 pi) A e^(-1/2), and a

@@ -21,7 +21,7 @@ three voxels) Cubic's largest |deflection| exceeds Trilinear's by no more than 1
 peak; Trilinear at 8 voxels is flagged, Cubic at StepSize 8 is not, and its shock stays within
 half a voxel.
 
-Run: pvpython test_reconstruction.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_reconstruction.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import math
 import os

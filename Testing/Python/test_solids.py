@@ -23,7 +23,7 @@
         half-thickness from the grid's j = 0 face at that x, within a voxel;
     with the default BodyWallFaces (all open) the fin, which touches the box, is not a body.
 
-Run: pvpython test_solids.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_solids.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import math
 import os

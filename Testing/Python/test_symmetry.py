@@ -26,7 +26,7 @@ closed forms, in pvpython; the 2D inputs are built here with VTK (the test carri
 3. Errors: Planar with Span 0; Axisymmetric with the axis normal to the data's plane; a 2D input
    with Symmetry None gives one message that names Symmetry (and not a second one about n).
 
-Run: pvpython test_symmetry.py --plugin <build>/lib/paraview-5.11/plugins/Schlieren/Schlieren.so
+Run: pvpython test_symmetry.py --plugin <build>/lib/paraview-X.Y/plugins/Schlieren/Schlieren.so
 """
 import math
 import os
