@@ -14,14 +14,16 @@ namespace
 {
 const double kPi = 3.14159265358979323846;
 
-// x with erfc(x) = y, y in (0, 2), by bisection (erfc is decreasing); clamped to [-10, 10]
+// x with erfc(x) = y, y in (0, 2), by bisection (erfc is decreasing); clamped to [-10, 10]. The
+// engine's own erfc (SchlierenPhysics.h), the one the weights use: the C library's moved in its last
+// bit at glibc 2.43, and with it the edge.
 double InverseErfc(double y)
 {
   double lo = -10, hi = 10;
   for (int i = 0; i < 200; ++i)
   {
     const double mid = 0.5 * (lo + hi);
-    if (std::erfc(mid) > y)
+    if (double(sch_erfc(static_cast<float>(mid))) > y)
       lo = mid;
     else
       hi = mid;
