@@ -112,7 +112,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   double emax = 0;
   for (const RayRecord& r : R0)
     if (!(r.Flags & RayBlocked))
-      emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
+      emax = std::max(emax, double(sch_hypot_d(r.DeflX, r.DeflY)));
   const double tol = in.Tolerance > 0 ? in.Tolerance : 0.01 * emax;
   double triError = 0;
   if (tryTri && tryCubic)
@@ -120,7 +120,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     for (std::size_t k = 0; k < refTri.size(); ++k)
       if (Comparable(refTri[k], refCubic[k]))
         triError = std::max(triError,
-          double(std::hypot(refTri[k].DeflX - refCubic[k].DeflX, refTri[k].DeflY - refCubic[k].DeflY)));
+          double(sch_hypot_d(refTri[k].DeflX - refCubic[k].DeflX, refTri[k].DeflY - refCubic[k].DeflY)));
     c.TrilinearError = triError;
     // trilinear only where its own error leaves at least half the tolerance to the integrator
     if (triError > 0.5 * tol)
@@ -192,7 +192,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     double d = 0;
     for (std::size_t k = 0; k < F.size(); ++k)
       if (Comparable(F[k], R[k]) && !((F[k].Flags | R[k].Flags) & RayBlocked))
-        d = std::max(d, double(std::hypot(F[k].DeflX - R[k].DeflX, F[k].DeflY - R[k].DeflY)));
+        d = std::max(d, double(sch_hypot_d(F[k].DeflX - R[k].DeflX, F[k].DeflY - R[k].DeflY)));
     floorDiff[static_cast<int>(rc)] = d;
     floorOf[static_cast<int>(rc)] = 1.5 * d;
   }
@@ -238,8 +238,8 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
         continue;
       if (T[k].Flags & bad)
         lost = true; // it fails (or steps over structure) where the reference does not
-      err = std::max(err, double(std::hypot(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
-      land = std::max(land, double(std::hypot(T[k].LandA - R[k].LandA, T[k].LandB - R[k].LandB)));
+      err = std::max(err, double(sch_hypot_d(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
+      land = std::max(land, double(sch_hypot_d(T[k].LandA - R[k].LandA, T[k].LandB - R[k].LandB)));
     }
     land /= film.PixelSize;
     if (lost)

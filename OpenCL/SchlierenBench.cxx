@@ -35,7 +35,7 @@ double InverseErfc(double y)
 double DiscShare(double t)
 {
   t = std::max(-1.0, std::min(1.0, t));
-  return (std::acos(t) - t * std::sqrt(1 - t * t)) / kPi;
+  return (sch_acos_d(t) - t * std::sqrt(1 - t * t)) / kPi;
 }
 }
 
@@ -52,7 +52,7 @@ double DiscInCircle(double a, double b, double d)
   const double ca = std::max(-1.0, std::min(1.0, (d * d + a * a - b * b) / (2 * d * a)));
   const double cb = std::max(-1.0, std::min(1.0, (d * d + b * b - a * a) / (2 * d * b)));
   const double k = std::sqrt(std::max(0.0, (-d + a + b) * (d + a - b) * (d - a + b) * (d + a + b)));
-  return (a * a * std::acos(ca) + b * b * std::acos(cb) - 0.5 * k) / (kPi * a * a);
+  return (a * a * sch_acos_d(ca) + b * b * sch_acos_d(cb) - 0.5 * k) / (kPi * a * a);
 }
 
 // the share of an isotropic Gaussian spot (sigma) centred s from the centre of a circle of radius

@@ -1472,4 +1472,75 @@ SCH_FN float sch_bos_pattern(float a, float b, float period, int kind, sch_uint 
   return I;
 }
 
+#ifndef __OPENCL_VERSION__
+/* The host's double functions that glibc changed between 2.31 (Debian 11) and 2.36 (Debian 12):
+ * atan, acos, hypot and tanh (the wedge's angles, the bench's disc and stop shares, the cone
+ * filter, the auto integrator's measures, the scenes' fronts). Built from +, -, *, /, sqrt and exp
+ * (exp did not change from 2.28 to 2.43); within a few ulp of the C library's. */
+/* atan(t), t >= 0: atan(k/8) + atan(u), u = (t - k/8) / (1 + t k/8), |u| <= 1/16, by its series */
+static inline double sch_atan_d(double x)
+{
+  static const double atan_k8[9] = { 0.0, 0.12435499454676144, 0.24497866312686414,
+    0.35877067027057225, 0.4636476090008061, 0.5585993153435624, 0.6435011087932844,
+    0.7188299996216245, 0.7853981633974483 };
+  double t = x < 0 ? -x : x, r;
+  int inv = t > 1.0, k, i;
+  if (x != x)
+    return x;
+  if (inv)
+    t = 1.0 / t; /* t = inf gives 0: pi/2 below */
+  k = (int)(t * 8.0 + 0.5);
+  {
+    double c = k * 0.125, u = (t - c) / (1.0 + t * c), z = u * u, sum = 0.0;
+    for (i = 17; i >= 3; i -= 2) /* u - u^3/3 + ... - u^19/19 */
+      sum = ((i & 2) ? -1.0 : 1.0) / i + z * sum;
+    r = atan_k8[k] + (u + u * z * sum);
+  }
+  if (inv)
+    r = 1.5707963267948966 - (r - 6.123233995736757e-17);
+  return x < 0 ? -r : r;
+}
+/* acos x = 2 atan sqrt((1 - x) / (1 + x)) */
+static inline double sch_acos_d(double x)
+{
+  if (!(x >= -1.0 && x <= 1.0))
+    return x != x ? x : NAN;
+  if (x == -1.0)
+    return 3.141592653589793;
+  return 2.0 * sch_atan_d(sqrt((1.0 - x) / (1.0 + x)));
+}
+/* hypot: scaled by a power of two where the squares would overflow or underflow */
+static inline double sch_hypot_d(double x, double y)
+{
+  double ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, m = ax > ay ? ax : ay;
+  if (ax == INFINITY || ay == INFINITY)
+    return INFINITY;
+  if (x != x || y != y)
+    return x + y;
+  if (m > 1e150 || (m < 1e-150 && m > 0.0))
+  {
+    int e = 0;
+    frexp(m, &e);
+    ax = ldexp(ax, -e);
+    ay = ldexp(ay, -e);
+    return ldexp(sqrt(ax * ax + ay * ay), e);
+  }
+  return sqrt(ax * ax + ay * ay);
+}
+/* tanh: its series below 1/16, 1 - 2 / (exp(2|x|) + 1) above */
+static inline double sch_tanh_d(double x)
+{
+  double a = x < 0 ? -x : x, r;
+  if (x != x)
+    return x;
+  if (a < 0.0625)
+  {
+    double z = x * x; /* x - x^3/3 + 2x^5/15 - 17x^7/315 + 62x^9/2835 - 1382x^11/155925 */
+    return x + x * z * (-1.0 / 3 + z * (2.0 / 15 + z * (-17.0 / 315 + z * (62.0 / 2835 + z * (-1382.0 / 155925)))));
+  }
+  r = a > 40.0 ? 1.0 : 1.0 - 2.0 / (exp(2.0 * a) + 1.0);
+  return x < 0 ? -r : r;
+}
+#endif
+
 #endif
