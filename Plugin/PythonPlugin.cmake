@@ -14,7 +14,7 @@ if(SCHLIEREN_PLUGIN_PYTHON3)
       --package "${PROJECT_SOURCE_DIR}/Python/schlieren"
       --output "${_pyplugin_dir}/SchlierenPython.py"
     COMMAND "${CMAKE_COMMAND}" -E copy "$<TARGET_FILE:schlieren_engine>"
-      "${_pyplugin_dir}/libschlieren_engine.so.1"
+      "${_pyplugin_dir}/$<TARGET_FILE_NAME:schlieren_engine>"
     DEPENDS "${PROJECT_SOURCE_DIR}/Plugin/make_python_plugin.py"
       "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml" ${_pyplugin_package} schlieren_engine
     COMMENT "Generating the ParaView Python plugin SchlierenPython.py")
