@@ -1527,6 +1527,25 @@ static inline double sch_hypot_d(double x, double y)
   }
   return sqrt(ax * ax + ay * ay);
 }
+/* exp(x) = 2^k exp(r), r = x - k ln 2 in two parts (|r| <= ln2/2), exp(r) by its Taylor series to
+ * r^14/14! (the remainder is below 1e-17 of it) */
+static inline double sch_exp_d(double x)
+{
+  double k, r, sum = 1.0;
+  int i;
+  if (x != x)
+    return x;
+  if (x > 709.78)
+    return INFINITY;
+  if (x < -745.2)
+    return 0.0;
+  k = floor(x * 1.4426950408889634 + 0.5);
+  /* ln 2 = 0.693147180369123816490 (31 significant bits: k * hi exact) + 1.90821492927058770e-10 */
+  r = (x - k * 0.693147180369123816490) - k * 1.90821492927058770e-10;
+  for (i = 14; i >= 1; --i)
+    sum = 1.0 + sum * r / i;
+  return ldexp(sum, (int)k);
+}
 /* tanh: its series below 1/16, 1 - 2 / (exp(2|x|) + 1) above */
 static inline double sch_tanh_d(double x)
 {
@@ -1538,7 +1557,7 @@ static inline double sch_tanh_d(double x)
     double z = x * x; /* x - x^3/3 + 2x^5/15 - 17x^7/315 + 62x^9/2835 - 1382x^11/155925 */
     return x + x * z * (-1.0 / 3 + z * (2.0 / 15 + z * (-17.0 / 315 + z * (62.0 / 2835 + z * (-1382.0 / 155925)))));
   }
-  r = a > 40.0 ? 1.0 : 1.0 - 2.0 / (exp(2.0 * a) + 1.0);
+  r = a > 40.0 ? 1.0 : 1.0 - 2.0 / (sch_exp_d(2.0 * a) + 1.0);
   return x < 0 ? -r : r;
 }
 #endif
