@@ -126,7 +126,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   double emax = 0;
   for (const RayRecord& r : R0)
     if (!(r.Flags & RayBlocked))
-      emax = std::max(emax, double(std::hypot(r.DeflX, r.DeflY)));
+      emax = std::max(emax, double(sch_hypot_d(r.DeflX, r.DeflY)));
   const double tol = in.Tolerance > 0 ? in.Tolerance : 0.01 * emax;
   double triError = 0;
   if (tryTri && tryCubic)
@@ -134,7 +134,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     for (std::size_t k = 0; k < refTri.size(); ++k)
       if (Comparable(refTri[k], refCubic[k]))
         triError = std::max(triError,
-          double(std::hypot(refTri[k].DeflX - refCubic[k].DeflX, refTri[k].DeflY - refCubic[k].DeflY)));
+          double(sch_hypot_d(refTri[k].DeflX - refCubic[k].DeflX, refTri[k].DeflY - refCubic[k].DeflY)));
     c.TrilinearError = triError;
     // Integrator Auto: trilinear only where its own error is within the tolerance: its
     // candidates then answer for it on top of their own (err + triError), so that the cheaper
@@ -183,7 +183,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     double d = 0;
     for (std::size_t k = 0; k < F.size(); ++k)
       if (Comparable(F[k], R[k]) && !((F[k].Flags | R[k].Flags) & RayBlocked))
-        d = std::max(d, double(std::hypot(F[k].DeflX - R[k].DeflX, F[k].DeflY - R[k].DeflY)));
+        d = std::max(d, double(sch_hypot_d(F[k].DeflX - R[k].DeflX, F[k].DeflY - R[k].DeflY)));
     floorDiff[static_cast<int>(rc)] = d;
     floorOf[static_cast<int>(rc)] = 1.5 * d;
   }
@@ -252,8 +252,8 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
         lost = true; // it fails where the reference does not
       if ((T[k].Flags & RayUnderresolved) && !(R[k].Flags & RayUnderresolved))
         over = true; // a step longer than a feature, where the reference's are not
-      err = std::max(err, double(std::hypot(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
-      land = std::max(land, double(std::hypot(T[k].LandA - R[k].LandA, T[k].LandB - R[k].LandB)));
+      err = std::max(err, double(sch_hypot_d(T[k].DeflX - R[k].DeflX, T[k].DeflY - R[k].DeflY)));
+      land = std::max(land, double(sch_hypot_d(T[k].LandA - R[k].LandA, T[k].LandB - R[k].LandB)));
     }
     land /= film.PixelSize;
     if (lost)

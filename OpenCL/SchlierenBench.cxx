@@ -14,14 +14,16 @@ namespace
 {
 const double kPi = 3.14159265358979323846;
 
-// x with erfc(x) = y, y in (0, 2), by bisection (erfc is decreasing); clamped to [-10, 10]
+// x with erfc(x) = y, y in (0, 2), by bisection (erfc is decreasing); clamped to [-10, 10]. The
+// engine's own erfc (SchlierenPhysics.h), the one the weights use: the C library's moved in its last
+// bit at glibc 2.43, and with it the edge.
 double InverseErfc(double y)
 {
   double lo = -10, hi = 10;
   for (int i = 0; i < 200; ++i)
   {
     const double mid = 0.5 * (lo + hi);
-    if (std::erfc(mid) > y)
+    if (double(sch_erfc(static_cast<float>(mid))) > y)
       lo = mid;
     else
       hi = mid;
@@ -33,7 +35,7 @@ double InverseErfc(double y)
 double DiscShare(double t)
 {
   t = std::max(-1.0, std::min(1.0, t));
-  return (std::acos(t) - t * std::sqrt(1 - t * t)) / kPi;
+  return (sch_acos_d(t) - t * std::sqrt(1 - t * t)) / kPi;
 }
 }
 
@@ -50,7 +52,7 @@ double DiscInCircle(double a, double b, double d)
   const double ca = std::max(-1.0, std::min(1.0, (d * d + a * a - b * b) / (2 * d * a)));
   const double cb = std::max(-1.0, std::min(1.0, (d * d + b * b - a * a) / (2 * d * b)));
   const double k = std::sqrt(std::max(0.0, (-d + a + b) * (d + a - b) * (d - a + b) * (d + a + b)));
-  return (a * a * std::acos(ca) + b * b * std::acos(cb) - 0.5 * k) / (kPi * a * a);
+  return (a * a * sch_acos_d(ca) + b * b * sch_acos_d(cb) - 0.5 * k) / (kPi * a * a);
 }
 
 // the share of an isotropic Gaussian spot (sigma) centred s from the centre of a circle of radius

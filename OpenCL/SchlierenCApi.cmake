@@ -11,9 +11,12 @@ set_target_properties(schlieren_engine PROPERTIES
 set(_schlieren_map "${CMAKE_CURRENT_BINARY_DIR}/schlieren_engine.map")
 file(WRITE "${_schlieren_map}" "{ global: schlieren_*; local: *; };\n")
 target_link_options(schlieren_engine PRIVATE "LINKER:--version-script=${_schlieren_map}"
-  "LINKER:--exclude-libs,ALL" "LINKER:--no-undefined")
+  "LINKER:--no-undefined")
+if(NOT SCHLIEREN_ZIG) # Zig's linker has no --exclude-libs; the version script hides them there
+  target_link_options(schlieren_engine PRIVATE "LINKER:--exclude-libs,ALL")
+endif()
 set_property(TARGET schlieren_engine APPEND PROPERTY LINK_DEPENDS "${_schlieren_map}")
-if(SCHLIEREN_STATIC_LIBSTDCXX)
+if(SCHLIEREN_STATIC_LIBSTDCXX AND NOT SCHLIEREN_ZIG) # Zig links its libc++ statically anyway
   target_link_options(schlieren_engine PRIVATE -static-libstdc++ -static-libgcc)
 endif()
 # a Python wheel (scikit-build-core, pyproject.toml): the library beside the package's modules
@@ -48,6 +51,9 @@ if(BUILD_TESTING)
   add_executable(TestCApi "${PROJECT_SOURCE_DIR}/Testing/Cxx/TestCApi.c")
   target_link_libraries(TestCApi PRIVATE schlieren_engine m)
   add_test(NAME engine.TestCApi COMMAND TestCApi)
+  # the hashes of a few images, to compare builds (scripts/windows-engine.sh)
+  add_executable(SchlierenTraceHash "${PROJECT_SOURCE_DIR}/Testing/Cxx/SchlierenTraceHash.c")
+  target_link_libraries(SchlierenTraceHash PRIVATE schlieren_engine)
   set_tests_properties(engine.TestCApi PROPERTIES LABELS engine
     ENVIRONMENT "SCHLIEREN_OPENCL_LIBRARY=/nonexistent/libOpenCL.so.1")
   # the C interface fuzzed (issue 48): the crashers as named cases, then 4000 seeded random calls

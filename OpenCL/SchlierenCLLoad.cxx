@@ -7,10 +7,18 @@
 #define SCH_CL_NO_REDIRECT
 #include "SchlierenCLLoad.h"
 
+#ifdef _WIN32
+#ifndef WIN32_LEAN_AND_MEAN
+#define WIN32_LEAN_AND_MEAN
+#endif
+#include <windows.h>
+#else
 #include <dlfcn.h>
+#endif
 
 #include <cstdlib>
 #include <mutex>
+#include <string>
 #include <type_traits>
 
 namespace schlieren
@@ -45,6 +53,15 @@ struct Stub<R (*)(A...)>
   }
 };
 
+void* SymbolOf(void* handle, const char* name)
+{
+#ifdef _WIN32
+  return reinterpret_cast<void*>(GetProcAddress(static_cast<HMODULE>(handle), name));
+#else
+  return dlsym(handle, name);
+#endif
+}
+
 struct Loaded
 {
   Functions Table;
@@ -62,11 +79,23 @@ Loaded& Load()
 #undef SCH_CL_STUB
     loaded.Table.clGetPlatformIDs_ = &StubPlatforms;
     const char* env = std::getenv("SCHLIEREN_OPENCL_LIBRARY");
+#ifdef _WIN32
+    // the ICD loader every Windows OpenCL driver installs in System32
+    const char* names[] = { env && *env ? env : "OpenCL.dll", "OpenCL.dll" };
+#else
     const char* names[] = { env && *env ? env : "libOpenCL.so.1", "libOpenCL.so" };
+#endif
     void* handle = nullptr;
     std::string tried;
     for (const char* name : names)
     {
+#ifdef _WIN32
+      handle = reinterpret_cast<void*>(LoadLibraryA(name)); // stays loaded until the process ends
+      if (handle)
+        break;
+      tried += std::string(tried.empty() ? "" : "; ") + name + ": Windows error " +
+        std::to_string(static_cast<unsigned long>(GetLastError()));
+#else
       // RTLD_NODELETE: the driver stays mapped until the process ends (its own exit handlers
       // run after the engine's, see ReleaseRuntime)
       handle = dlopen(name, RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
@@ -74,20 +103,25 @@ Loaded& Load()
         break;
       const char* e = dlerror();
       tried += std::string(tried.empty() ? "" : "; ") + (e ? e : name);
+#endif
       if (env && *env)
         break; // an explicit library: no fallback to another
     }
     if (!handle)
     {
       loaded.Why = "The OpenCL loader could not be opened (" + tried +
+#ifdef _WIN32
+        "): install your GPU's driver (it brings OpenCL.dll), set "
+#else
         "): install one (on Debian: apt-get install ocl-icd-libopencl1 pocl-opencl-icd), set "
+#endif
         "SCHLIEREN_OPENCL_LIBRARY to its path, or choose Backend CPU.";
       return;
     }
     Functions t = loaded.Table;
     std::string missing;
 #define SCH_CL_RESOLVE(name)                                                                       \
-  if (void* f = dlsym(handle, #name))                                                              \
+  if (void* f = SymbolOf(handle, #name))                                                           \
     t.name##_ = reinterpret_cast<decltype(&::name)>(f);                                            \
   else                                                                                             \
     missing += std::string(missing.empty() ? "" : ", ") + #name;

@@ -197,7 +197,7 @@ static void ParallelSlices(int nz, Body body)
 // of row values f0..f4. Built twice (the loop vectorises with AVX2's conversions of floats to
 // doubles, not with the baseline's SSE2), the CPU's clone chosen at load time: the same doubles,
 // the same decisions (no FMA in either clone).
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__) && defined(__linux__) // ifunc: ELF only
 __attribute__((target_clones("avx2", "default")))
 #endif
 static void FivePointTest(const float* f0, const float* f1, const float* f2, const float* f3,

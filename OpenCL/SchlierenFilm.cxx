@@ -330,7 +330,7 @@ float Splatter::CutoffWeight(float ex, float ey, float landA, double phase, sch_
     case Cutoff::Circular:
     case Cutoff::ComplementCircular:
       // a stop in mm: the share of the source's image, shifted by f2 |e|, it lets through
-      w = Bench.Stop ? static_cast<float>(StopWeight(Bench, S.SchlierenFocalLength * std::hypot(double(ex), double(ey))))
+      w = Bench.Stop ? static_cast<float>(StopWeight(Bench, S.SchlierenFocalLength * sch_hypot_d(double(ex), double(ey))))
                      : sch_circular_weight(ex, ey, k, S.Mode == Cutoff::ComplementCircular ? 1 : 0);
       break;
     case Cutoff::Interferometry:

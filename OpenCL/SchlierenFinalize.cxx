@@ -166,7 +166,7 @@ static void FilterSums(FilmSums& f, const TraceSettings& s)
     for (int dj = -radius; dj <= radius; ++dj)
       for (int di = -radius; di <= radius; ++di)
       {
-        kernel.push_back(std::max(0.0, 1.0 - std::hypot(di, dj) / (r + 0.5)));
+        kernel.push_back(std::max(0.0, 1.0 - sch_hypot_d(di, dj) / (r + 0.5)));
         sum += kernel.back();
       }
     for (double& k : kernel)

@@ -11,9 +11,17 @@
 #include <sstream>
 
 #include <new>
+#ifdef _WIN32
+#ifndef WIN32_LEAN_AND_MEAN
+#define WIN32_LEAN_AND_MEAN
+#endif
+#include <malloc.h>
+#include <windows.h>
+#else
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
+#endif
 
 namespace schlieren
 {
@@ -70,12 +78,25 @@ void CheckFinite(const char* property, const double* v, int n)
 
 std::uint64_t PhysicalMemory()
 {
+#ifdef _WIN32
+  MEMORYSTATUSEX m;
+  m.dwLength = sizeof(m);
+  return GlobalMemoryStatusEx(&m) ? std::uint64_t(m.ullTotalPhys) : 0;
+#else
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
   return pages > 0 && size > 0 ? std::uint64_t(pages) * std::uint64_t(size) : 0;
+#endif
 }
 
 std::uint64_t AvailableMemory()
 {
+#ifdef _WIN32
+  MEMORYSTATUSEX ms;
+  ms.dwLength = sizeof(ms);
+  std::uint64_t avail = GlobalMemoryStatusEx(&ms) ? std::uint64_t(ms.ullAvailPhys) : 0;
+  const std::uint64_t mw = GetRuntimeOptions().MemoryLimit;
+  return mw > 0 ? std::min(avail, mw) : avail;
+#else
   std::uint64_t avail = ProcKiB("/proc/meminfo", "MemAvailable");
   if (avail == 0)
     avail = PhysicalMemory();
@@ -90,6 +111,7 @@ std::uint64_t AvailableMemory()
   if (m > 0)
     avail = std::min(avail, m);
   return avail;
+#endif
 }
 
 std::string FormatBytes(double b)
@@ -147,7 +169,11 @@ void* AllocatePages(std::size_t bytes)
   const std::size_t page = 4096, huge = std::size_t(2) << 20;
   const std::size_t align = bytes >= 2 * huge ? huge : page;
   const std::size_t size = (std::max(bytes, page) + align - 1) / align * align;
+#ifdef _WIN32
+  void* p = _aligned_malloc(size, align); // freed with FreePages (_aligned_free)
+#else
   void* p = std::aligned_alloc(align, size);
+#endif
   if (!p)
     throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
@@ -162,6 +188,15 @@ void* AllocatePages(std::size_t bytes)
 double MaxSourceOverF1()
 {
   return 0.2; // docs/BENCH.md "Where the closed forms hold"
+}
+
+void FreePages(void* p)
+{
+#ifdef _WIN32
+  _aligned_free(p);
+#else
+  std::free(p);
+#endif
 }
 
 double MaxStepsAcross()

@@ -73,13 +73,15 @@ void CheckSettings(const TraceSettings& settings);
 void CheckPrecision(const Volume& volume, const TraceSettings& settings);
 
 /**
- * Page-aligned memory for `bytes` (at least a page), freed with std::free. Buffers of 4 MiB and
+ * Page-aligned memory for `bytes` (at least a page), freed with FreePages. Buffers of 4 MiB and
  * more are aligned to 2 MiB and asked for in transparent huge pages where Linux offers them on
  * request (madvise): a long step lands on a new 4 KiB page of the field at nearly every sample,
  * and each such page costs a walk of the page tables (in a VM, of two sets). Throws
  * std::bad_alloc.
  */
 void* AllocatePages(std::size_t bytes);
+/** Frees what AllocatePages returned (std::free; _aligned_free on Windows). */
+void FreePages(void* p);
 
 /**
  * Page-aligned storage (AllocatePages): a packed field held in it is used in place by a CPU
@@ -96,7 +98,7 @@ struct PageAlignedAllocator
   {
   }
   T* allocate(std::size_t n) { return static_cast<T*>(AllocatePages(n * sizeof(T))); }
-  void deallocate(T* p, std::size_t) { std::free(p); }
+  void deallocate(T* p, std::size_t) { FreePages(p); }
   // resize() leaves the new elements uninitialised: the packings write every one, and a zero
   // fill first would touch the memory twice, the first time (its page faults) on one thread
   template <typename U>

@@ -2,6 +2,7 @@
 #include "SchlierenScenes.h"
 #include "SchlierenEngine.h"
 #include "SchlierenIndexModels.h"
+#include "SchlierenPhysics.h" // sch_tanh_d: the same bits on every glibc
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +46,7 @@ ScenePointValues ScenePoint(Scene scene, const SceneParameters& p, double x, dou
     const double R = p.Radius * std::pow(std::max(p.Time, 1e-6), 0.4);
     // inside: 6 rho0 (r/R)^7.5 (Sedov-like), outside rho0, joined over the shock thickness
     const double inner = 6.0 * std::pow(std::min(r / R, 1.0), 7.5);
-    const double sw = 0.5 * (1.0 - std::tanh((r - R) / p.Width));
+    const double sw = 0.5 * (1.0 - sch_tanh_d((r - R) / p.Width));
     v.Density = p.Density * (1.0 + (inner - 1.0) * sw);
     v.NMinus1 = GladstoneDaleAir * v.Density;
     return v;
@@ -80,7 +81,7 @@ double SceneIndex(Scene scene, const SceneParameters& p, double x, double y, dou
     case Scene::NormalShock:
     {
       const double r = NormalShockDensityRatio(p.Mach);
-      const double rho = p.Density * (1.0 + (r - 1.0) * 0.5 * (1.0 + std::tanh(rx / p.Width)));
+      const double rho = p.Density * (1.0 + (r - 1.0) * 0.5 * (1.0 + sch_tanh_d(rx / p.Width)));
       return GladstoneDaleAir * rho;
     }
     default:

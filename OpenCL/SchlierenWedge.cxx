@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SchlierenWedge.h"
+#include "SchlierenPhysics.h" // sch_atan_d: the same bits on every glibc
 
 #include <algorithm>
 #include <cmath>
@@ -222,7 +223,7 @@ Wedge DetectWedge(const double* xyz, std::size_t n)
     w.Why = why.str();
     return w;
   }
-  const double phiU = std::atan(c.upper[1]), phiL = std::atan(c.lower[1]);
+  const double phiU = sch_atan_d(c.upper[1]), phiL = sch_atan_d(c.lower[1]);
   w.Angle = std::abs(phiU - phiL);
   if (w.Angle < 1e-9)
   {

@@ -15,7 +15,7 @@ if(SCHLIEREN_PLUGIN_PYTHON3)
       --output "${_pyplugin_dir}/SchlierenPython.py"
       --view "${PROJECT_SOURCE_DIR}/Plugin/schlieren_view.py"
     COMMAND "${CMAKE_COMMAND}" -E copy "$<TARGET_FILE:schlieren_engine>"
-      "${_pyplugin_dir}/libschlieren_engine.so.1"
+      "${_pyplugin_dir}/$<TARGET_FILE_NAME:schlieren_engine>"
     DEPENDS "${PROJECT_SOURCE_DIR}/Plugin/make_python_plugin.py"
       "${PROJECT_SOURCE_DIR}/Plugin/schlieren_view.py"
       "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml" ${_pyplugin_package} schlieren_engine

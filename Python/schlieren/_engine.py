@@ -7,6 +7,7 @@ folder (a wheel), then the system's loader path. Nothing here needs VTK.
 import ctypes
 import json
 import os
+import sys
 
 import numpy as np
 
@@ -30,13 +31,37 @@ class ArgumentTypeError(EngineError, TypeError):
     """An argument of a type or dtype that cannot be converted without changing it, named."""
 
 
+def _library_names():
+    """The engine library's file names on this platform, the versioned one first."""
+    if os.name == "nt":
+        return ["schlieren_engine.dll", "libschlieren_engine.dll"]  # MSVC's name, mingw-w64's
+    if sys.platform == "darwin":
+        return ["libschlieren_engine.1.dylib", "libschlieren_engine.dylib"]
+    return ["libschlieren_engine.so.1", "libschlieren_engine.so"]
+
+
+def _why(error):
+    """The reason a library did not load, in words: a C library older than it needs is named."""
+    import re
+    text = str(error)
+    needed = re.findall(r"GLIBC_([0-9]+\.[0-9]+)", text)
+    if needed:
+        have = os.confstr("CS_GNU_LIBC_VERSION") if hasattr(os, "confstr") else None
+        return ("it was built for a newer glibc (it asks for %s at least; the loader names the "
+                "first version it misses) than this system's %s: install the wheel "
+                "(manylinux_2_28: glibc 2.28 or newer) or build it here with pip install ."
+                % (max(needed, key=lambda v: tuple(int(x) for x in v.split("."))),
+                   have or "an older one"))
+    return text
+
+
 def _load():
     here = os.path.dirname(os.path.abspath(__file__))
+    names = _library_names()
     candidates = []
     if os.environ.get("SCHLIEREN_ENGINE_LIBRARY"):
         candidates.append(os.environ["SCHLIEREN_ENGINE_LIBRARY"])
-    candidates += [os.path.join(here, "libschlieren_engine.so.1"),
-                   os.path.join(here, "libschlieren_engine.so"), "libschlieren_engine.so.1"]
+    candidates += [os.path.join(here, n) for n in names] + names[:1]
     errors = []
     for path in candidates:
         if os.sep in path and not os.path.exists(path):
@@ -44,11 +69,13 @@ def _load():
         try:
             return ctypes.CDLL(path)
         except OSError as e:
-            errors.append("%s: %s" % (path, e))
-    raise ImportError("The Schlieren engine library (libschlieren_engine.so) was not found: "
+            errors.append("%s: %s" % (path, _why(e)))
+    if any("glibc" in e for e in errors):
+        raise ImportError("The Schlieren engine library could not be loaded: " + "; ".join(errors))
+    raise ImportError("The Schlieren engine library (%s) was not found: "
                       "install the package with pip, or set SCHLIEREN_ENGINE_LIBRARY to its "
-                      "path (a build tree has it in build/OpenCL/). Tried: "
-                      + "; ".join(errors or candidates))
+                      "path (a build tree has it in build/OpenCL/). Tried: %s"
+                      % (names[0], "; ".join(errors or candidates)))
 
 
 _lib = _load()

@@ -95,7 +95,8 @@ FIELDS = ["cutoff_scale", "photons", "passes", "samples", "failed_rays", "missed
 
 def field_data_list(fd):
     """Every array of an image's field data, in order: [name, "text" or "number", values], the
-    numbers as repr() text (exact, NaN equal to NaN). The C++ filter writes its field data from the
+    numbers as repr() text (exact, NaN equal to NaN), the device's name left out (its place kept) so
+    that lists written on another machine or PoCL compare too. The C++ filter writes its field data from the
     engine's report (schlieren::ImageReport) and the Python front end from the same report through
     the C interface: the two lists must be equal, names, order and values."""
     import re
@@ -107,6 +108,8 @@ def field_data_list(fd):
             values = [a.GetValue(j) for j in range(n)]
             if a.GetName() == "auto_report":  # the one timing in the report: the pilot's ms
                 values = [re.sub(r"rays, \d+ ms\)", "rays, ... ms)", v) for v in values]
+            if a.GetName() == "device":  # the machine's, not the image's: PoCL names its CPU
+                values = ["..."]         # device "pthread-<cpu>" in 3.1, "cpu-<cpu>" from 5.0 on
             out.append([a.GetName(), "text", values])
         else:
             out.append([a.GetName(), "number", [repr(float(a.GetValue(j))) for j in range(n)]])
