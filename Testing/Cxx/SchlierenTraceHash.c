@@ -43,7 +43,8 @@ int main(int argc, char** argv)
   float* n1 = (float*)malloc(sizeof(float) * 48 * 48 * 48);
   size_t c, a;
   int failures = 0;
-  if (!n1 || schlieren_fill_scene("Scene=GaussianSphere", dims, origin, spacing, n1, NULL, NULL, NULL))
+  if (!n1 || schlieren_fill_scene("Scene=GaussianSphere", dims, origin, spacing, 48 * 48 * 48, n1, NULL, NULL,
+                       NULL))
   {
     fprintf(stderr, "fill_scene: %s\n", schlieren_last_error());
     return 1;
@@ -68,7 +69,7 @@ int main(int argc, char** argv)
         ++failures;
       }
     }
-    if (schlieren_session_set_volume(s, dims, origin, spacing, n1, NULL, NULL, -1, 7) ||
+    if (schlieren_session_set_volume(s, dims, origin, spacing, n1, 48 * 48 * 48, NULL, 0, NULL, 0, -1, 7) ||
       schlieren_session_trace(s))
     {
       printf("%s: %s\n", cases[c][0], schlieren_session_error(s));
