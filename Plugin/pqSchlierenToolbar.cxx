@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pqSchlierenToolbar.h"
 #include "pqSchlierenMessages.h"
+#ifdef SCHLIEREN_OWN_HELP
+#include "SchlierenHelp.h"
+#endif
 
 #include "pqActiveObjects.h"
 #include "pqApplicationCore.h"
@@ -1168,6 +1171,10 @@ pqSchlierenToolbar::pqSchlierenToolbar(QWidget* parent)
 {
   this->setObjectName("SchlierenToolbar");
   new pqSchlierenMessages(this);
+#ifdef SCHLIEREN_OWN_HELP
+  // ParaView 5.12/5.13 with Qt 6: the help pages the plugin macro left out (SchlierenHelp.h)
+  SchlierenRegisterHelp();
+#endif
   if (std::getenv("SCHLIEREN_GUI_TRACE"))
   {
     std::fprintf(stderr, "schlieren-gui %.6f toolbar created\n", QDateTime::currentMSecsSinceEpoch() / 1000.0);

@@ -41,9 +41,10 @@ case "$SCHLIEREN_DEBIAN_RELEASE" in
   bookworm)
     SCHLIEREN_BUILD_PACKAGES+=(qtbase5-dev qttools5-dev qttools5-dev-tools libqt5svg5-dev
       qhelpgenerator-qt5 qtxmlpatterns5-dev-tools) ;;
-  trixie)  # ParaView 5.13 is built with Qt 6; its CMake files also look for FreeType
+  trixie)  # ParaView 5.13 is built with Qt 6; its CMake files also look for FreeType; Qt 5's
+    # xmlpatterns (the tool only) makes the plugin's help pages there (Plugin/SchlierenHelp.cmake)
     SCHLIEREN_BUILD_PACKAGES+=(qt6-base-dev qt6-tools-dev qt6-tools-dev-tools qt6-svg-dev qt6-5compat-dev
-      qt6-documentation-tools libfreetype-dev xsltproc) ;;
+      qt6-documentation-tools libfreetype-dev xsltproc qtxmlpatterns5-dev-tools) ;;
   *)  # sid: ParaView 6.1 on Debian's own VTK 9.6 (libvtk9-dev) with Qt 6
     SCHLIEREN_BUILD_PACKAGES+=(qt6-base-dev qt6-tools-dev qt6-tools-dev-tools qt6-svg-dev qt6-5compat-dev
       qt6-documentation-tools libfreetype-dev libvtk9-dev xsltproc) ;;
