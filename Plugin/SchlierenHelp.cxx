@@ -5,6 +5,7 @@
 #include "pqApplicationCore.h"
 
 #include <QByteArray>
+#include <QDateTime>
 #include <QDir>
 #include <QHelpEngine>
 #include <QString>
@@ -23,7 +24,8 @@ bool fail(const QString& why)
   qWarning().noquote() << "Schlieren: no help pages:" << why;
   if (std::getenv("SCHLIEREN_GUI_TRACE"))
   {
-    std::fprintf(stderr, "schlieren-gui help failed: %s\n", qPrintable(why));
+    std::fprintf(stderr, "schlieren-gui %.6f help failed why=%s\n",
+      QDateTime::currentMSecsSinceEpoch() / 1000.0, qPrintable(QString(why).replace(' ', '_')));
   }
   return false;
 }
@@ -77,8 +79,10 @@ bool SchlierenRegisterHelp()
     // what the "?" button of a Schlieren Image's panel will read
     const QByteArray page =
       engine->fileData(QUrl(QStringLiteral("qthelp://Schlieren.org/Schlieren/filters.SchlierenImage.html")));
-    std::fprintf(stderr, "schlieren-gui help registered %s (%lld bytes), namespaces %s, SchlierenImage page %lld bytes\n",
-      qPrintable(file->fileName()), static_cast<long long>(qch.size()),
+    // the GUI tests' trace format: "schlieren-gui <seconds> <event> <word> key=value..."
+    std::fprintf(stderr,
+      "schlieren-gui %.6f help registered qch=%s qch_bytes=%lld namespaces=%s page_bytes=%lld\n",
+      QDateTime::currentMSecsSinceEpoch() / 1000.0, qPrintable(file->fileName()), static_cast<long long>(qch.size()),
       qPrintable(engine->registeredDocumentations().join(QStringLiteral(","))),
       static_cast<long long>(page.size()));
   }

@@ -250,8 +250,14 @@ class Driver:
 
     def _read_stderr(self):
         for line in self.process.stderr:
-            if line.startswith("schlieren-gui "):
-                parts = line.split()
+            parts = line.split()
+            traced = len(parts) > 2 and parts[0] == "schlieren-gui"
+            if traced:
+                try:
+                    float(parts[1])
+                except ValueError:  # not the trace format: kept as stderr, never the reader's end
+                    traced = False
+            if traced:
                 if parts[2] in ("message", "hint"):
                     with self.lock:
                         self.messages.append((float(parts[1]), parts[2], parts[3],
