@@ -39,13 +39,9 @@ vtkRefractiveScene::vtkRefractiveScene()
 vtkRefractiveScene::~vtkRefractiveScene() = default;
 
 //------------------------------------------------------------------------------
-bool vtkRefractiveScene::ComputeGrid(double origin[3], double spacing[3])
+void vtkRefractiveScene::EngineParameters(
+  schlieren::SceneParameters& p, schlieren::BodyParameters& b) const
 {
-  // the numeric properties' ranges, those of their domains in Schlieren.xml, and finite vectors:
-  // the engine's check (schlieren::CheckSceneParameters), the same for every front end; outside,
-  // an error naming the property, the value and the range (a clamp would change the scene
-  // silently). TimeSteps is this filter's alone (the engine's scenes take one time).
-  schlieren::SceneParameters p;
   p.Amplitude = this->Amplitude;
   p.Width = this->Width;
   p.Radius = this->Radius;
@@ -55,10 +51,22 @@ bool vtkRefractiveScene::ComputeGrid(double origin[3], double spacing[3])
   p.Mach = this->Mach;
   p.Density = this->Density;
   p.Time = this->Time;
-  schlieren::BodyParameters b;
+  b.Shape = static_cast<schlieren::Body>(this->Body);
   b.Radius = this->BodyRadius;
   std::copy(this->BodyCenter, this->BodyCenter + 3, b.Center);
   std::copy(this->BodyAxis, this->BodyAxis + 3, b.Axis);
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveScene::ComputeGrid(double origin[3], double spacing[3])
+{
+  // the numeric properties' ranges, those of their domains in Schlieren.xml, and finite vectors:
+  // the engine's check (schlieren::CheckSceneParameters), the same for every front end; outside,
+  // an error naming the property, the value and the range (a clamp would change the scene
+  // silently). TimeSteps is this filter's alone (the engine's scenes take one time).
+  schlieren::SceneParameters p;
+  schlieren::BodyParameters b;
+  this->EngineParameters(p, b);
   try
   {
     schlieren::CheckSceneParameters(p, b);
@@ -204,15 +212,8 @@ std::string vtkRefractiveScene::FillPiece(vtkInformation* outInfo, vtkImageData*
   const vtkIdType count = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   const bool plume = this->Scene == HELIUM_PLUME;
   schlieren::SceneParameters p;
-  p.Amplitude = this->Amplitude;
-  p.Width = this->Width;
-  p.Radius = this->Radius;
-  std::copy(this->Center, this->Center + 3, p.Center);
-  p.GradientA = this->GradientA;
-  p.GradientB = this->GradientB;
-  p.Mach = this->Mach;
-  p.Density = this->Density;
-  p.Time = this->Time;
+  schlieren::BodyParameters b;
+  this->EngineParameters(p, b);
   if (this->Scene == BLAST_WAVE && this->TimeSteps > 0 &&
     outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
   {
@@ -220,11 +221,6 @@ std::string vtkRefractiveScene::FillPiece(vtkInformation* outInfo, vtkImageData*
     p.Time = std::max(1e-6, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), p.Time);
   }
-  schlieren::BodyParameters b;
-  b.Shape = static_cast<schlieren::Body>(this->Body);
-  b.Radius = this->BodyRadius;
-  std::copy(this->BodyCenter, this->BodyCenter + 3, b.Center);
-  std::copy(this->BodyAxis, this->BodyAxis + 3, b.Axis);
 
   vtkSmartPointer<vtkFloatArray> nMinus1, density, mixture;
   vtkNew<vtkUnsignedCharArray> solid;

@@ -50,6 +50,12 @@
 
 #include <string>
 
+namespace schlieren
+{
+struct SceneParameters;
+struct BodyParameters;
+}
+
 class SCHLIERENFILTERS_EXPORT vtkRefractiveScene : public vtkImageAlgorithm
 {
 public:
@@ -239,6 +245,9 @@ protected:
 
   /** Spacing and origin of the whole grid from Dimensions and Bounds; false (with an error) if invalid. */
   bool ComputeGrid(double origin[3], double spacing[3]);
+
+  /** The properties as the engine's scene and body parameters (one place for the check and the fill). */
+  void EngineParameters(schlieren::SceneParameters& p, schlieren::BodyParameters& b) const;
 
   int Scene = GAUSSIAN_SPHERE;
   int Dimensions[3] = { 64, 64, 64 };
