@@ -184,6 +184,13 @@ vtkDataArray* Matching(vtkDataSet* ds, const Field& f)
 
 namespace schlieren
 {
+bool SampledCellByCell(vtkDataObject* input)
+{
+  const std::vector<vtkDataSet*> leaves = Leaves(input);
+  return !leaves.empty() &&
+    std::none_of(leaves.begin(), leaves.end(), [](vtkDataSet* l) { return vtkImageData::SafeDownCast(l); });
+}
+
 vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* structure)
 {
   const std::vector<vtkDataSet*> leaves = Leaves(input);

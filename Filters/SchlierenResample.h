@@ -32,6 +32,10 @@ namespace schlieren
  * for a cell type the engine does not sample (a polyhedron: the message names it).
  */
 vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* mesh, vtkImageData* structure);
+
+/** Whether SampleCells takes `input`: a data set with cells that is not an image, or a composite
+ * data set whose blocks are such (an image, and blocks of images, go to the probe). */
+bool SampledCellByCell(vtkDataObject* input);
 } // namespace schlieren
 
 #endif

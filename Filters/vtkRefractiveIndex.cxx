@@ -885,10 +885,9 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
   vtkImageData* structure, const std::vector<std::string>& names)
 {
   vtkSmartPointer<vtkImageData> grid;
-  auto* mesh = vtkDataSet::SafeDownCast(input);
-  if (mesh && mesh->GetNumberOfCells() > 0 && !vtkImageData::SafeDownCast(mesh))
+  if (schlieren::SampledCellByCell(input))
   {
-    grid = schlieren::SampleCells(mesh, structure); // cell by cell: the probe's values, faster
+    grid = schlieren::SampleCells(input, structure); // cell by cell: the probe's values, faster
   }
   else
   {

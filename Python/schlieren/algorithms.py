@@ -10,7 +10,7 @@
 
 Property names, defaults and entries are the ParaView proxies'; they are keyword arguments and
 attributes (setting one marks the algorithm modified). Inputs may be any vtkDataSet: what is not
-an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first by RefractiveIndex
+an axis-aligned vtkImageData is resampled onto one (the engine's cell sampler) first by RefractiveIndex
 (a composite data set, a PLOT3D multiblock for example, too: its blocks onto one image);
 RefractionOctree, NumericalSchlieren and SchlierenImage take an axis-aligned vtkImageData and
 refuse anything else with the C++ filters' reason. Every output is one vtkImageData, whatever the
@@ -220,29 +220,159 @@ def _bounds(data):
     return data.GetBounds()
 
 
+def _sampling_box(data, bounds=None):
+    """The box RefractiveIndex resamples over: `bounds`, or the input's bounds pulled in by a hair
+    about their centre (the grid's outermost points then lie inside the outermost cells despite
+    round-off), as the C++ filter's."""
+    if bounds is not None:
+        return [float(b) for b in bounds]
+    from vtkmodules.vtkCommonDataModel import vtkBoundingBox
+    box = vtkBoundingBox(_bounds(data))
+    box.ScaleAboutCenter(1.0 - 1e-6)
+    b = [0.0] * 6
+    box.GetBounds(b)
+    return b
+
+
+def _leaves(data):
+    """The data sets with cells of `data` (itself, or a composite data set's blocks in order)."""
+    if isinstance(data, vtkDataSet):
+        return [data] if data.GetNumberOfCells() > 0 else []
+    leaves = []
+    it = data.NewIterator()
+    it.InitTraversal()
+    while not it.IsDoneWithTraversal():
+        leaf = it.GetCurrentDataObject()
+        if isinstance(leaf, vtkDataSet) and leaf.GetNumberOfCells() > 0:
+            leaves.append(leaf)
+        it.GoToNextItem()
+    return leaves
+
+
+def _mesh_of(ds):
+    """A data set's mesh as schlieren_sample_cells takes it (keyword arguments)."""
+    from vtkmodules.vtkCommonDataModel import (vtkDataSetAttributes, vtkStructuredGrid,
+                                               vtkUnstructuredGrid)
+    n2n = numpy_support.vtk_to_numpy
+    if not isinstance(ds, (vtkStructuredGrid, vtkUnstructuredGrid)):
+        # a rectilinear grid's voxels, a poly data's faces: as an unstructured grid
+        from vtkmodules.vtkFiltersCore import vtkAppendFilter
+        append = vtkAppendFilter()
+        append.AddInputData(ds)
+        append.Update()
+        ds = append.GetOutput()
+    points = ds.GetPoints()
+    mesh = dict(points=np.zeros((0, 3)) if points is None else n2n(points.GetData()))
+    cell_ghosts = ds.GetCellData().GetArray("vtkGhostType")
+    skip = None
+    if cell_ghosts is not None:
+        skip = (n2n(cell_ghosts) & vtkDataSetAttributes.HIDDENCELL) != 0
+    if isinstance(ds, vtkStructuredGrid):
+        d = ds.GetDimensions()
+        mesh["structured_dims"] = d
+        point_ghosts = ds.GetPointData().GetArray("vtkGhostType")
+        if point_ghosts is not None and min(d) > 1:
+            # a cell is hidden by one of its points too (vtkStructuredGrid::IsCellVisible)
+            hidden = ((n2n(point_ghosts) & vtkDataSetAttributes.HIDDENPOINT) != 0).reshape(
+                d[2], d[1], d[0])
+            corners = np.zeros((d[2] - 1, d[1] - 1, d[0] - 1), bool)
+            for dz in (0, 1):
+                for dy in (0, 1):
+                    for dx in (0, 1):
+                        corners |= hidden[dz:d[2] - 1 + dz, dy:d[1] - 1 + dy, dx:d[0] - 1 + dx]
+            skip = corners.reshape(-1) if skip is None else (skip | corners.reshape(-1))
+    else:
+        cells = ds.GetCells()
+        mesh["cell_types"] = n2n(ds.GetCellTypesArray())
+        mesh["offsets"] = n2n(cells.GetOffsetsArray())
+        mesh["connectivity"] = n2n(cells.GetConnectivityArray())
+    mesh["skip_cells"] = None if skip is None or not skip.any() else skip.astype(np.uint8)
+    return mesh
+
+
+def _sample_cells(data, dims, box):
+    """`data` (a data set or a composite data set) sampled cell by cell onto `dims` points over
+    `box` by the engine (schlieren_sample_cells), as the C++ RefractiveIndex samples it: every
+    point array of the first block that every block has, interpolated (float32 and float64 kept,
+    integers rounded back), every cell array the holding cell's value, and the valid-point mask."""
+    leaves = _leaves(data)
+    d = [int(x) for x in dims]
+    origin = [box[0], box[2], box[4]]
+    spacing = [(box[2 * a + 1] - box[2 * a]) / (d[a] - 1) if d[a] > 1 else 1.0 for a in range(3)]
+    out = vtkImageData()
+    out.SetDimensions(*d)
+    out.SetOrigin(*origin)
+    out.SetSpacing(*spacing)
+    found = np.zeros(d[0] * d[1] * d[2], np.uint8)
+    wanted = []  # (cells, name, vtk type, components), the first block's, kept where all have them
+    for cells in (0, 1):
+        attributes = (leaves[0].GetCellData() if cells else leaves[0].GetPointData()) if leaves \
+            else None
+        for i in range(attributes.GetNumberOfArrays() if attributes else 0):
+            a = attributes.GetArray(i)
+            if a is None or not a.GetName() or a.GetName() == "vtkGhostType" or \
+                    a.GetDataType() == 1 or \
+                    (cells and any(w[1] == a.GetName() and not w[0] for w in wanted)):
+                continue  # (1: VTK_BIT)
+            key = (cells, a.GetName(), a.GetDataType(), a.GetNumberOfComponents())
+
+            def has(leaf, key=key):
+                b = (leaf.GetCellData() if key[0] else leaf.GetPointData()).GetArray(key[1])
+                return b is not None and b.GetDataType() == key[2] and \
+                    b.GetNumberOfComponents() == key[3]
+            if all(has(leaf) for leaf in leaves):
+                wanted.append(key)
+    sampled = {}
+    for leaf in leaves:
+        arrays = [[], []]
+        for cells, name, _, _ in wanted:
+            a = (leaf.GetCellData() if cells else leaf.GetPointData()).GetArray(name)
+            arrays[cells].append((name, numpy_support.vtk_to_numpy(a)))
+        before = found.copy()
+        _, values = _engine.sample_cells(found=found, dims=d, origin=origin, spacing=spacing,
+                                         point_arrays=arrays[0], cell_arrays=arrays[1],
+                                         **_mesh_of(leaf))
+        here = (found != 0) & (before == 0)  # a later block wrote only the points it found
+        for key in wanted:
+            if key[1] in sampled:
+                sampled[key[1]][here] = values[key[1]][here]
+            else:
+                sampled[key[1]] = values[key[1]]
+    from vtkmodules.vtkCommonCore import vtkDataArray
+    for cells, name, vtk_type, components in wanted:
+        v = sampled[name]
+        a = vtkDataArray.CreateDataArray(vtk_type)
+        a.SetName(name)
+        a.SetNumberOfComponents(components)
+        a.SetNumberOfTuples(len(found))
+        target = numpy_support.vtk_to_numpy(a)
+        if not cells and target.dtype.kind in "iub":
+            # rounded as vtkDataArray::InterpolateTuple rounds (half away from zero)
+            v = np.where(v >= 0, np.floor(v + 0.5), np.ceil(v - 0.5))
+        target[...] = v.reshape(target.shape)
+        out.GetPointData().AddArray(a)
+    return out, found
+
+
 def _image_input(data, dims=None, bounds=None):
     """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
-    or resampled with vtkResampleToImage onto `dims` points over its bounds (or `bounds`)."""
+    or resampled cell by cell by the engine (the C++ RefractiveIndex's sampler) onto `dims`
+    points over its bounds pulled in by a hair (or `bounds`)."""
     if isinstance(data, vtkImageData):
         return data, None
-    from vtkmodules.vtkFiltersCore import vtkResampleToImage
-    r = vtkResampleToImage()
-    r.SetInputDataObject(data)
-    if bounds is not None:
-        r.SetUseInputBounds(0)
-        r.SetSamplingBounds(*[float(b) for b in bounds])
     if dims is None:
         dims = _engine.automatic_dimensions(_bounds(data), 128)
-    r.SetSamplingDimensions(*dims)
-    r.Update()
-    out = vtkImageData()
-    out.ShallowCopy(r.GetOutput())
-    mask = _point_array(out, r.GetMaskArrayName())
-    if mask is None or mask.all():
+    out, mask = _sample_cells(data, dims, _sampling_box(data, bounds))
+    if not mask.all():
         # kept where it says something, as the C++ filter does: NumericalSchlieren leaves the
         # points outside the input's cells out of its gradients
-        out.GetPointData().RemoveArray(r.GetMaskArrayName())
-    return out, (None if mask is None or mask.all() else np.ascontiguousarray(mask, np.uint8))
+        from vtkmodules.vtkCommonCore import vtkCharArray
+        m = vtkCharArray()
+        m.SetName("vtkValidPointMask")
+        m.SetNumberOfTuples(mask.size)
+        numpy_support.vtk_to_numpy(m)[:] = mask
+        out.GetPointData().AddArray(m)
+    return out, (None if mask.all() else mask)
 
 
 def _image_validity(image):
@@ -458,7 +588,7 @@ class RefractiveIndex(_Properties):
     def RequestInformation(self, request, inInfo, outInfo):
         # an image's grid is the input's (the executive copied it); a resampled input's grid is
         # known from its bounds, known once it has executed: it is updated now, as the C++ filter
-        # does, and the grid vtkResampleToImage will make is given downstream (SchlierenImage
+        # does, and the grid the cell sampler will fill is given downstream (SchlierenImage
         # plans its film from it; without it a view asks for an empty extent and shows nothing)
         src = inInfo[0].GetInformationObject(0)
         info = outInfo.GetInformationObject(0)
@@ -474,16 +604,10 @@ class RefractiveIndex(_Properties):
         if not isinstance(data, (vtkDataSet, vtkCompositeDataSet)) or \
                 data.GetNumberOfPoints() == 0:
             return 1  # RequestData says why
-        # the grid vtkResampleToImage makes (it says its origin and spacing in RequestData
-        # only): the bounds pulled in by a hair about their centre, as the C++ filter's
-        from vtkmodules.vtkCommonDataModel import vtkBoundingBox
+        # the grid the cell sampler fills: the bounds pulled in by a hair about their centre, as
+        # the C++ filter's
         dims = self._dims(data)
-        b = self._sampling_bounds()
-        if b is None:
-            box = vtkBoundingBox(_bounds(data))
-            box.ScaleAboutCenter(1.0 - 1e-6)
-            b = [0.0] * 6
-            box.GetBounds(b)
+        b = _sampling_box(data, self._sampling_bounds())
         info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
         info.Set(vtkImageData.ORIGIN(), b[0], b[2], b[4])
         info.Set(vtkImageData.SPACING(), *[(b[2 * a + 1] - b[2 * a]) / (dims[a] - 1)
