@@ -249,6 +249,18 @@ def _leaves(data):
     return leaves
 
 
+def _values(a):
+    """A VTK array's values as NumPy's (a copy where VTK's layout is not a plain array: the
+    implicit arrays newer VTKs keep offsets and cell types in)."""
+    try:
+        return numpy_support.vtk_to_numpy(a)
+    except Exception:
+        from vtkmodules.vtkCommonCore import vtkTypeInt64Array
+        plain = vtkTypeInt64Array()
+        plain.DeepCopy(a)
+        return numpy_support.vtk_to_numpy(plain)
+
+
 def _mesh_of(ds):
     """A data set's mesh as schlieren_sample_cells takes it (keyword arguments)."""
     from vtkmodules.vtkCommonDataModel import (vtkDataSetAttributes, vtkStructuredGrid,
@@ -283,9 +295,9 @@ def _mesh_of(ds):
             skip = corners.reshape(-1) if skip is None else (skip | corners.reshape(-1))
     else:
         cells = ds.GetCells()
-        mesh["cell_types"] = n2n(ds.GetCellTypesArray())
-        mesh["offsets"] = n2n(cells.GetOffsetsArray())
-        mesh["connectivity"] = n2n(cells.GetConnectivityArray())
+        mesh["cell_types"] = _values(getattr(ds, "GetCellTypesArray", ds.GetCellTypes)())
+        mesh["offsets"] = _values(cells.GetOffsetsArray())
+        mesh["connectivity"] = _values(cells.GetConnectivityArray())
     mesh["skip_cells"] = None if skip is None or not skip.any() else skip.astype(np.uint8)
     return mesh
 
@@ -780,7 +792,8 @@ class RefractiveIndex(_Properties):
         dims = [int(d) for d in self.SamplingDimensions]
         automatic = min(dims) <= 0
         if automatic:
-            dims = _engine.automatic_dimensions(self._sampling_bounds() or _bounds(data),
+            # over the box the grid spans (the bounds pulled in by a hair), as the C++ filter
+            dims = _engine.automatic_dimensions(_sampling_box(data, self._sampling_bounds()),
                                                 int(self.AutomaticDimension))
         # the resampled image is this process's to allocate: refused before, as the C++ filter
         # does (its arrays, the mask, and the engine's per-point share; a composite input: a few
