@@ -4,6 +4,7 @@
 #include "SchlierenResample.h"
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 #include "SchlierenSample.h"
 
 #include "vtkCellArray.h"
@@ -50,6 +51,18 @@ void ToMesh(vtkDataSet* ds, MeshArrays& m)
   auto* pointSet = vtkPointSet::SafeDownCast(ds);
   auto* coordinates =
     pointSet && pointSet->GetPoints() ? vtkDoubleArray::SafeDownCast(pointSet->GetPoints()->GetData()) : nullptr;
+  // the copies made below where VTK's layout is not the engine's: points in double, a byte per
+  // cell where some are hidden, the cells in 64 bits (8 ids per cell at most where they are read
+  // one by one)
+  auto* ug = vtkUnstructuredGrid::SafeDownCast(ds);
+  const bool cellsCopied = !vtkStructuredGrid::SafeDownCast(ds) &&
+    !(ug && ug->GetCells() && ug->GetCells()->IsStorage64Bit());
+  const double idBytes = ug && ug->GetCells() ? 8.0 * ug->GetCells()->GetNumberOfConnectivityIds() : 64.0 * nc;
+  schlieren::CheckHostMemory((coordinates ? 0.0 : 24.0 * np) + (ds->GetCellGhostArray() ? 1.0 * nc : 0.0) +
+      (cellsCopied ? (ug ? 8.0 : 9.0) * nc + idBytes : 0.0),
+    "The cell sampler's copy of a mesh of " + std::to_string(np) + " points and " +
+      std::to_string(nc) + " cells",
+    "Give the mesh in fewer pieces or with fewer cells.");
   if (coordinates && coordinates->GetNumberOfComponents() == 3)
   {
     m.Mesh.Points = coordinates->GetPointer(0);
@@ -79,7 +92,7 @@ void ToMesh(vtkDataSet* ds, MeshArrays& m)
       }
     }
   }
-  else if (auto* ug = vtkUnstructuredGrid::SafeDownCast(ds))
+  else if (ug)
   {
     vtkUnsignedCharArray* types = ug->GetCellTypesArray();
     m.Mesh.CellTypes = types ? types->GetPointer(0) : nullptr;

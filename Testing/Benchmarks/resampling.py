@@ -67,7 +67,10 @@ def main():
     theirs = ResampleToImage(Input=dens, SamplingDimensions=d, UseInputBounds=1)
 
     def touch(proxy):
-        return lambda: proxy.GetClientSideObject().Modified()  # execute again, input unchanged
+        def again():  # execute again, input unchanged (the proxy too must be told: else its
+            proxy.GetClientSideObject().Modified()  # UpdatePipeline does nothing, 0.00 s)
+            proxy.SMProxy.MarkModified(proxy.SMProxy)
+        return again
 
     # the probe RefractiveIndex ran before it sampled cell by cell (vtkCompositeDataProbeFilter)
     from vtkmodules.vtkCommonDataModel import vtkImageData
