@@ -280,7 +280,8 @@ def _mesh_of(ds):
     if cell_ghosts is not None:
         skip = (n2n(cell_ghosts) & vtkDataSetAttributes.HIDDENCELL) != 0
     if isinstance(ds, vtkStructuredGrid):
-        d = ds.GetDimensions()
+        d = [0, 0, 0]
+        ds.GetDimensions(d)  # (VTK 9.6 and later have no GetDimensions() that returns them)
         mesh["structured_dims"] = d
         point_ghosts = ds.GetPointData().GetArray("vtkGhostType")
         if point_ghosts is not None and min(d) > 1:
