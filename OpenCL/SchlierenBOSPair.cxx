@@ -9,6 +9,7 @@
 #include "SchlierenEngineInternal.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
