@@ -196,7 +196,9 @@ void WriteFile(const std::string& path, const std::string& bytes)
 
 std::string Vector3(const double v[3])
 {
-  return "[" + JsonNumber(v[0]) + ", " + JsonNumber(v[1]) + ", " + JsonNumber(v[2]) + "]";
+  // + 0.0: a -0 component (of a cross product) is written as 0
+  return "[" + JsonNumber(v[0] + 0.0) + ", " + JsonNumber(v[1] + 0.0) + ", " +
+    JsonNumber(v[2] + 0.0) + "]";
 }
 
 } // namespace
@@ -321,9 +323,11 @@ BOSPairFiles WriteBOSPair(const SessionImage& image, const BOSPairRequest& reque
     << "  \"pixel_size_units\": \"world units (m) on the film plane: the plane through the "
        "volume's centre\",\n"
     << "  \"image_origin\": [" << JsonNumber(origin[0]) << ", " << JsonNumber(origin[1])
-    << "],\n  \"image_origin_meaning\": \"the film coordinates (world units along film_axes x and "
-       "y) of the "
-       "centre of the bottom-left pixel: the last row's first pixel in the files\",\n"
+    << "],\n  \"image_origin_meaning\": \"where the centre of the bottom-left pixel (the last "
+       "row's "
+       "first pixel in the files) lies along film_axes x and y, world units from the world's "
+       "origin: "
+       "the origin of the image's vtkImageData\",\n"
     << "  \"film_axes\": {\"x\": " << Vector3(film.Right) << ", \"y\": " << Vector3(film.Up)
     << ", \"beam\": " << Vector3(film.Direction) << ", \"volume_centre\": " << Vector3(film.Center)
     << "},\n"
