@@ -49,9 +49,10 @@ if have != made_as:
         offline = any(s in text for s in ("Name or service not known", "Temporary failure in name",
                                           "No matching distribution", "Network is unreachable",
                                           "Could not fetch URL", "Failed to establish"))
-        if args.skip_on_install_failure and not offline:
-            print("frontend_venv: SKIPPED: pip could not install %s (see above): the script "
-                  "that needs it is not run." % wanted)
+        if args.skip_on_install_failure:
+            print("frontend_venv: SKIPPED: pip could not install %s (see above: PyPI out of "
+                  "reach, or no wheel for this Python): %s is not run."
+                  % (wanted, os.path.basename(script[0]) if script else "the script"))
             sys.exit(77)
         if offline:
             print("frontend_venv: SKIPPED: PyPI could not be reached to install %s (see above); "
