@@ -161,6 +161,7 @@ std::string EncodeTiff(const std::vector<float>& values, int nx, int ny, int bit
     { 259, 3, 1 },
     { 262, 3, 1 },
     { 273, 4, stripAt },
+    { 274, 3, 1 }, // orientation: the first row is the top (the default, said for VTK's reader)
     { 277, 3, 1 },
     { 278, 4, static_cast<std::uint32_t>(ny) },
     { 279, 4, static_cast<std::uint32_t>(pixels.size()) },

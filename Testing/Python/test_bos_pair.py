@@ -19,6 +19,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
+import numpy as np
 from paraview.simple import *  # noqa: F401,F403
 
 import schlieren_testing as st
@@ -64,6 +65,39 @@ T.check(raw8[:8] == b"\x89PNG\r\n\x1a\n" and raw16[:4] == b"II*\x00",
         "PNG and little-endian TIFF signatures")
 T.check(len(raw16) > 2 * 96 * 80, "16-bit TIFF holds 2 bytes a pixel (%d bytes)" % len(raw16))
 
+# VTK's readers read them: the 16-bit PNG and TIFF hold the same levels, the 8-bit PNG those
+# rounded to 8 bits; the files' first row is the film's top (vtk readers flip it back to row 0 at
+# the bottom, as the image's intensity)
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkTIFFReader  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from paraview import servermanager as sm  # noqa: E402
+
+d16 = os.path.join(out, "cpp16png")
+os.makedirs(d16)
+T.check(f.WriteBOSPair(d16, 16, "png") == 1, "C++ WriteBOSPair(16, png)")
+
+
+def read(reader, path):
+    r = reader()
+    r.SetFileName(path)
+    r.Update()
+    img = r.GetOutput()
+    return vtk_to_numpy(img.GetPointData().GetScalars()).astype(float).reshape(
+        img.GetDimensions()[1], img.GetDimensions()[0])
+
+
+png16 = read(vtkPNGReader, os.path.join(d16, "bos_recording.png"))
+tif16 = read(vtkTIFFReader, os.path.join(out, "cpp16", "bos_recording.tif"))
+png8 = read(vtkPNGReader, os.path.join(out, "cpp8", "bos_recording.png"))
+intensity = vtk_to_numpy(sm.Fetch(bos).GetPointData().GetArray("intensity")).reshape(80, 96)
+# vtkTIFFReader does not flip a top-left TIFF (its OrientationType 1, the default, keeps the
+# file's first row as row 0; PIL and imageio read it as PIV codes do: python.bos_openpiv)
+T.check(png16.shape == (80, 96) and np.array_equal(png16, tif16[::-1]),
+        "16-bit PNG and TIFF: the same levels (vtkPNGReader, vtkTIFFReader)")
+T.close(png8, np.round(png16 / 65535 * 255), 0.5 + 1e-9, "8-bit PNG: the 16-bit levels rounded")
+T.close(png16 / 65535, np.clip(intensity, 0, 1), 0.5 / 65535 + 1e-7,
+        "16-bit levels: the image's intensity times 65535, rounded, row 0 at the bottom")
+
 # bad input through the filter: one line each, nothing written
 for args, words in (((os.path.join(out, "missing"), 8, "png"), "does not exist"),
                     ((out, 12, "png"), "use 8 or 16"),
@@ -82,7 +116,8 @@ T.check(fresh.GetClientSideObject().WriteBOSPair(out, 8, "png") == 0 and
         "no BOS image" in fresh.GetClientSideObject().GetBOSPairMessage(),
         "C++ WriteBOSPair before any update refused: %s"
         % fresh.GetClientSideObject().GetBOSPairMessage())
-T.check(sorted(os.listdir(out)) == ["cpp16", "cpp8"], "no file written by a refused call")
+T.check(sorted(os.listdir(out)) == ["cpp16", "cpp16png", "cpp8"],
+        "no file written by a refused call")
 
 # 2. the C interface through the Python package, the same film: the same bytes
 child = r'''
