@@ -40,37 +40,12 @@ thread_local std::string Returned;
 
 std::string Json(const std::string& s)
 {
-  std::string out = "\"";
-  for (unsigned char c : s)
-  {
-    switch (c)
-    {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default:
-        if (c < 0x20)
-        {
-          char buf[8];
-          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-          out += buf;
-        }
-        else
-          out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
+  return schlieren::JsonString(s);
 }
 
 std::string Number(double v)
 {
-  if (!std::isfinite(v))
-    return v != v ? "NaN" : (v > 0 ? "Infinity" : "-Infinity"); // Python's json reads these
-  char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
+  return schlieren::JsonNumber(v);
 }
 
 /** The numbers of a text value ("0 0 -1", "512,512") and, where `tokens` is given, their text as
@@ -554,29 +529,10 @@ void MakeReport(schlieren_session* s, const std::string& error)
 {
   const schlieren::SessionImage& image = s->Image;
   std::ostringstream o;
-  o << "{\"field_data\": {";
-  if (error.empty())
-  {
-    // the engine's one list (vtkSchlierenImage writes the same as its field data)
-    bool first = true;
-    for (const schlieren::ReportEntry& e : schlieren::ImageReport(image))
-    {
-      o << (first ? "" : ", ") << Json(e.Name) << ": ";
-      first = false;
-      if (e.IsText)
-        o << Json(e.Text);
-      else if (e.Numbers.size() == 1)
-        o << Number(e.Numbers[0]);
-      else
-      {
-        o << "[";
-        for (std::size_t i = 0; i < e.Numbers.size(); ++i)
-          o << (i ? ", " : "") << Number(e.Numbers[i]);
-        o << "]";
-      }
-    }
-  }
-  o << "}, \"notes\": [";
+  o << "{\"field_data\": ";
+  // the engine's one list (vtkSchlierenImage writes the same as its field data)
+  o << (error.empty() ? schlieren::ImageReportJson(image) : std::string("{}"));
+  o << ", \"notes\": [";
   for (std::size_t i = 0; i < image.Notes.size(); ++i)
     o << (i ? ", " : "") << "{\"warning\": " << (image.Notes[i].Warning ? "true" : "false")
       << ", \"text\": " << Json(image.Notes[i].Text) << "}";
@@ -882,6 +838,34 @@ int schlieren_session_trace(schlieren_session* handle)
     s->Report = "{\"field_data\": {}, \"notes\": [], \"error\": \"Out of memory.\"}";
   }
   return rc;
+}
+
+int schlieren_session_write_bos_pair(schlieren_session* handle, const char* folder, int bits,
+  const char* format, const char* prefix, const char** written)
+{
+  Held h(handle, "schlieren_session_write_bos_pair");
+  if (!h)
+    return 1;
+  schlieren_session* s = h.get();
+  if (written)
+    *written = nullptr;
+  if (!s->HasImage)
+  {
+    s->Error = "schlieren_session_write_bos_pair: no image: trace one with Cutoff BOS first.";
+    return 1;
+  }
+  return Guard(s->Error, [&] {
+    schlieren::BOSPairRequest request;
+    request.Folder = folder ? folder : "";
+    request.Bits = bits;
+    request.Format = format ? format : "png";
+    request.Prefix = prefix ? prefix : "bos";
+    const schlieren::BOSPairFiles files = schlieren::WriteBOSPair(s->Image, request);
+    s->Text = "{\"background\": " + Json(files.Background) + ", \"recording\": " +
+      Json(files.Recording) + ", \"side_file\": " + Json(files.SideFile) + "}";
+    if (written)
+      *written = s->Text.c_str();
+  });
 }
 
 const float* schlieren_session_array(

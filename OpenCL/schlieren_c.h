@@ -137,6 +137,20 @@ SCHLIEREN_C_API int schlieren_session_plan_film(schlieren_session* s, const int 
  */
 SCHLIEREN_C_API const char* schlieren_session_report(const schlieren_session* s);
 
+/**
+ * BOS for cross-correlation codes (OpenPIV and other PIV software; docs/BENCH.md "BOS image
+ * pairs"): writes the last trace's BOS recording and its undistorted background (the same film
+ * without the flow) into the existing `folder` as `<prefix>_background.<ext>` and
+ * `<prefix>_recording.<ext>`, grey, `bits` 8 or 16, `format` "png" or "tiff" (NULL: "png"), with
+ * the side file `<prefix>.json` (the pixel size, the bench, the displacement's units and sign;
+ * `prefix` NULL: "bos"). `written` (may be NULL) gets JSON {"background", "recording",
+ * "side_file"}: the paths, owned by the session. Non-zero, with a one-line
+ * schlieren_session_error(): no trace, a trace that is not Cutoff BOS, a folder that does not
+ * exist, a bit depth other than 8 or 16, an unknown format, a file that cannot be written.
+ */
+SCHLIEREN_C_API int schlieren_session_write_bos_pair(schlieren_session* s, const char* folder,
+  int bits, const char* format, const char* prefix, const char** written);
+
 /* The other stages' engine functions, for front ends that make their own volumes. */
 
 /**

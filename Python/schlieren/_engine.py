@@ -109,6 +109,8 @@ _sig("schlieren_session_film", ctypes.c_int, ctypes.c_void_p, ctypes.c_int * 2,
 _sig("schlieren_session_plan_film", ctypes.c_int, ctypes.c_void_p, _c_int3, _c_double3,
      _c_double3, ctypes.c_int * 2, ctypes.c_double * 2, ctypes.POINTER(ctypes.c_double))
 _sig("schlieren_session_report", ctypes.c_char_p, ctypes.c_void_p)
+_sig("schlieren_session_write_bos_pair", ctypes.c_int, ctypes.c_void_p, ctypes.c_char_p,
+     ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p))
 _sig("schlieren_fill_scene", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3, _c_double3,
      _i64, _f32p, _f32p, _f32p, _u8p)
 _sig("schlieren_octree_levels", ctypes.c_int, _c_int3, _f32p, _i64, ctypes.c_double, ctypes.c_int,
@@ -541,3 +543,21 @@ class Session:
         if _lib.schlieren_session_film(s, size, origin, ctypes.byref(px)):
             raise self._error()
         return list(size), list(origin), px.value
+
+    def write_bos_pair(self, folder, bits=8, format="png", prefix="bos"):
+        """The last trace (Cutoff BOS) as an image pair for PIV codes (docs/BENCH.md "BOS image
+        pairs"): <prefix>_background and <prefix>_recording (grey PNG or TIFF, 8 or 16 bits) and
+        the side file <prefix>.json in the existing `folder`. Returns the paths {"background",
+        "recording", "side_file"}; raises EngineError with one line on bad input."""
+        s = self._live("write_bos_pair")
+        if isinstance(bits, bool) or not isinstance(bits, (int, np.integer)):
+            raise ArgumentTypeError("write_bos_pair: bits must be 8 or 16, not %r" % (bits,))
+        if not -2 ** 31 <= bits < 2 ** 31:
+            raise ArgumentError("write_bos_pair: a bit depth of %d is not one PIV codes read "
+                                "here: use 8 or 16." % bits)
+        written = ctypes.c_char_p()
+        if _lib.schlieren_session_write_bos_pair(s, os.fsencode(str(folder)), int(bits),
+                                                 str(format).encode(), str(prefix).encode(),
+                                                 ctypes.byref(written)):
+            raise self._error()
+        return json.loads(_text(written.value))

@@ -1031,6 +1031,15 @@ class SchlierenImage(_Properties):
             (_field_string if isinstance(v, str) else _field_number)(out, k, v)
         return 1
 
+    def WriteBOSPair(self, folder, bits=8, format="png", prefix="bos"):
+        """The last image (Cutoff BOS) as an image pair for PIV codes, OpenPIV and others: the
+        undistorted background and the recording (grey PNG or TIFF, 8 or 16 bits) and a JSON side
+        file (pixel size, bench, the displacement's units and sign) in the existing `folder`
+        (docs/BENCH.md "BOS image pairs"). Returns the paths {"background", "recording",
+        "side_file"}; raises EngineError (one line) on bad input. The C++ filter's
+        WriteBOSPair writes the same files."""
+        return self._session.write_bos_pair(folder, bits, format, prefix)
+
     def RequestInformation(self, request, inInfo, outInfo):
         # the film's extent, as the C++ filter gives it: from the input's grid and the settings
         # (a non-image input is resampled in RequestData; its film is known only then)

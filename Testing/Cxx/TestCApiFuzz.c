@@ -225,6 +225,16 @@ static void fixed_cases(void)
     "fixed: a foreign pointer refused, not followed", schlieren_last_error());
   EXPECT(schlieren_session_film(s, NULL, NULL, NULL) != 0 && has(schlieren_session_error(s), "no image"),
     "fixed: film before a trace says there is no image", schlieren_session_error(s));
+  {
+    /* issue 51: the BOS pair writer with no image, NULL arguments, a freed or foreign handle */
+    const char* written = "unset";
+    EXPECT(schlieren_session_write_bos_pair(s, NULL, 8, NULL, NULL, &written) != 0 && written == NULL &&
+        has(schlieren_session_error(s), "no image"),
+      "the BOS pair before a trace: no image, nothing written", schlieren_session_error(s));
+    EXPECT(schlieren_session_write_bos_pair(gone, "/tmp", 8, "png", "bos", NULL) != 0 &&
+        schlieren_session_write_bos_pair((schlieren_session*)(void*)bytes, "/tmp", 8, "png", "bos", NULL) != 0,
+      "the BOS pair on a freed or foreign handle refused", schlieren_last_error());
+  }
   schlieren_session_free(s);
   free(grid);
   free(grad);
