@@ -205,9 +205,10 @@ else:
     flat_image = schlieren.SchlierenImage(Resolution=[16, 16], Backend="CPU")
     flat_image.SetInputConnection(flat.GetOutputPort())
     flat_image.Update()
-    check("Symmetry" in flat_image.LastError and "Python front end's takes None only" in
-          flat_image.LastError, "a 2D volume: the advice does not send the Python front end's "
-          "user to a Symmetry it refuses", flat_image.LastError[-110:])
+    check("Set Symmetry to Planar" in flat_image.LastError and "None only" not in
+          flat_image.LastError, "a 2D volume: the advice sends the user to Symmetry Planar, which "
+          "the Python front end's RefractiveIndex has (as the C++ plugin's)",
+          flat_image.LastError[-110:])
     wavelet = vtkRTAnalyticSource()
     wavelet.SetWholeExtent(-5, 5, -5, 5, -5, 5)
     grid = vtkAppendFilter()   # an unstructured grid: resampled by RefractiveIndex
