@@ -444,7 +444,26 @@ def _image_input(data, dims=None, bounds=None):
         return data, None
     if dims is None:
         dims = _engine.automatic_dimensions(_bounds(data), 128)
-    out, mask = _sample_cells(data, dims, _sampling_box(data, bounds))
+    box = _sampling_box(data, bounds)
+    if any(isinstance(leaf, vtkImageData) for leaf in _cell_leaves(data)):
+        # blocks of images: probed, as the C++ filter probes them (SchlierenResample.h)
+        from vtkmodules.vtkFiltersCore import vtkCompositeDataProbeFilter
+        structure = vtkImageData()
+        structure.SetDimensions(*dims)
+        structure.SetOrigin(box[0], box[2], box[4])
+        structure.SetSpacing(*[(box[2 * a + 1] - box[2 * a]) / (dims[a] - 1) if dims[a] > 1
+                               else 1.0 for a in range(3)])
+        probe = vtkCompositeDataProbeFilter()
+        probe.SetInputData(structure)
+        probe.SetSourceData(data)
+        probe.SetValidPointMaskArrayName("vtkValidPointMask")
+        probe.Update()
+        out = vtkImageData()
+        out.ShallowCopy(probe.GetOutput())
+        mask = np.ascontiguousarray(_point_array(out, "vtkValidPointMask") != 0, np.uint8)
+        out.GetPointData().RemoveArray("vtkValidPointMask")
+    else:
+        out, mask = _sample_cells(data, dims, box)
     if not mask.all():
         # kept where it says something, as the C++ filter does: NumericalSchlieren leaves the
         # points outside the input's cells out of its gradients
