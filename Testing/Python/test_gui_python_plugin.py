@@ -334,4 +334,12 @@ if boxes:
                           gui_driver.read_ppm(shot_after)[y:y + h, x:x + w]).sum(axis=2) > 0).sum())
     check(changed > 1000, "the image's 2D view shows the image after the drag (%d of its %d pixels "
           "changed)" % (changed, w * h))
+# the panel's "?" (right of Delete): ParaView's help window, which has a page for a proxy only where
+# a registered Qt help collection holds <group>.<name>.html (a Python plugin can register none)
+xdo("mousemove", 270, 508)
+xdo("click", 1)
+helpw = gd.wait_for('a help window after a click on the panel\'s "?"', lambda: windows("Online Help"), 30)
+time.sleep(2.0)
+say("the help window the '?' opened for the Python plugin's SchlierenImage: %s" % screenshot("help"))
+check(bool(helpw), "the panel's '?' opens ParaView's help window (%s)" % helpw)
 gd.finish()
