@@ -448,15 +448,18 @@ std::string PropertyProblem(vtkRefractiveIndex* self)
   // the values, read here; their ranges are the engine's (schlieren::PropertyRangeProblem, which
   // the Python front end calls through schlieren_check_property)
   const int* species = self->GetSpeciesGases();
+  const double* speciesK = self->GetSpeciesGladstoneDale();
+  const double* speciesM = self->GetSpeciesMolarMass();
   const int* sampling = self->GetSamplingDimensions();
   const int* walls = self->GetBodyWallFaces();
   const std::vector<std::pair<const char*, std::vector<double>>> values = {
     { "GladstoneDaleConstant", { self->GetGladstoneDaleConstant() } },
     { "MolarMass", { self->GetMolarMass() } },
     { "NumberOfSpecies", { double(self->GetNumberOfSpecies()) } },
-    { "SpeciesGases", { double(species[0]), double(species[1]), double(species[2]), double(species[3]) } },
-    { "SpeciesGladstoneDale", std::vector<double>(self->GetSpeciesGladstoneDale(), self->GetSpeciesGladstoneDale() + 4) },
-    { "SpeciesMolarMass", std::vector<double>(self->GetSpeciesMolarMass(), self->GetSpeciesMolarMass() + 4) },
+    { "SpeciesGases",
+      { double(species[0]), double(species[1]), double(species[2]), double(species[3]) } },
+    { "SpeciesGladstoneDale", std::vector<double>(speciesK, speciesK + 4) },
+    { "SpeciesMolarMass", std::vector<double>(speciesM, speciesM + 4) },
     { "BalanceGladstoneDale", { self->GetBalanceGladstoneDale() } },
     { "BalanceMolarMass", { self->GetBalanceMolarMass() } },
     { "DensityReference", { self->GetDensityReference() } },

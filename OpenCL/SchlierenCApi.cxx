@@ -1572,7 +1572,8 @@ int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims
   });
 }
 
-int schlieren_check_property(const char* proxy, const char* property, const double* values, int count)
+int schlieren_check_property(
+  const char* proxy, const char* property, const double* values, int count)
 {
   return Guard(LastError, [&] {
     if (!proxy || !property || (count > 0 && !values) || count < 0)

@@ -748,7 +748,8 @@ static void random_case(int k)
         below(2) ? "Lower it." : NULL);
       outcome(F_MEMORY, rc, schlieren_last_error(), what);
       {
-        static const char* const proxies[] = { "RefractiveIndex", "RefractionOctree", "Nothing", "" };
+        static const char* const proxies[] = { "RefractiveIndex", "RefractionOctree", "Nothing",
+          "" };
         static const char* const props[] = { "Wavelength", "SamplingDimensions", "BodyWallFaces",
           "Tolerance", "BodyFromGrid", "NoSuchName", "" };
         const int count = below(4) ? (int)below(7) : -3;
