@@ -138,12 +138,15 @@ int vtkRefractionOctree::RequestData(
   std::vector<float> n1;
   int dims[3] = { 0, 0, 0 };
   std::string problem;
-  // MaxLevel's range (the engine's) is the same on every rank: still agreed below, like any
-  // other failure
-  const double maxLevel = this->MaxLevel;
-  problem = schlieren::PropertyRangeProblem("RefractionOctree", "MaxLevel", &maxLevel, 1);
-  if (problem.empty())
+  if (this->MaxLevel < 0 || this->MaxLevel > 10)
+  {
+    // the same on every rank: still agreed below, like any other failure
+    problem = "MaxLevel is " + std::to_string(this->MaxLevel) + ": it must be in [0, 10].";
+  }
+  else
+  {
     problem = ReadPiece(this->Tolerance, input, output, parallel.Size(), n1, dims);
+  }
   const std::string failure = parallel.Failure(problem);
   if (!failure.empty())
   {
