@@ -49,16 +49,19 @@ void ToMesh(vtkDataSet* ds, MeshArrays& m)
   const vtkIdType np = ds->GetNumberOfPoints();
   const vtkIdType nc = ds->GetNumberOfCells();
   auto* pointSet = vtkPointSet::SafeDownCast(ds);
-  auto* coordinates =
-    pointSet && pointSet->GetPoints() ? vtkDoubleArray::SafeDownCast(pointSet->GetPoints()->GetData()) : nullptr;
+  auto* coordinates = pointSet && pointSet->GetPoints()
+    ? vtkDoubleArray::SafeDownCast(pointSet->GetPoints()->GetData())
+    : nullptr;
   // the copies made below where VTK's layout is not the engine's: points in double, a byte per
   // cell where some are hidden, the cells in 64 bits (8 ids per cell at most where they are read
   // one by one)
   auto* ug = vtkUnstructuredGrid::SafeDownCast(ds);
   const bool cellsCopied = !vtkStructuredGrid::SafeDownCast(ds) &&
     !(ug && ug->GetCells() && ug->GetCells()->IsStorage64Bit());
-  const double idBytes = ug && ug->GetCells() ? 8.0 * ug->GetCells()->GetNumberOfConnectivityIds() : 64.0 * nc;
-  schlieren::CheckHostMemory((coordinates ? 0.0 : 24.0 * np) + (ds->GetCellGhostArray() ? 1.0 * nc : 0.0) +
+  const double idBytes =
+    ug && ug->GetCells() ? 8.0 * ug->GetCells()->GetNumberOfConnectivityIds() : 64.0 * nc;
+  schlieren::CheckHostMemory((coordinates ? 0.0 : 24.0 * np) +
+      (ds->GetCellGhostArray() ? 1.0 * nc : 0.0) +
       (cellsCopied ? (ug ? 8.0 : 9.0) * nc + idBytes : 0.0),
     "The cell sampler's copy of a mesh of " + std::to_string(np) + " points and " +
       std::to_string(nc) + " cells",
@@ -99,7 +102,8 @@ void ToMesh(vtkDataSet* ds, MeshArrays& m)
     vtkCellArray* cells = ug->GetCells();
     if (cells && cells->IsStorage64Bit())
     {
-      m.Mesh.Offsets = reinterpret_cast<const std::int64_t*>(cells->GetOffsetsArray64()->GetPointer(0));
+      m.Mesh.Offsets =
+        reinterpret_cast<const std::int64_t*>(cells->GetOffsetsArray64()->GetPointer(0));
       m.Mesh.Connectivity =
         reinterpret_cast<const std::int64_t*>(cells->GetConnectivityArray64()->GetPointer(0));
     }
@@ -107,7 +111,8 @@ void ToMesh(vtkDataSet* ds, MeshArrays& m)
     {
       auto* offsets = cells->GetOffsetsArray32();
       auto* connectivity = cells->GetConnectivityArray32();
-      m.Offsets.assign(offsets->GetPointer(0), offsets->GetPointer(0) + offsets->GetNumberOfValues());
+      m.Offsets.assign(
+        offsets->GetPointer(0), offsets->GetPointer(0) + offsets->GetNumberOfValues());
       m.Connectivity.assign(connectivity->GetPointer(0),
         connectivity->GetPointer(0) + connectivity->GetNumberOfValues());
       m.Mesh.Offsets = m.Offsets.data();
@@ -191,7 +196,8 @@ vtkDataArray* Matching(vtkDataSet* ds, const Field& f)
     ? static_cast<vtkDataSetAttributes*>(ds->GetCellData())
     : static_cast<vtkDataSetAttributes*>(ds->GetPointData());
   vtkDataArray* a = attributes->GetArray(f.Name.c_str());
-  return a && a->GetDataType() == f.Type && a->GetNumberOfComponents() == f.Components ? a : nullptr;
+  return a && a->GetDataType() == f.Type && a->GetNumberOfComponents() == f.Components ? a
+                                                                                       : nullptr;
 }
 } // namespace
 
@@ -201,7 +207,8 @@ bool SampledCellByCell(vtkDataObject* input)
 {
   const std::vector<vtkDataSet*> leaves = Leaves(input);
   return !leaves.empty() &&
-    std::none_of(leaves.begin(), leaves.end(), [](vtkDataSet* l) { return vtkImageData::SafeDownCast(l); });
+    std::none_of(
+      leaves.begin(), leaves.end(), [](vtkDataSet* l) { return vtkImageData::SafeDownCast(l); });
 }
 
 vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* structure)
@@ -237,7 +244,9 @@ vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* st
       {
         continue;
       }
-      Field f{ a->GetName(), cells != 0, a->GetDataType(), a->GetNumberOfComponents(), nullptr, {} };
+      Field f{
+        a->GetName(), cells != 0, a->GetDataType(), a->GetNumberOfComponents(), nullptr, {}
+      };
       if (!std::all_of(leaves.begin(), leaves.end(), [&](vtkDataSet* l) { return Matching(l, f); }))
       {
         continue;
@@ -303,7 +312,8 @@ vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* st
     for (std::size_t i = 0; i < f.Wide.size(); ++i)
     {
       f.Out->SetComponent(static_cast<vtkIdType>(i) / f.Components,
-        static_cast<int>(i % f.Components), std::round(f.Wide[i]));
+        static_cast<int>(i % f.Components),
+        std::round(f.Wide[i]));
     }
   }
   return image;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file SchlierenResample.h
- * @brief A mesh (any vtkDataSet with 3D cells) sampled at the points of an image grid, cell by cell.
+ * @brief A mesh (any vtkDataSet with 3D cells) sampled at the points of an image grid, cell by
+ * cell.
  *
  * The probe (vtkProbeFilter) asks, for every grid point, which cell holds it: a point-locator
  * search and a walk through neighbouring cells. Here each cell is visited once instead, by the

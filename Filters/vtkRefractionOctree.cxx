@@ -48,15 +48,11 @@ namespace
 std::string ReadPiece(double tolerance, vtkImageData* input, vtkImageData* output, int ranks,
   std::vector<float>& n1, int dims[3])
 {
-  if (!(tolerance >= 0.0 && tolerance <= 1.0))
-  {
-    std::ostringstream msg;
-    msg << "Tolerance is " << tolerance
-        << ": it must be in [0, 1]: the largest spread of n - 1 (dimensionless) that a block may "
-           "hold and still be skipped (air's n - 1 is about 3e-4, so useful values are far below "
-           "1; 0: automatic, 1e-4 of the field's range).";
-    return msg.str();
-  }
+  // the range is the engine's (the Python front end checks the same)
+  const std::string range =
+    schlieren::PropertyRangeProblem("RefractionOctree", "Tolerance", &tolerance, 1);
+  if (!range.empty())
+    return range;
   if (!input || !output)
   {
     return std::string("RefractionOctree needs a vtkImageData input with the point array '") +

@@ -1656,6 +1656,19 @@ int schlieren_sample_cells(const double* points, int64_t points_length,
   });
 }
 
+int schlieren_check_property(
+  const char* proxy, const char* property, const double* values, int count)
+{
+  return Guard(LastError, [&] {
+    if (!proxy || !property || (count > 0 && !values) || count < 0)
+      throw schlieren::Error("schlieren_check_property: proxy and property must be names and "
+                             "values must hold `count` (>= 0) numbers.");
+    const std::string problem = schlieren::PropertyRangeProblem(proxy, property, values, count);
+    if (!problem.empty())
+      throw schlieren::Error(problem);
+  });
+}
+
 int schlieren_check_memory(double bytes, const char* what, const char* hint)
 {
   return Guard(LastError, [&] {

@@ -37,8 +37,18 @@ int PointsOfType(int type)
     case PYRAMID:
       return 5;
     case EMPTY:
-    case 1: case 2: case 3: case 4: case 5: case 6: case 7: case 8: case 9: // vertices to quads
-    case 21: case 22: case 23:                                              // quadratic faces
+    case 1:
+    case 2:
+    case 3:
+    case 4:
+    case 5:
+    case 6:
+    case 7:
+    case 8:
+    case 9: // vertices to quads
+    case 21:
+    case 22:
+    case 23: // quadratic faces
       return 0;
     default:
       return -1;
@@ -197,11 +207,13 @@ int Inside(const Cell& c, const double x[3], double* w)
     w[7] = r * s * t;
     return p[0] >= 0.0 && p[0] <= 1.0 && p[1] >= 0.0 && p[1] <= 1.0 && p[2] >= 0.0 && p[2] <= 1.0;
   }
-  void (*functions)(const double*, double*, double*) =
-    c.Type == HEXAHEDRON ? HexFunctions : c.Type == WEDGE ? WedgeFunctions : PyramidFunctions;
+  void (*functions)(const double*, double*, double*) = c.Type == HEXAHEDRON ? HexFunctions
+    : c.Type == WEDGE                                                       ? WedgeFunctions
+                                                                            : PyramidFunctions;
   // a scale for a determinant that says the cell is degenerate at the estimate: 1e-5 of the
   // cube of its longest diagonal (hexahedron) or edge (wedge; a pyramid: of the box around it)
-  auto distance2 = [&c](int a, int b) {
+  auto distance2 = [&c](int a, int b)
+  {
     const double dx = c.X[a][0] - c.X[b][0], dy = c.X[a][1] - c.X[b][1], dz = c.X[a][2] - c.X[b][2];
     return dx * dx + dy * dy + dz * dz;
   };
@@ -214,8 +226,9 @@ int Inside(const Cell& c, const double x[3], double* w)
   }
   else if (c.Type == WEDGE)
   {
-    static const int edges[9][2] = { { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 },
-      { 0, 3 }, { 1, 4 }, { 2, 5 } };
+    static const int edges[9][2] = {
+      { 0, 1 }, { 1, 2 }, { 2, 0 }, { 3, 4 }, { 4, 5 }, { 5, 3 }, { 0, 3 }, { 1, 4 }, { 2, 5 }
+    };
     for (const auto& e : edges)
       longest = std::max(longest, distance2(e[0], e[1]));
   }
@@ -291,7 +304,7 @@ bool Structured(const SampleMesh& m)
 
 /** Writes the value of a point array at grid point `p`: Σ weight x value in double, as
  * vtkDataArray::InterpolateTuple. */
-template <typename T>
+template<typename T>
 void Interpolate(const SampleArray& a, const Cell& c, const double* w, std::int64_t p)
 {
   const T* in = static_cast<const T*>(a.In);
@@ -311,29 +324,52 @@ std::string SampleCellTypeName(int type)
 {
   switch (type)
   {
-    case 0: return "an empty cell";
-    case 1: return "vertex";
-    case 2: return "poly-vertex";
-    case 3: return "line";
-    case 4: return "poly-line";
-    case 5: return "triangle";
-    case 6: return "triangle strip";
-    case 7: return "polygon";
-    case 8: return "pixel";
-    case 9: return "quad";
-    case TETRA: return "tetrahedron";
-    case VOXEL: return "voxel";
-    case HEXAHEDRON: return "hexahedron";
-    case WEDGE: return "wedge";
-    case PYRAMID: return "pyramid";
-    case 15: return "pentagonal prism";
-    case 16: return "hexagonal prism";
-    case 24: return "quadratic tetrahedron";
-    case 25: return "quadratic hexahedron";
-    case 26: return "quadratic wedge";
-    case 27: return "quadratic pyramid";
-    case 42: return "polyhedron";
-    default: return "cell type " + std::to_string(type);
+    case 0:
+      return "an empty cell";
+    case 1:
+      return "vertex";
+    case 2:
+      return "poly-vertex";
+    case 3:
+      return "line";
+    case 4:
+      return "poly-line";
+    case 5:
+      return "triangle";
+    case 6:
+      return "triangle strip";
+    case 7:
+      return "polygon";
+    case 8:
+      return "pixel";
+    case 9:
+      return "quad";
+    case TETRA:
+      return "tetrahedron";
+    case VOXEL:
+      return "voxel";
+    case HEXAHEDRON:
+      return "hexahedron";
+    case WEDGE:
+      return "wedge";
+    case PYRAMID:
+      return "pyramid";
+    case 15:
+      return "pentagonal prism";
+    case 16:
+      return "hexagonal prism";
+    case 24:
+      return "quadratic tetrahedron";
+    case 25:
+      return "quadratic hexahedron";
+    case 26:
+      return "quadratic wedge";
+    case 27:
+      return "quadratic pyramid";
+    case 42:
+      return "polyhedron";
+    default:
+      return "cell type " + std::to_string(type);
   }
 }
 
@@ -407,7 +443,8 @@ void CheckSample(const SampleMesh& m, const SampleGrid& g, const std::vector<Sam
       const int wanted = PointsOfType(type);
       if (wanted < 0)
         throw Error(f + "cell " + Text(c) + " is a " + SampleCellTypeName(type) + " (VTK type " +
-          Text(type) + "), which the sampler does not handle (tetrahedra, voxels, hexahedra, "
+          Text(type) +
+          "), which the sampler does not handle (tetrahedra, voxels, hexahedra, "
           "wedges and pyramids; faces and lines are passed over). Split the cells first "
           "(Tetrahedralize, or the OpenFOAM reader's Decompose polyhedra).");
       if (wanted > 0 && size != wanted)
@@ -425,24 +462,28 @@ void CheckSample(const SampleMesh& m, const SampleGrid& g, const std::vector<Sam
     if (a.Components < 1)
       throw Error(f + name + " has " + Text(a.Components) + " components.");
     if (!a.Cells && a.ValueBytes != 4 && a.ValueBytes != 8)
-      throw Error(f + name + ": a point array is interpolated as float (4 bytes) or double (8), "
-        "not " + Text(a.ValueBytes) + "-byte values.");
+      throw Error(f + name +
+        ": a point array is interpolated as float (4 bytes) or double (8), "
+        "not " +
+        Text(a.ValueBytes) + "-byte values.");
     if (a.Cells && (a.ValueBytes < 1 || a.ValueBytes > 16))
       throw Error(f + name + ": " + Text(a.ValueBytes) + "-byte values.");
     const std::int64_t tuples = a.Cells ? cells : m.NumberOfPoints;
     const std::int64_t needed = tuples * a.Components;
     if (a.InValues != needed || (needed > 0 && !a.In))
-      throw Error(f + name + " holds " + Text(a.In ? a.InValues : 0) + " values; " +
-        Text(tuples) + (a.Cells ? " cells" : " points") + " x " + Text(a.Components) +
-        " components need " + Text(needed) + ".");
+      throw Error(f + name + " holds " + Text(a.In ? a.InValues : 0) + " values; " + Text(tuples) +
+        (a.Cells ? " cells" : " points") + " x " + Text(a.Components) + " components need " +
+        Text(needed) + ".");
     if (!a.Out)
-      throw Error(f + name + ": no output array (" + Text(gridPoints) + " x " +
-        Text(a.Components) + " values).");
+      throw Error(f + name + ": no output array (" + Text(gridPoints) + " x " + Text(a.Components) +
+        " values).");
   }
 }
 
-std::int64_t SampleCells(const SampleMesh& m, const SampleGrid& g,
-  const std::vector<SampleArray>& arrays, unsigned char* found)
+std::int64_t SampleCells(const SampleMesh& m,
+  const SampleGrid& g,
+  const std::vector<SampleArray>& arrays,
+  unsigned char* found)
 {
   CheckSample(m, g, arrays);
   const int* D = g.Dims;
@@ -466,8 +507,14 @@ std::int64_t SampleCells(const SampleMesh& m, const SampleGrid& g,
                          k = c / ((S[0] - 1) * std::int64_t(S[1] - 1));
       const std::int64_t p0 = i + S[0] * (j + std::int64_t(S[1]) * k);
       const std::int64_t plane = std::int64_t(S[0]) * S[1];
-      const std::int64_t ids[8] = { p0, p0 + 1, p0 + 1 + S[0], p0 + S[0], p0 + plane,
-        p0 + plane + 1, p0 + plane + 1 + S[0], p0 + plane + S[0] };
+      const std::int64_t ids[8] = { p0,
+        p0 + 1,
+        p0 + 1 + S[0],
+        p0 + S[0],
+        p0 + plane,
+        p0 + plane + 1,
+        p0 + plane + 1 + S[0],
+        p0 + plane + S[0] };
       cell.Type = HEXAHEDRON;
       cell.Count = 8;
       std::copy(ids, ids + 8, cell.Ids);
@@ -535,7 +582,8 @@ std::int64_t SampleCells(const SampleMesh& m, const SampleGrid& g,
             {
               const std::size_t bytes = static_cast<std::size_t>(a.ValueBytes) * a.Components;
               std::memcpy(static_cast<char*>(a.Out) + p * bytes,
-                static_cast<const char*>(a.In) + c * bytes, bytes);
+                static_cast<const char*>(a.In) + c * bytes,
+                bytes);
             }
             else if (a.ValueBytes == 4)
               Interpolate<float>(a, cell, w, p);

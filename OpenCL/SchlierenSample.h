@@ -83,7 +83,8 @@ std::string SampleCellTypeName(int type);
  * schlieren::Error with the reason. The cells counted by a structured grid are returned by
  * SampleCellCount.
  */
-void CheckSample(const SampleMesh& mesh, const SampleGrid& grid,
+void CheckSample(const SampleMesh& mesh,
+  const SampleGrid& grid,
   const std::vector<SampleArray>& arrays);
 
 /** The cells a mesh has (a structured grid's: the product of dims - 1 over dims above 1). */
@@ -94,8 +95,10 @@ std::int64_t SampleCellCount(const SampleMesh& mesh);
  * point: a point already non-zero is left alone (found in an earlier block of a composite data
  * set), a point found here is set to 1. Returns the points found here.
  */
-std::int64_t SampleCells(const SampleMesh& mesh, const SampleGrid& grid,
-  const std::vector<SampleArray>& arrays, unsigned char* found);
+std::int64_t SampleCells(const SampleMesh& mesh,
+  const SampleGrid& grid,
+  const std::vector<SampleArray>& arrays,
+  unsigned char* found);
 
 } // namespace schlieren
 

@@ -269,6 +269,13 @@ SCHLIEREN_C_API int schlieren_sample_cells(const double* points, int64_t points_
   const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
   void* const* outputs, const int64_t* output_lengths, const int dims[3], const double origin[3],
   const double spacing[3], unsigned char* found, int64_t found_length, int64_t* found_here);
+/** 0 where each of the `count` values of `property` (the ParaView name) of the filter `proxy`
+ * ("RefractiveIndex", "RefractionOctree") lies in the range of its domain, the same check the C++
+ * plugin's filters make, or where the engine lists no range for it; else non-zero and
+ * schlieren_last_error() says "Name is V: it must be in [min, max]." (booleans: "must be 0 (off)
+ * or 1 (on)"). NaN and infinities are in no range. */
+SCHLIEREN_C_API int schlieren_check_property(
+  const char* proxy, const char* property, const double* values, int count);
 /** 0 where `bytes` fit in the memory this process may still use (the engine's measure: available
  * memory, the address-space limit, SCHLIEREN_MEMORY_LIMIT); else non-zero and
  * schlieren_last_error() says "<what> needs N GiB of memory; this machine has M available. <hint>":

@@ -127,6 +127,8 @@ _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
 _sig("schlieren_check_memory", ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_char_p)
+_sig("schlieren_check_property", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
+     ctypes.POINTER(ctypes.c_double), ctypes.c_int)
 
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
@@ -232,6 +234,19 @@ def check_memory(nbytes, what, hint=""):
     """Raises EngineError ("<what> needs N GiB of memory; this machine has M available. <hint>")
     where `nbytes` do not fit in the memory this process may still use (the engine's measure)."""
     _check(_lib.schlieren_check_memory(float(nbytes), what.encode(), hint.encode()))
+
+
+def check_property(proxy, name, value):
+    """Raises EngineError ("Name is V: it must be in [min, max].") where a value of the filter
+    property `name` of `proxy` lies outside the range the engine lists for it (the check the C++
+    plugin's filters make); a property with no range listed, or not numeric, passes."""
+    values = value if isinstance(value, (list, tuple)) else [value]
+    try:
+        numbers = [float(v) for v in values]
+    except (TypeError, ValueError):
+        return
+    array = (ctypes.c_double * max(1, len(numbers)))(*numbers)
+    _check(_lib.schlieren_check_property(proxy.encode(), name.encode(), array, len(numbers)))
 
 
 def version():

@@ -113,6 +113,16 @@ class _Properties(VTKPythonAlgorithmBase):
             raise ValueError("%s is %r: it takes a number" % (name, value))
         return value
 
+    # the proxy whose property ranges the engine lists (schlieren_check_property: the C++
+    # filter's check), or None
+    _range_proxy = None
+
+    def _check_ranges(self):
+        """An EngineError naming the first property whose value is outside the engine's range."""
+        if self._range_proxy:
+            for name in self._defaults:
+                _engine.check_property(self._range_proxy, name, self._values[name])
+
     def SetProperty(self, name, value):
         """Sets a property as ParaView's setters do: a value this front end refuses is kept as an
         error instead of raised (no traceback out of a proxy's setter). Until a good value is
@@ -134,6 +144,8 @@ class _Properties(VTKPythonAlgorithmBase):
         empty output, never a traceback."""
         is_data = request.Has(DDP.REQUEST_DATA())
         try:
+            if is_data or request.Has(DDP.REQUEST_INFORMATION()):
+                self._check_ranges()  # as the C++ filters' RequestInformation
             if self._refused and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
                 if not is_data:
                     # said once, by the data request; the output's extent is empty until then
@@ -626,6 +638,7 @@ class RefractiveIndex(_Properties):
         UseSamplingBounds=0, SamplingBounds=[0.0, 1.0, 0.0, 1.0, 0.0, 1.0], AmbientMode="Extend",
         AmbientValue=2.7164e-4, BodyFromGrid=1, BodyWallFaces=[0, 0, 0, 0, 0, 0],
         SolidArray="None")
+    _range_proxy = "RefractiveIndex"
     _gases = ["Air", "He", "N2", "O2", "Ar", "CO2", "H2", "H2O", "CH4", "CO"]
     _entries = dict(
         Model=["Automatic", "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas",
@@ -1007,7 +1020,8 @@ class RefractiveIndex(_Properties):
                 read = [name]
             values = None if name is None else _point_array(image, name)
             if name is not None and (values is None or values.ndim != 1):
-                raise EngineError("RefractiveIndex needs the one-component point array %r; the "
+                raise EngineError("RefractiveIndex needs the one-component point array %r "
+                                  "(InputArray); the "
                                   "input has: %s" % (name, ", ".join(names) or "none"))
             if name is None:
                 pass
@@ -1069,6 +1083,7 @@ class RefractionOctree(_Properties):
     """The paper's min-max octree as a level per point (`octree_level`) for a tolerance."""
 
     _defaults = dict(Tolerance=0.0, MaxLevel=7)
+    _range_proxy = "RefractionOctree"
     AutomaticToleranceFraction = 1e-4
 
     def __init__(self, **kwargs):

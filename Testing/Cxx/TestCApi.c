@@ -194,6 +194,29 @@ int main(void)
           strstr(schlieren_last_error(), "SymmetryAxis z is normal to the input's plane") != NULL,
       "symmetry: an axis normal to the plane refused: %s", schlieren_last_error());
   }
+  {
+    /* the filters' property ranges, the engine's (the C++ filters check the same table) */
+    const double wavelength = 50, inside[3] = { 0, 64, 65536 }, past[3] = { 0, 64, 65537 };
+    const double tolerance = 1e-6, nan = NAN, boolean = 2;
+    CHECK(schlieren_check_property("RefractiveIndex", "Wavelength", &wavelength, 1) != 0 &&
+        strcmp(schlieren_last_error(), "Wavelength is 50: it must be in [100, 20000].") == 0,
+      "check_property: Wavelength 50 refused by name and range: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "SamplingDimensions", inside, 3) == 0,
+      "check_property: SamplingDimensions 0 64 65536 taken (%s)", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "SamplingDimensions", past, 3) != 0 &&
+        strstr(schlieren_last_error(), "SamplingDimensions[2] is 65537") != NULL,
+      "check_property: SamplingDimensions[2] 65537 refused: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "PressureOffset", &nan, 1) != 0 &&
+        strstr(schlieren_last_error(), "PressureOffset is nan: it must be a finite value") != NULL,
+      "check_property: PressureOffset NaN refused: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "BodyFromGrid", &boolean, 1) != 0 &&
+        strstr(schlieren_last_error(), "must be 0 (off) or 1 (on)") != NULL,
+      "check_property: BodyFromGrid 2 refused: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractionOctree", "Tolerance", &tolerance, 1) == 0 &&
+        schlieren_check_property("RefractiveIndex", "Model", &boolean, 1) == 0,
+      "check_property: Tolerance 1e-6 taken, a property without a listed range passes (%s)",
+      schlieren_last_error());
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

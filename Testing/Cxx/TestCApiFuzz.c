@@ -68,6 +68,7 @@ enum
   F_MEMORY,
   F_SYMMETRY,
   F_WEDGE,
+  F_PROPERTY,
   F_MISC,
   F_THREADS,
   F_SAMPLE,
@@ -77,7 +78,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_trace", "session_array", "session_film", "session_plan_film", "session_report",
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
-  "wedge_warning", "version/properties/device",
+  "wedge_warning", "check_property", "version/properties/device",
   "two threads, one session", "sample_cells" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
@@ -759,6 +760,16 @@ static void random_case(int k)
       rc = schlieren_check_memory(below(2) ? 1e20 : (below(2) ? NAN : -1.0), below(2) ? "A thing" : NULL,
         below(2) ? "Lower it." : NULL);
       outcome(F_MEMORY, rc, schlieren_last_error(), what);
+      {
+        static const char* const proxies[] = { "RefractiveIndex", "RefractionOctree", "Nothing",
+          "" };
+        static const char* const props[] = { "Wavelength", "SamplingDimensions", "BodyWallFaces",
+          "Tolerance", "BodyFromGrid", "NoSuchName", "" };
+        const int count = below(4) ? (int)below(7) : -3;
+        rc = schlieren_check_property(below(10) ? proxies[below(4)] : NULL,
+          below(10) ? props[below(7)] : NULL, below(10) ? b : NULL, count);
+        outcome(F_PROPERTY, rc, schlieren_last_error(), what);
+      }
       break;
     }
     case 19:
