@@ -542,6 +542,20 @@ std::vector<std::vector<Ridge>> Lines(const Image& img, const std::vector<unsign
   return lines;
 }
 
+/** A number in JSON: null where it is not finite. */
+struct J
+{
+  double V;
+};
+std::ostream& operator<<(std::ostream& o, J j)
+{
+  if (std::isfinite(j.V))
+    o << j.V;
+  else
+    o << "null";
+  return o;
+}
+
 } // namespace
 
 PhotographSettings ParsePhotographSettings(const std::string& text)
@@ -1146,25 +1160,25 @@ std::string PhotographResult::Json() const
     return out + "\"";
   };
   o << "{\"match\": " << (Match ? "true" : "false") << ", \"reason\": " << text(Reason)
-    << ", \"start\": " << text(Start) << ", \"scale\": " << Scale << ", \"rotation\": " << Rotation
-    << ", \"shift\": [" << Shift[0] << ", " << Shift[1] << "], \"photo_pixel_size\": " << PhotoPixelSize
-    << ", \"sigma_shift\": [" << Sigma[0] << ", " << Sigma[1] << "], \"sigma_rotation\": " << Sigma[2]
-    << ", \"sigma_scale\": " << Sigma[3] << ", \"edge_uncertainty\": " << EdgeUncertainty
-    << ", \"score\": " << Score << ", \"threshold\": " << Threshold << ", \"null_score\": " << NullScore
-    << ", \"fine_score\": " << FineScore << ", \"overlap\": " << Overlap
+    << ", \"start\": " << text(Start) << ", \"scale\": " << J{Scale} << ", \"rotation\": " << J{Rotation}
+    << ", \"shift\": [" << J{Shift[0]} << ", " << J{Shift[1]} << "], \"photo_pixel_size\": " << J{PhotoPixelSize}
+    << ", \"sigma_shift\": [" << J{Sigma[0]} << ", " << J{Sigma[1]} << "], \"sigma_rotation\": " << J{Sigma[2]}
+    << ", \"sigma_scale\": " << J{Sigma[3]} << ", \"edge_uncertainty\": " << J{EdgeUncertainty}
+    << ", \"score\": " << J{Score} << ", \"threshold\": " << J{Threshold} << ", \"null_score\": " << J{NullScore}
+    << ", \"fine_score\": " << J{FineScore} << ", \"overlap\": " << J{Overlap}
     << ", \"grey_fitted\": " << (GreyFitted ? "true" : "false") << ", \"grey_reason\": " << text(GreyReason)
-    << ", \"gamma\": " << Gamma << ", \"gamma_error\": " << GammaError << ", \"background\": " << Background
-    << ", \"film_background\": " << FilmBackground << ", \"vignetting\": " << Vignetting
-    << ", \"grey_residual\": " << GreyResidual << ", \"grey_pixels\": " << GreyPixels
-    << ", \"seconds\": " << Seconds << ", \"lines\": [";
+    << ", \"gamma\": " << J{Gamma} << ", \"gamma_error\": " << J{GammaError} << ", \"background\": " << J{Background}
+    << ", \"film_background\": " << J{FilmBackground} << ", \"vignetting\": " << J{Vignetting}
+    << ", \"grey_residual\": " << J{GreyResidual} << ", \"grey_pixels\": " << GreyPixels
+    << ", \"seconds\": " << J{Seconds} << ", \"lines\": [";
   for (std::size_t l = 0; l < Lines.size(); ++l)
   {
     const PhotographLine& L = Lines[l];
     o << (l ? ", " : "") << "{\"image\": " << (L.Image ? "\"photograph\"" : "\"film\"")
-      << ", \"match\": " << L.Match << ", \"distance\": " << L.Distance << ", \"offset\": [" << L.Offset[0]
-      << ", " << L.Offset[1] << "], \"matched\": " << L.Matched << ", \"points\": [";
+      << ", \"match\": " << L.Match << ", \"distance\": " << J{L.Distance} << ", \"offset\": [" << J{L.Offset[0]}
+      << ", " << J{L.Offset[1]} << "], \"matched\": " << J{L.Matched} << ", \"points\": [";
     for (std::size_t a = 0; a < L.Points.size(); ++a)
-      o << (a ? ", " : "") << L.Points[a];
+      o << (a ? ", " : "") << J{L.Points[a]};
     o << "]}";
   }
   o << "]}";

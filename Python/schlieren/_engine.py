@@ -125,6 +125,9 @@ _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
 _sig("schlieren_check_memory", ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_char_p)
+_sig("schlieren_photograph", ctypes.c_int, ctypes.c_char_p, ctypes.c_int * 2, ctypes.c_double * 2,
+     ctypes.c_double, _f32p, _i64, ctypes.c_int * 2, _f32p, _i64, _i64, _f32p, _f32p, _f32p, _f32p,
+     _f32p, ctypes.POINTER(ctypes.c_char_p))
 
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
@@ -541,3 +544,51 @@ class Session:
         if _lib.schlieren_session_film(s, size, origin, ctypes.byref(px)):
             raise self._error()
         return list(size), list(origin), px.value
+
+
+PHOTOGRAPH_IMAGES = ("registered", "calibrated", "difference", "checkerboard", "line_distance")
+
+
+def grey(image, name="photo"):
+    """A photograph as grey float32 (h, w): a 2D array as it is; (h, w, 3) or (h, w, 4) colour by
+    its luminance (Rec. 709 weights; alpha ignored). Other shapes and dtypes are refused."""
+    a = np.asarray(image)
+    if a.dtype.kind not in "biuf":
+        raise ArgumentTypeError("%s has dtype %s: give grey levels or RGB(A) numbers" % (name, a.dtype))
+    if a.ndim == 3 and a.shape[2] in (3, 4):
+        a = a[:, :, :3].astype(np.float64) @ np.array([0.2126, 0.7152, 0.0722])
+    elif a.ndim == 3 and a.shape[2] == 1:
+        a = a[:, :, 0]
+    if a.ndim != 2:
+        raise ArgumentError("%s has shape %s: give a 2D array (rows, columns) of grey levels or "
+                            "(rows, columns, 3 or 4) of colour" % (name, a.shape))
+    return np.ascontiguousarray(a, dtype=np.float32)
+
+
+def photograph(film, film_origin, pixel_size, photo, settings=None):
+    """A photograph beside the film (schlieren_photograph): `film` the traced intensity as
+    (ny, nx) (row 0 at the film's origin, as image_to_numpy gives it), `film_origin` the world
+    position of its pixel (0, 0), `pixel_size` world units a pixel; `photo` grey (h, w) or colour
+    (h, w, 3|4), row 0 at the bottom (VTK's readers' order; flip an array read top-first).
+    `settings`: a dict of the settings (PhotoPixelSize, PointPairs, Refine, ...). Returns the report
+    (a dict: match, reason, scale, rotation, shift, score, threshold, gamma, lines, ...) with the
+    images on the film's grid as (ny, nx) float32 under "images"."""
+    f = grey(film, "film")
+    p = grey(photo, "photo")
+    try:
+        origin = [float(x) for x in film_origin]
+    except (TypeError, ValueError):
+        raise ArgumentTypeError("film_origin is %r: give two numbers" % (film_origin,))
+    if len(origin) != 2:
+        raise ArgumentError("film_origin is %r: give two numbers (x, y)" % (film_origin,))
+    text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in (settings or {}).items())
+    ny, nx = f.shape
+    out = {k: np.empty(f.shape, np.float32) for k in PHOTOGRAPH_IMAGES}
+    report = ctypes.c_char_p()
+    _check(_lib.schlieren_photograph(
+        text.encode(), (ctypes.c_int * 2)(nx, ny), (ctypes.c_double * 2)(*origin), float(pixel_size),
+        _fp(f), f.size, (ctypes.c_int * 2)(p.shape[1], p.shape[0]), _fp(p), p.size, f.size,
+        *[_fp(out[k]) for k in PHOTOGRAPH_IMAGES], ctypes.byref(report)))
+    r = json.loads(_text(report.value))
+    r["images"] = out
+    return r
