@@ -242,8 +242,9 @@ struct Registrar
   }
 
   /** Pattern search from `t` at level k over the free parameters (shift always; rotation and
-   * scale where `similarity`), steps in level pixels at the film's corner from `step` to `stop`. */
-  double Refine(int k, Transform& t, bool similarity, double step, double stop) const
+   * scale: the first `free` of shift x, shift y, rotation, scale), steps in level pixels at the
+   * film's corner from `step` to `stop`. */
+  double Refine(int k, Transform& t, int free, double step, double stop) const
   {
     const double f = std::ldexp(1.0, k);
     const double r = 0.5 * std::hypot(FW, FH) / f; // corner radius, level pixels
@@ -252,7 +253,7 @@ struct Registrar
     while (step >= stop && evaluations < 4000)
     {
       bool moved = false;
-      for (int p = 0; p < (similarity ? 4 : 2); ++p)
+      for (int p = 0; p < free; ++p)
         for (int sgn = -1; sgn <= 1; sgn += 2)
         {
           Transform trial = t;
@@ -606,8 +607,8 @@ PhotographSettings ParsePhotographSettings(const std::string& text)
     else if (key == "Refine")
     {
       const std::string r = value.substr(0, value.find_last_not_of(" \t\r") + 1);
-      if (r != "Similarity" && r != "Shift" && r != "None")
-        throw Error("SchlierenPhotograph Refine '" + value + "' is not one of: Similarity, Shift, None.");
+      if (r != "Similarity" && r != "Rigid" && r != "Shift" && r != "None")
+        throw Error("SchlierenPhotograph Refine '" + value + "' is not one of: Similarity, Rigid, Shift, None.");
       s.Refine = r;
     }
     else if (key == "ScaleRange")
@@ -720,6 +721,10 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
 
   Transform best = start;
   const bool similarity = settings.Refine == "Similarity";
+  // the parameters refined: Similarity 4 (the scale only where the bench does not give it:
+  // PhotoPixelSize fixes it), Rigid 3 (shift and rotation), Shift 2
+  const int free = settings.Refine == "Shift" ? 2 : (settings.Refine == "Rigid" || (similarity && settings.PhotoPixelSize > 0 && !pairs)) ? 3 : 4;
+  const bool rotate = free >= 3;
   bool blank = false;
   if (!(fs.second - fs.first > 1e-6 * std::max(1.0, std::fabs(fs.second))))
   {
@@ -746,7 +751,7 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
       for (double l = std::log(settings.ScaleRange[0]); l <= std::log(settings.ScaleRange[1]) + 1e-9; l += step)
         scales.push_back(start.S * std::exp(l));
     }
-    if (pairs || !similarity)
+    if (pairs || !rotate)
       angles.push_back(start.Theta);
     else
     {
@@ -756,27 +761,13 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
     }
     Transform center = start;
     auto candidates = CoarseSearch(R, coarse, scales, angles, center, maxShift, 4);
-    res.Score = candidates.empty() ? -1 : candidates[0].Score;
-    // what noise gives: the same search with the photograph scrambled (two seeds)
-    double null = -1;
-    for (unsigned seed = 1; seed <= 2; ++seed)
-    {
-      Registrar Rn(F, Scramble(P, seed), coarse + 1);
-      auto c = CoarseSearch(Rn, coarse, scales, angles, center, maxShift, 1);
-      if (!c.empty())
-        null = std::max(null, c[0].Score);
-    }
-    res.NullScore = null;
-    // a match stands clear of the scrambled photographs' best: its correlation exceeds theirs by
-    // half the room left above them
-    res.Threshold = null + 0.5 * (1 - null);
     // refine the candidates, level after level
     double bestScore = -2;
     for (Candidate c : candidates)
     {
       Transform t = c.T;
       for (int k = coarse; k >= 0; --k)
-        R.Refine(k, t, similarity, k == coarse ? 0.5 : 1.0, k == 0 ? 0.005 : 0.1);
+        R.Refine(k, t, free, k == coarse ? 0.5 : 1.0, k == 0 ? 0.005 : 0.1);
       const double sc = R.Score(0, t);
       if (sc > bestScore)
       {
@@ -784,9 +775,26 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
         best = t;
       }
     }
-    // the candidate refined, its score at the coarse level (what the threshold is for)
-    res.Score = std::max(res.Score, R.Score(coarse, best));
-    res.FineScore = bestScore;
+    res.CoarseScore = R.Score(coarse, best);
+    res.Score = bestScore;
+    // what noise gives: the same search and refinement with the photograph scrambled (cut in
+    // blocks, shuffled and flipped: its grey statistics, no picture), two seeds
+    double null = -1;
+    for (unsigned seed = 1; seed <= 2; ++seed)
+    {
+      Registrar Rn(F, Scramble(P, seed), coarse + 1);
+      auto c = CoarseSearch(Rn, coarse, scales, angles, center, maxShift, 1);
+      if (c.empty())
+        continue;
+      Transform t = c[0].T;
+      for (int k = coarse; k >= 0; --k)
+        Rn.Refine(k, t, free, k == coarse ? 0.5 : 1.0, k == 0 ? 0.02 : 0.1);
+      null = std::max(null, Rn.Score(0, t));
+    }
+    res.NullScore = null;
+    // a match stands clear of the scrambled photographs' best: its correlation on the film's
+    // grid exceeds theirs by half the room left above them
+    res.Threshold = null + 0.5 * (1 - null);
     if (res.Score < res.Threshold)
     {
       std::ostringstream msg;
@@ -814,7 +822,7 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
               R.Keep[static_cast<std::size_t>(j) * FW + i] = 0;
           }
         Transform t = best;
-        R.Refine(0, t, similarity, 0.25, 0.005);
+        R.Refine(0, t, free, 0.25, 0.005);
         jk.push_back(t);
       }
       R.Keep.clear();
@@ -837,14 +845,50 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
       res.Sigma[3] = std::sqrt(var[3]);
       const double rc = 0.5 * std::hypot(FW, FH);
       res.EdgeUncertainty = std::sqrt((var[0] + var[1]) / (best.S * best.S) + rc * rc * (var[2] + var[3]));
+      // the jackknife sees the spread between parts of the film, not a direction along which the
+      // correlation is flat (lines all parallel to it, a self-similar flow): the score's fall for a
+      // shift of a film pixel in each direction, the weakest against the strongest
+      const double s0 = R.Score(0, best);
+      double weakest = 1e300, strongest = 0, weakAngle = 0;
+      for (int a = 0; a < 8; ++a)
+      {
+        const double phi = a * Pi / 8;
+        double fall = 0;
+        for (int sgn = -1; sgn <= 1; sgn += 2)
+        {
+          Transform t = best;
+          const double dx = sgn * std::cos(phi), dy = sgn * std::sin(phi);
+          t.Tx += best.S * (std::cos(best.Theta) * dx - std::sin(best.Theta) * dy);
+          t.Ty += best.S * (std::sin(best.Theta) * dx + std::cos(best.Theta) * dy);
+          fall += 0.5 * (s0 - R.Score(0, t));
+        }
+        if (fall < weakest)
+        {
+          weakest = fall;
+          weakAngle = phi * 180 / Pi;
+        }
+        strongest = std::max(strongest, fall);
+      }
+      res.WeakDirection = weakAngle;
+      res.WeakRatio = strongest > 0 ? weakest / strongest : 0;
+      if (res.WeakRatio < 0.15)
+      {
+        std::ostringstream msg;
+        msg.precision(2);
+        msg << "the correlation hardly changes along the film's direction " << weakAngle
+            << " deg (a shift there costs " << res.WeakRatio << " of what it costs across): the lines "
+            << "are nearly parallel to it, or the flow is self-similar, and the registration is not held "
+            << "along it beyond its uncertainty: give PointPairs (two or more marks).";
+        res.Warnings = msg.str();
+      }
     }
   }
   else if (!blank)
   {
     res.Match = true;
     res.Start += " (not refined)";
-    res.FineScore = R.Score(0, best);
-    res.Score = R.Score(coarse, best);
+    res.CoarseScore = R.Score(coarse, best);
+    res.Score = R.Score(0, best);
   }
   res.Scale = best.S;
   res.Rotation = best.Theta * 180 / Pi;
@@ -1164,8 +1208,10 @@ std::string PhotographResult::Json() const
     << ", \"shift\": [" << J{Shift[0]} << ", " << J{Shift[1]} << "], \"photo_pixel_size\": " << J{PhotoPixelSize}
     << ", \"sigma_shift\": [" << J{Sigma[0]} << ", " << J{Sigma[1]} << "], \"sigma_rotation\": " << J{Sigma[2]}
     << ", \"sigma_scale\": " << J{Sigma[3]} << ", \"edge_uncertainty\": " << J{EdgeUncertainty}
+    << ", \"weak_direction\": " << J{WeakDirection} << ", \"weak_ratio\": " << J{WeakRatio}
+    << ", \"warnings\": " << text(Warnings)
     << ", \"score\": " << J{Score} << ", \"threshold\": " << J{Threshold} << ", \"null_score\": " << J{NullScore}
-    << ", \"fine_score\": " << J{FineScore} << ", \"overlap\": " << J{Overlap}
+    << ", \"coarse_score\": " << J{CoarseScore} << ", \"overlap\": " << J{Overlap}
     << ", \"grey_fitted\": " << (GreyFitted ? "true" : "false") << ", \"grey_reason\": " << text(GreyReason)
     << ", \"gamma\": " << J{Gamma} << ", \"gamma_error\": " << J{GammaError} << ", \"background\": " << J{Background}
     << ", \"film_background\": " << J{FilmBackground} << ", \"vignetting\": " << J{Vignetting}

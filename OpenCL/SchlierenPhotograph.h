@@ -31,8 +31,9 @@ struct PhotographSettings
   /** 2 to 4 point pairs the user typed: groups of 4 numbers, photograph pixel (u, v) and world
    * (x, y) on the film plane. Empty: none. */
   std::vector<double> PointPairs;
-  /** What the correlation refines: "Similarity" (scale, rotation, shift), "Shift", "None" (the
-   * start as given: needs PointPairs). */
+  /** What the correlation refines: "Similarity" (scale, rotation, shift; the scale stays the
+   * bench's where PhotoPixelSize is given), "Rigid" (rotation, shift), "Shift", "None" (the start
+   * as given: needs PointPairs). */
   std::string Refine = "Similarity";
   /** Factors about the start scale searched where the scale is not known (PhotoPixelSize 0). */
   double ScaleRange[2] = { 0.6, 1.6 };
@@ -71,11 +72,14 @@ struct PhotographResult
   double Scale = 1, Rotation = 0, Shift[2] = { 0, 0 };
   double PhotoPixelSize = 0;       ///< world units per photograph pixel found (film pixel / Scale)
   double Sigma[4] = { 0, 0, 0, 0 };///< standard errors: shift x, y (photo px), rotation (deg), scale (relative)
-  double EdgeUncertainty = 0;      ///< the position's standard error at the film's corner, film pixels
-  double Score = 0;        ///< normalised correlation of the gradient maps at the search level
-  double Threshold = 0;    ///< the score that noise reaches (see docs/CFD.md)
-  double NullScore = 0;    ///< the best score of scrambled photographs
-  double FineScore = 0;    ///< the correlation on the film's full grid
+  double EdgeUncertainty = 0;      ///< the position's standard error at the film's corner, film pixels (jackknife over tiles)
+  double WeakDirection = 0;        ///< the film direction (deg) along which a shift costs the correlation least
+  double WeakRatio = 0;            ///< its cost against the costliest direction's (near 0: the shift is not held along it)
+  std::string Warnings;            ///< what the user should know (a direction not held)
+  double Score = 0;        ///< normalised correlation of the gradient maps on the film's grid
+  double Threshold = 0;    ///< the score a match must reach: above what scrambled copies reach (docs/CFD.md)
+  double NullScore = 0;    ///< the best score of scrambled photographs (searched and refined alike)
+  double CoarseScore = 0;  ///< the correlation at the coarse search's level
   double Overlap = 0;      ///< fraction of the film the photograph covers
   std::string Start;       ///< where the search started
   // grey calibration

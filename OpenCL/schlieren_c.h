@@ -239,7 +239,7 @@ SCHLIEREN_C_API int schlieren_check_memory(double bytes, const char* what, const
  * `photo_count` values) onto the film (film_size pixels of traced intensity, `film_count` values;
  * `film_origin` the world position of pixel (0, 0)'s centre, `pixel_size` world units a pixel),
  * calibrates its grey levels and compares the strong-gradient lines. `settings`: "Name=value"
- * lines (PhotoPixelSize, PointPairs, Refine Similarity/Shift/None, ScaleRange, MaxRotation,
+ * lines (PhotoPixelSize, PointPairs, Refine Similarity/Rigid/Shift/None, ScaleRange, MaxRotation,
  * MaxShift, LineThreshold, MinLineLength, MaxLineDistance, CheckerSize, Refuse; NULL or "": the
  * defaults). Outputs on the film's grid, each NULL or `capacity` floats (the film's pixels):
  * `registered` (the photograph's grey, 0 where it does not cover the film), `calibrated` (in the

@@ -592,3 +592,40 @@ def photograph(film, film_origin, pixel_size, photo, settings=None):
     r = json.loads(_text(report.value))
     r["images"] = out
     return r
+
+
+def synthetic_photograph(film, scale=1.0, rotation=0.0, shift=(0.0, 0.0), size=None, gamma=1.0,
+                         vignetting=0.0, blur=0.0, photons=0.0, gain=0.8, seed=5):
+    """A "photograph" of a film ((ny, nx), row 0 at the bottom) for tests and examples: the film's
+    pixel (i, j) lands at scale R(rotation, degrees) ((i, j) - centre) + the photograph's centre +
+    shift (photograph pixels), the convention of schlieren_photograph's transform; the grey is
+    gain (1 - vignetting r^2) I^gamma (r: 1 at the corners; outside the film the film's median),
+    blurred by a Gaussian of `blur` pixels and with Poisson noise of `photons` a unit of grey
+    (0: none). `size` (rows, columns), default the film's. float32 (rows, columns)."""
+    f = np.asarray(film, dtype=np.float64)
+    ny, nx = f.shape
+    h, w = size or f.shape
+    th = np.radians(rotation)
+    v, u = np.mgrid[0:h, 0:w].astype(np.float64)
+    a, b = u - 0.5 * (w - 1) - shift[0], v - 0.5 * (h - 1) - shift[1]
+    x = (np.cos(th) * a + np.sin(th) * b) / scale + 0.5 * (nx - 1)
+    y = (-np.sin(th) * a + np.cos(th) * b) / scale + 0.5 * (ny - 1)
+    inside = (x >= 0) & (y >= 0) & (x <= nx - 1) & (y <= ny - 1)
+    xi, yi = np.clip(x.astype(int), 0, nx - 2), np.clip(y.astype(int), 0, ny - 2)
+    fx, fy = np.clip(x - xi, 0, 1), np.clip(y - yi, 0, 1)
+    i = ((1 - fy) * ((1 - fx) * f[yi, xi] + fx * f[yi, xi + 1]) +
+         fy * ((1 - fx) * f[yi + 1, xi] + fx * f[yi + 1, xi + 1]))
+    i = np.where(inside, i, np.median(f))
+    r2 = ((u - 0.5 * w) ** 2 + (v - 0.5 * h) ** 2) / (0.25 * (w * w + h * h))
+    p = gain * (1 - vignetting * r2) * np.clip(i, 0, None) ** gamma
+    if blur > 0:
+        k = np.arange(-int(np.ceil(3 * blur)), int(np.ceil(3 * blur)) + 1)
+        k = np.exp(-0.5 * (k / blur) ** 2)
+        k /= k.sum()
+        pad = len(k) // 2
+        p = np.pad(p, pad, mode="edge")
+        p = np.apply_along_axis(lambda r: np.convolve(r, k, mode="valid"), 1, p)
+        p = np.apply_along_axis(lambda c: np.convolve(c, k, mode="valid"), 0, p)
+    if photons > 0:
+        p = np.random.default_rng(seed).poisson(p * photons) / photons
+    return p.astype(np.float32)

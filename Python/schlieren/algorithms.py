@@ -1104,7 +1104,7 @@ class SchlierenPhotograph(_Properties):
     _defaults = dict(FileName="", PhotoPixelSize=0.0, PointPairs=[], Refine="Similarity",
                      ScaleRange=[0.6, 1.6], MaxRotation=12.0, MaxShift=0.3, LineThreshold=0.25,
                      MinLineLength=8, MaxLineDistance=0.0, CheckerSize=16)
-    _entries = dict(Refine=["Similarity", "Shift", "None"])
+    _entries = dict(Refine=["Similarity", "Rigid", "Shift", "None"])
 
     def __init__(self, **kwargs):
         _Properties.__init__(self, 2, nOutputPorts=2, **kwargs)
@@ -1189,6 +1189,9 @@ class SchlierenPhotograph(_Properties):
         _field_number(out, "photograph_shift", list(r["shift"]))
         if r["grey_reason"]:
             _field_string(out, "photograph_grey_reason", r["grey_reason"])
+        if r.get("warnings"):
+            _field_string(out, "warnings", r["warnings"])
+            self._warn(r["warnings"])
         points, cells = vtkPoints(), vtkCellArray()
         image, distance = vtkIntArray(), vtkFloatArray()
         image.SetName("image")

@@ -255,10 +255,10 @@ int main()
     Dump("difference" + tag, r.Difference, Film, Film);
     double edge, rot;
     TransformError(r, k.C, edge, rot);
-    std::printf("%s: match %d score %.3f (threshold %.3f, scrambled %.3f, fine %.3f) scale %.4f rot %.3f "
+    std::printf("%s: match %d score %.3f (threshold %.3f, scrambled %.3f, coarse %.3f) scale %.4f rot %.3f "
                 "shift %.2f %.2f; corner error %.3f px (sigma %.3f), rotation error %.4f deg (sigma %.4f); "
                 "gamma %.3f +- %.3f (true %.2f), vignetting %.3f, %.2f s\n  %s\n",
-      k.Name, r.Match, r.Score, r.Threshold, r.NullScore, r.FineScore, r.Scale, r.Rotation, r.Shift[0],
+      k.Name, r.Match, r.Score, r.Threshold, r.NullScore, r.CoarseScore, r.Scale, r.Rotation, r.Shift[0],
       r.Shift[1], edge, r.EdgeUncertainty, rot, r.Sigma[2], r.Gamma, r.GammaError, k.C.Gamma, r.Vignetting,
       r.Seconds, r.Reason.c_str());
     CHECK(r.Match, std::string(k.Name) + ": registered");

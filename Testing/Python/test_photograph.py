@@ -29,30 +29,6 @@ def check(ok, what):
         failures += 1
 
 
-def camera(film, scale, degrees, shift, size, gamma, vignetting, photons, seed=5):
-    """The photograph a camera takes of `film` ((ny, nx), row 0 at the bottom): film pixel (i, j)
-    lands at scale R (i - c) + c' + shift; grey = 0.8 vignetting I^gamma with Poisson noise."""
-    ny, nx = film.shape
-    h, w = size
-    th = math.radians(degrees)
-    v, u = np.mgrid[0:h, 0:w].astype(np.float64)
-    a = u - 0.5 * (w - 1) - shift[0]
-    b = v - 0.5 * (h - 1) - shift[1]
-    x = (math.cos(th) * a + math.sin(th) * b) / scale + 0.5 * (nx - 1)
-    y = (-math.sin(th) * a + math.cos(th) * b) / scale + 0.5 * (ny - 1)
-    inside = (x >= 0) & (y >= 0) & (x <= nx - 1) & (y <= ny - 1)
-    xi = np.clip(x.astype(int), 0, nx - 2)
-    yi = np.clip(y.astype(int), 0, ny - 2)
-    fx, fy = np.clip(x - xi, 0, 1), np.clip(y - yi, 0, 1)
-    i = ((1 - fy) * ((1 - fx) * film[yi, xi] + fx * film[yi, xi + 1]) +
-         fy * ((1 - fx) * film[yi + 1, xi] + fx * film[yi + 1, xi + 1]))
-    i = np.where(inside, i, np.median(film))
-    r2 = ((u - 0.5 * w) ** 2 + (v - 0.5 * h) ** 2) / (0.25 * (w * w + h * h))
-    p = 0.8 * (1 - vignetting * r2) * np.clip(i, 0, None) ** gamma
-    rng = np.random.default_rng(seed)
-    return rng.poisson(p * photons) / photons
-
-
 def write(values, path, bits, colour=False):
     """A grey image (row 0 at the bottom) as a PNG (8 or 16 bit) or JPEG, with VTK's writers."""
     from vtkmodules.util import numpy_support
@@ -108,8 +84,8 @@ def main():
     print("film %s, pixel %.4g" % (film.shape, pixel))
 
     truth = dict(scale=1.25, degrees=-6.0, shift=(12.0, 9.0))
-    photo = camera(film, truth["scale"], truth["degrees"], truth["shift"], (150, 170), gamma=0.7,
-                   vignetting=0.25, photons=3000)
+    photo = engine.synthetic_photograph(film, truth["scale"], truth["degrees"], truth["shift"],
+                                        (150, 170), gamma=0.7, vignetting=0.25, photons=3000)
     png, jpg = os.path.join(args.work, "photo16.png"), os.path.join(args.work, "photo8.jpg")
     write(photo, png, 16)
     write(photo, jpg, 8, colour=True)
