@@ -137,6 +137,13 @@ def main():
         write_png(r["images"]["checkerboard"], os.path.join(args.output, "checkerboard.png"))
         write_png(0.5 + r["images"]["difference"], os.path.join(args.output, "difference.png"))
         write_png(coloured_lines(film, r, pixel), os.path.join(args.output, "lines.png"))
+        # the gallery's panel (docs/gallery/photograph.png), top to bottom: the film, the
+        # checkerboard, the difference, the lines (rows stack bottom first: the film last)
+        grey = lambda a: np.repeat(np.clip(a, 0, 1)[..., None], 3, axis=2)  # noqa: E731
+        gap = np.ones((4,) + film.shape[1:] + (3,))
+        write_png(np.concatenate([coloured_lines(film, r, pixel), gap, grey(0.5 + r["images"]["difference"]),
+                                  gap, grey(r["images"]["checkerboard"]), gap, grey(film)]),
+                  os.path.join(args.output, "photograph_gallery.png"))
 
     # 2. an earlier time, registered on two marks whose places are known on the model and in the
     # photograph (a correlation would pull the registration toward the moved shock)
