@@ -4,6 +4,7 @@
 #include "SchlierenPhotograph.h"
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 
 #include <algorithm>
 #include <chrono>
@@ -333,8 +334,9 @@ std::vector<Candidate> CoarseSearch(const Registrar& R, int k, const std::vector
 /** The photograph cut in blocks, shuffled and flipped: the same grey statistics, no picture. */
 Image Scramble(const Image& a, unsigned seed)
 {
-  const int b = std::max(4, std::max(a.W, a.H) / 8);
-  const int nx = std::max(1, a.W / b), ny = std::max(1, a.H / b);
+  // 8 x 8 blocks (of at least 2 pixels a side: the photograph has 16 or more)
+  const int bx = std::max(2, a.W / 8), by = std::max(2, a.H / 8);
+  const int nx = a.W / bx, ny = a.H / by;
   std::vector<int> order(nx * ny);
   for (int i = 0; i < nx * ny; ++i)
     order[i] = i;
@@ -344,11 +346,11 @@ Image Scramble(const Image& a, unsigned seed)
   for (int q = 0; q < nx * ny; ++q)
   {
     const int src = order[q];
-    const int si = (src % nx) * b, sj = (src / nx) * b, di = (q % nx) * b, dj = (q / nx) * b;
+    const int si = (src % nx) * bx, sj = (src / nx) * by, di = (q % nx) * bx, dj = (q / nx) * by;
     const bool fx = rng() & 1, fy = rng() & 1;
-    for (int j = 0; j < b; ++j)
-      for (int i = 0; i < b; ++i)
-        out.at(di + i, dj + j) = a.at(si + (fx ? b - 1 - i : i), sj + (fy ? b - 1 - j : j));
+    for (int j = 0; j < by; ++j)
+      for (int i = 0; i < bx; ++i)
+        out.at(di + i, dj + j) = a.at(si + (fx ? bx - 1 - i : i), sj + (fy ? by - 1 - j : j));
   }
   return out;
 }
@@ -656,6 +658,11 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
       " pixels: 16 to 32768 a side are taken.");
   if (!(pixel_size > 0) || !std::isfinite(pixel_size) || !std::isfinite(film_origin[0]) || !std::isfinite(film_origin[1]))
     throw Error("SchlierenPhotograph: the film's pixel size and origin must be finite (pixel size > 0).");
+  // the images, their pyramids of gradient maps and the scrambled copies': about 12 floats a
+  // pixel of each
+  CheckHostMemory(48.0 * (double(FW) * FH + double(PW) * PH), "Registering a photograph of " +
+      std::to_string(PW) + " x " + std::to_string(PH) + " pixels onto a film of " + std::to_string(FW) +
+      " x " + std::to_string(FH), "Give a smaller photograph (or film).");
   Image F(FW, FH), P(PW, PH);
   for (std::size_t q = 0; q < F.V.size(); ++q)
   {

@@ -751,7 +751,7 @@ static void random_case(int k)
     case 19:
     {
       /* a photograph beside the film: sizes, lengths, NaN, blank and bad settings */
-      static const int sides[] = { 16, 24, 17, 15, 0, -3, 40000 };
+      static const int sides[] = { 16, 24, 17, 15, 0, -3, 40000, 300 };
       static const char* settings[] = { "", "Refine=Shift", "Refine=None", "Refine=none", "PhotoPixelSize=0.01",
         "PointPairs=1 2 3 4", "PointPairs=0 0 0 0 1 1 0 0", "ScaleRange=2 1", "LineThreshold=0", "Bogus=1",
         "MaxRotation=nan", "PointPairs=0 0 -1 -1 20 20 1 1\nRefine=None" };
@@ -760,9 +760,9 @@ static void random_case(int k)
       int64_t nf, np, cap;
       float *film, *photo, *out;
       const char* report = NULL;
-      fs[0] = sides[below(4) ? 0 : below(7)];
+      fs[0] = sides[below(4) ? 0 : below(8)];
       fs[1] = sides[below(4) ? 1 : below(7)];
-      ps[0] = sides[below(4) ? 1 : below(7)];
+      ps[0] = sides[below(4) ? 1 : below(8)];
       ps[1] = sides[below(4) ? 2 : below(7)];
       nf = (int64_t)fs[0] * fs[1];
       np = (int64_t)ps[0] * ps[1];
