@@ -234,7 +234,9 @@ struct Registrar
     }
     if (overlap)
       *overlap = n / (static_cast<double>(F.W) * F.H);
-    if (n < 0.2 * F.W * F.H)
+    // a transform that leaves half the film uncovered is not taken: a correlation over few pixels
+    // reaches high values by chance (random images matched random images at 20 %)
+    if (n < 0.5 * F.W * F.H)
       return -1;
     const double vf = sff - sf * sf / n, vp = spp - sp * sp / n;
     if (!(vf > 0 && vp > 0))
@@ -896,6 +898,31 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
     res.Start += " (not refined)";
     res.CoarseScore = R.Score(coarse, best);
     res.Score = R.Score(0, best);
+    // the transform is the user's: not refused, but said where scrambled copies of the photograph
+    // correlate about as well at it
+    double null = -1;
+    for (unsigned seed = 1; seed <= 2; ++seed)
+    {
+      Registrar Rn(F, Scramble(P, seed), 1);
+      null = std::max(null, Rn.Score(0, best));
+    }
+    res.NullScore = null;
+    res.Threshold = null + 0.5 * (1 - null);
+    if (res.Score < res.Threshold)
+    {
+      std::ostringstream msg;
+      msg.precision(3);
+      double covered = 0;
+      R.Score(0, best, &covered);
+      if (covered < 0.5)
+        msg << "at the PointPairs' transform the photograph covers " << 100 * covered
+            << " % of the film, below the half a correlation needs: check the pairs.";
+      else
+        msg << "at the PointPairs' transform the photograph correlates " << res.Score << " with the film, "
+            << "below the " << res.Threshold << " a match reaches (scrambled copies: " << null
+            << "): check the pairs, and that the photograph is of this flow.";
+      res.Warnings = msg.str();
+    }
   }
   res.Scale = best.S;
   res.Rotation = best.Theta * 180 / Pi;

@@ -296,7 +296,8 @@ int main()
     const double move = 0.4 * (std::pow(1.3, 0.4) - 1), cell = 2.0 / 55;
     double edge, rot;
     TransformError(r, c, edge, rot);
-    std::printf("moved blast: match %d score %.3f corner error %.3f px; %zu lines\n", r.Match, r.Score, edge, r.Lines.size());
+    std::printf("moved blast: match %d score %.3f (threshold %.3f) corner error %.3f px; %zu lines %s\n", r.Match, r.Score, r.Threshold, edge, r.Lines.size(), r.Warnings.c_str());
+    CHECK(r.Warnings.empty() && r.Score > r.Threshold, "the moved blast's photograph correlates above the threshold at its marks");
     CHECK(r.Match && edge < 0.05, "the moved blast's photograph placed by its marks (corner error " + std::to_string(edge) + " px)");
     Dump("moved_distance", r.LineDistance, Film, Film);
     Dump("moved_calibrated", r.Calibrated, Film, Film);
@@ -361,6 +362,11 @@ int main()
       CHECK(!r.Match && r.Reason.find(b.Needle) != std::string::npos, std::string(b.Name) + " refused: " + r.Reason);
       CHECK(r.Score < r.Threshold || r.Reason.find("blank") != std::string::npos, std::string(b.Name) + ": the score is below the threshold");
     }
+    // noise placed by PointPairs with Refine None: the user's transform is kept, and the warning says
+    // that the photograph does not correlate there
+    const PhotographResult r = Register(flow, noise, c, "PointPairs=10 10 -0.9 -0.9 190 170 0.9 0.9\nRefine=None");
+    std::printf("noise at the user's pairs: match %d score %.3f threshold %.3f: %s\n", r.Match, r.Score, r.Threshold, r.Warnings.c_str());
+    CHECK(r.Match && r.Warnings.find("below the") != std::string::npos, "noise at the user's pairs: warned");
   }
   return schtest::Finish();
 }
