@@ -235,7 +235,7 @@ struct Registrar
     if (overlap)
       *overlap = n / (static_cast<double>(F.W) * F.H);
     // a transform that leaves half the film uncovered is not taken: a correlation over few pixels
-    // reaches high values by chance (random images matched random images at 20 %)
+    // reaches high values by chance
     if (n < 0.5 * F.W * F.H)
       return -1;
     const double vf = sff - sf * sf / n, vp = spp - sp * sp / n;
