@@ -11,6 +11,7 @@
 #include "SchlierenIndexModels.h"
 #include "SchlierenNumerical.h"
 #include "SchlierenParallel.h"
+#include "SchlierenPhotograph.h"
 #include "SchlierenSample.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
@@ -1884,6 +1885,49 @@ int schlieren_wedge_warning(const double bounds[6], const double* points, int64_
       ? schlieren::WedgeWithoutSymmetry(points, static_cast<std::size_t>(points_count / 3))
       : std::string();
     *warning = Returned.c_str();
+  });
+}
+
+int schlieren_photograph(const char* settings, const int film_size[2], const double film_origin[2],
+  double pixel_size, const float* film, int64_t film_count, const int photo_size[2], const float* photo,
+  int64_t photo_count, int64_t capacity, float* registered, float* calibrated, float* difference,
+  float* checkerboard, float* line_distance, const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_photograph";
+    if (!film_size || !photo_size || !film_origin)
+      throw schlieren::Error(std::string(f) + ": " + (!film_size ? "film_size" : !photo_size ? "photo_size" : "film_origin") +
+        " is NULL.");
+    auto pixels = [&](const char* what, const int size[2]) {
+      if (size[0] < 16 || size[1] < 16 || size[0] > 32768 || size[1] > 32768)
+        throw schlieren::Error(std::string(f) + ": " + what + " is " + std::to_string(size[0]) + " x " +
+          std::to_string(size[1]) + " pixels: 16 to 32768 a side are taken.");
+      return static_cast<std::int64_t>(size[0]) * size[1];
+    };
+    const std::int64_t nf = pixels("the film", film_size), np = pixels("the photograph", photo_size);
+    const std::string perf = "a film of " + std::to_string(film_size[0]) + " x " + std::to_string(film_size[1]) + " pixels";
+    CheckArray(f, "film", film, film_count, nf, perf, false);
+    CheckArray(f, "photo", photo, photo_count, np,
+      "a photograph of " + std::to_string(photo_size[0]) + " x " + std::to_string(photo_size[1]) + " pixels", false);
+    float* outs[5] = { registered, calibrated, difference, checkerboard, line_distance };
+    bool any = false;
+    for (float* o : outs)
+      any = any || o;
+    if (any)
+      CheckArray(f, "capacity (the outputs' length)", outs[0] ? outs[0] : outs[1] ? outs[1] : outs[2] ? outs[2] : outs[3] ? outs[3] : outs[4],
+        capacity, nf, perf, false, "floats");
+    const schlieren::PhotographSettings ps = schlieren::ParsePhotographSettings(settings ? settings : "");
+    const schlieren::PhotographResult r =
+      schlieren::RegisterPhotograph(film_size, film_origin, pixel_size, film, photo_size, photo, ps);
+    const std::vector<float>* from[5] = { &r.Registered, &r.Calibrated, &r.Difference, &r.Checkerboard, &r.LineDistance };
+    for (int a = 0; a < 5; ++a)
+      if (outs[a])
+        std::copy(from[a]->begin(), from[a]->end(), outs[a]);
+    Returned = r.Json();
+    if (report)
+      *report = Returned.c_str();
   });
 }
 

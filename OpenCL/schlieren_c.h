@@ -325,6 +325,30 @@ SCHLIEREN_C_API int schlieren_symmetry_expand(const int64_t* sample_of, int64_t 
  * only then are the points read (call with NULL and 0 first to know whether to gather them). */
 SCHLIEREN_C_API int schlieren_wedge_warning(const double bounds[6], const double* points,
   int64_t points_count, int* thin, const char** warning);
+/**
+ * A photograph beside the image (SchlierenPhotograph; docs/CFD.md): registers `photo`
+ * (photo_size[0] x photo_size[1] grey values, x fastest, row 0 at the bottom as VTK reads images;
+ * `photo_count` values) onto the film (film_size pixels of traced intensity, `film_count` values;
+ * `film_origin` the world position of pixel (0, 0)'s centre, `pixel_size` world units a pixel),
+ * calibrates its grey levels and compares the strong-gradient lines. `settings`: "Name=value"
+ * lines (PhotoPixelSize, PointPairs, Refine Similarity/Rigid/Shift/None, ScaleRange, MaxRotation,
+ * MaxShift, LineThreshold, MinLineLength, MaxLineDistance, CheckerSize, Refuse; NULL or "": the
+ * defaults). Outputs on the film's grid, each NULL or `capacity` floats (the film's pixels):
+ * `registered` (the photograph's grey, 0 where it does not cover the film), `calibrated` (in the
+ * film's grey), `difference` (calibrated - film), `checkerboard`, `line_distance` (world units at
+ * the film's line pixels, NaN elsewhere). `report` (may be NULL) gets JSON (owned by the library
+ * until this thread's next call): "match", "reason", "scale", "rotation" (deg), "shift" (photo
+ * px), "sigma_*", "edge_uncertainty" (film px), "score", "threshold", "gamma", "background",
+ * "vignetting", "lines" [{"image", "distance", "offset", "matched", "points"}]... Returns 0 when it
+ * ran (a photograph that does not match is "match": false with the reason, not an error);
+ * non-zero for input it cannot take (schlieren_last_error()).
+ */
+SCHLIEREN_C_API int schlieren_photograph(const char* settings, const int film_size[2],
+  const double film_origin[2], double pixel_size, const float* film, int64_t film_count,
+  const int photo_size[2], const float* photo, int64_t photo_count, int64_t capacity,
+  float* registered, float* calibrated, float* difference, float* checkerboard,
+  float* line_distance, const char** report);
+
 #ifdef __cplusplus
 }
 #endif

@@ -20,13 +20,15 @@ __version__ = "0.1.0"
 
 try:
     from .algorithms import (NumericalSchlieren, RefractionOctree, RefractiveIndex,  # noqa: F401
-                             RefractiveScene, SchlierenImage, image_to_numpy)
+                             RefractiveScene, SchlierenImage, SchlierenPhotograph, image_to_numpy,
+                             read_photograph)
 except ImportError as _e:  # no VTK: the engine functions still work
     _vtk_error = _e
 
     def _front_end_missing(name):
         if name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage",
-                    "NumericalSchlieren", "image_to_numpy"):
+                    "NumericalSchlieren", "SchlierenPhotograph", "image_to_numpy",
+                    "read_photograph"):
             raise ImportError("schlieren.%s needs VTK (pip install vtk): %s" % (name, _vtk_error))
         return None
 else:

@@ -129,6 +129,9 @@ _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes
 _sig("schlieren_check_memory", ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_char_p)
 _sig("schlieren_check_property", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
      ctypes.POINTER(ctypes.c_double), ctypes.c_int)
+_sig("schlieren_photograph", ctypes.c_int, ctypes.c_char_p, ctypes.c_int * 2, ctypes.c_double * 2,
+     ctypes.c_double, _f32p, _i64, ctypes.c_int * 2, _f32p, _i64, _i64, _f32p, _f32p, _f32p, _f32p,
+     _f32p, ctypes.POINTER(ctypes.c_char_p))
 
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
@@ -807,3 +810,88 @@ class Session:
                                                  ctypes.byref(written)):
             raise self._error()
         return json.loads(_text(written.value))
+
+
+PHOTOGRAPH_IMAGES = ("registered", "calibrated", "difference", "checkerboard", "line_distance")
+
+
+def grey(image, name="photo"):
+    """A photograph as grey float32 (h, w): a 2D array as it is; (h, w, 3) or (h, w, 4) colour by
+    its luminance (Rec. 709 weights; alpha ignored). Other shapes and dtypes are refused."""
+    a = np.asarray(image)
+    if a.dtype.kind not in "biuf":
+        raise ArgumentTypeError("%s has dtype %s: give grey levels or RGB(A) numbers" % (name, a.dtype))
+    if a.ndim == 3 and a.shape[2] in (3, 4):
+        a = a[:, :, :3].astype(np.float64) @ np.array([0.2126, 0.7152, 0.0722])
+    elif a.ndim == 3 and a.shape[2] == 1:
+        a = a[:, :, 0]
+    if a.ndim != 2:
+        raise ArgumentError("%s has shape %s: give a 2D array (rows, columns) of grey levels or "
+                            "(rows, columns, 3 or 4) of colour" % (name, a.shape))
+    return np.ascontiguousarray(a, dtype=np.float32)
+
+
+def photograph(film, film_origin, pixel_size, photo, settings=None):
+    """A photograph beside the film (schlieren_photograph): `film` the traced intensity as
+    (ny, nx) (row 0 at the film's origin, as image_to_numpy gives it), `film_origin` the world
+    position of its pixel (0, 0), `pixel_size` world units a pixel; `photo` grey (h, w) or colour
+    (h, w, 3|4), row 0 at the bottom (VTK's readers' order; flip an array read top-first).
+    `settings`: a dict of the settings (PhotoPixelSize, PointPairs, Refine, ...). Returns the report
+    (a dict: match, reason, scale, rotation, shift, score, threshold, gamma, lines, ...) with the
+    images on the film's grid as (ny, nx) float32 under "images"."""
+    f = grey(film, "film")
+    p = grey(photo, "photo")
+    try:
+        origin = [float(x) for x in film_origin]
+    except (TypeError, ValueError):
+        raise ArgumentTypeError("film_origin is %r: give two numbers" % (film_origin,))
+    if len(origin) != 2:
+        raise ArgumentError("film_origin is %r: give two numbers (x, y)" % (film_origin,))
+    text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in (settings or {}).items())
+    ny, nx = f.shape
+    out = {k: np.empty(f.shape, np.float32) for k in PHOTOGRAPH_IMAGES}
+    report = ctypes.c_char_p()
+    _check(_lib.schlieren_photograph(
+        text.encode(), (ctypes.c_int * 2)(nx, ny), (ctypes.c_double * 2)(*origin), float(pixel_size),
+        _fp(f), f.size, (ctypes.c_int * 2)(p.shape[1], p.shape[0]), _fp(p), p.size, f.size,
+        *[_fp(out[k]) for k in PHOTOGRAPH_IMAGES], ctypes.byref(report)))
+    r = json.loads(_text(report.value))
+    r["images"] = out
+    return r
+
+
+def synthetic_photograph(film, scale=1.0, rotation=0.0, shift=(0.0, 0.0), size=None, gamma=1.0,
+                         vignetting=0.0, blur=0.0, photons=0.0, gain=0.8, seed=5):
+    """A "photograph" of a film ((ny, nx), row 0 at the bottom) for tests and examples: the film's
+    pixel (i, j) lands at scale R(rotation, degrees) ((i, j) - centre) + the photograph's centre +
+    shift (photograph pixels), the convention of schlieren_photograph's transform; the grey is
+    gain (1 - vignetting r^2) I^gamma (r: 1 at the corners; outside the film the film's median),
+    blurred by a Gaussian of `blur` pixels and with Poisson noise of `photons` a unit of grey
+    (0: none). `size` (rows, columns), default the film's. float32 (rows, columns)."""
+    f = np.asarray(film, dtype=np.float64)
+    ny, nx = f.shape
+    h, w = size or f.shape
+    th = np.radians(rotation)
+    v, u = np.mgrid[0:h, 0:w].astype(np.float64)
+    a, b = u - 0.5 * (w - 1) - shift[0], v - 0.5 * (h - 1) - shift[1]
+    x = (np.cos(th) * a + np.sin(th) * b) / scale + 0.5 * (nx - 1)
+    y = (-np.sin(th) * a + np.cos(th) * b) / scale + 0.5 * (ny - 1)
+    inside = (x >= 0) & (y >= 0) & (x <= nx - 1) & (y <= ny - 1)
+    xi, yi = np.clip(x.astype(int), 0, nx - 2), np.clip(y.astype(int), 0, ny - 2)
+    fx, fy = np.clip(x - xi, 0, 1), np.clip(y - yi, 0, 1)
+    i = ((1 - fy) * ((1 - fx) * f[yi, xi] + fx * f[yi, xi + 1]) +
+         fy * ((1 - fx) * f[yi + 1, xi] + fx * f[yi + 1, xi + 1]))
+    i = np.where(inside, i, np.median(f))
+    r2 = ((u - 0.5 * w) ** 2 + (v - 0.5 * h) ** 2) / (0.25 * (w * w + h * h))
+    p = gain * (1 - vignetting * r2) * np.clip(i, 0, None) ** gamma
+    if blur > 0:
+        k = np.arange(-int(np.ceil(3 * blur)), int(np.ceil(3 * blur)) + 1)
+        k = np.exp(-0.5 * (k / blur) ** 2)
+        k /= k.sum()
+        pad = len(k) // 2
+        p = np.pad(p, pad, mode="edge")
+        p = np.apply_along_axis(lambda r: np.convolve(r, k, mode="valid"), 1, p)
+        p = np.apply_along_axis(lambda c: np.convolve(c, k, mode="valid"), 0, p)
+    if photons > 0:
+        p = np.random.default_rng(seed).poisson(p * photons) / photons
+    return p.astype(np.float32)

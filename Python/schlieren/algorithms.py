@@ -54,12 +54,12 @@ class _Properties(VTKPythonAlgorithmBase):
     _defaults = {}   # name -> default
     _entries = {}    # name -> allowed texts (enumerations)
 
-    def __init__(self, nInputPorts, outputType="vtkImageData", **kwargs):
+    def __init__(self, nInputPorts, outputType="vtkImageData", nOutputPorts=1, **kwargs):
         object.__setattr__(self, "_values", dict(self._defaults))
         object.__setattr__(self, "LastError", "")  # the message of the last failed request
         # values refused by SetProperty (the ParaView plugin's setters): name -> the reason
         object.__setattr__(self, "_refused", {})
-        VTKPythonAlgorithmBase.__init__(self, nInputPorts=nInputPorts, nOutputPorts=1,
+        VTKPythonAlgorithmBase.__init__(self, nInputPorts=nInputPorts, nOutputPorts=nOutputPorts,
                                         outputType=outputType)
         object.__setattr__(self, "_ready", True)
         for k, v in kwargs.items():
@@ -1384,6 +1384,151 @@ class SchlierenImage(_Properties):
         src = inInfo[0].GetInformationObject(0)
         if src.Has(SDDP.WHOLE_EXTENT()):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        return 1
+
+
+def read_photograph(path):
+    """A photograph file (PNG, JPEG, TIFF; 8 or 16 bit; grey or colour) read with VTK's readers, as
+    grey float32 (rows, columns), row 0 at the bottom (VTK's order, as the film's). Colour is
+    converted by its luminance (Rec. 709)."""
+    import os
+    from vtkmodules.vtkIOImage import vtkImageReader2Factory
+    if not os.path.isfile(path):
+        raise EngineError("The photograph %r was not found." % path)
+    reader = vtkImageReader2Factory.CreateImageReader2(path)
+    if reader is None:
+        raise EngineError("The photograph %r is not an image VTK reads (PNG, JPEG, TIFF, BMP, PNM)."
+                          % path)
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    nx, ny, nz = image.GetDimensions()
+    scalars = image.GetPointData().GetScalars()
+    if scalars is None or nx * ny == 0:
+        raise EngineError("The photograph %r holds no image." % path)
+    a = numpy_support.vtk_to_numpy(scalars)
+    a = a.reshape((nz, ny, nx, -1))[0]
+    return _engine.grey(a if a.shape[2] > 1 else a[:, :, 0], "the photograph %r" % path)
+
+
+class SchlierenPhotograph(_Properties):
+    """A photograph beside the image (issue 51; docs/CFD.md): input 0 a SchlierenImage output
+    (its `intensity`), input 1 (optional) the photograph as a vtkImageData, else FileName (PNG,
+    JPEG, TIFF, 8 or 16 bit, read with VTK's readers). Output 0: the film's grid with `intensity`,
+    `photograph` (registered), `photograph_calibrated`, `difference`, `checkerboard`,
+    `line_distance` (world units at the film's line pixels, NaN elsewhere); field data
+    `photograph_report` (JSON) and the numbers. Output 1: the lines as polylines (cell data
+    `image` 0 film / 1 photograph, `line_distance`). A photograph that does not match fails the
+    request with the reason (no registration presented as a match)."""
+
+    _defaults = dict(FileName="", PhotoPixelSize=0.0, PointPairs=[], Refine="Similarity",
+                     ScaleRange=[0.6, 1.6], MaxRotation=12.0, MaxShift=0.3, LineThreshold=0.25,
+                     MinLineLength=8, MaxLineDistance=0.0, CheckerSize=16)
+    _entries = dict(Refine=["Similarity", "Rigid", "Shift", "None"])
+
+    def __init__(self, **kwargs):
+        _Properties.__init__(self, 2, nOutputPorts=2, **kwargs)
+        object.__setattr__(self, "Report", None)
+
+    def _check(self, name, value):
+        if name == "PointPairs":
+            v = list(np.asarray(value, dtype=float).ravel().tolist())
+            if len(v) not in (0, 8, 12, 16):
+                raise ValueError("PointPairs takes 2 to 4 pairs of 4 numbers (photograph pixel u v, "
+                                 "world x y), got %d numbers" % len(v))
+            return v
+        return _Properties._check(self, name, value)
+
+    def FillInputPortInformation(self, port, info):
+        info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkImageData")
+        if port == 1:
+            info.Set(self.INPUT_IS_OPTIONAL(), 1)
+        return 1
+
+    def FillOutputPortInformation(self, port, info):
+        info.Set(vtkDataObject.DATA_TYPE_NAME(), "vtkPolyData" if port == 1 else "vtkImageData")
+        return 1
+
+    def RequestData(self, request, inInfo, outInfo):
+        from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIntArray, vtkPoints
+        from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+        film = vtkImageData.GetData(inInfo[0])
+        out = vtkImageData.GetData(outInfo, 0)
+        lines_out = vtkPolyData.GetData(outInfo, 1)
+        object.__setattr__(self, "Report", None)
+        if film is None or _point_array(film, "intensity") is None:
+            return self._fail("SchlierenPhotograph needs the output of SchlierenImage (a 2D image "
+                              "with the point array 'intensity') on its first input.")
+        nx, ny, nz = film.GetDimensions()
+        if nz != 1:
+            return self._fail("SchlierenPhotograph needs a 2D film (one layer); got %d x %d x %d."
+                              % (nx, ny, nz))
+        sx, sy, _ = film.GetSpacing()
+        if abs(sx - sy) > 1e-6 * max(abs(sx), abs(sy)):
+            return self._fail("SchlierenPhotograph needs square film pixels; got %g x %g." % (sx, sy))
+        photo_in = vtkImageData.GetData(inInfo[1]) if self.GetNumberOfInputConnections(1) else None
+        if photo_in is not None:
+            a = numpy_support.vtk_to_numpy(photo_in.GetPointData().GetScalars()) \
+                if photo_in.GetPointData().GetScalars() is not None else None
+            if a is None:
+                return self._fail("SchlierenPhotograph's photograph input has no scalars.")
+            px, py, _ = photo_in.GetDimensions()
+            photo = _engine.grey(a.reshape((py, px, -1)) if a.ndim > 1 else a.reshape((py, px)),
+                                 "the photograph input")
+        elif self.FileName:
+            photo = read_photograph(self.FileName)
+        else:
+            return self._fail("SchlierenPhotograph needs a photograph: set FileName or connect an "
+                              "image to its second input.")
+        intensity = _point_array(film, "intensity").reshape((ny, nx))
+        origin = _first_point(film)
+        settings = {k: self._values[k] for k in self._defaults if k != "FileName"}
+        if not settings["PointPairs"]:
+            del settings["PointPairs"]
+        r = _engine.photograph(intensity, origin[:2], sx, photo, settings)
+        object.__setattr__(self, "Report", r)
+        if not r["match"]:
+            return self._fail("The photograph was not registered: " + r["reason"])
+        out.Initialize()
+        out.SetExtent(0, nx - 1, 0, ny - 1, 0, 0)
+        out.SetSpacing(sx, sy, 1.0)
+        out.SetOrigin(origin[0], origin[1], origin[2])
+        out.GetPointData().SetScalars(_add(out, "intensity", intensity.ravel()))
+        names = dict(registered="photograph", calibrated="photograph_calibrated",
+                     difference="difference", checkerboard="checkerboard",
+                     line_distance="line_distance")
+        for k, name in names.items():
+            _add(out, name, r["images"][k].ravel())
+        report = {k: v for k, v in r.items() if k != "images"}
+        import json
+        _field_string(out, "photograph_report", json.dumps(report))
+        for k in ("score", "threshold", "scale", "rotation", "photo_pixel_size", "edge_uncertainty",
+                  "gamma", "gamma_error", "background", "vignetting"):
+            if r.get(k) is not None:
+                _field_number(out, "photograph_" + k, r[k])
+        _field_number(out, "photograph_shift", list(r["shift"]))
+        if r["grey_reason"]:
+            _field_string(out, "photograph_grey_reason", r["grey_reason"])
+        if r.get("warnings"):
+            _field_string(out, "warnings", r["warnings"])
+            self._warn(r["warnings"])
+        points, cells = vtkPoints(), vtkCellArray()
+        image, distance = vtkIntArray(), vtkFloatArray()
+        image.SetName("image")
+        distance.SetName("line_distance")
+        for line in r["lines"]:
+            xy = line["points"]
+            cells.InsertNextCell(len(xy) // 2)
+            for a in range(0, len(xy), 2):
+                cells.InsertCellPoint(points.InsertNextPoint(xy[a], xy[a + 1], origin[2]))
+            image.InsertNextValue(0 if line["image"] == "film" else 1)
+            d = line["distance"]
+            distance.InsertNextValue(float("nan") if d is None or d < 0 else d)
+        lines_out.Initialize()
+        lines_out.SetPoints(points)
+        lines_out.SetLines(cells)
+        lines_out.GetCellData().AddArray(image)
+        lines_out.GetCellData().AddArray(distance)
         return 1
 
 

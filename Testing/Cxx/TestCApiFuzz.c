@@ -69,6 +69,7 @@ enum
   F_SYMMETRY,
   F_WEDGE,
   F_PROPERTY,
+  F_PHOTOGRAPH,
   F_MISC,
   F_THREADS,
   F_SAMPLE,
@@ -78,7 +79,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_trace", "session_array", "session_film", "session_plan_film", "session_report",
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
-  "wedge_warning", "check_property", "version/properties/device",
+  "wedge_warning", "check_property", "photograph", "version/properties/device",
   "two threads, one session", "sample_cells" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
@@ -451,7 +452,7 @@ static void keep_small(schlieren_session* s)
 static void random_case(int k)
 {
   char what[160];
-  int dims[3], valid, f = below(22), rc;
+  int dims[3], valid, f = below(23), rc;
   int64_t needed, count, count2, count3;
   double o[3], h[3];
   schlieren_session* s = random_session();
@@ -894,6 +895,59 @@ static void random_case(int k)
         below(20) ? &warning : NULL);
       outcome(F_WEDGE, rc, schlieren_last_error(), what);
       free(pts);
+      break;
+    }
+    case 21:
+    {
+      /* a photograph beside the film: sizes, lengths, NaN, blank and bad settings */
+      static const int sides[] = { 16, 24, 17, 15, 0, -3, 40000, 300 };
+      static const char* settings[] = { "", "Refine=Shift", "Refine=None", "Refine=none", "PhotoPixelSize=0.01",
+        "PointPairs=1 2 3 4", "PointPairs=0 0 0 0 1 1 0 0", "ScaleRange=2 1", "LineThreshold=0", "Bogus=1",
+        "MaxRotation=nan", "PointPairs=0 0 -1 -1 20 20 1 1\nRefine=None" };
+      int fs[2], ps[2], i;
+      double fo[2] = { -1, -1 };
+      int64_t nf, np, cap;
+      float *film, *photo, *out;
+      const char* report = NULL;
+      fs[0] = sides[below(4) ? 0 : below(8)];
+      fs[1] = sides[below(4) ? 1 : below(7)];
+      ps[0] = sides[below(4) ? 1 : below(8)];
+      ps[1] = sides[below(4) ? 2 : below(7)];
+      nf = (int64_t)fs[0] * fs[1];
+      np = (int64_t)ps[0] * ps[1];
+      if (nf < 0 || nf > 10000)
+        nf = below(2) ? 16 : -1;
+      if (np < 0 || np > 10000)
+        np = below(2) ? 16 : -1;
+      nf = below(8) ? nf : random_count(nf);
+      if (nf > 10000)
+        nf = 3;
+      cap = below(6) ? nf : nf + 1;
+      film = buffer(nf, sizeof(float), 1);
+      photo = buffer(np, sizeof(float), 1);
+      out = below(3) ? calloc((size_t)(cap > 0 ? cap : 1), sizeof(float)) : NULL;
+      if (film && nf > 0)
+      {
+        for (i = 0; i < nf; ++i)
+          film[i] = (float)uniform();
+        if (below(10) == 0)
+          film[below((int)nf)] = NAN;
+      }
+      if (photo && np > 0)
+      {
+        int blank = below(4) == 0;
+        for (i = 0; i < np; ++i)
+          photo[i] = blank ? 0.5f : (float)uniform();
+        if (below(10) == 0)
+          photo[below((int)np)] = INFINITY;
+      }
+      rc = schlieren_photograph(below(10) ? settings[below(12)] : NULL, below(20) ? fs : NULL, fo,
+        below(10) ? 0.01 : (below(2) ? NAN : -1.0), film, nf, ps, photo, np, cap, out, NULL, out ? NULL : NULL,
+        NULL, below(2) ? out : NULL, below(2) ? &report : NULL);
+      outcome(F_PHOTOGRAPH, rc, schlieren_last_error(), what);
+      free(film);
+      free(photo);
+      free(out);
       break;
     }
     default:
