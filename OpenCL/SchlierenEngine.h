@@ -436,7 +436,8 @@ struct AutoChoice
   std::string Report;           ///< one line for the user
   /** The smallest error the pilot can tell apart for the chosen reconstruction, radians (0: not
    * measured; it is only where no candidate met the tolerance): 1.5 times the largest pilot
-   * difference between the reference (RK4 at 1/8 voxel) and RK4 at 1/4 voxel. Below it a
+   * difference between the reference (RK4 at the finest step of its ladder) and RK4 at twice
+   * that step; above the tolerance only where the ladder reached 1/8 voxel. Below it a
    * candidate's measured error says nothing about its real one. */
   double Floor = 0;
   /** The tolerance was below Floor: the cheapest candidate within the floor was taken (Met is
@@ -521,10 +522,14 @@ void CameraLensSample(std::uint32_t seed, int pass, double* u, double* v);
 
 /**
  * Resolves Integrator::Auto: traces a pilot of 16 x 16 rays across the film with each candidate
- * (line of sight; Euler, midpoint, RK4) and against a reference (RK4 at 1/8 voxel, no octree) on
- * the same grid, and returns the settings of the cheapest candidate (fewest samples) whose
+ * (line of sight; Euler, midpoint, RK4) and against a reference (RK4, no octree) on the same
+ * grid, and returns the settings of the cheapest candidate (fewest samples) whose
  * deflection error is within the tolerance and whose landing error is within half a pixel.
- * The reference shares the grid, so this measures integration error, not the grid's own.
+ * The reference shares the grid, so this measures integration error, not the grid's own. Its
+ * step is only as fine as it needs to be: RK4 from 2 voxels, halved while two successive traces
+ * differ by more than 5 % of the tolerance, down to 1/8 voxel. Candidates that cannot be cheaper
+ * than the best one found (their cost predicted from the samples per voxel traced so far) are
+ * not traced.
  * The steps are found from the pilot (issue 50): each integrator and reconstruction starts at 8
  * voxels, doubles while the candidate meets the tolerance (up to the volume's diagonal), halves
  * until one does where 8 does not, and bisects the last interval twice in log(step); a step
