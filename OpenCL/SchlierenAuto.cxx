@@ -8,6 +8,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <map>
+#include <tuple>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -74,7 +75,7 @@ double AutoPiecesReach(bool cubic)
 }
 
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice,
-  bool piecesBound)
+  bool piecesBound, const AutoChoice* start)
 {
   if (in.Method == Integrator::Auto || in.Recon == Reconstruction::Auto)
     CheckVolume(volume);
@@ -85,11 +86,12 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   grid.HasSolid = volume.Solid != nullptr;
   grid.PiecesBound = piecesBound;
   return ResolveAutoWith(grid, in, choice,
-    [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); });
+    [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); },
+    start);
 }
 
 TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, AutoChoice* choice,
-  const PilotTracer& traceRays)
+  const PilotTracer& traceRays, const AutoChoice* start)
 {
   const Volume& volume = grid.Grid;
   AutoChoice c;
@@ -149,6 +151,10 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     RefLadder& L = refs[static_cast<int>(rc)];
     ref.Recon = rc;
     ref.StepSize = RefFirstStep;
+    // an earlier pilot's ladder (another view of the same volume): from twice where it stopped
+    const double before = start ? start->ReferenceSteps[rc == Reconstruction::Cubic ? 1 : 0] : 0.0;
+    if (before >= RefFinestStep && before < RefFirstStep)
+      ref.StepSize = 2 * before;
     L.Coarse = traceRays(ref, ab);
     L.CoarseStep = ref.StepSize;
     if (!(tolGuess > 0))
@@ -268,7 +274,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   // integrator's evaluations per step) of the candidates traced, per reconstruction
   std::map<int, double> perVoxel;
   // err (if not null): the candidate's measured error, radians (1e300 where it lost a ray)
-  auto evaluate = [&](Integrator m, double step, Reconstruction rc, double* errOut) -> bool
+  auto evaluateOnce = [&](Integrator m, double step, Reconstruction rc, double* errOut) -> bool
   {
     if (errOut)
       *errOut = 1e300;
@@ -367,6 +373,27 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     }
     return meets;
   };
+  // the same, each candidate traced once
+  // what each candidate traced gave (an earlier pilot's choice, traced first, comes up again in
+  // its group): met, and its error (1e300: lost)
+  std::map<std::tuple<int, double, int>, std::pair<bool, double>> done;
+  auto evaluate = [&](Integrator m, double step, Reconstruction rc, double* errOut) -> bool
+  {
+    const auto memo = std::make_tuple(static_cast<int>(m), step, static_cast<int>(rc));
+    const auto seen = done.find(memo);
+    if (seen != done.end())
+    {
+      if (errOut)
+        *errOut = seen->second.second;
+      return seen->second.first;
+    }
+    double e = 1e300;
+    const bool met = evaluateOnce(m, step, rc, &e);
+    done[memo] = { met, e };
+    if (errOut)
+      *errOut = e;
+    return met;
+  };
   // The search skips what cannot be chosen (issue 50: the candidates took half of a pilot at
   // 512^3 once the references were cheap): a candidate whose cost, predicted from the samples
   // per voxel of the candidates traced so far (a lower bound: the fewest), is not below the
@@ -388,6 +415,11 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   auto useless = [&](Integrator m, double step, Reconstruction rc) {
     return found && predicted(m, step, rc) >= bestCost;
   };
+  // an earlier pilot's choice first: where it meets again, what is dearer is skipped from the start
+  if (start && start->Met && start->StepSize > 0 && start->StepSize <= maxStep &&
+    ((start->Recon == Reconstruction::Trilinear && tryTri) || (start->Recon == Reconstruction::Cubic && tryCubic)) &&
+    start->Method != Integrator::Auto)
+    evaluate(start->Method, start->StepSize, start->Recon, nullptr);
   for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
   {
     if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
@@ -537,6 +569,8 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   // session says it apart, AutoChoice::PiecesBound)
   c.PiecesBound = boundByPieces;
   c.Candidates = tried;
+  for (const auto& L : refs)
+    c.ReferenceSteps[L.first == static_cast<int>(Reconstruction::Cubic) ? 1 : 0] = L.second.Step;
   if (in.UseOctree && grid.HasLevels)
     rep << "; octree " << (c.UseOctree ? "on" : "off") << ": it skips "
         << static_cast<int>(std::lround(100 * c.OctreeSaving)) << " % of the samples"

@@ -448,6 +448,10 @@ struct AutoChoice
   bool Reused = false;
   /** Candidates the pilot traced (besides its references). */
   int Candidates = 0;
+  /** The pilot's references: the step of RK4 each reconstruction's ladder stopped at, voxels
+   * (Trilinear, Cubic; 0: not traced). A later pilot given this choice as its start begins its
+   * ladders at twice these. */
+  double ReferenceSteps[2] = { 0, 0 };
   /** Traced in pieces: steps longer than the pieces' ghost layers hold (8 voxels trilinear, 64
    * tricubic) were not tried; one process may choose a longer one. */
   bool PiecesBound = false;
@@ -548,9 +552,13 @@ void CameraLensSample(std::uint32_t seed, int pass, double* u, double* v);
  * piecesBound: the steps stay within what tracing in pieces allows (8 voxels trilinear, 64
  * tricubic: the pieces' ghost layers), as ResolveAutoDistributed's do; one process then makes the
  * choice the pieces make (beyond those steps the two differ: the pieces' auto_report says so).
+ * start (may be null): an earlier pilot's choice on the same volume and tolerance (another view):
+ * its setting is traced first, so that candidates dearer than it are skipped from the start, and
+ * the references' ladders begin at twice the steps it stopped at. The choice is the one the
+ * search makes without it wherever the errors grow with the step (the search's premise).
  */
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr,
-  bool piecesBound = false);
+  bool piecesBound = false, const AutoChoice* start = nullptr);
 
 /** The film coordinates of Auto's pilot rays: the centres of a 16 x 16 grid over the film. */
 std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings);
