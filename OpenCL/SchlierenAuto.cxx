@@ -8,6 +8,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <map>
+#include <tuple>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,11 +38,46 @@ constexpr double MaxAutoStep = 1000.0;
 // The share of the tolerance a step longer than 8 voxels may use on the pilot (see evaluate).
 constexpr double LongStepMargin = 0.75;
 
+// The pilot's references (RK4): the first step of their ladder, voxels, the finest, and the
+// share of the tolerance that two successive steps may differ by for the finer to be the
+// reference (see ResolveAutoWith).
+constexpr double RefFirstStep = 2.0;
+constexpr double RefFinestStep = 0.125;
+constexpr double RefShare = 0.05;
+
+// One reconstruction's reference: RK4 at Step (Fine) and at CoarseStep = 2 Step (Coarse), and
+// the largest difference between the two over the pilot's rays, radians.
+struct RefLadder
+{
+  std::vector<RayRecord> Fine, Coarse;
+  double Step = 0, CoarseStep = 0, Diff = 0;
+};
+
+
+// Samples an integrator takes a step.
+double Evaluations(Integrator m)
+{
+  return m == Integrator::RK4 ? 4.0 : (m == Integrator::Midpoint ? 2.0 : 1.0);
+}
+
+// A ray the pilot cannot compare: lost.
+constexpr std::uint32_t LostFlags = RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm;
+
+// A ladder's last two traces agree on every ray's fate: none lost or stopped at one step and not
+// at the other, and none where the finer step is still longer than a feature (the kernel's
+// RayUnderresolved: two steps that both step over a feature may agree and both be wrong).
+bool Converged(const RefLadder& L)
+{
+  for (std::size_t k = 0; k < L.Fine.size(); ++k)
+    if (((L.Fine[k].Flags ^ L.Coarse[k].Flags) & (LostFlags | RayBlocked)) || (L.Fine[k].Flags & RayUnderresolved))
+      return false;
+  return true;
+}
+
 // The rays of a pilot that a comparison can use: neither lost.
 bool Comparable(const RayRecord& a, const RayRecord& b)
 {
-  const std::uint32_t bad = RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm;
-  return !(a.Flags & bad) && !(b.Flags & bad);
+  return !(a.Flags & LostFlags) && !(b.Flags & LostFlags);
 }
 } // namespace
 
@@ -51,7 +87,7 @@ double AutoPiecesReach(bool cubic)
 }
 
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoChoice* choice,
-  bool piecesBound)
+  bool piecesBound, const AutoChoice* start)
 {
   if (in.Method == Integrator::Auto || in.Recon == Reconstruction::Auto)
     CheckVolume(volume);
@@ -62,11 +98,12 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   grid.HasSolid = volume.Solid != nullptr;
   grid.PiecesBound = piecesBound;
   return ResolveAutoWith(grid, in, choice,
-    [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); });
+    [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); },
+    start);
 }
 
 TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, AutoChoice* choice,
-  const PilotTracer& traceRays)
+  const PilotTracer& traceRays, const AutoChoice* start)
 {
   const Volume& volume = grid.Grid;
   AutoChoice c;
@@ -111,17 +148,77 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   // (with a body the levels byte holds its bits instead of the smoothness: trilinear only)
   bool tryTri = in.Recon == Reconstruction::Trilinear || (autoRecon) || grid.HasSolid;
   bool tryCubic = !grid.HasSolid && (in.Recon == Reconstruction::Cubic || (autoRecon && grid.HasSmooth));
-  std::vector<RayRecord> refTri, refCubic;
-  if (tryTri)
+  // Each reference only as fine as it needs to be (issue 50: at 1/8 voxel both references took
+  // 1.7 s of a 2.2 s pilot at 512^3, on a field whose features are 64 voxels wide): RK4 from
+  // RefFirstStep, halved while two successive traces differ by more than RefShare of the
+  // tolerance (the default tolerance from the first trace), down to RefFinestStep. The finer of
+  // the last two is the reference; their difference bounds its own error (RK4's falls 16-fold a
+  // halving on smooth data, 4-fold through the trilinear's kinks) and is the floor's measure.
+  std::map<int, RefLadder> refs;
+  double tolGuess = in.Tolerance;
+  // one rung down a ladder: the fine trace becomes the coarse one, RK4 at half its step the fine
+  auto halve = [&](RefLadder& L, Reconstruction rc) {
+    if (!L.Fine.empty())
+    {
+      L.Coarse.swap(L.Fine);
+      L.CoarseStep = L.Step;
+    }
+    ref.Recon = rc;
+    ref.StepSize = 0.5 * L.CoarseStep;
+    L.Fine = traceRays(ref, ab);
+    L.Step = ref.StepSize;
+    L.Diff = 0;
+    for (std::size_t k = 0; k < L.Fine.size(); ++k)
+      if (Comparable(L.Fine[k], L.Coarse[k]) && !((L.Fine[k].Flags | L.Coarse[k].Flags) & RayBlocked))
+        L.Diff = std::max(L.Diff,
+          double(sch_hypot_d(L.Fine[k].DeflX - L.Coarse[k].DeflX, L.Fine[k].DeflY - L.Coarse[k].DeflY)));
+  };
+  for (Reconstruction rc : { Reconstruction::Cubic, Reconstruction::Trilinear })
   {
-    ref.Recon = Reconstruction::Trilinear;
-    refTri = traceRays(ref, ab);
+    if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
+      continue;
+    RefLadder& L = refs[static_cast<int>(rc)];
+    ref.Recon = rc;
+    ref.StepSize = RefFirstStep;
+    // an earlier pilot's ladder (another view of the same volume): from twice where it stopped
+    const double before = start ? start->ReferenceSteps[rc == Reconstruction::Cubic ? 1 : 0] : 0.0;
+    if (before >= RefFinestStep && before < RefFirstStep)
+      ref.StepSize = 2 * before;
+    L.Coarse = traceRays(ref, ab);
+    L.CoarseStep = ref.StepSize;
+    if (!(tolGuess > 0))
+    {
+      double e = 0;
+      for (const RayRecord& r : L.Coarse)
+        if (!(r.Flags & RayBlocked))
+          e = std::max(e, double(sch_hypot_d(r.DeflX, r.DeflY)));
+      tolGuess = 0.01 * e;
+    }
+    for (;;)
+    {
+      halve(L, rc);
+      if (L.Step <= RefFinestStep || (Converged(L) && L.Diff <= RefShare * tolGuess))
+        break;
+    }
   }
-  if (tryCubic)
+  // Both references at one step: their difference is the trilinear's own error only where they
+  // integrate alike (the normal shock at 96^3: the trilinear's ladder went to 1/8 voxel, the
+  // tricubic's stopped at 1 voxel, where RK4 at 2 and 1 voxel agreed and both were 1.4e-6 rad off;
+  // the trilinear then looked 1e3 times worse than it is, and Cubic RK4 at 32 voxels was chosen at
+  // 1e-3 of the deflection with an error of 1.3e-3 against the closed form)
+  if (refs.size() == 2)
   {
-    ref.Recon = Reconstruction::Cubic;
-    refCubic = traceRays(ref, ab);
+    RefLadder& T = refs[static_cast<int>(Reconstruction::Trilinear)];
+    RefLadder& C = refs[static_cast<int>(Reconstruction::Cubic)];
+    const double step = std::min(T.Step, C.Step);
+    while (T.Step > step)
+      halve(T, Reconstruction::Trilinear);
+    while (C.Step > step)
+      halve(C, Reconstruction::Cubic);
   }
+  static const std::vector<RayRecord> none;
+  const std::vector<RayRecord>& refTri = tryTri ? refs[static_cast<int>(Reconstruction::Trilinear)].Fine : none;
+  const std::vector<RayRecord>& refCubic = tryCubic ? refs[static_cast<int>(Reconstruction::Cubic)].Fine : none;
   const std::vector<RayRecord>& R0 = tryCubic ? refCubic : refTri;
   double emax = 0;
   for (const RayRecord& r : R0)
@@ -162,30 +259,19 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     return out;
   }
   // The floor: the smallest error the pilot can tell apart. The reference traced again at twice
-  // its step (RK4 at 1/4 voxel, also a candidate) differs from it by what the reference itself is
-  // uncertain by; a candidate within 1.5 times that is as accurate as the pilot can tell, and a
-  // finer step only costs more. Where the tolerance is below the floor, the floor is the
+  // its step (RK4, also a candidate) differs from it by what the reference itself is uncertain
+  // by; a candidate within 1.5 times that is as accurate as the pilot can tell, and a finer step
+  // only costs more. The ladder stops refining once that difference is within RefShare of the
+  // tolerance, so the floor is above the tolerance only where the reference reached its finest
+  // step (1/8 voxel, against 1/4). Where the tolerance is below the floor, the floor is the
   // tolerance applied: the cheapest candidate within it is taken, and the report says that the
   // tolerance asked is below what this volume allows, and why.
-  const bool reuseFloorTrace = !(in.UseOctree && grid.HasLevels); // candidates skip, the floor not
-  std::map<int, std::vector<RayRecord>> floorTrace;
+  const bool reuseRefTrace = !(in.UseOctree && grid.HasLevels); // candidates skip, the references not
   std::map<int, double> floorOf, floorDiff;
-  for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
+  for (const auto& L : refs)
   {
-    if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
-      continue;
-    TraceSettings t = ref;
-    t.StepSize = 0.25;
-    t.Recon = rc;
-    std::vector<RayRecord>& F = floorTrace[static_cast<int>(rc)];
-    F = traceRays(t, ab);
-    const std::vector<RayRecord>& R = rc == Reconstruction::Cubic ? refCubic : refTri;
-    double d = 0;
-    for (std::size_t k = 0; k < F.size(); ++k)
-      if (Comparable(F[k], R[k]) && !((F[k].Flags | R[k].Flags) & RayBlocked))
-        d = std::max(d, double(sch_hypot_d(F[k].DeflX - R[k].DeflX, F[k].DeflY - R[k].DeflY)));
-    floorDiff[static_cast<int>(rc)] = d;
-    floorOf[static_cast<int>(rc)] = 1.5 * d;
+    floorDiff[L.first] = L.second.Diff;
+    floorOf[L.first] = 1.5 * L.second.Diff;
   }
   // The longest step the field allows: no fixed list. The steps a group (an integrator and a
   // reconstruction) tries are found from the pilot itself: from 8 voxels, doubled while the
@@ -215,8 +301,14 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   int tried = 0;
   bool boundByPieces = false; // a step was longer than the pieces' ghost layers hold
   // traces one candidate; true where it meets the tolerance (and landing within half a pixel)
-  auto evaluate = [&](Integrator m, double step, Reconstruction rc) -> bool
+  // the fewest samples per voxel of a sample point per step (samples / ray x step / the
+  // integrator's evaluations per step) of the candidates traced, per reconstruction
+  std::map<int, double> perVoxel;
+  // err (if not null): the candidate's measured error, radians (1e300 where it lost a ray)
+  auto evaluateOnce = [&](Integrator m, double step, Reconstruction rc, double* errOut) -> bool
   {
+    if (errOut)
+      *errOut = 1e300;
     TraceSettings t = in;
     t.Method = m;
     t.StepSize = step;
@@ -228,9 +320,11 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
       return false;
     }
     ++tried;
-    const bool isFloorTrace = reuseFloorTrace && m == Integrator::RK4 && step == 0.25;
+    // RK4 at a step of the reference's ladder: its trace is at hand
+    const RefLadder& L = refs[static_cast<int>(rc)];
+    const bool atLadder = reuseRefTrace && m == Integrator::RK4 && (step == L.Step || step == L.CoarseStep);
     const std::vector<RayRecord> T =
-      isFloorTrace ? floorTrace[static_cast<int>(rc)] : traceRays(t, ab);
+      atLadder ? (step == L.Step ? L.Fine : L.Coarse) : traceRays(t, ab);
     const std::vector<RayRecord>& R = rc == Reconstruction::Cubic ? refCubic : refTri;
     // a trilinear candidate answers for the trilinear's own error too (Reconstruction Auto)
     const double base = rc == Reconstruction::Trilinear && tryCubic ? triError : 0.0;
@@ -256,8 +350,16 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
       land = std::max(land, double(sch_hypot_d(T[k].LandA - R[k].LandA, T[k].LandB - R[k].LandB)));
     }
     land /= film.PixelSize;
+    {
+      const double pv = samples / T.size() * step / Evaluations(m);
+      auto it = perVoxel.find(static_cast<int>(rc));
+      if (it == perVoxel.end() || pv < it->second)
+        perVoxel[static_cast<int>(rc)] = pv;
+    }
     if (lost)
       return false;
+    if (errOut)
+      *errOut = err;
     if (m == Integrator::RK4 && step >= 1.0)
     {
       auto it = coarseRK4.find(static_cast<int>(rc));
@@ -302,6 +404,53 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     }
     return meets;
   };
+  // the same, each candidate traced once
+  // what each candidate traced gave (an earlier pilot's choice, traced first, comes up again in
+  // its group): met, and its error (1e300: lost)
+  std::map<std::tuple<int, double, int>, std::pair<bool, double>> done;
+  auto evaluate = [&](Integrator m, double step, Reconstruction rc, double* errOut) -> bool
+  {
+    const auto memo = std::make_tuple(static_cast<int>(m), step, static_cast<int>(rc));
+    const auto seen = done.find(memo);
+    if (seen != done.end())
+    {
+      if (errOut)
+        *errOut = seen->second.second;
+      return seen->second.first;
+    }
+    double e = 1e300;
+    const bool met = evaluateOnce(m, step, rc, &e);
+    done[memo] = { met, e };
+    if (errOut)
+      *errOut = e;
+    return met;
+  };
+  // The search skips what cannot be chosen (issue 50: the candidates took half of a pilot at
+  // 512^3 once the references were cheap): a candidate whose cost, predicted from the samples
+  // per voxel of the candidates traced so far (a lower bound: the fewest), is not below the
+  // cheapest that met. A group whose 8 voxels are too dear starts at the shortest step of its
+  // doubling ladder that is not, and bisects below it where that one does not meet; where none
+  // is, it is skipped. Errors grow with the step (the search's own premise), so nothing cheaper
+  // than the choice is left out. And a line of sight stops halving where its error does not fall
+  // with the step (by a quarter a halving): what is left is the bending it does not follow.
+  auto predicted = [&](Integrator m, double step, Reconstruction rc) {
+    auto it = perVoxel.find(static_cast<int>(rc));
+    if (it == perVoxel.end())
+      it = perVoxel.begin();
+    if (it == perVoxel.end())
+      return 0.0;
+    // the pilot's cost: samples of all its rays, as evaluate counts them
+    return it->second * Evaluations(m) / step * (rc == Reconstruction::Cubic ? CubicSampleCost : 1.0) *
+      static_cast<double>(ab.size() / 2);
+  };
+  auto useless = [&](Integrator m, double step, Reconstruction rc) {
+    return found && predicted(m, step, rc) >= bestCost;
+  };
+  // an earlier pilot's choice first: where it meets again, what is dearer is skipped from the start
+  if (start && start->Met && start->StepSize > 0 && start->StepSize <= maxStep &&
+    ((start->Recon == Reconstruction::Trilinear && tryTri) || (start->Recon == Reconstruction::Cubic && tryCubic)) &&
+    start->Method != Integrator::Auto)
+    evaluate(start->Method, start->StepSize, start->Recon, nullptr);
   for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
   {
     if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
@@ -311,14 +460,23 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
       // line of sight is not refined below a voxel (its error there is the data's, not the step's)
       const double shortest = m == Integrator::Straight ? 1.0 : 0.25;
       double lo = 0, hi = 0; // the longest step that met, the shortest longer one that did not
-      const double first = std::min(8.0, maxStep);
-      if (evaluate(m, first, rc))
+      double first = std::min(8.0, maxStep);
+      double dear = 0; // a step known too dear to be chosen (the bisection's lower end), or 0
+      while (useless(m, first, rc) && first < maxStep)
+      {
+        dear = first;
+        first = std::min(2 * first, maxStep);
+      }
+      if (useless(m, first, rc))
+        continue; // even its longest step costs more than the choice
+      double err = 0;
+      if (evaluate(m, first, rc, &err))
       {
         lo = first;
         while (lo < maxStep)
         {
           const double st = std::min(2 * lo, maxStep);
-          if (!evaluate(m, st, rc))
+          if (!evaluate(m, st, rc, nullptr))
           {
             hi = st;
             break;
@@ -326,17 +484,38 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
           lo = st;
         }
       }
+      else if (dear > 0)
+      {
+        // the steps between the dear one and the first: bisected as below, from the dear end
+        hi = first;
+        lo = dear;
+        for (int r = 0; r < 2; ++r)
+        {
+          const double mid = std::stod(ToText(std::sqrt(lo * hi)));
+          if (!(mid > lo && mid < hi) || useless(m, mid, rc))
+            break;
+          if (evaluate(m, mid, rc, nullptr))
+            lo = mid;
+          else
+            hi = mid;
+        }
+        continue;
+      }
       else
       {
         hi = first;
-        for (double st = first / 2; st >= shortest; st /= 2)
+        for (double st = first / 2; st >= shortest && !useless(m, st, rc); st /= 2)
         {
-          if (evaluate(m, st, rc))
+          double e = 0;
+          if (evaluate(m, st, rc, &e))
           {
             lo = st;
             break;
           }
           hi = st;
+          if (m == Integrator::Straight && e < 1e300 && err < 1e300 && e > 0.75 * err)
+            break; // the error is the bending's, not the step's
+          err = e;
         }
       }
       for (int r = 0; r < 2 && lo > 0 && hi > lo; ++r)
@@ -345,7 +524,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
         const double mid = std::stod(ToText(std::sqrt(lo * hi)));
         if (!(mid > lo && mid < hi))
           break;
-        if (evaluate(m, mid, rc))
+        if (evaluate(m, mid, rc, nullptr))
           lo = mid;
         else
           hi = mid;
@@ -370,7 +549,9 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     auto it = coarseRK4.find(static_cast<int>(c.Recon));
     // RK4 at 4 times the step would be 256 times worse if the difference were its truncation
     // error: an error that does not fall with the step is rounding
-    floorWhy = "the reference (RK4 at 1/8 voxel) and RK4 at 1/4 voxel differ by " + ToText(d) + " rad";
+    const RefLadder& L = refs[static_cast<int>(c.Recon)];
+    floorWhy = "the reference (RK4 at " + ToText(L.Step) + " voxel) and RK4 at " + ToText(L.CoarseStep) +
+      " voxel differ by " + ToText(d) + " rad";
     if (it != coarseRK4.end() && it->second <= 2 * d)
       floorWhy += ", RK4 at a voxel or more by " + ToText(it->second) +
         " rad: an error that does not fall with the step, float rounding (each sample's position "
@@ -419,6 +600,8 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   // session says it apart, AutoChoice::PiecesBound)
   c.PiecesBound = boundByPieces;
   c.Candidates = tried;
+  for (const auto& L : refs)
+    c.ReferenceSteps[L.first == static_cast<int>(Reconstruction::Cubic) ? 1 : 0] = L.second.Step;
   if (in.UseOctree && grid.HasLevels)
     rep << "; octree " << (c.UseOctree ? "on" : "off") << ": it skips "
         << static_cast<int>(std::lround(100 * c.OctreeSaving)) << " % of the samples"

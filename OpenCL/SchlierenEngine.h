@@ -436,7 +436,8 @@ struct AutoChoice
   std::string Report;           ///< one line for the user
   /** The smallest error the pilot can tell apart for the chosen reconstruction, radians (0: not
    * measured; it is only where no candidate met the tolerance): 1.5 times the largest pilot
-   * difference between the reference (RK4 at 1/8 voxel) and RK4 at 1/4 voxel. Below it a
+   * difference between the reference (RK4 at the finest step of its ladder) and RK4 at twice
+   * that step; above the tolerance only where the ladder reached 1/8 voxel. Below it a
    * candidate's measured error says nothing about its real one. */
   double Floor = 0;
   /** The tolerance was below Floor: the cheapest candidate within the floor was taken (Met is
@@ -447,6 +448,10 @@ struct AutoChoice
   bool Reused = false;
   /** Candidates the pilot traced (besides its references). */
   int Candidates = 0;
+  /** The pilot's references: the step of RK4 each reconstruction's ladder stopped at, voxels
+   * (Trilinear, Cubic; 0: not traced). A later pilot given this choice as its start begins its
+   * ladders at twice these. */
+  double ReferenceSteps[2] = { 0, 0 };
   /** Traced in pieces: steps longer than the pieces' ghost layers hold (8 voxels trilinear, 64
    * tricubic) were not tried; one process may choose a longer one. */
   bool PiecesBound = false;
@@ -521,10 +526,14 @@ void CameraLensSample(std::uint32_t seed, int pass, double* u, double* v);
 
 /**
  * Resolves Integrator::Auto: traces a pilot of 16 x 16 rays across the film with each candidate
- * (line of sight; Euler, midpoint, RK4) and against a reference (RK4 at 1/8 voxel, no octree) on
- * the same grid, and returns the settings of the cheapest candidate (fewest samples) whose
+ * (line of sight; Euler, midpoint, RK4) and against a reference (RK4, no octree) on the same
+ * grid, and returns the settings of the cheapest candidate (fewest samples) whose
  * deflection error is within the tolerance and whose landing error is within half a pixel.
- * The reference shares the grid, so this measures integration error, not the grid's own.
+ * The reference shares the grid, so this measures integration error, not the grid's own. Its
+ * step is only as fine as it needs to be: RK4 from 2 voxels, halved while two successive traces
+ * differ by more than 5 % of the tolerance, down to 1/8 voxel. Candidates that cannot be cheaper
+ * than the best one found (their cost predicted from the samples per voxel traced so far) are
+ * not traced.
  * The steps are found from the pilot (issue 50): each integrator and reconstruction starts at 8
  * voxels, doubles while the candidate meets the tolerance (up to the volume's diagonal), halves
  * until one does where 8 does not, and bisects the last interval twice in log(step); a step
@@ -543,9 +552,13 @@ void CameraLensSample(std::uint32_t seed, int pass, double* u, double* v);
  * piecesBound: the steps stay within what tracing in pieces allows (8 voxels trilinear, 64
  * tricubic: the pieces' ghost layers), as ResolveAutoDistributed's do; one process then makes the
  * choice the pieces make (beyond those steps the two differ: the pieces' auto_report says so).
+ * start (may be null): an earlier pilot's choice on the same volume and tolerance (another view):
+ * its setting is traced first, so that candidates dearer than it are skipped from the start, and
+ * the references' ladders begin at twice the steps it stopped at. The choice is the one the
+ * search makes without it wherever the errors grow with the step (the search's premise).
  */
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr,
-  bool piecesBound = false);
+  bool piecesBound = false, const AutoChoice* start = nullptr);
 
 /** The film coordinates of Auto's pilot rays: the centres of a 16 x 16 grid over the film. */
 std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings);

@@ -107,7 +107,7 @@ using PilotTracer =
   std::function<std::vector<RayRecord>(const TraceSettings& t, const std::vector<float>& ab)>;
 /** ResolveAuto with the pilot traced by `traceRays`. */
 TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, AutoChoice* choice,
-  const PilotTracer& traceRays);
+  const PilotTracer& traceRays, const AutoChoice* start = nullptr);
 
 // ------------------------------------------------------------------ film (SchlierenFilm.cxx)
 

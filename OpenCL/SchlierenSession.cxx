@@ -4,6 +4,7 @@
 #include "SchlierenSessionInternal.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <new>
 #include <sstream>
@@ -120,7 +121,8 @@ std::vector<double> ChoiceNumbers(const TraceSettings& chosen, const AutoChoice&
  * backends round differently) and adopts the choice on every rank. Other settings come back as
  * they are. Collective.
  */
-AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSettings& settings)
+AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSettings& settings,
+  const AutoChoice* start)
 {
   AutoChoice choice;
   if (settings.Method != Integrator::Auto && settings.Recon != Reconstruction::Auto)
@@ -139,7 +141,7 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
       TraceSettings pilot = settings;
       pilot.RankIndex = 0;
       pilot.RankCount = 1;
-      const TraceSettings chosen = ResolveAuto(volume, pilot, &choice);
+      const TraceSettings chosen = ResolveAuto(volume, pilot, &choice, false, start);
       numbers = ChoiceNumbers(chosen, choice);
     }
     catch (const Error& e)
@@ -347,7 +349,7 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
   std::ostringstream stamp;
   stamp << volume.Stamp;
   return this->ResolveKept(parallel, volume, settings, stamp.str(),
-    [&parallel, &volume](TraceSettings& s) { return ResolveOnRankZero(parallel, volume, s); });
+    [this, &parallel, &volume](TraceSettings& s) { return ResolveOnRankZero(parallel, volume, s, this->PilotStart); });
 }
 
 AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, TraceSettings& settings,
@@ -435,7 +437,21 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
     return c;
   }
   const TraceSettings asked = settings;
-  AutoChoice c = resolve(settings);
+  // the same volume and tolerance, another view (the camera at rest after a move) or a finer
+  // film: the last pilot's choice is the new one's start (issue 50)
+  const AutoChoice before = this->AutoKept;
+  this->PilotStart = !this->AutoKey.empty() && key.str() == this->AutoKey ? &before : nullptr;
+  AutoChoice c;
+  try
+  {
+    c = resolve(settings);
+  }
+  catch (...)
+  {
+    this->PilotStart = nullptr;
+    throw;
+  }
+  this->PilotStart = nullptr;
   ++this->PilotsRun;
   this->AutoKey = key.str();
   this->AutoTraced = settings;
@@ -725,8 +741,10 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     if (out.PassesTraced > 0)
     {
       traced.Passes = out.PassesTraced;
+      const auto t0 = std::chrono::steady_clock::now();
       Accumulate(volume, traced, this->Sums, &out.BackendUsed, &out.DeviceName, &warnings,
         [&progress](double p) { return progress ? progress(0.05 + 0.9 * p) : true; });
+      out.SecondsTracing = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     traced.Passes = settings.Passes;
     this->SumsKey = key;

@@ -110,7 +110,7 @@ struct SessionImage
   double BytesExchanged = 0;  ///< ray states and records sent between ranks, all ranks
   double Rounds = 0;          ///< trace-and-exchange rounds of this update
   int GhostLayers = 0;        ///< ghost points around each rank's owned cells
-  double SecondsTracing = 0;    ///< the longest any rank spent stepping rays (this update)
+  double SecondsTracing = 0;    ///< the longest any rank spent stepping rays (this update; the whole volume: the trace of its passes)
   double SecondsExchanging = 0; ///< the longest any rank spent in the exchanges, waiting included
   int Passes = 0;        ///< passes in the image
   int PassesTraced = 0;  ///< passes traced by this update (the others were kept)
@@ -291,6 +291,7 @@ private:
   double LastView[6] = { 0, 0, 0, 0, 0, 0 }; // the last update's
   int AutoResolution[2] = { 0, 0 };
   double AutoLanding = 0; // the kept choice's landing error, world units (on the pilot's film)
+  const AutoChoice* PilotStart = nullptr; // while a pilot runs: the last one's choice, its start
   bool AutoChoiceKept = false; // the last update kept the choice for another view
   int PilotsRun = 0;
 };

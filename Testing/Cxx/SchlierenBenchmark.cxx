@@ -21,6 +21,12 @@
 //             the feature's width and the cheapest swept setting that meets Auto's default
 //             tolerance: samples/ray, RMS and largest error against the closed form, rays/s, the
 //             pilot's ms; then the scaling table (each setting's rays/s over its 64^3 rate)
+//   moves     issue 50's first image after a camera move: the same Gaussian on each grid of --grids
+//             in a TraceSession (what SchlierenImage runs), Auto at its default tolerance and Auto +
+//             Cubic at 3e-8 rad: the first update (packing, pilot, one pass of the film), camera
+//             moves on axis and oblique (half film, one pass, as the GUI's follower traces) and the
+//             camera at rest (the pilot again, the full film): wall ms of each update split into
+//             the pilot, the trace and the rest (packing, set-up, the image)
 //   sources   the bench's sources (Point, Slit, Disc, Gaussian) on the Gaussian sphere: rays/s, the
 //             passes for an RMS of 1 %, a camera move
 //   raycost   the Gaussian sphere (--size) traced as a camera move traces it at steps of 0.3 to 30
@@ -33,6 +39,7 @@
 #include "SchlierenLimits.h"
 #include "SchlierenOracles.h"
 #include "SchlierenScenes.h"
+#include "SchlierenSession.h"
 
 #include <algorithm>
 #include <chrono>
@@ -534,17 +541,18 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
   std::printf("## Auto's step (issue 50): weak Gaussian A = 2e-4, s = 0.25 on [-1, 1]^3, beam along -z, "
               "film %d^2, %d passes\n\n", film, passes);
   std::printf("error: RMS / largest |deflection - closed form| over the film's pixel centres within "
-              "|x|, |y| < 2.2 s, of the peak (%.4g rad); rays/s: the trace without the pilot (pilot ms "
-              "apart); cost: samples per ray, a tricubic sample counted as 3. The peers' columns of the "
+              "|x|, |y| < 2.2 s, of the peak (%.4g rad); rays/s: the trace without the pilot; pilot ms: "
+              "a pilot once the programs are built and the field uploaded (a session's first, which "
+              "does both, in brackets); rays/s with the pilot: an update of the passes that runs it; cost: samples per ray, a tricubic sample counted as 3. The peers' columns of the "
               "issue (jdhare/turbulence_tracing, cfdtools SHADOWGRAPH) need their code, not kept here.\n\n",
     peak);
-  std::printf("| grid | backend | setting | chosen | samples/ray | RMS error | max error | rays/s | pilot ms |\n"
-              "|---|---|---|---|---|---|---|---|---|\n");
   struct Row
   {
     std::string Name;
     double Rate = 0, Rms = 0;
   };
+  std::printf("| grid | backend | setting | chosen | samples/ray | RMS error | max error | rays/s | pilot ms | rays/s with the pilot |\n"
+              "|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::pair<int, std::vector<Row>>> scaling;
   std::stringstream gs(grids);
   std::string g;
@@ -574,7 +582,7 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
     }
     catch (const std::exception& e)
     {
-      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | |\n", n, e.what());
+      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | |\n", n, e.what());
       continue;
     }
     std::vector<float>().swap(n1);
@@ -633,7 +641,7 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
       // the rows: Auto at its default and at 3e-8 rad, the issue's setting, the sweep's cheapest,
       // Euler at a voxel (the scaling table's first row)
       std::vector<std::pair<std::string, TraceSettings>> settings;
-      std::vector<double> pilotMs;
+      std::vector<double> pilotMs, pilotFirstMs;
       for (double tol : { 0.0, 3e-8 })
       {
         TraceSettings s = base;
@@ -641,17 +649,24 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
         s.Recon = Reconstruction::Auto;
         s.Tolerance = tol;
         AutoChoice choice;
-        const auto tp = Clock::now();
+        // the pilot twice: the first builds the programs and uploads the field (a session's
+        // first update), the second is what a pilot costs once they are there (a camera at rest)
+        double first = 0;
         try
         {
+          auto tp = Clock::now();
+          ResolveAuto(v, s, &choice);
+          first = Since(tp) * 1e3;
+          tp = Clock::now();
           s = ResolveAuto(v, s, &choice);
+          pilotMs.push_back(Since(tp) * 1e3);
         }
         catch (const Error& e)
         {
-          std::printf("| %d^3 | %s | Auto %g | failed: %s | | | | | |\n", n, bname.c_str(), tol, e.what());
+          std::printf("| %d^3 | %s | Auto %g | failed: %s | | | | | | |\n", n, bname.c_str(), tol, e.what());
           continue;
         }
-        pilotMs.push_back(Since(tp) * 1e3);
+        pilotFirstMs.push_back(first);
         if (tol == 0)
           defaultTol = choice.Tolerance;
         settings.push_back({ tol == 0 ? "Auto, default tolerance" : "Auto, 3e-8 rad", s });
@@ -717,20 +732,30 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
           char chosen[96];
           std::snprintf(chosen, sizeof(chosen), "%s %s %.3g vox", ReconstructionName(s.Recon),
             IntegratorName(s.Method), s.StepSize);
-          char pilot[32] = "-";
-          if (k < pilotMs.size())
-            std::snprintf(pilot, sizeof(pilot), "%.0f", pilotMs[k]);
+          char pilot[48] = "-", withPilot[32] = "-";
           const double rate = r.Photons / r.Seconds;
-          std::printf("| %d^3 | %s | %s | %s | %.1f | %.3g %% | %.3g %% | %.3g M | %s |\n", n,
+          // an update of --passes passes that runs the pilot (warm): its rays over pilot + trace
+          double rateWithPilot = 0;
+          if (k < pilotMs.size())
+          {
+            std::snprintf(pilot, sizeof(pilot), "%.0f (first %.0f)", pilotMs[k], pilotFirstMs[k]);
+            rateWithPilot = r.Photons / (r.Seconds + 1e-3 * pilotMs[k]);
+            std::snprintf(withPilot, sizeof(withPilot), "%.3g M", rateWithPilot / 1e6);
+          }
+          std::printf("| %d^3 | %s | %s | %s | %.1f | %.3g %% | %.3g %% | %.3g M | %s | %s |\n", n,
             r.BackendUsed.c_str(), settings[k].first.c_str(), chosen, r.Samples / r.Photons,
-            100 * rms / peak, 100 * worst / peak, rate / 1e6, pilot);
+            100 * rms / peak, 100 * worst / peak, rate / 1e6, pilot, withPilot);
           if (first)
+          {
             rows.push_back({ settings[k].first, settings[k].first == "Euler 1 voxel" ? r.Samples / r.Seconds : rate,
               rms / peak });
+            if (rateWithPilot > 0)
+              rows.push_back({ settings[k].first + ", with its pilot", rateWithPilot, rms / peak });
+          }
         }
         catch (const Error& e)
         {
-          std::printf("| %d^3 | %s | %s | failed: %s | | | | | |\n", n, bname.c_str(),
+          std::printf("| %d^3 | %s | %s | failed: %s | | | | | | |\n", n, bname.c_str(),
             settings[k].first.c_str(), e.what());
         }
         std::fflush(stdout);
@@ -762,6 +787,119 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
         std::printf(" - |");
     }
     std::printf("\n");
+  }
+  std::printf("\n");
+}
+
+// The moves case (issue 50): per update of a TraceSession, the wall time split into the pilot
+// (from Auto's report), the trace (TraceResult::Seconds) and the rest (packing the volume, the
+// rays' set-up, the image).
+void Moves(const std::string& grids, int film)
+{
+  const double A = 2e-4, w = 0.25;
+  std::printf("## The first image after a camera move (issue 50): weak Gaussian A = 2e-4, s = 0.25 on "
+              "[-1, 1]^3 in a TraceSession, film %d^2 at rest, %d^2 while moving (1 pass)\n\n",
+    film, film / 2);
+  std::printf("| grid | setting | update | film | wall ms | pilot ms | trace ms | rest ms | volume | chosen | samples/ray |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::stringstream gs(grids);
+  std::string g;
+  while (std::getline(gs, g, ','))
+  {
+    const int n = std::atoi(g.c_str());
+    std::vector<float> n1;
+    VolumePiece piece;
+    try
+    {
+      n1.resize(static_cast<std::size_t>(n) * n * n);
+      int dims[3] = { n, n, n };
+      double origin[3] = { -1, -1, -1 }, spacing[3];
+      for (int a = 0; a < 3; ++a)
+        spacing[a] = 2.0 / (n - 1);
+      SceneParameters p;
+      p.Amplitude = A;
+      p.Width = w;
+      FillScene(Scene::GaussianSphere, p, dims, origin, spacing, n1.data(), nullptr);
+      for (int a = 0; a < 3; ++a)
+      {
+        piece.WholeExtent[2 * a] = piece.Extent[2 * a] = 0;
+        piece.WholeExtent[2 * a + 1] = piece.Extent[2 * a + 1] = n - 1;
+        piece.Origin[a] = origin[a];
+        piece.Spacing[a] = spacing[a];
+      }
+      piece.Version = 1;
+      piece.Load = [&n1](PieceValues& v) {
+        v.NMinus1InPlace = n1.data();
+        v.NMinus1InPlaceCount = n1.size();
+        return std::string();
+      };
+    }
+    catch (const std::exception& e)
+    {
+      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | | |\n", n, e.what());
+      continue;
+    }
+    for (int setting = 0; setting < 2; ++setting)
+    {
+      TraceSession session;
+      TraceSettings s;
+      s.Method = Integrator::Auto;
+      s.Recon = setting == 0 ? Reconstruction::Auto : Reconstruction::Cubic;
+      s.Tolerance = setting == 0 ? 0.0 : 3e-8;
+      s.CutoffScale = 1000;
+      s.UseOctree = false;
+      const char* name = setting == 0 ? "Auto, default tolerance" : "Auto + Cubic, 3e-8 rad";
+      // at rest on axis, then moves: oblique, near the axis, oblique, and at rest again
+      struct Step
+      {
+        const char* What;
+        double Dir[3];
+        bool Moving;
+      };
+      const Step steps[] = { { "first update, axis", { 0, 0, -1 }, false },
+        { "move, oblique (1, 0.7, -0.4)", { 1, 0.7, -0.4 }, true },
+        { "move, near the axis (0.05, 0.03, -1)", { 0.05, 0.03, -1 }, true },
+        { "move, oblique (-0.6, 0.5, -0.6)", { -0.6, 0.5, -0.6 }, true },
+        { "at rest, oblique (-0.6, 0.5, -0.6)", { -0.6, 0.5, -0.6 }, false },
+        { "move, axis (0, 0, -1)", { 0, 0, -1 }, true } };
+      for (const Step& st : steps)
+      {
+        TraceSettings t = s;
+        for (int a = 0; a < 3; ++a)
+          t.ViewDirection[a] = st.Dir[a];
+        const bool alongY = std::fabs(st.Dir[1]) > 0.9 * std::sqrt(st.Dir[0] * st.Dir[0] + st.Dir[1] * st.Dir[1] + st.Dir[2] * st.Dir[2]);
+        t.ViewUp[0] = 0;
+        t.ViewUp[1] = alongY ? 0 : 1;
+        t.ViewUp[2] = alongY ? 1 : 0;
+        t.Resolution[0] = t.Resolution[1] = st.Moving ? film / 2 : film;
+        t.Passes = 1;
+        SessionImage out;
+        const auto t0 = Clock::now();
+        try
+        {
+          session.Update(SerialParallel(), piece, t, out);
+        }
+        catch (const Error& e)
+        {
+          std::printf("| %d^3 | %s | %s | failed: %s | | | | | | | |\n", n, name, st.What, e.what());
+          break;
+        }
+        const double wall = Since(t0) * 1e3;
+        double pilot = 0;
+        const std::string& rep = out.Choice.Report;
+        const std::size_t at = rep.find(" rays, ");
+        if (!out.Choice.Reused && at != std::string::npos)
+          pilot = std::atof(rep.c_str() + at + 7);
+        const double trace = out.SecondsTracing * 1e3;
+        char chosen[96];
+        std::snprintf(chosen, sizeof(chosen), "%s %s %.3g vox%s", ReconstructionName(out.Traced.Recon),
+          IntegratorName(out.Traced.Method), out.Traced.StepSize, out.Choice.Reused ? " (kept)" : "");
+        std::printf("| %d^3 | %s | %s | %d^2 | %.0f | %.0f | %.0f | %.0f | %s | %s | %.1f |\n", n, name, st.What,
+          t.Resolution[0], wall, pilot, trace, wall - pilot - trace, out.VolumeFrom.c_str(), chosen,
+          out.Result.Photons > 0 ? out.Result.Samples / out.Result.Photons : 0.0);
+        std::fflush(stdout);
+      }
+    }
   }
   std::printf("\n");
 }
@@ -929,6 +1067,8 @@ int main(int argc, char** argv)
         AutoStep(grids, backends, film, passes);
       else if (name == "sources")
         Sources(backends, film, size);
+      else if (name == "moves")
+        Moves(grids, film);
       else if (name == "raycost")
       {
         if (Gaussian(c, size))
@@ -941,7 +1081,7 @@ int main(int argc, char** argv)
       else if (name == "bluntfin")
         ok = BluntFin(c, raw);
       else
-        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, autostep, sources, raycost)\n", name.c_str());
+        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, autostep, moves, sources, raycost)\n", name.c_str());
     }
     catch (const Error& e)
     {

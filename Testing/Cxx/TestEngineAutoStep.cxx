@@ -158,6 +158,25 @@ void RunGrid(int n)
     chosen[tol] = ResolveAuto(v, a, &choice[tol]);
   }
   const double defaultTol = choice[0.0].Tolerance;
+  // the pilot started from an earlier one's choice (the session's camera at rest after a move):
+  // the same choice and the same reference step (the candidates it saves are printed)
+  for (double tol : kTolerances)
+  {
+    TraceSettings a = s;
+    a.Method = Integrator::Auto;
+    a.Recon = Reconstruction::Auto;
+    a.Tolerance = tol;
+    AutoChoice again;
+    const TraceSettings t = ResolveAuto(v, a, &again, false, &choice[tol]);
+    char tolText[32];
+    std::snprintf(tolText, sizeof(tolText), "%.3g", tol > 0 ? tol : defaultTol);
+    const std::string at = std::to_string(n) + "^3 at " + tolText + " rad, started from the choice: ";
+    std::printf("%s%s %s %.3g vox, %d candidates (without the start: %d)\n", at.c_str(),
+      ReconstructionName(t.Recon), IntegratorName(t.Method), t.StepSize, again.Candidates, choice[tol].Candidates);
+    CHECK(t.Method == chosen[tol].Method && t.StepSize == chosen[tol].StepSize && t.Recon == chosen[tol].Recon,
+      at + "the same choice");
+    CHECK(again.ReferenceSteps[1] == choice[tol].ReferenceSteps[1], at + "the same reference step");
+  }
   int swept = 0;
   for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
     for (Integrator mth : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
