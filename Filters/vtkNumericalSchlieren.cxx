@@ -365,6 +365,11 @@ void vtkNumericalSchlieren::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DensityArray: " << this->DensityArray << "\n";
 }
 
+vtkExecutive* vtkNumericalSchlieren::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
+}
+
 vtkTypeBool vtkNumericalSchlieren::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -207,6 +207,11 @@ void vtkRefractionOctree::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
+vtkExecutive* vtkRefractionOctree::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
+}
+
 vtkTypeBool vtkRefractionOctree::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -2131,6 +2131,11 @@ void vtkRefractiveIndex::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
+vtkExecutive* vtkRefractiveIndex::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
+}
+
 vtkTypeBool vtkRefractiveIndex::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -906,6 +906,11 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
+vtkExecutive* vtkSchlierenImage::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
+}
+
 vtkTypeBool vtkSchlierenImage::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
