@@ -16,7 +16,6 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiBlockDataSet.h"
@@ -29,6 +28,7 @@
 
 #include "SchlierenArrays.h"
 #include "SchlierenBodies.h"
+#include "SchlierenController.h"
 #include "SchlierenWalls.h"
 #include "SchlierenEngine.h"
 #include "SchlierenParallel.h"
@@ -1015,8 +1015,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
     this->RadialSign = wedge.Found ? wedge.Sign : (rmax >= -rmin ? 1.0 : -1.0);
     const double R = wedge.Found ? wedge.Reach : (this->RadialSign > 0 ? rmax : -rmin);
     this->RadialExtent = R;
-    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-    if (rmin < -0.01 * R && rmax > 0.01 * R && (!controller || controller->GetLocalProcessId() == 0))
+    if (rmin < -0.01 * R && rmax > 0.01 * R && schlieren::ControllerParallel().Rank() == 0)
     {
       // data on both sides of the axis: one side is revolved, the other would vanish unsaid
       vtkWarningMacro(<< "Symmetry Axisymmetric: the input crosses the axis (" << AxisNames[radial]
