@@ -13,8 +13,10 @@
 #include "vtkObjectFactory.h"
 #include "vtkPVCompositeDataPipeline.h"
 #if VTK_MODULE_ENABLE_VTK_ParallelMPI
+#include "vtkMPI.h"
 #include "vtkMPICommunicator.h"
 #endif
+#include "vtkOutputWindow.h"
 
 #include <algorithm>
 #include <chrono>
@@ -333,15 +335,30 @@ void ControllerParallel::ArriveAt(const std::string& step)
   auto* comm = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator());
   if (!comm)
     return; // not MPI (a socket or threaded controller): no guard
-  const double timeout = GetRuntimeOptions().MpiTimeout;
+  const RuntimeOptions& options = GetRuntimeOptions();
   std::lock_guard<std::mutex> lock(GuardMutex);
   GuardState& state = Guards[comm];
   Guard guard(comm, state, this->Me, this->Ranks);
   state.Failed = true;
-  if (this->Me == 0)
-    guard.Coordinate(step, timeout);
-  else
-    guard.Follow(step, timeout);
+  try
+  {
+    if (this->Me == 0)
+      guard.Coordinate(step, options.MpiTimeout);
+    else
+      guard.Follow(step, options.MpiTimeout);
+  }
+  catch (const Error& e)
+  {
+    if (options.MpiAbort)
+    {
+      // the ranks are out of step: end the job rather than meet a rank held elsewhere
+      vtkOutputWindowDisplayErrorText(("Schlieren, rank " + std::to_string(this->Me) + ": " +
+        e.what() + " SCHLIEREN_MPI_ABORT=1: the MPI job is aborted.\n")
+                                        .c_str());
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    throw;
+  }
   state.Failed = false;
 #else
   (void)step;
