@@ -445,51 +445,44 @@ namespace
  */
 std::string PropertyProblem(vtkRefractiveIndex* self)
 {
-  const double inf = std::numeric_limits<double>::infinity();
-  struct Range
+  // the values, read here; their ranges are the engine's (schlieren::PropertyRangeProblem, which
+  // the Python front end calls through schlieren_check_property)
+  const int* species = self->GetSpeciesGases();
+  const double* speciesK = self->GetSpeciesGladstoneDale();
+  const double* speciesM = self->GetSpeciesMolarMass();
+  const int* sampling = self->GetSamplingDimensions();
+  const int* walls = self->GetBodyWallFaces();
+  const std::vector<std::pair<const char*, std::vector<double>>> values = {
+    { "GladstoneDaleConstant", { self->GetGladstoneDaleConstant() } },
+    { "MolarMass", { self->GetMolarMass() } },
+    { "NumberOfSpecies", { double(self->GetNumberOfSpecies()) } },
+    { "SpeciesGases",
+      { double(species[0]), double(species[1]), double(species[2]), double(species[3]) } },
+    { "SpeciesGladstoneDale", std::vector<double>(speciesK, speciesK + 4) },
+    { "SpeciesMolarMass", std::vector<double>(speciesM, speciesM + 4) },
+    { "BalanceGladstoneDale", { self->GetBalanceGladstoneDale() } },
+    { "BalanceMolarMass", { self->GetBalanceMolarMass() } },
+    { "DensityReference", { self->GetDensityReference() } },
+    { "TemperatureReference", { self->GetTemperatureReference() } },
+    { "PressureReference", { self->GetPressureReference() } },
+    { "PressureOffset", { self->GetPressureOffset() } },
+    { "Humidity", { self->GetHumidity() } }, { "CO2", { self->GetCO2() } },
+    { "Wavelength", { self->GetWavelength() } }, { "Span", { self->GetSpan() } },
+    { "AutomaticDimension", { double(self->GetAutomaticDimension()) } },
+    { "SamplingDimensions", { double(sampling[0]), double(sampling[1]), double(sampling[2]) } },
+    { "BodyWallFaces", std::vector<double>(walls, walls + 6) },
+    { "PassthroughHoldsN", { double(self->GetPassthroughHoldsN()) } },
+    { "HumidityFromArray", { double(self->GetHumidityFromArray()) } },
+    { "CO2FromArray", { double(self->GetCO2FromArray()) } },
+    { "AxisFromWedge", { double(self->GetAxisFromWedge()) } },
+    { "UseSamplingBounds", { double(self->GetUseSamplingBounds()) } },
+    { "BodyFromGrid", { double(self->GetBodyFromGrid()) } } };
+  for (const auto& v : values)
   {
-    std::string Name;
-    double Value, Min, Max;
-  };
-  std::vector<Range> ranges = { { "GladstoneDaleConstant", self->GetGladstoneDaleConstant(), 0, 1 },
-    { "MolarMass", self->GetMolarMass(), 0, 10 },
-    { "NumberOfSpecies", double(self->GetNumberOfSpecies()), 0, 4 },
-    { "BalanceGladstoneDale", self->GetBalanceGladstoneDale(), 0, inf },
-    { "BalanceMolarMass", self->GetBalanceMolarMass(), 0, inf },
-    { "DensityReference", self->GetDensityReference(), 1e-12, inf },
-    { "TemperatureReference", self->GetTemperatureReference(), 1e-12, inf },
-    { "PressureReference", self->GetPressureReference(), 1e-12, inf },
-    { "Humidity", self->GetHumidity(), 0, 1 }, { "CO2", self->GetCO2(), 0, 1e6 },
-    { "Wavelength", self->GetWavelength(), 100, 20000 }, { "Span", self->GetSpan(), 0, inf },
-    { "AutomaticDimension", double(self->GetAutomaticDimension()), 2, 4096 } };
-  for (int i = 0; i < 4; ++i)
-  {
-    const std::string at = "[" + std::to_string(i) + "]";
-    ranges.push_back({ "SpeciesGases" + at, double(self->GetSpeciesGases()[i]), -1, 9 });
-    ranges.push_back({ "SpeciesGladstoneDale" + at, self->GetSpeciesGladstoneDale()[i], 0, inf });
-    ranges.push_back({ "SpeciesMolarMass" + at, self->GetSpeciesMolarMass()[i], 0, inf });
-  }
-  for (int i = 0; i < 3; ++i)
-    ranges.push_back({ "SamplingDimensions[" + std::to_string(i) + "]",
-      double(self->GetSamplingDimensions()[i]), 0, 65536 });
-  for (int i = 0; i < 6; ++i)
-    ranges.push_back(
-      { "BodyWallFaces[" + std::to_string(i) + "]", double(self->GetBodyWallFaces()[i]), 0, 1 });
-  for (const Range& r : ranges)
-  {
-    if (!(r.Value >= r.Min && r.Value <= r.Max) || std::isinf(r.Value))
-    {
-      std::ostringstream msg;
-      msg << r.Name << " is " << r.Value << ": it must be in [" << r.Min << ", ";
-      if (std::isinf(r.Max))
-        msg << "a finite value]";
-      else
-        msg << r.Max << "]";
-      if (r.Name.find("Reference") != std::string::npos)
-        msg << " (a reference value is positive: 1 for dimensional data)";
-      msg << ".";
-      return msg.str();
-    }
+    const std::string problem = schlieren::PropertyRangeProblem(
+      "RefractiveIndex", v.first, v.second.data(), static_cast<int>(v.second.size()));
+    if (!problem.empty())
+      return problem;
   }
   // the enumerations' and booleans' entries, those of their domains in Schlieren.xml
   const std::initializer_list<SchlierenEntry> gas = { { 0, "Air" }, { 1, "He" }, { 2, "N2" },
@@ -521,13 +514,7 @@ std::string PropertyProblem(vtkRefractiveIndex* self)
     SchlierenEnumProblem(
       "SymmetryAxis", self->GetSymmetryAxis(), { { 0, "X" }, { 1, "Y" }, { 2, "Z" } }),
     SchlierenEnumProblem("AmbientMode", self->GetAmbientMode(),
-      { { 0, "Extend" }, { 1, "DomainEdgeMedian" }, { 2, "Value" } }),
-    SchlierenBoolProblem("PassthroughHoldsN", self->GetPassthroughHoldsN()),
-    SchlierenBoolProblem("HumidityFromArray", self->GetHumidityFromArray()),
-    SchlierenBoolProblem("CO2FromArray", self->GetCO2FromArray()),
-    SchlierenBoolProblem("AxisFromWedge", self->GetAxisFromWedge()),
-    SchlierenBoolProblem("UseSamplingBounds", self->GetUseSamplingBounds()),
-    SchlierenBoolProblem("BodyFromGrid", self->GetBodyFromGrid()) };
+      { { 0, "Extend" }, { 1, "DomainEdgeMedian" }, { 2, "Value" } }) };
   for (const std::string& problem : problems)
   {
     if (!problem.empty())

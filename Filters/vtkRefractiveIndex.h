@@ -92,7 +92,7 @@ class vtkImageData;
 namespace schlieren
 {
 class Parallel; // OpenCL/SchlierenParallel.h: the one interface to the ranks
-struct Wedge;   // OpenCL/SchlierenWedge.h: an axisymmetric wedge found from its points
+struct SymmetryPlan; // OpenCL/SchlierenSymmetry.h: a symmetric input's grid and samples
 class TimeStepCache; // SchlierenTimeCache.h: outputs kept per time step
 }
 
@@ -648,11 +648,6 @@ private:
   vtkSmartPointer<vtkDataObject> PointFields(schlieren::Parallel& parallel, vtkDataObject* input,
     const std::vector<std::string>& names, std::vector<std::string>& notes, std::string& error);
   /**
-   * AXISYMMETRIC: the wedge of the input's points (none for a null input or AxisFromWedge off);
-   * sets the axis in use, its crossing and the sampled half plane's tilt, and WedgeNote.
-   */
-  schlieren::Wedge FindWedge(vtkDataObject* input);
-  /**
    * NO_SYMMETRY: "" or the warning that the (non-image) input is an axisymmetric wedge, which
    * traced as it is would be a slab of gas a few degrees thick (issue 48), and what to set.
    */
@@ -669,17 +664,9 @@ private:
   int ResolvedModel = PASSTHROUGH;
   bool ResolvedHoldsN = false;
   std::vector<std::string> ResolvedArrays;
-  // The symmetric grid's geometry (SymmetricGrid): the axis normal to the input's plane, that
-  // plane's coordinate, the half plane of the radius (+1 or -1), the input's largest radius.
-  int PlaneAxis = 2;
-  double PlaneCoordinate = 0.0;
-  double RadialSign = 1.0;
-  double RadialExtent = 0.0; // the input's largest r
-  // the axis in use (SymmetryAxis, or a wedge's), where it crosses the radial axis, and the
-  // angle of the half plane sampled (a wedge's mid-plane) from the radial axis towards PlaneAxis
-  int AxisInUse = 0;
-  double AxisRadial = 0.0;
-  double MidTilt = 0.0;
+  // The symmetric grid's plan (SymmetricGrid, the engine's PlanSymmetry): the plane, the axis in
+  // use, the wedge's tilt, the grid; where each grid point samples the 2D input
+  std::shared_ptr<schlieren::SymmetryPlan> SymmetryGeometry;
   std::string WedgeNote; // what the wedge detection found, for the log
 };
 

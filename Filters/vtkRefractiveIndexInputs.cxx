@@ -33,7 +33,7 @@
 #include "SchlierenEngine.h"
 #include "SchlierenParallel.h"
 #include "SchlierenValues.h"
-#include "SchlierenWedge.h"
+#include "SchlierenSymmetry.h"
 #include "SchlierenIndexModels.h"
 
 #include <algorithm>
@@ -774,34 +774,19 @@ std::string vtkRefractiveIndex::FlatInputError(schlieren::Parallel& parallel, vt
 //------------------------------------------------------------------------------
 namespace
 {
-// Whether every point of `data` has one of at most two coordinates along `axis` (within `tol`).
-bool OnTwoPlanes(vtkDataSet* data, int axis, double tol)
+// x, y, z of every point of `data` (all its blocks), for the engine's wedge and plane checks.
+std::vector<double> AllPoints(vtkDataObject* data)
 {
-  if (!data || data->GetNumberOfPoints() == 0)
-  {
-    return false;
-  }
-  double planes[2];
-  int found = 0;
-  double x[3];
-  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
-  {
-    data->GetPoint(i, x);
-    bool known = false;
-    for (int k = 0; k < found && !known; ++k)
+  std::vector<double> xyz;
+  ForEachLeaf(data, [&](vtkDataSet* ds) {
+    for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i)
     {
-      known = std::abs(x[axis] - planes[k]) <= tol;
+      double p[3];
+      ds->GetPoint(i, p);
+      xyz.insert(xyz.end(), p, p + 3);
     }
-    if (!known)
-    {
-      if (found == 2)
-      {
-        return false;
-      }
-      planes[found++] = x[axis];
-    }
-  }
-  return true;
+  });
+  return xyz;
 }
 }
 
@@ -811,6 +796,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
   this->SamplingError.clear();
+  this->SymmetryGeometry.reset();
   // Every rank samples the whole 2D input (it is small): ask for all of it, as
   // RequestUpdateExtent will.
   int producerPort = 0;
@@ -825,260 +811,58 @@ bool vtkRefractiveIndex::SymmetricGrid(
     }
     producer->Update(producerPort);
   }
+  // the engine checks the plane, finds a wedge and plans the grid (SchlierenSymmetry.h)
   vtkDataObject* input = InternalMesh(vtkDataObject::GetData(inInfo), nullptr);
-  double b[6];
-  auto fail = [this](const std::string& message) {
-    this->SamplingError = message;
-    vtkErrorMacro(<< message);
+  schlieren::SymmetrySettings s;
+  s.Symmetry = this->Symmetry;
+  s.SymmetryAxis = this->SymmetryAxis;
+  s.Span = this->Span;
+  s.AxisFromWedge = this->AxisFromWedge != 0;
+  std::copy(this->SamplingDimensions, this->SamplingDimensions + 3, s.SamplingDimensions);
+  s.AutomaticDimension = this->AutomaticDimension;
+  s.UseSamplingBounds = this->UseSamplingBounds != 0;
+  std::copy(this->SamplingBounds, this->SamplingBounds + 6, s.SamplingBounds);
+  schlieren::SymmetryInput in;
+  in.HasPoints = BoundsOf(input, in.Bounds);
+  std::vector<double> xyz;
+  if (auto* image = vtkImageData::SafeDownCast(input))
+  {
+    in.Image = true;
+    image->GetExtent(in.ImageExtent);
+    image->GetOrigin(in.ImageOrigin);
+    image->GetSpacing(in.ImageSpacing);
+  }
+  else if (in.HasPoints)
+  {
+    xyz = AllPoints(input);
+    in.Points = xyz.data();
+    in.Count = xyz.size() / 3;
+    in.OneDataSet = vtkDataSet::SafeDownCast(input) != nullptr;
+  }
+  auto plan = std::make_shared<schlieren::SymmetryPlan>();
+  const std::string problem = schlieren::PlanSymmetry(s, in, *plan);
+  this->WedgeNote = plan->WedgeNote;
+  if (!problem.empty())
+  {
+    this->SamplingError = problem;
+    vtkErrorMacro(<< problem);
     return false;
-  };
-  if (!BoundsOf(input, b))
-  {
-    return fail("The input has no points to make a volume of (Symmetry " +
-      std::string(this->Symmetry == PLANAR ? "Planar" : "Axisymmetric") + ").");
   }
-  vtkImageData* image = vtkImageData::SafeDownCast(input);
-  int imageDims[3] = { 0, 0, 0 };
-  if (image)
+  if (schlieren::ControllerParallel().Rank() == 0)
   {
-    int ext[6];
-    image->GetExtent(ext);
-    for (int a = 0; a < 3; ++a)
+    for (const std::string& warning : plan->Warnings)
     {
-      imageDims[a] = ext[2 * a + 1] - ext[2 * a] + 1;
-    }
-  }
-  // The axis normal to the input's plane: an image's axis of fewest points, else the thinnest
-  // side of the bounds (ties: the later axis, z before y before x).
-  const bool axisym = this->Symmetry == AXISYMMETRIC;
-  const schlieren::Wedge wedge = this->FindWedge(axisym && !image ? input : nullptr);
-  int thin = wedge.Found ? wedge.Thin : -1;
-  for (int a = 2; a >= 0 && !wedge.Found; --a)
-  {
-    if (axisym && a == this->AxisInUse)
-    {
-      continue;
-    }
-    const double size = image ? imageDims[a] : b[2 * a + 1] - b[2 * a];
-    const double best = thin < 0 ? 0 : (image ? imageDims[thin] : b[2 * thin + 1] - b[2 * thin]);
-    if (thin < 0 || size < best)
-    {
-      thin = a;
-    }
-  }
-  const double largest = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
-  if (!(largest > 0))
-  {
-    return fail("The input's bounds have zero size (a single point): nothing to make a volume of.");
-  }
-  if (axisym)
-  {
-    // The axis must lie in the input's plane: the thinnest side overall must not be along it.
-    const double axisSize = b[2 * this->AxisInUse + 1] - b[2 * this->AxisInUse];
-    const double thinSize = b[2 * thin + 1] - b[2 * thin];
-    if (axisSize < thinSize || axisSize <= 1e-9 * largest)
-    {
-      std::ostringstream m;
-      m << "SymmetryAxis " << AxisNames[this->SymmetryAxis]
-        << " is normal to the input's plane (its bounds have no extent along it): choose an "
-           "axis that lies in the plane of the r-z data.";
-      return fail(m.str());
-    }
-  }
-  {
-    // A plane normal to an axis: one point (an image: at most two, a one-cell-thick 2D mesh)
-    // across it, or bounds thin next to the plane's own sides. Anything thicker is a 3D volume
-    // or a tilted plane, which cutting at one plane would quietly turn into a wrong volume.
-    double sides[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
-    double inPlane = largest;
-    for (int a = 0; a < 3; ++a)
-      if (a != thin)
-        inPlane = std::min(inPlane, sides[a]);
-    bool thick = image ? imageDims[thin] > 2 : sides[thin] > 0.05 * inPlane;
-    if (thick && !image)
-    {
-      // A mesh one cell thick (OpenFOAM's 2D cases: every point on one of two planes) is a
-      // plane whatever its thickness next to its sides.
-      thick = !OnTwoPlanes(vtkDataSet::SafeDownCast(input), thin, 1e-6 * largest);
-    }
-    if (thick && !wedge.Found && wedge.OnTwoPlanes)
-    {
-      // a wedge in shape (one cell across between two planes) that cannot be revolved as one:
-      // its own reason (a tilted axis, an angle past the limit), not "a 3D volume"
-      return fail("Symmetry Axisymmetric: the input is one cell across between two planes, as an "
-        "axisymmetric wedge, but it cannot be revolved as one: " + wedge.Why + ".");
-    }
-    if (thick && !wedge.Found)
-    {
-      std::ostringstream m;
-      m << "Symmetry " << (axisym ? "Axisymmetric" : "Planar") << " expects a 2D plane normal to "
-        << "x, y or z" << (axisym ? " (an r-" + std::string(1, AxisNames[this->SymmetryAxis]) +
-                                      " half plane holding SymmetryAxis)"
-                                  : "")
-        << "; the input spans " << sides[0] << " x " << sides[1] << " x " << sides[2];
-      if (image)
-        m << " world units with " << imageDims[0] << " x " << imageDims[1] << " x " << imageDims[2]
-          << " points: a 3D volume. Use Symmetry None for a volume.";
-      else
-        m << " world units along all three axes: a 3D volume, or a plane that is not "
-          << "axis-aligned. Use Symmetry None for a volume; rotate a tilted plane onto an axis "
-          << "plane (Transform) first.";
-      return fail(m.str());
-    }
-  }
-  this->PlaneAxis = thin;
-  this->PlaneCoordinate = wedge.Found ? wedge.AxisThin : 0.5 * (b[2 * thin] + b[2 * thin + 1]);
-  const bool automatic = this->SamplingDimensions[0] <= 0 || this->SamplingDimensions[1] <= 0 ||
-    this->SamplingDimensions[2] <= 0;
-  int dims[3];
-  double box[6];
-  if (!axisym)
-  {
-    if (!(this->Span > 0) || !std::isfinite(this->Span))
-    {
-      return fail("Span is " + std::to_string(this->Span) +
-        ": it must be positive (the width of the test section across the 2D flow, world units).");
-    }
-    const int p = (thin + 1) % 3, q = (thin + 2) % 3;
-    if (image && automatic && !this->UseSamplingBounds)
-    {
-      // The image's own grid in its plane: no interpolation.
-      const double* o = image->GetOrigin();
-      const double* h = image->GetSpacing();
-      int ext[6];
-      image->GetExtent(ext);
-      for (int a : { p, q })
-      {
-        dims[a] = imageDims[a];
-        origin[a] = o[a] + ext[2 * a] * h[a];
-        spacing[a] = h[a];
-      }
-    }
-    else
-    {
-      std::copy(b, b + 6, box);
-      if (this->UseSamplingBounds)
-      {
-        for (int a : { p, q })
-        {
-          box[2 * a] = this->SamplingBounds[2 * a];
-          box[2 * a + 1] = this->SamplingBounds[2 * a + 1];
-        }
-      }
-      else
-      {
-        // A hair inside, so that the outermost points are found in the outermost cells.
-        for (int a : { p, q })
-        {
-          const double c = 0.5 * (box[2 * a] + box[2 * a + 1]), r = 0.5 * (box[2 * a + 1] - box[2 * a]);
-          box[2 * a] = c - r * (1.0 - 1e-6);
-          box[2 * a + 1] = c + r * (1.0 - 1e-6);
-        }
-      }
-      box[2 * thin] = box[2 * thin + 1] = this->PlaneCoordinate;
-      try
-      {
-        schlieren::AutomaticDimensions(box, this->AutomaticDimension, dims);
-      }
-      catch (const schlieren::Error& e)
-      {
-        return fail(e.what());
-      }
-      for (int a : { p, q })
-      {
-        if (!automatic)
-        {
-          dims[a] = this->SamplingDimensions[a];
-        }
-        origin[a] = box[2 * a];
-        spacing[a] = dims[a] > 1 ? (box[2 * a + 1] - box[2 * a]) / (dims[a] - 1) : 1.0;
-      }
-    }
-    if (dims[p] < 2 || dims[q] < 2)
-    {
-      std::ostringstream m;
-      m << "Symmetry Planar: the input's plane has " << dims[p] << " x " << dims[q]
-        << " points along " << AxisNames[p] << " and " << AxisNames[q]
-        << "; a 2D flow needs at least 2 along each (the input is a line or a point).";
-      return fail(m.str());
-    }
-    // Across the plane: the field is uniform, a few points carry it.
-    dims[thin] = automatic ? 3 : std::max(2, this->SamplingDimensions[thin]);
-    origin[thin] = this->PlaneCoordinate - 0.5 * this->Span;
-    spacing[thin] = this->Span / (dims[thin] - 1);
-  }
-  else
-  {
-    const int axial = this->AxisInUse;
-    const int radial = 3 - axial - thin;
-    const double rmax = b[2 * radial + 1], rmin = b[2 * radial];
-    this->RadialSign = wedge.Found ? wedge.Sign : (rmax >= -rmin ? 1.0 : -1.0);
-    const double R = wedge.Found ? wedge.Reach : (this->RadialSign > 0 ? rmax : -rmin);
-    this->RadialExtent = R;
-    if (rmin < -0.01 * R && rmax > 0.01 * R && schlieren::ControllerParallel().Rank() == 0)
-    {
-      // data on both sides of the axis: one side is revolved, the other would vanish unsaid
-      vtkWarningMacro(<< "Symmetry Axisymmetric: the input crosses the axis (" << AxisNames[radial]
-                      << " from " << rmin << " to " << rmax << "); only the side "
-                      << AxisNames[radial] << (this->RadialSign > 0 ? " > 0" : " < 0")
-                      << " (the wider) is revolved and the other is not used. Clip the input at "
-                      << AxisNames[radial] << " = 0 to choose the side.");
-    }
-    if (!(R > 0))
-    {
-      std::ostringstream m;
-      m << "Symmetry Axisymmetric: the input has no extent in r (along " << AxisNames[radial]
-        << ", measured from " << AxisNames[radial] << " = 0, the axis): its bounds along "
-        << AxisNames[radial] << " are " << rmin << " to " << rmax << ".";
-      return fail(m.str());
-    }
-    if (this->UseSamplingBounds)
-    {
-      std::copy(this->SamplingBounds, this->SamplingBounds + 6, box);
-    }
-    else
-    {
-      const double c = 0.5 * (b[2 * axial] + b[2 * axial + 1]);
-      const double half = 0.5 * (b[2 * axial + 1] - b[2 * axial]) * (1.0 - 1e-6);
-      box[2 * axial] = c - half;
-      box[2 * axial + 1] = c + half;
-      box[2 * radial] = this->AxisRadial - R;
-      box[2 * radial + 1] = this->AxisRadial + R;
-      box[2 * thin] = this->PlaneCoordinate - R;
-      box[2 * thin + 1] = this->PlaneCoordinate + R;
-    }
-    try
-    {
-      if (automatic)
-      {
-        schlieren::AutomaticDimensions(box, this->AutomaticDimension, dims);
-      }
-      else
-      {
-        std::copy(this->SamplingDimensions, this->SamplingDimensions + 3, dims);
-      }
-    }
-    catch (const schlieren::Error& e)
-    {
-      return fail(e.what());
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      if (dims[a] < 2)
-      {
-        return fail("Symmetry Axisymmetric: the revolved grid would have " +
-          std::to_string(dims[a]) + " point(s) along " + AxisNames[a] +
-          "; give SamplingDimensions (or SamplingBounds) at least 2 along every axis.");
-      }
-      origin[a] = box[2 * a];
-      spacing[a] = (box[2 * a + 1] - box[2 * a]) / (dims[a] - 1);
+      vtkWarningMacro(<< warning);
     }
   }
   for (int a = 0; a < 3; ++a)
   {
     whole[2 * a] = 0;
-    whole[2 * a + 1] = dims[a] - 1;
+    whole[2 * a + 1] = plan->Dims[a] - 1;
+    origin[a] = plan->Origin[a];
+    spacing[a] = plan->Spacing[a];
   }
+  this->SymmetryGeometry = plan;
   return true;
 }
 
@@ -1086,104 +870,28 @@ bool vtkRefractiveIndex::SymmetricGrid(
 vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
   vtkDataObject* input, vtkImageData* structure, const std::vector<std::string>& names)
 {
-  int dims[3];
-  structure->GetDimensions(dims);
-  const double* o = structure->GetOrigin();
-  const double* h = structure->GetSpacing();
-  const int thin = this->PlaneAxis;
-  const bool axisym = this->Symmetry == AXISYMMETRIC;
+  vtkSmartPointer<vtkImageData> grid = vtkSmartPointer<vtkImageData>::New();
+  grid->CopyStructure(structure);
+  if (!this->SymmetryGeometry)
+  {
+    return grid; // no plan: RequestInformation failed and said why
+  }
+  // the engine's plan on this grid: where each grid point samples the 2D input
+  schlieren::SymmetryPlan plan = *this->SymmetryGeometry;
+  structure->GetDimensions(plan.Dims);
+  structure->GetOrigin(plan.Origin);
+  structure->GetSpacing(plan.Spacing);
+  std::vector<double> xyz;
+  std::vector<std::int64_t> sampleOf;
+  schlieren::SymmetrySamples(plan, xyz, sampleOf);
   const vtkIdType count = structure->GetNumberOfPoints();
-
-  // The 2D sample points, and for every grid point the sample it takes.
+  const vtkIdType samplesCount = static_cast<vtkIdType>(xyz.size() / 3);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  std::vector<vtkIdType> sampleOf(static_cast<std::size_t>(count));
-  if (!axisym)
+  points->SetNumberOfPoints(samplesCount);
+  for (vtkIdType k = 0; k < samplesCount; ++k)
   {
-    // Planar: one sample per in-plane point, the same across the span.
-    const int p = (thin + 1) % 3, q = (thin + 2) % 3;
-    points->SetNumberOfPoints(static_cast<vtkIdType>(dims[p]) * dims[q]);
-    for (int iq = 0; iq < dims[q]; ++iq)
-    {
-      for (int ip = 0; ip < dims[p]; ++ip)
-      {
-        double x[3];
-        x[p] = o[p] + ip * h[p];
-        x[q] = o[q] + iq * h[q];
-        x[thin] = this->PlaneCoordinate;
-        points->SetPoint(ip + static_cast<vtkIdType>(dims[p]) * iq, x);
-      }
-    }
-    int i[3];
-    vtkIdType id = 0;
-    for (i[2] = 0; i[2] < dims[2]; ++i[2])
-      for (i[1] = 0; i[1] < dims[1]; ++i[1])
-        for (i[0] = 0; i[0] < dims[0]; ++i[0], ++id)
-        {
-          sampleOf[id] = i[p] + static_cast<vtkIdType>(dims[p]) * i[q];
-        }
-  }
-  else
-  {
-    // Axisymmetric: a grid point at axial coordinate x_a and distance r from the axis takes the
-    // 2D value at (x_a, r). The distances repeat over the transverse plane (its symmetries), so
-    // each distinct r is probed once per axial position.
-    const int axial = this->AxisInUse;
-    const int radial = 3 - axial - thin;
-    const double hmin = std::min(h[radial], h[thin]);
-    const double outer = this->RadialExtent * (1.0 - 1e-6); // a hair inside the outermost cells
-    std::map<long long, int> index; // quantised r -> distinct radius
-    std::vector<double> radii;
-    std::vector<int> radiusOf(static_cast<std::size_t>(dims[radial]) * dims[thin]);
-    for (int it = 0; it < dims[thin]; ++it)
-    {
-      for (int ir = 0; ir < dims[radial]; ++ir)
-      {
-        const double dr = o[radial] + ir * h[radial] - this->AxisRadial;
-        const double dt = o[thin] + it * h[thin] - this->PlaneCoordinate;
-        // Beyond the input's largest radius (the box's corners) the field is carried outward
-        // at its value there (zero gradient in r, as at a CFD outflow boundary), rather than
-        // left to AmbientMode: no void to fill where the revolution, not the flow, ends.
-        const double r = std::min(std::sqrt(dr * dr + dt * dt), outer);
-        const long long key = std::llround(r / (1e-9 * hmin));
-        auto found = index.find(key);
-        int u;
-        if (found == index.end())
-        {
-          u = static_cast<int>(radii.size());
-          index.emplace(key, u);
-          radii.push_back(r);
-        }
-        else
-        {
-          u = found->second;
-        }
-        radiusOf[ir + static_cast<std::size_t>(dims[radial]) * it] = u;
-      }
-    }
-    const vtkIdType U = static_cast<vtkIdType>(radii.size());
-    points->SetNumberOfPoints(dims[axial] * U);
-    for (int ia = 0; ia < dims[axial]; ++ia)
-    {
-      for (vtkIdType u = 0; u < U; ++u)
-      {
-        double x[3];
-        x[axial] = o[axial] + ia * h[axial];
-        // on the half plane sampled: the radial axis, or a wedge's mid-plane
-        x[radial] = this->AxisRadial + this->RadialSign * radii[u] * std::cos(this->MidTilt);
-        x[thin] = this->PlaneCoordinate + this->RadialSign * radii[u] * std::sin(this->MidTilt);
-        points->SetPoint(ia * U + u, x);
-      }
-    }
-    int i[3];
-    vtkIdType id = 0;
-    for (i[2] = 0; i[2] < dims[2]; ++i[2])
-      for (i[1] = 0; i[1] < dims[1]; ++i[1])
-        for (i[0] = 0; i[0] < dims[0]; ++i[0], ++id)
-        {
-          sampleOf[id] =
-            i[axial] * U + radiusOf[i[radial] + static_cast<std::size_t>(dims[radial]) * i[thin]];
-        }
+    points->SetPoint(k, &xyz[3 * k]);
   }
 
   vtkNew<vtkPolyData> samples;
@@ -1199,25 +907,26 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
   probe->SetCellLocatorPrototype(cellLocator);
   probe->Update();
   vtkDataSet* probed = vtkDataSet::SafeDownCast(probe->GetOutputDataObject(0));
-
-  vtkSmartPointer<vtkImageData> grid = vtkSmartPointer<vtkImageData>::New();
-  grid->CopyStructure(structure);
-  if (!probed || probed->GetNumberOfPoints() != points->GetNumberOfPoints())
+  if (!probed || probed->GetNumberOfPoints() != samplesCount)
   {
     return grid;
   }
   vtkDataArray* found = probed->GetPointData()->GetArray(ValidMask);
-  const std::vector<double> foundValues =
-    found ? schlieren::values::Values<double>(found) : std::vector<double>();
-  const int foundComponents = found ? found->GetNumberOfComponents() : 1;
+  std::vector<unsigned char> sampleValid(static_cast<std::size_t>(samplesCount), 0);
+  if (found)
+  {
+    const std::vector<double> foundValues = schlieren::values::Values<double>(found);
+    const int foundComponents = found->GetNumberOfComponents();
+    for (vtkIdType k = 0; k < samplesCount; ++k)
+    {
+      sampleValid[k] = foundValues[k * foundComponents] != 0.0 ? 1 : 0;
+    }
+  }
   vtkNew<vtkCharArray> mask;
   mask->SetName(ValidMask);
   mask->SetNumberOfTuples(count);
-  for (vtkIdType id = 0; id < count; ++id)
-  {
-    mask->SetValue(
-      id, found && foundValues[sampleOf[id] * foundComponents] != 0.0 ? 1 : 0);
-  }
+  schlieren::ExpandValidity(sampleOf.data(), static_cast<std::size_t>(count), sampleValid.data(),
+    reinterpret_cast<unsigned char*>(mask->GetPointer(0)));
   grid->GetPointData()->AddArray(mask);
   for (const std::string& name : names)
   {
@@ -1231,16 +940,14 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
     copy->SetName(name.c_str());
     copy->SetNumberOfComponents(nc);
     copy->SetNumberOfTuples(count);
-    float* out = copy->GetPointer(0);
     const std::vector<float> values = schlieren::values::Values<float>(a);
-    for (vtkIdType id = 0; id < count; ++id)
-    {
-      std::copy_n(values.begin() + sampleOf[id] * nc, nc, out + id * nc);
-    }
+    schlieren::ExpandSamples(
+      sampleOf.data(), static_cast<std::size_t>(count), values.data(), nc, copy->GetPointer(0));
     grid->GetPointData()->AddArray(copy);
   }
   return grid;
 }
+
 
 //------------------------------------------------------------------------------
 bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
@@ -1248,32 +955,23 @@ bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
 {
   int dims[3];
   grid->GetDimensions(dims);
-  const int thin = this->PlaneAxis;
-  const int axial = this->AxisInUse;
-  const int radial = 3 - axial - thin;
-  const int symmetry = this->Symmetry;
-  const double plane = this->PlaneCoordinate, sign = this->RadialSign;
-  const double axis = this->AxisRadial, tilt = this->MidTilt;
-  // where the grid sampled the mesh: the point itself, on the mid-plane (Planar), or at its
-  // axial coordinate and distance to the axis in the r-z plane (Axisymmetric)
+  const bool symmetric = this->Symmetry != NO_SYMMETRY && this->SymmetryGeometry;
+  const int thin = symmetric ? this->SymmetryGeometry->PlaneAxis : -1;
+  // where the grid sampled the mesh: the point itself, or where the engine's plan says
   auto toMesh = [&](const double* x, double* at) {
-    std::copy(x, x + 3, at);
-    if (symmetry == PLANAR)
+    if (symmetric)
     {
-      at[thin] = plane;
+      schlieren::SymmetryToMesh(*this->SymmetryGeometry, x, at);
     }
-    else if (symmetry == AXISYMMETRIC)
+    else
     {
-      const double dr = x[radial] - axis, dt = x[thin] - plane;
-      const double r = std::sqrt(dr * dr + dt * dt);
-      at[radial] = axis + sign * r * std::cos(tilt);
-      at[thin] = plane + sign * r * std::sin(tilt);
+      std::copy(x, x + 3, at);
     }
   };
   std::vector<unsigned char> rim;
   schlieren::walls::RimReport report;
   if (!schlieren::walls::ClassifyRim(mesh, dims, grid->GetOrigin(), grid->GetSpacing(), valid,
-        symmetry == NO_SYMMETRY ? -1 : thin, toMesh, rim, report))
+        thin, toMesh, rim, report))
   {
     return false;
   }
@@ -1299,84 +997,11 @@ bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
 std::string vtkRefractiveIndex::WedgeWithoutSymmetry(vtkDataObject* input)
 {
   double b[6];
-  if (!input || vtkImageData::SafeDownCast(input) || !this->AxisFromWedge || !BoundsOf(input, b))
+  if (!input || vtkImageData::SafeDownCast(input) || !this->AxisFromWedge || !BoundsOf(input, b) ||
+    !schlieren::MayBeWedge(b))
   {
     return std::string();
   }
-  // only a thin input can be a wedge (one of 10 deg is 0.18 of its radius across): a 3D mesh
-  // costs one look at its bounds
-  double sides[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
-  std::sort(sides, sides + 3);
-  if (!(sides[0] > 0) || sides[0] > 0.25 * sides[1])
-  {
-    return std::string();
-  }
-  std::vector<double> xyz;
-  ForEachLeaf(input, [&](vtkDataSet* ds) {
-    for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      ds->GetPoint(i, p);
-      xyz.insert(xyz.end(), p, p + 3);
-    }
-  });
-  const schlieren::Wedge wedge = schlieren::DetectWedge(xyz.data(), xyz.size() / 3);
-  if (!wedge.Found)
-  {
-    return std::string();
-  }
-  const double deg = 180.0 / 3.14159265358979323846;
-  std::ostringstream m;
-  m << "The input is an axisymmetric wedge (OpenFOAM's way: two planes " << wedge.Angle * deg
-    << " deg apart through the line along " << AxisNames[wedge.Axial] << " at "
-    << AxisNames[wedge.Radial] << " = " << wedge.AxisRadial << ", " << AxisNames[wedge.Thin]
-    << " = " << wedge.AxisThin << ", one cell across). With Symmetry None it is traced as it is: a "
-    << wedge.Angle * deg << " deg slab of gas, not the revolved flow. Set Symmetry to "
-    << "Axisymmetric (AxisFromWedge on) to revolve it about its axis.";
-  return m.str();
-}
-
-//------------------------------------------------------------------------------
-schlieren::Wedge vtkRefractiveIndex::FindWedge(vtkDataObject* input)
-{
-  this->AxisInUse = this->SymmetryAxis;
-  this->AxisRadial = 0.0;
-  this->MidTilt = 0.0;
-  this->WedgeNote.clear();
-  schlieren::Wedge wedge;
-  if (!input || !this->AxisFromWedge)
-  {
-    return wedge;
-  }
-  std::vector<double> xyz;
-  ForEachLeaf(input, [&](vtkDataSet* ds) {
-    for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      ds->GetPoint(i, p);
-      xyz.insert(xyz.end(), p, p + 3);
-    }
-  });
-  wedge = schlieren::DetectWedge(xyz.data(), xyz.size() / 3);
-  std::ostringstream m;
-  const double deg = 180.0 / 3.14159265358979323846;
-  if (wedge.Found)
-  {
-    this->AxisInUse = wedge.Axial;
-    this->AxisRadial = wedge.AxisRadial;
-    this->MidTilt = wedge.MidTilt;
-    m << "RefractiveIndex: the input is an axisymmetric wedge (AxisFromWedge): two planes "
-      << wedge.Angle * deg << " deg apart through the line along " << AxisNames[wedge.Axial]
-      << " at " << AxisNames[wedge.Radial] << " = " << wedge.AxisRadial << ", "
-      << AxisNames[wedge.Thin] << " = " << wedge.AxisThin
-      << "; its mid-plane is revolved about that line (SymmetryAxis is not used).";
-  }
-  else if (wedge.Why.find("flat") == std::string::npos)
-  {
-    m << "RefractiveIndex: the input is not taken as a wedge (AxisFromWedge): " << wedge.Why
-      << ". It is revolved about SymmetryAxis " << AxisNames[this->SymmetryAxis]
-      << ", its mid-plane taken as the r-z plane.";
-  }
-  this->WedgeNote = m.str();
-  return wedge;
+  const std::vector<double> xyz = AllPoints(input);
+  return schlieren::WedgeWithoutSymmetry(xyz.data(), xyz.size() / 3);
 }

@@ -31,6 +31,7 @@
 #include "SchlierenSession.h"
 
 #include <algorithm>
+#include <memory>
 #include <cctype>
 #include <chrono>
 #include <functional>
@@ -517,9 +518,27 @@ struct vtkSchlierenImage::vtkInternals
   }
   // the last image written: what an update aborted within a pass leaves in the output
   vtkSmartPointer<vtkImageData> Shown;
+  // the last image when it was traced with Cutoff BOS (WriteBOSPair), else null
+  std::shared_ptr<schlieren::SessionImage> LastBOS;
+  std::string BOSPairMessage;
   // the output is that previous image: the next update must trace, whatever changed
   bool Stale = false;
   vtkTimeStamp StaleTime;
+
+  /** What an update that wrote `output` from `image` leaves: the image shown (what an abort
+   * keeps), and a BOS image for WriteBOSPair. */
+  void Keep(vtkImageData* output, schlieren::SessionImage&& image)
+  {
+    if (image.Traced.Mode == schlieren::Cutoff::BOS)
+    {
+      this->LastBOS = std::make_shared<schlieren::SessionImage>(std::move(image));
+    }
+    if (!this->Shown)
+    {
+      this->Shown = vtkSmartPointer<vtkImageData>::New();
+    }
+    this->Shown->ShallowCopy(output);
+  }
 
   /** `error` as the filter's error, once (Fresh). */
   void SayError(vtkSchlierenImage* self, const std::string& error)
@@ -824,6 +843,7 @@ int vtkSchlierenImage::RequestData(
   {
     schlieren::VolumePiece piece = PieceOf(input, output, inInfo, this->UseOctree);
     TimeVersion(this, input, inInfo, piece, this->Internals->TimeVersions);
+    this->Internals->LastBOS.reset();
     this->Internals->Session.Update(parallel, piece, SettingsOf(this), image, std::ref(progress));
     // a frame found by this update (Framing Silhouette) may give the film another shape than
     // RequestInformation could know: the output's information follows the image
@@ -856,13 +876,49 @@ int vtkSchlierenImage::RequestData(
     return 0;
   }
   WriteFieldData(output->GetFieldData(), image);
-  if (!this->Internals->Shown)
-  {
-    this->Internals->Shown = vtkSmartPointer<vtkImageData>::New();
-  }
-  this->Internals->Shown->ShallowCopy(output);
+  this->Internals->Keep(output, std::move(image));
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkSchlierenImage::WriteBOSPair(const char* folder, int bits, const char* format, const char* prefix)
+{
+  std::string& message = this->Internals->BOSPairMessage;
+  try
+  {
+    if (!this->Internals->LastBOS)
+    {
+      const schlieren::Cutoff mode = SettingsOf(this).Mode;
+      if (mode != schlieren::Cutoff::BOS)
+      {
+        throw schlieren::Error(std::string("Writing the BOS pair: this SchlierenImage's Cutoff is ") +
+          schlieren::CutoffName(mode) + ", not BOS: set Cutoff to BOS (and BackgroundDistance) and update it.");
+      }
+      throw schlieren::Error("Writing the BOS pair: this SchlierenImage holds no BOS image: update "
+                             "it first (on the process that holds the image).");
+    }
+    schlieren::BOSPairRequest request;
+    request.Folder = folder ? folder : "";
+    request.Bits = bits;
+    request.Format = format ? format : "png";
+    request.Prefix = prefix ? prefix : "bos";
+    const schlieren::BOSPairFiles files = schlieren::WriteBOSPair(*this->Internals->LastBOS, request);
+    message = "wrote " + files.Background + ", " + files.Recording + " and " + files.SideFile;
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    message = e.what();
+  }
+  vtkErrorMacro(<< message);
+  return 0;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSchlierenImage::GetBOSPairMessage()
+{
+  return this->Internals->BOSPairMessage.c_str();
 }
 
 //------------------------------------------------------------------------------

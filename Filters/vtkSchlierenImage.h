@@ -481,6 +481,25 @@ public:
   vtkGetMacro(BackgroundPeriod, double);
   ///@}
 
+  /**
+   * BOS for the laboratory's software (docs/BENCH.md "BOS image pairs"): writes the last image
+   * this filter made (Cutoff BOS) as the image pair that OpenPIV and other cross-correlation codes
+   * read: `<prefix>_background` (the same film without the flow) and `<prefix>_recording` (the
+   * intensity), grey, `bits` 8 or 16, `format` "png" or "tiff", and the side file `<prefix>.json`
+   * (the pixel size, the bench, the displacement's units and sign), in the existing `folder`.
+   * The engine writes them (schlieren::WriteBOSPair), as the Python front end's
+   * SchlierenImage.WriteBOSPair and schlieren_session_write_bos_pair do. pvpython:
+   * `img.GetClientSideObject().WriteBOSPair("/tmp/pair", 16, "png", "bos")` after an update (on
+   * the process that holds the image: builtin, or rank 0 of pvbatch). Returns 1, or 0 with a
+   * one-line error (vtkErrorMacro; GetBOSPairMessage() says it, or on success the files).
+   */
+  int WriteBOSPair(const char* folder, int bits, const char* format, const char* prefix);
+  int WriteBOSPair(const char* folder, int bits, const char* format)
+  {
+    return this->WriteBOSPair(folder, bits, format, "bos");
+  }
+  const char* GetBOSPairMessage();
+
   ///@{
   /**
    * The film filter (a FilterType). Default NO_FILTER.

@@ -13,6 +13,7 @@
 #include "SchlierenParallel.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
+#include "SchlierenSymmetry.h"
 
 #include <algorithm>
 #include <cctype>
@@ -40,37 +41,12 @@ thread_local std::string Returned;
 
 std::string Json(const std::string& s)
 {
-  std::string out = "\"";
-  for (unsigned char c : s)
-  {
-    switch (c)
-    {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default:
-        if (c < 0x20)
-        {
-          char buf[8];
-          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-          out += buf;
-        }
-        else
-          out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
+  return schlieren::JsonString(s);
 }
 
 std::string Number(double v)
 {
-  if (!std::isfinite(v))
-    return v != v ? "NaN" : (v > 0 ? "Infinity" : "-Infinity"); // Python's json reads these
-  char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
+  return schlieren::JsonNumber(v);
 }
 
 /** The numbers of a text value ("0 0 -1", "512,512") and, where `tokens` is given, their text as
@@ -554,29 +530,10 @@ void MakeReport(schlieren_session* s, const std::string& error)
 {
   const schlieren::SessionImage& image = s->Image;
   std::ostringstream o;
-  o << "{\"field_data\": {";
-  if (error.empty())
-  {
-    // the engine's one list (vtkSchlierenImage writes the same as its field data)
-    bool first = true;
-    for (const schlieren::ReportEntry& e : schlieren::ImageReport(image))
-    {
-      o << (first ? "" : ", ") << Json(e.Name) << ": ";
-      first = false;
-      if (e.IsText)
-        o << Json(e.Text);
-      else if (e.Numbers.size() == 1)
-        o << Number(e.Numbers[0]);
-      else
-      {
-        o << "[";
-        for (std::size_t i = 0; i < e.Numbers.size(); ++i)
-          o << (i ? ", " : "") << Number(e.Numbers[i]);
-        o << "]";
-      }
-    }
-  }
-  o << "}, \"notes\": [";
+  o << "{\"field_data\": ";
+  // the engine's one list (vtkSchlierenImage writes the same as its field data)
+  o << (error.empty() ? schlieren::ImageReportJson(image) : std::string("{}"));
+  o << ", \"notes\": [";
   for (std::size_t i = 0; i < image.Notes.size(); ++i)
     o << (i ? ", " : "") << "{\"warning\": " << (image.Notes[i].Warning ? "true" : "false")
       << ", \"text\": " << Json(image.Notes[i].Text) << "}";
@@ -882,6 +839,34 @@ int schlieren_session_trace(schlieren_session* handle)
     s->Report = "{\"field_data\": {}, \"notes\": [], \"error\": \"Out of memory.\"}";
   }
   return rc;
+}
+
+int schlieren_session_write_bos_pair(schlieren_session* handle, const char* folder, int bits,
+  const char* format, const char* prefix, const char** written)
+{
+  Held h(handle, "schlieren_session_write_bos_pair");
+  if (!h)
+    return 1;
+  schlieren_session* s = h.get();
+  if (written)
+    *written = nullptr;
+  if (!s->HasImage)
+  {
+    s->Error = "schlieren_session_write_bos_pair: no image: trace one with Cutoff BOS first.";
+    return 1;
+  }
+  return Guard(s->Error, [&] {
+    schlieren::BOSPairRequest request;
+    request.Folder = folder ? folder : "";
+    request.Bits = bits;
+    request.Format = format ? format : "png";
+    request.Prefix = prefix ? prefix : "bos";
+    const schlieren::BOSPairFiles files = schlieren::WriteBOSPair(s->Image, request);
+    s->Text = "{\"background\": " + Json(files.Background) + ", \"recording\": " +
+      Json(files.Recording) + ", \"side_file\": " + Json(files.SideFile) + "}";
+    if (written)
+      *written = s->Text.c_str();
+  });
 }
 
 const float* schlieren_session_array(
@@ -1329,6 +1314,29 @@ std::vector<double> NumbersOf(const std::string& property, const std::string& te
   return v;
 }
 
+/** A proxy's properties given as "Name=value" lines (entries by their text), each name among
+ * `known`; else an Error naming the function and the line or name. */
+std::map<std::string, std::string> SettingLines(
+  const char* function, const char* settings, const std::vector<std::string>& known)
+{
+  std::map<std::string, std::string> p;
+  std::istringstream lines(settings ? settings : "");
+  for (std::string line; std::getline(lines, line);)
+  {
+    const std::size_t eq = line.find('=');
+    if (line.empty())
+      continue;
+    if (eq == std::string::npos)
+      throw schlieren::Error(std::string(function) + ": '" + line + "' is not Name=value.");
+    p[line.substr(0, eq)] = line.substr(eq + 1);
+  }
+  for (const auto& kv : p)
+    if (std::find(known.begin(), known.end(), kv.first) == known.end())
+      throw schlieren::Error(std::string(function) + ": unknown setting '" + kv.first + "'" +
+        " (the closest known: " + Closest(kv.first, known) + ").");
+  return p;
+}
+
 /** A gas by the proxy's number (-1 Custom with K and M, 0 Air, 1 He, ...: SpeciesGases). */
 schlieren::GasChoice GasByNumber(const std::string& property, double number, double K, double M)
 {
@@ -1355,27 +1363,13 @@ int schlieren_index_model(const char* settings, int64_t count, int number_of_arr
       (number_of_arrays > 0 && (!roles || !arrays)))
       throw schlieren::Error("schlieren_index_model: settings, the arrays and n_minus_1 must be "
                              "given.");
-    // the proxy's properties, as Name=value lines (entries by their text)
-    std::map<std::string, std::string> p;
-    std::istringstream lines(settings);
-    for (std::string line; std::getline(lines, line);)
-    {
-      const std::size_t eq = line.find('=');
-      if (line.empty())
-        continue;
-      if (eq == std::string::npos)
-        throw schlieren::Error("schlieren_index_model: '" + line + "' is not Name=value.");
-      p[line.substr(0, eq)] = line.substr(eq + 1);
-    }
-    static const std::vector<std::string> known = { "Model", "PassthroughHoldsN", "Gas",
-      "GladstoneDaleConstant", "MolarMass", "MixtureComposition", "IdealGasComposition",
-      "MixtureGas0", "MixtureGas1", "NumberOfSpecies", "SpeciesGases", "SpeciesGladstoneDale",
-      "SpeciesMolarMass", "BalanceGas", "BalanceGladstoneDale", "BalanceMolarMass",
-      "DensityReference", "TemperatureUnit", "TemperatureReference", "PressureUnit",
-      "PressureReference", "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength" };
-    for (const auto& kv : p)
-      if (std::find(known.begin(), known.end(), kv.first) == known.end())
-        throw schlieren::Error("schlieren_index_model: unknown setting '" + kv.first + "'.");
+    const std::map<std::string, std::string> p = SettingLines("schlieren_index_model", settings,
+      { "Model", "PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
+        "MixtureComposition", "IdealGasComposition", "MixtureGas0", "MixtureGas1",
+        "NumberOfSpecies", "SpeciesGases", "SpeciesGladstoneDale", "SpeciesMolarMass",
+        "BalanceGas", "BalanceGladstoneDale", "BalanceMolarMass", "DensityReference",
+        "TemperatureUnit", "TemperatureReference", "PressureUnit", "PressureReference",
+        "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength" });
     auto text = [&](const char* name, const char* fallback) {
       const auto it = p.find(name);
       return it == p.end() ? std::string(fallback) : it->second;
@@ -1572,6 +1566,19 @@ int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims
   });
 }
 
+int schlieren_check_property(
+  const char* proxy, const char* property, const double* values, int count)
+{
+  return Guard(LastError, [&] {
+    if (!proxy || !property || (count > 0 && !values) || count < 0)
+      throw schlieren::Error("schlieren_check_property: proxy and property must be names and "
+                             "values must hold `count` (>= 0) numbers.");
+    const std::string problem = schlieren::PropertyRangeProblem(proxy, property, values, count);
+    if (!problem.empty())
+      throw schlieren::Error(problem);
+  });
+}
+
 int schlieren_check_memory(double bytes, const char* what, const char* hint)
 {
   return Guard(LastError, [&] {
@@ -1582,6 +1589,211 @@ int schlieren_check_memory(double bytes, const char* what, const char* hint)
       throw schlieren::Error(msg.str());
     }
     schlieren::CheckHostMemory(bytes, what ? what : "This", hint ? hint : "");
+  });
+}
+
+int schlieren_symmetry_plan(const char* settings, const double bounds[6], const double* points,
+  int64_t points_count, int one_data_set, const int image_extent[6], const double image_origin[3],
+  const double image_spacing[3], int dims[3], double origin[3], double spacing[3],
+  double geometry[8], const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_symmetry_plan";
+    if (!settings || !dims || !origin || !spacing || !geometry)
+      throw schlieren::Error(std::string(f) + ": settings, dims, origin, spacing and geometry "
+                                              "must be given.");
+    const auto p = SettingLines(f, settings, { "Symmetry", "SymmetryAxis", "Span",
+      "AxisFromWedge", "SamplingDimensions", "AutomaticDimension", "UseSamplingBounds",
+      "SamplingBounds" });
+    auto text = [&](const char* name, const char* fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? std::string(fallback) : it->second;
+    };
+    schlieren::SymmetrySettings s;
+    s.Symmetry = EntryOf("Symmetry", text("Symmetry", "None"), { "None", "Planar", "Axisymmetric" });
+    s.SymmetryAxis = EntryOf("SymmetryAxis", text("SymmetryAxis", "X"), { "X", "Y", "Z" });
+    s.Span = NumbersOf("Span", text("Span", "1"), 1)[0];
+    s.AxisFromWedge = NumbersOf("AxisFromWedge", text("AxisFromWedge", "1"), 1)[0] != 0;
+    const std::vector<double> sd = NumbersOf("SamplingDimensions", text("SamplingDimensions", "0 0 0"), 3);
+    const double automaticDimension = NumbersOf("AutomaticDimension", text("AutomaticDimension", "128"), 1)[0];
+    for (double v : sd)
+      if (!(std::abs(v) < 1e9) || v != std::floor(v))
+        throw schlieren::Error(std::string(f) + ": SamplingDimensions '" +
+          text("SamplingDimensions", "") + "': whole numbers of points expected.");
+    if (!(std::abs(automaticDimension) < 1e9) || automaticDimension != std::floor(automaticDimension))
+      throw schlieren::Error(std::string(f) + ": AutomaticDimension '" +
+        text("AutomaticDimension", "") + "': a whole number of points expected.");
+    for (int a = 0; a < 3; ++a)
+      s.SamplingDimensions[a] = static_cast<int>(sd[a]);
+    s.AutomaticDimension = static_cast<int>(automaticDimension);
+    s.UseSamplingBounds = NumbersOf("UseSamplingBounds", text("UseSamplingBounds", "0"), 1)[0] != 0;
+    const std::vector<double> sb = NumbersOf("SamplingBounds", text("SamplingBounds", "0 1 0 1 0 1"), 6);
+    std::copy(sb.begin(), sb.end(), s.SamplingBounds);
+    if (s.Symmetry == schlieren::SymmetryNone)
+      throw schlieren::Error(std::string(f) + ": Symmetry is None: there is no symmetric grid to "
+                                              "make (give Planar or Axisymmetric).");
+    schlieren::SymmetryInput in;
+    in.HasPoints = bounds != nullptr;
+    if (bounds)
+    {
+      for (int k = 0; k < 6; ++k)
+        if (!std::isfinite(bounds[k]))
+          throw schlieren::Error(std::string(f) + ": bounds are not finite.");
+      for (int a = 0; a < 3; ++a)
+        if (!(bounds[2 * a] <= bounds[2 * a + 1]))
+          throw schlieren::Error(std::string(f) + ": bounds " + Number(bounds[2 * a]) + " " +
+            Number(bounds[2 * a + 1]) + ": each max must be at least its min.");
+      std::copy(bounds, bounds + 6, in.Bounds);
+    }
+    if (points_count < 0 || points_count % 3 != 0 || (points_count > 0 && !points))
+      throw schlieren::Error(std::string(f) + ": points holds " + std::to_string(points_count) +
+        " values: give x, y, z for each point (a multiple of 3), or NULL and 0.");
+    for (int64_t k = 0; k < points_count; ++k)
+      if (!std::isfinite(points[k]))
+        throw schlieren::Error(std::string(f) + ": points[" + std::to_string(k) + "] is not finite.");
+    in.Points = points;
+    in.Count = static_cast<std::size_t>(points_count / 3);
+    in.OneDataSet = one_data_set != 0;
+    in.Image = image_extent != nullptr;
+    if (in.Image)
+    {
+      if (!image_origin || !image_spacing)
+        throw schlieren::Error(std::string(f) + ": an image's extent needs its origin and spacing.");
+      CheckFinite3(f, "image_origin", image_origin);
+      CheckFinite3(f, "image_spacing", image_spacing);
+      for (int a = 0; a < 3; ++a)
+        if (image_extent[2 * a + 1] < image_extent[2 * a])
+          throw schlieren::Error(std::string(f) + ": image_extent is empty along " +
+            std::string(1, "xyz"[a]) + ".");
+      std::copy(image_extent, image_extent + 6, in.ImageExtent);
+      std::copy(image_origin, image_origin + 3, in.ImageOrigin);
+      std::copy(image_spacing, image_spacing + 3, in.ImageSpacing);
+    }
+    schlieren::SymmetryPlan plan;
+    const std::string problem = schlieren::PlanSymmetry(s, in, plan);
+    if (!problem.empty())
+      throw schlieren::Error(problem);
+    GridPoints(f, plan.Dims);
+    std::copy(plan.Dims, plan.Dims + 3, dims);
+    std::copy(plan.Origin, plan.Origin + 3, origin);
+    std::copy(plan.Spacing, plan.Spacing + 3, spacing);
+    plan.Geometry(geometry);
+    Returned.clear();
+    if (!plan.WedgeNote.empty())
+      Returned += "note: " + plan.WedgeNote + "\n";
+    for (const std::string& w : plan.Warnings)
+      Returned += "warning: " + w + "\n";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
+int schlieren_symmetry_samples(const double geometry[8], const int dims[3], const double origin[3],
+  const double spacing[3], int64_t* samples, double* points, int64_t points_count,
+  int64_t* sample_of, int64_t sample_of_count)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_symmetry_samples";
+    if (!geometry || !samples)
+      throw schlieren::Error(std::string(f) + ": geometry and samples must be given.");
+    const std::int64_t n = GridPoints(f, dims);
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    schlieren::SymmetryPlan plan;
+    try
+    {
+      plan = schlieren::SymmetryPlan::FromGeometry(geometry, dims, origin, spacing);
+    }
+    catch (const schlieren::Error& e)
+    {
+      throw schlieren::Error(std::string(f) + ": " + e.what());
+    }
+    if (points)
+      CheckArray(f, "sample_of", sample_of, sample_of_count, n, "a grid of " + GridText(dims) +
+        " points", false);
+    schlieren::CheckHostMemory(8.0 * n * (points ? 2 : 1), "Planning the symmetric samples",
+      "Lower SamplingDimensions or AutomaticDimension.");
+    std::vector<double> xyz;
+    std::vector<std::int64_t> of;
+    schlieren::SymmetrySamples(plan, xyz, of);
+    *samples = static_cast<int64_t>(xyz.size() / 3);
+    if (!points)
+      return;
+    CheckArray(f, "points", points, points_count, static_cast<std::int64_t>(xyz.size()),
+      std::to_string(xyz.size() / 3) + " samples (3 values each)", false);
+    std::copy(xyz.begin(), xyz.end(), points);
+    std::copy(of.begin(), of.end(), sample_of);
+  });
+}
+
+int schlieren_symmetry_expand(const int64_t* sample_of, int64_t count, int64_t samples,
+  const float* values, int64_t values_count, int components, float* out, int64_t out_count,
+  const unsigned char* sample_valid, int64_t sample_valid_count, unsigned char* valid,
+  int64_t valid_count)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_symmetry_expand";
+    if (count < 0 || samples < 0)
+      throw schlieren::Error(std::string(f) + ": count and samples must be >= 0.");
+    CheckArray(f, "sample_of", sample_of, count, count, "the grid", false);
+    for (int64_t i = 0; i < count; ++i)
+      if (sample_of[i] < 0 || sample_of[i] >= samples)
+        throw schlieren::Error(std::string(f) + ": sample_of[" + std::to_string(i) + "] is " +
+          std::to_string(sample_of[i]) + ": a sample's index (0 to " + std::to_string(samples - 1) +
+          ") expected.");
+    if (values || out || values_count || out_count)
+    {
+      if (components < 1 || components > 64)
+        throw schlieren::Error(std::string(f) + ": components is " + std::to_string(components) +
+          ": 1 to 64 floats a point.");
+      if (samples > std::numeric_limits<int64_t>::max() / components ||
+        count > std::numeric_limits<int64_t>::max() / components)
+        throw schlieren::Error(std::string(f) + ": too many values.");
+      CheckArray(f, "values", values, values_count, samples * components,
+        std::to_string(samples) + " samples of " + std::to_string(components) + " components", false);
+      CheckArray(f, "out", out, out_count, count * components,
+        std::to_string(count) + " grid points of " + std::to_string(components) + " components", false);
+      schlieren::ExpandSamples(sample_of, static_cast<std::size_t>(count), values, components, out);
+    }
+    if (sample_valid || valid || sample_valid_count || valid_count)
+    {
+      CheckArray(f, "sample_valid", sample_valid, sample_valid_count, samples,
+        std::to_string(samples) + " samples", false);
+      CheckArray(f, "valid", valid, valid_count, count, "the grid", false);
+      schlieren::ExpandValidity(sample_of, static_cast<std::size_t>(count), sample_valid, valid);
+    }
+  });
+}
+
+int schlieren_wedge_warning(const double bounds[6], const double* points, int64_t points_count,
+  int* thin, const char** warning)
+{
+  if (warning)
+    *warning = "";
+  if (thin)
+    *thin = 0;
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_wedge_warning";
+    if (!bounds || !warning)
+      throw schlieren::Error(std::string(f) + ": bounds and warning must be given.");
+    for (int k = 0; k < 6; ++k)
+      if (!std::isfinite(bounds[k]))
+        throw schlieren::Error(std::string(f) + ": bounds are not finite.");
+    if (points_count < 0 || points_count % 3 != 0 || (points_count > 0 && !points))
+      throw schlieren::Error(std::string(f) + ": points holds " + std::to_string(points_count) +
+        " values: give x, y, z for each point (a multiple of 3), or NULL and 0.");
+    for (int64_t k = 0; k < points_count; ++k)
+      if (!std::isfinite(points[k]))
+        throw schlieren::Error(std::string(f) + ": points[" + std::to_string(k) + "] is not finite.");
+    const bool may = schlieren::MayBeWedge(bounds);
+    if (thin)
+      *thin = may ? 1 : 0;
+    Returned = may
+      ? schlieren::WedgeWithoutSymmetry(points, static_cast<std::size_t>(points_count / 3))
+      : std::string();
+    *warning = Returned.c_str();
   });
 }
 

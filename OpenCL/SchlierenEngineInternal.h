@@ -183,6 +183,10 @@ void BandColour(const double share[3], float rgb[3]);
 /** The field data's account of the band after `passes` passes; scale: n - 1's at its ends. */
 std::string SpectrumText(const TraceSettings& s, int passes, double scale[2]);
 
+/** The film filter (settings.Filter, FilterWidth) applied to every per-pixel sum of `f` alike, as
+ * Finalize does (SchlierenFinalize.cxx); the BOS pair's background (SchlierenBOSPair.cxx) too. */
+void FilterSums(FilmSums& f, const TraceSettings& s);
+
 // ------------------------------------------------------------------ parameters (SchlierenParams.cxx)
 
 /** The kernels' parameters for a trace of `volume` with settings `s` onto film `f`; throws Error on

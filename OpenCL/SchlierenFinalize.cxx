@@ -134,7 +134,7 @@ static void FilterChannel(std::vector<double>& c, int nx, int ny, const std::vec
   c.swap(tmp);
 }
 
-static void FilterSums(FilmSums& f, const TraceSettings& s)
+void FilterSums(FilmSums& f, const TraceSettings& s)
 {
   if (s.Filter == FilmFilter::None)
     return;

@@ -204,6 +204,89 @@ double MaxStepsAcross()
   return 4194304.0; // 2^22
 }
 
+std::string PropertyRangeProblem(
+  const std::string& proxy, const std::string& property, const double* values, int count)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Range
+  {
+    const char* Proxy;
+    const char* Name;
+    double Min, Max;
+    bool Boolean;
+    const char* Note; // said after the range
+  };
+  static const char* const reference = " (a reference value is positive: 1 for dimensional data)";
+  static const Range ranges[] = {
+    { "RefractiveIndex", "GladstoneDaleConstant", 0, 1, false, "" },
+    { "RefractiveIndex", "MolarMass", 0, 10, false, "" },
+    { "RefractiveIndex", "NumberOfSpecies", 0, 4, false, "" },
+    { "RefractiveIndex", "SpeciesGases", -1, 9, false, "" },
+    { "RefractiveIndex", "SpeciesGladstoneDale", 0, inf, false, "" },
+    { "RefractiveIndex", "SpeciesMolarMass", 0, inf, false, "" },
+    { "RefractiveIndex", "BalanceGladstoneDale", 0, inf, false, "" },
+    { "RefractiveIndex", "BalanceMolarMass", 0, inf, false, "" },
+    { "RefractiveIndex", "DensityReference", 1e-12, inf, false, reference },
+    { "RefractiveIndex", "TemperatureReference", 1e-12, inf, false, reference },
+    { "RefractiveIndex", "PressureReference", 1e-12, inf, false, reference },
+    { "RefractiveIndex", "PressureOffset", -inf, inf, false, "" },
+    { "RefractiveIndex", "Humidity", 0, 1, false, "" },
+    { "RefractiveIndex", "CO2", 0, 1e6, false, "" },
+    { "RefractiveIndex", "Wavelength", 100, 20000, false, "" },
+    { "RefractiveIndex", "Span", 0, inf, false, "" },
+    { "RefractiveIndex", "SamplingDimensions", 0, 65536, false, "" },
+    { "RefractiveIndex", "AutomaticDimension", 2, 4096, false, "" },
+    { "RefractiveIndex", "BodyWallFaces", 0, 1, false, "" },
+    { "RefractiveIndex", "PassthroughHoldsN", 0, 1, true, "" },
+    { "RefractiveIndex", "HumidityFromArray", 0, 1, true, "" },
+    { "RefractiveIndex", "CO2FromArray", 0, 1, true, "" },
+    { "RefractiveIndex", "AxisFromWedge", 0, 1, true, "" },
+    { "RefractiveIndex", "UseSamplingBounds", 0, 1, true, "" },
+    { "RefractiveIndex", "BodyFromGrid", 0, 1, true, "" },
+    { "RefractionOctree", "Tolerance", 0, 1, false,
+      ": the largest spread of n - 1 (dimensionless) that a block may hold and still be skipped "
+      "(air's n - 1 is about 3e-4, so useful values are far below 1; 0: automatic, 1e-4 of the "
+      "field's range)" },
+    { "RefractionOctree", "MaxLevel", 0, 10, false, "" },
+  };
+  for (const Range& r : ranges)
+  {
+    if (proxy != r.Proxy || property != r.Name)
+      continue;
+    for (int i = 0; i < count; ++i)
+    {
+      const double v = values[i];
+      if (v >= r.Min && v <= r.Max && std::isfinite(v))
+        continue;
+      std::ostringstream msg;
+      msg << r.Name;
+      if (count > 1)
+        msg << "[" << i << "]";
+      msg << " is " << v;
+      if (r.Boolean)
+        msg << ": it must be 0 (off) or 1 (on).";
+      else
+      {
+        msg << ": it must be ";
+        if (std::isinf(r.Min) && std::isinf(r.Max))
+          msg << "a finite value";
+        else
+        {
+          msg << "in [" << r.Min << ", ";
+          if (std::isinf(r.Max))
+            msg << "a finite value]";
+          else
+            msg << r.Max << "]";
+        }
+        msg << r.Note << ".";
+      }
+      return msg.str();
+    }
+    return std::string();
+  }
+  return std::string();
+}
+
 void CheckSettings(const TraceSettings& s)
 {
   CheckFinite("ViewDirection", s.ViewDirection, 3);

@@ -65,6 +65,17 @@ double VolumeBytesPerPoint();
 void CheckSettings(const TraceSettings& settings);
 
 /**
+ * The ranges of the filters' numeric and boolean properties that every front end checks alike
+ * (Plugin/Schlieren.xml's domains of RefractiveIndex and RefractionOctree; SchlierenImage's are
+ * CheckSettings'): "" where each of the `count` values of `property` of `proxy` lies in its range,
+ * or where no range is listed for it; else "Name is V: it must be in [min, max]." (an element's
+ * index after the name where the property has several: "SamplingDimensions[1] is -1: ..."; a
+ * boolean: "Name is V: it must be 0 (off) or 1 (on)."). NaN and infinities are out of every range.
+ */
+std::string PropertyRangeProblem(
+  const std::string& proxy, const std::string& property, const double* values, int count);
+
+/**
  * Checks that the float tracer can honour the volume and settings: a base step that moves a float
  * position at the volume's scale, no more steps across the volume than a ray can take in
  * reasonable time, every axis resolvable next to the longest one (spacing ratios), and a film

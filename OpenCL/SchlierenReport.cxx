@@ -4,6 +4,7 @@
 #include "SchlierenSession.h"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace schlieren
@@ -179,6 +180,66 @@ std::string TraceClock::Text(double progress)
 int TraceClock::Percent() const
 {
   return static_cast<int>(100 * std::max(0.0, this->Reached - 0.05) / 0.9);
+}
+
+std::string JsonString(const std::string& s)
+{
+  std::string out = "\"";
+  for (unsigned char c : s)
+  {
+    switch (c)
+    {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (c < 0x20)
+        {
+          char buf[8];
+          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
+          out += buf;
+        }
+        else
+          out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+std::string JsonNumber(double v)
+{
+  if (!std::isfinite(v))
+    return v != v ? "NaN" : (v > 0 ? "Infinity" : "-Infinity"); // Python's json reads these
+  char buf[40];
+  std::snprintf(buf, sizeof(buf), "%.17g", v);
+  return buf;
+}
+
+std::string ImageReportJson(const SessionImage& image)
+{
+  std::ostringstream o;
+  o << "{";
+  bool first = true;
+  for (const ReportEntry& e : ImageReport(image))
+  {
+    o << (first ? "" : ", ") << JsonString(e.Name) << ": ";
+    first = false;
+    if (e.IsText)
+      o << JsonString(e.Text);
+    else if (e.Numbers.size() == 1)
+      o << JsonNumber(e.Numbers[0]);
+    else
+    {
+      o << "[";
+      for (std::size_t i = 0; i < e.Numbers.size(); ++i)
+        o << (i ? ", " : "") << JsonNumber(e.Numbers[i]);
+      o << "]";
+    }
+  }
+  o << "}";
+  return o.str();
 }
 
 } // namespace schlieren

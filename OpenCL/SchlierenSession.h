@@ -177,6 +177,44 @@ private:
   double Reached = 0;
 };
 
+/** JSON text of a string (quoted, escaped) and of a number (%.17g; NaN and the infinities as
+ * Python's json reads them): the C interface's and the BOS side file's. */
+std::string JsonString(const std::string& s);
+std::string JsonNumber(double v);
+/** ImageReport as a JSON object {"name": value, ...} (numbers, [numbers] or text). */
+std::string ImageReportJson(const SessionImage& image);
+
+/**
+ * BOS for the laboratory's software (docs/BENCH.md "BOS image pairs"): where and how WriteBOSPair
+ * writes the pair.
+ */
+struct BOSPairRequest
+{
+  std::string Folder;         ///< an existing folder
+  int Bits = 8;               ///< 8 or 16 bits per grey level
+  std::string Format = "png"; ///< "png" or "tiff" ("tif")
+  std::string Prefix = "bos"; ///< <Prefix>_background.<ext>, <Prefix>_recording.<ext>, <Prefix>.json
+};
+
+/** The paths WriteBOSPair wrote. */
+struct BOSPairFiles
+{
+  std::string Background, Recording, SideFile;
+};
+
+/** The undistorted background of a BOS trace (nx*ny, film order): the pattern at the trace's own
+ * emission points (Seed, Jitter, its `passes`), each landing where it left, through the same film
+ * filter: the recording of the same film without the flow. */
+std::vector<float> BOSBackground(const TraceSettings& traced, const FilmGeometry& film, int passes);
+
+/** Writes a BOS image's recording (its intensity) and undistorted background (BOSBackground) as
+ * grey images, and a JSON side file: the film's pixel size and axes, the bench (Z_D, the pattern,
+ * the camera and its magnification), the displacement's units and sign, the trace's report.
+ * Throws Error (one line) for an image that is not BOS, a folder that does not exist, a bit depth
+ * other than 8 or 16, an unknown format, a prefix with a folder in it, or a file that cannot be
+ * written. */
+BOSPairFiles WriteBOSPair(const SessionImage& image, const BOSPairRequest& request);
+
 class TraceSession
 {
 public:

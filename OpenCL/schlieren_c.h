@@ -137,6 +137,20 @@ SCHLIEREN_C_API int schlieren_session_plan_film(schlieren_session* s, const int 
  */
 SCHLIEREN_C_API const char* schlieren_session_report(const schlieren_session* s);
 
+/**
+ * BOS for cross-correlation codes (OpenPIV and other PIV software; docs/BENCH.md "BOS image
+ * pairs"): writes the last trace's BOS recording and its undistorted background (the same film
+ * without the flow) into the existing `folder` as `<prefix>_background.<ext>` and
+ * `<prefix>_recording.<ext>`, grey, `bits` 8 or 16, `format` "png" or "tiff" (NULL: "png"), with
+ * the side file `<prefix>.json` (the pixel size, the bench, the displacement's units and sign;
+ * `prefix` NULL: "bos"). `written` (may be NULL) gets JSON {"background", "recording",
+ * "side_file"}: the paths, owned by the session. Non-zero, with a one-line
+ * schlieren_session_error(): no trace, a trace that is not Cutoff BOS, a folder that does not
+ * exist, a bit depth other than 8 or 16, an unknown format, a file that cannot be written.
+ */
+SCHLIEREN_C_API int schlieren_session_write_bos_pair(schlieren_session* s, const char* folder,
+  int bits, const char* format, const char* prefix, const char** written);
+
 /* The other stages' engine functions, for front ends that make their own volumes. */
 
 /**
@@ -227,12 +241,62 @@ SCHLIEREN_C_API int schlieren_enclosed_invalid(const int dims[3], const unsigned
 /** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
  * side, about the same spacing along the others. */
 SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);
+/** 0 where each of the `count` values of `property` (the ParaView name) of the filter `proxy`
+ * ("RefractiveIndex", "RefractionOctree") lies in the range of its domain, the same check the C++
+ * plugin's filters make, or where the engine lists no range for it; else non-zero and
+ * schlieren_last_error() says "Name is V: it must be in [min, max]." (booleans: "must be 0 (off)
+ * or 1 (on)"). NaN and infinities are in no range. */
+SCHLIEREN_C_API int schlieren_check_property(
+  const char* proxy, const char* property, const double* values, int count);
 /** 0 where `bytes` fit in the memory this process may still use (the engine's measure: available
  * memory, the address-space limit, SCHLIEREN_MEMORY_LIMIT); else non-zero and
  * schlieren_last_error() says "<what> needs N GiB of memory; this machine has M available. <hint>":
  * for front ends that allocate arrays the engine fills. */
 SCHLIEREN_C_API int schlieren_check_memory(double bytes, const char* what, const char* hint);
 
+/**
+ * RefractiveIndex's Symmetry Planar and Axisymmetric (a 2D input made a volume; an OpenFOAM wedge
+ * found and revolved about its axis), in three calls: plan, samples, expand. The front end samples
+ * its own mesh at the points schlieren_symmetry_samples gives.
+ *
+ * schlieren_symmetry_plan: `settings` are the proxy's properties as "Name=value" lines (Symmetry
+ * Planar/Axisymmetric, SymmetryAxis X/Y/Z, Span, AxisFromWedge, SamplingDimensions (3),
+ * AutomaticDimension, UseSamplingBounds, SamplingBounds (6); absent: the proxy's default).
+ * `bounds` (NULL: the input has no points) are the input's; `points` (x, y, z each; may be NULL
+ * and 0 for an image) every point of a mesh, `points_count` values (3 a point); `one_data_set`
+ * 0 where the points are a composite data set's blocks. `image_extent`, `image_origin`,
+ * `image_spacing`: an image input's (NULL: a mesh). Writes the grid (dims, origin, spacing) and
+ * `geometry` (8 numbers for the calls below); `report` (may be NULL) gets lines "note: ..." (the
+ * wedge found or not) and "warning: ..." (the input crossing the axis). Non-zero: the input or the
+ * settings are refused; schlieren_last_error() says why (the C++ filter's messages).
+ */
+SCHLIEREN_C_API int schlieren_symmetry_plan(const char* settings, const double bounds[6],
+  const double* points, int64_t points_count, int one_data_set, const int image_extent[6],
+  const double image_origin[3], const double image_spacing[3], int dims[3], double origin[3],
+  double spacing[3], double geometry[8], const char** report);
+/** Where to sample the 2D input for the plan's grid (`geometry`, dims, origin, spacing as the
+ * plan wrote them): `samples` gets their number; with `points` non-NULL (`points_count` values,
+ * 3 a sample) their x, y, z, and `sample_of` (`sample_of_count` values, the grid's points) the
+ * sample of every grid point. Call with `points` NULL first for the count. */
+SCHLIEREN_C_API int schlieren_symmetry_samples(const double geometry[8], const int dims[3],
+  const double origin[3], const double spacing[3], int64_t* samples, double* points,
+  int64_t points_count, int64_t* sample_of, int64_t sample_of_count);
+/** The samples onto the grid: `out[i]` = `values[sample_of[i]]` for `components` floats each
+ * (`values` holds `values_count` floats, `components` a sample; `out` `out_count`, `components` a
+ * grid point), and where `sample_valid` is given (`samples` bytes, non-zero: the sample lies in
+ * the mesh), `valid[i]` = 1 or 0 (`valid_count` bytes). `sample_of` holds `count` indices below
+ * `samples`. Either part may be NULL and 0. */
+SCHLIEREN_C_API int schlieren_symmetry_expand(const int64_t* sample_of, int64_t count,
+  int64_t samples, const float* values, int64_t values_count, int components, float* out,
+  int64_t out_count, const unsigned char* sample_valid, int64_t sample_valid_count,
+  unsigned char* valid, int64_t valid_count);
+/** The warning the C++ filter gives for an axisymmetric wedge traced with Symmetry None
+ * (AxisFromWedge on): `points` every point of the mesh (`points_count` values, 3 a point),
+ * `bounds` its bounds. `warning` gets it, or "" (not a wedge); owned by the library until this
+ * thread's next call. `thin` (may be NULL) gets 1 where the bounds are thin enough for a wedge:
+ * only then are the points read (call with NULL and 0 first to know whether to gather them). */
+SCHLIEREN_C_API int schlieren_wedge_warning(const double bounds[6], const double* points,
+  int64_t points_count, int* thin, const char** warning);
 #ifdef __cplusplus
 }
 #endif

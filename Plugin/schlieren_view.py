@@ -94,7 +94,11 @@ class CameraFollower:
         self._timer = interactor.CreateRepeatingTimer(interval_ms)
 
         def on_timer(caller, event):
-            if not self._gone() and self.refine():
+            if self._gone():
+                return
+            before = int(self.image.Passes)
+            self.refine()
+            if int(self.image.Passes) != before:  # passes added, the last chunk's too
                 self.view.StillRender()
                 for view in self.also_render:  # other views showing the image (the Python plugin's)
                     view.StillRender()

@@ -53,8 +53,10 @@ esac
 # and key events) and ImageMagick (screenshots) for the GUI tests.
 # python3-numpy: the GUI tests' checks run under Debian's Python (it also comes with paraview)
 SCHLIEREN_TEST_PACKAGES=(xvfb openbox xdotool x11-utils imagemagick python3-numpy openfoam openfoam-examples
-  python3-venv pkg-config)  # python3-venv: the python.frontend tests make venvs with PyPI's vtk;
-# pkg-config: python.install builds Testing/Cxx/TestCApi.c against the installed engine
+  python3-venv pkg-config python3-scipy python3-pil)  # python3-venv: the python.frontend tests make venvs with PyPI's vtk;
+# pkg-config: python.install builds Testing/Cxx/TestCApi.c against the installed engine;
+# python3-scipy, python3-pil: python.bos_openpiv runs OpenPIV (from PyPI, without its dependencies)
+# over Debian's SciPy and reads the pair with Pillow
 
 schlieren_install() {
   local missing=()

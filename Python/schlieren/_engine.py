@@ -109,6 +109,8 @@ _sig("schlieren_session_film", ctypes.c_int, ctypes.c_void_p, ctypes.c_int * 2,
 _sig("schlieren_session_plan_film", ctypes.c_int, ctypes.c_void_p, _c_int3, _c_double3,
      _c_double3, ctypes.c_int * 2, ctypes.c_double * 2, ctypes.POINTER(ctypes.c_double))
 _sig("schlieren_session_report", ctypes.c_char_p, ctypes.c_void_p)
+_sig("schlieren_session_write_bos_pair", ctypes.c_int, ctypes.c_void_p, ctypes.c_char_p,
+     ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p))
 _sig("schlieren_fill_scene", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3, _c_double3,
      _i64, _f32p, _f32p, _f32p, _u8p)
 _sig("schlieren_octree_levels", ctypes.c_int, _c_int3, _f32p, _i64, ctypes.c_double, ctypes.c_int,
@@ -125,6 +127,8 @@ _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
 _sig("schlieren_check_memory", ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_char_p)
+_sig("schlieren_check_property", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
+     ctypes.POINTER(ctypes.c_double), ctypes.c_int)
 
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
@@ -230,6 +234,19 @@ def check_memory(nbytes, what, hint=""):
     """Raises EngineError ("<what> needs N GiB of memory; this machine has M available. <hint>")
     where `nbytes` do not fit in the memory this process may still use (the engine's measure)."""
     _check(_lib.schlieren_check_memory(float(nbytes), what.encode(), hint.encode()))
+
+
+def check_property(proxy, name, value):
+    """Raises EngineError ("Name is V: it must be in [min, max].") where a value of the filter
+    property `name` of `proxy` lies outside the range the engine lists for it (the check the C++
+    plugin's filters make); a property with no range listed, or not numeric, passes."""
+    values = value if isinstance(value, (list, tuple)) else [value]
+    try:
+        numbers = [float(v) for v in values]
+    except (TypeError, ValueError):
+        return
+    array = (ctypes.c_double * max(1, len(numbers)))(*numbers)
+    _check(_lib.schlieren_check_property(proxy.encode(), name.encode(), array, len(numbers)))
 
 
 def version():
@@ -424,6 +441,136 @@ def enclosed_invalid(dims, valid, wall_faces=None):
     return solid
 
 
+def _xyz(points, name="points"):
+    """Points as a C-contiguous float64 array of x, y, z each (an (n, 3) array or n*3 values)."""
+    if points is None:
+        return None
+    a = np.asarray(points)
+    if a.dtype.kind not in "biuf":
+        raise ArgumentTypeError("%s has dtype %s: give real numbers (float64 is used)"
+                                % (name, a.dtype))
+    if not (a.ndim == 2 and a.shape[1] == 3) and not (a.ndim == 1 and a.size % 3 == 0):
+        raise ArgumentError("%s has shape %s: give an (n, 3) array of x, y, z or n*3 values"
+                            % (name, a.shape))
+    return np.ascontiguousarray(a, dtype=np.float64).reshape(-1)
+
+
+def _six(v, name):
+    try:
+        v = [float(x) for x in v]
+    except (TypeError, ValueError):
+        raise ArgumentTypeError("%s is %r: give 6 numbers" % (name, v))
+    if len(v) != 6:
+        raise ArgumentError("%s is %r: give 6 numbers" % (name, v))
+    return (ctypes.c_double * 6)(*v)
+
+
+_f64p = ctypes.POINTER(ctypes.c_double)
+_i64p = ctypes.POINTER(ctypes.c_int64)
+
+
+def symmetry_plan(settings, bounds, points=None, one_data_set=True, image=None):
+    """RefractiveIndex's Symmetry Planar/Axisymmetric (the C interface's schlieren_symmetry_plan):
+    the checks, the wedge and the 3D grid for a 2D input. `settings`: Symmetry, SymmetryAxis,
+    Span, AxisFromWedge, SamplingDimensions, AutomaticDimension, UseSamplingBounds,
+    SamplingBounds by name; `bounds` the input's (None: it has no points); `points` a mesh's
+    points ((n, 3) or n*3 values; None for an image); `image` an image input's (extent, origin,
+    spacing). Returns a dict: dims, origin, spacing, geometry (8 numbers), notes, warnings."""
+    f = _sig("schlieren_symmetry_plan", ctypes.c_int, ctypes.c_char_p,
+             ctypes.POINTER(ctypes.c_double), _f64p, ctypes.c_int64, ctypes.c_int,
+             ctypes.POINTER(ctypes.c_int), _f64p, _f64p, _c_int3, _c_double3, _c_double3,
+             ctypes.c_double * 8, ctypes.POINTER(ctypes.c_char_p))
+    xyz = _xyz(points)
+    b = None if bounds is None else _six(bounds, "bounds")
+    extent = origin = spacing = None
+    if image is not None:
+        e, o, h = image
+        if len(e) != 6 or len(o) != 3 or len(h) != 3:
+            raise ArgumentError("image is (extent (6), origin (3), spacing (3)); got %r"
+                                % (image,))
+        extent = (ctypes.c_int * 6)(*[int(x) for x in e])
+        origin, spacing = _c_double3(*[float(x) for x in o]), _c_double3(*[float(x) for x in h])
+    dims, o3, h3, g = _c_int3(), _c_double3(), _c_double3(), (ctypes.c_double * 8)()
+    report = ctypes.c_char_p()
+    text = "\n".join("%s=%s" % (k, _value_text(x)) for k, x in settings.items()).encode()
+    _check(f(text, b, None if xyz is None else xyz.ctypes.data_as(_f64p),
+             0 if xyz is None else xyz.size, 1 if one_data_set else 0, extent, origin, spacing,
+             dims, o3, h3, g, ctypes.byref(report)))
+    lines = [w for w in _text(report.value).split("\n") if w]
+    return dict(dims=list(dims), origin=list(o3), spacing=list(h3), geometry=list(g),
+                notes=[w[len("note: "):] for w in lines if w.startswith("note: ")],
+                warnings=[w[len("warning: "):] for w in lines if w.startswith("warning: ")])
+
+
+def symmetry_samples(plan):
+    """Where to sample the 2D input for `plan` (symmetry_plan's): (points, an (m, 3) float64
+    array; sample_of, an int64 per grid point, x fastest: the sample it takes)."""
+    f = _sig("schlieren_symmetry_samples", ctypes.c_int, ctypes.c_double * 8, _c_int3,
+             _c_double3, _c_double3, _i64p, _f64p, ctypes.c_int64, _i64p, ctypes.c_int64)
+    d, n = _dims(plan["dims"])
+    args = ((ctypes.c_double * 8)(*[float(x) for x in plan["geometry"]]), _c_int3(*d),
+            _c_double3(*[float(x) for x in plan["origin"]]),
+            _c_double3(*[float(x) for x in plan["spacing"]]))
+    m = ctypes.c_int64(0)
+    _check(f(*args, ctypes.byref(m), None, 0, None, 0))
+    check_memory(24.0 * m.value + 8.0 * n, "The symmetric grid's samples",
+                 "Lower SamplingDimensions or AutomaticDimension.")
+    points = np.zeros(3 * m.value, np.float64)
+    sample_of = np.zeros(n, np.int64)
+    _check(f(*args, ctypes.byref(m), points.ctypes.data_as(_f64p), points.size,
+             sample_of.ctypes.data_as(_i64p), sample_of.size))
+    return points.reshape(-1, 3), sample_of
+
+
+def symmetry_expand(sample_of, samples, values=None, sample_valid=None):
+    """The samples onto the grid (schlieren_symmetry_expand): `values` (float32, `samples` rows
+    of any number of components) gives a float32 array per grid point of the same components;
+    `sample_valid` (a byte per sample, non-zero: in the mesh) gives uint8 validity. Returns
+    (values or None, valid or None)."""
+    f = _sig("schlieren_symmetry_expand", ctypes.c_int, _i64p, ctypes.c_int64, ctypes.c_int64,
+             _f32p, ctypes.c_int64, ctypes.c_int, _f32p, ctypes.c_int64, _u8p, ctypes.c_int64,
+             _u8p, ctypes.c_int64)
+    s = np.asarray(sample_of)
+    if s.dtype != np.int64 or s.ndim != 1:
+        raise ArgumentTypeError("sample_of must be a 1D int64 array (symmetry_samples'); got %s "
+                                "%s" % (s.dtype, s.shape))
+    s = np.ascontiguousarray(s)
+    count, out, valid, v, sv, components = s.size, None, None, None, None, 1
+    if values is not None:
+        v = np.asarray(values)
+        if v.dtype.kind not in "biuf" or v.ndim not in (1, 2) or v.shape[0] != samples:
+            raise ArgumentError("values has dtype %s and shape %s: give %d samples of real "
+                                "numbers (one row each)" % (v.dtype, v.shape, samples))
+        components = 1 if v.ndim == 1 else v.shape[1]
+        v = np.ascontiguousarray(v, dtype=np.float32)
+        out = np.zeros((count, components) if v.ndim == 2 else count, np.float32)
+    if sample_valid is not None:
+        sv = np.ascontiguousarray(np.asarray(sample_valid) != 0, dtype=np.uint8).reshape(-1)
+        valid = np.zeros(count, np.uint8)
+    _check(f(s.ctypes.data_as(_i64p), count, int(samples), _fp(v), _size(v), components,
+             _fp(out), _size(out), _up(sv), _size(sv), _up(valid), _size(valid)))
+    return out, valid
+
+
+def wedge_warning(bounds, points):
+    """The C++ filter's warning for an axisymmetric wedge traced with Symmetry None, or "".
+    `points`: an (n, 3) array, or a function that gives it (called only where the bounds are thin
+    enough for a wedge: a 3D mesh's points are not gathered)."""
+    f = _sig("schlieren_wedge_warning", ctypes.c_int, ctypes.c_double * 6, _f64p, ctypes.c_int64,
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_char_p))
+    b = _six(bounds, "bounds")
+    thin, warning = ctypes.c_int(0), ctypes.c_char_p()
+    if callable(points):
+        _check(f(b, None, 0, ctypes.byref(thin), ctypes.byref(warning)))
+        if not thin.value:
+            return ""
+        points = points()
+    xyz = _xyz(points)
+    _check(f(b, None if xyz is None else xyz.ctypes.data_as(_f64p),
+             0 if xyz is None else xyz.size, ctypes.byref(thin), ctypes.byref(warning)))
+    return _text(warning.value)
+
+
 def automatic_dimensions(bounds, longest):
     """RefractiveIndex's automatic sampling dimensions of a box."""
     dims = _c_int3()
@@ -541,3 +688,21 @@ class Session:
         if _lib.schlieren_session_film(s, size, origin, ctypes.byref(px)):
             raise self._error()
         return list(size), list(origin), px.value
+
+    def write_bos_pair(self, folder, bits=8, format="png", prefix="bos"):
+        """The last trace (Cutoff BOS) as an image pair for PIV codes (docs/BENCH.md "BOS image
+        pairs"): <prefix>_background and <prefix>_recording (grey PNG or TIFF, 8 or 16 bits) and
+        the side file <prefix>.json in the existing `folder`. Returns the paths {"background",
+        "recording", "side_file"}; raises EngineError with one line on bad input."""
+        s = self._live("write_bos_pair")
+        if isinstance(bits, bool) or not isinstance(bits, (int, np.integer)):
+            raise ArgumentTypeError("write_bos_pair: bits must be 8 or 16, not %r" % (bits,))
+        if not -2 ** 31 <= bits < 2 ** 31:
+            raise ArgumentError("write_bos_pair: a bit depth of %d is not one PIV codes read "
+                                "here: use 8 or 16." % bits)
+        written = ctypes.c_char_p()
+        if _lib.schlieren_session_write_bos_pair(s, os.fsencode(str(folder)), int(bits),
+                                                 str(format).encode(), str(prefix).encode(),
+                                                 ctypes.byref(written)):
+            raise self._error()
+        return json.loads(_text(written.value))

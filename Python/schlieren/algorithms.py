@@ -113,6 +113,16 @@ class _Properties(VTKPythonAlgorithmBase):
             raise ValueError("%s is %r: it takes a number" % (name, value))
         return value
 
+    # the proxy whose property ranges the engine lists (schlieren_check_property: the C++
+    # filter's check), or None
+    _range_proxy = None
+
+    def _check_ranges(self):
+        """An EngineError naming the first property whose value is outside the engine's range."""
+        if self._range_proxy:
+            for name in self._defaults:
+                _engine.check_property(self._range_proxy, name, self._values[name])
+
     def SetProperty(self, name, value):
         """Sets a property as ParaView's setters do: a value this front end refuses is kept as an
         error instead of raised (no traceback out of a proxy's setter). Until a good value is
@@ -134,6 +144,8 @@ class _Properties(VTKPythonAlgorithmBase):
         empty output, never a traceback."""
         is_data = request.Has(DDP.REQUEST_DATA())
         try:
+            if is_data or request.Has(DDP.REQUEST_INFORMATION()):
+                self._check_ranges()  # as the C++ filters' RequestInformation
             if self._refused and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
                 if not is_data:
                     # said once, by the data request; the output's extent is empty until then
@@ -218,6 +230,85 @@ def _bounds(data):
         data.GetBounds(b)
         return b
     return data.GetBounds()
+
+
+def _internal_mesh(data):
+    """An OpenFOAM reader's multiblock: its block named internalMesh (the cells; the patches are
+    surfaces of it), as the C++ filter reads it; any other input as it is."""
+    from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
+    if not isinstance(data, vtkMultiBlockDataSet):
+        return data
+    for b in range(data.GetNumberOfBlocks()):
+        meta = data.GetMetaData(b) if data.HasMetaData(b) else None
+        block = data.GetBlock(b)
+        if meta is not None and meta.Get(vtkCompositeDataSet.NAME()) == "internalMesh" and \
+                isinstance(block, vtkDataSet):
+            return block
+    return data
+
+
+def _leaves(data):
+    """The data sets of a data set (itself) or of a composite data set, in its iterator's order."""
+    if isinstance(data, vtkDataSet):
+        return [data]
+    leaves = []
+    if isinstance(data, vtkCompositeDataSet):
+        it = data.NewIterator()
+        it.InitTraversal()
+        while not it.IsDoneWithTraversal():
+            if isinstance(it.GetCurrentDataObject(), vtkDataSet):
+                leaves.append(it.GetCurrentDataObject())
+            it.GoToNextItem()
+    return leaves
+
+
+def _leaf_bounds(data):
+    """The bounds of the leaves that have points (None: no points), as the C++ filter's."""
+    from vtkmodules.vtkCommonDataModel import vtkBoundingBox
+    box = vtkBoundingBox()
+    for leaf in _leaves(data):
+        if leaf.GetNumberOfPoints() > 0:
+            box.AddBounds(leaf.GetBounds())
+    if not box.IsValid():
+        return None
+    b = [0.0] * 6
+    box.GetBounds(b)
+    return b
+
+
+def _all_points(data):
+    """x, y, z (float64, (n, 3)) of every point of every leaf, in order."""
+    parts = []
+    for leaf in _leaves(data):
+        n = leaf.GetNumberOfPoints()
+        points = leaf.GetPoints() if hasattr(leaf, "GetPoints") else None
+        if points is not None and points.GetData() is not None:
+            parts.append(numpy_support.vtk_to_numpy(points.GetData()).astype(np.float64)
+                         .reshape(-1, 3))
+        elif n:
+            parts.append(np.array([leaf.GetPoint(i) for i in range(n)], np.float64))
+    return np.concatenate(parts) if parts else np.zeros((0, 3))
+
+
+def _probe(data, points):
+    """`data` (a data set or composite) sampled at `points` ((m, 3) float64) as the C++ filter's
+    symmetric sampling does: vtkCompositeDataProbeFilter with a static cell locator, the mask
+    vtkValidPointMask."""
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkStaticCellLocator
+    from vtkmodules.vtkFiltersCore import vtkCompositeDataProbeFilter
+    p = vtkPoints()
+    p.SetDataTypeToDouble()
+    p.SetData(numpy_support.numpy_to_vtk(np.ascontiguousarray(points, np.float64), deep=1))
+    samples = vtkPolyData()
+    samples.SetPoints(p)
+    probe = vtkCompositeDataProbeFilter()
+    probe.SetInputData(samples)
+    probe.SetSourceData(data)
+    probe.SetValidPointMaskArrayName("vtkValidPointMask")
+    probe.SetCellLocatorPrototype(vtkStaticCellLocator())
+    probe.Update()
+    return probe.GetOutput()
 
 
 def _image_input(data, dims=None, bounds=None):
@@ -373,9 +464,10 @@ class RefractiveIndex(_Properties):
     first array named as what it holds (the C++ filter's names).
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
-    names: SelectInputArray is InputArray); those this front end does not implement (Symmetry and
-    its axis, span and wedge) take their default only, and another value is refused by name (the
-    C++ plugin has them). Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), a solid
+    names: SelectInputArray is InputArray). Symmetry Planar (a 2D plane extruded over Span) and
+    Axisymmetric (an r-z half plane revolved about SymmetryAxis, or an OpenFOAM wedge about its
+    own axis: AxisFromWedge) are the engine's (schlieren_symmetry_plan, _samples, _expand, as the
+    C++ filter's): this front end samples the mesh where the engine says. Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), a solid
     array (SolidArray, an upstream `solid`); not from a mesh's walls or a body surface input."""
 
     _defaults = dict(
@@ -394,6 +486,7 @@ class RefractiveIndex(_Properties):
         UseSamplingBounds=0, SamplingBounds=[0.0, 1.0, 0.0, 1.0, 0.0, 1.0], AmbientMode="Extend",
         AmbientValue=2.7164e-4, BodyFromGrid=1, BodyWallFaces=[0, 0, 0, 0, 0, 0],
         SolidArray="None")
+    _range_proxy = "RefractiveIndex"
     _gases = ["Air", "He", "N2", "O2", "Ar", "CO2", "H2", "H2O", "CH4", "CO"]
     _entries = dict(
         Model=["Automatic", "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas",
@@ -414,7 +507,8 @@ class RefractiveIndex(_Properties):
                        "BalanceMolarMass", "DensityReference", "TemperatureUnit",
                        "TemperatureReference", "PressureUnit", "PressureReference",
                        "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength")
-    _implemented = {"Model", "InputArray", "SamplingDimensions", "AutomaticDimension",
+    _implemented = {"Model", "InputArray", "Symmetry", "Span", "SymmetryAxis", "AxisFromWedge",
+                    "SamplingDimensions", "AutomaticDimension",
                     "UseSamplingBounds", "SamplingBounds", "BodyWallFaces", "SolidArray",
                     "AmbientMode", "AmbientValue", "BodyFromGrid", "TemperatureArray",
                     "PressureArray",
@@ -462,7 +556,7 @@ class RefractiveIndex(_Properties):
         # plans its film from it; without it a view asks for an empty extent and shows nothing)
         src = inInfo[0].GetInformationObject(0)
         info = outInfo.GetInformationObject(0)
-        if isinstance(vtkDataObject.GetData(src), vtkImageData):
+        if isinstance(vtkDataObject.GetData(src), vtkImageData) and self.Symmetry == "None":
             return 1  # (the data object exists, empty, before the input executes)
         connection = self.GetInputConnection(0, 0) if self.GetNumberOfInputConnections(0) else None
         if connection is not None and src.Has(SDDP.WHOLE_EXTENT()):
@@ -474,6 +568,17 @@ class RefractiveIndex(_Properties):
         if not isinstance(data, (vtkDataSet, vtkCompositeDataSet)) or \
                 data.GetNumberOfPoints() == 0:
             return 1  # RequestData says why
+        if self.Symmetry != "None":
+            # the engine's grid for the 2D input (RequestData says why where there is none)
+            try:
+                plan = self._symmetry_plan(data)
+            except (EngineError, ValueError):
+                return 1
+            d, o, h = plan["dims"], plan["origin"], plan["spacing"]
+            info.Set(SDDP.WHOLE_EXTENT(), 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1)
+            info.Set(vtkImageData.ORIGIN(), *o)
+            info.Set(vtkImageData.SPACING(), *h)
+            return 1
         # the grid vtkResampleToImage makes (it says its origin and spacing in RequestData
         # only): the bounds pulled in by a hair about their centre, as the C++ filter's
         from vtkmodules.vtkCommonDataModel import vtkBoundingBox
@@ -652,6 +757,57 @@ class RefractiveIndex(_Properties):
             mark(mask)
         return solid if solid.any() else None
 
+    def _symmetry_plan(self, data):
+        """The engine's plan (schlieren_symmetry_plan) for the 2D input `data`: its checks (the C++
+        filter's messages), its wedge, its grid."""
+        self._sampling_bounds()  # checked as the C++ filter does
+        mesh = _internal_mesh(data)
+        settings = {k: self._values[k] for k in (
+            "Symmetry", "SymmetryAxis", "Span", "AxisFromWedge", "SamplingDimensions",
+            "AutomaticDimension", "UseSamplingBounds", "SamplingBounds")}
+        bounds = _leaf_bounds(mesh)
+        if isinstance(mesh, vtkImageData):
+            return _engine.symmetry_plan(settings, bounds, image=(
+                mesh.GetExtent(), mesh.GetOrigin(), mesh.GetSpacing()))
+        return _engine.symmetry_plan(settings, bounds,
+                                     None if bounds is None else _all_points(mesh),
+                                     one_data_set=isinstance(mesh, vtkDataSet))
+
+    def _symmetric_input(self, data):
+        """The 2D input made a volume on the engine's grid: (image with every point array of the
+        input sampled there as float32, valid mask or None where all are valid, the plan)."""
+        plan = self._symmetry_plan(data)
+        mesh = _internal_mesh(data)
+        count = int(np.prod(plan["dims"]))
+        _engine.check_memory(count * (8.0 + 1.0 + 22.0), "Resampling onto %d x %d x %d points"
+                             % tuple(plan["dims"]), "Lower SamplingDimensions or "
+                             "AutomaticDimension.")
+        points, sample_of = _engine.symmetry_samples(plan)
+        probed = _probe(mesh, points)
+        pd = probed.GetPointData()
+        found = _point_array(probed, "vtkValidPointMask")
+        _, valid = _engine.symmetry_expand(sample_of, len(points), sample_valid=(
+            np.zeros(len(points), np.uint8) if found is None else
+            (found if found.ndim == 1 else found[:, 0]) != 0))
+        image = vtkImageData()
+        image.SetDimensions(*plan["dims"])
+        image.SetOrigin(*plan["origin"])
+        image.SetSpacing(*plan["spacing"])
+        for i in range(pd.GetNumberOfArrays()):
+            a = pd.GetArray(i)
+            if a is None or not a.GetName() or a.GetName() == "vtkValidPointMask":
+                continue
+            values, _ = _engine.symmetry_expand(sample_of, len(points),
+                                                values=numpy_support.vtk_to_numpy(a))
+            _add(image, a.GetName(), values)
+        if valid.all():
+            return image, None, plan
+        from vtkmodules.vtkCommonCore import VTK_CHAR
+        mask = numpy_support.numpy_to_vtk(valid.astype(np.int8), deep=1, array_type=VTK_CHAR)
+        mask.SetName("vtkValidPointMask")
+        image.GetPointData().AddArray(mask)
+        return image, valid, plan
+
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
         automatic = min(dims) <= 0
@@ -685,9 +841,24 @@ class RefractiveIndex(_Properties):
                     data.GetNumberOfPoints() == 0:
                 raise EngineError("RefractiveIndex: the input (%s) has no points."
                                   % data.GetClassName())
-            resampled = not isinstance(data, vtkImageData)
-            image, valid = _image_input(data, None if not resampled else self._dims(data),
-                                        self._sampling_bounds())
+            symmetric = self.Symmetry != "None"
+            resampled = symmetric or not isinstance(data, vtkImageData)
+            if symmetric:
+                image, valid, plan = self._symmetric_input(data)
+                for w in plan["warnings"]:
+                    self._warn(w)
+            else:
+                image, valid = _image_input(data, None if not resampled else self._dims(data),
+                                            self._sampling_bounds())
+                if not isinstance(data, vtkImageData) and self.AxisFromWedge:
+                    # a wedge traced as it is: a slab of gas a few degrees thick (said as the
+                    # C++ filter says it)
+                    mesh = _internal_mesh(data)
+                    bounds = _leaf_bounds(mesh)
+                    wedge = "" if bounds is None else \
+                        _engine.wedge_warning(bounds, lambda: _all_points(mesh))
+                    if wedge:
+                        self._warn(wedge)
             if not resampled:
                 valid = _image_validity(image)
             pd = image.GetPointData()
@@ -702,7 +873,8 @@ class RefractiveIndex(_Properties):
                 read = [name]
             values = None if name is None else _point_array(image, name)
             if name is not None and (values is None or values.ndim != 1):
-                raise EngineError("RefractiveIndex needs the one-component point array %r; the "
+                raise EngineError("RefractiveIndex needs the one-component point array %r "
+                                  "(InputArray); the "
                                   "input has: %s" % (name, ", ".join(names) or "none"))
             if name is None:
                 pass
@@ -731,7 +903,7 @@ class RefractiveIndex(_Properties):
         except EngineError as e:
             return self._fail(str(e))
         out.ShallowCopy(image)
-        if not isinstance(data, vtkImageData):
+        if resampled:
             e = out.GetExtent()  # the resampled grid's, known only now
             outInfo.GetInformationObject(0).Set(SDDP.WHOLE_EXTENT(), e, 6)
         a = _add(out, "n_minus_1", n1)
@@ -764,6 +936,7 @@ class RefractionOctree(_Properties):
     """The paper's min-max octree as a level per point (`octree_level`) for a tolerance."""
 
     _defaults = dict(Tolerance=0.0, MaxLevel=7)
+    _range_proxy = "RefractionOctree"
     AutomaticToleranceFraction = 1e-4
 
     def __init__(self, **kwargs):
@@ -925,15 +1098,6 @@ class NumericalSchlieren(_Properties):
         return 1
 
 
-def _python_advice(message):
-    """The engine's message with its advice made this front end's: its RefractiveIndex has
-    Symmetry None only (the engine's advice names the C++ plugin's Symmetry)."""
-    if "Symmetry" in message:
-        message += (" (Symmetry is the C++ plugin's RefractiveIndex: the Python front end's "
-                    "takes None only; give SchlierenImage a 3D volume here.)")
-    return message
-
-
 def _image_properties():
     props = _engine.properties()
     return ({p["name"]: p["default"] for p in props},
@@ -999,7 +1163,7 @@ class SchlierenImage(_Properties):
             report = s.trace()
         except EngineError as e:
             object.__setattr__(self, "LastReport", getattr(e, "report", None))
-            return self._fail(_python_advice(str(e)))
+            return self._fail(str(e))
         object.__setattr__(self, "LastReport", report)
         object.__setattr__(self, "LastError", "")
         for note in report["notes"]:
@@ -1031,6 +1195,15 @@ class SchlierenImage(_Properties):
             (_field_string if isinstance(v, str) else _field_number)(out, k, v)
         return 1
 
+    def WriteBOSPair(self, folder, bits=8, format="png", prefix="bos"):
+        """The last image (Cutoff BOS) as an image pair for PIV codes, OpenPIV and others: the
+        undistorted background and the recording (grey PNG or TIFF, 8 or 16 bits) and a JSON side
+        file (pixel size, bench, the displacement's units and sign) in the existing `folder`
+        (docs/BENCH.md "BOS image pairs"). Returns the paths {"background", "recording",
+        "side_file"}; raises EngineError (one line) on bad input. The C++ filter's
+        WriteBOSPair writes the same files."""
+        return self._session.write_bos_pair(folder, bits, format, prefix)
+
     def RequestInformation(self, request, inInfo, outInfo):
         # the film's extent, as the C++ filter gives it: from the input's grid and the settings
         # (a non-image input is resampled in RequestData; its film is known only then)
@@ -1053,7 +1226,7 @@ class SchlierenImage(_Properties):
                 self._session.set(name, value)
             size, origin, pixel = self._session.plan_film(dims, first, spacing)
         except EngineError as err:
-            return self._fail(_python_advice(str(err)))
+            return self._fail(str(err))
         info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
         info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
         info.Set(vtkImageData.ORIGIN(), origin[0], origin[1], 0.0)

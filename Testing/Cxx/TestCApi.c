@@ -142,6 +142,81 @@ int main(void)
     free(ng);
     free(nb);
   }
+  {
+    /* RefractiveIndex's symmetry (schlieren_symmetry_*): known answers on small planes */
+    const double plane[6] = { 0.0, 1.0, 0.0, 2.0, 0.0, 0.0 };   /* a 2D x-y plane at z = 0 */
+    const double rz[6] = { 0.0, 2.0, 0.0, 1.0, 0.0, 0.0 };      /* an r-z half plane, r along y */
+    int sd[3];
+    double so[3], sh[3], g[8];
+    int64_t m = 0, of[3 * 5 * 4], k;
+    double xyz[3 * 15];
+    const char* report = NULL;
+    float values[15], out[3 * 5 * 4];
+    unsigned char found[15], valid[3 * 5 * 4];
+    int ok = 1;
+    CHECK(schlieren_symmetry_plan("Symmetry=Planar\nSpan=0.6\nSamplingDimensions=3 5 4", plane,
+            NULL, 0, 1, NULL, NULL, NULL, sd, so, sh, g, &report) == 0 &&
+          sd[0] == 3 && sd[1] == 5 && sd[2] == 4 && fabs(so[2] + 0.3) < 1e-15 &&
+          fabs(sh[2] - 0.2) < 1e-15 && g[0] == 1 && g[1] == 2,
+      "symmetry: Planar over a 2D x-y plane: 3 x 5 x 4 points, z from -Span/2 by Span/3 (%d %d %d, "
+      "z %g by %g; %s)", sd[0], sd[1], sd[2], so[2], sh[2], schlieren_last_error());
+    CHECK(schlieren_symmetry_samples(g, sd, so, sh, &m, xyz, 3 * 15, of, 3 * 5 * 4) == 0 && m == 15,
+      "symmetry: Planar samples one per in-plane point (%lld; %s)", (long long)m,
+      schlieren_last_error());
+    for (k = 0; k < 3 * 5 * 4; ++k)
+      ok = ok && of[k] == k % 15 && xyz[3 * of[k] + 2] == 0.0;
+    for (k = 0; k < 15; ++k)
+    {
+      values[k] = (float)k;
+      found[k] = k != 7;
+    }
+    CHECK(ok && schlieren_symmetry_expand(of, 60, 15, values, 15, 1, out, 60, found, 15, valid, 60) == 0 &&
+          out[59] == 14.0f && out[22] == 7.0f && valid[22] == 0 && valid[21] == 1,
+      "symmetry: each grid point takes its in-plane sample, extruded across the span (%s)",
+      schlieren_last_error());
+    CHECK(schlieren_symmetry_plan("Symmetry=Axisymmetric\nSymmetryAxis=X\nSamplingDimensions=3 3 3",
+            rz, NULL, 0, 1, NULL, NULL, NULL, sd, so, sh, g, &report) == 0 &&
+          sd[0] == 3 && fabs(so[1] + 1.0) < 1e-15 && fabs(sh[2] - 1.0) < 1e-15 && g[5] == 0,
+      "symmetry: Axisymmetric about x: r from -R to R along y and z (%g by %g; %s)", so[1], sh[2],
+      schlieren_last_error());
+    CHECK(schlieren_symmetry_samples(g, sd, so, sh, &m, NULL, 0, NULL, 0) == 0 && m == 6 &&
+          schlieren_symmetry_samples(g, sd, so, sh, &m, xyz, 18, of, 27) == 0 && of[13] == 2 * 1 + 1 &&
+          of[0] == 0 && fabs(xyz[3 * 1 + 1]) < 1e-15 && fabs(xyz[3 * 0 + 1] - (1 - 1e-6)) < 1e-12,
+      "symmetry: 3 x 3 x 3 revolved: 2 distinct radii per axial position (the axis, and the corners "
+      "and edges held at the largest r), the centre point on the axis (%lld samples; %s)",
+      (long long)m, schlieren_last_error());
+    CHECK(schlieren_symmetry_plan("Symmetry=Planar\nSpan=0", plane, NULL, 0, 1, NULL, NULL, NULL,
+            sd, so, sh, g, NULL) != 0 &&
+          strstr(schlieren_last_error(), "Span is 0.000000: it must be positive") != NULL,
+      "symmetry: Span 0 refused with the C++ filter's message: %s", schlieren_last_error());
+    CHECK(schlieren_symmetry_plan("Symmetry=Axisymmetric\nSymmetryAxis=Z", rz, NULL, 0, 1, NULL, NULL,
+            NULL, sd, so, sh, g, NULL) != 0 &&
+          strstr(schlieren_last_error(), "SymmetryAxis z is normal to the input's plane") != NULL,
+      "symmetry: an axis normal to the plane refused: %s", schlieren_last_error());
+  }
+  {
+    /* the filters' property ranges, the engine's (the C++ filters check the same table) */
+    const double wavelength = 50, inside[3] = { 0, 64, 65536 }, past[3] = { 0, 64, 65537 };
+    const double tolerance = 1e-6, nan = NAN, boolean = 2;
+    CHECK(schlieren_check_property("RefractiveIndex", "Wavelength", &wavelength, 1) != 0 &&
+        strcmp(schlieren_last_error(), "Wavelength is 50: it must be in [100, 20000].") == 0,
+      "check_property: Wavelength 50 refused by name and range: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "SamplingDimensions", inside, 3) == 0,
+      "check_property: SamplingDimensions 0 64 65536 taken (%s)", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "SamplingDimensions", past, 3) != 0 &&
+        strstr(schlieren_last_error(), "SamplingDimensions[2] is 65537") != NULL,
+      "check_property: SamplingDimensions[2] 65537 refused: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "PressureOffset", &nan, 1) != 0 &&
+        strstr(schlieren_last_error(), "PressureOffset is nan: it must be a finite value") != NULL,
+      "check_property: PressureOffset NaN refused: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractiveIndex", "BodyFromGrid", &boolean, 1) != 0 &&
+        strstr(schlieren_last_error(), "must be 0 (off) or 1 (on)") != NULL,
+      "check_property: BodyFromGrid 2 refused: %s", schlieren_last_error());
+    CHECK(schlieren_check_property("RefractionOctree", "Tolerance", &tolerance, 1) == 0 &&
+        schlieren_check_property("RefractiveIndex", "Model", &boolean, 1) == 0,
+      "check_property: Tolerance 1e-6 taken, a property without a listed range passes (%s)",
+      schlieren_last_error());
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

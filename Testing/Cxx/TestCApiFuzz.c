@@ -66,6 +66,9 @@ enum
   F_EXTEND,
   F_AUTODIMS,
   F_MEMORY,
+  F_SYMMETRY,
+  F_WEDGE,
+  F_PROPERTY,
   F_MISC,
   F_THREADS,
   F_COUNT
@@ -73,7 +76,8 @@ enum
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
   "session_trace", "session_array", "session_film", "session_plan_film", "session_report",
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
-  "extend_into_invalid", "automatic_dimensions", "check_memory", "version/properties/device",
+  "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
+  "wedge_warning", "check_property", "version/properties/device",
   "two threads, one session" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
@@ -225,6 +229,16 @@ static void fixed_cases(void)
     "fixed: a foreign pointer refused, not followed", schlieren_last_error());
   EXPECT(schlieren_session_film(s, NULL, NULL, NULL) != 0 && has(schlieren_session_error(s), "no image"),
     "fixed: film before a trace says there is no image", schlieren_session_error(s));
+  {
+    /* issue 51: the BOS pair writer with no image, NULL arguments, a freed or foreign handle */
+    const char* written = "unset";
+    EXPECT(schlieren_session_write_bos_pair(s, NULL, 8, NULL, NULL, &written) != 0 && written == NULL &&
+        has(schlieren_session_error(s), "no image"),
+      "the BOS pair before a trace: no image, nothing written", schlieren_session_error(s));
+    EXPECT(schlieren_session_write_bos_pair(gone, "/tmp", 8, "png", "bos", NULL) != 0 &&
+        schlieren_session_write_bos_pair((schlieren_session*)(void*)bytes, "/tmp", 8, "png", "bos", NULL) != 0,
+      "the BOS pair on a freed or foreign handle refused", schlieren_last_error());
+  }
   schlieren_session_free(s);
   free(grid);
   free(grad);
@@ -436,7 +450,7 @@ static void keep_small(schlieren_session* s)
 static void random_case(int k)
 {
   char what[160];
-  int dims[3], valid, f = below(20), rc;
+  int dims[3], valid, f = below(22), rc;
   int64_t needed, count, count2, count3;
   double o[3], h[3];
   schlieren_session* s = random_session();
@@ -745,6 +759,140 @@ static void random_case(int k)
       rc = schlieren_check_memory(below(2) ? 1e20 : (below(2) ? NAN : -1.0), below(2) ? "A thing" : NULL,
         below(2) ? "Lower it." : NULL);
       outcome(F_MEMORY, rc, schlieren_last_error(), what);
+      {
+        static const char* const proxies[] = { "RefractiveIndex", "RefractionOctree", "Nothing",
+          "" };
+        static const char* const props[] = { "Wavelength", "SamplingDimensions", "BodyWallFaces",
+          "Tolerance", "BodyFromGrid", "NoSuchName", "" };
+        const int count = below(4) ? (int)below(7) : -3;
+        rc = schlieren_check_property(below(10) ? proxies[below(4)] : NULL,
+          below(10) ? props[below(7)] : NULL, below(10) ? b : NULL, count);
+        outcome(F_PROPERTY, rc, schlieren_last_error(), what);
+      }
+      break;
+    }
+    case 19:
+    {
+      /* RefractiveIndex's symmetry: a plan from random settings and points (a rectangle or a
+       * wedge-like slab, NaN at times, lengths off at times), then its samples and their
+       * expansion with random lengths and indices */
+      static const char* settings[] = { "Symmetry=Planar\nAutomaticDimension=12",
+        "Symmetry=Axisymmetric\nSymmetryAxis=X\nAutomaticDimension=10",
+        "Symmetry=Axisymmetric\nSymmetryAxis=Z\nAxisFromWedge=0\nAutomaticDimension=8",
+        "Symmetry=Planar\nSpan=-1", "Symmetry=None", "Symmetry=planar", "Symetry=Planar",
+        "Symmetry=Planar\nSamplingDimensions=4 5 3",
+        "Symmetry=Axisymmetric\nSamplingDimensions=1 1 1",
+        "Symmetry=Axisymmetric\nSamplingDimensions=5 6 7\nUseSamplingBounds=1\n"
+        "SamplingBounds=0 1 -1 1 -1 1",
+        "not a line", "Symmetry=Planar\nAutomaticDimension=1e30", "Symmetry=Planar\nSpan=nan",
+        "Symmetry=Axisymmetric\nSymmetryAxis=W", "" };
+      double b[6], g[8], o3[3], h3[3], *pts, *xyz;
+      int d3[3], ext[6], i, thin;
+      const char* report;
+      int64_t np = below(5) ? 3 * (int64_t)below(60) : (below(2) ? -3 : 7), m = 0, cells, c, xc,
+        vc, oc;
+      int64_t *of;
+      float *vals, *out;
+      unsigned char *sv, *v;
+      pts = buffer(np, sizeof(double), 1);
+      if (pts && np > 0 && np <= 1000000)
+      {
+        int64_t k;
+        for (k = 0; k < np / 3; ++k)
+        {
+          pts[3 * k] = uniform();
+          pts[3 * k + 1] = 0.1 + uniform();
+          pts[3 * k + 2] = below(2) ? 0.0 : 0.05 * pts[3 * k + 1] * (below(2) ? 1 : -1);
+          if (below(80) == 0)
+            pts[3 * k + below(3)] = below(2) ? NAN : INFINITY;
+        }
+      }
+      for (i = 0; i < 6; ++i)
+        b[i] = below(20) ? (i % 2 ? 1.1 : (i == 4 ? -0.06 : 0.0)) : (below(2) ? NAN : -5.0);
+      if (below(2))
+        b[4] = b[5] = 0.0;
+      for (i = 0; i < 3; ++i)
+      {
+        ext[2 * i] = below(8) ? 0 : -2;
+        ext[2 * i + 1] = below(20) ? below(6) : -7;
+      }
+      rc = schlieren_symmetry_plan(below(20) ? settings[below(15)] : NULL, below(10) ? b : NULL,
+        pts, np, (int)below(2), below(3) == 0 ? ext : NULL, below(10) ? o : NULL, h,
+        below(40) ? d3 : NULL, o3, h3, g, below(2) ? &report : NULL);
+      outcome(F_SYMMETRY, rc, schlieren_last_error(), what);
+      free(pts);
+      if (rc != 0)
+      {
+        /* the later calls with a made-up geometry */
+        for (i = 0; i < 8; ++i)
+          g[i] = below(10) ? (double)below(3) : (below(2) ? NAN : -1.5);
+        for (i = 0; i < 3; ++i)
+          d3[i] = dims[i], o3[i] = o[i], h3[i] = h[i];
+      }
+      if (rc != 0 && !valid)
+        break; /* a huge made-up grid: its samples would be real allocations */
+      cells = (int64_t)d3[0] * d3[1] * d3[2];
+      if (cells > 300000 || d3[0] < 1 || d3[1] < 1 || d3[2] < 1)
+        break;
+      rc = schlieren_symmetry_samples(g, d3, o3, h3, below(30) ? &m : NULL, NULL, 0, NULL, 0);
+      outcome(F_SYMMETRY, rc, schlieren_last_error(), what);
+      if (rc != 0)
+        m = 1 + below(5);
+      c = random_count(cells);
+      xc = below(5) ? 3 * m : random_count(3 * m);
+      xyz = buffer(xc, sizeof(double), 1);
+      of = buffer(c, sizeof(int64_t), 1);
+      rc = schlieren_symmetry_samples(g, d3, o3, h3, &m, xyz, xc, of, c);
+      outcome(F_SYMMETRY, rc, schlieren_last_error(), what);
+      if (of && rc != 0 && c > 0 && c <= 1000000)
+      {
+        int64_t k;
+        for (k = 0; k < c; ++k)
+          of[k] = below(50) ? (int64_t)below((unsigned)(m > 0 ? m : 1)) : (below(2) ? -1 : m);
+      }
+      thin = 1 + (int)below(4);
+      vc = below(5) ? m * thin : random_count(m * thin);
+      oc = below(5) ? c * thin : random_count(c * thin);
+      vals = buffer(vc, sizeof(float), 1);
+      out = buffer(oc, sizeof(float), 1);
+      sv = buffer(m, 1, 1);
+      v = buffer(c, 1, 1);
+      rc = schlieren_symmetry_expand(of, c, below(20) ? m : -1, vals, vc, below(20) ? thin : 0,
+        out, oc, sv, m, v, c);
+      outcome(F_SYMMETRY, rc, schlieren_last_error(), what);
+      free(xyz);
+      free(of);
+      free(vals);
+      free(out);
+      free(sv);
+      free(v);
+      break;
+    }
+    case 20:
+    {
+      double b[6], *pts;
+      const char* warning;
+      int thin, i;
+      int64_t np = below(5) ? 3 * (int64_t)below(60) : (below(2) ? -3 : 5);
+      pts = buffer(np, sizeof(double), 1);
+      if (pts && np > 0 && np <= 1000000)
+      {
+        int64_t k;
+        for (k = 0; k < np / 3; ++k)
+        {
+          pts[3 * k] = uniform();
+          pts[3 * k + 1] = 0.1 + uniform();
+          pts[3 * k + 2] = 0.04 * pts[3 * k + 1] * (below(2) ? 1 : -1);
+          if (below(80) == 0)
+            pts[3 * k] = NAN;
+        }
+      }
+      for (i = 0; i < 6; ++i)
+        b[i] = below(20) ? (i % 2 ? 1.1 : (i == 4 ? -0.05 : 0.0)) : NAN;
+      rc = schlieren_wedge_warning(below(20) ? b : NULL, pts, np, below(2) ? &thin : NULL,
+        below(20) ? &warning : NULL);
+      outcome(F_WEDGE, rc, schlieren_last_error(), what);
+      free(pts);
       break;
     }
     default:

@@ -91,6 +91,15 @@ if(SCHLIEREN_PYTHON_PLUGIN)
       --work "${_temp}/python_plugin_parity")
   set_property(TEST python.python_plugin_parity APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+  # every value of every property's domain through both plugins in one pvpython: both accept or
+  # both refuse naming the property; the properties' documentation (tooltips) and the proxies'
+  # help the same (test_frontend_values.py)
+  schlieren_python_test(frontend_values
+    COMMAND "${_pvpython}" "${_here}/test_frontend_values.py" --cxx-plugin "${_plugin}"
+      --python-plugin "${SCHLIEREN_PYTHON_PLUGIN}" --xml "${PROJECT_SOURCE_DIR}/Plugin/Schlieren.xml"
+      --work "${_temp}/frontend_values")
+  set_property(TEST python.frontend_values APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endif()
 
 # the Python plugin loaded in the GUI through Tools > Manage Plugins > Load New with X events

@@ -205,9 +205,11 @@ else:
     flat_image = schlieren.SchlierenImage(Resolution=[16, 16], Backend="CPU")
     flat_image.SetInputConnection(flat.GetOutputPort())
     flat_image.Update()
-    check("Symmetry" in flat_image.LastError and "Python front end's takes None only" in
-          flat_image.LastError, "a 2D volume: the advice does not send the Python front end's "
-          "user to a Symmetry it refuses", flat_image.LastError[-110:])
+    check("RefractiveIndex with Symmetry Planar or Axisymmetric" in flat_image.LastError and
+          "None only" not in
+          flat_image.LastError, "a 2D volume: the advice sends the user to Symmetry Planar, which "
+          "the Python front end's RefractiveIndex has (as the C++ plugin's)",
+          flat_image.LastError[-110:])
     wavelet = vtkRTAnalyticSource()
     wavelet.SetWholeExtent(-5, 5, -5, 5, -5, 5)
     grid = vtkAppendFilter()   # an unstructured grid: resampled by RefractiveIndex
@@ -231,6 +233,38 @@ for args in (["--resolution", "0"], ["--resolution", "1"], ["--resolution", "-5"
     check(p.returncode == 2 and len(err_text.strip().splitlines()) == 1 and
           "Traceback" not in err_text, "python -m schlieren demo %s: exit 2, one line"
           % " ".join(args), "rc %d: %s" % (p.returncode, err_text.strip()[:150]))
+
+# ---- RefractiveIndex's symmetry through ctypes: shapes, dtypes and lengths named ----
+plan = e.symmetry_plan({"Symmetry": "Planar", "Span": 0.5, "SamplingDimensions": [4, 3, 3]},
+                       [0, 1, 0, 1, 0, 0])
+points, sample_of = e.symmetry_samples(plan)
+check(plan["dims"] == [4, 3, 3] and points.shape == (12, 3) and sample_of.dtype == np.int64 and
+      sample_of.size == 36, "symmetry_plan and symmetry_samples: 4 x 3 x 3 from 12 samples",
+      str(plan["dims"]))
+err = raises(lambda: e.symmetry_expand(sample_of.astype(np.int32), 12, values=np.zeros(12)),
+             e.ArgumentTypeError)
+check(err is not None and "int64" in str(err), "symmetry_expand: int32 sample_of refused by dtype",
+      str(err))
+err = raises(lambda: e.symmetry_expand(sample_of, 12, values=np.zeros(11)), e.ArgumentError)
+check(err is not None and "12 samples" in str(err), "symmetry_expand: 11 values for 12 samples "
+      "refused", str(err))
+bad = sample_of.copy()
+bad[5] = 12
+err = raises(lambda: e.symmetry_expand(bad, 12, values=np.zeros(12)), e.EngineError)
+check(err is not None and "sample_of[5] is 12" in str(err), "symmetry_expand: an index past the "
+      "samples refused by the engine (no read past them)", str(err))
+err = raises(lambda: e.symmetry_plan({"Symmetry": "Axisymmetric"}, [0, 1, 0, 1, 0, 0.1],
+                                     points=np.zeros((5, 2))), e.ArgumentError)
+check(err is not None and "(n, 3)" in str(err), "symmetry_plan: points of shape (5, 2) refused",
+      str(err))
+err = raises(lambda: e.symmetry_plan({"Symmetry": "planar"}, [0, 1, 0, 1, 0, 0]), e.EngineError)
+check(err is not None and "Symmetry 'planar' is not one of: None, Planar, Axisymmetric" in str(err),
+      "symmetry_plan: a wrongly cased entry names the entries", str(err))
+values, valid = e.symmetry_expand(sample_of, 12, values=np.arange(24.0).reshape(12, 2),
+                                  sample_valid=np.arange(12) != 3)
+check(values.shape == (36, 2) and values.dtype == np.float32 and values[35, 1] == 23.0 and
+      valid.sum() == 33, "symmetry_expand: 2 components a sample, onto 36 points (%d valid)"
+      % valid.sum())
 
 print("%d failures" % len(failures))
 sys.exit(1 if failures else 0)

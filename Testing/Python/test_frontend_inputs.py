@@ -10,7 +10,9 @@ python.python_plugin_parity checks against the C++ plugin in pvpython, here in a
     extent from 0 (python.python_plugin_parity: that film is the C++ filter's bit for bit);
   - a failed request leaves the output empty (no image from before) and LastError says why;
   - an exception of any kind inside a request is an error message, not a traceback;
-  - RefractiveIndex's IdealGas (the engine's index models) against rho = p M / (R T).
+  - RefractiveIndex's IdealGas (the engine's index models) against rho = p M / (R T);
+  - Symmetry Planar on a 2D image (the field extruded unchanged), Axisymmetric on a wedge with no
+    axis typed (revolved about its own axis), the wedge's warning at Symmetry None.
 
     python test_frontend_inputs.py      (the package on PYTHONPATH, SCHLIEREN_ENGINE_LIBRARY set)
 """
@@ -165,6 +167,56 @@ err = np.max(np.abs(numpy_support.vtk_to_numpy(got) / want - 1.0)) if got is not
 check(got is not None and err < 1e-6 and "ERROR" not in text,
       "IdealGas air (arrays Temperature, Pressure found by name): n - 1 = K p M / (R T) within "
       "%.1e relative (float32)" % err)
+
+# Symmetry in plain VTK (the engine's plan, samples and fill; python.python_plugin_parity compares
+# them with the C++ filter in pvpython): Planar on a 2D image keeps its own in-plane points, the
+# field extruded unchanged over Span; a wedge one cell across is revolved about its own axis (along
+# y at x = 0.3, z = 0.1, SymmetryAxis left at X), and with Symmetry None it is said to be a wedge
+flat = vtkImageData()
+flat.SetDimensions(9, 7, 1)
+flat.SetSpacing(0.1, 0.1, 1.0)
+flat.SetOrigin(-0.4, -0.3, 0.0)
+rho = (1.2 + 0.1 * np.arange(63) % 0.7).astype(np.float32)
+a = numpy_support.numpy_to_vtk(rho, deep=1)
+a.SetName("density")
+flat.GetPointData().AddArray(a)
+planar = schlieren.RefractiveIndex(Model="GladstoneDale", InputArray="density", Symmetry="Planar",
+                                   Span=0.4)
+_, out, text = run(planar, flat)
+got = out.GetPointData().GetArray("n_minus_1")
+got = None if got is None else numpy_support.vtk_to_numpy(got).reshape(-1, 63)
+check(out.GetDimensions() == (9, 7, 3) and np.allclose(out.GetOrigin(), (-0.4, -0.3, -0.2)) and
+      got is not None and all(np.array_equal(got[k], got[0]) for k in range(3)) and
+      np.max(np.abs(got[0] / (2.256e-4 * rho) - 1)) < 1e-6 and "ERROR" not in text,
+      "Symmetry Planar on a 9 x 7 image: 9 x 7 x 3 points, z from -Span/2, n - 1 = K rho at the "
+      "image's points on every plane across the span (%s)" % (text.strip()[:120],))
+wedge = vtkStructuredGrid()
+wedge.SetDimensions(10, 12, 2)
+points, values, half = vtkPoints(), [], np.radians(2.5)
+for side in (-1, 1):
+    for j in range(12):
+        for i in range(10):
+            r, y = 0.05 * i, 0.05 * j
+            points.InsertNextPoint(0.3 + r * np.cos(half), y, 0.1 + side * r * np.sin(half))
+            values.append(1.2 + 0.4 * np.exp(-((r - 0.2) ** 2 + (y - 0.3) ** 2) / 0.02))
+wedge.SetPoints(points)
+a = numpy_support.numpy_to_vtk(np.array(values, np.float32), deep=1)
+a.SetName("density")
+wedge.GetPointData().AddArray(a)
+revolved = schlieren.RefractiveIndex(Model="GladstoneDale", InputArray="density",
+                                     Symmetry="Axisymmetric", AutomaticDimension=24)
+_, out, text = run(revolved, wedge)
+d, o, h = out.GetDimensions(), out.GetOrigin(), out.GetSpacing()
+centre = [o[a] + 0.5 * (d[a] - 1) * h[a] for a in range(3)]
+check(out.GetNumberOfPoints() > 0 and d[0] == d[2] and abs(centre[0] - 0.3) < 1e-6 and
+      abs(centre[2] - 0.1) < 1e-6 and "ERROR" not in text,
+      "Symmetry Axisymmetric on a wedge about y (no axis typed): revolved about x = 0.3, z = 0.1 "
+      "(grid %s, centre %s, the fitted axis)" % (d, [round(c, 9) for c in centre]))
+_, out, text = run(schlieren.RefractiveIndex(Model="GladstoneDale", InputArray="density",
+                                             AutomaticDimension=16), wedge)
+check(out.GetNumberOfPoints() > 0 and "The input is an axisymmetric wedge (OpenFOAM's way: two "
+      "planes 5 deg apart through the line along y at x = 0.3, z = 0.1, one cell across)" in text,
+      "the wedge with Symmetry None: the C++ filter's warning (%r)" % text.strip()[-120:])
 
 # a failed request leaves no image from before
 image = schlieren.SchlierenImage(**image_settings())

@@ -20,7 +20,17 @@ paraview starts with no plugin (PV_PLUGIN_PATH an empty folder, a fresh HOME) an
      for that case (frontend_reference.py's files), and the property lists of the GUI's proxies
      equal those the C++ plugin's proxies have in pvpython, less what the Python plugin leaves out
      by name (frontend_cases.PYTHON_PLUGIN_LEFT_OUT).
-Screenshots: plugin_manager.png (the .py listed as Loaded), image.png (the pipeline after Apply).
+  4. the blunt fin (PLOT3D, ../shared/data; the part is skipped, said so, without it): the reader
+     opened by the session (as File > Open does), Quick Launch "Refractive Index" and Apply; in
+     the panel's search box "wall", the six Body Wall Faces fields typed 0 1 1 0 1 1, the mouse
+     resting on one of them shows its tooltip (the XML's documentation), Apply: the index finds
+     the fin a body (solid points > 0, none before); Quick Launch "Schlieren Image", Apply: dark
+     where the fin is; the image shown in a 2D render view beside the 3D one (the session splits
+     the layout: the Python plugin cannot add the C++ plugin's Open Image View); Follow Camera
+     on, a 160-pixel drag in the 3D view: the line of sight turns, the image is traced again and
+     refined, and the 2D view shows the new image.
+Screenshots: plugin_manager.png (the .py listed as Loaded), image.png (the pipeline after Apply),
+bluntfin_faces.png, bluntfin_tooltip.png, bluntfin_2d.png, bluntfin_follow.png.
 """
 import json
 import os
@@ -169,9 +179,9 @@ say("the pipeline after Apply: %s" % shot)
 polls2 = [0]
 
 
-def image_state():
+def image_state(name="SchlierenImage1"):
     polls2[0] += 1
-    gd.send("image %d" % polls2[0])
+    gd.send("image %d %s" % (polls2[0], name))
     return gd.read_json("image-%d.json" % polls2[0])
 
 
@@ -218,4 +228,118 @@ for proxy, registered in (("RefractiveScene", "RefractiveScene1"), ("SchlierenIm
     check(py == want, "%s in the GUI: its %d properties are the C++ plugin's less %s (Python only: %s; "
           "C++ only: %s)" % (proxy, len(py), sorted(cases.PYTHON_PLUGIN_LEFT_OUT.get(proxy, ())),
                              sorted(py - want), sorted(want - py)))
+
+# -- 4. the blunt fin (PLOT3D) with its silhouette, by the panel: Refractive Index by Quick Launch,
+# Body Wall Faces typed into the panel's six fields, Schlieren Image, the image in a 2D view, Follow
+# Camera with a drag in the 3D view
+def ask(command, reply):
+    """Sends `command <k> ...` with a fresh tag k, returns the session's <reply>-<k>.json."""
+    polls[0] += 1
+    gd.send(command.replace("<k>", str(polls[0])))
+    return gd.read_json("%s-%d.json" % (reply, polls[0]), timeout=120)
+
+
+gd.send("setin SchlierenImage1 " + json.dumps({"FollowCamera": 0}))
+gd.read_json("set-%d.json" % gd.commands)
+if not ask("bluntfin <k>", "bluntfin")["found"]:
+    say("SKIP the blunt fin part: no bluntfinxyz.bin and bluntfinq.bin in %s" % os.path.abspath(gd.data))
+    gd.finish()
+quick_launch("Refractive Index", "RefractiveIndex1")
+# the settings of gui_drag_scene.py (the C++ plugin's GUI tests): the fin's density at 64 voxels
+set_active(dict(Model="GladstoneDale", Gas="Air", DensityReference=1.2, UseSamplingBounds=1,
+                SamplingBounds=[-2.5, 7.5, 0.0, 5.0, 0.0, 5.7], AutomaticDimension=64,
+                InputArray=["POINTS", "Density"]))
+apply_and_wait("RefractiveIndex1")
+before = ask("index <k>", "index")
+check(before["faces"] == [0] * 6 and before["solid_points"] == 0,
+      "the blunt fin's index before: Body Wall Faces %s, %d solid points of %d"
+      % (before["faces"], before["solid_points"], before["points"]))
+# the panel's search box (below Apply/Reset/Delete), "wall", the six fields typed
+xdo("mousemove", 130, 539)
+xdo("click", 1)
+time.sleep(0.3)
+xdo("type", "--delay", "60", "wall")
+time.sleep(0.8)
+fields = gui_driver.field_boxes(screenshot("bluntfin_search"))
+say("the Body Wall Faces fields on the screen (x, y): %s" % fields)
+if len(fields) != 6:
+    fatal("the Python plugin's panel does not show Body Wall Faces as six fields (%d found)" % len(fields))
+for (x, y), value in zip(fields, (0, 1, 1, 0, 1, 1)):
+    xdo("mousemove", x, y)
+    xdo("click", 1)
+    xdo("key", "--clearmodifiers", "ctrl+a")
+    xdo("type", "--delay", "40", str(value))
+    time.sleep(0.2)
+time.sleep(0.5)
+shot_faces = screenshot("bluntfin_faces")
+say("the panel with the faces typed: %s" % shot_faces)
+# the property's tooltip (its documentation in Schlieren.xml, which the generated plugin carries):
+# the mouse rests on the property's middle row of fields
+hover = (fields[3][0], fields[3][1])
+xdo("mousemove", hover[0] + 5, hover[1] + 30)
+time.sleep(0.5)
+xdo("mousemove", *hover)
+time.sleep(2.5)
+shot_tip = screenshot("bluntfin_tooltip")
+tip = np.abs(gui_driver.read_ppm(shot_tip) - gui_driver.read_ppm(shot_faces)).sum(axis=2) > 0
+tip = tip[hover[1] + 8:hover[1] + 300, max(0, hover[0] - 300):hover[0] + 600]
+check(int(tip.sum()) > 2000, "a tooltip shows where the mouse rests on Body Wall Faces (%d pixels "
+      "changed below it): %s" % (int(tip.sum()), shot_tip))
+xdo("key", "--clearmodifiers", "alt+a")
+after = gd.wait_for("the index with the fin as a body", lambda: (
+    lambda r: r if r["faces"] == [0, 1, 1, 0, 1, 1] and r["solid_points"] > 0 else None)(
+    ask("index <k>", "index")), 60)
+check(after["solid_points"] > 0, "the panel's six fields set Body Wall Faces to %s: %d solid points "
+      "of %d" % (after["faces"], after["solid_points"], after["points"]))
+quick_launch("Schlieren Image", "SchlierenImage2")
+set_active(dict(Resolution=[160, 160], Passes=1, Cutoff="KnifeEdge", CutoffScale=250.0, Backend="CPU",
+                Seed=4, InteractivePasses=1))
+apply_and_wait("SchlierenImage2")
+ask("view2d <k> SchlierenImage2", "view2d")
+time.sleep(1.5)
+shot = screenshot("bluntfin_2d")
+say("the blunt fin's image in its 2D view: %s" % shot)
+gd.send("dump bluntfin SchlierenImage2")
+gd.read_json("dumped-bluntfin.json", timeout=60)
+fin = np.load(os.path.join(args.work, "bluntfin.npz"))
+dark = float((fin["array_intensity"] < 0.05).mean())
+check(dark > 0.02, "the blunt fin's image is dark where the fin is (%.1f %% of the film below 0.05; "
+      "mean %.3f)" % (100 * dark, float(fin["array_intensity"].mean())))
+boxes = gui_driver.view_boxes(shot)
+check(len(boxes) == 2, "two views on the screen, the 3D view and the image's 2D view (%s)" % boxes)
+gd.send("setin SchlierenImage2 " + json.dumps({"FollowCamera": 1, "Passes": 2}))
+gd.read_json("set-%d.json" % gd.commands)
+xdo("key", "--clearmodifiers", "alt+a")
+before = gd.wait_for("the blunt fin's follower to start", lambda: (
+    lambda r: r if r["following"] else None)(image_state("SchlierenImage2")), 30)
+if boxes:
+    gd.drag(boxes[0], 160, 8)  # the left view: the 3D one
+    after = gd.wait_for("the blunt fin's image to follow the drag and refine to 2 passes", lambda: (
+        lambda r: r if r["moved"] > 0 and r["passes_done"] == [2.0] else None)(
+        image_state("SchlierenImage2")), 90)
+    turn = np.degrees(np.arccos(np.clip(np.dot(before["ViewDirection"], after["ViewDirection"]) /
+                                        np.linalg.norm(before["ViewDirection"]) /
+                                        np.linalg.norm(after["ViewDirection"]), -1, 1)))
+    check(turn > 5 and after["intensity_sha"] != before["intensity_sha"],
+          "the blunt fin's Follow Camera: the drag turned the line of sight by %.1f degrees, the "
+          "image was traced again (%d camera changes seen) and refined to %s passes"
+          % (turn, after["moved"], after["passes_done"]))
+    time.sleep(1.0)
+    shot_after = screenshot("bluntfin_follow")
+    say("the blunt fin after the drag: %s" % shot_after)
+    # the 2D view shows the refined image of the new line of sight (rendered by the follower
+    # after its last chunk: before the fix in schlieren_view it kept the image of before the drag)
+    x, y, w, h = boxes[1]
+    changed = int((np.abs(gui_driver.read_ppm(shot)[y:y + h, x:x + w] -
+                          gui_driver.read_ppm(shot_after)[y:y + h, x:x + w]).sum(axis=2) > 0).sum())
+    check(changed > 1000, "the image's 2D view shows the image after the drag (%d of its %d pixels "
+          "changed)" % (changed, w * h))
+# the panel's "?" (right of Delete): ParaView's help window, which has a page for a proxy only where
+# a registered Qt help collection holds <group>.<name>.html (a Python plugin can register none)
+xdo("mousemove", 270, 508)
+xdo("click", 1)
+helpw = gd.wait_for('a help window after a click on the panel\'s "?"', lambda: windows("Online Help"), 30)
+time.sleep(2.0)
+say("the help window the '?' opened for the Python plugin's SchlierenImage: %s" % screenshot("help"))
+check(bool(helpw), "the panel's '?' opens ParaView's help window (%s)" % helpw)
 gd.finish()

@@ -11,8 +11,8 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      multiblocks); SchlierenImage straight on the multiblock gives an empty image and the C++
      filter's reason;
   2. errors are VTK errors (ParaView's Output Messages), never a Python traceback; a refused value
-     (Symmetry Planar, Resolution 1 x 1) leaves an empty output, and a good value set after it
-     gives the image again;
+     (Symmetry Planar on a 3D volume: the C++ filter's reason; Resolution 1 x 1) leaves an empty
+     output, and a good value set after it gives the image again;
   3. NumericalSchlieren logs no update-extent error;
   4. `import schlieren_view` works after LoadPlugin, and Examples/first_light.py runs with the
      Python plugin (its PNG equals the C++ plugin's bit for bit);
@@ -25,7 +25,14 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      mixture fraction and by species, IdealGas with one gas, a mixture fraction and species with
      a custom gas, Ciddor with constant and array humidity and CO2; a SolidArray) give the C++
      filter's n - 1 and grad n bit for bit on the same arrays (the engine's ComputeFieldIndex
-     through schlieren_index_model).
+     through schlieren_index_model);
+  7. Symmetry (the engine's schlieren_symmetry_*, the same calls for both): Planar on a 2D image
+     and on a 2D unstructured grid, Axisymmetric on an r-z half plane (a cone's shock layer) about
+     SymmetryAxis, and on a wedge with no axis typed (one cell across, its axis along y off the
+     origin: AxisFromWedge finds it) give the C++ filter's grid, n - 1, grad n and field data bit
+     for bit, and SchlierenImage on each the C++ filter's film bit for bit; the wedge with
+     Symmetry None warns as the C++ filter does; the C++ filter's refusals (Span 0, a 3D mesh,
+     SymmetryAxis normal to the plane) are the Python one's, word for word.
 
     pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
         --example Examples/first_light.py --work DIR [--data ../shared/data]
@@ -312,13 +319,14 @@ index = ns["RefractiveIndex"](Input=src, Model="Passthrough")
 index.UpdatePipeline()
 check(servermanager.Fetch(index).GetNumberOfPoints() == 24 * 20 * 16, "RefractiveIndex runs")
 with Captured() as c:
-    index.Symmetry = "Planar"  # the Python front end refuses it (so far)
+    index.Symmetry = "Planar"  # a 3D volume: refused with the C++ filter's reason
     index.UpdatePipeline()
 out = servermanager.Fetch(index)
 check("Traceback" not in c.text and "ERROR: In RefractiveIndex" in c.text and
-      "Symmetry is not available" in c.text and out.GetNumberOfPoints() == 0,
-      "Symmetry Planar: an error naming it, no traceback, an empty output (%d points; %r)"
-      % (out.GetNumberOfPoints(), c.text.strip().splitlines()[:1]))
+      "Symmetry Planar expects a 2D plane normal to x, y or z" in c.text and
+      out.GetNumberOfPoints() == 0,
+      "Symmetry Planar on a 3D volume: the C++ filter's reason, no traceback, an empty output "
+      "(%d points; %r)" % (out.GetNumberOfPoints(), c.text.strip().splitlines()[:1]))
 with Captured() as c:
     index.Symmetry = "None"
     index.UpdatePipeline()
@@ -501,6 +509,179 @@ for case, props in MODELS.items():
                              b.min() if b is not None else float("nan"),
                    b.max() if b is not None else float("nan"),
                    "" if "ERR" not in c.text else "; " + c.text.strip().splitlines()[0][:200]))
+    Delete(index)
+
+# -- 7. Symmetry Planar and Axisymmetric, a wedge with no axis typed: the engine's plan, samples and
+# expansion through both front ends
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkStructuredGrid  # noqa: E402
+
+
+def plane(extent, shock):
+    """A 2D image (z = 0) with a density: a Gaussian blob, or (shock) a cone's conical shock
+    layer seen in its r-z plane (x axial, y = r >= 0): denser between the cone and the shock."""
+    g = vtkImageData()
+    g.SetExtent(*extent)
+    g.SetSpacing(0.05, 0.05, 1.0)
+    g.SetOrigin(-0.4, 0.0 if shock else -0.3, 0.0)
+    x = np.array([g.GetPoint(i) for i in range(g.GetNumberOfPoints())])
+    if shock:
+        cone, front = np.tan(np.radians(15.0)), np.tan(np.radians(28.0))
+        s = x[:, 0] + 0.4
+        rho = 1.2 + 0.6 * ((x[:, 1] < front * s) & (x[:, 1] > cone * s))
+    else:
+        rho = 1.2 + 0.5 * np.exp(-((x[:, 0] - 0.1) ** 2 + (x[:, 1] - 0.05) ** 2) / 0.02)
+    d = numpy_support.numpy_to_vtk(rho.astype(np.float32), deep=1)
+    d.SetName("density")
+    g.GetPointData().AddArray(d)
+    return g
+
+
+def wedge():
+    """A 5 deg wedge one cell across (OpenFOAM's axisymmetric case) about the line along y at
+    x = 0.3, z = 0.1: SymmetryAxis left at X, AxisFromWedge finds y."""
+    g = vtkStructuredGrid()
+    nr, na = 14, 17
+    g.SetDimensions(nr, na, 2)
+    p, values, half = vtkPoints(), [], np.radians(2.5)
+    for side in (-1, 1):
+        for j in range(na):
+            for i in range(nr):
+                r, y = 0.05 * i, 0.05 * j
+                p.InsertNextPoint(0.3 + r * np.cos(half), y, 0.1 + side * r * np.sin(half))
+                values.append(1.2 + 0.4 * np.exp(-((r - 0.3) ** 2 + (y - 0.4) ** 2) / 0.02))
+    g.SetPoints(p)
+    d = numpy_support.numpy_to_vtk(np.array(values, np.float32), deep=1)
+    d.SetName("density")
+    g.GetPointData().AddArray(d)
+    return g
+
+
+def unstructured(data):
+    a = vtkAppendFilter()
+    a.SetInputData(data)
+    a.Update()
+    return a.GetOutput()
+
+
+FIELDS = ("index_model", "index_arrays", "valid_point_fraction", "solid_points")
+
+
+def field_values(d):
+    out = {}
+    for n in FIELDS:
+        a = d.GetFieldData().GetAbstractArray(n)
+        if a is not None:
+            out[n] = [a.GetVariantValue(i).ToString() for i in range(a.GetNumberOfValues())]
+    return out
+
+
+SYMMETRY = {
+    "planar_image": (plane((0, 16, 0, 12, 0, 0), False), dict(Symmetry="Planar", Span=0.6)),
+    "planar_unstructured": (unstructured(plane((0, 16, 0, 12, 0, 0), False)),
+                            dict(Symmetry="Planar", Span=0.6, AutomaticDimension=40)),
+    "axisymmetric_cone": (unstructured(plane((0, 20, 0, 10, 0, 0), True)),
+                          dict(Symmetry="Axisymmetric", SymmetryAxis="X",
+                               AutomaticDimension=36)),
+    "wedge_no_axis_typed": (wedge(), dict(Symmetry="Axisymmetric", AutomaticDimension=30)),
+}
+for case, (data, props) in SYMMETRY.items():
+    ref = RI()
+    ref.SetInputData(data)
+    ref.SetModel(ENUMS["Model"]["GladstoneDale"])
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "density")
+    ref.SetSymmetry(["None", "Planar", "Axisymmetric"].index(props["Symmetry"]))
+    ref.SetSymmetryAxis("XYZ".index(props.get("SymmetryAxis", "X")))
+    ref.SetSpan(props.get("Span", 1.0))
+    ref.SetAutomaticDimension(props.get("AutomaticDimension", 128))
+    ok = ref.GetExecutive().Update()
+    theirs = vtkImageData()
+    theirs.DeepCopy(ref.GetOutput())
+    source = producer(data)
+    index = ns["RefractiveIndex"](Input=source, Model="GladstoneDale", **props)
+    index.InputArray = ["POINTS", "density"]
+    with Captured() as c:
+        index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    info = tuple(int(v) for v in index.GetDataInformation().DataInformation.GetExtent())
+    same = ok and mine.GetExtent() == theirs.GetExtent() and info == theirs.GetExtent() and \
+        mine.GetOrigin() == theirs.GetOrigin() and mine.GetSpacing() == theirs.GetSpacing() and \
+        all(array(mine, n) is not None and array(theirs, n) is not None and
+            np.array_equal(array(mine, n).view(np.uint32), array(theirs, n).view(np.uint32))
+            for n in ("n_minus_1", "grad_n")) and \
+        field_values(mine) == field_values(theirs) and len(field_values(theirs)) == 4
+    valid = field_values(theirs).get("valid_point_fraction")
+    check(same and "ERR" not in c.text and "Traceback" not in c.text,
+          "Symmetry %s: the C++ filter's grid %s (also in the pipeline's information), n_minus_1, "
+          "grad_n and field data bit for bit (valid_point_fraction %s)%s"
+          % (case, theirs.GetDimensions(), valid, "" if "ERR" not in c.text else
+             "; " + c.text.strip().splitlines()[0][:200]))
+    view = dict(ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0]) if props["Symmetry"] == "Planar" else \
+        dict(ViewDirection=[0, 0, -1] if case != "wedge_no_axis_typed" else [1, 0, 0],
+             ViewUp=[0, 1, 0] if case != "wedge_no_axis_typed" else [0, 1, 0])
+    settings = dict(Resolution=[48, 40], Passes=1, **view)
+    image = ns["SchlierenImage"](Input=index, Backend="CPU", **settings)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    film, film_ok = cxx_image(theirs, **settings)
+    intensity = array(film, "intensity")
+    check(film_ok and same_film(out, film) and intensity is not None and
+          float(intensity.max() - intensity.min()) > 0.05,
+          "SchlierenImage on it: the C++ filter's film bit for bit (intensity %.3f..%.3f)"
+          % ((intensity.min(), intensity.max()) if intensity is not None else (0, 0)))
+    Delete(image)
+    Delete(index)
+# the wedge traced with Symmetry None: the C++ filter's warning, word for word
+wedge_data = SYMMETRY["wedge_no_axis_typed"][0]
+ref = RI()
+ref.SetInputData(wedge_data)
+ref.SetModel(ENUMS["Model"]["GladstoneDale"])
+ref.SetInputArrayToProcess(0, 0, 0, 0, "density")
+ref.SetAutomaticDimension(24)
+with Captured() as c_cxx:
+    ref.Update()
+index = ns["RefractiveIndex"](Input=producer(wedge_data), Model="GladstoneDale",
+                              AutomaticDimension=24)
+index.InputArray = ["POINTS", "density"]
+with Captured() as c:
+    index.UpdatePipeline()
+said = "The input is an axisymmetric wedge (OpenFOAM's way: two planes 5 deg apart through the " \
+    "line along y at x = 0.3, z = 0.1, one cell across). With Symmetry None it is traced as it " \
+    "is: a 5 deg slab of gas"
+check(said in c.text and said in c_cxx.text and "Traceback" not in c.text,
+      "the wedge with Symmetry None: the C++ filter's warning, word for word (%r)"
+      % c.text.strip()[-160:])
+Delete(index)
+# refusals: the C++ filter's messages, word for word, and an empty output
+REFUSED = {
+    "Span 0": (plane((0, 16, 0, 12, 0, 0), False), dict(Symmetry="Planar", Span=0.0),
+               "Span is 0.000000: it must be positive"),
+    "a 3D mesh": (unstructured(volume), dict(Symmetry="Planar"),
+                  "Symmetry Planar expects a 2D plane normal to x, y or z; the input spans"),
+    "SymmetryAxis Z, normal to the plane": (
+        unstructured(plane((0, 20, 0, 10, 0, 0), True)),
+        dict(Symmetry="Axisymmetric", SymmetryAxis="Z"),
+        "SymmetryAxis z is normal to the input's plane"),
+}
+for case, (data, props, message) in REFUSED.items():
+    ref = RI()
+    ref.SetInputData(data)
+    ref.SetModel(ENUMS["Model"]["GladstoneDale"])
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "density" if case != "a 3D mesh" else "n_minus_1")
+    ref.SetSymmetry(["None", "Planar", "Axisymmetric"].index(props["Symmetry"]))
+    ref.SetSymmetryAxis("XYZ".index(props.get("SymmetryAxis", "X")))
+    ref.SetSpan(props.get("Span", 1.0))
+    with Captured() as c_cxx:
+        ref.GetExecutive().Update()
+    index = ns["RefractiveIndex"](Input=producer(data), Model="GladstoneDale", **props)
+    index.InputArray = ["POINTS", "density" if case != "a 3D mesh" else "n_minus_1"]
+    with Captured() as c:
+        index.UpdatePipeline()
+    out = servermanager.Fetch(index)
+    check(message in c.text and message in c_cxx.text and "Traceback" not in c.text and
+          out.GetNumberOfPoints() == 0,
+          "Symmetry refused (%s): the C++ filter's message, an empty output (%r)"
+          % (case, c.text.strip().splitlines()[0][-120:] if c.text.strip() else ""))
     Delete(index)
 
 # -- 4. schlieren_view embedded; Examples/first_light.py with the Python plugin
