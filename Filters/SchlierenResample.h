@@ -1,33 +1,42 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file SchlierenResample.h
- * @brief A mesh (any vtkDataSet with 3D cells) sampled at the points of an image grid, cell by cell.
+ * @brief A mesh (any vtkDataSet with 3D cells) sampled at the points of an image grid, cell by
+ * cell.
  *
  * The probe (vtkProbeFilter) asks, for every grid point, which cell holds it: a point-locator
- * search and a walk through neighbouring cells, each tested with a closest-point computation.
- * Here each cell is visited once instead: the grid points within its bounding box are tested
- * against it (vtkCell::EvaluatePosition, without the closest point), and where one lies inside,
- * the arrays are interpolated there with the cell's own weights as the probe does
- * (vtkDataArray::InterpolateTuple): the same values. A point on a face shared by two cells takes
- * the first cell's (the lowest id; both give the same value to rounding). Cells blanked
- * (vtkGhostType HIDDENCELL) are skipped.
+ * search and a walk through neighbouring cells. Here each cell is visited once instead, by the
+ * engine (OpenCL/SchlierenSample.h, the same sampler every front end calls): the grid points
+ * within its bounding box are tested against it with VTK's own point-in-cell test and weights
+ * (vtkCell::EvaluatePosition, vtkDataArray::InterpolateTuple), so the values are the probe's.
+ * This file only turns VTK's data into the engine's arrays: the points, the cells (a structured
+ * grid as its dimensions, an unstructured grid's own offsets and connectivity, any other data set
+ * cell by cell), the hidden cells (vtkGhostType HIDDENCELL; in a structured grid also the cells
+ * of hidden points), the point and cell arrays. A point on a face shared by two cells takes the
+ * first cell's (the lowest id; of a composite data set, the first block's).
  */
 #ifndef SchlierenResample_h
 #define SchlierenResample_h
 
 #include "vtkSmartPointer.h"
 
-class vtkDataSet;
+class vtkDataObject;
 class vtkImageData;
 
 namespace schlieren
 {
 /**
- * `mesh` sampled at the points of `structure`, as vtkProbeFilter gives it: every point array
- * interpolated, every cell array the holding cell's value (each of its own type), and
- * vtkValidPointMask (1 where a cell holds the point).
+ * `mesh` (a data set, or a composite data set's blocks in turn) sampled at the points of
+ * `structure`, as vtkProbeFilter gives it: every point array interpolated, every cell array the
+ * holding cell's value (each of its own type; of a composite data set, the arrays every block
+ * with cells has), and vtkValidPointMask (1 where a cell holds the point). Throws schlieren::Error
+ * for a cell type the engine does not sample (a polyhedron: the message names it).
  */
-vtkSmartPointer<vtkImageData> SampleCells(vtkDataSet* mesh, vtkImageData* structure);
+vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* mesh, vtkImageData* structure);
+
+/** Whether SampleCells takes `input`: a data set with cells that is not an image, or a composite
+ * data set whose blocks are such (an image, and blocks of images, go to the probe). */
+bool SampledCellByCell(vtkDataObject* input);
 } // namespace schlieren
 
 #endif

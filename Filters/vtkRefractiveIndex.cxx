@@ -872,10 +872,17 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
   vtkImageData* structure, const std::vector<std::string>& names)
 {
   vtkSmartPointer<vtkImageData> grid;
-  auto* mesh = vtkDataSet::SafeDownCast(input);
-  if (mesh && mesh->GetNumberOfCells() > 0 && !vtkImageData::SafeDownCast(mesh))
+  std::string refused;
+  if (schlieren::SampledCellByCell(input))
   {
-    grid = schlieren::SampleCells(mesh, structure); // cell by cell: the probe's values, faster
+    try
+    {
+      grid = schlieren::SampleCells(input, structure); // cell by cell: the probe's values, faster
+    }
+    catch (const schlieren::Error& e)
+    {
+      refused = e.what(); // a cell type the sampler does not take (a polyhedron)
+    }
   }
   else
   {
@@ -885,6 +892,13 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
     probe->SetValidPointMaskArrayName(MaskName);
     probe->Update();
     grid = vtkImageData::SafeDownCast(probe->GetOutputDataObject(0));
+  }
+  // a piece refused fails every rank, so that none waits for it in the sums below
+  if (parallel.Max(refused.empty() ? 0.0 : 1.0) > 0.5)
+  {
+    throw schlieren::Error(refused.empty()
+        ? std::string("Another rank's piece of the input could not be resampled (its message says why).")
+        : refused);
   }
   if (!grid || grid->GetNumberOfPoints() != structure->GetNumberOfPoints())
   {

@@ -241,6 +241,34 @@ SCHLIEREN_C_API int schlieren_enclosed_invalid(const int dims[3], const unsigned
 /** RefractiveIndex's automatic sampling dimensions for a box: `longest` points along its longest
  * side, about the same spacing along the others. */
 SCHLIEREN_C_API int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims[3]);
+/**
+ * RefractiveIndex's resampling of a mesh onto an image grid, cell by cell (SchlierenSample.h): the
+ * point-in-cell test and weights of VTK's vtkCell::EvaluatePosition, point arrays interpolated
+ * with the cell's weights (in double, rounded to the array's type), cell arrays the holding cell's
+ * value. `points`: x, y, z of each point (`points_length` values, 3 per point). The cells are
+ * either a structured grid's (`structured_dims`, the points' dimensions, x fastest: its cells are
+ * hexahedra; then cell_types, offsets and connectivity are NULL with length 0) or explicit
+ * (`structured_dims` NULL): cell c has VTK type cell_types[c] and the points
+ * connectivity[offsets[c]] .. connectivity[offsets[c + 1] - 1] (offsets holds the cells + 1
+ * values, offsets[0] = 0). Tetrahedra, voxels, hexahedra, wedges and pyramids are sampled;
+ * vertices, lines and faces are passed over; any other type is refused by name. `skip_cells` (may
+ * be NULL with length 0) holds a byte per cell, non-zero: passed over (hidden ghost cells).
+ * `number_of_arrays` arrays: names[i] (for messages), is_cell[i] (0 point array, 1 cell array),
+ * components[i], value_bytes[i] (a point array: 4 float or 8 double; a cell array: the bytes of
+ * one component, copied), inputs[i] with input_lengths[i] values (points or cells x components),
+ * outputs[i] with output_lengths[i] values (grid points x components; the points not found are
+ * left as they are). `found` holds `found_length` bytes (the grid's points): a point already
+ * non-zero is left alone (found in an earlier block of a composite data set), a point found here
+ * is set to 1; `found_here` (may be NULL) gets how many were.
+ */
+SCHLIEREN_C_API int schlieren_sample_cells(const double* points, int64_t points_length,
+  const int structured_dims[3], const unsigned char* cell_types, int64_t cell_types_length,
+  const int64_t* offsets, int64_t offsets_length, const int64_t* connectivity,
+  int64_t connectivity_length, const unsigned char* skip_cells, int64_t skip_cells_length,
+  int number_of_arrays, const char* const* names, const int* is_cell, const int* components,
+  const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
+  void* const* outputs, const int64_t* output_lengths, const int dims[3], const double origin[3],
+  const double spacing[3], unsigned char* found, int64_t found_length, int64_t* found_here);
 /** 0 where each of the `count` values of `property` (the ParaView name) of the filter `proxy`
  * ("RefractiveIndex", "RefractionOctree") lies in the range of its domain, the same check the C++
  * plugin's filters make, or where the engine lists no range for it; else non-zero and

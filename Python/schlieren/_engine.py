@@ -441,6 +441,107 @@ def enclosed_invalid(dims, valid, wall_faces=None):
     return solid
 
 
+_sig("schlieren_sample_cells", ctypes.c_int, ctypes.POINTER(ctypes.c_double), _i64, ctypes.c_void_p,
+     _u8p, _i64, ctypes.POINTER(ctypes.c_int64), _i64, ctypes.POINTER(ctypes.c_int64), _i64, _u8p,
+     _i64, ctypes.c_int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
+     ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_void_p),
+     ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(ctypes.c_void_p),
+     ctypes.POINTER(ctypes.c_int64), _c_int3, _c_double3, _c_double3, _u8p, _i64,
+     ctypes.POINTER(ctypes.c_int64))
+
+
+def _mesh_array(a, name, dtype, columns=None):
+    """`a` as a C-contiguous array of `dtype` (a copy only where it must convert), refused by
+    name where it is not real numbers or not shaped (n,) or (n, columns)."""
+    a = np.asarray(a)
+    if a.dtype.kind not in "biuf" or (np.dtype(dtype).kind in "iu" and a.dtype.kind == "f"):
+        raise ArgumentTypeError("%s has dtype %s: give %s" % (
+            name, a.dtype, "integers" if np.dtype(dtype).kind in "iu" else "real numbers"))
+    if columns is not None and not (a.ndim == 2 and a.shape[1] == columns) and \
+            not (a.ndim == 1 and a.size % columns == 0):
+        raise ArgumentError("%s has shape %s: give an array shaped (n, %d)" % (name, a.shape, columns))
+    if columns is None and a.ndim != 1:
+        raise ArgumentError("%s has shape %s: give a 1D array" % (name, a.shape))
+    return np.ascontiguousarray(a, dtype=dtype).reshape(-1)
+
+
+def sample_cells(points, dims, origin, spacing, cell_types=None, offsets=None, connectivity=None,
+                 structured_dims=None, skip_cells=None, point_arrays=(), cell_arrays=(),
+                 found=None):
+    """RefractiveIndex's resampling of a mesh onto an image grid, cell by cell (schlieren_c.h's
+    schlieren_sample_cells): VTK's point-in-cell test and weights, the C++ filter's values.
+
+    `points` (n, 3); the cells either explicit (`cell_types` uint8 VTK types, `offsets` of
+    cells + 1 values, `connectivity`) or a structured grid's (`structured_dims`, its points'
+    dimensions). `skip_cells` (a byte per cell, non-zero: passed over) may be None.
+    `point_arrays` and `cell_arrays`: (name, array) pairs, each array shaped (tuples,) or
+    (tuples, components); a point array of float32 stays float32, any other is interpolated
+    as float64; a cell array keeps its dtype. `found` (a uint8 array over the grid's points,
+    updated in place: an earlier block's points are left alone) may be None.
+    Returns (found, {name: array over the grid's points, (points,) or (points, components)}):
+    the points not found hold 0."""
+    d, n = _dims(dims)
+    pts = _mesh_array(points, "points", np.float64, 3)
+    structured = structured_dims is not None
+    if structured:
+        sd, _ = _dims(structured_dims, "structured_dims")
+        sdims, types, offs, conn = _c_int3(*sd), None, None, None
+    else:
+        if cell_types is None or offsets is None or connectivity is None:
+            raise ArgumentError("cell_types, offsets and connectivity must be given (or "
+                                "structured_dims for a structured grid)")
+        sdims = None
+        types = _mesh_array(cell_types, "cell_types", np.uint8)
+        offs = _mesh_array(offsets, "offsets", np.int64)
+        conn = _mesh_array(connectivity, "connectivity", np.int64)
+    skip = None if skip_cells is None else _mesh_array(skip_cells, "skip_cells", np.uint8)
+    if found is None:
+        found = np.zeros(n, np.uint8)
+    elif not (isinstance(found, np.ndarray) and found.dtype == np.uint8 and found.ndim == 1 and
+              found.flags.c_contiguous):
+        raise ArgumentTypeError("found must be a C-contiguous 1D uint8 array (updated in place)")
+    names, cells, comps, nbytes, ins, outs, keep = [], [], [], [], [], [], []
+    point_arrays, cell_arrays = list(point_arrays), list(cell_arrays)
+    per_point = sum(np.asarray(a).itemsize * max(1, np.asarray(a).size // max(1, len(a)))
+                    for _, a in point_arrays + cell_arrays)
+    check_memory(n * (per_point + 1.0), "The resampled arrays (%s points)" % _grid_text(d),
+                 "Lower SamplingDimensions.")
+    for is_cell, arrays in ((0, point_arrays), (1, cell_arrays)):
+        for name, a in arrays:
+            a = np.asarray(a)
+            if a.ndim not in (1, 2) or a.dtype.kind not in "biuf":
+                raise ArgumentError("array '%s' has shape %s and dtype %s: give real numbers "
+                                    "shaped (tuples,) or (tuples, components)"
+                                    % (name, a.shape, a.dtype))
+            if not is_cell and a.dtype != np.float32:
+                a = a.astype(np.float64)
+            a = np.ascontiguousarray(a)
+            c = 1 if a.ndim == 1 else a.shape[1]
+            out = np.zeros((n,) if a.ndim == 1 else (n, c), a.dtype)
+            names.append(str(name).encode())
+            cells.append(is_cell)
+            comps.append(c)
+            nbytes.append(a.dtype.itemsize)
+            ins.append(a)
+            outs.append(out)
+            keep.append(name)
+    k = len(names)
+    count = ctypes.c_int64(0)
+
+    def ptr(a, t):
+        return None if a is None else a.ctypes.data_as(ctypes.POINTER(t))
+    _check(_lib.schlieren_sample_cells(
+        ptr(pts, ctypes.c_double), pts.size, sdims, ptr(types, ctypes.c_ubyte), _size(types),
+        ptr(offs, ctypes.c_int64), _size(offs), ptr(conn, ctypes.c_int64), _size(conn),
+        ptr(skip, ctypes.c_ubyte), _size(skip), k, (ctypes.c_char_p * k)(*names),
+        (ctypes.c_int * k)(*cells), (ctypes.c_int * k)(*comps), (ctypes.c_int * k)(*nbytes),
+        (ctypes.c_void_p * k)(*[a.ctypes.data for a in ins]),
+        (ctypes.c_int64 * k)(*[a.size for a in ins]),
+        (ctypes.c_void_p * k)(*[a.ctypes.data for a in outs]),
+        (ctypes.c_int64 * k)(*[a.size for a in outs]), _c_int3(*d),
+        _grid(dims, origin, spacing)[1], _grid(dims, origin, spacing)[2],
+        found.ctypes.data_as(_u8p), found.size, ctypes.byref(count)))
+    return found, dict(zip(keep, outs))
 def _xyz(points, name="points"):
     """Points as a C-contiguous float64 array of x, y, z each (an (n, 3) array or n*3 values)."""
     if points is None:

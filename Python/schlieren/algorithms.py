@@ -10,7 +10,7 @@
 
 Property names, defaults and entries are the ParaView proxies'; they are keyword arguments and
 attributes (setting one marks the algorithm modified). Inputs may be any vtkDataSet: what is not
-an axis-aligned vtkImageData is resampled onto one (vtkResampleToImage) first by RefractiveIndex
+an axis-aligned vtkImageData is resampled onto one (the engine's cell sampler) first by RefractiveIndex
 (a composite data set, a PLOT3D multiblock for example, too: its blocks onto one image);
 RefractionOctree, NumericalSchlieren and SchlierenImage take an axis-aligned vtkImageData and
 refuse anything else with the C++ filters' reason. Every output is one vtkImageData, whatever the
@@ -232,6 +232,20 @@ def _bounds(data):
     return data.GetBounds()
 
 
+def _sampling_box(data, bounds=None):
+    """The box RefractiveIndex resamples over: `bounds`, or the input's bounds pulled in by a hair
+    about their centre (the grid's outermost points then lie inside the outermost cells despite
+    round-off), as the C++ filter's."""
+    if bounds is not None:
+        return [float(b) for b in bounds]
+    from vtkmodules.vtkCommonDataModel import vtkBoundingBox
+    box = vtkBoundingBox(_bounds(data))
+    box.ScaleAboutCenter(1.0 - 1e-6)
+    b = [0.0] * 6
+    box.GetBounds(b)
+    return b
+
+
 def _internal_mesh(data):
     """An OpenFOAM reader's multiblock: its block named internalMesh (the cells; the patches are
     surfaces of it), as the C++ filter reads it; any other input as it is."""
@@ -276,6 +290,129 @@ def _leaf_bounds(data):
     return b
 
 
+def _cell_leaves(data):
+    """The data sets with cells of `data` (itself, or a composite data set's blocks in order)."""
+    return [leaf for leaf in _leaves(data) if leaf.GetNumberOfCells() > 0]
+
+
+def _values(a):
+    """A VTK array's values as NumPy's (a copy where VTK's layout is not a plain array: the
+    implicit arrays newer VTKs keep offsets and cell types in)."""
+    try:
+        return numpy_support.vtk_to_numpy(a)
+    except Exception:
+        from vtkmodules.vtkCommonCore import vtkTypeInt64Array
+        plain = vtkTypeInt64Array()
+        plain.DeepCopy(a)
+        return numpy_support.vtk_to_numpy(plain)
+
+
+def _mesh_of(ds):
+    """A data set's mesh as schlieren_sample_cells takes it (keyword arguments)."""
+    from vtkmodules.vtkCommonDataModel import (vtkDataSetAttributes, vtkStructuredGrid,
+                                               vtkUnstructuredGrid)
+    n2n = numpy_support.vtk_to_numpy
+    if not isinstance(ds, (vtkStructuredGrid, vtkUnstructuredGrid)):
+        # a rectilinear grid's voxels, a poly data's faces: as an unstructured grid
+        from vtkmodules.vtkFiltersCore import vtkAppendFilter
+        append = vtkAppendFilter()
+        append.AddInputData(ds)
+        append.Update()
+        ds = append.GetOutput()
+    points = ds.GetPoints()
+    mesh = dict(points=np.zeros((0, 3)) if points is None else n2n(points.GetData()))
+    cell_ghosts = ds.GetCellData().GetArray("vtkGhostType")
+    skip = None
+    if cell_ghosts is not None:
+        skip = (n2n(cell_ghosts) & vtkDataSetAttributes.HIDDENCELL) != 0
+    if isinstance(ds, vtkStructuredGrid):
+        d = [0, 0, 0]
+        ds.GetDimensions(d)  # (VTK 9.6 and later have no GetDimensions() that returns them)
+        mesh["structured_dims"] = d
+        point_ghosts = ds.GetPointData().GetArray("vtkGhostType")
+        if point_ghosts is not None and min(d) > 1:
+            # a cell is hidden by one of its points too (vtkStructuredGrid::IsCellVisible)
+            hidden = ((n2n(point_ghosts) & vtkDataSetAttributes.HIDDENPOINT) != 0).reshape(
+                d[2], d[1], d[0])
+            corners = np.zeros((d[2] - 1, d[1] - 1, d[0] - 1), bool)
+            for dz in (0, 1):
+                for dy in (0, 1):
+                    for dx in (0, 1):
+                        corners |= hidden[dz:d[2] - 1 + dz, dy:d[1] - 1 + dy, dx:d[0] - 1 + dx]
+            skip = corners.reshape(-1) if skip is None else (skip | corners.reshape(-1))
+    else:
+        cells = ds.GetCells()
+        mesh["cell_types"] = _values(getattr(ds, "GetCellTypesArray", ds.GetCellTypes)())
+        mesh["offsets"] = _values(cells.GetOffsetsArray())
+        mesh["connectivity"] = _values(cells.GetConnectivityArray())
+    mesh["skip_cells"] = None if skip is None or not skip.any() else skip.astype(np.uint8)
+    return mesh
+
+
+def _sample_cells(data, dims, box):
+    """`data` (a data set or a composite data set) sampled cell by cell onto `dims` points over
+    `box` by the engine (schlieren_sample_cells), as the C++ RefractiveIndex samples it: every
+    point array of the first block that every block has, interpolated (float32 and float64 kept,
+    integers rounded back), every cell array the holding cell's value, and the valid-point mask."""
+    leaves = _cell_leaves(data)
+    d = [int(x) for x in dims]
+    origin = [box[0], box[2], box[4]]
+    spacing = [(box[2 * a + 1] - box[2 * a]) / (d[a] - 1) if d[a] > 1 else 1.0 for a in range(3)]
+    out = vtkImageData()
+    out.SetDimensions(*d)
+    out.SetOrigin(*origin)
+    out.SetSpacing(*spacing)
+    found = np.zeros(d[0] * d[1] * d[2], np.uint8)
+    wanted = []  # (cells, name, vtk type, components), the first block's, kept where all have them
+    for cells in (0, 1):
+        attributes = (leaves[0].GetCellData() if cells else leaves[0].GetPointData()) if leaves \
+            else None
+        for i in range(attributes.GetNumberOfArrays() if attributes else 0):
+            a = attributes.GetArray(i)
+            if a is None or not a.GetName() or a.GetName() == "vtkGhostType" or \
+                    a.GetDataType() == 1 or \
+                    (cells and any(w[1] == a.GetName() and not w[0] for w in wanted)):
+                continue  # (1: VTK_BIT)
+            key = (cells, a.GetName(), a.GetDataType(), a.GetNumberOfComponents())
+
+            def has(leaf, key=key):
+                b = (leaf.GetCellData() if key[0] else leaf.GetPointData()).GetArray(key[1])
+                return b is not None and b.GetDataType() == key[2] and \
+                    b.GetNumberOfComponents() == key[3]
+            if all(has(leaf) for leaf in leaves):
+                wanted.append(key)
+    sampled = {}
+    for leaf in leaves:
+        arrays = [[], []]
+        for cells, name, _, _ in wanted:
+            a = (leaf.GetCellData() if cells else leaf.GetPointData()).GetArray(name)
+            arrays[cells].append((name, numpy_support.vtk_to_numpy(a)))
+        before = found.copy()
+        _, values = _engine.sample_cells(found=found, dims=d, origin=origin, spacing=spacing,
+                                         point_arrays=arrays[0], cell_arrays=arrays[1],
+                                         **_mesh_of(leaf))
+        here = (found != 0) & (before == 0)  # a later block wrote only the points it found
+        for key in wanted:
+            if key[1] in sampled:
+                sampled[key[1]][here] = values[key[1]][here]
+            else:
+                sampled[key[1]] = values[key[1]]
+    from vtkmodules.vtkCommonCore import vtkDataArray
+    for cells, name, vtk_type, components in wanted:
+        v = sampled[name]
+        a = vtkDataArray.CreateDataArray(vtk_type)
+        a.SetName(name)
+        a.SetNumberOfComponents(components)
+        a.SetNumberOfTuples(len(found))
+        target = numpy_support.vtk_to_numpy(a)
+        if not cells and target.dtype.kind in "iub":
+            # rounded as vtkDataArray::InterpolateTuple rounds (half away from zero)
+            v = np.where(v >= 0, np.floor(v + 0.5), np.ceil(v - 0.5))
+        target[...] = v.reshape(target.shape)
+        out.GetPointData().AddArray(a)
+    return out, found
+
+
 def _all_points(data):
     """x, y, z (float64, (n, 3)) of every point of every leaf, in order."""
     parts = []
@@ -313,27 +450,42 @@ def _probe(data, points):
 
 def _image_input(data, dims=None, bounds=None):
     """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
-    or resampled with vtkResampleToImage onto `dims` points over its bounds (or `bounds`)."""
+    or resampled cell by cell by the engine (the C++ RefractiveIndex's sampler) onto `dims`
+    points over its bounds pulled in by a hair (or `bounds`)."""
     if isinstance(data, vtkImageData):
         return data, None
-    from vtkmodules.vtkFiltersCore import vtkResampleToImage
-    r = vtkResampleToImage()
-    r.SetInputDataObject(data)
-    if bounds is not None:
-        r.SetUseInputBounds(0)
-        r.SetSamplingBounds(*[float(b) for b in bounds])
     if dims is None:
         dims = _engine.automatic_dimensions(_bounds(data), 128)
-    r.SetSamplingDimensions(*dims)
-    r.Update()
-    out = vtkImageData()
-    out.ShallowCopy(r.GetOutput())
-    mask = _point_array(out, r.GetMaskArrayName())
-    if mask is None or mask.all():
+    box = _sampling_box(data, bounds)
+    if any(isinstance(leaf, vtkImageData) for leaf in _cell_leaves(data)):
+        # blocks of images: probed, as the C++ filter probes them (SchlierenResample.h)
+        from vtkmodules.vtkFiltersCore import vtkCompositeDataProbeFilter
+        structure = vtkImageData()
+        structure.SetDimensions(*dims)
+        structure.SetOrigin(box[0], box[2], box[4])
+        structure.SetSpacing(*[(box[2 * a + 1] - box[2 * a]) / (dims[a] - 1) if dims[a] > 1
+                               else 1.0 for a in range(3)])
+        probe = vtkCompositeDataProbeFilter()
+        probe.SetInputData(structure)
+        probe.SetSourceData(data)
+        probe.SetValidPointMaskArrayName("vtkValidPointMask")
+        probe.Update()
+        out = vtkImageData()
+        out.ShallowCopy(probe.GetOutput())
+        mask = np.ascontiguousarray(_point_array(out, "vtkValidPointMask") != 0, np.uint8)
+        out.GetPointData().RemoveArray("vtkValidPointMask")
+    else:
+        out, mask = _sample_cells(data, dims, box)
+    if not mask.all():
         # kept where it says something, as the C++ filter does: NumericalSchlieren leaves the
         # points outside the input's cells out of its gradients
-        out.GetPointData().RemoveArray(r.GetMaskArrayName())
-    return out, (None if mask is None or mask.all() else np.ascontiguousarray(mask, np.uint8))
+        from vtkmodules.vtkCommonCore import vtkCharArray
+        m = vtkCharArray()
+        m.SetName("vtkValidPointMask")
+        m.SetNumberOfTuples(mask.size)
+        numpy_support.vtk_to_numpy(m)[:] = mask
+        out.GetPointData().AddArray(m)
+    return out, (None if mask.all() else mask)
 
 
 def _image_validity(image):
@@ -552,7 +704,7 @@ class RefractiveIndex(_Properties):
     def RequestInformation(self, request, inInfo, outInfo):
         # an image's grid is the input's (the executive copied it); a resampled input's grid is
         # known from its bounds, known once it has executed: it is updated now, as the C++ filter
-        # does, and the grid vtkResampleToImage will make is given downstream (SchlierenImage
+        # does, and the grid the cell sampler will fill is given downstream (SchlierenImage
         # plans its film from it; without it a view asks for an empty extent and shows nothing)
         src = inInfo[0].GetInformationObject(0)
         info = outInfo.GetInformationObject(0)
@@ -579,16 +731,10 @@ class RefractiveIndex(_Properties):
             info.Set(vtkImageData.ORIGIN(), *o)
             info.Set(vtkImageData.SPACING(), *h)
             return 1
-        # the grid vtkResampleToImage makes (it says its origin and spacing in RequestData
-        # only): the bounds pulled in by a hair about their centre, as the C++ filter's
-        from vtkmodules.vtkCommonDataModel import vtkBoundingBox
+        # the grid the cell sampler fills: the bounds pulled in by a hair about their centre, as
+        # the C++ filter's
         dims = self._dims(data)
-        b = self._sampling_bounds()
-        if b is None:
-            box = vtkBoundingBox(_bounds(data))
-            box.ScaleAboutCenter(1.0 - 1e-6)
-            b = [0.0] * 6
-            box.GetBounds(b)
+        b = _sampling_box(data, self._sampling_bounds())
         info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
         info.Set(vtkImageData.ORIGIN(), b[0], b[2], b[4])
         info.Set(vtkImageData.SPACING(), *[(b[2 * a + 1] - b[2 * a]) / (dims[a] - 1)
@@ -812,7 +958,8 @@ class RefractiveIndex(_Properties):
         dims = [int(d) for d in self.SamplingDimensions]
         automatic = min(dims) <= 0
         if automatic:
-            dims = _engine.automatic_dimensions(self._sampling_bounds() or _bounds(data),
+            # over the box the grid spans (the bounds pulled in by a hair), as the C++ filter
+            dims = _engine.automatic_dimensions(_sampling_box(data, self._sampling_bounds()),
                                                 int(self.AutomaticDimension))
         # the resampled image is this process's to allocate: refused before, as the C++ filter
         # does (its arrays, the mask, and the engine's per-point share; a composite input: a few

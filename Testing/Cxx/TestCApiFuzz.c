@@ -71,6 +71,7 @@ enum
   F_PROPERTY,
   F_MISC,
   F_THREADS,
+  F_SAMPLE,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -78,7 +79,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "version/properties/device",
-  "two threads, one session" };
+  "two threads, one session", "sample_cells" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -910,6 +911,159 @@ static void random_case(int k)
   }
 }
 
+/* schlieren_sample_cells: a small mesh (two hexahedra side by side, a tetrahedron, a wedge, a
+ * pyramid, a face) with each length, id, type and number varied; the right call must find the
+ * points it should (fixed_sample_case) */
+/* mostly the right count: a call with one thing wrong tests that thing */
+static int64_t sometimes_wrong(int64_t needed)
+{
+  return below(4) ? needed : random_count(needed);
+}
+
+static void random_sample_case(void)
+{
+  /* points: a 3 x 2 x 2 block (12 points) and a few loose ones */
+  double pts[3 * 16];
+  unsigned char types[6] = { 12, 12, 10, 13, 14, 9 };
+  int64_t offsets[7] = { 0, 8, 16, 20, 26, 31, 35 };
+  int64_t conn[35] = { 0, 1, 4, 3, 6, 7, 10, 9, 1, 2, 5, 4, 7, 8, 11, 10, 0, 1, 3, 6, 0, 1, 3, 6,
+    7, 9, 0, 1, 4, 3, 12, 0, 1, 4, 3 };
+  unsigned char skip[6] = { 0, 0, 0, 0, 0, 0 };
+  int dims[3], sdims[3] = { 3, 2, 2 }, valid, i, structured = below(4) == 0;
+  int64_t needed, npts = 13, ncells = 6, nconn = 35, c_pts, c_types, c_off, c_conn, c_skip, c_found;
+  int64_t found_here;
+  double origin[3] = { -0.1, -0.1, -0.1 }, spacing[3] = { 0.25, 0.25, 0.25 };
+  float pa[16 * 2];
+  double ca[6];
+  const char* names[2] = { "pa", "ca" };
+  int is_cell[2] = { 0, 1 }, comps[2] = { 2, 1 }, bytes[2] = { 4, 8 };
+  const void* ins[2];
+  void* outs[2];
+  int64_t in_len[2], out_len[2];
+  unsigned char* found;
+  int narrays = below(10) ? 2 : (below(2) ? 0 : -1);
+  int rc;
+  for (i = 0; i < 12; ++i)
+  {
+    pts[3 * i] = (double)(i % 3);
+    pts[3 * i + 1] = (double)((i / 3) % 2);
+    pts[3 * i + 2] = (double)(i / 6);
+  }
+  pts[36] = 0.5;
+  pts[37] = 0.5;
+  pts[38] = -1.0;
+  for (i = 0; i < 16 * 2; ++i)
+    pa[i] = (float)i;
+  for (i = 0; i < 6; ++i)
+    ca[i] = 10.0 * i;
+  if (below(16) == 0)
+    random_point(pts + 3 * below(13));
+  if (below(16) == 0)
+    types[below(6)] = (unsigned char)(below(2) ? 42 : below(256));
+  if (below(16) == 0)
+    conn[below(35)] = below(2) ? -1 : (below(2) ? 13 : INT64_MAX);
+  if (below(16) == 0)
+    offsets[1 + below(6)] = below(2) ? 3 : -2;
+  if (below(16) == 0)
+    sdims[below(3)] = below(2) ? 0 : 2147483647;
+  random_grid(dims, &needed, &valid);
+  if (below(10) == 0)
+    spacing[below(3)] = below(2) ? 0.0 : NAN;
+  c_pts = sometimes_wrong(3 * (structured ? 12 : npts));
+  if (c_pts < 0 || c_pts > 3 * 16)
+    c_pts = below(2) ? -1 : 3 * 16;
+  c_types = structured ? (below(4) ? 0 : 6) : sometimes_wrong(ncells);
+  if (c_types < 0 || c_types > 6)
+    c_types = below(2) ? -1 : 6;
+  c_off = structured ? (below(4) ? 0 : 7) : sometimes_wrong(c_types + 1);
+  if (c_off < 0 || c_off > 7)
+    c_off = below(2) ? -1 : 7;
+  c_conn = structured ? 0 : sometimes_wrong(nconn);
+  if (c_conn < 0 || c_conn > 35)
+    c_conn = below(2) ? -1 : 35;
+  c_skip = below(2) ? 0 : sometimes_wrong(structured ? 2 : ncells);
+  if (c_skip < 0 || c_skip > 6)
+    c_skip = below(2) ? -1 : 6;
+  c_found = (below(4) ? needed : grid_count(needed, valid));
+  found = buffer(c_found, 1, 1);
+  ins[0] = pa;
+  ins[1] = ca;
+  in_len[0] = sometimes_wrong(2 * (structured ? 12 : npts));
+  if (in_len[0] < 0 || in_len[0] > 32)
+    in_len[0] = below(2) ? -1 : 32;
+  in_len[1] = sometimes_wrong(structured ? 2 : ncells);
+  if (in_len[1] < 0 || in_len[1] > 6)
+    in_len[1] = below(2) ? -1 : 6;
+  if (below(20) == 0)
+    comps[below(2)] = below(2) ? 0 : 3;
+  if (below(20) == 0)
+    bytes[below(2)] = below(2) ? 2 : 0;
+  out_len[0] = (below(4) ? 2 * needed : grid_count(2 * needed, valid));
+  out_len[1] = (below(4) ? needed : grid_count(needed, valid));
+  outs[0] = buffer(out_len[0], sizeof(float), 1);
+  outs[1] = buffer(out_len[1], sizeof(double), 1);
+  rc = schlieren_sample_cells(below(30) ? pts : NULL, c_pts, structured ? sdims : NULL,
+    below(30) ? types : NULL, c_types, below(30) ? offsets : NULL, c_off, below(30) ? conn : NULL,
+    c_conn, c_skip ? skip : NULL, c_skip, narrays, below(40) ? names : NULL, is_cell, comps, bytes,
+    ins, in_len, outs, out_len, dims, origin, spacing, found, c_found,
+    below(2) ? &found_here : NULL);
+  outcome(F_SAMPLE, rc, schlieren_last_error(), "schlieren_sample_cells");
+  free(found);
+  free(outs[0]);
+  free(outs[1]);
+}
+
+/* the right call: the points inside the two hexahedra and the tetrahedron are found, with the
+ * trilinear value (exact at these points), and a polyhedron is refused by name */
+static void fixed_sample_case(void)
+{
+  double pts[3 * 12];
+  unsigned char types[2] = { 12, 42 };
+  int64_t offsets[3] = { 0, 8, 16 };
+  int64_t conn[16] = { 0, 1, 4, 3, 6, 7, 10, 9, 1, 2, 5, 4, 7, 8, 11, 10 };
+  double values[12];
+  float out[5 * 3 * 3];
+  unsigned char found[5 * 3 * 3];
+  const char* names[1] = { "x" };
+  int is_cell[1] = { 0 }, comps[1] = { 1 }, bytes[1] = { 4 };
+  float fvalues[12];
+  const void* ins[1] = { fvalues };
+  void* outs[1] = { out };
+  int64_t in_len[1] = { 12 }, out_len[1] = { 45 }, n = -1;
+  int dims[3] = { 5, 3, 3 }, i, rc, ok = 1;
+  double origin[3] = { 0, 0, 0 }, spacing[3] = { 0.5, 0.5, 0.5 };
+  for (i = 0; i < 12; ++i)
+  {
+    pts[3 * i] = (double)(i % 3);
+    pts[3 * i + 1] = (double)((i / 3) % 2);
+    pts[3 * i + 2] = (double)(i / 6);
+    values[i] = pts[3 * i];
+    fvalues[i] = (float)values[i];
+  }
+  memset(found, 0, sizeof found);
+  memset(out, 0, sizeof out);
+  types[1] = 12;
+  rc = schlieren_sample_cells(pts, 36, NULL, types, 2, offsets, 3, conn, 16, NULL, 0, 1, names,
+    is_cell, comps, bytes, ins, in_len, outs, out_len, dims, origin, spacing, found, 45, &n);
+  /* the block is x in [0, 2], y and z in [0, 1]: 5 x 3 x 3 grid points, all inside */
+  for (i = 0; i < 45 && rc == 0; ++i)
+    ok = ok && found[i] == 1 && out[i] == (float)(0.5 * (i % 5));
+  if (rc != 0 || n != 45 || !ok)
+  {
+    ++failures;
+    printf("FAIL: schlieren_sample_cells on two hexahedra: rc %d, %lld found (45 wanted), values %s: %s\n",
+      rc, (long long)n, ok ? "right" : "wrong", schlieren_last_error());
+  }
+  types[1] = 42;
+  rc = schlieren_sample_cells(pts, 36, NULL, types, 2, offsets, 3, conn, 16, NULL, 0, 1, names,
+    is_cell, comps, bytes, ins, in_len, outs, out_len, dims, origin, spacing, found, 45, &n);
+  if (rc == 0 || !strstr(schlieren_last_error(), "polyhedron"))
+  {
+    ++failures;
+    printf("FAIL: schlieren_sample_cells took a polyhedron (rc %d): %s\n", rc, schlieren_last_error());
+  }
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -933,6 +1087,10 @@ int main(int argc, char** argv)
     pool[i] = schlieren_session_new();
   for (k = 0; k < cases; ++k)
     random_case((int)k);
+  /* after the others, so that their cases stay those of earlier runs for a seed */
+  fixed_sample_case();
+  for (k = 0; k < cases / 4; ++k)
+    random_sample_case();
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");

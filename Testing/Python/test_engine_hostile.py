@@ -210,6 +210,29 @@ else:
           flat_image.LastError, "a 2D volume: the advice sends the user to Symmetry Planar, which "
           "the Python front end's RefractiveIndex has (as the C++ plugin's)",
           flat_image.LastError[-110:])
+    # a cell type the sampler does not take: an error naming it (the C++ filter's words)
+    from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+    prism = vtkUnstructuredGrid()
+    corners = vtkPoints()
+    for z in (0.0, 1.0):
+        for k in range(5):
+            corners.InsertNextPoint(np.cos(2 * np.pi * k / 5), np.sin(2 * np.pi * k / 5), z)
+    prism.SetPoints(corners)
+    prism.InsertNextCell(15, 10, list(range(10)))  # VTK_PENTAGONAL_PRISM
+    rho = vtkFloatArray()
+    rho.SetName("density")
+    for _ in range(10):
+        rho.InsertNextValue(1.2)
+    prism.GetPointData().AddArray(rho)
+    prism_index = schlieren.RefractiveIndex(Model="GladstoneDale", InputArray="density",
+                                            SamplingDimensions=[8, 8, 4])
+    prism_index.SetInputData(prism)
+    prism_index.Update()
+    check("pentagonal prism" in prism_index.LastError and
+          prism_index.GetOutput().GetNumberOfPoints() == 0,
+          "RefractiveIndex on a pentagonal prism: the sampler's error naming the cell type, an "
+          "empty output", prism_index.LastError[-160:])
     wavelet = vtkRTAnalyticSource()
     wavelet.SetWholeExtent(-5, 5, -5, 5, -5, 5)
     grid = vtkAppendFilter()   # an unstructured grid: resampled by RefractiveIndex
@@ -221,6 +244,40 @@ else:
     check("4096 x 4096 x 4096" in index.LastError and "needs" in index.LastError and
           "AutomaticDimension" in index.LastError, "RefractiveIndex(AutomaticDimension=4096) on "
           "an unstructured grid: 'needs N GiB' (std::bad_alloc, abort before)", index.LastError)
+
+# ---- the cell sampler (schlieren_sample_cells, issue 47): every array checked, by name ----
+cube = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1],
+                 [0, 1, 1]], float)
+hexa = dict(cell_types=[12], offsets=[0, 8], connectivity=np.arange(8))
+grid3 = dict(dims=[3, 3, 3], origin=[0, 0, 0], spacing=[0.5, 0.5, 0.5])
+found, values = e.sample_cells(cube, point_arrays=[("x", cube[:, 0].astype(np.float32))],
+                               cell_arrays=[("id", np.array([7], np.int32))], **hexa, **grid3)
+xs = np.tile([0, 0.5, 1], 9).astype(np.float32)
+check(found.all() and np.array_equal(values["x"], xs) and values["x"].dtype == np.float32 and
+      (values["id"] == 7).all() and values["id"].dtype == np.int32,
+      "sample_cells: a unit hexahedron on a 3 x 3 x 3 grid: every point found, x exact (float32 "
+      "kept), the cell array's int32 value copied")
+for what, kw, kinds, words in (
+        ("points shaped (8, 2)", dict(points=cube[:, :2]), e.ArgumentError, ["points", "(n, 3)"]),
+        ("connectivity of floats", dict(connectivity=np.arange(8.0)), e.ArgumentTypeError,
+         ["connectivity", "integers"]),
+        ("offsets of 3 values for 1 cell", dict(offsets=[0, 8, 8]), e.EngineError,
+         ["offsets", "2"]),
+        ("a point id past the mesh", dict(connectivity=[0, 1, 2, 3, 4, 5, 6, 8]), e.EngineError,
+         ["connectivity[7]", "8 points"]),
+        ("a polyhedron", dict(cell_types=[42]), e.EngineError, ["polyhedron", "Tetrahedralize"]),
+        ("a hexahedron of 6 points", dict(offsets=[0, 6], connectivity=np.arange(6)),
+         e.EngineError, ["hexahedron with 6 points"]),
+        ("skip_cells of 2 bytes for 1 cell", dict(skip_cells=[0, 0]), e.EngineError,
+         ["skip_cells"]),
+        ("a point array of 7 tuples", dict(point_arrays=[("x", np.zeros(7))]), e.EngineError,
+         ["'x'", "8 points"]),
+        ("spacing 0", dict(spacing=[0.5, 0, 0.5]), e.EngineError, ["spacing"])):
+    args = dict(points=cube, **hexa, **grid3)
+    args.update(kw)
+    err = raises(lambda: e.sample_cells(**args), Exception)
+    check(isinstance(err, kinds) and all(w in str(err) for w in words),
+          "sample_cells with %s: %s naming it" % (what, kinds.__name__), str(err)[:160])
 
 # ---- python -m schlieren: one line, exit code 2 ----
 env = dict(os.environ)

@@ -9,7 +9,9 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      its information has the grid before RequestData (a Slice of the image has points), and
      SchlierenImage and NumericalSchlieren on it give the C++ filters' images bit for bit (not
      multiblocks); SchlierenImage straight on the multiblock gives an empty image and the C++
-     filter's reason;
+     filter's reason; an unstructured mesh (disk_out_ref.ex2, an Exodus multiblock of
+     hexahedra) gives the C++ filter's grid, valid points, n - 1, grad n, resampled arrays and
+     traced image bit for bit (both resample with the engine's cell sampler);
   2. errors are VTK errors (ParaView's Output Messages), never a Python traceback; a refused value
      (Symmetry Planar on a 3D volume: the C++ filter's reason; Resolution 1 x 1) leaves an empty
      output, and a good value set after it gives the image again;
@@ -312,6 +314,60 @@ else:
           "vtkMultiBlockDataSet" in c.text and "Traceback" not in c.text,
           "SchlierenImage straight on the multiblock: an empty %s and the C++ filter's reason"
           % out.GetClassName())
+
+# -- 1b. an unstructured mesh (disk_out_ref.ex2: an Exodus multiblock of hexahedra): both
+# plugins resample it with the engine's cell sampler (schlieren_sample_cells), so the grid, the
+# valid points, n - 1, grad n and the traced image are bit for bit the C++ filter's
+exo = os.path.join(args.data, "disk_out_ref.ex2")
+if not os.path.exists(exo):
+    print("SKIP the unstructured part: no disk_out_ref.ex2 in %s (set SCHLIEREN_DATA)"
+          % os.path.abspath(args.data))
+else:
+    from paraview.simple import ExodusIIReader
+    disk = ExodusIIReader(FileName=exo)
+    disk.PointVariables = ["Temp", "V"]
+    disk_index = ns["RefractiveIndex"](Input=disk, Model="GladstoneDale", Gas="Air",
+                                       DensityReference=1e-3, AutomaticDimension=40)
+    disk_index.InputArray = ["POINTS", "Temp"]
+    with Captured() as c:
+        disk_index.UpdatePipeline()
+    mine = servermanager.Fetch(disk_index)
+    ref = cxx.vtkRefractiveIndex()
+    ref.SetInputData(servermanager.Fetch(disk))
+    ref.SetModel(cxx.vtkRefractiveIndex.GLADSTONE_DALE)
+    ref.SetGas(cxx.vtkRefractiveIndex.AIR)
+    ref.SetDensityReference(1e-3)
+    ref.SetAutomaticDimension(40)
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "Temp")
+    ref.Update()
+    theirs = ref.GetOutput()
+    fraction = [d.GetFieldData().GetArray("valid_point_fraction").GetValue(0)
+                if d.GetFieldData().GetArray("valid_point_fraction") else None
+                for d in (mine, theirs)]
+    check(mine.GetClassName() == "vtkImageData" and mine.GetExtent() == theirs.GetExtent() and
+          mine.GetOrigin() == theirs.GetOrigin() and mine.GetSpacing() == theirs.GetSpacing() and
+          fraction[0] == fraction[1] and fraction[0] is not None and 0.3 < fraction[0] < 1.0 and
+          "Traceback" not in c.text,
+          "disk_out_ref.ex2 (%s of hexahedra): the C++ filter's grid %s and valid points "
+          "(valid_point_fraction %s)" % (servermanager.Fetch(disk).GetClassName(),
+                                         theirs.GetExtent(), fraction))
+    for name in ("n_minus_1", "grad_n", "Temp", "V"):
+        a, b = array(mine, name), array(theirs, name)
+        check(a is not None and b is not None and a.shape == b.shape and
+              np.array_equal(a.view(np.uint8), b.view(np.uint8)),
+              "disk_out_ref.ex2: %s bit for bit the C++ filter's" % name)
+    settings = dict(Resolution=[48, 40], Passes=1, ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1])
+    image = ns["SchlierenImage"](Input=disk_index, Backend="CPU", **settings)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    film, _ = cxx_image(theirs, **settings)
+    intensity = array(film, "intensity")
+    check(same_film(out, film) and intensity is not None and np.ptp(intensity) > 0.05,
+          "disk_out_ref.ex2: SchlierenImage's film bit for bit the C++ filter's (intensity "
+          "%.3f to %.3f)" % ((intensity.min(), intensity.max()) if intensity is not None
+                             else (0, 0)))
+    for p in (image, disk_index, disk):
+        Delete(p)
 
 # -- 2. errors: VTK errors, no traceback; a refused value leaves an empty output
 src = producer(volume)
