@@ -4,11 +4,19 @@
 #include "SchlierenEngine.h"
 #include "SchlierenOptions.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCommunicator.h"
+#include "vtkDataObject.h"
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVCompositeDataPipeline.h"
 #if VTK_MODULE_ENABLE_VTK_ParallelMPI
+#include "vtkMPI.h"
 #include "vtkMPICommunicator.h"
 #endif
+#include "vtkOutputWindow.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,6 +36,15 @@ namespace
 {
 /** The tag of the plugin's point-to-point messages (Exchange). */
 const int ExchangeTag = 51207;
+
+/** "rank 2", "ranks 0, 2". */
+std::string RankList(const std::vector<int>& ranks)
+{
+  std::string s = ranks.size() == 1 ? "rank " : "ranks ";
+  for (std::size_t i = 0; i < ranks.size(); ++i)
+    s += (i ? ", " : "") + std::to_string(ranks[i]);
+  return s;
+}
 }
 
 ControllerParallel::ControllerParallel(vtkMultiProcessController* controller)
@@ -104,6 +121,7 @@ struct GuardState
   std::vector<std::int64_t> Live;          // coordinator: each rank's unanswered arrival, or 0
   std::vector<std::string> LiveStep;       // ... and the step it arrived at
   std::list<std::unique_ptr<Sending>> Out; // sends in flight
+  bool Failed = false;                     // the last step this rank reached was given up
 };
 
 std::mutex GuardMutex;
@@ -131,14 +149,6 @@ std::string Seconds(double s)
   std::ostringstream o;
   o << s << " s";
   return o.str();
-}
-
-std::string RankList(const std::vector<int>& ranks)
-{
-  std::string s = ranks.size() == 1 ? "rank " : "ranks ";
-  for (std::size_t i = 0; i < ranks.size(); ++i)
-    s += (i ? ", " : "") + std::to_string(ranks[i]);
-  return s;
 }
 
 class Guard
@@ -316,22 +326,42 @@ private:
 void ControllerParallel::Arrive(const char* what)
 {
   const int number = ++this->Collectives;
+  this->ArriveAt(this->Who + "'s collective " + std::to_string(number) + " (" + what + ")");
+}
+
+void ControllerParallel::ArriveAt(const std::string& step)
+{
 #if VTK_MODULE_ENABLE_VTK_ParallelMPI
   auto* comm = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator());
   if (!comm)
     return; // not MPI (a socket or threaded controller): no guard
-  const std::string step =
-    this->Who + "'s collective " + std::to_string(number) + " (" + what + ")";
-  const double timeout = GetRuntimeOptions().MpiTimeout;
+  const RuntimeOptions& options = GetRuntimeOptions();
   std::lock_guard<std::mutex> lock(GuardMutex);
-  Guard guard(comm, Guards[comm], this->Me, this->Ranks);
-  if (this->Me == 0)
-    guard.Coordinate(step, timeout);
-  else
-    guard.Follow(step, timeout);
+  GuardState& state = Guards[comm];
+  Guard guard(comm, state, this->Me, this->Ranks);
+  state.Failed = true;
+  try
+  {
+    if (this->Me == 0)
+      guard.Coordinate(step, options.MpiTimeout);
+    else
+      guard.Follow(step, options.MpiTimeout);
+  }
+  catch (const Error& e)
+  {
+    if (options.MpiAbort)
+    {
+      // the ranks are out of step: end the job rather than meet a rank held elsewhere
+      vtkOutputWindowDisplayErrorText(("Schlieren, rank " + std::to_string(this->Me) + ": " +
+        e.what() + " SCHLIEREN_MPI_ABORT=1: the MPI job is aborted.\n")
+                                        .c_str());
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    throw;
+  }
+  state.Failed = false;
 #else
-  (void)what;
-  (void)number;
+  (void)step;
 #endif
 }
 
@@ -429,6 +459,113 @@ std::vector<std::vector<char>> ControllerParallel::Exchange(
     }
   }
   return incoming;
+}
+
+bool ControllerParallel::GaveUp() const
+{
+#if VTK_MODULE_ENABLE_VTK_ParallelMPI
+  auto* comm = this->Controller
+    ? vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator())
+    : nullptr;
+  std::lock_guard<std::mutex> lock(GuardMutex);
+  return comm && Guards.count(comm) && Guards[comm].Failed;
+#else
+  return false;
+#endif
+}
+
+std::vector<int> ControllerParallel::FailedRanks(bool ok, const std::string& step)
+{
+  std::vector<int> failed;
+  if (!this->Controller)
+  {
+    if (!ok)
+      failed.push_back(0);
+    return failed;
+  }
+  this->ArriveAt(step);
+  // every rank is here (the guard): one byte each
+  char mine = ok ? 1 : 0;
+  std::vector<char> all(static_cast<std::size_t>(this->Ranks));
+  if (!this->Controller->AllGather(&mine, all.data(), 1))
+    throw Error("MPI: an all-gather across ranks failed");
+  for (int r = 0; r < this->Ranks; ++r)
+    if (!all[r])
+      failed.push_back(r);
+  return failed;
+}
+
+// ------------------------------------------------------------------ the executive
+
+namespace
+{
+/** ParaView's executive; under MPI the ranks agree on their inputs' passes (SchlierenController.h). */
+class AgreeingExecutive : public vtkPVCompositeDataPipeline
+{
+public:
+  static AgreeingExecutive* New();
+  vtkTypeMacro(AgreeingExecutive, vtkPVCompositeDataPipeline);
+
+protected:
+  AgreeingExecutive() = default;
+  ~AgreeingExecutive() override = default;
+
+  using vtkPVCompositeDataPipeline::ForwardUpstream;
+  int ForwardUpstream(vtkInformation* request) override
+  {
+    const int result = this->Superclass::ForwardUpstream(request);
+    const char* pass = request->Has(vtkDemandDrivenPipeline::REQUEST_DATA())
+      ? "its data"
+      : request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION())
+      ? "its information"
+      : request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()) ? "its data object" : nullptr;
+    vtkAlgorithm* algorithm = this->GetAlgorithm();
+    if (!pass || !algorithm)
+      return result;
+    std::string who = algorithm->GetClassName();
+    if (who.compare(0, 3, "vtk") == 0)
+      who.erase(0, 3);
+    ControllerParallel parallel(who.c_str());
+    // a rank that gave up waiting for another (the guard) failed upstream on every rank that
+    // came, and they all gave up: no second wait for the rank that did not come
+    if (parallel.Size() <= 1 || (!result && parallel.GaveUp()))
+      return result;
+    std::vector<int> failed;
+    std::string error;
+    try
+    {
+      failed = parallel.FailedRanks(result != 0, who + "'s inputs (" + pass + ")");
+      if (!failed.empty() && result)
+        error = "the input of " + who + " failed on " + RankList(failed) + " (" +
+          (failed.size() == 1 ? "its" : "their") + " upstream's error is in " +
+          (failed.size() == 1 ? "that rank's" : "those ranks'") + " output): " + who +
+          " runs on no rank";
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what(); // the guard: some rank did not come
+    }
+    if (!error.empty())
+      vtkErrorWithObjectMacro(algorithm, << error);
+    if (error.empty() && failed.empty())
+      return result;
+    if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA()))
+      for (int port = 0; port < algorithm->GetNumberOfOutputPorts(); ++port)
+        if (vtkDataObject* out = algorithm->GetOutputDataObject(port))
+          out->Initialize(); // no earlier update's output left to pass for this one's
+    return 0;
+  }
+
+private:
+  AgreeingExecutive(const AgreeingExecutive&) = delete;
+  void operator=(const AgreeingExecutive&) = delete;
+};
+vtkStandardNewMacro(AgreeingExecutive);
+}
+
+vtkExecutive* NewAgreeingExecutive()
+{
+  return AgreeingExecutive::New();
 }
 
 } // namespace schlieren

@@ -12,6 +12,12 @@
  * others would wait in the collective for ever; instead, after SCHLIEREN_MPI_TIMEOUT seconds
  * (RuntimeOptions::MpiTimeout) every rank that reached it throws schlieren::Error naming the
  * ranks that did not.
+ *
+ * A failure upstream that the pipeline sees (a reader whose file is missing on one rank, any
+ * upstream request that returns failure there) is agreed on at once instead: the filters'
+ * executive (NewAgreeingExecutive) has every rank say, before a filter's data object,
+ * information and data passes, whether its inputs' pass succeeded, and where one rank's did not,
+ * no rank runs the filter and the others report the failing ranks (docs/PARALLEL.md).
  */
 #ifndef SchlierenController_h
 #define SchlierenController_h
@@ -20,6 +26,7 @@
 
 #include <string>
 
+class vtkExecutive;
 class vtkMultiProcessController;
 
 namespace schlieren
@@ -39,11 +46,19 @@ public:
   void Broadcast(std::vector<char>& bytes, int root) override;
   std::vector<std::vector<char>> AllGather(const std::vector<char>& mine) override;
   std::vector<std::vector<char>> Exchange(const std::vector<std::vector<char>>& outgoing) override;
+  /** Every rank says whether `ok` at the step `step` (a name in the guard's errors): the ranks
+   * where it is not, in order (empty: every rank is ok). Collective, under the guard. */
+  std::vector<int> FailedRanks(bool ok, const std::string& step);
+  /** Whether this process's last guarded step ended in the guard's error (a rank did not come,
+   * or the ranks were at different steps) rather than with every rank there. */
+  bool GaveUp() const;
 
 private:
   /** Returns once every rank has reached this collective (`what`); throws Error on every rank
    * that reached it where some rank does not within the timeout. */
   void Arrive(const char* what);
+  /** The same at the step named `step` in full. */
+  void ArriveAt(const std::string& step);
 
   vtkMultiProcessController* Controller; // null where serial
   std::string Who = "Schlieren";
@@ -51,6 +66,17 @@ private:
   int Me = 0;
   int Ranks = 1;
 };
+
+/**
+ * A new executive for the filters (their CreateDefaultExecutive): ParaView's own
+ * (vtkPVCompositeDataPipeline, which ParaView keeps since it is one) that, under MPI, has every
+ * rank agree whether its inputs' data object, information or data pass succeeded before the
+ * filter's runs. Where it failed on some ranks, the filter runs on none: the ranks where it
+ * failed stay silent (their upstream said its error), the others report "the input of
+ * RefractiveIndex failed on rank 2 ...", at once rather than after the guard's timeout. With one
+ * process it is ParaView's executive unchanged.
+ */
+vtkExecutive* NewAgreeingExecutive();
 
 } // namespace schlieren
 

@@ -9,7 +9,6 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -97,6 +96,126 @@ vtkDataArray* Scalars(vtkImageData* input, const std::string& name)
     : nullptr;
 }
 
+/**
+ * The density of a piece that is not empty: the array named (`named`), else the first
+ * density-like array, else n - 1; `name` and `values` set. Returns the error where there is none.
+ */
+std::string DensityOf(
+  vtkImageData* input, const std::string& named, std::string& name, vtkDataArray*& values)
+{
+  name = named;
+  if (!name.empty())
+  {
+    values = Scalars(input, name);
+    return values ? std::string()
+                  : "DensityArray is '" + name +
+        "': the input has no one-component point array of that name.";
+  }
+  for (const char* candidate : { "density", "rho", "Density", schlieren::arrays::NMinus1 })
+  {
+    if ((values = Scalars(input, candidate)))
+    {
+      name = candidate;
+      return std::string();
+    }
+  }
+  return "NumericalSchlieren needs a density (point array 'density', 'rho' or 'Density', or one "
+         "named in DensityArray) or 'n_minus_1'; the input has none.";
+}
+
+/** This rank's piece as the engine's grid: its values, solid and excluded points as copies the
+ * grid points to (empty where the piece is: `input` null). */
+struct PieceOfGrid
+{
+  PieceOfGrid(vtkImageData* input, vtkDataArray* values)
+  {
+    if (!input)
+      return;
+    this->Field = schlieren::values::Values<float>(values);
+    if (vtkDataArray* so = Scalars(input, schlieren::arrays::Solid))
+      this->Solid = schlieren::values::Values<unsigned char>(so);
+    if (vtkDataArray* m = Scalars(input, "vtkValidPointMask"))
+    {
+      this->Excluded = schlieren::values::Values<unsigned char>(m);
+      for (unsigned char& e : this->Excluded)
+        e = e ? 0 : 1;
+    }
+    input->GetDimensions(this->Grid.Dimensions);
+    input->GetOrigin(this->Grid.Origin);
+    input->GetSpacing(this->Grid.Spacing);
+    const int* ext = input->GetExtent();
+    for (int a = 0; a < 3; ++a)
+      this->Grid.Origin[a] += ext[2 * a] * this->Grid.Spacing[a];
+    this->Grid.Values = this->Field.data();
+    this->Grid.Solid = this->Solid.empty() ? nullptr : this->Solid.data();
+    this->Grid.Excluded = this->Excluded.empty() ? nullptr : this->Excluded.data();
+  }
+  std::vector<float> Field;
+  std::vector<unsigned char> Solid, Excluded;
+  schlieren::ScalarGrid Grid;
+};
+
+/**
+ * Under MPI: the whole volume's grid (no values), on the same origin and spacing as this rank's
+ * piece (`input`; null where it is empty: the pipeline's), so that rank 0 computes the sample
+ * points as one process does; `offset` is the piece's first point in it.
+ */
+schlieren::ScalarGrid WholeGridOfPieces(vtkInformation* inInfo, vtkImageData* input, int offset[3])
+{
+  int wholeExt[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExt);
+  // an empty piece: the pipeline's origin and spacing of the whole volume
+  const schlieren::ScalarGrid info = WholeGrid(inInfo);
+  double o[3], h[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    o[a] = info.Origin[a] - wholeExt[2 * a] * info.Spacing[a];
+    h[a] = info.Spacing[a];
+  }
+  if (input)
+  {
+    input->GetOrigin(o);
+    input->GetSpacing(h);
+    const int* ext = input->GetExtent();
+    for (int a = 0; a < 3; ++a)
+      offset[a] = ext[2 * a] - wholeExt[2 * a];
+  }
+  schlieren::ScalarGrid whole;
+  for (int a = 0; a < 3; ++a)
+  {
+    whole.Dimensions[a] = wholeExt[2 * a + 1] - wholeExt[2 * a] + 1;
+    whole.Origin[a] = o[a] + wholeExt[2 * a] * h[a];
+    whole.Spacing[a] = h[a];
+  }
+  return whole;
+}
+
+/** The image's film and arrays into `output`. */
+void WriteImage(vtkImageData* output, const schlieren::NumericalImage& image)
+{
+  const int nx = image.Film.Size[0], ny = image.Film.Size[1];
+  double origin[2];
+  image.Film.GetImageOrigin(origin);
+  output->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
+  output->SetSpacing(image.Film.PixelSize, image.Film.PixelSize, 1.0);
+  output->SetOrigin(origin[0], origin[1], 0.0);
+  const vtkIdType n = static_cast<vtkIdType>(nx) * ny;
+  vtkNew<vtkFloatArray> intensity, gradient;
+  vtkNew<vtkUnsignedCharArray> blocked;
+  intensity->SetName("intensity");
+  gradient->SetName("numerical_gradient");
+  blocked->SetName("blocked");
+  intensity->SetNumberOfTuples(n);
+  gradient->SetNumberOfTuples(n);
+  blocked->SetNumberOfTuples(n);
+  std::copy(image.Intensity.begin(), image.Intensity.end(), intensity->GetPointer(0));
+  std::copy(image.Gradient.begin(), image.Gradient.end(), gradient->GetPointer(0));
+  std::copy(image.Blocked.begin(), image.Blocked.end(), blocked->GetPointer(0));
+  output->GetPointData()->SetScalars(intensity);
+  output->GetPointData()->AddArray(gradient);
+  output->GetPointData()->AddArray(blocked);
+}
+
 void AddNumber(vtkFieldData* fd, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> a;
@@ -178,142 +297,31 @@ int vtkNumericalSchlieren::RequestUpdateExtent(
 int vtkNumericalSchlieren::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
   schlieren::ControllerParallel parallel("NumericalSchlieren");
-  const bool split = parallel.Size() > 1;
   // Under MPI a rank's piece may be empty (more ranks than the upstream splits the volume into);
   // it sends nothing. Every rank's failure is agreed on before the pieces are gathered.
   const bool empty = !input || input->GetNumberOfPoints() == 0;
-  std::string error;
-  if (empty && !split)
-  {
-    error = "NumericalSchlieren needs a non-empty image (vtkImageData), for example the output of "
-            "RefractiveIndex or RefractiveScene.";
-  }
-
-  // The density: the array named, else the first density-like array, else n - 1.
-  std::string name = this->DensityArray;
+  std::string name;
   vtkDataArray* values = nullptr;
-  if (!empty && !name.empty())
-  {
-    values = Scalars(input, name);
-    if (!values)
-    {
-      error = "DensityArray is '" + name + "': the input has no one-component point array of that name.";
-    }
-  }
-  else if (!empty)
-  {
-    for (const char* candidate : { "density", "rho", "Density", schlieren::arrays::NMinus1 })
-    {
-      if ((values = Scalars(input, candidate)))
-      {
-        name = candidate;
-        break;
-      }
-    }
-    if (!values)
-    {
-      error = "NumericalSchlieren needs a density (point array 'density', 'rho' or 'Density', or "
-              "one named in DensityArray) or 'n_minus_1'; the input has none.";
-    }
-  }
-  try
-  {
-    error = parallel.Failure(error);
-    if (error.empty() && split)
-    {
-      // the same array on every rank that holds a piece (the first such rank's name is used)
-      std::string agreed;
-      for (const std::string& other : parallel.AllGatherStrings(empty ? std::string() : name))
-      {
-        if (!other.empty() && agreed.empty())
-          agreed = other;
-        else if (!other.empty() && other != agreed)
-          error = "NumericalSchlieren: the ranks' pieces carry different density arrays ('" +
-            agreed + "', '" + other + "'): name one in DensityArray.";
-      }
-      if (agreed.empty())
-        error = "NumericalSchlieren needs a non-empty image (vtkImageData): every rank's piece "
-                "of the input is empty.";
-      name = agreed;
-    }
-  }
-  catch (const schlieren::Error& e)
-  {
-    error = e.what();
-  }
-  if (!error.empty())
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-
-  std::vector<float> field;
-  std::vector<unsigned char> solid, excluded;
-  schlieren::ScalarGrid grid;
-  int offset[3] = { 0, 0, 0 };
-  if (!empty)
-  {
-    field = schlieren::values::Values<float>(values);
-    if (vtkDataArray* so = Scalars(input, schlieren::arrays::Solid))
-      solid = schlieren::values::Values<unsigned char>(so);
-    if (vtkDataArray* m = Scalars(input, "vtkValidPointMask"))
-    {
-      excluded = schlieren::values::Values<unsigned char>(m);
-      for (unsigned char& e : excluded)
-        e = e ? 0 : 1;
-    }
-    input->GetDimensions(grid.Dimensions);
-    input->GetOrigin(grid.Origin);
-    input->GetSpacing(grid.Spacing);
-    const int* ext = input->GetExtent();
-    for (int a = 0; a < 3; ++a)
-      grid.Origin[a] += ext[2 * a] * grid.Spacing[a];
-    grid.Values = field.data();
-    grid.Solid = solid.empty() ? nullptr : solid.data();
-    grid.Excluded = excluded.empty() ? nullptr : excluded.data();
-  }
-  // The whole volume's grid, on the same origin and spacing as this rank's piece (one process:
-  // the piece is the whole), so that rank 0 computes the sample points as one process does.
-  schlieren::ScalarGrid whole = grid;
-  if (split)
-  {
-    int wholeExt[6];
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExt);
-    // an empty piece: the pipeline's origin and spacing of the whole volume
-    const schlieren::ScalarGrid info = WholeGrid(inInfo);
-    double o[3], h[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      o[a] = info.Origin[a] - wholeExt[2 * a] * info.Spacing[a];
-      h[a] = info.Spacing[a];
-    }
-    if (!empty)
-    {
-      input->GetOrigin(o);
-      input->GetSpacing(h);
-      const int* ext = input->GetExtent();
-      for (int a = 0; a < 3; ++a)
-        offset[a] = ext[2 * a] - wholeExt[2 * a];
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      whole.Dimensions[a] = wholeExt[2 * a + 1] - wholeExt[2 * a] + 1;
-      whole.Origin[a] = o[a] + wholeExt[2 * a] * h[a];
-      whole.Spacing[a] = h[a];
-    }
-    whole.Values = nullptr;
-    whole.Solid = whole.Excluded = nullptr;
-  }
-
+  const std::string error = empty
+    ? (parallel.Size() > 1 ? std::string()
+                           : "NumericalSchlieren needs a non-empty image (vtkImageData), for "
+                             "example the output of RefractiveIndex or RefractiveScene.")
+    : DensityOf(input, this->DensityArray, name, values);
   schlieren::NumericalImage image;
   try
   {
-    if (!schlieren::NumericalSchlierenOfPieces(parallel, grid, offset, whole, SettingsOf(this), image))
+    name = schlieren::AgreedFieldName(parallel, error, empty ? std::string() : name);
+    PieceOfGrid piece(empty ? nullptr : input, values);
+    int offset[3] = { 0, 0, 0 };
+    const schlieren::ScalarGrid whole = parallel.Size() > 1
+      ? WholeGridOfPieces(inputVector[0]->GetInformationObject(0), empty ? nullptr : input, offset)
+      : piece.Grid;
+    if (!schlieren::NumericalSchlierenOfPieces(
+          parallel, piece.Grid, offset, whole, SettingsOf(this), image))
     {
       return 1; // rank 0 holds the image
     }
@@ -323,28 +331,7 @@ int vtkNumericalSchlieren::RequestData(
     vtkErrorMacro(<< e.what());
     return 0;
   }
-
-  const int nx = image.Film.Size[0], ny = image.Film.Size[1];
-  double origin[2];
-  image.Film.GetImageOrigin(origin);
-  output->SetExtent(0, nx - 1, 0, ny - 1, 0, 0);
-  output->SetSpacing(image.Film.PixelSize, image.Film.PixelSize, 1.0);
-  output->SetOrigin(origin[0], origin[1], 0.0);
-  const vtkIdType n = static_cast<vtkIdType>(nx) * ny;
-  vtkNew<vtkFloatArray> intensity, gradient;
-  vtkNew<vtkUnsignedCharArray> blocked;
-  intensity->SetName("intensity");
-  gradient->SetName("numerical_gradient");
-  blocked->SetName("blocked");
-  intensity->SetNumberOfTuples(n);
-  gradient->SetNumberOfTuples(n);
-  blocked->SetNumberOfTuples(n);
-  std::copy(image.Intensity.begin(), image.Intensity.end(), intensity->GetPointer(0));
-  std::copy(image.Gradient.begin(), image.Gradient.end(), gradient->GetPointer(0));
-  std::copy(image.Blocked.begin(), image.Blocked.end(), blocked->GetPointer(0));
-  output->GetPointData()->SetScalars(intensity);
-  output->GetPointData()->AddArray(gradient);
-  output->GetPointData()->AddArray(blocked);
+  WriteImage(output, image);
   vtkFieldData* fd = output->GetFieldData();
   AddString(fd, "numerical_field", name);
   AddString(fd, "numerical_mode", schlieren::NumericalModeName(static_cast<schlieren::NumericalMode>(this->Mode)));
@@ -363,6 +350,11 @@ void vtkNumericalSchlieren::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "C0, C1, K: " << this->C0 << ", " << this->C1 << ", " << this->K << "\n";
   os << indent << "GradientMaximum: " << this->GradientMaximum << "\n";
   os << indent << "DensityArray: " << this->DensityArray << "\n";
+}
+
+vtkExecutive* vtkNumericalSchlieren::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
 }
 
 vtkTypeBool vtkNumericalSchlieren::ProcessRequest(

@@ -92,6 +92,10 @@ public:
     vtkInformationVector* outputVector) override;
 
 protected:
+  /** ParaView's executive that, under MPI, stops the filter on every rank at once where its
+   * input failed on some (schlieren::NewAgreeingExecutive). */
+  vtkExecutive* CreateDefaultExecutive() override;
+
   vtkNumericalSchlieren();
   ~vtkNumericalSchlieren() override;
 

@@ -45,12 +45,14 @@ namespace
  * This rank's piece of n - 1 as floats (an empty piece is fine under MPI) and its dimensions;
  * returns "" or the problem for the user.
  */
-std::string ReadPiece(double tolerance, vtkImageData* input, vtkImageData* output, int ranks,
-  std::vector<float>& n1, int dims[3])
+std::string ReadPiece(double tolerance, int maxLevel, vtkImageData* input, vtkImageData* output,
+  int ranks, std::vector<float>& n1, int dims[3])
 {
-  // the range is the engine's (the Python front end checks the same)
-  const std::string range =
-    schlieren::PropertyRangeProblem("RefractionOctree", "Tolerance", &tolerance, 1);
+  // the ranges are the engine's (the Python front end checks the same)
+  const double level = maxLevel;
+  std::string range = schlieren::PropertyRangeProblem("RefractionOctree", "MaxLevel", &level, 1);
+  if (range.empty())
+    range = schlieren::PropertyRangeProblem("RefractionOctree", "Tolerance", &tolerance, 1);
   if (!range.empty())
     return range;
   if (!input || !output)
@@ -137,16 +139,9 @@ int vtkRefractionOctree::RequestData(
   // for another that has given up.
   std::vector<float> n1;
   int dims[3] = { 0, 0, 0 };
-  std::string problem;
-  if (this->MaxLevel < 0 || this->MaxLevel > 10)
-  {
-    // the same on every rank: still agreed below, like any other failure
-    problem = "MaxLevel is " + std::to_string(this->MaxLevel) + ": it must be in [0, 10].";
-  }
-  else
-  {
-    problem = ReadPiece(this->Tolerance, input, output, parallel.Size(), n1, dims);
-  }
+  // (a range's problem is the same on every rank: still agreed below, like any other failure)
+  const std::string problem =
+    ReadPiece(this->Tolerance, this->MaxLevel, input, output, parallel.Size(), n1, dims);
   const std::string failure = parallel.Failure(problem);
   if (!failure.empty())
   {
@@ -203,6 +198,11 @@ void vtkRefractionOctree::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
+vtkExecutive* vtkRefractionOctree::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
+}
+
 vtkTypeBool vtkRefractionOctree::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

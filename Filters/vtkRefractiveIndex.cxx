@@ -1110,9 +1110,53 @@ std::string CheckCovers(const int gridExt[6], const int outExt[6])
 /** What the steps of RequestData pass each other. */
 struct vtkRefractiveIndex::Work
 {
-  explicit Work(schlieren::Parallel& parallel)
+  Work(schlieren::Parallel& parallel, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector, bool symmetric)
     : Ranks(parallel)
+    , InputVector(inputVector)
+    , InInfo(inputVector[0]->GetInformationObject(0))
+    , OutInfo(outputVector->GetInformationObject(0))
+    , Input(vtkDataObject::GetData(InInfo))
+    , InputImage(vtkImageData::SafeDownCast(Input))
+    , Output(vtkImageData::GetData(OutInfo))
+    , Symmetric(symmetric)
+    , Resampled(InputImage == nullptr || symmetric)
   {
+  }
+  /** Where `cache` holds this time step (computed before, with the same pipeline): the output is
+   * that image, not resampled again (true). */
+  bool ServeKept(schlieren::TimeStepCache& cache, const schlieren::TimeStepCache::Key& key)
+  {
+    vtkDataObject* kept = cache.Find(key);
+    if (!kept)
+      return false;
+    this->Output->ShallowCopy(kept);
+    this->Output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), key.Time);
+    if (this->Resampled)
+    {
+      // the grid of that step (FollowMovingBounds may have moved it since): what SchlierenImage
+      // reads from the information must be the kept image's
+      this->OutInfo->Set(vtkDataObject::ORIGIN(), this->Output->GetOrigin(), 3);
+      this->OutInfo->Set(vtkDataObject::SPACING(), this->Output->GetSpacing(), 3);
+    }
+    ++cache.Served;
+    CacheFields(this->Output, cache, true);
+    return true;
+  }
+  /** BodyFromGrid on an image split over ranks: which holes the flow encloses is a flood fill
+   * across the pieces (collective: every rank, an empty piece too, before an empty one leaves). */
+  void FloodAcrossPieces(const int* wallFaces)
+  {
+    if (this->Ranks.Size() <= 1 || this->Resampled ||
+      this->Ranks.Max(this->AnyInvalid ? 1.0 : 0.0) <= 0.5)
+      return;
+    int extent[6] = { 0, -1, 0, -1, 0, -1 };
+    if (!this->EmptyPiece && this->Valid.size() == static_cast<std::size_t>(this->Count))
+      std::copy(this->GridExt, this->GridExt + 6, extent);
+    this->Enclosed.assign(this->Valid.size(), 0);
+    schlieren::EnclosedInvalidPointsOfPiece(
+      this->Ranks, extent, this->Whole, this->Valid.data(), wallFaces, this->Enclosed.data());
+    this->EnclosedFound = true;
   }
   schlieren::Parallel& Ranks;
   vtkInformationVector** InputVector = nullptr;
@@ -1177,65 +1221,27 @@ int vtkRefractiveIndex::RequestData(
     return 0;
   }
   schlieren::ControllerParallel parallel("RefractiveIndex");
-  Work w(parallel);
-  w.InputVector = inputVector;
-  w.InInfo = inputVector[0]->GetInformationObject(0);
-  w.OutInfo = outputVector->GetInformationObject(0);
-  w.Input = vtkDataObject::GetData(w.InInfo);
-  w.InputImage = vtkImageData::SafeDownCast(w.Input);
-  w.Output = vtkImageData::GetData(w.OutInfo);
-  w.Symmetric = this->Symmetry != NO_SYMMETRY;
+  Work w(parallel, inputVector, outputVector, this->Symmetry != NO_SYMMETRY);
   if (!w.Output || (vtkPolyData::SafeDownCast(w.Input) && !w.Symmetric) ||
     (!vtkDataSet::SafeDownCast(w.Input) && !vtkCompositeDataSet::SafeDownCast(w.Input)))
   {
     vtkErrorMacro(<< NotAVolume(w.Input));
     return 0;
   }
-  w.Resampled = w.InputImage == nullptr || w.Symmetric;
   schlieren::TimeStepCache::Key key;
   const bool cached = CacheKey(this, w.InInfo, w.OutInfo, key);
-  if (vtkDataObject* kept = cached ? this->TimeCache->Find(key) : nullptr)
+  if (cached && w.ServeKept(*this->TimeCache, key))
   {
-    // a time step computed before, with the same pipeline: not resampled again
-    w.Output->ShallowCopy(kept);
-    w.Output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), key.Time);
-    if (w.Resampled)
-    {
-      // the grid of that step (FollowMovingBounds may have moved it since): what SchlierenImage
-      // reads from the information must be the kept image's
-      w.OutInfo->Set(vtkDataObject::ORIGIN(), w.Output->GetOrigin(), 3);
-      w.OutInfo->Set(vtkDataObject::SPACING(), w.Output->GetSpacing(), 3);
-    }
-    ++this->TimeCache->Served;
-    CacheFields(w.Output, *this->TimeCache, true);
     return 1;
   }
-
-  // 0. What to read; 1. the grid the model runs on.
+  // 0. What to read; 1. the grid the model runs on; 2. the model on the grid; 3. under MPI,
+  // every rank learns whether any failed; 3b. BodyFromGrid's flood across the ranks' pieces.
   std::string problem = this->ReadInputs(w);
-  if (problem.empty())
+  problem = problem.empty() ? this->MakeGrid(w) : problem;
+  problem = problem.empty() ? this->AgreeAcrossRanks(w, this->EvaluateModel(w)) : problem;
+  if (problem.empty() && this->BodyFromGrid)
   {
-    problem = this->MakeGrid(w);
-  }
-  // 2. The model on the grid; 3. under MPI, every rank learns whether any failed.
-  if (problem.empty())
-  {
-    problem = this->AgreeAcrossRanks(w, this->EvaluateModel(w));
-  }
-  // 3b. BodyFromGrid on an image split over ranks: which holes the flow encloses is a flood fill
-  // across the pieces (collective: every rank, an empty piece too, before an empty one leaves)
-  if (problem.empty() && this->BodyFromGrid && parallel.Size() > 1 && !w.Resampled &&
-    parallel.Max(w.AnyInvalid ? 1.0 : 0.0) > 0.5)
-  {
-    int extent[6] = { 0, -1, 0, -1, 0, -1 };
-    if (!w.EmptyPiece && w.Valid.size() == static_cast<std::size_t>(w.Count))
-    {
-      std::copy(w.GridExt, w.GridExt + 6, extent);
-    }
-    w.Enclosed.assign(w.Valid.size(), 0);
-    schlieren::EnclosedInvalidPointsOfPiece(parallel, extent, w.Whole, w.Valid.data(),
-      this->BodyWallFaces, w.Enclosed.data());
-    w.EnclosedFound = true;
+    w.FloodAcrossPieces(this->BodyWallFaces);
   }
   for (const std::string& warning : w.Warnings)
   {
@@ -1251,14 +1257,8 @@ int vtkRefractiveIndex::RequestData(
   }
   // 4. The points outside the flow domain, the check of n, the gradient; the solid bodies.
   std::string solidNote;
-  if (problem.empty())
-  {
-    problem = this->FillAndDifferentiate(w);
-  }
-  if (problem.empty())
-  {
-    problem = this->ComputeSolid(w, solidNote);
-  }
+  problem = problem.empty() ? this->FillAndDifferentiate(w) : problem;
+  problem = problem.empty() ? this->ComputeSolid(w, solidNote) : problem;
   if (!problem.empty())
   {
     w.Output->Initialize();
@@ -1270,7 +1270,6 @@ int vtkRefractiveIndex::RequestData(
     vtkWarningMacro(<< solidNote);
   }
   this->UpdateProgress(0.9);
-
   // 5. The output: the requested extent of the grid, with the new arrays.
   this->WriteOutput(w);
   ++this->TimeCache->Computed;
@@ -2132,6 +2131,11 @@ void vtkRefractiveIndex::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
+vtkExecutive* vtkRefractiveIndex::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
+}
+
 vtkTypeBool vtkRefractiveIndex::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

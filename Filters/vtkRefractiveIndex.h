@@ -518,6 +518,9 @@ public:
     vtkInformationVector* outputVector) override;
 
 protected:
+  /** ParaView's executive that, under MPI, stops the filter on every rank at once where its
+   * input failed on some (schlieren::NewAgreeingExecutive). */
+  vtkExecutive* CreateDefaultExecutive() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,

@@ -16,7 +16,6 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiBlockDataSet.h"
@@ -29,6 +28,7 @@
 
 #include "SchlierenArrays.h"
 #include "SchlierenBodies.h"
+#include "SchlierenController.h"
 #include "SchlierenWalls.h"
 #include "SchlierenEngine.h"
 #include "SchlierenParallel.h"
@@ -848,8 +848,7 @@ bool vtkRefractiveIndex::SymmetricGrid(
     vtkErrorMacro(<< problem);
     return false;
   }
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (!controller || controller->GetLocalProcessId() == 0)
+  if (schlieren::ControllerParallel().Rank() == 0)
   {
     for (const std::string& warning : plan->Warnings)
     {

@@ -34,6 +34,7 @@
 #include <memory>
 #include <cctype>
 #include <chrono>
+#include <functional>
 #include <cstdint>
 #include <cmath>
 #include <map>
@@ -523,6 +524,78 @@ struct vtkSchlierenImage::vtkInternals
   // the output is that previous image: the next update must trace, whatever changed
   bool Stale = false;
   vtkTimeStamp StaleTime;
+
+  /** What an update that wrote `output` from `image` leaves: the image shown (what an abort
+   * keeps), and a BOS image for WriteBOSPair. */
+  void Keep(vtkImageData* output, schlieren::SessionImage&& image)
+  {
+    if (image.Traced.Mode == schlieren::Cutoff::BOS)
+    {
+      this->LastBOS = std::make_shared<schlieren::SessionImage>(std::move(image));
+    }
+    if (!this->Shown)
+    {
+      this->Shown = vtkSmartPointer<vtkImageData>::New();
+    }
+    this->Shown->ShallowCopy(output);
+  }
+
+  /** `error` as the filter's error, once (Fresh). */
+  void SayError(vtkSchlierenImage* self, const std::string& error)
+  {
+    if (this->Fresh(error, ErrorKey(self)))
+    {
+      vtkErrorWithObjectMacro(self, << error);
+    }
+  }
+
+  /** The engine's notes of an update: warnings (once, FreshWarnings) and the log's lines. */
+  void SayNotes(vtkSchlierenImage* self, const schlieren::SessionImage& image)
+  {
+    const bool freshWarnings = this->FreshWarnings(image.Warnings, image.PassesTraced < image.Passes);
+    for (const schlieren::SessionImage::Note& note : image.Notes)
+    {
+      if (note.Warning)
+      {
+        if (freshWarnings)
+        {
+          vtkWarningWithObjectMacro(self, << note.Text);
+        }
+      }
+      else
+      {
+        vtkLog(INFO, << "SchlierenImage: " << note.Text);
+      }
+    }
+  }
+
+  /** An update that failed with `error` (`percent` of the trace done): where the pipeline aborted
+   * it and an earlier image exists, that image stays (1); else the error, said once (0). */
+  int Failed(vtkSchlierenImage* self, vtkImageData* output, std::string error, int percent)
+  {
+    const bool aborted = self->GetAbortExecute();
+    if (aborted)
+    {
+      self->SetAbortExecute(0); // the abort is spent: the next update traces
+    }
+    if (aborted && this->Shown)
+    {
+      // aborted, within a pass or between passes: the previous image stays (the kept passes are
+      // dropped with the unfinished one, so the next update traces afresh)
+      output->ShallowCopy(this->Shown);
+      this->Stale = true;
+      vtkWarningWithObjectMacro(self, << "aborted at " << percent
+                                      << " % of the trace: the image shown is the previous one; "
+                                         "the next update traces all its passes again");
+      return 1;
+    }
+    if (aborted)
+    {
+      error = "aborted at " + std::to_string(percent) + " % of the trace: no image yet";
+    }
+    this->SayError(self, error);
+    return 0;
+  }
 };
 
 namespace
@@ -712,6 +785,41 @@ int vtkSchlierenImage::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/** The pipeline's progress of a trace, its text the engine's TraceClock. Returns false once the
+ * pipeline asks to abort. */
+struct TraceProgress
+{
+  explicit TraceProgress(vtkSchlierenImage* self)
+    : Self(self)
+    , Clock(self->GetPasses())
+  {
+  }
+  bool operator()(double progress)
+  {
+    const std::string text = this->Clock.Text(progress);
+    if (!text.empty())
+    {
+      this->Text = text;
+      this->Self->SetProgressText(this->Text.c_str());
+    }
+    this->Self->UpdateProgress(progress);
+    return !this->Self->GetAbortExecute();
+  }
+  /** The text cleared; the share of the trace done, in percent. */
+  int Done()
+  {
+    if (!this->Text.empty())
+      this->Self->SetProgressText(nullptr);
+    return this->Clock.Percent();
+  }
+  vtkSchlierenImage* Self;
+  schlieren::TraceClock Clock;
+  std::string Text;
+};
+} // namespace
+
 int vtkSchlierenImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -722,10 +830,7 @@ int vtkSchlierenImage::RequestData(
   const std::string badChoice = EnumerationProblem(this);
   if (!badChoice.empty())
   {
-    if (this->Internals->Fresh(badChoice, ErrorKey(this)))
-    {
-      vtkErrorMacro(<< badChoice);
-    }
+    this->Internals->SayError(this, badChoice);
     output->Initialize();
     return 0;
   }
@@ -733,40 +838,13 @@ int vtkSchlierenImage::RequestData(
   schlieren::SessionImage image;
   std::string error;
   this->Internals->Stale = false;
-  // The progress text: once some tracing is done (the engine's tracing runs from 0.05 to 0.95 of
-  // the progress), the time left at the rate so far.
-  const auto start = std::chrono::steady_clock::now();
-  double startProgress = -1;
-  double reached = 0;
-  std::string text;
-  auto report = [&](double progress) {
-    reached = progress;
-    const double now =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (startProgress < 0 && progress >= 0.05)
-      startProgress = progress;
-    const double done = progress - startProgress;
-    // after about one pass's share of the tracing (at least 1 %) and a tenth of a second
-    const double share = std::max(0.01, 0.9 / std::max(1, this->Passes));
-    if (startProgress >= 0 && done >= share && now > 0.1 && progress < 0.95)
-    {
-      std::ostringstream t;
-      const double left = now * (0.95 - progress) / done;
-      t << "SchlierenImage: " << static_cast<int>(100 * (progress - 0.05) / 0.9)
-        << " % traced, about " << (left < 10 ? std::round(left * 10) / 10 : std::round(left))
-        << " s left";
-      text = t.str();
-      this->SetProgressText(text.c_str());
-    }
-    this->UpdateProgress(progress);
-    return !this->GetAbortExecute();
-  };
+  TraceProgress progress(this);
   try
   {
     schlieren::VolumePiece piece = PieceOf(input, output, inInfo, this->UseOctree);
     TimeVersion(this, input, inInfo, piece, this->Internals->TimeVersions);
     this->Internals->LastBOS.reset();
-    this->Internals->Session.Update(parallel, piece, SettingsOf(this), image, report);
+    this->Internals->Session.Update(parallel, piece, SettingsOf(this), image, std::ref(progress));
     // a frame found by this update (Framing Silhouette) may give the film another shape than
     // RequestInformation could know: the output's information follows the image
     if (this->Framing == SILHOUETTE_FRAME)
@@ -779,54 +857,11 @@ int vtkSchlierenImage::RequestData(
   {
     error = e.what();
   }
-  if (!text.empty())
-  {
-    this->SetProgressText(nullptr);
-  }
-  const bool freshWarnings =
-    this->Internals->FreshWarnings(image.Warnings, image.PassesTraced < image.Passes);
-  for (const schlieren::SessionImage::Note& note : image.Notes)
-  {
-    if (note.Warning)
-    {
-      if (freshWarnings)
-      {
-        vtkWarningMacro(<< note.Text);
-      }
-    }
-    else
-    {
-      vtkLog(INFO, << "SchlierenImage: " << note.Text);
-    }
-  }
-  const bool aborted = !error.empty() && this->GetAbortExecute();
-  if (aborted)
-  {
-    this->SetAbortExecute(0); // the abort is spent: the next update traces
-  }
-  const int percent = static_cast<int>(100 * std::max(0.0, reached - 0.05) / 0.9);
-  if (aborted && this->Internals->Shown)
-  {
-    // aborted, within a pass or between passes: the previous image stays (the kept passes are
-    // dropped with the unfinished one, so the next update traces afresh)
-    output->ShallowCopy(this->Internals->Shown);
-    this->Internals->Stale = true;
-    vtkWarningMacro(<< "aborted at " << percent
-                    << " % of the trace: the image shown is the previous one; the next update "
-                       "traces all its passes again");
-    return 1;
-  }
-  if (aborted)
-  {
-    error = "aborted at " + std::to_string(percent) + " % of the trace: no image yet";
-  }
+  const int percent = progress.Done();
+  this->Internals->SayNotes(this, image);
   if (!error.empty())
   {
-    if (this->Internals->Fresh(error, ErrorKey(this)))
-    {
-      vtkErrorMacro(<< error);
-    }
-    return 0;
+    return this->Internals->Failed(this, output, error, percent);
   }
   this->Internals->Fresh(std::string(), std::string());
   output->Initialize();
@@ -841,15 +876,7 @@ int vtkSchlierenImage::RequestData(
     return 0;
   }
   WriteFieldData(output->GetFieldData(), image);
-  if (image.Traced.Mode == schlieren::Cutoff::BOS)
-  {
-    this->Internals->LastBOS = std::make_shared<schlieren::SessionImage>(std::move(image));
-  }
-  if (!this->Internals->Shown)
-  {
-    this->Internals->Shown = vtkSmartPointer<vtkImageData>::New();
-  }
-  this->Internals->Shown->ShallowCopy(output);
+  this->Internals->Keep(output, std::move(image));
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -955,6 +982,11 @@ void vtkSchlierenImage::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
+vtkExecutive* vtkSchlierenImage::CreateDefaultExecutive()
+{
+  return schlieren::NewAgreeingExecutive();
+}
+
 vtkTypeBool vtkSchlierenImage::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

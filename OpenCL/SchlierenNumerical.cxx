@@ -345,6 +345,31 @@ void Take(const std::vector<char>& b, std::size_t& at, T* v, std::size_t n)
 }
 } // namespace
 
+std::string AgreedFieldName(Parallel& parallel, const std::string& error, const std::string& mine)
+{
+  const std::string failure = parallel.Failure(error);
+  if (!failure.empty())
+    throw Error(failure);
+  if (parallel.Size() <= 1)
+    return mine;
+  // the same array on every rank that holds a piece (the first such rank's name is used)
+  std::string agreed, problem;
+  for (const std::string& other : parallel.AllGatherStrings(mine))
+  {
+    if (!other.empty() && agreed.empty())
+      agreed = other;
+    else if (!other.empty() && other != agreed)
+      problem = "NumericalSchlieren: the ranks' pieces carry different density arrays ('" + agreed +
+        "', '" + other + "'): name one in DensityArray.";
+  }
+  if (agreed.empty())
+    problem = "NumericalSchlieren needs a non-empty image (vtkImageData): every rank's piece of "
+              "the input is empty.";
+  if (!problem.empty())
+    throw Error(problem);
+  return agreed;
+}
+
 bool NumericalSchlierenOfPieces(Parallel& parallel, const ScalarGrid& piece, const int offset[3],
   const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image)
 {

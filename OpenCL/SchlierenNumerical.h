@@ -103,6 +103,14 @@ NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSetting
 bool NumericalSchlierenOfPieces(Parallel& parallel, const ScalarGrid& piece, const int offset[3],
   const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image);
 
+/**
+ * The field's name that every rank images (collective): first every rank's `error` is agreed on
+ * (Parallel::Failure; a failure throws Error, the same on every rank), then the name `mine` of
+ * the first rank whose piece is not empty ("" where this rank's is). Throws Error on every rank
+ * where two ranks' pieces carry different names or every piece is empty. With one rank: `mine`.
+ */
+std::string AgreedFieldName(Parallel& parallel, const std::string& error, const std::string& mine);
+
 /** Quirk's grey of q for the largest qmax: exp(-k clamp((q - c0 qmax) / ((c1 - c0) qmax), 0, 1)). */
 double QuirkGrey(double q, double qmax, double c0, double c1, double k);
 

@@ -84,6 +84,8 @@ RuntimeOptions RuntimeOptions::FromEnvironment()
     o.MemoryLimit = Unsigned("SCHLIEREN_MEMORY_LIMIT", v, ~std::uint64_t(0));
   if (const char* v = Value("SCHLIEREN_MPI_TIMEOUT"))
     o.MpiTimeout = Seconds("SCHLIEREN_MPI_TIMEOUT", v);
+  if (const char* v = Value("SCHLIEREN_MPI_ABORT"))
+    o.MpiAbort = Flag("SCHLIEREN_MPI_ABORT", v);
   return o;
 }
 

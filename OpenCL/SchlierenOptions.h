@@ -46,6 +46,12 @@ struct RuntimeOptions
   /// ranks to reach it before every rank there stops with an error naming the missing ranks (a
   /// rank whose upstream failed never comes); more than 0
   double MpiTimeout = 120.0;
+  /// SCHLIEREN_MPI_ABORT: 1: where a rank gives up waiting at a collective (the timeout above, or
+  /// ranks at different collectives), it says its error and aborts the MPI job (MPI_Abort), so
+  /// that a run whose other ranks are held in some other collective ends instead of spinning
+  /// there for ever; 0 (the default): the error, and the run goes on (a script can bring its
+  /// ranks in step again)
+  bool MpiAbort = false;
 
   /** The options as the environment sets them (unset variables: the defaults above). Throws
    * schlieren::Error naming the variable where a value cannot be read. */

@@ -152,6 +152,36 @@ std::vector<ReportEntry> ImageReport(const SessionImage& image)
   return out;
 }
 
+TraceClock::TraceClock(int passes)
+  : Start(std::chrono::steady_clock::now())
+  , Passes(passes)
+{
+}
+
+std::string TraceClock::Text(double progress)
+{
+  this->Reached = progress;
+  const double now =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+  if (this->StartProgress < 0 && progress >= 0.05)
+    this->StartProgress = progress;
+  const double done = progress - this->StartProgress;
+  // after about one pass's share of the tracing (at least 1 %) and a tenth of a second
+  const double share = std::max(0.01, 0.9 / std::max(1, this->Passes));
+  if (!(this->StartProgress >= 0 && done >= share && now > 0.1 && progress < 0.95))
+    return std::string();
+  std::ostringstream t;
+  const double left = now * (0.95 - progress) / done;
+  t << "SchlierenImage: " << static_cast<int>(100 * (progress - 0.05) / 0.9) << " % traced, about "
+    << (left < 10 ? std::round(left * 10) / 10 : std::round(left)) << " s left";
+  return t.str();
+}
+
+int TraceClock::Percent() const
+{
+  return static_cast<int>(100 * std::max(0.0, this->Reached - 0.05) / 0.9);
+}
+
 std::string JsonString(const std::string& s)
 {
   std::string out = "\"";

@@ -35,6 +35,7 @@
 #include "SchlierenParallel.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -153,6 +154,28 @@ struct ReportEntry
 
 /** The report of a traced image (empty where `image` holds none), in vtkSchlierenImage's order. */
 std::vector<ReportEntry> ImageReport(const SessionImage& image);
+
+/**
+ * The time left of an update, from the progress TraceSession::Update reports (its tracing runs
+ * from 0.05 to 0.95 of it), for a front end's progress text. Started at construction.
+ */
+class TraceClock
+{
+public:
+  explicit TraceClock(int passes);
+  /** The text at `progress` (called with each report): once about one pass's share of the
+   * tracing is done (at least 1 %) and a tenth of a second has passed, "SchlierenImage: 40 %
+   * traced, about 3.2 s left"; empty before and from 0.95 on. */
+  std::string Text(double progress);
+  /** The share of the tracing done at the last report, in percent. */
+  int Percent() const;
+
+private:
+  std::chrono::steady_clock::time_point Start;
+  int Passes;
+  double StartProgress = -1;
+  double Reached = 0;
+};
 
 /** JSON text of a string (quoted, escaped) and of a number (%.17g; NaN and the infinities as
  * Python's json reads them): the C interface's and the BOS side file's. */

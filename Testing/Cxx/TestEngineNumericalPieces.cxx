@@ -10,6 +10,8 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <string>
+#include <vector>
 
 using namespace schlieren;
 
@@ -245,6 +247,54 @@ int main()
     for (int r = 1; r < n; ++r)
       agreed = agreed && said[r] == "another rank (0) failed: " + said[0];
     CHECK(agreed, "NaN in one piece of 4: every rank says so (" + said[0] + ")");
+  }
+
+  // AgreedFieldName (the filter's density array under MPI, issue 47 moved it into the engine): the
+  // first non-empty piece's name on every rank; different names, every piece empty, or one rank's
+  // error: the same Error on every rank (the others' prefixed "another rank (r) failed: ")
+  {
+    auto agree = [](const std::vector<std::string>& names, const std::vector<std::string>& errors) {
+      const int n = static_cast<int>(names.size());
+      std::mutex m;
+      std::vector<std::string> said(n);
+      try
+      {
+        RunInProcessRanks(n, [&](Parallel& p) {
+          std::string out;
+          try
+          {
+            out = "name " + AgreedFieldName(p, errors[p.Rank()], names[p.Rank()]);
+          }
+          catch (const Error& e)
+          {
+            out = e.what();
+          }
+          std::lock_guard<std::mutex> lock(m);
+          said[p.Rank()] = out;
+        });
+      }
+      catch (const Error&)
+      {
+      }
+      return said;
+    };
+    const std::vector<std::string> none(3);
+    CHECK(agree({ "", "rho", "rho" }, none) == std::vector<std::string>(3, "name rho"),
+      "AgreedFieldName: an empty piece takes the others' name");
+    const std::string differ = "NumericalSchlieren: the ranks' pieces carry different density "
+                               "arrays ('density', 'rho'): name one in DensityArray.";
+    CHECK(agree({ "density", "", "rho" }, none) == std::vector<std::string>(3, differ),
+      "AgreedFieldName: two names, the one error on every rank");
+    const std::vector<std::string> empty = agree({ "", "", "" }, none);
+    CHECK(empty == std::vector<std::string>(3, empty[0]) &&
+        empty[0].find("every rank's piece of the input is empty") != std::string::npos,
+      "AgreedFieldName: every piece empty, said on every rank (" + empty[0] + ")");
+    const std::vector<std::string> failed = agree({ "rho", "rho", "rho" }, { "", "no rho here", "" });
+    CHECK(failed[1] == "no rho here" && failed[0] == "another rank (1) failed: no rho here" &&
+        failed[2] == failed[0],
+      "AgreedFieldName: rank 1's error, its own there and named as another's elsewhere");
+    CHECK(agree({ "rho" }, { "" }) == std::vector<std::string>(1, "name rho"),
+      "AgreedFieldName on one rank: its name");
   }
   return schtest::Finish();
 }

@@ -73,6 +73,13 @@ int main()
   ExpectError("SCHLIEREN_MPI_TIMEOUT=0", [] { RuntimeOptions::FromEnvironment(); },
     { "SCHLIEREN_MPI_TIMEOUT", "'0'", "seconds in (0, 1e7]" });
   unsetenv("SCHLIEREN_MPI_TIMEOUT");
+  CHECK(!RuntimeOptions::FromEnvironment().MpiAbort, "SCHLIEREN_MPI_ABORT: off unset");
+  setenv("SCHLIEREN_MPI_ABORT", "1", 1);
+  CHECK(RuntimeOptions::FromEnvironment().MpiAbort, "SCHLIEREN_MPI_ABORT=1 is read");
+  setenv("SCHLIEREN_MPI_ABORT", "yes", 1);
+  ExpectError("SCHLIEREN_MPI_ABORT=yes", [] { RuntimeOptions::FromEnvironment(); },
+    { "SCHLIEREN_MPI_ABORT", "'yes'", "0 or 1" });
+  unsetenv("SCHLIEREN_MPI_ABORT");
 
   const bool haveCL = schtest::HaveOpenCL();
   SceneParameters p;

@@ -203,3 +203,46 @@ def image_record(prefix, data):
         prefix + "_cutoff_scale": np.array(F.get("cutoff_scale", np.nan)),
         prefix + "_photons": np.array(F.get("photons", np.nan)),
     }
+
+
+def errors_of(text):
+    """(class, message) of every error in VTK's output `text` (loguru's "ERR|" lines and the
+    "ERROR: In ..." form), but the executive's "returned failure" lines."""
+    lines = text.splitlines()
+    out = []
+    for i, line in enumerate(lines):
+        if "ERR|" in line:
+            body = line.split("ERR|", 1)[1].strip()
+        elif line.startswith("ERROR: In") and i + 1 < len(lines):
+            body = lines[i + 1].strip()
+        else:
+            continue
+        if "returned failure" in body:
+            continue
+        out.append((body.split(" ", 1)[0], body.split("): ", 1)[-1]))
+    return out
+
+
+def write_mpi_volume(path):
+    """A 21^3 image with n_minus_1 and density (VTK's wavelet), written by this process alone (no
+    MPI in the writer): the file each rank of an MPI test reads, or leaves missing to fail."""
+    from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+    from vtkmodules.vtkFiltersCore import vtkArrayCalculator
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+
+    src = vtkRTAnalyticSource()
+    src.SetWholeExtent(-10, 10, -10, 10, -10, 10)
+    calcs = []
+    last = src
+    for name, fn in (("n_minus_1", "RTData*1e-7"), ("density", "1.2+RTData*1e-4")):
+        c = vtkArrayCalculator()
+        c.SetInputConnection(last.GetOutputPort())
+        c.AddScalarArrayName("RTData")
+        c.SetFunction(fn)
+        c.SetResultArrayName(name)
+        calcs.append(c)
+        last = c
+    w = vtkXMLImageDataWriter()
+    w.SetInputConnection(last.GetOutputPort())
+    w.SetFileName(path)
+    w.Write()
