@@ -27,6 +27,9 @@
 //             moves on axis and oblique (half film, one pass, as the GUI's follower traces) and the
 //             camera at rest (the pilot again, the full film): wall ms of each update split into
 //             the pilot, the trace and the rest (packing, set-up, the image)
+//   oblique   the same Gaussian on each grid of --grids seen along -z and along (1, 0.7, -0.4), Euler
+//             at --step voxels, Trilinear and Cubic, alternated --rounds times: median samples/s and
+//             rays/s, oblique over axis time per sample, errors against the closed form
 //   sources   the bench's sources (Point, Slit, Disc, Gaussian) on the Gaussian sphere: rays/s, the
 //             passes for an RMS of 1 %, a camera move
 //   raycost   the Gaussian sphere (--size) traced as a camera move traces it at steps of 0.3 to 30
@@ -791,6 +794,139 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
   std::printf("\n");
 }
 
+// The oblique case (issue 50): the weak Gaussian of the grids case on each grid of --grids, traced
+// along the axis (beam along -z) and obliquely (beam along (1, 0.7, -0.4)), Euler at a fixed step
+// (--step voxels, no octree, no Auto: the samples per unit length are the same), Trilinear and
+// Cubic (one field packed for both by PackFieldHighOrder), the two views alternated --rounds times
+// in one run: medians of samples/s and rays/s, the cost per sample over the axis view's, and the RMS and largest deflection error against the closed form (the sphere is round:
+// the closed form holds in any view's film coordinates) over the film's pixel centres within 2.2 s.
+void Oblique(const std::string& grids, const std::string& backends, int film, int passes, double step,
+  int rounds)
+{
+  const double A = 2e-4, w = 0.25;
+  const double peak = schtest::GaussianMaxDeflection(A);
+  std::printf("## Oblique views (issue 50): weak Gaussian A = 2e-4, s = 0.25 on [-1, 1]^3, Euler at %g voxel, "
+              "no octree, film %d^2, %d passes, axis (0, 0, -1) and oblique (1, 0.7, -0.4) alternated %d times "
+              "(medians)\n\n", step, film, passes, rounds);
+  std::printf("| grid | backend | reconstruction | view | samples/ray | M samples/s | M rays/s | time per sample / "
+              "axis | RMS error | max error |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  auto median = [](std::vector<double> x) {
+    std::sort(x.begin(), x.end());
+    return x.empty() ? 0.0 : x.size() % 2 ? x[x.size() / 2] : 0.5 * (x[x.size() / 2 - 1] + x[x.size() / 2]);
+  };
+  std::stringstream gs(grids);
+  std::string g;
+  while (std::getline(gs, g, ','))
+  {
+    const int n = std::atoi(g.c_str());
+    Volume v;
+    for (int a = 0; a < 3; ++a)
+    {
+      v.Dimensions[a] = n;
+      v.Origin[a] = -1;
+      v.Spacing[a] = 2.0 / (n - 1);
+    }
+    AlignedFloats packed;
+    std::vector<unsigned char> smooth;
+    try
+    {
+      std::vector<float> n1(v.NumberOfPoints());
+      SceneParameters p;
+      p.Amplitude = A;
+      p.Width = w;
+      FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
+      packed.resize(4 * n1.size());
+      smooth.resize(n1.size());
+      PackFieldHighOrder(v.Dimensions, v.Spacing, n1.data(), packed.data(), smooth.data());
+    }
+    catch (const std::exception& e)
+    {
+      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | |\n", n, e.what());
+      continue;
+    }
+    v.Field = packed.data();
+    v.Smooth = smooth.data();
+    ReleaseKeptVolume();
+    v.Stamp = NewVolumeStamp();
+    std::vector<float> ab;
+    const double pix = 2.0 / film;
+    for (int j = 0; j < film; ++j)
+      for (int i = 0; i < film; ++i)
+      {
+        const double a = -1 + (i + 0.5) * pix, b = -1 + (j + 0.5) * pix;
+        if (std::fabs(a) < 2.2 * w && std::fabs(b) < 2.2 * w)
+        {
+          ab.push_back(static_cast<float>(a));
+          ab.push_back(static_cast<float>(b));
+        }
+      }
+    std::stringstream bs(backends);
+    std::string bname;
+    while (std::getline(bs, bname, ','))
+      for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
+      {
+        TraceSettings s[2];
+        for (int view = 0; view < 2; ++view)
+        {
+          s[view].Device = ParseBackend(bname);
+          s[view].Resolution[0] = s[view].Resolution[1] = film;
+          s[view].CutoffScale = 1000;
+          s[view].UseOctree = false;
+          s[view].Method = Integrator::Euler;
+          s[view].Recon = rc;
+          s[view].StepSize = step;
+          s[view].Passes = passes;
+        }
+        s[1].ViewDirection[0] = 1;
+        s[1].ViewDirection[1] = 0.7;
+        s[1].ViewDirection[2] = -0.4;
+        std::vector<double> perSample[2], perRay[2];
+        double samplesPerRay[2] = { 0, 0 }, rms[2] = { 0, 0 }, worst[2] = { 0, 0 };
+        try
+        {
+          for (int view = 0; view < 2; ++view)
+          {
+            const std::vector<RayRecord> rec = TraceRays(v, s[view], ab);
+            double sum = 0;
+            for (std::size_t k = 0; k < rec.size(); ++k)
+            {
+              double e[2];
+              schtest::GaussianDeflection(A, w, ab[2 * k], ab[2 * k + 1], e);
+              double d = std::hypot(rec[k].DeflX - e[0], rec[k].DeflY - e[1]);
+              if (rec[k].Flags & (RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm | RayUnderresolved))
+                d = 1.0;
+              sum += d * d;
+              worst[view] = std::max(worst[view], d);
+            }
+            rms[view] = std::sqrt(sum / std::max<std::size_t>(1, rec.size()));
+            Trace(v, s[view]); // the program and the upload
+          }
+          for (int r = 0; r < rounds; ++r)
+            for (int view = 0; view < 2; ++view)
+            {
+              const TraceResult t = Trace(v, s[view]);
+              perSample[view].push_back(t.Seconds / t.Samples);
+              perRay[view].push_back(t.Seconds / t.Photons);
+              samplesPerRay[view] = t.Samples / t.Photons;
+            }
+        }
+        catch (const Error& e)
+        {
+          std::printf("| %d^3 | %s | %s | failed: %s | | | | | |\n", n, bname.c_str(), ReconstructionName(rc), e.what());
+          continue;
+        }
+        for (int view = 0; view < 2; ++view)
+          std::printf("| %d^3 | %s | %s | %s | %.1f | %.3g | %.3g | %.2f | %.3g %% | %.3g %% |\n", n, bname.c_str(),
+            ReconstructionName(rc), view ? "oblique" : "axis", samplesPerRay[view], 1e-6 / median(perSample[view]),
+            1e-6 / median(perRay[view]), median(perSample[view]) / median(perSample[0]), 100 * rms[view] / peak,
+            100 * worst[view] / peak);
+        std::fflush(stdout);
+      }
+    ReleaseKeptVolume();
+  }
+  std::printf("\n");
+}
+
 // The moves case (issue 50): per update of a TraceSession, the wall time split into the pilot
 // (from Auto's report), the trace (TraceResult::Seconds) and the rest (packing the volume, the
 // rays' set-up, the image).
@@ -1067,6 +1203,8 @@ int main(int argc, char** argv)
         AutoStep(grids, backends, film, passes);
       else if (name == "sources")
         Sources(backends, film, size);
+      else if (name == "oblique")
+        Oblique(grids, backends, film, passes, step, rounds);
       else if (name == "moves")
         Moves(grids, film);
       else if (name == "raycost")
@@ -1081,7 +1219,7 @@ int main(int argc, char** argv)
       else if (name == "bluntfin")
         ok = BluntFin(c, raw);
       else
-        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, autostep, moves, sources, raycost)\n", name.c_str());
+        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, autostep, moves, oblique, sources, raycost)\n", name.c_str());
     }
     catch (const Error& e)
     {
