@@ -411,6 +411,25 @@ void RayCost(Case& c, const std::string& backends, int film, int rounds, std::ve
   }
 }
 
+// The rays through a film of film^2 pixels over [-1, 1]^2 whose centres lie within |a|, |b| < half:
+// (a, b) pairs, where the Gaussian cases compare deflections with the closed form.
+std::vector<float> CentreRays(int film, double half)
+{
+  std::vector<float> ab;
+  const double pix = 2.0 / film;
+  for (int j = 0; j < film; ++j)
+    for (int i = 0; i < film; ++i)
+    {
+      const double a = -1 + (i + 0.5) * pix, b = -1 + (j + 0.5) * pix;
+      if (std::fabs(a) < half && std::fabs(b) < half)
+      {
+        ab.push_back(static_cast<float>(a));
+        ab.push_back(static_cast<float>(b));
+      }
+    }
+  return ab;
+}
+
 // The grids case: one row per grid, reconstruction and backend.
 void Grids(const std::string& grids, const std::string& backends, int film, int passes, double tolFrac)
 {
@@ -454,18 +473,7 @@ void Grids(const std::string& grids, const std::string& backends, int film, int 
     }
     v.Field = packed.data();
     // the rays through the film's pixel centres within |x|, |y| < 2.2 s (the film covers the box)
-    std::vector<float> ab;
-    const double pix = 2.0 / film;
-    for (int j = 0; j < film; ++j)
-      for (int i = 0; i < film; ++i)
-      {
-        const double a = -1 + (i + 0.5) * pix, b = -1 + (j + 0.5) * pix;
-        if (std::fabs(a) < 2.2 * w && std::fabs(b) < 2.2 * w)
-        {
-          ab.push_back(static_cast<float>(a));
-          ab.push_back(static_cast<float>(b));
-        }
-      }
+    const std::vector<float> ab = CentreRays(film, 2.2 * w);
     std::stringstream bs(backends);
     std::string name;
     while (std::getline(bs, name, ','))
@@ -594,18 +602,8 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
     ReleaseKeptVolume();
     v.Stamp = NewVolumeStamp();
     // the film's pixel centres within 2.2 s, and 24 x 24 rays for the sweep
-    std::vector<float> ab, sweepAb;
-    const double pix = 2.0 / film;
-    for (int j = 0; j < film; ++j)
-      for (int i = 0; i < film; ++i)
-      {
-        const double a = -1 + (i + 0.5) * pix, b = -1 + (j + 0.5) * pix;
-        if (std::fabs(a) < 2.2 * w && std::fabs(b) < 2.2 * w)
-        {
-          ab.push_back(static_cast<float>(a));
-          ab.push_back(static_cast<float>(b));
-        }
-      }
+    const std::vector<float> ab = CentreRays(film, 2.2 * w);
+    std::vector<float> sweepAb;
     for (int j = 0; j < 24; ++j)
       for (int i = 0; i < 24; ++i)
       {
@@ -848,18 +846,7 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
     v.Smooth = smooth.data();
     ReleaseKeptVolume();
     v.Stamp = NewVolumeStamp();
-    std::vector<float> ab;
-    const double pix = 2.0 / film;
-    for (int j = 0; j < film; ++j)
-      for (int i = 0; i < film; ++i)
-      {
-        const double a = -1 + (i + 0.5) * pix, b = -1 + (j + 0.5) * pix;
-        if (std::fabs(a) < 2.2 * w && std::fabs(b) < 2.2 * w)
-        {
-          ab.push_back(static_cast<float>(a));
-          ab.push_back(static_cast<float>(b));
-        }
-      }
+    const std::vector<float> ab = CentreRays(film, 2.2 * w);
     std::stringstream bs(backends);
     std::string bname;
     while (std::getline(bs, bname, ','))
