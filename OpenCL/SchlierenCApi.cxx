@@ -815,23 +815,41 @@ int schlieren_session_set_volume(schlieren_session* handle, const int dims[3],
   });
 }
 
-int schlieren_session_trace(schlieren_session* handle)
+namespace
 {
-  Held h(handle, "schlieren_session_trace");
+int TraceWith(schlieren_session* handle, const char* name,
+  schlieren_progress_callback callback, void* user)
+{
+  Held h(handle, name);
   if (!h)
     return 1;
   schlieren_session* s = h.get();
   s->Image = schlieren::SessionImage();
   s->HasImage = false;
+  bool stopped = false;
+  int percent = 0;
   const int rc = Guard(s->Error, [&] {
     if (!s->HasVolume)
       throw schlieren::Error("No volume: call schlieren_session_set_volume before tracing.");
     // the octree levels take part only with UseOctree (the filter reads them only then): a
     // change of UseOctree is a new volume for the session
     s->Piece.Version = s->Version * 2 + (s->Settings.UseOctree ? 1 : 0);
-    s->Session.Update(schlieren::SerialParallel(), s->Piece, s->Settings, s->Image);
+    // the C++ filter's TraceProgress: its text and, on a stop, its message
+    schlieren::TraceClock clock(s->Settings.Passes);
+    schlieren::ProgressFunction progress;
+    if (callback)
+      progress = [&](double fraction) {
+        const std::string text = clock.Text(fraction);
+        // once stopped, stopped: the engine asks again at points where it cannot stop
+        stopped = stopped || callback(fraction, text.c_str(), user) == 0;
+        percent = clock.Percent();
+        return !stopped;
+      };
+    s->Session.Update(schlieren::SerialParallel(), s->Piece, s->Settings, s->Image, progress);
     s->HasImage = s->Image.HasImage;
   });
+  if (rc != 0 && stopped)
+    s->Error = "aborted at " + std::to_string(percent) + " % of the trace: no image yet";
   try
   {
     MakeReport(s, s->Error);
@@ -841,6 +859,18 @@ int schlieren_session_trace(schlieren_session* handle)
     s->Report = "{\"field_data\": {}, \"notes\": [], \"error\": \"Out of memory.\"}";
   }
   return rc;
+}
+} // namespace
+
+int schlieren_session_trace(schlieren_session* handle)
+{
+  return TraceWith(handle, "schlieren_session_trace", nullptr, nullptr);
+}
+
+int schlieren_session_trace_progress(
+  schlieren_session* handle, schlieren_progress_callback progress, void* user)
+{
+  return TraceWith(handle, "schlieren_session_trace_progress", progress, user);
 }
 
 int schlieren_session_write_bos_pair(schlieren_session* handle, const char* folder, int bits,

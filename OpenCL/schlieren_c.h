@@ -114,6 +114,24 @@ SCHLIEREN_C_API int schlieren_session_set_volume(schlieren_session* s, const int
 SCHLIEREN_C_API int schlieren_session_trace(schlieren_session* s);
 
 /**
+ * A trace's progress report: `fraction` of the update done (0 to 1, as the C++ filter's
+ * UpdateProgress gets it), `text` the C++ filter's progress text ("SchlierenImage: 40 % traced,
+ * about 3.2 s left"; "" until a pass's share is done), `user` as given. Called between chunks of
+ * rays (each a fraction of a second), on the thread that traces, while the session is held: it
+ * must not call into the same session (that call would wait for the trace). Returns non-zero to go
+ * on, 0 to stop the trace (it is not called again in that trace).
+ */
+typedef int (*schlieren_progress_callback)(double fraction, const char* text, void* user);
+/**
+ * schlieren_session_trace with a progress report and a way out (`progress` NULL: the same as
+ * schlieren_session_trace); the image is bit for bit the one schlieren_session_trace makes. A
+ * trace the callback stopped fails with "aborted at P % of the trace: no image yet" (the report's
+ * error too): no image, and the kept passes are dropped (the next trace traces all its passes).
+ */
+SCHLIEREN_C_API int schlieren_session_trace_progress(
+  schlieren_session* s, schlieren_progress_callback progress, void* user);
+
+/**
  * An image array of the last trace: "intensity" (1 component), "deflection" (2, radians),
  * "rgb" (3), "phase" (1), "bos_displacement" (2), "error_estimate" (1), "blocked" (1). NULL where
  * the last trace did not make it. `components` and `pixels` (may be NULL) get its shape.

@@ -102,6 +102,9 @@ _i64 = ctypes.c_int64
 _sig("schlieren_session_set_volume", ctypes.c_int, ctypes.c_void_p, _c_int3, _c_double3,
      _c_double3, _f32p, _i64, _u8p, _i64, _u8p, _i64, ctypes.c_double, ctypes.c_int)
 _sig("schlieren_session_trace", ctypes.c_int, ctypes.c_void_p)
+_progress_fn = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_void_p)
+_sig("schlieren_session_trace_progress", ctypes.c_int, ctypes.c_void_p, _progress_fn,
+     ctypes.c_void_p)
 _sig("schlieren_session_array", _f32p, ctypes.c_void_p, ctypes.c_char_p,
      ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_session_film", ctypes.c_int, ctypes.c_void_p, ctypes.c_int * 2,
@@ -754,10 +757,31 @@ class Session:
                                              float(level_tolerance), int(max_level)):
             raise self._error()
 
-    def trace(self):
-        """Traces; returns the report (dict: field_data, notes, error). Raises EngineError."""
+    def trace(self, progress=None):
+        """Traces; returns the report (dict: field_data, notes, error). Raises EngineError.
+
+        progress(fraction, text) -> bool, where given, is called between chunks of rays (each a
+        fraction of a second) with the share of the update done and the C++ filter's progress
+        text ("" at first); a false return stops the trace: EngineError "aborted at P % of the
+        trace: no image yet" (the image is bit for bit the same with or without it). It must not
+        call into this session. An exception it raises stops the trace and is raised here."""
         s = self._live("trace")
-        rc = _lib.schlieren_session_trace(s)
+        if progress is None:
+            rc = _lib.schlieren_session_trace(s)
+        else:
+            raised = []
+
+            def report_progress(fraction, text, _user):
+                if raised:
+                    return 0
+                try:
+                    return 1 if progress(fraction, _text(text)) else 0
+                except BaseException as e:  # noqa: BLE001 -- raised below, after the trace
+                    raised.append(e)
+                    return 0
+            rc = _lib.schlieren_session_trace_progress(s, _progress_fn(report_progress), None)
+            if raised:
+                raise raised[0]
         report = json.loads(_text(_lib.schlieren_session_report(s)))
         if rc:
             err = self._error()

@@ -1307,10 +1307,10 @@ class SchlierenImage(_Properties):
                 object.__setattr__(self, "_volume_key", key)
             for name, value in self._values.items():
                 s.set(name, value)
-            report = s.trace()
+            report = s.trace(self._progress)
         except EngineError as e:
             object.__setattr__(self, "LastReport", getattr(e, "report", None))
-            return self._fail(str(e))
+            return self._stopped(out, str(e))
         object.__setattr__(self, "LastReport", report)
         object.__setattr__(self, "LastError", "")
         for note in report["notes"]:
@@ -1340,7 +1340,35 @@ class SchlierenImage(_Properties):
                     arr.SetComponentName(i, c)
         for k, v in report["field_data"].items():
             (_field_string if isinstance(v, str) else _field_number)(out, k, v)
+        shown = vtkImageData()
+        shown.ShallowCopy(out)
+        object.__setattr__(self, "_shown", shown)
+        self.UpdateProgress(1.0)
         return 1
+
+    def _progress(self, fraction, text):
+        """The trace's progress (the engine's text, as the C++ filter shows it); False once the
+        pipeline asks to abort (GetAbortExecute: ParaView's abort, an observer's SetAbortExecute)."""
+        if text:
+            self.SetProgressText(text)
+        self.UpdateProgress(fraction)
+        return not self.GetAbortExecute()
+
+    def _stopped(self, out, message):
+        """A failed trace as the C++ filter ends it: where the pipeline aborted it and an earlier
+        image exists, that image stays, with a warning (1); else the error (0). The abort is
+        spent: the next update traces."""
+        aborted = self.GetAbortExecute()
+        if aborted:
+            self.SetAbortExecute(0)
+        self.SetProgressText(None)
+        shown = self.__dict__.get("_shown")
+        if aborted and shown is not None and message.endswith(": no image yet"):
+            out.ShallowCopy(shown)
+            self._warn(message[:-len("no image yet")] + "the image shown is the previous one; "
+                       "the next update traces all its passes again")
+            return 1
+        return self._fail(message)
 
     def WriteBOSPair(self, folder, bits=8, format="png", prefix="bos"):
         """The last image (Cutoff BOS) as an image pair for PIV codes, OpenPIV and others: the

@@ -307,6 +307,73 @@ static void threads_case(void)
   free(n1);
 }
 
+/* progress and stop (schlieren_session_trace_progress): a callback that stops at its first call
+ * ends Passes 1000000 at once with the message and no image; one that goes on changes no bit of
+ * the image; NULL is schlieren_session_trace; a freed handle is refused */
+struct progress_log
+{
+  int calls, stop_at, ordered;
+  double last;
+};
+
+static int progress_cb(double fraction, const char* text, void* user)
+{
+  struct progress_log* log = (struct progress_log*)user;
+  log->ordered = log->ordered && text != NULL && fraction >= log->last && fraction <= 1;
+  log->last = fraction;
+  return ++log->calls != log->stop_at;
+}
+
+static void progress_case(void)
+{
+  const int dims[3] = { 17, 17, 17 };
+  const double o[3] = { -1, -1, -1 }, h[3] = { 0.125, 0.125, 0.125 };
+  float* n1 = malloc(17 * 17 * 17 * sizeof(float));
+  float* plain = NULL;
+  schlieren_session* s = schlieren_session_new();
+  struct progress_log stop = { 0, 1, 1, 0 }, go = { 0, -1, 1, 0 };
+  int64_t n = 0, m = 0;
+  const float* a;
+  int rc;
+  schlieren_fill_scene("Scene=GaussianSphere", dims, o, h, 17 * 17 * 17, n1, NULL, NULL, NULL);
+  schlieren_session_set(s, "Resolution", "24 24");
+  schlieren_session_set(s, "Backend", "CPU");
+  schlieren_session_set(s, "Passes", "1000000");
+  schlieren_session_set_volume(s, dims, o, h, n1, 17 * 17 * 17, NULL, 0, NULL, 0, -1, 7);
+  rc = schlieren_session_trace_progress(s, progress_cb, &stop);
+  EXPECT(rc != 0 && stop.calls == 1 && has(schlieren_session_error(s), "aborted at 0 % of the trace") &&
+      !schlieren_session_array(s, "intensity", NULL, NULL) &&
+      has(schlieren_session_report(s), "aborted at"),
+    "fixed: Passes 1000000 stopped at the first progress call, no image", schlieren_session_error(s));
+  schlieren_session_set(s, "Passes", "3");
+  rc = schlieren_session_trace(s);
+  a = schlieren_session_array(s, "intensity", NULL, &n);
+  if (rc == 0 && a && n > 0)
+  {
+    plain = malloc((size_t)n * sizeof(float));
+    memcpy(plain, a, (size_t)n * sizeof(float));
+  }
+  /* the same volume again: traced from the start (a new volume), with the callback */
+  schlieren_session_set_volume(s, dims, o, h, n1, 17 * 17 * 17, NULL, 0, NULL, 0, -1, 7);
+  rc = schlieren_session_trace_progress(s, progress_cb, &go);
+  a = schlieren_session_array(s, "intensity", NULL, &m);
+  EXPECT(rc == 0 && plain && a && m == n && memcmp(a, plain, (size_t)n * sizeof(float)) == 0 &&
+      go.calls > 3 && go.ordered,
+    "fixed: a callback that goes on changes no bit of the image (3 passes), fractions in order",
+    schlieren_session_error(s));
+  schlieren_session_set_volume(s, dims, o, h, n1, 17 * 17 * 17, NULL, 0, NULL, 0, -1, 7);
+  rc = schlieren_session_trace_progress(s, NULL, NULL);
+  a = schlieren_session_array(s, "intensity", NULL, &m);
+  EXPECT(rc == 0 && plain && a && m == n && memcmp(a, plain, (size_t)n * sizeof(float)) == 0,
+    "fixed: a NULL callback is schlieren_session_trace", schlieren_session_error(s));
+  schlieren_session_free(s);
+  rc = schlieren_session_trace_progress(s, progress_cb, &go);
+  EXPECT(rc != 0 && has(schlieren_last_error(), "schlieren_session_trace_progress"),
+    "fixed: schlieren_session_trace_progress refuses a freed handle", schlieren_last_error());
+  free(plain);
+  free(n1);
+}
+
 /* ---- the random part ---- */
 static const char* const property_names[] = { "ViewDirection", "ViewUp", "Resolution", "Framing",
   "Passes", "StepSize", "Integrator", "Reconstruction", "Tolerance", "KeepInvariant",
@@ -1137,6 +1204,7 @@ int main(int argc, char** argv)
     state = 1;
   fixed_cases();
   threads_case();
+  progress_case(); /* no random number drawn: the random cases stay those of earlier runs */
   for (i = 0; i < POOL; ++i)
     pool[i] = schlieren_session_new();
   for (k = 0; k < cases; ++k)

@@ -166,6 +166,78 @@ for name, (scene, props) in cases.NUMERICAL.items():
     mine_fd = cases.field_data_list(out.GetFieldData())
     check(mine_fd == json.loads(str(ref["field_data"])),
           "%s: the field data equals the C++ filter's (%s)" % (name, mine_fd))
+# a trace the pipeline stops (issue 47, "never a hang"): Passes 1000000 (250 s before) with an
+# observer that asks to abort at the first progress event ends at once with the C++ filter's
+# message and no image; with an earlier image that image stays, with the C++ filter's warning;
+# the next update traces, and its image is bit for bit a fresh filter's (python.python_plugin's
+# TIMEOUT guards the hang)
+from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+
+def stop_at_first_progress(alg, proxy):
+    """Updates `proxy` with an observer on `alg` that asks to abort at the first progress event;
+    returns (the progress values seen, the output, the warnings and errors written). The output
+    is the algorithm's (a Fetch would update a failed request again, without the observer)."""
+    seen = []
+
+    def abort(obj, _event):
+        if not seen:
+            obj.SetAbortExecute(1)
+        seen.append(obj.GetProgress())
+    tag = alg.AddObserver("ProgressEvent", abort)
+    said, window = vtkStringOutputWindow(), vtkOutputWindow.GetInstance()
+    vtkOutputWindow.SetInstance(said)
+    try:
+        proxy.UpdatePipeline()
+    finally:
+        vtkOutputWindow.SetInstance(window)
+        alg.RemoveObserver(tag)
+    out = vtkImageData()
+    out.ShallowCopy(alg.GetOutputDataObject(0))
+    return seen, out, said.GetOutput()
+
+
+def intensity(out):
+    a = out.GetPointData().GetArray("intensity")
+    return numpy_support.vtk_to_numpy(a).copy() if a is not None else None
+
+
+def passes(out):
+    a = out.GetFieldData().GetArray("passes")
+    return a.GetValue(0) if a is not None else None
+
+
+small = ns["RefractiveScene"](**cases.SCENES["gaussian_sphere"])
+stopped = ns["SchlierenImage"](Input=small, Backend="CPU", Resolution=[48, 40], Passes=1000000)
+alg = stopped.GetClientSideObject()
+seen, out, said = stop_at_first_progress(alg, stopped)
+check(len(seen) >= 1 and alg.LastError.startswith("aborted at 0 % of the trace: no image yet") and
+      out.GetNumberOfPoints() == 0 and "no image yet" in said,
+      "Passes 1000000, aborted at the first progress event: '%s', %d points out, progress seen %s"
+      % (alg.LastError, out.GetNumberOfPoints(), seen[:4]))
+stopped.Passes = 3
+stopped.UpdatePipeline()
+first = alg.GetOutputDataObject(0)
+fresh = ns["SchlierenImage"](Input=small, Backend="CPU", Resolution=[48, 40], Passes=3)
+fresh.UpdatePipeline()
+want = intensity(servermanager.Fetch(fresh))
+got = intensity(first)
+check(got is not None and want is not None and np.array_equal(got.view(np.uint32),
+                                                              want.view(np.uint32)) and
+      passes(first) == 3 and alg.LastError == "",
+      "the update after the abort traces: Passes 3 bit for bit a fresh filter's (passes %s)"
+      % passes(first))
+stopped.Passes = 1000000
+seen, out, said = stop_at_first_progress(alg, stopped)
+got = intensity(out)
+check(got is not None and np.array_equal(got.view(np.uint32), want.view(np.uint32)) and
+      passes(out) == 3 and "the image shown is the previous one" in said and alg.LastError == "",
+      "aborted with an earlier image: that image (passes %s) stays, with the warning '%s'"
+      % (passes(out), said.strip()[-120:]))
+for q in (fresh, stopped, small):
+    Delete(q)
+
 # the two packages in one ParaView Python session: the C++ plugin's compiled classes
 # (schlieren_vtk, from the build's dist-packages) and the Python front end (schlieren), neither
 # shadowing the other; the front end hands out the compiled classes under their old name
