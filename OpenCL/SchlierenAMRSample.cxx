@@ -288,8 +288,10 @@ AMRSampled AMRResample(Parallel& parallel, const std::vector<AMRBlock>& blocks, 
       lo[a] = o[a] + ext[2 * a] * h[a];
       const double hi = o[a] + ext[2 * a + 1] * h[a];
       const double eps = 1e-9 * std::max(std::fabs(H[a]), std::fabs(hi - lo[a]));
-      first[a] = std::max(0, static_cast<int>(std::ceil((lo[a] - eps - O[a]) / H[a])));
-      last[a] = std::min(D[a] - 1, static_cast<int>(std::floor((hi + eps - O[a]) / H[a])));
+      // (clamped in double first: a box far off the grid must not overflow an int)
+      auto index = [&](double i) { return static_cast<int>(std::min(std::max(i, -1.0), double(D[a]))); };
+      first[a] = std::max(0, index(std::ceil((lo[a] - eps - O[a]) / H[a])));
+      last[a] = std::min(D[a] - 1, index(std::floor((hi + eps - O[a]) / H[a])));
       if (D[a] == 1)
       {
         first[a] = last[a] = (O[a] >= lo[a] - eps && O[a] <= hi + eps) ? 0 : 1;

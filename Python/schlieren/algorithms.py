@@ -21,7 +21,7 @@ import numpy as np
 from vtkmodules.util import numpy_support
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkDataObject, vtkDataSet,
-                                           vtkImageData)
+                                           vtkImageData, vtkOverlappingAMR)
 from vtkmodules.vtkCommonExecutionModel import vtkDemandDrivenPipeline as DDP
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
 
@@ -224,7 +224,10 @@ def _first_point(image):
 
 
 def _bounds(data):
-    """The bounds of a data set or of a composite data set's blocks."""
+    """The bounds of a data set or of a composite data set's blocks (an AMR's: those of the boxes
+    it holds, as the C++ filter's, not its metadata's)."""
+    if isinstance(data, vtkOverlappingAMR):
+        return _leaf_bounds(data) or [0.0, -1.0] * 3
     if isinstance(data, vtkCompositeDataSet):
         b = [0.0] * 6
         data.GetBounds(b)
@@ -486,6 +489,92 @@ def _image_input(data, dims=None, bounds=None):
         numpy_support.vtk_to_numpy(m)[:] = mask
         out.GetPointData().AddArray(m)
     return out, (None if mask.all() else mask)
+
+
+def _amr_block_list(amr, names=()):
+    """The boxes an overlapping AMR holds as the engine takes them (schlieren_amr_*), as the C++
+    filter reads them (Filters/SchlierenAMR.cxx): dicts of level, extent, origin, spacing and
+    arrays {name: (values, is_cell)}, for each of `names` the box's point array of that name, else
+    its cell array (float32 and float64 as they are, any other type as float64)."""
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    new = hasattr(amr, "GetDataSetAsImageData")  # VTK 9.6 renamed them
+    count = amr.GetNumberOfBlocks if new else amr.GetNumberOfDataSets
+    get = amr.GetDataSetAsImageData if new else amr.GetDataSet
+    blocks = []
+    for level in range(amr.GetNumberOfLevels()):
+        for b in range(count(level)):
+            g = get(level, b)
+            if g is None:
+                continue
+            extent = list(g.GetExtent())
+            if g.GetNumberOfPoints() == 0:
+                extent[1] = extent[0] - 1  # nothing to sample
+            arrays = {}
+            for name in names:
+                a = g.GetPointData().GetArray(name)
+                cells = a is None
+                if cells:
+                    a = g.GetCellData().GetArray(name)
+                if a is None:
+                    continue
+                if a.GetDataType() not in (10, 11):  # VTK_FLOAT, VTK_DOUBLE
+                    d = vtkDoubleArray()
+                    d.DeepCopy(a)
+                    a = d
+                arrays[name] = (numpy_support.vtk_to_numpy(a), cells)
+            blocks.append(dict(level=level, extent=extent, origin=g.GetOrigin(),
+                               spacing=g.GetSpacing(), arrays=arrays))
+    return blocks
+
+
+def _amr_grid(amr, box, bytes_per_point):
+    """The engine's automatic grid of an AMR over `box` (schlieren_amr_grid: the finest loaded
+    level's spacing, capped by memory), as the C++ filter's."""
+    return _engine.amr_grid(amr.GetNumberOfLevels(), _amr_block_list(amr), box, bytes_per_point)
+
+
+def _amr_input(amr, dims, box):
+    """An overlapping AMR sampled onto `dims` points over `box` by the engine
+    (schlieren_amr_sample), as the C++ RefractiveIndex samples it: (image with every array any box
+    holds as float32 and vtkValidPointMask where some point lies outside every box, valid mask or
+    None where all are valid, notes). The boxes of a level that overlap are refused first, with
+    the C++ filter's message."""
+    boxes = []
+    new = hasattr(amr, "GetDataSetAsImageData")
+    for level in range(amr.GetNumberOfLevels()):
+        for b in range(amr.GetNumberOfBlocks(level) if new else amr.GetNumberOfDataSets(level)):
+            lo, hi = [0] * 3, [0] * 3
+            amr.GetAMRBox(level, b).GetDimensions(lo, hi)  # its corners
+            boxes.append((level, lo, hi))
+    _engine.amr_overlap(boxes)
+    names = []
+    for leaf in _leaves(amr):
+        for attributes in (leaf.GetPointData(), leaf.GetCellData()):
+            for i in range(attributes.GetNumberOfArrays()):
+                n = attributes.GetArrayName(i)
+                if n and n not in names and n not in ("vtkGhostType", "vtkValidPointMask"):
+                    names.append(n)
+    d = [int(x) for x in dims]
+    origin = [box[0], box[2], box[4]]
+    spacing = [(box[2 * a + 1] - box[2 * a]) / (d[a] - 1) if d[a] > 1 else 1.0 for a in range(3)]
+    image = vtkImageData()
+    image.SetDimensions(*d)
+    image.SetOrigin(*origin)
+    image.SetSpacing(*spacing)
+    # the C++ filter's structure: its spacing and origin as it sets them, read back
+    mask, sampled, notes = _engine.amr_sample(amr.GetNumberOfLevels(), _amr_block_list(amr, names),
+                                              names, d, image.GetOrigin(), image.GetSpacing())
+    for name in names:
+        if name in sampled:
+            _add(image, name, sampled[name])
+    if not mask.all():
+        from vtkmodules.vtkCommonCore import vtkCharArray
+        m = vtkCharArray()
+        m.SetName("vtkValidPointMask")
+        m.SetNumberOfTuples(mask.size)
+        numpy_support.vtk_to_numpy(m)[:] = mask
+        image.GetPointData().AddArray(m)
+    return image, (None if mask.all() else mask), notes
 
 
 def _image_validity(image):
@@ -862,6 +951,18 @@ class RefractiveIndex(_Properties):
         object.__setattr__(self, "_read", [k.split(":", 1)[1] for k in arrays])
         return n1, warnings
 
+    def _note(self, note):
+        """A note for the user, said once for the settings it was said for (the C++ filter's
+        SayNote: ParaView's Output Messages as plain text)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        said = self.__dict__.get("_notes_said")
+        if said is None or said[0] != self.GetMTime():
+            said = (self.GetMTime(), set())
+            object.__setattr__(self, "_notes_said", said)
+        if note not in said[1]:
+            said[1].add(note)
+            vtkOutputWindow.GetInstance().DisplayText(note + "\n")
+
     def _sampling_bounds(self):
         """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
         None (the input's bounds)."""
@@ -957,7 +1058,13 @@ class RefractiveIndex(_Properties):
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
         automatic = min(dims) <= 0
-        if automatic:
+        if automatic and isinstance(data, vtkOverlappingAMR) and data.GetNumberOfPoints():
+            # an AMR: its finest level's spacing, capped by memory (the C++ filter's bytes: the
+            # mask, n - 1 and grad n, a composite's few double arrays, the engine's share)
+            grid = _amr_grid(data, _sampling_box(data, self._sampling_bounds()),
+                             1.0 + 16.0 + 64.0 + 21.0)
+            dims = grid["dims"]
+        elif automatic:
             # over the box the grid spans (the bounds pulled in by a hair), as the C++ filter
             dims = _engine.automatic_dimensions(_sampling_box(data, self._sampling_bounds()),
                                                 int(self.AutomaticDimension))
@@ -990,10 +1097,26 @@ class RefractiveIndex(_Properties):
                                   % data.GetClassName())
             symmetric = self.Symmetry != "None"
             resampled = symmetric or not isinstance(data, vtkImageData)
+            notes, amr_numbers = [], []
             if symmetric:
                 image, valid, plan = self._symmetric_input(data)
                 for w in plan["warnings"]:
                     self._warn(w)
+            elif isinstance(data, vtkOverlappingAMR):
+                # the engine's AMR sampler (the C++ filter's), and its numbers and notes
+                box = _sampling_box(data, self._sampling_bounds())
+                dims = self._dims(data)
+                grid = _amr_grid(data, box, 1.0 + 16.0 + 64.0 + 21.0)
+                automatic = min(int(v) for v in self.SamplingDimensions) <= 0
+                image, valid, notes = _amr_input(data, dims, box)
+                notes = ([grid["note"]] if automatic else []) + notes
+                amr_numbers = [("amr_levels", data.GetNumberOfLevels()),
+                               ("amr_finest_level", grid["finest_level"]),
+                               ("amr_finest_spacing", grid["finest_spacing"][0]),
+                               ("sampling_spacing", image.GetSpacing()[0]),
+                               ("sampling_capped", 1 if automatic and grid["capped"] else 0)]
+                for note in notes:
+                    self._note(note)
             else:
                 image, valid = _image_input(data, None if not resampled else self._dims(data),
                                             self._sampling_bounds())
@@ -1074,6 +1197,14 @@ class RefractiveIndex(_Properties):
         invalid = 0 if valid is None else int(np.count_nonzero(valid == 0))
         _field_number(out, "valid_point_fraction", 1.0 - invalid / n1.size if n1.size else 0.0)
         _field_number(out, "solid_points", 0 if solid is None else int(solid.sum()))
+        if notes:
+            strings = vtkStringArray()
+            strings.SetName("index_notes")
+            for n in notes:
+                strings.InsertNextValue(n)
+            out.GetFieldData().AddArray(strings)
+        for name, value in amr_numbers:
+            _field_number(out, name, value)
         for w in warnings:
             self._warn(w)
         return 1
