@@ -294,7 +294,10 @@ AMRSampled AMRResample(Parallel& parallel, const std::vector<AMRBlock>& blocks, 
       last[a] = std::min(D[a] - 1, index(std::floor((hi + eps - O[a]) / H[a])));
       if (D[a] == 1)
       {
-        first[a] = last[a] = (O[a] >= lo[a] - eps && O[a] <= hi + eps) ? 0 : 1;
+        // the grid's one plane: covered or not (not: first past last; the filter's code before
+        // the engine set both to 1 there and wrote one plane past the grid)
+        first[a] = (O[a] >= lo[a] - eps && O[a] <= hi + eps) ? 0 : 1;
+        last[a] = 0;
       }
       empty = empty || last[a] < first[a];
       for (int i = first[a]; i <= last[a] && !empty; ++i)

@@ -217,6 +217,99 @@ int main(void)
       "check_property: Tolerance 1e-6 taken, a property without a listed range passes (%s)",
       schlieren_last_error());
   }
+  {
+    /* AMR: level 0 over [0, 4]^3 (spacing 1) holds f = x, level 1 over [1, 3]^3 (spacing 0.5)
+     * holds x + 10: on a grid of spacing 0.5 every point in the patch takes level 1's value, every
+     * other one level 0's trilinear interpolant (exact for a linear field) */
+    const int levels[2] = { 0, 1 };
+    const int extents[12] = { 0, 4, 0, 4, 0, 4, 2, 6, 2, 6, 2, 6 };
+    const double origins[6] = { 0, 0, 0, 0, 0, 0 }, spacings[6] = { 1, 1, 1, 0.5, 0.5, 0.5 };
+    const double bounds[6] = { 0, 4, 0, 4, 0, 4 };
+    const int gd[3] = { 9, 9, 9 };
+    const double go[3] = { 0, 0, 0 }, gh[3] = { 0.5, 0.5, 0.5 };
+    float coarse[125], fine[125];
+    const char* names[1] = { "f" };
+    const int is_cell[2] = { 0, 0 }, comps[2] = { 1, 1 }, bytes[2] = { 4, 4 };
+    const void* inputs[2];
+    int64_t lengths[2] = { 125, 125 };
+    int out_components[1] = { 0 }, gdims[3] = { 0, 0, 0 }, finest_level = -1, capped = -1;
+    double finest[3] = { 0, 0, 0 };
+    const float* outputs[1] = { NULL };
+    const unsigned char* valid = NULL;
+    const char* report = NULL;
+    const char* note = NULL;
+    const int overlapping[12] = { 0, 0, 0, 3, 3, 3, 2, 2, 2, 5, 5, 5 };
+    const int touching[12] = { 0, 0, 0, 3, 3, 3, 4, 0, 0, 7, 3, 3 };
+    const int two_on_zero[2] = { 0, 0 };
+    int x, y, z, right = 1, all_valid = 1;
+    for (z = 0; z < 5; ++z)
+      for (y = 0; y < 5; ++y)
+        for (x = 0; x < 5; ++x)
+        {
+          coarse[(z * 5 + y) * 5 + x] = (float)x;
+          fine[(z * 5 + y) * 5 + x] = (float)(1.0 + 0.5 * x + 10.0);
+        }
+    inputs[0] = coarse;
+    inputs[1] = fine;
+    CHECK(schlieren_amr_grid(2, 2, levels, extents, origins, spacings, bounds, 100.0, gdims, finest,
+            &finest_level, &capped, &note) == 0 &&
+          gdims[0] == 9 && gdims[2] == 9 && finest[0] == 0.5 && finest_level == 1 && capped == 0 &&
+          strstr(note, "level 1 of 2, spacing 0.5): 9 x 9 x 9 points") != NULL,
+      "amr_grid: the finest level's spacing, 9 x 9 x 9 points (%s%s)", note ? note : "",
+      schlieren_last_error());
+    CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+            bytes, inputs, lengths, gd, go, gh, out_components, outputs, &valid, &report) == 0 &&
+          out_components[0] == 1 && outputs[0] != NULL && valid != NULL,
+      "amr_sample: two levels onto 9 x 9 x 9 points (%s)", schlieren_last_error());
+    for (z = 0; z < 9 && outputs[0] && valid; ++z)
+      for (y = 0; y < 9; ++y)
+        for (x = 0; x < 9; ++x)
+        {
+          const int in = x >= 2 && x <= 6 && y >= 2 && y <= 6 && z >= 2 && z <= 6;
+          const float want = (float)(0.5 * x + (in ? 10.0 : 0.0));
+          right = right && outputs[0][(z * 9 + y) * 9 + x] == want;
+          all_valid = all_valid && valid[(z * 9 + y) * 9 + x] == 1;
+        }
+    CHECK(right && all_valid && report && strstr(report, "points per level: L0 604, L1 125") != NULL,
+      "amr_sample: the patch's 125 points from level 1 (x + 10), the other 604 from level 0 (x), "
+      "exactly; every point valid (%s)", report ? report : "");
+    {
+      /* a grid of one plane: z = 2 crosses the patch, z = 10 no box (every point invalid, nothing
+       * written past the plane: the filter's code before the engine wrote one plane past it) */
+      const int flat[3] = { 9, 9, 1 };
+      const double at2[3] = { 0, 0, 2 }, at10[3] = { 0, 0, 10 };
+      int inside = 0, none = 0;
+      CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+              bytes, inputs, lengths, flat, at2, gh, out_components, outputs, &valid, &report) == 0 &&
+            outputs[0] && outputs[0][4 * 9 + 4] == 12.0f && outputs[0][0] == 0.0f && valid[80] == 1,
+        "amr_sample: the plane z = 2 takes the patch's x + 10 at (2, 2) and level 0 at (0, 0) (%s)",
+        schlieren_last_error());
+      CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+              bytes, inputs, lengths, flat, at10, gh, out_components, outputs, &valid, &report) == 0,
+        "amr_sample: the plane z = 10, off every box (%s)", schlieren_last_error());
+      for (x = 0; x < 81 && valid; ++x)
+        none += valid[x] == 0;
+      inside = out_components[0] == 0 && outputs[0] == NULL;
+      CHECK(none == 81 && inside, "amr_sample: off every box: the 81 points invalid, no values "
+        "(no box holds 'f' there: 0 components) (%d invalid)", none);
+    }
+    lengths[1] = 124;
+    CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+            bytes, inputs, lengths, gd, go, gh, out_components, outputs, &valid, &report) != 0 &&
+          strstr(schlieren_last_error(), "block 1's array 'f' holds 124 values") != NULL,
+      "amr_sample: a short array refused by block and name: %s", schlieren_last_error());
+    CHECK(schlieren_amr_sample(1, 2, levels, extents, origins, spacings, 0, NULL, NULL, NULL, NULL,
+            NULL, NULL, gd, go, gh, NULL, NULL, &valid, &report) != 0 &&
+          strstr(schlieren_last_error(), "block 1 is on level 1: the levels are 0 to 0") != NULL,
+      "amr_sample: a block past the levels listed refused: %s", schlieren_last_error());
+    CHECK(schlieren_amr_overlap(2, two_on_zero, overlapping) != 0 &&
+          strstr(schlieren_last_error(), "level 0 has boxes that overlap: boxes 0 and 1 share 8 cells "
+                                         "(cells i 2-3 j 2-3 k 2-3)") != NULL,
+      "amr_overlap: two boxes sharing 8 cells refused with the C++ filter's message: %s",
+      schlieren_last_error());
+    CHECK(schlieren_amr_overlap(2, two_on_zero, touching) == 0,
+      "amr_overlap: boxes that share a face taken (%s)", schlieren_last_error());
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }
