@@ -34,7 +34,11 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      origin: AxisFromWedge finds it) give the C++ filter's grid, n - 1, grad n and field data bit
      for bit, and SchlierenImage on each the C++ filter's film bit for bit; the wedge with
      Symmetry None warns as the C++ filter does; the C++ filter's refusals (Span 0, a 3D mesh,
-     SymmetryAxis normal to the plane) are the Python one's, word for word.
+     SymmetryAxis normal to the plane) are the Python one's, word for word;
+  8. an overlapping AMR (two levels, the finer one two boxes sharing a face; point data and cell
+     data): the C++ filter's grid, n - 1, grad n and field data bit for bit (both read it into
+     the engine's AMR sampler), SchlierenImage's film bit for bit; overlapping boxes refused with
+     the C++ filter's message.
 
     pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
         --example Examples/first_light.py --work DIR [--data ../shared/data]
@@ -739,6 +743,117 @@ for case, (data, props, message) in REFUSED.items():
           "Symmetry refused (%s): the C++ filter's message, an empty output (%r)"
           % (case, c.text.strip().splitlines()[0][-120:] if c.text.strip() else ""))
     Delete(index)
+
+# -- 8. an overlapping AMR (vtkOverlappingAMR): both read it into the engine's AMR sampler
+# (schlieren_amr_sample, OpenCL/SchlierenAMRSample.h): level 0 of 16^3 cells over [-1, 1]^3, level
+# 1 two boxes side by side (sharing a face) over [-0.5, 0.5]^3 at half the spacing, a Gaussian
+# density a little higher on level 1 (so that the finest level's choice shows), as point data and
+# as cell data
+from vtkmodules.vtkCommonDataModel import (vtkAMRBox, vtkAMRUtilities, vtkOverlappingAMR,  # noqa: E402
+                                           vtkUniformGrid)
+
+
+def amr_case(cells):
+    def block(lo, h, n, offset):
+        g = vtkUniformGrid()
+        g.SetOrigin(*lo)
+        g.SetSpacing(h, h, h)
+        g.SetDimensions(n[0] + 1, n[1] + 1, n[2] + 1)
+        axes = [lo[a] + h * (np.arange(n[a]) + 0.5) if cells else lo[a] + h * np.arange(n[a] + 1)
+                for a in range(3)]
+        z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing="ij")
+        rho = 1.2 + 0.4 * np.exp(-((x - 0.1) ** 2 + y ** 2 + z ** 2) / 0.1) + offset
+        a = numpy_support.numpy_to_vtk(rho.ravel().astype(np.float32), deep=1)
+        a.SetName("density")
+        (g.GetCellData() if cells else g.GetPointData()).AddArray(a)
+        return g
+    amr = vtkOverlappingAMR()
+    amr.Initialize(2, [1, 2])
+    amr.SetOrigin([-1.0] * 3)
+    amr.SetSpacing(0, [0.125] * 3)
+    amr.SetAMRBox(0, 0, vtkAMRBox([-1.0] * 3, [17] * 3, [0.125] * 3, [-1.0] * 3, 8))
+    amr.SetDataSet(0, 0, block([-1.0] * 3, 0.125, [16] * 3, 0.0))
+    amr.SetSpacing(1, [0.0625] * 3)
+    for b, x0 in enumerate((-0.5, 0.0)):
+        amr.SetAMRBox(1, b, vtkAMRBox([x0, -0.5, -0.5], [9, 17, 17], [0.0625] * 3, [-1.0] * 3, 8))
+        amr.SetDataSet(1, b, block([x0, -0.5, -0.5], 0.0625, [8, 16, 16], 0.01))
+    amr.SetRefinementRatio(0, 2)
+    vtkAMRUtilities.BlankCells(amr)
+    return amr
+
+
+AMR_FIELDS = FIELDS + ("index_notes", "amr_levels", "amr_finest_level", "amr_finest_spacing",
+                       "sampling_spacing", "sampling_capped")
+
+
+def amr_fields(d):
+    out = {}
+    for n in AMR_FIELDS:
+        a = d.GetFieldData().GetAbstractArray(n)
+        if a is not None:
+            out[n] = [a.GetVariantValue(i).ToString() for i in range(a.GetNumberOfValues())]
+    return out
+
+
+for kind in ("point", "cell"):
+    data = amr_case(kind == "cell")
+    ref = RI()
+    ref.SetInputData(data)
+    ref.SetModel(ENUMS["Model"]["GladstoneDale"])
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "density")
+    ok = ref.GetExecutive().Update()
+    theirs = vtkImageData()
+    theirs.DeepCopy(ref.GetOutput())
+    index = ns["RefractiveIndex"](Input=producer(data), Model="GladstoneDale")
+    index.InputArray = ["POINTS", "density"]
+    with Captured() as c:
+        index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    info = tuple(int(v) for v in index.GetDataInformation().DataInformation.GetExtent())
+    mf, tf = amr_fields(mine), amr_fields(theirs)
+    same = ok and mine.GetExtent() == theirs.GetExtent() and info == theirs.GetExtent() and \
+        mine.GetOrigin() == theirs.GetOrigin() and mine.GetSpacing() == theirs.GetSpacing() and \
+        all(array(mine, n) is not None and array(theirs, n) is not None and
+            np.array_equal(array(mine, n).view(np.uint32), array(theirs, n).view(np.uint32))
+            for n in ("n_minus_1", "grad_n")) and mf == tf and len(tf) == len(AMR_FIELDS)
+    check(same and theirs.GetDimensions() == (33, 33, 33) and "ERR" not in c.text and
+          "Traceback" not in c.text,
+          "AMR with %s data (two levels, level 1 two boxes): the C++ filter's grid %s (the finest "
+          "level's spacing, also in the pipeline's information), n_minus_1, grad_n and field data "
+          "(index_notes, amr_*, sampling_*) bit for bit%s"
+          % (kind, theirs.GetDimensions(), "" if mf == tf else "; fields %s vs %s" % (mf, tf)))
+    settings = dict(Resolution=[48, 40], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+    image = ns["SchlierenImage"](Input=index, Backend="CPU", **settings)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    film, film_ok = cxx_image(theirs, **settings)
+    intensity = array(film, "intensity")
+    check(film_ok and same_film(out, film) and intensity is not None and
+          float(intensity.max() - intensity.min()) > 0.05,
+          "SchlierenImage on it: the C++ filter's film bit for bit (intensity %.3f..%.3f)"
+          % ((intensity.min(), intensity.max()) if intensity is not None else (0, 0)))
+    Delete(image)
+    Delete(index)
+# boxes of one level that share cells: the C++ filter's refusal, word for word, an empty output
+data = amr_case(False)
+data.SetAMRBox(1, 1, vtkAMRBox([-0.25, -0.5, -0.5], [9, 17, 17], [0.0625] * 3, [-1.0] * 3, 8))
+ref = RI()
+ref.SetInputData(data)
+ref.SetModel(ENUMS["Model"]["GladstoneDale"])
+ref.SetInputArrayToProcess(0, 0, 0, 0, "density")
+with Captured() as c_cxx:
+    ref.GetExecutive().Update()
+index = ns["RefractiveIndex"](Input=producer(data), Model="GladstoneDale")
+index.InputArray = ["POINTS", "density"]
+with Captured() as c:
+    index.UpdatePipeline()
+out = servermanager.Fetch(index)
+said = "the AMR input's level 1 has boxes that overlap: boxes 0 and 1 share 1024 cells"
+check(said in c.text and said in c_cxx.text and "Traceback" not in c.text and
+      out.GetNumberOfPoints() == 0,
+      "AMR boxes of one level that overlap: the C++ filter's message, an empty output (%r)"
+      % (c.text.strip().splitlines()[0][-160:] if c.text.strip() else ""))
+Delete(index)
 
 # -- 4. schlieren_view embedded; Examples/first_light.py with the Python plugin
 try:
