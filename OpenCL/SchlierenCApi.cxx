@@ -17,6 +17,7 @@
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
 #include "SchlierenSymmetry.h"
+#include "SchlierenTimeStore.h"
 
 #include <algorithm>
 #include <cctype>
@@ -2130,6 +2131,91 @@ int schlieren_amr_sample(int levels, int number_of_blocks, const int* block_leve
       lines += "note: " + n + "\n";
     AMRReport = lines;
     *report = AMRReport.c_str();
+  });
+}
+
+namespace
+{
+/** The entries of schlieren_time_cache_find and _insert, checked (schlieren_c.h). */
+std::vector<schlieren::TimeStepKey> TimeCacheKeys(const char* f, int64_t count, const double* times,
+  const uint64_t* tokens, const int* extents, const double* bytes, bool needBytes,
+  std::vector<double>& sizes)
+{
+  if (count < 0 || count > (int64_t(1) << 20))
+    throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) +
+      ": the entries held (0 to 2^20).");
+  if (count > 0 && (!times || !tokens || !extents || (needBytes && !bytes)))
+    throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) +
+      ": give times, tokens, extents" + (needBytes ? " and bytes" : "") + " for each entry.");
+  std::vector<schlieren::TimeStepKey> keys(static_cast<std::size_t>(count));
+  sizes.assign(static_cast<std::size_t>(count), 0.0);
+  for (int64_t i = 0; i < count; ++i)
+  {
+    schlieren::TimeStepKey& k = keys[static_cast<std::size_t>(i)];
+    k.Time = times[i];
+    k.Token = tokens[i];
+    std::copy(extents + 6 * i, extents + 6 * i + 6, k.Extent);
+    if (!std::isfinite(k.Time))
+      throw schlieren::Error(std::string(f) + ": times[" + std::to_string(i) + "] is not finite.");
+    if (bytes)
+    {
+      sizes[static_cast<std::size_t>(i)] = bytes[i];
+      if (!std::isfinite(bytes[i]) || bytes[i] < 0)
+        throw schlieren::Error(std::string(f) + ": bytes[" + std::to_string(i) +
+          "] is not a finite count >= 0.");
+    }
+  }
+  return keys;
+}
+
+schlieren::TimeStepKey TimeCacheKey(const char* f, double time, uint64_t token, const int extent[6])
+{
+  if (!extent || !std::isfinite(time))
+    throw schlieren::Error(std::string(f) + ": the key's time must be finite and its extent given.");
+  schlieren::TimeStepKey k;
+  k.Time = time;
+  k.Token = token;
+  std::copy(extent, extent + 6, k.Extent);
+  return k;
+}
+} // namespace
+
+int schlieren_time_cache_find(int64_t count, const double* times, const uint64_t* tokens,
+  const int* extents, const double* bytes, double time, uint64_t token, const int extent[6],
+  int64_t* index, double* budget)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_time_cache_find";
+    if (!index)
+      throw schlieren::Error(std::string(f) + ": index must be given.");
+    std::vector<double> sizes;
+    const auto keys = TimeCacheKeys(f, count, times, tokens, extents, bytes, false, sizes);
+    *index = schlieren::FindTimeStep(keys, TimeCacheKey(f, time, token, extent));
+    double held = 0.0;
+    for (double b : sizes)
+      held += b;
+    if (budget)
+      *budget = schlieren::TimeStepBudget(held);
+  });
+}
+
+int schlieren_time_cache_insert(int64_t count, const double* times, const uint64_t* tokens,
+  const int* extents, const double* bytes, double time, uint64_t token, const int extent[6],
+  double new_bytes, unsigned char* keep, int* keep_new, double* budget)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_time_cache_insert";
+    if (!keep_new || (count > 0 && !keep))
+      throw schlieren::Error(std::string(f) + ": keep (count bytes) and keep_new must be given.");
+    if (!std::isfinite(new_bytes) || new_bytes < 0)
+      throw schlieren::Error(std::string(f) + ": new_bytes is not a finite count >= 0.");
+    std::vector<double> sizes;
+    const auto keys = TimeCacheKeys(f, count, times, tokens, extents, bytes, true, sizes);
+    std::vector<unsigned char> flags;
+    const bool kept = schlieren::PlanTimeStepInsert(
+      keys, sizes, TimeCacheKey(f, time, token, extent), new_bytes, flags, budget);
+    std::copy(flags.begin(), flags.end(), keep);
+    *keep_new = kept ? 1 : 0;
   });
 }
 

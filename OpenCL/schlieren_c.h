@@ -381,6 +381,26 @@ SCHLIEREN_C_API int schlieren_amr_sample(int levels, int number_of_blocks, const
   const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
   const int dims[3], const double origin[3], const double spacing[3], int* out_components,
   const float** outputs, const unsigned char** valid, const char** report);
+/**
+ * RefractiveIndex's per-time-step cache (SchlierenTimeStore.h), its rule without its state: the
+ * front end holds its outputs, `count` entries oldest first, entry i keyed by times[i], tokens[i]
+ * (the change token the front end gives: its pipeline's modified time) and extents[6i .. 6i+5],
+ * holding bytes[i] (finite, >= 0; may be NULL in schlieren_time_cache_find). Times are finite.
+ *
+ * schlieren_time_cache_find: `index` gets the entry whose key is (time, token, extent), or -1;
+ * `budget` (may be NULL) the cache's budget (a quarter of the memory available, counting the
+ * bytes held).
+ */
+SCHLIEREN_C_API int schlieren_time_cache_find(int64_t count, const double* times,
+  const uint64_t* tokens, const int* extents, const double* bytes, double time, uint64_t token,
+  const int extent[6], int64_t* index, double* budget);
+/** schlieren_time_cache_insert: where an entry of `new_bytes` is kept for (time, token, extent),
+ * `keep` (`count` bytes) gets 1 for each entry that stays (the other tokens' and the same key's
+ * go, then the oldest until the new one fits), `keep_new` 1 where the new one is kept (not where
+ * it is larger than the budget), `budget` (may be NULL) the budget it was measured against. */
+SCHLIEREN_C_API int schlieren_time_cache_insert(int64_t count, const double* times,
+  const uint64_t* tokens, const int* extents, const double* bytes, double time, uint64_t token,
+  const int extent[6], double new_bytes, unsigned char* keep, int* keep_new, double* budget);
 /** The warning the C++ filter gives for an axisymmetric wedge traced with Symmetry None
  * (AxisFromWedge on): `points` every point of the mesh (`points_count` values, 3 a point),
  * `bounds` its bounds. `warning` gets it, or "" (not a wedge); owned by the library until this

@@ -797,6 +797,66 @@ def amr_sample(levels, blocks, names, dims, origin, spacing):
     return mask, sampled, notes
 
 
+def _time_cache_arrays(entries):
+    """(time, token, extent, bytes) entries as the C arrays of schlieren_time_cache_*."""
+    entries = list(entries)
+    n = len(entries)
+    try:
+        times = (ctypes.c_double * max(1, n))(*[float(e[0]) for e in entries])
+        tokens = (ctypes.c_uint64 * max(1, n))(*[int(e[1]) for e in entries])
+        extents = (ctypes.c_int * max(6, 6 * n))(*[int(v) for e in entries for v in e[2]])
+        sizes = (ctypes.c_double * max(1, n))(*[float(e[3]) for e in entries])
+    except (TypeError, ValueError, IndexError, OverflowError) as e:
+        raise ArgumentTypeError("time cache entries: (time, token, extent (6), bytes) each (%s)"
+                                % e)
+    if any(len(e[2]) != 6 for e in entries):
+        raise ArgumentError("time cache entries: each extent takes 6 integers")
+    return n, times, tokens, extents, sizes
+
+
+def _time_cache_key(time, token, extent):
+    try:
+        key = float(time), ctypes.c_uint64(int(token)), (ctypes.c_int * 6)(*[int(v) for v in extent])
+    except (TypeError, ValueError, OverflowError) as e:
+        raise ArgumentTypeError("time cache key: a time, a token and an extent of 6 (%s)" % e)
+    if len(list(extent)) != 6:
+        raise ArgumentError("time cache key: the extent takes 6 integers")
+    return key
+
+
+def time_cache_find(entries, time, token, extent):
+    """RefractiveIndex's per-time-step cache (schlieren_time_cache_find): the index among
+    `entries` ((time, token, extent, bytes) each, oldest first) of the one keyed (time, token,
+    extent), or -1; and the cache's budget in bytes (a quarter of the memory available, counting
+    the entries')."""
+    f = _sig("schlieren_time_cache_find", ctypes.c_int, ctypes.c_int64,
+             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_uint64),
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double), ctypes.c_double,
+             ctypes.c_uint64, ctypes.c_int * 6, ctypes.POINTER(ctypes.c_int64),
+             ctypes.POINTER(ctypes.c_double))
+    n, times, tokens, extents, sizes = _time_cache_arrays(entries)
+    index, budget = ctypes.c_int64(-1), ctypes.c_double(0.0)
+    _check(f(n, times, tokens, extents, sizes, *_time_cache_key(time, token, extent),
+             ctypes.byref(index), ctypes.byref(budget)))
+    return index.value, budget.value
+
+
+def time_cache_insert(entries, time, token, extent, nbytes):
+    """Where an output of `nbytes` is kept for (time, token, extent) (schlieren_time_cache_insert):
+    (a keep flag per entry of `entries`, oldest first; whether the new one is kept; the budget)."""
+    f = _sig("schlieren_time_cache_insert", ctypes.c_int, ctypes.c_int64,
+             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_uint64),
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double), ctypes.c_double,
+             ctypes.c_uint64, ctypes.c_int * 6, ctypes.c_double, _u8p,
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double))
+    n, times, tokens, extents, sizes = _time_cache_arrays(entries)
+    keep = np.zeros(max(1, n), np.uint8)
+    kept, budget = ctypes.c_int(0), ctypes.c_double(0.0)
+    _check(f(n, times, tokens, extents, sizes, *_time_cache_key(time, token, extent),
+             float(nbytes), keep.ctypes.data_as(_u8p), ctypes.byref(kept), ctypes.byref(budget)))
+    return [bool(k) for k in keep[:n]], bool(kept.value), budget.value
+
+
 def automatic_dimensions(bounds, longest):
     """RefractiveIndex's automatic sampling dimensions of a box."""
     dims = _c_int3()

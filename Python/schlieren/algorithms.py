@@ -695,6 +695,48 @@ class RefractiveScene(_Properties):
         return 1
 
 
+class _TimeStepCache:
+    """RefractiveIndex's outputs kept per time step, so that an animation played again neither
+    resamples nor executes its upstream again: the engine's rule (schlieren_time_cache_find and
+    _insert, OpenCL/SchlierenTimeStore.h, as the C++ filter's SchlierenTimeCache.h): keys of time,
+    change token and extent, a quarter of the memory available, the oldest out first. The entries
+    (time, token, extent, bytes, image) oldest first, the images shallow copies."""
+
+    def __init__(self):
+        self.entries, self.computed, self.served = [], 0, 0
+
+    def find(self, key):
+        i, _ = _engine.time_cache_find([e[:4] for e in self.entries], *key)
+        return None if i < 0 else self.entries[i][4]
+
+    def insert(self, key, image):
+        nbytes = 1024.0 * image.GetActualMemorySize()
+        keep, kept, _ = _engine.time_cache_insert([e[:4] for e in self.entries], *key,
+                                                  nbytes=nbytes)
+        self.entries = [e for e, k in zip(self.entries, keep) if k]
+        if kept:
+            copy = type(image)()
+            copy.ShallowCopy(image)
+            self.entries.append((key[0], key[1], key[2], nbytes, copy))
+
+    def fields(self, out, served):
+        """The cache's counters in the output's field data (its own copy: the kept entry shares
+        it), as the C++ filter's CacheFields."""
+        from vtkmodules.vtkCommonDataModel import vtkFieldData
+        held = sum(e[3] for e in self.entries)
+        _, budget = _engine.time_cache_find([e[:4] for e in self.entries], 0.0, 0,
+                                            (0, -1, 0, -1, 0, -1))
+        fd = vtkFieldData()
+        if out.GetFieldData() is not None:
+            fd.ShallowCopy(out.GetFieldData())
+        out.SetFieldData(fd)
+        for name, value in (("index_computed", self.computed),
+                            ("index_from_cache", 1 if served else 0),
+                            ("index_cache_entries", len(self.entries)),
+                            ("index_cache_bytes", held), ("index_cache_budget", budget)):
+            _field_number(out, name, value)
+
+
 class RefractiveIndex(_Properties):
     """n - 1 from CFD fields by every index model of the engine (Passthrough, GladstoneDale,
     GladstoneDaleMixture, IdealGas, Ciddor), resampled onto an image as needed.
@@ -782,6 +824,7 @@ class RefractiveIndex(_Properties):
 
     def __init__(self, **kwargs):
         _Properties.__init__(self, 1, **kwargs)
+        object.__setattr__(self, "_time_cache", _TimeStepCache())
 
     def FillInputPortInformation(self, port, info):
         # a data set or a composite data set as one input (the C++ filter's types): the blocks
@@ -830,9 +873,29 @@ class RefractiveIndex(_Properties):
                                            if dims[a] > 1 else 1.0 for a in range(3)])
         return 1
 
+    def _cache_key(self, src, info):
+        """The key of this update in the per-time-step cache (time, change token, extent), as the
+        C++ filter's: None where the output is not cached (the input has no time steps or no time
+        is asked for). The token is the pipeline's modified time (this algorithm's and every
+        upstream one's)."""
+        if src is None or info is None or not src.Has(SDDP.TIME_STEPS()) or \
+                not info.Has(SDDP.UPDATE_TIME_STEP()):
+            return None
+        extent = info.Get(SDDP.UPDATE_EXTENT()) if info.Has(SDDP.UPDATE_EXTENT()) else \
+            (0, -1, 0, -1, 0, -1)
+        return (info.Get(SDDP.UPDATE_TIME_STEP()), self.GetExecutive().GetPipelineMTime(),
+                tuple(extent))
+
     def RequestUpdateExtent(self, request, inInfo, outInfo):
-        # the whole input: resampling (or the gradient at the borders) needs all of it
         src = inInfo[0].GetInformationObject(0)
+        key = self._cache_key(src, outInfo.GetInformationObject(0))
+        held = vtkDataObject.GetData(src)
+        if key is not None and self._time_cache.find(key) is not None and held is not None and \
+                held.GetInformation().Has(vtkDataObject.DATA_TIME_STEP()):
+            # a time step kept: the input stays at the time it holds (it does not execute again)
+            src.Set(SDDP.UPDATE_TIME_STEP(),
+                    held.GetInformation().Get(vtkDataObject.DATA_TIME_STEP()))
+        # the whole input: resampling (or the gradient at the borders) needs all of it
         if src.Has(SDDP.WHOLE_EXTENT()):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
@@ -1095,6 +1158,16 @@ class RefractiveIndex(_Properties):
                     data.GetNumberOfPoints() == 0:
                 raise EngineError("RefractiveIndex: the input (%s) has no points."
                                   % data.GetClassName())
+            key = self._cache_key(inInfo[0].GetInformationObject(0),
+                                  outInfo.GetInformationObject(0))
+            kept = None if key is None else self._time_cache.find(key)
+            if kept is not None:
+                # this time step, computed before with the same pipeline: that image again
+                out.ShallowCopy(kept)
+                out.GetInformation().Set(vtkDataObject.DATA_TIME_STEP(), key[0])
+                self._time_cache.served += 1
+                self._time_cache.fields(out, True)
+                return 1
             symmetric = self.Symmetry != "None"
             resampled = symmetric or not isinstance(data, vtkImageData)
             notes, amr_numbers = [], []
@@ -1207,6 +1280,10 @@ class RefractiveIndex(_Properties):
             _field_number(out, name, value)
         for w in warnings:
             self._warn(w)
+        self._time_cache.computed += 1
+        if key is not None:
+            self._time_cache.insert(key, out)
+        self._time_cache.fields(out, False)
         return 1
 
 
