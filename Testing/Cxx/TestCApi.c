@@ -310,6 +310,47 @@ int main(void)
     CHECK(schlieren_amr_overlap(2, two_on_zero, touching) == 0,
       "amr_overlap: boxes that share a face taken (%s)", schlieren_last_error());
   }
+  {
+    /* the per-time-step cache's rule: three entries of token 7 (times 0, 1, 2), a key found, the
+     * oldest evicted first when a new one does not fit, another token dropping them all */
+    const double times[3] = { 0, 1, 2 };
+    const uint64_t tokens[3] = { 7, 7, 7 };
+    const int extents[18] = { 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9 };
+    double bytes[3] = { 0, 0, 0 }, budget = 0, measured = 0;
+    int64_t index = -2;
+    unsigned char keep[3] = { 9, 9, 9 };
+    int keep_new = -1;
+    CHECK(schlieren_time_cache_find(3, times, tokens, extents, bytes, 1.0, 7, extents, &index,
+            &budget) == 0 && index == 1 && budget > 0,
+      "time_cache_find: (t 1, token 7, extent) is entry 1 (%lld; budget %g bytes; %s)",
+      (long long)index, budget, schlieren_last_error());
+    CHECK(schlieren_time_cache_find(3, times, tokens, extents, NULL, 1.0, 8, extents, &index,
+            NULL) == 0 && index == -1,
+      "time_cache_find: another token finds nothing (%lld)", (long long)index);
+    bytes[0] = bytes[1] = bytes[2] = 0.1 * budget;
+    schlieren_time_cache_find(3, times, tokens, extents, bytes, 0, 7, extents, &index, &budget);
+    /* 3 x 0.1 b held, a new entry of 0.75 b: it fits once the oldest goes (0.2 b + 0.75 b) */
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 3.0, 7, extents,
+            0.75 * budget, keep, &keep_new, &measured) == 0 &&
+          keep[0] == 0 && keep[1] == 1 && keep[2] == 1 && keep_new == 1,
+      "time_cache_insert: the oldest evicted for a new entry that fits then (keep %d %d %d, new %d)",
+      keep[0], keep[1], keep[2], keep_new);
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 2.0, 7, extents, 1.0, keep,
+            &keep_new, NULL) == 0 && keep[0] == 1 && keep[1] == 1 && keep[2] == 0 && keep_new == 1,
+      "time_cache_insert: the same key replaced, the others kept (keep %d %d %d, new %d)", keep[0],
+      keep[1], keep[2], keep_new);
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 0.0, 8, extents, 1.0, keep,
+            &keep_new, NULL) == 0 && keep[0] + keep[1] + keep[2] == 0 && keep_new == 1,
+      "time_cache_insert: another token drops every entry (keep %d %d %d)", keep[0], keep[1],
+      keep[2]);
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 3.0, 7, extents, 1e30, keep,
+            &keep_new, NULL) == 0 && keep_new == 0,
+      "time_cache_insert: an entry past the budget is not kept");
+    bytes[1] = -1;
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 3.0, 7, extents, 1.0, keep,
+            &keep_new, NULL) != 0 && strstr(schlieren_last_error(), "bytes[1]") != NULL,
+      "time_cache_insert: negative bytes refused: %s", schlieren_last_error());
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

@@ -74,6 +74,7 @@ enum
   F_THREADS,
   F_SAMPLE,
   F_AMR,
+  F_TIME_CACHE,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -81,7 +82,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "photograph", "version/properties/device",
-  "two threads, one session", "sample_cells", "amr_overlap/grid/sample" };
+  "two threads, one session", "sample_cells", "amr_overlap/grid/sample", "time_cache_find/insert" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1275,6 +1276,40 @@ static void random_amr_case(void)
     free(buffers[i]);
 }
 
+/* schlieren_time_cache_find and _insert: up to 4 entries (times, tokens, extents, bytes) with
+ * counts, NaN, negative and huge bytes, NULLs and extents varied */
+static void random_time_cache_case(void)
+{
+  double times[4], bytes[4], budget;
+  uint64_t tokens[4];
+  int extents[24], i, keep_new;
+  unsigned char keep[4];
+  int64_t index, count = below(10) ? below(5) : (below(2) ? -1 : INT64_MAX);
+  for (i = 0; i < 4; ++i)
+  {
+    times[i] = below(20) ? below(4) : NAN;
+    tokens[i] = below(4) ? 3 : (uint64_t)below(1000) << 40;
+    bytes[i] = below(20) ? 1e6 * uniform() : (below(2) ? -1.0 : (below(2) ? NAN : 1e300));
+  }
+  for (i = 0; i < 24; ++i)
+    extents[i] = below(20) ? (i % 2 ? 9 : 0) : below(2) ? -2147483647 - 1 : 2147483647;
+  {
+    const int rc = schlieren_time_cache_find(count, below(30) ? times : NULL,
+      below(30) ? tokens : NULL, below(30) ? extents : NULL, below(3) ? bytes : NULL,
+      below(20) ? below(4) : NAN, below(4) ? 3 : 4, below(30) ? extents : NULL,
+      below(30) ? &index : NULL, below(2) ? &budget : NULL);
+    outcome(F_TIME_CACHE, rc, schlieren_last_error(), "schlieren_time_cache_find");
+  }
+  {
+    const int rc = schlieren_time_cache_insert(count, below(30) ? times : NULL,
+      below(30) ? tokens : NULL, below(30) ? extents : NULL, below(30) ? bytes : NULL,
+      below(20) ? below(4) : INFINITY, below(4) ? 3 : 4, below(30) ? extents : NULL,
+      below(20) ? 1e6 * uniform() : (below(2) ? -5.0 : 1e300), below(30) ? keep : NULL,
+      below(30) ? &keep_new : NULL, below(2) ? &budget : NULL);
+    outcome(F_TIME_CACHE, rc, schlieren_last_error(), "schlieren_time_cache_insert");
+  }
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -1305,6 +1340,8 @@ int main(int argc, char** argv)
     random_sample_case();
   for (k = 0; k < cases / 4; ++k)
     random_amr_case();
+  for (k = 0; k < cases / 4; ++k)
+    random_time_cache_case();
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");
