@@ -491,21 +491,23 @@ def _image_input(data, dims=None, bounds=None):
     return out, (None if mask.all() else mask)
 
 
+def _amr_boxes(amr):
+    """(level, index) of every box an overlapping AMR lists, level by level (VTK 9.6 renames
+    GetNumberOfDataSets(level) GetNumberOfBlocks(level); the old name is used where it exists)."""
+    count = getattr(amr, "GetNumberOfDataSets", None) or amr.GetNumberOfBlocks
+    return [(level, b) for level in range(amr.GetNumberOfLevels()) for b in range(count(level))]
+
+
 def _amr_block_list(amr, names=()):
     """The boxes an overlapping AMR holds as the engine takes them (schlieren_amr_*), as the C++
     filter reads them (Filters/SchlierenAMR.cxx): dicts of level, extent, origin, spacing and
     arrays {name: (values, is_cell)}, for each of `names` the box's point array of that name, else
     its cell array (float32 and float64 as they are, any other type as float64)."""
     from vtkmodules.vtkCommonCore import vtkDoubleArray
-    new = hasattr(amr, "GetDataSetAsImageData")  # VTK 9.6 renamed them
-    count = amr.GetNumberOfBlocks if new else amr.GetNumberOfDataSets
-    get = amr.GetDataSetAsImageData if new else amr.GetDataSet
     blocks = []
-    for level in range(amr.GetNumberOfLevels()):
-        for b in range(count(level)):
-            g = get(level, b)
-            if g is None:
-                continue
+    for level, b in _amr_boxes(amr):
+        g = (amr.GetDataSet if hasattr(amr, "GetDataSet") else amr.GetDataSetAsImageData)(level, b)
+        if g is not None:
             extent = list(g.GetExtent())
             if g.GetNumberOfPoints() == 0:
                 extent[1] = extent[0] - 1  # nothing to sample
@@ -540,12 +542,10 @@ def _amr_input(amr, dims, box):
     None where all are valid, notes). The boxes of a level that overlap are refused first, with
     the C++ filter's message."""
     boxes = []
-    new = hasattr(amr, "GetDataSetAsImageData")
-    for level in range(amr.GetNumberOfLevels()):
-        for b in range(amr.GetNumberOfBlocks(level) if new else amr.GetNumberOfDataSets(level)):
-            lo, hi = [0] * 3, [0] * 3
-            amr.GetAMRBox(level, b).GetDimensions(lo, hi)  # its corners
-            boxes.append((level, lo, hi))
+    for level, b in _amr_boxes(amr):
+        lo, hi = [0] * 3, [0] * 3
+        amr.GetAMRBox(level, b).GetDimensions(lo, hi)  # its corners
+        boxes.append((level, lo, hi))
     _engine.amr_overlap(boxes)
     names = []
     for leaf in _leaves(amr):
@@ -878,13 +878,13 @@ class RefractiveIndex(_Properties):
         C++ filter's: None where the output is not cached (the input has no time steps or no time
         is asked for). The token is the pipeline's modified time (this algorithm's and every
         upstream one's)."""
+        pipeline_mtime = getattr(self.GetExecutive(), "GetPipelineMTime", None)
         if src is None or info is None or not src.Has(SDDP.TIME_STEPS()) or \
-                not info.Has(SDDP.UPDATE_TIME_STEP()):
+                not info.Has(SDDP.UPDATE_TIME_STEP()) or pipeline_mtime is None:
             return None
         extent = info.Get(SDDP.UPDATE_EXTENT()) if info.Has(SDDP.UPDATE_EXTENT()) else \
             (0, -1, 0, -1, 0, -1)
-        return (info.Get(SDDP.UPDATE_TIME_STEP()), self.GetExecutive().GetPipelineMTime(),
-                tuple(extent))
+        return info.Get(SDDP.UPDATE_TIME_STEP()), pipeline_mtime(), tuple(extent)
 
     def RequestUpdateExtent(self, request, inInfo, outInfo):
         src = inInfo[0].GetInformationObject(0)
