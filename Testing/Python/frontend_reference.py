@@ -4,7 +4,8 @@
     pvpython frontend_reference.py --plugin Schlieren.so --output DIR [--data ../shared/data]
 
 Writes DIR/<case>_<backend>.npz (image arrays, film origin/spacing/extent, field data) and
-DIR/bluntfin_index.vti (RefractiveIndex's grid of the blunt fin, which both front ends trace).
+DIR/bluntfin_index.vti (RefractiveIndex's grid of the blunt fin, which both front ends trace) and
+DIR/amr.vthb (frontend_cases.AMR's overlapping AMR, which both front ends resample and trace).
 The OpenCL references are written only where an OpenCL device works (file DIR/opencl.txt says
 which device, or why none)."""
 import argparse
@@ -14,7 +15,7 @@ import sys
 
 import numpy as np
 from paraview import servermanager
-from paraview.simple import LoadPlugin, PLOT3DReader, XMLImageDataReader
+from paraview.simple import LoadPlugin, PLOT3DReader, PVTrivialProducer, XMLImageDataReader
 from vtkmodules.util import numpy_support
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
@@ -74,6 +75,69 @@ if os.path.exists(xyz) and os.path.exists(q):
         FileName=[os.path.join(args.output, "bluntfin_index.vti")])
 else:
     print("frontend_reference: no blunt fin data in %s; that case is left out" % args.data)
+
+
+
+def write_amr(path):
+    """frontend_cases.AMR's overlapping AMR, written as a .vthb for both sides to read."""
+    from vtkmodules.vtkCommonDataModel import (vtkAMRBox, vtkAMRUtilities, vtkOverlappingAMR,
+                                               vtkUniformGrid)
+    from vtkmodules.vtkIOXML import vtkXMLUniformGridAMRWriter
+    n0 = cases.AMR["cells0"]
+    h0 = 2.0 / n0
+
+    def block(lo, h, n, cells, offset):
+        g = vtkUniformGrid()
+        g.SetOrigin(*lo)
+        g.SetSpacing(h, h, h)
+        g.SetDimensions(n[0] + 1, n[1] + 1, n[2] + 1)
+        axes = [lo[a] + h * (np.arange(n[a] + (0 if cells else 1)) + (0.5 if cells else 0.0))
+                for a in range(3)]
+        z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing="ij")
+        rho = 1.2 + 0.4 * np.exp(-((x - 0.1) ** 2 + y ** 2 + z ** 2) / 0.1) + offset
+        a = numpy_support.numpy_to_vtk(rho.ravel().astype(np.float32), deep=1)
+        a.SetName("density")
+        (g.GetCellData() if cells else g.GetPointData()).AddArray(a)
+        return g
+    amr = vtkOverlappingAMR()
+    amr.Initialize(2, [1, 2])
+    amr.SetOrigin([-1.0] * 3)
+    amr.SetSpacing(0, [h0] * 3)
+    amr.SetAMRBox(0, 0, vtkAMRBox([-1.0] * 3, [n0 + 1] * 3, [h0] * 3, [-1.0] * 3, 8))
+    amr.SetDataSet(0, 0, block([-1.0] * 3, h0, [n0] * 3, True, 0.0))
+    amr.SetSpacing(1, [h0 / 2] * 3)
+    for b, x0 in enumerate((-0.5, 0.0)):
+        cells = [n0 // 2, n0, n0]  # 0.5 x 1 x 1 at h0 / 2
+        amr.SetAMRBox(1, b, vtkAMRBox([x0, -0.5, -0.5], [c + 1 for c in cells], [h0 / 2] * 3,
+                                      [-1.0] * 3, 8))
+        amr.SetDataSet(1, b, block([x0, -0.5, -0.5], h0 / 2, cells, True, 0.01))
+    amr.SetRefinementRatio(0, 2)
+    vtkAMRUtilities.BlankCells(amr)
+    w = vtkXMLUniformGridAMRWriter()
+    w.SetInputData(amr)
+    w.SetFileName(path)
+    w.Write()
+
+
+def read_amr(path):
+    """The .vthb as both sides read it: every level (vtkXMLUniformGridAMRReader)."""
+    from vtkmodules.vtkIOXML import vtkXMLUniformGridAMRReader
+    r = vtkXMLUniformGridAMRReader()
+    r.SetFileName(path)
+    r.SetMaximumLevelsToReadByDefault(0)  # 0: every level
+    r.Update()
+    return r.GetOutputDataObject(0)
+
+
+amr_path = os.path.join(args.output, "amr.vthb")
+write_amr(amr_path)
+amr_source = PVTrivialProducer()
+amr_source.GetClientSideObject().SetOutput(read_amr(amr_path))
+# (CELLS: the array's association in every box; a name a box holds only as cells but asked for
+# as POINTS is converted to points by ParaView's vtkPVPostFilter before the filter sees it)
+amr_index = ns["RefractiveIndex"](Input=amr_source, **{
+    k: (["CELLS", v] if k == "InputArray" else v) for k, v in cases.AMR["index"].items()})
+sources["amr"] = amr_index
 
 opencl = "none"
 for backend in cases.BACKENDS:

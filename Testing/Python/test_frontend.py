@@ -90,6 +90,18 @@ if os.path.exists(vti):
     sources["bluntfin"] = r
 else:
     print("skip blunt fin: no %s (the reference run found no data)" % vti)
+amr_path = os.path.join(args.reference, "amr.vthb")
+if os.path.exists(amr_path):
+    # the overlapping AMR through the Python RefractiveIndex (the engine's AMR sampler)
+    from vtkmodules.vtkIOXML import vtkXMLUniformGridAMRReader
+    amr_reader = vtkXMLUniformGridAMRReader()
+    amr_reader.SetFileName(amr_path)
+    amr_reader.SetMaximumLevelsToReadByDefault(0)  # 0: every level
+    keep.append(amr_reader)
+    sources["amr"] = schlieren.RefractiveIndex(**cases.AMR["index"])
+    sources["amr"].SetInputConnection(amr_reader.GetOutputPort())
+else:
+    print("skip the AMR case: no %s" % amr_path)
 with open(os.path.join(args.reference, "opencl.txt")) as f:
     opencl = f.read().strip()
 compared = 0
