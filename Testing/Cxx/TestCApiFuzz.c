@@ -422,8 +422,8 @@ static int64_t random_count(int64_t needed)
 {
   switch (below(16))
   {
-    case 0: return needed + 1;
-    case 1: return needed - 1;
+    case 0: return needed < INT64_MAX ? needed + 1 : needed - 1; /* (no overflow: undefined) */
+    case 1: return needed > INT64_MIN ? needed - 1 : needed + 1;
     case 2: return 0;
     case 3: return -1;
     case 4: return INT64_MIN;
@@ -431,6 +431,16 @@ static int64_t random_count(int64_t needed)
     case 6: return below(100);
     default: return needed;
   }
+}
+
+/* v * k, held at the ends of int64_t (a count of INT64_MIN times 3 overflowed: undefined) */
+static int64_t scaled(int64_t v, int k)
+{
+  if (v > INT64_MAX / k)
+    return INT64_MAX;
+  if (v < INT64_MIN / k)
+    return INT64_MIN;
+  return v * k;
 }
 
 /* a buffer that truly holds `count` values where it can (the caller does not lie): NULL where the
@@ -922,8 +932,8 @@ static void random_case(int k)
           of[k] = below(50) ? (int64_t)below((unsigned)(m > 0 ? m : 1)) : (below(2) ? -1 : m);
       }
       thin = 1 + (int)below(4);
-      vc = below(5) ? m * thin : random_count(m * thin);
-      oc = below(5) ? c * thin : random_count(c * thin);
+      vc = below(5) ? scaled(m, thin) : random_count(scaled(m, thin));
+      oc = below(5) ? scaled(c, thin) : random_count(scaled(c, thin));
       vals = buffer(vc, sizeof(float), 1);
       out = buffer(oc, sizeof(float), 1);
       sv = buffer(m, 1, 1);

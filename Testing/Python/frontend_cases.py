@@ -74,10 +74,9 @@ IMAGES = {
     "amr": dict(Cutoff="KnifeEdge", Resolution=[48, 40], Passes=1, KnifeAngle=20.0),
 }
 
-# an overlapping AMR (the reference run writes it as amr.vthb, both sides read it with VTK's
-# vtkXMLUniformGridAMRReader): level 0 of AMR["cells0"]^3 cells over [-1, 1]^3, level 1 two boxes
-# side by side at half the spacing over [-0.5, 0.5]^3, a Gaussian density as cell data (a little
-# higher on level 1); RefractiveIndex with AMR["index"] samples it
+# an overlapping AMR (amr_cases.two_level_amr with cell data, level 0 of AMR["cells0"]^3 cells; the
+# reference run writes it as amr.vthb, both sides read it with VTK's vtkXMLUniformGridAMRReader);
+# RefractiveIndex with AMR["index"] samples it
 # (the engine's AMR sampler in both front ends), then SchlierenImage with IMAGES["amr"]
 AMR = dict(cells0=16, index=dict(Model="GladstoneDale", InputArray="density",
                                  DensityReference=1.2))

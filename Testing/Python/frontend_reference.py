@@ -79,45 +79,13 @@ else:
 
 
 def write_amr(path):
-    """frontend_cases.AMR's overlapping AMR, written as a .vthb for both sides to read."""
-    from vtkmodules.vtkCommonDataModel import (vtkAMRBox, vtkAMRUtilities, vtkOverlappingAMR,
-                                               vtkUniformGrid)
+    """frontend_cases.AMR's overlapping AMR (amr_cases.py, cell data), written as a .vthb."""
+    from amr_cases import two_level_amr
     from vtkmodules.vtkIOXML import vtkXMLUniformGridAMRWriter
-    n0 = cases.AMR["cells0"]
-    h0 = 2.0 / n0
-
-    def block(lo, h, n, cells, offset):
-        g = vtkUniformGrid()
-        g.SetOrigin(*lo)
-        g.SetSpacing(h, h, h)
-        g.SetDimensions(n[0] + 1, n[1] + 1, n[2] + 1)
-        axes = [lo[a] + h * (np.arange(n[a] + (0 if cells else 1)) + (0.5 if cells else 0.0))
-                for a in range(3)]
-        z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing="ij")
-        rho = 1.2 + 0.4 * np.exp(-((x - 0.1) ** 2 + y ** 2 + z ** 2) / 0.1) + offset
-        a = numpy_support.numpy_to_vtk(rho.ravel().astype(np.float32), deep=1)
-        a.SetName("density")
-        (g.GetCellData() if cells else g.GetPointData()).AddArray(a)
-        return g
-    amr = vtkOverlappingAMR()
-    amr.Initialize(2, [1, 2])
-    amr.SetOrigin([-1.0] * 3)
-    amr.SetSpacing(0, [h0] * 3)
-    amr.SetAMRBox(0, 0, vtkAMRBox([-1.0] * 3, [n0 + 1] * 3, [h0] * 3, [-1.0] * 3, 8))
-    amr.SetDataSet(0, 0, block([-1.0] * 3, h0, [n0] * 3, True, 0.0))
-    amr.SetSpacing(1, [h0 / 2] * 3)
-    for b, x0 in enumerate((-0.5, 0.0)):
-        cells = [n0 // 2, n0, n0]  # 0.5 x 1 x 1 at h0 / 2
-        amr.SetAMRBox(1, b, vtkAMRBox([x0, -0.5, -0.5], [c + 1 for c in cells], [h0 / 2] * 3,
-                                      [-1.0] * 3, 8))
-        amr.SetDataSet(1, b, block([x0, -0.5, -0.5], h0 / 2, cells, True, 0.01))
-    amr.SetRefinementRatio(0, 2)
-    vtkAMRUtilities.BlankCells(amr)
     w = vtkXMLUniformGridAMRWriter()
-    w.SetInputData(amr)
+    w.SetInputData(two_level_amr(True, cases.AMR["cells0"]))
     w.SetFileName(path)
     w.Write()
-
 
 def read_amr(path):
     """The .vthb as both sides read it: every level (vtkXMLUniformGridAMRReader)."""

@@ -753,37 +753,8 @@ for case, (data, props, message) in REFUSED.items():
 # 1 two boxes side by side (sharing a face) over [-0.5, 0.5]^3 at half the spacing, a Gaussian
 # density a little higher on level 1 (so that the finest level's choice shows), as point data and
 # as cell data
-from vtkmodules.vtkCommonDataModel import (vtkAMRBox, vtkAMRUtilities, vtkOverlappingAMR,  # noqa: E402
-                                           vtkUniformGrid)
-
-
-def amr_case(cells):
-    def block(lo, h, n, offset):
-        g = vtkUniformGrid()
-        g.SetOrigin(*lo)
-        g.SetSpacing(h, h, h)
-        g.SetDimensions(n[0] + 1, n[1] + 1, n[2] + 1)
-        axes = [lo[a] + h * (np.arange(n[a]) + 0.5) if cells else lo[a] + h * np.arange(n[a] + 1)
-                for a in range(3)]
-        z, y, x = np.meshgrid(axes[2], axes[1], axes[0], indexing="ij")
-        rho = 1.2 + 0.4 * np.exp(-((x - 0.1) ** 2 + y ** 2 + z ** 2) / 0.1) + offset
-        a = numpy_support.numpy_to_vtk(rho.ravel().astype(np.float32), deep=1)
-        a.SetName("density")
-        (g.GetCellData() if cells else g.GetPointData()).AddArray(a)
-        return g
-    amr = vtkOverlappingAMR()
-    amr.Initialize(2, [1, 2])
-    amr.SetOrigin([-1.0] * 3)
-    amr.SetSpacing(0, [0.125] * 3)
-    amr.SetAMRBox(0, 0, vtkAMRBox([-1.0] * 3, [17] * 3, [0.125] * 3, [-1.0] * 3, 8))
-    amr.SetDataSet(0, 0, block([-1.0] * 3, 0.125, [16] * 3, 0.0))
-    amr.SetSpacing(1, [0.0625] * 3)
-    for b, x0 in enumerate((-0.5, 0.0)):
-        amr.SetAMRBox(1, b, vtkAMRBox([x0, -0.5, -0.5], [9, 17, 17], [0.0625] * 3, [-1.0] * 3, 8))
-        amr.SetDataSet(1, b, block([x0, -0.5, -0.5], 0.0625, [8, 16, 16], 0.01))
-    amr.SetRefinementRatio(0, 2)
-    vtkAMRUtilities.BlankCells(amr)
-    return amr
+sys.path.insert(0, HERE)
+from amr_cases import two_level_amr as amr_case  # noqa: E402
 
 
 AMR_FIELDS = FIELDS + ("index_notes", "amr_levels", "amr_finest_level", "amr_finest_spacing",
@@ -840,6 +811,7 @@ for kind in ("point", "cell"):
     Delete(index)
 # boxes of one level that share cells: the C++ filter's refusal, word for word, an empty output
 data = amr_case(False)
+from vtkmodules.vtkCommonDataModel import vtkAMRBox  # noqa: E402
 data.SetAMRBox(1, 1, vtkAMRBox([-0.25, -0.5, -0.5], [9, 17, 17], [0.0625] * 3, [-1.0] * 3, 8))
 ref = RI()
 ref.SetInputData(data)
