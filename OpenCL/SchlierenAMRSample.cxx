@@ -92,9 +92,14 @@ std::string AMROverlapProblem(const std::vector<AMRCellBox>& all)
       const unsigned int b = index++;
       const int* lo = box.Lo;
       const int* hi = box.Hi;
-      if (hi[0] < lo[0] - 1 || hi[1] < lo[1] - 1 || hi[2] < lo[2] - 1)
+      bool invalid = false; // vtkAMRBox::IsInvalid (in 64 bits: lo - 1 of INT_MIN overflows)
+      for (int a = 0; a < 3; ++a)
       {
-        continue; // vtkAMRBox::IsInvalid
+        invalid = invalid || std::int64_t(hi[a]) < std::int64_t(lo[a]) - 1;
+      }
+      if (invalid)
+      {
+        continue;
       }
       std::array<int, 6> r;
       for (int a = 0; a < 3; ++a)

@@ -1277,7 +1277,8 @@ static void random_amr_case(void)
       below(30) ? &flevel : NULL, &capped, below(30) ? &note : NULL);
     outcome(F_AMR, rc, schlieren_last_error(), "schlieren_amr_grid");
     for (i = 0; i < 12; ++i)
-      corners[i] = below(10) ? extents[i] - (i % 6 >= 3 ? 1 : 0) : extent_values[below(8)];
+      corners[i] = below(10) && extents[i] > -2147483647 - 1 ? extents[i] - (i % 6 >= 3 ? 1 : 0)
+                                                             : extent_values[below(8)];
     rc = schlieren_amr_overlap(below(10) ? 2 : (below(2) ? 0 : -1), below(30) ? block_levels : NULL,
       below(30) ? corners : NULL);
     outcome(F_AMR, rc, schlieren_last_error(), "schlieren_amr_overlap");
