@@ -83,12 +83,15 @@ if(SCHLIEREN_PYTHON_PLUGIN)
   # where a user meets it, against the C++ plugin's compiled filters in the same pvpython: one
   # vtkImageData for any input (the blunt fin's multiblock), errors as VTK errors with an empty
   # output (no traceback), NumericalSchlieren's update extent, schlieren_view embedded
-  # (Examples/first_light.py), the C++ filter's refusals and an extent not starting at 0
+  # (Examples/first_light.py), the C++ filter's refusals and an extent not starting at 0;
+  # RefractiveIndex's parity matrix (frontend_cases.INDEX) against the reference run's records;
+  # NumericalSchlieren's progress and abort
   schlieren_python_test(python_plugin_parity
     COMMAND "${_pvpython}" "${_here}/test_python_plugin_parity.py"
       --plugin "${SCHLIEREN_PYTHON_PLUGIN}" --cxx-plugin "${_plugin}" --pvpython "${_pvpython}"
       --example "${PROJECT_SOURCE_DIR}/Examples/first_light.py"
-      --work "${_temp}/python_plugin_parity")
+      --work "${_temp}/python_plugin_parity" --reference "${_frontend_ref}"
+    PROPERTIES FIXTURES_REQUIRED frontend_reference)
   set_property(TEST python.python_plugin_parity APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
   # every value of every property's domain through both plugins in one pvpython: both accept or

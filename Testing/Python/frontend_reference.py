@@ -6,7 +6,10 @@
 Writes DIR/<case>_<backend>.npz (image arrays, film origin/spacing/extent, field data) and
 DIR/bluntfin_index.vti (RefractiveIndex's grid of the blunt fin, which both front ends trace).
 The OpenCL references are written only where an OpenCL device works (file DIR/opencl.txt says
-which device, or why none)."""
+which device, or why none). RefractiveIndex's parity matrix (frontend_cases.INDEX): its inputs as
+DIR/input_<name>.vti/.vts/.vtu/.vtm (frontend_matrix.make_inputs; the blunt fin and
+disk_out_ref.ex2 where ../shared/data has them) and the C++ plugin's records DIR/index_<case>.npz
+(frontend_matrix.record: the index's grid, point arrays and field data, the film on it)."""
 import argparse
 import json
 import os
@@ -90,5 +93,57 @@ for backend in cases.BACKENDS:
 for name, (scene, props) in cases.NUMERICAL.items():
     fields = save(name, ns["NumericalSchlieren"](Input=sources[scene], **props))
     print("frontend_reference: %s: %s" % (name, fields))
+
+# RefractiveIndex's matrix (frontend_cases.INDEX): the inputs written as VTK XML files that every
+# leg reads, the C++ plugin's index and film on each (DIR/index_<case>.npz)
+import time  # noqa: E402
+
+import frontend_matrix as matrix  # noqa: E402
+matrix_started = time.time()
+for old in os.listdir(args.output):  # an earlier run's, which may have had the data
+    if old.startswith(("input_", "index_")):
+        path = os.path.join(args.output, old)
+        if os.path.isdir(path):
+            import shutil
+            shutil.rmtree(path)
+        else:
+            os.remove(path)
+from paraview.simple import Delete, ExodusIIReader, PVTrivialProducer  # noqa: E402
+scene = ns["RefractiveScene"](Dimensions=[24, 20, 16])
+scene.UpdatePipeline()
+readers = {}
+if os.path.exists(xyz) and os.path.exists(q):
+    readers["bluntfin"] = servermanager.Fetch(PLOT3DReader(FileName=xyz, QFileName=[q]))
+exo = os.path.join(args.data, "disk_out_ref.ex2")
+if os.path.exists(exo):
+    disk = ExodusIIReader(FileName=exo)
+    disk.PointVariables = ["Temp", "V"]
+    # its hexahedra (the Exodus multiblock's one unstructured block: the XML writer refuses the
+    # empty side-set blocks)
+    it = servermanager.Fetch(disk).NewIterator()
+    it.InitTraversal()
+    while not it.IsDoneWithTraversal():
+        if it.GetCurrentDataObject().GetNumberOfCells() > 0 and "disk" not in readers:
+            readers["disk"] = it.GetCurrentDataObject()
+        it.GoToNextItem()
+for name, data in matrix.make_inputs(servermanager.Fetch(scene), readers).items():
+    matrix.write_input(args.output, name, data)
+for case, (which, props, image_props) in cases.INDEX.items():
+    data = matrix.read_input(args.output, which)
+    if data is None:
+        print("frontend_reference: %s left out: no %s in %s" % (case, which, args.data))
+        continue
+    source = PVTrivialProducer()
+    source.GetClientSideObject().SetOutput(data)
+    index = ns["RefractiveIndex"](Input=source, **matrix.proxy_properties(props))
+    image = ns["SchlierenImage"](Input=index, **dict(cases.INDEX_IMAGE, **image_props))
+    image.UpdatePipeline()
+    got = matrix.record(servermanager.Fetch(index), servermanager.Fetch(image))
+    np.savez(os.path.join(args.output, "index_%s.npz" % case), **got)
+    print("frontend_reference: %s: %d index arrays, film %s" % (
+        case, len(json.loads(str(got["index_arrays"]))), got["film_geometry"][:6].tolist()))
+    for proxy in (image, index, source):
+        Delete(proxy)
+print("frontend_reference: RefractiveIndex's matrix in %.1f s" % (time.time() - matrix_started))
 with open(os.path.join(args.output, "opencl.txt"), "w") as f:
     f.write(opencl + "\n")
