@@ -10,10 +10,11 @@ set(SCHLIEREN_FRONTEND_VTK_OLDEST "vtk==9.2.6 numpy<2" CACHE STRING
   "Requirements of the oldest-vtk venv of the python.frontend tests")
 set(_frontend_ref "${CMAKE_CURRENT_BINARY_DIR}/Temporary/frontend_reference")
 set(_venvs "${CMAKE_BINARY_DIR}/python-venvs")
+# (RefractiveIndex's matrix reads two of the suite's solved OpenFOAM cases: schlieren_openfoam)
 schlieren_python_test(frontend_reference
   COMMAND "${_pvpython}" "${_here}/frontend_reference.py" --plugin "${_plugin}"
-    --output "${_frontend_ref}"
-  PROPERTIES FIXTURES_SETUP frontend_reference)
+    --output "${_frontend_ref}" --openfoam "${CMAKE_BINARY_DIR}/openfoam"
+  PROPERTIES FIXTURES_SETUP frontend_reference FIXTURES_REQUIRED schlieren_openfoam)
 foreach(_which NEWEST OLDEST)
   string(TOLOWER "${_which}" _lower)
   schlieren_python_test(frontend_vtk_${_lower}
