@@ -44,7 +44,7 @@ ARRAY_PROPERTIES = {"InputArray", "TemperatureArray", "PressureArray", "MixtureF
 
 # the file each input is written to (its extension: the data set's XML format)
 EXTENSIONS = {"vtkImageData": ".vti", "vtkStructuredGrid": ".vts", "vtkUnstructuredGrid": ".vtu",
-              "vtkMultiBlockDataSet": ".vtm"}
+              "vtkMultiBlockDataSet": ".vtm", "vtkOverlappingAMR": ".vthb"}
 
 
 def proxy_properties(props):
@@ -128,6 +128,38 @@ def _sheared(scene):
     return g
 
 
+def _amr(scene):
+    """A two-level vtkOverlappingAMR of the scene's density: level 0 its 24 x 20 x 16 points, level
+    1 the middle half of it at twice the resolution (the scene's density at the nearest point)."""
+    from vtkmodules.vtkCommonDataModel import (vtkAMRBox, vtkAMRUtilities, vtkOverlappingAMR,
+                                               vtkUniformGrid)
+    dims, h, o = scene.GetDimensions(), scene.GetSpacing(), scene.GetOrigin()
+    rho = numpy_support.vtk_to_numpy(scene.GetPointData().GetArray("density")).reshape(
+        dims[2], dims[1], dims[0])
+    amr = vtkOverlappingAMR()
+    amr.Initialize(2, [1, 1])
+    amr.SetOrigin(o)
+    lo = [dims[a] // 4 for a in range(3)]  # the patch: points lo .. lo + dims / 2 of level 0
+    for level, (first, count, step) in enumerate((([0, 0, 0], [d - 1 for d in dims], 1),
+                                                  (lo, [d // 2 for d in dims], 2))):
+        spacing = [h[a] / step for a in range(3)]
+        corner = [o[a] + first[a] * h[a] for a in range(3)]
+        g = vtkUniformGrid()
+        g.SetOrigin(corner)
+        g.SetSpacing(spacing)
+        g.SetDimensions([c * step + 1 for c in count])
+        k, j, i = np.meshgrid(*[np.clip(np.rint(first[a] + np.arange(count[a] * step + 1) / step)
+                                        .astype(int), 0, dims[a] - 1) for a in (2, 1, 0)],
+                              indexing="ij")
+        _add(g, "density", rho[k, j, i].astype(np.float32).ravel())
+        amr.SetSpacing(level, spacing)
+        amr.SetAMRBox(level, 0, vtkAMRBox(corner, [c * step + 1 for c in count], spacing, o, 8))
+        amr.SetDataSet(level, 0, g)
+    amr.SetRefinementRatio(0, 2)
+    vtkAMRUtilities.BlankCells(amr)
+    return amr
+
+
 def make_inputs(scene, readers):
     """The matrix's inputs: {name: data set}. `scene` is a RefractiveScene's output (a Gaussian
     sphere on 24 x 20 x 16 points, n_minus_1 and density); `readers` {name: data object} the real
@@ -164,16 +196,19 @@ def make_inputs(scene, readers):
     out["plane_unstructured"] = _unstructured(_plane((0, 16, 0, 12, 0, 0), False))
     out["cone"] = _unstructured(_plane((0, 20, 0, 10, 0, 0), True))
     out["wedge"] = _wedge()
+    out["amr"] = _amr(scene)
     return out
 
 
 def write_input(folder, name, data):
     from vtkmodules.vtkIOXML import (vtkXMLImageDataWriter, vtkXMLMultiBlockDataWriter,
-                                     vtkXMLStructuredGridWriter, vtkXMLUnstructuredGridWriter)
+                                     vtkXMLStructuredGridWriter, vtkXMLUniformGridAMRWriter,
+                                     vtkXMLUnstructuredGridWriter)
     kind = data.GetClassName()
     writer = {"vtkImageData": vtkXMLImageDataWriter, "vtkStructuredGrid": vtkXMLStructuredGridWriter,
               "vtkUnstructuredGrid": vtkXMLUnstructuredGridWriter,
-              "vtkMultiBlockDataSet": vtkXMLMultiBlockDataWriter}[kind]()
+              "vtkMultiBlockDataSet": vtkXMLMultiBlockDataWriter,
+              "vtkOverlappingAMR": vtkXMLUniformGridAMRWriter}[kind]()
     writer.SetInputData(data)
     writer.SetFileName(os.path.join(folder, "input_" + name + EXTENSIONS[kind]))
     if not writer.Write():
@@ -182,13 +217,19 @@ def write_input(folder, name, data):
 
 def read_input(folder, name):
     """The input `name` as the reference run wrote it, or None where it wrote none."""
-    from vtkmodules.vtkIOXML import vtkXMLGenericDataObjectReader
+    from vtkmodules.vtkIOXML import vtkXMLGenericDataObjectReader, vtkXMLUniformGridAMRReader
     for ext in EXTENSIONS.values():
         path = os.path.join(folder, "input_" + name + ext)
         if os.path.exists(path):
-            r = vtkXMLGenericDataObjectReader()
+            # (the generic reader gives an AMR's boxes without their data; an AMR's DeepCopy into
+            # a NewInstance has no points: the reader's own output is handed on)
+            r = vtkXMLUniformGridAMRReader() if ext == ".vthb" else vtkXMLGenericDataObjectReader()
             r.SetFileName(path)
+            if ext == ".vthb":
+                r.SetMaximumLevelsToReadByDefault(0)  # every level (the default reads level 0)
             r.Update()
+            if ext == ".vthb":
+                return r.GetOutputDataObject(0)
             data = r.GetOutputDataObject(0).NewInstance()
             data.DeepCopy(r.GetOutputDataObject(0))
             return data

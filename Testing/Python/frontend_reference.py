@@ -146,8 +146,10 @@ for name, case, time_value in (("ladenburg", "LadenburgJet60psi", 0.0),
     reader.UpdatePipeline(time_value)
     readers[name] = servermanager.Fetch(reader)
     Delete(reader)
+used = {which for which, _, _ in cases.INDEX.values()}
 for name, data in matrix.make_inputs(servermanager.Fetch(scene), readers).items():
-    matrix.write_input(args.output, name, data)
+    if name in used:  # (an input no case reads yet is not written: the AMR one)
+        matrix.write_input(args.output, name, data)
 for case, (which, props, image_props) in cases.INDEX.items():
     data = matrix.read_input(args.output, which)
     if data is None:
