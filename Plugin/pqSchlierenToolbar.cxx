@@ -196,6 +196,12 @@ void ColourPhotograph(pqDataRepresentation* repr)
     {
       vtkSMTransferFunctionProxy::ApplyPreset(lut, name == "difference" ? "Cool to Warm" : "Grayscale", false);
     }
+    else
+    {
+      // the photograph's lines (no distance: NaN) half transparent, so that the film's lines
+      // under them show their distance's colour
+      vtkSMPropertyHelper(lut, "NanOpacity", true).Set(0.4);
+    }
     if (name == "difference") // 0 (agreement) in the middle of the diverging map
     {
       const double m = std::max(std::fabs(range[0]), std::fabs(range[1]));
