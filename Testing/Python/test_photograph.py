@@ -47,16 +47,17 @@ def write(values, path, bits, colour=False):
     writer.Write()
 
 
-def test_volume(engine):
+def test_volume(engine, blast_radius=0.4):
     """The volume whose film the tests photograph: a blast wave off the centre with a plane shock
     gives lines in two directions, a Gaussian lump a soft feature (scenes summed through the
     engine's fill); n_minus_1 on a 48^3 image over [-1, 1]^3. `engine`: the package's _engine
-    (python.photograph_plugins passes the Python plugin's)."""
+    (python.photograph_plugins passes the Python plugin's); `blast_radius` moves the blast's
+    shock (python.photograph_plugins' moved photograph)."""
     from vtkmodules.util import numpy_support
     from vtkmodules.vtkCommonDataModel import vtkImageData
     dims = [48, 48, 48]
     spacing = [2.0 / 47] * 3
-    blast = engine.fill_scene({"Scene": "BlastWave", "Radius": 0.4, "Width": 0.04,
+    blast = engine.fill_scene({"Scene": "BlastWave", "Radius": blast_radius, "Width": 0.04,
                                "Center": [0.2, 0.15, 0.0]}, dims, [-1.0] * 3, spacing)
     lump = engine.fill_scene({"Scene": "GaussianSphere", "Amplitude": 3e-3, "Width": 0.2,
                               "Center": [-0.45, -0.4, 0.0]}, dims, [-1.0] * 3, spacing)

@@ -13,7 +13,10 @@ image and a "photograph" of it made with a known similarity transform, gamma, vi
      difference, the lines' distances within two pixels (the same flow);
   3. the photograph given on the C++ filter's second input (a vtkPNGReader) equals FileName's;
   4. refused alike, with the same reason and empty outputs: a photograph of noise, a missing file,
-     one point pair, a Blend Weight of 2.
+     one point pair, a Blend Weight of 2;
+  5. the blast's shock moved by a known distance (radius 0.04 larger, 2.2 film pixels), placed by
+     two marks typed as Point Pairs with Refine None: bit for bit again, the blast's lines listed
+     the move apart within half a film pixel, the plane shock's under half a pixel.
 
     pvpython test_photograph_plugins.py --plugin build/lib/schlieren-python-plugin/SchlierenPython.py \\
         --work /tmp/photograph_plugins
@@ -79,6 +82,8 @@ def cxx_filter(**props):
     for name, value in props.items():
         if name == "Overlay":
             value = OVERLAYS.index(value)
+        elif name == "Refine":
+            value = ["Similarity", "Rigid", "Shift", "None"].index(value)
         getattr(f, "Set" + name)(*(value if isinstance(value, list) else [value]))
     return f
 
@@ -213,8 +218,51 @@ by_port.Update()
 same_attributes(by_port.GetOutput().GetPointData(), by_name.GetOutput().GetPointData(),
                 "the C++ filter's second input against its FileName")
 
+# 5. the blast's shock moved by a known distance (its radius 0.04 larger: 2.2 film pixels), the
+# photograph placed by two marks typed as Point Pairs with Refine None (a correlation would pull
+# toward the moved shock): the blast's lines listed that far apart, the plane shock's not moved
+move = 0.04
+moved_volume = test_volume(engine, 0.4 + move)
+moved_tracer = schlieren_vtk.vtkSchlierenImage()
+moved_tracer.SetInputData(moved_volume)
+moved_tracer.SetResolution(N, N)
+moved_tracer.SetPasses(4)
+moved_tracer.SetBackend(schlieren_vtk.vtkSchlierenImage.CPU)
+moved_tracer.Update()
+moved_values = numpy_support.vtk_to_numpy(
+    moved_tracer.GetOutput().GetPointData().GetArray("intensity")).reshape(N, N)
+moved_photo = engine.synthetic_photograph(moved_values, truth["scale"], truth["degrees"], truth["shift"],
+                                          (140, 160), gamma=1.4, vignetting=0.2, photons=3000, seed=12)
+moved_png = os.path.join(work, "moved16.png")
+write(moved_photo, moved_png, 16)
+origin = film.GetOrigin()
+pairs = []
+for i, j in ((12, 10), (N - 15, N - 12)):  # film pixels of two marks, their photograph pixels
+    x, y = i - 0.5 * (N - 1), j - 0.5 * (N - 1)
+    t = math.radians(truth["degrees"])
+    pairs += [truth["scale"] * (math.cos(t) * x - math.sin(t) * y) + 0.5 * (160 - 1) + truth["shift"][0],
+              truth["scale"] * (math.sin(t) * x + math.cos(t) * y) + 0.5 * (140 - 1) + truth["shift"][1],
+              origin[0] + i * pixel, origin[1] + j * pixel]
+typed = " ".join("%.6f" % v for v in pairs)
+cxx, cxx_text, py, py_text, alg, f, proxy = run_both(FileName=moved_png, PointPairs=typed, Refine="None")
+same_outputs(cxx, py, "the moved blast on two marks")
+cd = cxx[1].GetCellData()
+lines = [(int(cd.GetArray("image").GetValue(k)), float(cd.GetArray("line_distance").GetValue(k)),
+          cxx[1].GetCell(k).GetBounds()) for k in range(cxx[1].GetNumberOfCells())]
+# the blast's lines: the film's lines right of the plane shock (x > -0.1); the plane shock's: near x -0.25
+blast = [d for image, d, b in lines if image == 0 and d == d and b[0] > -0.1]
+plane = [d for image, d, b in lines if image == 0 and d == d and b[1] < -0.15 and b[0] > -0.35]
+print("moved blast: the blast's lines %s, the plane shock's %s (moved %g, a pixel %.4g)"
+      % (["%.4f" % d for d in blast], ["%.4f" % d for d in plane], move, pixel))
+T.check(alg.Report is not None and alg.Report["match"] and blast and
+        abs(float(np.median(blast)) - move) < 0.5 * pixel,
+        "the moved blast: its lines' median distance %.4f for a move of %g (within half a film pixel, %.4f)"
+        % (float(np.median(blast)) if blast else -1, move, 0.5 * pixel))
+T.check(plane and max(plane) < 0.5 * pixel,
+        "the plane shock did not move: %s (under half a film pixel)" % ["%.4f" % d for d in plane])
+
 # 4. refused alike
-noise = np.random.default_rng(3).poisson(400, (140, 160)).astype(np.float32)
+noise = np.random.default_rng(3).poisson(400, (64, 72)).astype(np.float32)  # small: quick to refuse
 noise_png = os.path.join(work, "noise.png")
 write(noise, noise_png, 16)
 for what, props, needle in (
