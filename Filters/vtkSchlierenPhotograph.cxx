@@ -160,14 +160,14 @@ void AddString(vtkFieldData* fd, const char* name, const std::string& value)
 }
 
 /** A report's number (null: NaN), as Python's json reads the engine's text. */
-double NumberOf(const vtknlohmann::json& v)
+double NumberOf(const nlohmann::json& v)
 {
   return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
 }
 
 /** The report's field data on the film's output (the numbers as the engine's JSON gives them, so
  * that the Python front end, which reads only that, has the same bits). */
-void WriteReport(vtkImageData* output, const std::string& text, const vtknlohmann::json& r)
+void WriteReport(vtkImageData* output, const std::string& text, const nlohmann::json& r)
 {
   vtkFieldData* fd = output->GetFieldData();
   AddString(fd, "photograph_report", text);
@@ -185,7 +185,7 @@ void WriteReport(vtkImageData* output, const std::string& text, const vtknlohman
 }
 
 /** The report's lines as polylines at height z (the Python package's _photograph_lines). */
-void WriteLines(vtkPolyData* output, const vtknlohmann::json& lines, double z)
+void WriteLines(vtkPolyData* output, const nlohmann::json& lines, double z)
 {
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> cells;
@@ -374,7 +374,7 @@ int vtkSchlierenPhotograph::RequestData(
   pd->AddArray(FloatArray("line_distance", r.LineDistance.data(), n));
   pd->AddArray(FloatArray("blend", blend.data(), n));
   pd->SetActiveScalars(OverlayArrays[this->Overlay]);
-  const vtknlohmann::json report = vtknlohmann::json::parse(text);
+  const nlohmann::json report = nlohmann::json::parse(text);
   WriteReport(output, text, report);
   if (!r.Warnings.empty())
     vtkWarningMacro(<< r.Warnings);
