@@ -34,7 +34,6 @@ def write_json(name, value):
 
 
 try:
-    import numpy as np
     from paraview.simple import *  # noqa: F401,F403
     from vtkmodules.util.numpy_support import vtk_to_numpy
 

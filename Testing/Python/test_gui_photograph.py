@@ -33,7 +33,6 @@ args = gd.args
 gd.launch("gui_photograph_session.py", {})
 say, check, fatal, finish, wait_for = gd.say, gd.check, gd.fatal, gd.finish, gd.wait_for
 send, read_json, xdo, screenshot = gd.send, gd.read_json, gd.xdo, gd.screenshot
-commands = [0]
 
 
 def state(command="state"):
