@@ -12,6 +12,7 @@
 #include "SchlierenNumerical.h"
 #include "SchlierenParallel.h"
 #include "SchlierenPhotograph.h"
+#include "SchlierenPhotographOverlay.h"
 #include "SchlierenSample.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
@@ -1994,6 +1995,33 @@ int schlieren_photograph(const char* settings, const int film_size[2], const dou
     Returned = r.Json();
     if (report)
       *report = Returned.c_str();
+  });
+}
+
+int schlieren_photograph_grey(const double* values, int64_t count, int components, float* grey)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_photograph_grey";
+    if (count < 0)
+      throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) + ": a count of pixels (>= 0).");
+    if (components < 1 || components > 4)
+      throw schlieren::Error(std::string(f) + ": components is " + std::to_string(components) +
+        ": 1 (grey), 2 (grey and alpha), 3 (RGB) or 4 (RGBA).");
+    if (count > 0 && (!values || !grey))
+      throw schlieren::Error(std::string(f) + ": " + (!values ? "values" : "grey") + " is NULL.");
+    schlieren::PhotographGrey(values, static_cast<std::size_t>(count), components, grey);
+  });
+}
+
+int schlieren_photograph_blend(double weight, const float* film, const float* difference, int64_t count, float* blend)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_photograph_blend";
+    if (count < 0)
+      throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) + ": a count of pixels (>= 0).");
+    if (count > 0 && (!film || !difference || !blend))
+      throw schlieren::Error(std::string(f) + ": " + (!film ? "film" : !difference ? "difference" : "blend") + " is NULL.");
+    schlieren::PhotographBlend(weight, film, difference, static_cast<std::size_t>(count), blend);
   });
 }
 

@@ -381,6 +381,20 @@ SCHLIEREN_C_API int schlieren_photograph(const char* settings, const int film_si
   const int photo_size[2], const float* photo, int64_t photo_count, int64_t capacity,
   float* registered, float* calibrated, float* difference, float* checkerboard,
   float* line_distance, const char** report);
+/**
+ * A photograph's pixels as grey, as the photograph filters read a file (docs/CFD.md): `count`
+ * pixels of `components` values each (1 grey, 2 grey and alpha: the grey, 3 RGB or 4 RGBA: the
+ * luminance 0.2126 R + 0.7152 G + 0.0722 B) into `grey` (`count` floats). Returns 0, or non-zero
+ * (schlieren_last_error()) for NULL arrays, a negative count or another number of components.
+ */
+SCHLIEREN_C_API int schlieren_photograph_grey(const double* values, int64_t count, int components, float* grey);
+/**
+ * The blend the photograph filters show over the film: `blend` = film + weight * difference (float
+ * arithmetic; `difference` as schlieren_photograph gives it, 0 where the photograph does not cover
+ * the film), `count` floats each; `weight` in [0, 1]. Returns 0, or non-zero (schlieren_last_error()).
+ */
+SCHLIEREN_C_API int schlieren_photograph_blend(double weight, const float* film, const float* difference,
+  int64_t count, float* blend);
 
 #ifdef __cplusplus
 }

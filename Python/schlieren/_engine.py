@@ -139,6 +139,9 @@ _sig("schlieren_check_property", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
 _sig("schlieren_photograph", ctypes.c_int, ctypes.c_char_p, ctypes.c_int * 2, ctypes.c_double * 2,
      ctypes.c_double, _f32p, _i64, ctypes.c_int * 2, _f32p, _i64, _i64, _f32p, _f32p, _f32p, _f32p,
      _f32p, ctypes.POINTER(ctypes.c_char_p))
+_sig("schlieren_photograph_grey", ctypes.c_int, ctypes.POINTER(ctypes.c_double), _i64, ctypes.c_int,
+     _f32p)
+_sig("schlieren_photograph_blend", ctypes.c_int, ctypes.c_double, _f32p, _f32p, _i64, _f32p)
 
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
@@ -859,19 +862,35 @@ PHOTOGRAPH_IMAGES = ("registered", "calibrated", "difference", "checkerboard", "
 
 
 def grey(image, name="photo"):
-    """A photograph as grey float32 (h, w): a 2D array as it is; (h, w, 3) or (h, w, 4) colour by
-    its luminance (Rec. 709 weights; alpha ignored). Other shapes and dtypes are refused."""
+    """A photograph as grey float32 (h, w): a 2D array as it is; (h, w, 1) its values, (h, w, 2)
+    (grey and alpha) the grey, (h, w, 3) or (h, w, 4) colour by its luminance (Rec. 709 weights;
+    alpha ignored): the engine's schlieren_photograph_grey, as the C++ filter reads a photograph.
+    Other shapes and dtypes are refused."""
     a = np.asarray(image)
     if a.dtype.kind not in "biuf":
         raise ArgumentTypeError("%s has dtype %s: give grey levels or RGB(A) numbers" % (name, a.dtype))
-    if a.ndim == 3 and a.shape[2] in (3, 4):
-        a = a[:, :, :3].astype(np.float64) @ np.array([0.2126, 0.7152, 0.0722])
-    elif a.ndim == 3 and a.shape[2] == 1:
-        a = a[:, :, 0]
+    if a.ndim == 3 and 1 <= a.shape[2] <= 4:
+        values = np.ascontiguousarray(a, dtype=np.float64)
+        out = np.empty(a.shape[:2], np.float32)
+        _check(_lib.schlieren_photograph_grey(values.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
+                                              out.size, a.shape[2], _fp(out)))
+        return out
     if a.ndim != 2:
         raise ArgumentError("%s has shape %s: give a 2D array (rows, columns) of grey levels or "
-                            "(rows, columns, 3 or 4) of colour" % (name, a.shape))
+                            "(rows, columns, 1 to 4) of grey, grey and alpha, RGB or RGBA" % (name, a.shape))
     return np.ascontiguousarray(a, dtype=np.float32)
+
+
+def photograph_blend(film, difference, weight):
+    """The blend the photograph filters show: film + weight * difference (float32; the engine's
+    schlieren_photograph_blend), `film` and `difference` float32 arrays of one shape."""
+    f = np.ascontiguousarray(film, dtype=np.float32)
+    d = np.ascontiguousarray(difference, dtype=np.float32)
+    if f.shape != d.shape:
+        raise ArgumentError("film %s and difference %s differ in shape" % (f.shape, d.shape))
+    out = np.empty(f.shape, np.float32)
+    _check(_lib.schlieren_photograph_blend(float(weight), _fp(f), _fp(d), f.size, _fp(out)))
+    return out
 
 
 def photograph(film, film_origin, pixel_size, photo, settings=None):
@@ -898,8 +917,10 @@ def photograph(film, film_origin, pixel_size, photo, settings=None):
         text.encode(), (ctypes.c_int * 2)(nx, ny), (ctypes.c_double * 2)(*origin), float(pixel_size),
         _fp(f), f.size, (ctypes.c_int * 2)(p.shape[1], p.shape[0]), _fp(p), p.size, f.size,
         *[_fp(out[k]) for k in PHOTOGRAPH_IMAGES], ctypes.byref(report)))
-    r = json.loads(_text(report.value))
+    text = _text(report.value)
+    r = json.loads(text)
     r["images"] = out
+    r["json"] = text  # the engine's report as it wrote it (the filters' field data photograph_report)
     return r
 
 

@@ -61,7 +61,6 @@ import inspect
 import os
 import subprocess
 import sys
-import tempfile
 import time
 
 if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11
@@ -100,26 +99,9 @@ def check(ok, what):
         failures.append(what)
 
 
-class Captured:
-    """What the process writes to its standard error (file descriptor 2: VTK's output window and
-    Python's tracebacks) while the block runs."""
-
-    def __enter__(self):
-        sys.stderr.flush()
-        self._file = tempfile.TemporaryFile(mode="w+b")
-        self._saved = os.dup(2)
-        os.dup2(self._file.fileno(), 2)
-        return self
-
-    def __exit__(self, *exc):
-        sys.stderr.flush()
-        os.dup2(self._saved, 2)
-        os.close(self._saved)
-        self._file.seek(0)
-        self.text = self._file.read().decode("utf-8", "replace")
-        self._file.close()
-        sys.stderr.write(self.text)  # still in the test's log
-        return False
+# what the process writes to its standard error while a block runs (VTK's output window, tracebacks)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from schlieren_testing import CapturedStderr as Captured  # noqa: E402
 
 
 def array(data, name):
