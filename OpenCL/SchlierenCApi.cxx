@@ -1088,14 +1088,16 @@ int schlieren_fill_scene(const char* settings, const int dims[3], const double o
   });
 }
 
-int schlieren_numerical(const char* settings, const int dims[3], const double origin[3],
+namespace
+{
+int NumericalWith(const char* f, const char* settings, const int dims[3], const double origin[3],
   const double spacing[3], const float* values, int64_t values_count, const unsigned char* solid,
   int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
   double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
-  unsigned char* blocked, double maximum_largest[2])
+  unsigned char* blocked, double maximum_largest[2], schlieren_progress_callback callback,
+  void* user)
 {
   return Guard(LastError, [&] {
-    const char* f = "schlieren_numerical";
     const std::int64_t points = GridPoints(f, dims);
     CheckFinite3(f, "origin", origin);
     CheckFinite3(f, "spacing", spacing);
@@ -1203,7 +1205,17 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
     grid.Values = values;
     grid.Solid = solid;
     grid.Excluded = excluded;
-    const schlieren::NumericalImage image = schlieren::NumericalSchlieren(grid, ns);
+    // the callback's progress; once it says stop, stopped (the engine's last report ignores it)
+    bool stopped = false;
+    schlieren::ProgressFunction progress;
+    if (callback)
+      progress = [&](double fraction) {
+        const std::string text = "NumericalSchlieren: " +
+          std::to_string(static_cast<int>(100.0 * fraction)) + " % of the image";
+        stopped = stopped || callback(fraction, text.c_str(), user) == 0;
+        return !stopped;
+      };
+    const schlieren::NumericalImage image = schlieren::NumericalSchlieren(grid, ns, progress);
     const std::int64_t n = static_cast<std::int64_t>(image.Film.Size[0]) * image.Film.Size[1];
     if (n > capacity)
       throw schlieren::Error("schlieren_numerical: the film has " + std::to_string(n) +
@@ -1226,6 +1238,30 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
       maximum_largest[1] = image.Largest;
     }
   });
+}
+} // namespace
+
+int schlieren_numerical(const char* settings, const int dims[3], const double origin[3],
+  const double spacing[3], const float* values, int64_t values_count, const unsigned char* solid,
+  int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
+  double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
+  unsigned char* blocked, double maximum_largest[2])
+{
+  return NumericalWith("schlieren_numerical", settings, dims, origin, spacing, values,
+    values_count, solid, solid_count, excluded, excluded_count, size, film_origin, pixel_size,
+    capacity, intensity, gradient, blocked, maximum_largest, nullptr, nullptr);
+}
+
+int schlieren_numerical_progress(const char* settings, const int dims[3], const double origin[3],
+  const double spacing[3], const float* values, int64_t values_count, const unsigned char* solid,
+  int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
+  double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
+  unsigned char* blocked, double maximum_largest[2], schlieren_progress_callback progress,
+  void* user)
+{
+  return NumericalWith("schlieren_numerical_progress", settings, dims, origin, spacing, values,
+    values_count, solid, solid_count, excluded, excluded_count, size, film_origin, pixel_size,
+    capacity, intensity, gradient, blocked, maximum_largest, progress, user);
 }
 
 int schlieren_octree_levels(const int dims[3], const float* n_minus_1, int64_t count,

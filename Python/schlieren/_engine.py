@@ -126,6 +126,10 @@ _sig("schlieren_numerical", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3, 
      _i64, _u8p, _i64, _u8p, _i64, ctypes.c_int * 2, ctypes.c_double * 2,
      ctypes.POINTER(ctypes.c_double), ctypes.c_int64, _f32p, _f32p, _u8p,
      ctypes.POINTER(ctypes.c_double))
+_sig("schlieren_numerical_progress", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3,
+     _c_double3, _f32p, _i64, _u8p, _i64, _u8p, _i64, ctypes.c_int * 2, ctypes.c_double * 2,
+     ctypes.POINTER(ctypes.c_double), ctypes.c_int64, _f32p, _f32p, _u8p,
+     ctypes.POINTER(ctypes.c_double), _progress_fn, ctypes.c_void_p)
 _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
@@ -310,10 +314,36 @@ def fill_scene(settings, dims, origin, spacing, body=False):
     return out
 
 
-def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded=None):
+def _with_progress(progress, call):
+    """call(callback, user) with `progress(fraction, text) -> bool` (None: no callback) as the C
+    interface's schlieren_progress_callback: a false return stops the engine; an exception in
+    `progress` stops it too and is raised here, after the call."""
+    if progress is None:
+        return call(_progress_fn(), None)
+    raised = []
+
+    def report_progress(fraction, text, _user):
+        if raised:
+            return 0
+        try:
+            return 1 if progress(fraction, _text(text)) else 0
+        except BaseException as e:  # noqa: BLE001 -- raised below, after the call
+            raised.append(e)
+            return 0
+    rc = call(_progress_fn(report_progress), None)
+    if raised:
+        raise raised[0]
+    return rc
+
+
+def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded=None,
+              progress=None):
     """NumericalSchlieren on a grid: without `values` the film only, (size, origin, pixel);
     else a dict of intensity, numerical_gradient (float32), blocked (uint8) and the film, with
-    maximum (the qmax used) and largest (the largest q)."""
+    maximum (the qmax used) and largest (the largest q). progress(fraction, text) -> bool, where
+    given, is called between blocks of film rows (each a fraction of a second); a false return
+    stops the image: EngineError "aborted at P % of the image: no image" (the image is bit for bit
+    the same with or without it)."""
     text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items()).encode()
     size, film_origin, pixel = (ctypes.c_int * 2)(), (ctypes.c_double * 2)(), ctypes.c_double()
     grid = _grid(dims, origin, spacing)
@@ -333,10 +363,10 @@ def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded
     out = {"intensity": np.empty(n, np.float32), "numerical_gradient": np.empty(n, np.float32),
            "blocked": np.empty(n, np.uint8)}
     ml = (ctypes.c_double * 2)()
-    _check(_lib.schlieren_numerical(text, *grid, _fp(a), a.size, _up(s), _size(s), _up(e),
-                                    _size(e), size, film_origin, ctypes.byref(pixel), n,
-                                    _fp(out["intensity"]), _fp(out["numerical_gradient"]),
-                                    _up(out["blocked"]), ml))
+    _check(_with_progress(progress, lambda callback, user: _lib.schlieren_numerical_progress(
+        text, *grid, _fp(a), a.size, _up(s), _size(s), _up(e), _size(e), size, film_origin,
+        ctypes.byref(pixel), n, _fp(out["intensity"]), _fp(out["numerical_gradient"]),
+        _up(out["blocked"]), ml, callback, user)))
     out.update(size=list(size), origin=list(film_origin), pixel=pixel.value, maximum=ml[0],
                largest=ml[1])
     return out
@@ -772,19 +802,8 @@ class Session:
         if progress is None:
             rc = _lib.schlieren_session_trace(s)
         else:
-            raised = []
-
-            def report_progress(fraction, text, _user):
-                if raised:
-                    return 0
-                try:
-                    return 1 if progress(fraction, _text(text)) else 0
-                except BaseException as e:  # noqa: BLE001 -- raised below, after the trace
-                    raised.append(e)
-                    return 0
-            rc = _lib.schlieren_session_trace_progress(s, _progress_fn(report_progress), None)
-            if raised:
-                raise raised[0]
+            rc = _with_progress(progress, lambda callback, user:
+                                _lib.schlieren_session_trace_progress(s, callback, user))
         report = json.loads(_text(_lib.schlieren_session_report(s)))
         if rc:
             err = self._error()

@@ -1227,8 +1227,11 @@ class NumericalSchlieren(_Properties):
             dims, origin, spacing = self._grid(image)
             r = _engine.numerical(self._settings(), dims, origin, spacing, values,
                                   None if solid is None else (solid != 0).astype(np.uint8),
-                                  None if mask is None else (mask == 0).astype(np.uint8))
+                                  None if mask is None else (mask == 0).astype(np.uint8),
+                                  progress=self._progress)
         except EngineError as e:
+            self.SetAbortExecute(0)  # an abort is spent: the next update images again
+            out.Initialize()
             return self._fail(str(e))
         out.Initialize()
         out.SetExtent(0, r["size"][0] - 1, 0, r["size"][1] - 1, 0, 0)
@@ -1243,6 +1246,12 @@ class NumericalSchlieren(_Properties):
         _field_number(out, "gradient_maximum", r["maximum"])
         _field_number(out, "gradient_largest", r["largest"])
         return 1
+
+    def _progress(self, fraction, _text):
+        """The image's progress, as the C++ filter reports it; False once the pipeline asks to
+        abort (ParaView's abort, an observer's SetAbortExecute)."""
+        self.UpdateProgress(fraction)
+        return not self.GetAbortExecute()
 
 
 def _image_properties():
