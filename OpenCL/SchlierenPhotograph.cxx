@@ -1335,17 +1335,17 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
           double row[7];
           basis(q, row);
           row[6] = std::log(F.V[q]);
-          for (int b = 0; b < n; ++b)
-            u[tile * n + b] += row[b] * resid[a];
+          for (int e = 0; e < n; ++e)
+            u[tile * n + e] += row[e] * resid[a];
         }
         for (int t = 0; t < G; ++t)
           for (int a = 0; a < n; ++a)
-            for (int b = 0; b < n; ++b)
-              S[a * n + b] += u[t * n + a] * u[t * n + b] * G / (G - 1.0);
+            for (int e = 0; e < n; ++e)
+              S[a * n + e] += u[t * n + a] * u[t * n + e] * G / (G - 1.0);
         double v = 0;
         for (int a = 0; a < n; ++a)
-          for (int b = 0; b < n; ++b)
-            v += inverse[(n - 1) * n + a] * S[a * n + b] * inverse[b * n + n - 1];
+          for (int e = 0; e < n; ++e)
+            v += inverse[(n - 1) * n + a] * S[a * n + e] * inverse[e * n + n - 1];
         gammaError = fitGamma ? std::sqrt(std::max(0.0, v)) : 0;
       }
       std::vector<float> absr(resid.size());
