@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -593,29 +594,38 @@ bool Covariance(const Registrar& R, const Transform& t, int free, std::vector<do
         for (int b = 0; b < n; ++b)
           A[a * n + b] += J[q * n + a] * J[q * n + b];
       }
+  // the Bartlett window is separable, (1 - |dx| / (L + 1)) (1 - |dy| / (L + 1)): S = sum over q of
+  // g_q (w * g)_q', w * g the triangle filter along x, then along y (g is 0 off the valid pixels)
   const int Lw = window;
-  for (int dy = 0; dy <= Lw; ++dy)
-    for (int dx = -Lw; dx <= Lw; ++dx)
+  std::vector<double> wx(N * n, 0), wg(N * n, 0);
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i)
     {
-      if (dy == 0 && dx < 0)
-        continue; // the other half plane is the transpose
-      const double w = (1 - std::fabs(dx) / (Lw + 1.0)) * (1 - std::fabs(dy) / (Lw + 1.0));
-      std::vector<double> sum(n * n, 0);
-      for (int j = 0; j + dy < H; ++j)
-        for (int i = std::max(0, -dx); i < W && i + dx < W; ++i)
-        {
-          const std::size_t q = static_cast<std::size_t>(j) * W + i;
-          const std::size_t o = q + static_cast<std::size_t>(dy) * W + dx;
-          if (!ok[q] || !ok[o])
-            continue;
-          for (int a = 0; a < n; ++a)
-            for (int b = 0; b < n; ++b)
-              sum[a * n + b] += g[q * n + a] * g[o * n + b];
-        }
+      const std::size_t q = static_cast<std::size_t>(j) * W + i;
+      for (int d = std::max(-Lw, -i); d <= std::min(Lw, W - 1 - i); ++d)
+      {
+        const double w = 1 - std::abs(d) / (Lw + 1.0);
+        for (int a = 0; a < n; ++a)
+          wx[q * n + a] += w * g[(q + d) * n + a];
+      }
+    }
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i)
+    {
+      const std::size_t q = static_cast<std::size_t>(j) * W + i;
+      for (int d = std::max(-Lw, -j); d <= std::min(Lw, H - 1 - j); ++d)
+      {
+        const double w = 1 - std::abs(d) / (Lw + 1.0);
+        const std::size_t o = q + static_cast<std::ptrdiff_t>(d) * W;
+        for (int a = 0; a < n; ++a)
+          wg[q * n + a] += w * wx[o * n + a];
+      }
+    }
+  for (std::size_t q = 0; q < N; ++q)
+    if (ok[q])
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b)
-          S[a * n + b] += (dx == 0 && dy == 0) ? w * sum[a * n + b] : w * (sum[a * n + b] + sum[b * n + a]);
-    }
+          S[a * n + b] += 0.5 * (g[q * n + a] * wg[q * n + b] + g[q * n + b] * wg[q * n + a]);
   std::vector<double> x, inv;
   if (!Solve(A, std::vector<double>(n, 0), n, x, &inv))
     return false;
