@@ -39,8 +39,11 @@ constexpr double MaxAutoStep = 1000.0;
 constexpr double LongStepMargin = 0.75;
 
 // Reconstruction and Integrator Auto: the trilinear's candidates are tried where its reference is
-// within this many times the tolerance of the tricubic's (see ResolveAutoWith).
-constexpr double TrilinearReach = 2.0;
+// within this many times the tolerance of the tricubic's (see ResolveAutoWith). Its long steps
+// were measured at most 1.5 times closer to the tricubic reference than its own reference is
+// (the 64^3 Gaussian: 2.14e-6 against 3.24e-6 rad); beyond that the trilinear's candidates only
+// cost the pilot time (at 512^3 and 3e-8 rad, 5.1e-8 rad apart: 16 more traces, none met).
+constexpr double TrilinearReach = 1.5;
 
 // The pilot's references (RK4): the first step of their ladder, voxels, the finest, and the
 // share of the tolerance that two successive steps may differ by for the finer to be the
@@ -505,12 +508,13 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
       // 3.0e-6 rad, the trilinear line of sight was 3.2e-6 rad off at 8 voxels and 3.8e-6 at
       // 9.51 on the pilot, 2.1e-6 at 11.3: the cheapest setting of a sweep against the exact
       // ray, where Auto took Cubic at the same samples, 3 times the cost).
-      const double climbLimit = LongStepMargin * std::max(tol, floorOf[static_cast<int>(Reconstruction::Cubic)]);
+      const double allowedTri = std::max(tol, floorOf[static_cast<int>(Reconstruction::Cubic)]);
+      const double climbLimit = LongStepMargin * allowedTri;
       if (!met && rc == Reconstruction::Trilinear && tryCubic && stepErr <= climbLimit)
         for (double st = first;;)
         {
           const double next = std::min(std::stod(ToText(st * std::pow(2.0, 0.25))), maxStep);
-          if (!(next > st) || next > 2 * first)
+          if (!(next > st) || next > 2 * first || useless(m, next, rc))
             break;
           st = next;
           double se = 0;
@@ -557,7 +561,12 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
       else
       {
         hi = first;
-        for (double st = first / 2; st >= shortest && !useless(m, st, rc); st /= 2)
+        // Shorter steps tend to the trilinear's reference: where that is off by more than the
+        // tolerance, halving does not meet (issue 50: at 512^3 and 3e-8 rad the trilinear
+        // groups were halved to 1/4 voxel, 5.0e-8 rad off at every step, and the pilot took
+        // 1.96 s instead of 0.53 s)
+        const bool halves = !(rc == Reconstruction::Trilinear && tryCubic && triError > allowedTri);
+        for (double st = first / 2; halves && st >= shortest && !useless(m, st, rc); st /= 2)
         {
           double e = 0;
           if (evaluate(m, st, rc, &e))
