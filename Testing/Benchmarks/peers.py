@@ -250,6 +250,7 @@ def main():
             print("turbulence_tracing %d^3: %d rays in %.2f s (RK45; np.gradient and interpolators %.2f s), "
                   "RMS %s, max %s" % (n, args.rays, r["seconds"], r["setup"], pct(r["rms"]), pct(r["max"])))
         if have_sg and 3 * 8 * n ** 3 > 2 ** 31 - 9:
+            peer[("sg", n)] = None
             print("SHADOWGRAPH %d^3: not run: its PLOT3D grid would be one record over 2 GiB "
                   "(gfortran's subrecords are not written here)" % n)
         elif have_sg:
@@ -294,7 +295,8 @@ def main():
             o = ours.get((n, key))
             cells.append("%s, %s" % (pct(o["rms"]), speed(n, key, "tt")) if o else "-")
         p = peer.get(("sg", n))
-        cells.append("%s, %.3g" % (pct(p["rms"]), p["rate"]) if p else absent["sg"])
+        cells.append("%s, %.3g" % (pct(p["rms"]), p["rate"]) if p else
+                     "not run (a record over 2 GiB)" if ("sg", n) in peer else absent["sg"])
         o = ours.get((n, euler))
         cells.append("%s, %s" % (pct(o["rms"]), speed(n, euler, "sg")) if o else "-")
         cells.append(speed(n, straight, "sg"))
