@@ -320,14 +320,21 @@ int vtkNumericalSchlieren::RequestData(
     const schlieren::ScalarGrid whole = parallel.Size() > 1
       ? WholeGridOfPieces(inputVector[0]->GetInformationObject(0), empty ? nullptr : input, offset)
       : piece.Grid;
+    // the pipeline's progress between blocks of rows; an abort (ParaView's, an observer's
+    // SetAbortExecute) stops the image there, with no image, and is spent
+    const schlieren::ProgressFunction progress = [this](double fraction) {
+      this->UpdateProgress(fraction);
+      return !this->GetAbortExecute();
+    };
     if (!schlieren::NumericalSchlierenOfPieces(
-          parallel, piece.Grid, offset, whole, SettingsOf(this), image))
+          parallel, piece.Grid, offset, whole, SettingsOf(this), image, progress))
     {
       return 1; // rank 0 holds the image
     }
   }
   catch (const schlieren::Error& e)
   {
+    this->SetAbortExecute(0);
     vtkErrorMacro(<< e.what());
     return 0;
   }

@@ -13,6 +13,7 @@
 #include "SchlierenNumerical.h"
 #include "SchlierenParallel.h"
 #include "SchlierenPhotograph.h"
+#include "SchlierenPhotographOverlay.h"
 #include "SchlierenSample.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
@@ -1094,14 +1095,16 @@ int schlieren_fill_scene(const char* settings, const int dims[3], const double o
   });
 }
 
-int schlieren_numerical(const char* settings, const int dims[3], const double origin[3],
+namespace
+{
+int NumericalWith(const char* f, const char* settings, const int dims[3], const double origin[3],
   const double spacing[3], const float* values, int64_t values_count, const unsigned char* solid,
   int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
   double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
-  unsigned char* blocked, double maximum_largest[2])
+  unsigned char* blocked, double maximum_largest[2], schlieren_progress_callback callback,
+  void* user)
 {
   return Guard(LastError, [&] {
-    const char* f = "schlieren_numerical";
     const std::int64_t points = GridPoints(f, dims);
     CheckFinite3(f, "origin", origin);
     CheckFinite3(f, "spacing", spacing);
@@ -1209,7 +1212,17 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
     grid.Values = values;
     grid.Solid = solid;
     grid.Excluded = excluded;
-    const schlieren::NumericalImage image = schlieren::NumericalSchlieren(grid, ns);
+    // the callback's progress; once it says stop, stopped (the engine's last report ignores it)
+    bool stopped = false;
+    schlieren::ProgressFunction progress;
+    if (callback)
+      progress = [&](double fraction) {
+        const std::string text = "NumericalSchlieren: " +
+          std::to_string(static_cast<int>(100.0 * fraction)) + " % of the image";
+        stopped = stopped || callback(fraction, text.c_str(), user) == 0;
+        return !stopped;
+      };
+    const schlieren::NumericalImage image = schlieren::NumericalSchlieren(grid, ns, progress);
     const std::int64_t n = static_cast<std::int64_t>(image.Film.Size[0]) * image.Film.Size[1];
     if (n > capacity)
       throw schlieren::Error("schlieren_numerical: the film has " + std::to_string(n) +
@@ -1232,6 +1245,30 @@ int schlieren_numerical(const char* settings, const int dims[3], const double or
       maximum_largest[1] = image.Largest;
     }
   });
+}
+} // namespace
+
+int schlieren_numerical(const char* settings, const int dims[3], const double origin[3],
+  const double spacing[3], const float* values, int64_t values_count, const unsigned char* solid,
+  int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
+  double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
+  unsigned char* blocked, double maximum_largest[2])
+{
+  return NumericalWith("schlieren_numerical", settings, dims, origin, spacing, values,
+    values_count, solid, solid_count, excluded, excluded_count, size, film_origin, pixel_size,
+    capacity, intensity, gradient, blocked, maximum_largest, nullptr, nullptr);
+}
+
+int schlieren_numerical_progress(const char* settings, const int dims[3], const double origin[3],
+  const double spacing[3], const float* values, int64_t values_count, const unsigned char* solid,
+  int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
+  double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
+  unsigned char* blocked, double maximum_largest[2], schlieren_progress_callback progress,
+  void* user)
+{
+  return NumericalWith("schlieren_numerical_progress", settings, dims, origin, spacing, values,
+    values_count, solid, solid_count, excluded, excluded_count, size, film_origin, pixel_size,
+    capacity, intensity, gradient, blocked, maximum_largest, progress, user);
 }
 
 int schlieren_octree_levels(const int dims[3], const float* n_minus_1, int64_t count,
@@ -2259,6 +2296,33 @@ int schlieren_photograph(const char* settings, const int film_size[2], const dou
     Returned = r.Json();
     if (report)
       *report = Returned.c_str();
+  });
+}
+
+int schlieren_photograph_grey(const double* values, int64_t count, int components, float* grey)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_photograph_grey";
+    if (count < 0)
+      throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) + ": a count of pixels (>= 0).");
+    if (components < 1 || components > 4)
+      throw schlieren::Error(std::string(f) + ": components is " + std::to_string(components) +
+        ": 1 (grey), 2 (grey and alpha), 3 (RGB) or 4 (RGBA).");
+    if (count > 0 && (!values || !grey))
+      throw schlieren::Error(std::string(f) + ": " + (!values ? "values" : "grey") + " is NULL.");
+    schlieren::PhotographGrey(values, static_cast<std::size_t>(count), components, grey);
+  });
+}
+
+int schlieren_photograph_blend(double weight, const float* film, const float* difference, int64_t count, float* blend)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_photograph_blend";
+    if (count < 0)
+      throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) + ": a count of pixels (>= 0).");
+    if (count > 0 && (!film || !difference || !blend))
+      throw schlieren::Error(std::string(f) + ": " + (!film ? "film" : !difference ? "difference" : "blend") + " is NULL.");
+    schlieren::PhotographBlend(weight, film, difference, static_cast<std::size_t>(count), blend);
   });
 }
 

@@ -228,7 +228,8 @@ double QuirkGrey(double q, double qmax, double c0, double c1, double k)
   return std::exp(-k * std::min(std::max(S, 0.0), 1.0));
 }
 
-NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSettings& s)
+NumericalImage NumericalSchlieren(
+  const ScalarGrid& grid, const NumericalSettings& s, const ProgressFunction& progress)
 {
   NumericalImage out;
   out.Film = NumericalFilm(grid, s);
@@ -278,44 +279,62 @@ NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSetting
   out.Blocked.assign(n, 0);
   out.Intensity.assign(n, 1.0f);
   std::vector<double> rowMax(f.Size[1], 0.0);
-  ParallelRows(f.Size[1], [&](int j) {
-    for (int i = 0; i < f.Size[0]; ++i)
+  // Blocks of rows, each about NumericalBlockSamples samples (at least one row per thread), with
+  // the progress between them on this thread; every pixel is its own, so the blocks change no bit.
+  const int threads = std::max(1, int(std::thread::hardware_concurrency()));
+  const double perRow = std::max(1.0, double(f.Size[0]) * samples);
+  const int block = std::max(threads,
+    static_cast<int>(std::min<double>(f.Size[1], std::ceil(NumericalBlockSamples / perRow))));
+  for (int start = 0; start < f.Size[1]; start += block)
+  {
+    if (progress && !progress(double(start) / f.Size[1]))
     {
-      const double u = f.Corner[0] + (i + 0.5) * f.PixelSize;
-      const double v = f.Corner[1] + (j + 0.5) * f.PixelSize;
-      double sum = 0.0;
-      int count = 0;
-      bool blocked = false;
-      for (int t = 0; t < samples && !blocked; ++t)
-      {
-        const double w = first + t * step;
-        double x[3], g[3];
-        for (int a = 0; a < 3; ++a)
-          x[a] = f.Center[a] + u * f.Right[a] + v * f.Up[a] + w * f.Direction[a];
-        bool solid = false;
-        if (!sampler.Sample(x, g, solid))
-          continue;
-        if (solid)
-        {
-          blocked = true;
-          break;
-        }
-        sum += s.Quantity == NumericalQuantity::Magnitude
-          ? std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2])
-          : g[0] * knife[0] + g[1] * knife[1] + g[2] * knife[2];
-        ++count;
-      }
-      const std::size_t p = std::size_t(i) + std::size_t(f.Size[0]) * j;
-      if (blocked)
-      {
-        out.Blocked[p] = 1;
-        continue;
-      }
-      const double q = count > 0 ? sum / count : 0.0;
-      out.Gradient[p] = static_cast<float>(q);
-      rowMax[j] = std::max(rowMax[j], std::fabs(q));
+      throw Error("aborted at " + std::to_string(static_cast<int>(100.0 * start / f.Size[1])) +
+        " % of the image: no image");
     }
-  });
+    const int rows = std::min(block, f.Size[1] - start);
+    ParallelRows(rows, [&](int r) {
+      const int j = start + r;
+      for (int i = 0; i < f.Size[0]; ++i)
+      {
+        const double u = f.Corner[0] + (i + 0.5) * f.PixelSize;
+        const double v = f.Corner[1] + (j + 0.5) * f.PixelSize;
+        double sum = 0.0;
+        int count = 0;
+        bool blocked = false;
+        for (int t = 0; t < samples && !blocked; ++t)
+        {
+          const double w = first + t * step;
+          double x[3], g[3];
+          for (int a = 0; a < 3; ++a)
+            x[a] = f.Center[a] + u * f.Right[a] + v * f.Up[a] + w * f.Direction[a];
+          bool solid = false;
+          if (!sampler.Sample(x, g, solid))
+            continue;
+          if (solid)
+          {
+            blocked = true;
+            break;
+          }
+          sum += s.Quantity == NumericalQuantity::Magnitude
+            ? std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2])
+            : g[0] * knife[0] + g[1] * knife[1] + g[2] * knife[2];
+          ++count;
+        }
+        const std::size_t p = std::size_t(i) + std::size_t(f.Size[0]) * j;
+        if (blocked)
+        {
+          out.Blocked[p] = 1;
+          continue;
+        }
+        const double q = count > 0 ? sum / count : 0.0;
+        out.Gradient[p] = static_cast<float>(q);
+        rowMax[j] = std::max(rowMax[j], std::fabs(q));
+      }
+    });
+  }
+  if (progress)
+    progress(1.0);
   for (double m : rowMax)
     out.Largest = std::max(out.Largest, m);
   out.Maximum = s.Maximum > 0 ? s.Maximum : out.Largest;
@@ -371,12 +390,13 @@ std::string AgreedFieldName(Parallel& parallel, const std::string& error, const 
 }
 
 bool NumericalSchlierenOfPieces(Parallel& parallel, const ScalarGrid& piece, const int offset[3],
-  const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image)
+  const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image,
+  const ProgressFunction& progress)
 {
   image = NumericalImage();
   if (parallel.Size() <= 1)
   {
-    image = NumericalSchlieren(piece, s);
+    image = NumericalSchlieren(piece, s, progress);
     return true;
   }
   // This rank's piece for rank 0: its index range, flags, values, solid and excluded points.
@@ -459,7 +479,7 @@ bool NumericalSchlierenOfPieces(Parallel& parallel, const ScalarGrid& piece, con
       g.Values = values.data();
       g.Solid = solid.empty() ? nullptr : solid.data();
       g.Excluded = excluded.empty() ? nullptr : excluded.data();
-      image = NumericalSchlieren(g, s);
+      image = NumericalSchlieren(g, s, progress);
     }
     catch (const Error& e)
     {

@@ -88,8 +88,20 @@ void CheckNumericalSettings(const NumericalSettings& s);
 /** The film SchlierenImage makes for this grid, view and resolution. */
 FilmGeometry NumericalFilm(const ScalarGrid& grid, const NumericalSettings& s);
 
-/** The numerical-schlieren image of `grid` (see the file's comment). */
-NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSettings& s);
+/**
+ * The numerical-schlieren image of `grid` (see the file's comment). `progress` (may be empty) gets
+ * the share of the image done, on the calling thread, between blocks of film rows (each block
+ * about NumericalBlockSamples samples: a fraction of a second; a LineOfSight image of a 256^3
+ * volume on a 1024^2 film takes about a minute on two cores); once it returns false the image
+ * stops there and Error "aborted at P % of the image: no image" is thrown. The image is bit for
+ * bit the same with or without it.
+ */
+NumericalImage NumericalSchlieren(
+  const ScalarGrid& grid, const NumericalSettings& s, const ProgressFunction& progress = nullptr);
+
+/** About this many samples (pixels times samples along each pixel's line) between two progress
+ * reports of NumericalSchlieren. */
+constexpr double NumericalBlockSamples = 4.0e6;
 
 /**
  * The same image from a volume split over ranks (collective): `piece` is this rank's part of the
@@ -98,10 +110,12 @@ NumericalImage NumericalSchlieren(const ScalarGrid& grid, const NumericalSetting
  * which makes the image from the whole grid exactly as one process does; the other ranks return
  * false and an empty image. A piece with no points sends nothing. Points no piece holds, or an
  * error on any rank, throw Error on every rank (the same message: Parallel::Failure). With one
- * rank this is NumericalSchlieren(piece, s).
+ * rank this is NumericalSchlieren(piece, s, progress). `progress` is called on rank 0 (which makes
+ * the image); its abort is every rank's Error.
  */
 bool NumericalSchlierenOfPieces(Parallel& parallel, const ScalarGrid& piece, const int offset[3],
-  const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image);
+  const ScalarGrid& whole, const NumericalSettings& s, NumericalImage& image,
+  const ProgressFunction& progress = nullptr);
 
 /**
  * The field's name that every rank images (collective): first every rank's `error` is agreed on

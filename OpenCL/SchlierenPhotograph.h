@@ -72,7 +72,10 @@ struct PhotographResult
   double Scale = 1, Rotation = 0, Shift[2] = { 0, 0 };
   double PhotoPixelSize = 0;       ///< world units per photograph pixel found (film pixel / Scale)
   double Sigma[4] = { 0, 0, 0, 0 };///< standard errors: shift x, y (photo px), rotation (deg), scale (relative)
-  double EdgeUncertainty = 0;      ///< the position's standard error at the film's corner, film pixels (jackknife over tiles)
+  double EdgeUncertainty = 0;      ///< the position's standard error at the film's worst corner, film pixels (docs/CFD.md)
+  double EdgeNoise = 0;            ///< EdgeUncertainty's part from the maps' residuals (their noise, correlated over pixels)
+  double EdgeSpread = 0;           ///< EdgeUncertainty's part from the spread between parts of the film (a jackknife over tiles)
+  int UncertaintyWindow = 0;       ///< the residuals' correlation window (film pixels) the uncertainty counted
   double WeakDirection = 0;        ///< the film direction (deg) along which a shift costs the correlation least
   double WeakRatio = 0;            ///< its cost against the costliest direction's (near 0: the shift is not held along it)
   std::string Warnings;            ///< what the user should know (a direction not held)

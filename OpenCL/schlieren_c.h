@@ -204,6 +204,21 @@ SCHLIEREN_C_API int schlieren_numerical(const char* settings, const int dims[3],
   int64_t excluded_count, int size[2], double film_origin[2], double* pixel_size,
   int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
   double maximum_largest[2]);
+/**
+ * schlieren_numerical with a progress report and a way out (`progress` NULL: the same as
+ * schlieren_numerical; see schlieren_progress_callback): called on the calling thread between
+ * blocks of film rows (each a fraction of a second; a LineOfSight image of a 256^3 volume on a
+ * 1024^2 film takes about a minute on two cores) with the share of the image done and the text
+ * "NumericalSchlieren: P % of the image". A callback returning 0 stops the image: the call fails
+ * with "aborted at P % of the image: no image" and writes no pixel. The image is bit for bit
+ * schlieren_numerical's.
+ */
+SCHLIEREN_C_API int schlieren_numerical_progress(const char* settings, const int dims[3],
+  const double origin[3], const double spacing[3], const float* values, int64_t values_count,
+  const unsigned char* solid, int64_t solid_count, const unsigned char* excluded,
+  int64_t excluded_count, int size[2], double film_origin[2], double* pixel_size,
+  int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
+  double maximum_largest[2], schlieren_progress_callback progress, void* user);
 /** The gradient of n - 1 in world units, 3 floats per point (RefractiveIndex's grad_n):
  * `n_minus_1` holds `count` values (the grid's points), `grad3` `grad3_count` floats (3 a point). */
 SCHLIEREN_C_API int schlieren_gradient(const int dims[3], const double spacing[3],
@@ -431,6 +446,20 @@ SCHLIEREN_C_API int schlieren_photograph(const char* settings, const int film_si
   const int photo_size[2], const float* photo, int64_t photo_count, int64_t capacity,
   float* registered, float* calibrated, float* difference, float* checkerboard,
   float* line_distance, const char** report);
+/**
+ * A photograph's pixels as grey, as the photograph filters read a file (docs/CFD.md): `count`
+ * pixels of `components` values each (1 grey, 2 grey and alpha: the grey, 3 RGB or 4 RGBA: the
+ * luminance 0.2126 R + 0.7152 G + 0.0722 B) into `grey` (`count` floats). Returns 0, or non-zero
+ * (schlieren_last_error()) for NULL arrays, a negative count or another number of components.
+ */
+SCHLIEREN_C_API int schlieren_photograph_grey(const double* values, int64_t count, int components, float* grey);
+/**
+ * The blend the photograph filters show over the film: `blend` = film + weight * difference (float
+ * arithmetic; `difference` as schlieren_photograph gives it, 0 where the photograph does not cover
+ * the film), `count` floats each; `weight` in [0, 1]. Returns 0, or non-zero (schlieren_last_error()).
+ */
+SCHLIEREN_C_API int schlieren_photograph_blend(double weight, const float* film, const float* difference,
+  int64_t count, float* blend);
 
 #ifdef __cplusplus
 }

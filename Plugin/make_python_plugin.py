@@ -6,8 +6,8 @@ documentation and domains are copied from it) and the Python package Python/schl
     python3 make_python_plugin.py --xml Plugin/Schlieren.xml --package Python/schlieren \
         --output SchlierenPython.py
 
-The plugin exposes RefractiveScene, RefractiveIndex, RefractionOctree and SchlierenImage with
-NumericalSchlieren with every property of their XML, in its order, with its groups (RefractiveIndex's
+The plugin exposes RefractiveScene, RefractiveIndex, RefractionOctree, SchlierenImage,
+NumericalSchlieren and SchlierenPhotograph with every property of their XML, in its order, with its groups (RefractiveIndex's
 optional Body input is left out); a property the package does not implement takes its default
 only (the package refuses another value by name); it loads
 libschlieren_engine.so from beside itself, SCHLIEREN_ENGINE_LIBRARY or the loader's path."""
@@ -38,7 +38,7 @@ import re
 # the proxies the Python package implements (all the C++ plugin's), and what of their XML it
 # leaves out: these properties are not in the Python plugin
 PROXIES = ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage",
-           "NumericalSchlieren")
+           "NumericalSchlieren", "SchlierenPhotograph")
 LEFT_OUT = {
     "RefractiveIndex": {"Body"},  # the optional second input (a body's surface)
     "RefractiveScene": {"TimeSteps"},  # the time steps ParaView's animation reads
@@ -190,11 +190,15 @@ for proxy in PROXIES:
                 if q.get("name") in LEFT_OUT.get(proxy, ()):
                     child.remove(q)
         elif child.tag == "Hints":
-            # the menu (not the C++ plugin's icons, which are its Qt resources)
+            # the menu (not the C++ plugin's icons, which are its Qt resources), the output
+            # ports' names and default representations
             menu = child.find("ShowInMenu")
+            port_hints = [h for h in child if h.tag in ("OutputPort", "RepresentationType")]
             child = ET.Element("Hints")
             if menu is not None:
                 ET.SubElement(child, "ShowInMenu", category=menu.get("category"))
+            for h in port_hints:
+                child.append(h)
         elif child.tag != "Documentation":
             continue
         xmls.append(ET.tostring(child, encoding="unicode"))
@@ -305,6 +309,7 @@ out = ['# SPDX-License-Identifier: BSD-3-Clause',
        "RefractionOctree = _make(_alg.RefractionOctree, 'RefractionOctree', True)",
        "SchlierenImage = _make(_alg.SchlierenImage, 'SchlierenImage', True)",
        "NumericalSchlieren = _make(_alg.NumericalSchlieren, 'NumericalSchlieren', True)",
+       "SchlierenPhotograph = _make(_alg.SchlierenPhotograph, 'SchlierenPhotograph', True)",
        ""]
 with open(args.output, "w") as f:
     f.write("\n".join(out))

@@ -24,6 +24,8 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkPVDataSetAttributesInformation.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkPVArrayInformation.h"
@@ -55,6 +57,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 namespace
 {
@@ -150,6 +153,73 @@ void SetColouring(vtkSMProxy* repr, bool colour)
     }
   }
   repr->UpdateVTKObjects();
+}
+
+// SchlierenPhotograph, wherever it is shown (its representations' hints make output 0 a slice,
+// output 1 a surface): the overlay coloured by its active scalars (the array Overlay names; a grey
+// map, a diverging one for the difference) and the lines by line_distance, after every update (a
+// new Overlay is a new active array). A user gets the overlay without setting the colouring.
+void ColourPhotograph(pqDataRepresentation* repr)
+{
+  auto* pv = repr ? vtkSMPVRepresentationProxy::SafeDownCast(repr->getProxy()) : nullptr;
+  pqOutputPort* port = repr ? repr->getOutputPortFromInput() : nullptr;
+  vtkSMViewProxy* view = repr && repr->getView() ? repr->getView()->getViewProxy() : nullptr;
+  if (!pv || !port)
+  {
+    return;
+  }
+  vtkPVDataInformation* info = port->getDataInformation();
+  if (!info || info->GetNumberOfPoints() == 0)
+  {
+    return; // refused: nothing shown
+  }
+  const bool lines = port->getPortNumber() == 1;
+  vtkPVArrayInformation* active = lines
+    ? info->GetCellDataInformation()->GetArrayInformation("line_distance")
+    : info->GetPointDataInformation()->GetAttributeInformation(vtkDataSetAttributes::SCALARS);
+  if (!active || !active->GetName())
+  {
+    return;
+  }
+  const std::string name = active->GetName();
+  const char* now = vtkSMPropertyHelper(pv, "ColorArrayName", true).GetInputArrayNameToProcess();
+  if (view && now && name != now)
+  {
+    pv->SetScalarBarVisibility(view, false); // the legend of the array shown before
+  }
+  pv->SetScalarColoring(name.c_str(), lines ? vtkDataObject::CELL : vtkDataObject::POINT);
+  double range[2];
+  active->GetComponentRange(0, range);
+  if (vtkSMProxy* lut = vtkSMPropertyHelper(pv, "LookupTable", true).GetAsProxy())
+  {
+    if (!lines)
+    {
+      vtkSMTransferFunctionProxy::ApplyPreset(lut, name == "difference" ? "Cool to Warm" : "Grayscale", false);
+    }
+    else
+    {
+      // the photograph's lines (no distance: NaN) half transparent, so that the film's lines
+      // under them show their distance's colour
+      vtkSMPropertyHelper(lut, "NanOpacity", true).Set(0.4);
+    }
+    if (name == "difference") // 0 (agreement) in the middle of the diverging map
+    {
+      const double m = std::max(std::fabs(range[0]), std::fabs(range[1]));
+      range[0] = -m;
+      range[1] = m;
+    }
+    vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode", true).Set(-1); // Never: set here
+    if (range[1] > range[0])
+    {
+      vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, range[0], range[1], false);
+    }
+    lut->UpdateVTKObjects();
+  }
+  if (view)
+  {
+    pv->SetScalarBarVisibility(view, true);
+  }
+  pv->UpdateVTKObjects();
 }
 
 void StatusMessage(const QString& text)
@@ -1222,6 +1292,23 @@ pqSchlierenToolbar::~pqSchlierenToolbar() = default;
 //------------------------------------------------------------------------------
 void pqSchlierenToolbar::onSourceAdded(pqPipelineSource* source)
 {
+  if (source && source->getProxy() &&
+    source->getProxy()->GetXMLName() == std::string("SchlierenPhotograph"))
+  {
+    QObject::connect(source, &pqPipelineSource::representationAdded, this,
+      [](pqPipelineSource*, pqDataRepresentation* repr, int) { ColourPhotograph(repr); });
+    QObject::connect(source, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
+      [](pqPipelineSource* photograph) {
+        for (int port = 0; port < photograph->getNumberOfOutputPorts(); ++port)
+        {
+          for (pqDataRepresentation* repr : photograph->getRepresentations(port, nullptr))
+          {
+            ColourPhotograph(repr);
+          }
+        }
+      });
+    return;
+  }
   if (!IsSchlierenImage(source) || this->Followers.contains(source))
   {
     return;

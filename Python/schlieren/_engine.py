@@ -126,6 +126,10 @@ _sig("schlieren_numerical", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3, 
      _i64, _u8p, _i64, _u8p, _i64, ctypes.c_int * 2, ctypes.c_double * 2,
      ctypes.POINTER(ctypes.c_double), ctypes.c_int64, _f32p, _f32p, _u8p,
      ctypes.POINTER(ctypes.c_double))
+_sig("schlieren_numerical_progress", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3,
+     _c_double3, _f32p, _i64, _u8p, _i64, _u8p, _i64, ctypes.c_int * 2, ctypes.c_double * 2,
+     ctypes.POINTER(ctypes.c_double), ctypes.c_int64, _f32p, _f32p, _u8p,
+     ctypes.POINTER(ctypes.c_double), _progress_fn, ctypes.c_void_p)
 _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
@@ -135,6 +139,9 @@ _sig("schlieren_check_property", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
 _sig("schlieren_photograph", ctypes.c_int, ctypes.c_char_p, ctypes.c_int * 2, ctypes.c_double * 2,
      ctypes.c_double, _f32p, _i64, ctypes.c_int * 2, _f32p, _i64, _i64, _f32p, _f32p, _f32p, _f32p,
      _f32p, ctypes.POINTER(ctypes.c_char_p))
+_sig("schlieren_photograph_grey", ctypes.c_int, ctypes.POINTER(ctypes.c_double), _i64, ctypes.c_int,
+     _f32p)
+_sig("schlieren_photograph_blend", ctypes.c_int, ctypes.c_double, _f32p, _f32p, _i64, _f32p)
 
 if _lib.schlieren_api_version() != API_VERSION:
     raise ImportError("libschlieren_engine has C API version %d; this package needs %d"
@@ -307,10 +314,36 @@ def fill_scene(settings, dims, origin, spacing, body=False):
     return out
 
 
-def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded=None):
+def _with_progress(progress, call):
+    """call(callback, user) with `progress(fraction, text) -> bool` (None: no callback) as the C
+    interface's schlieren_progress_callback: a false return stops the engine; an exception in
+    `progress` stops it too and is raised here, after the call."""
+    if progress is None:
+        return call(_progress_fn(), None)
+    raised = []
+
+    def report_progress(fraction, text, _user):
+        if raised:
+            return 0
+        try:
+            return 1 if progress(fraction, _text(text)) else 0
+        except BaseException as e:  # noqa: BLE001 -- raised below, after the call
+            raised.append(e)
+            return 0
+    rc = call(_progress_fn(report_progress), None)
+    if raised:
+        raise raised[0]
+    return rc
+
+
+def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded=None,
+              progress=None):
     """NumericalSchlieren on a grid: without `values` the film only, (size, origin, pixel);
     else a dict of intensity, numerical_gradient (float32), blocked (uint8) and the film, with
-    maximum (the qmax used) and largest (the largest q)."""
+    maximum (the qmax used) and largest (the largest q). progress(fraction, text) -> bool, where
+    given, is called between blocks of film rows (each a fraction of a second); a false return
+    stops the image: EngineError "aborted at P % of the image: no image" (the image is bit for bit
+    the same with or without it)."""
     text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items()).encode()
     size, film_origin, pixel = (ctypes.c_int * 2)(), (ctypes.c_double * 2)(), ctypes.c_double()
     grid = _grid(dims, origin, spacing)
@@ -330,10 +363,10 @@ def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded
     out = {"intensity": np.empty(n, np.float32), "numerical_gradient": np.empty(n, np.float32),
            "blocked": np.empty(n, np.uint8)}
     ml = (ctypes.c_double * 2)()
-    _check(_lib.schlieren_numerical(text, *grid, _fp(a), a.size, _up(s), _size(s), _up(e),
-                                    _size(e), size, film_origin, ctypes.byref(pixel), n,
-                                    _fp(out["intensity"]), _fp(out["numerical_gradient"]),
-                                    _up(out["blocked"]), ml))
+    _check(_with_progress(progress, lambda callback, user: _lib.schlieren_numerical_progress(
+        text, *grid, _fp(a), a.size, _up(s), _size(s), _up(e), _size(e), size, film_origin,
+        ctypes.byref(pixel), n, _fp(out["intensity"]), _fp(out["numerical_gradient"]),
+        _up(out["blocked"]), ml, callback, user)))
     out.update(size=list(size), origin=list(film_origin), pixel=pixel.value, maximum=ml[0],
                largest=ml[1])
     return out
@@ -948,19 +981,8 @@ class Session:
         if progress is None:
             rc = _lib.schlieren_session_trace(s)
         else:
-            raised = []
-
-            def report_progress(fraction, text, _user):
-                if raised:
-                    return 0
-                try:
-                    return 1 if progress(fraction, _text(text)) else 0
-                except BaseException as e:  # noqa: BLE001 -- raised below, after the trace
-                    raised.append(e)
-                    return 0
-            rc = _lib.schlieren_session_trace_progress(s, _progress_fn(report_progress), None)
-            if raised:
-                raise raised[0]
+            rc = _with_progress(progress, lambda callback, user:
+                                _lib.schlieren_session_trace_progress(s, callback, user))
         report = json.loads(_text(_lib.schlieren_session_report(s)))
         if rc:
             err = self._error()
@@ -1019,19 +1041,35 @@ PHOTOGRAPH_IMAGES = ("registered", "calibrated", "difference", "checkerboard", "
 
 
 def grey(image, name="photo"):
-    """A photograph as grey float32 (h, w): a 2D array as it is; (h, w, 3) or (h, w, 4) colour by
-    its luminance (Rec. 709 weights; alpha ignored). Other shapes and dtypes are refused."""
+    """A photograph as grey float32 (h, w): a 2D array as it is; (h, w, 1) its values, (h, w, 2)
+    (grey and alpha) the grey, (h, w, 3) or (h, w, 4) colour by its luminance (Rec. 709 weights;
+    alpha ignored): the engine's schlieren_photograph_grey, as the C++ filter reads a photograph.
+    Other shapes and dtypes are refused."""
     a = np.asarray(image)
     if a.dtype.kind not in "biuf":
         raise ArgumentTypeError("%s has dtype %s: give grey levels or RGB(A) numbers" % (name, a.dtype))
-    if a.ndim == 3 and a.shape[2] in (3, 4):
-        a = a[:, :, :3].astype(np.float64) @ np.array([0.2126, 0.7152, 0.0722])
-    elif a.ndim == 3 and a.shape[2] == 1:
-        a = a[:, :, 0]
+    if a.ndim == 3 and 1 <= a.shape[2] <= 4:
+        values = np.ascontiguousarray(a, dtype=np.float64)
+        out = np.empty(a.shape[:2], np.float32)
+        _check(_lib.schlieren_photograph_grey(values.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
+                                              out.size, a.shape[2], _fp(out)))
+        return out
     if a.ndim != 2:
         raise ArgumentError("%s has shape %s: give a 2D array (rows, columns) of grey levels or "
-                            "(rows, columns, 3 or 4) of colour" % (name, a.shape))
+                            "(rows, columns, 1 to 4) of grey, grey and alpha, RGB or RGBA" % (name, a.shape))
     return np.ascontiguousarray(a, dtype=np.float32)
+
+
+def photograph_blend(film, difference, weight):
+    """The blend the photograph filters show: film + weight * difference (float32; the engine's
+    schlieren_photograph_blend), `film` and `difference` float32 arrays of one shape."""
+    f = np.ascontiguousarray(film, dtype=np.float32)
+    d = np.ascontiguousarray(difference, dtype=np.float32)
+    if f.shape != d.shape:
+        raise ArgumentError("film %s and difference %s differ in shape" % (f.shape, d.shape))
+    out = np.empty(f.shape, np.float32)
+    _check(_lib.schlieren_photograph_blend(float(weight), _fp(f), _fp(d), f.size, _fp(out)))
+    return out
 
 
 def photograph(film, film_origin, pixel_size, photo, settings=None):
@@ -1058,8 +1096,10 @@ def photograph(film, film_origin, pixel_size, photo, settings=None):
         text.encode(), (ctypes.c_int * 2)(nx, ny), (ctypes.c_double * 2)(*origin), float(pixel_size),
         _fp(f), f.size, (ctypes.c_int * 2)(p.shape[1], p.shape[0]), _fp(p), p.size, f.size,
         *[_fp(out[k]) for k in PHOTOGRAPH_IMAGES], ctypes.byref(report)))
-    r = json.loads(_text(report.value))
+    text = _text(report.value)
+    r = json.loads(text)
     r["images"] = out
+    r["json"] = text  # the engine's report as it wrote it (the filters' field data photograph_report)
     return r
 
 

@@ -1435,8 +1435,11 @@ class NumericalSchlieren(_Properties):
             dims, origin, spacing = self._grid(image)
             r = _engine.numerical(self._settings(), dims, origin, spacing, values,
                                   None if solid is None else (solid != 0).astype(np.uint8),
-                                  None if mask is None else (mask == 0).astype(np.uint8))
+                                  None if mask is None else (mask == 0).astype(np.uint8),
+                                  progress=self._progress)
         except EngineError as e:
+            self.SetAbortExecute(0)  # an abort is spent: the next update images again
+            out.Initialize()
             return self._fail(str(e))
         out.Initialize()
         out.SetExtent(0, r["size"][0] - 1, 0, r["size"][1] - 1, 0, 0)
@@ -1451,6 +1454,12 @@ class NumericalSchlieren(_Properties):
         _field_number(out, "gradient_maximum", r["maximum"])
         _field_number(out, "gradient_largest", r["largest"])
         return 1
+
+    def _progress(self, fraction, _text):
+        """The image's progress, as the C++ filter reports it; False once the pipeline asks to
+        abort (ParaView's abort, an observer's SetAbortExecute)."""
+        self.UpdateProgress(fraction)
+        return not self.GetAbortExecute()
 
 
 def _image_properties():
@@ -1626,7 +1635,8 @@ class SchlierenImage(_Properties):
 def read_photograph(path):
     """A photograph file (PNG, JPEG, TIFF; 8 or 16 bit; grey or colour) read with VTK's readers, as
     grey float32 (rows, columns), row 0 at the bottom (VTK's order, as the film's). Colour is
-    converted by its luminance (Rec. 709)."""
+    converted by its luminance (Rec. 709) in the engine (schlieren_photograph_grey), as the C++
+    filter converts it."""
     import os
     from vtkmodules.vtkIOImage import vtkImageReader2Factory
     if not os.path.isfile(path):
@@ -1643,24 +1653,36 @@ def read_photograph(path):
     if scalars is None or nx * ny == 0:
         raise EngineError("The photograph %r holds no image." % path)
     a = numpy_support.vtk_to_numpy(scalars)
-    a = a.reshape((nz, ny, nx, -1))[0]
-    return _engine.grey(a if a.shape[2] > 1 else a[:, :, 0], "the photograph %r" % path)
+    return _engine.grey(a.reshape((nz, ny, nx, -1))[0], "the photograph %r" % path)
+
+
+# SchlierenPhotograph's Overlay: the output array each entry makes the active scalars
+PHOTOGRAPH_OVERLAYS = dict(Blend="blend", Checkerboard="checkerboard", Difference="difference",
+                           Photograph="photograph_calibrated", Image="intensity")
+# the engine's images (schlieren_photograph) and their output arrays
+PHOTOGRAPH_ARRAYS = dict(registered="photograph", calibrated="photograph_calibrated",
+                         difference="difference", checkerboard="checkerboard",
+                         line_distance="line_distance")
 
 
 class SchlierenPhotograph(_Properties):
-    """A photograph beside the image (issue 51; docs/CFD.md): input 0 a SchlierenImage output
-    (its `intensity`), input 1 (optional) the photograph as a vtkImageData, else FileName (PNG,
-    JPEG, TIFF, 8 or 16 bit, read with VTK's readers). Output 0: the film's grid with `intensity`,
-    `photograph` (registered), `photograph_calibrated`, `difference`, `checkerboard`,
-    `line_distance` (world units at the film's line pixels, NaN elsewhere); field data
-    `photograph_report` (JSON) and the numbers. Output 1: the lines as polylines (cell data
-    `image` 0 film / 1 photograph, `line_distance`). A photograph that does not match fails the
-    request with the reason (no registration presented as a match)."""
+    """A photograph beside the image (issue 51; docs/CFD.md), the C++ plugin's
+    vtkSchlierenPhotograph: input 0 a SchlierenImage output (its `intensity`), input 1 (optional)
+    the photograph as a vtkImageData, else FileName (PNG, JPEG, TIFF, 8 or 16 bit, read with VTK's
+    readers). Output 0: the film's grid with `intensity`, `photograph` (registered),
+    `photograph_calibrated`, `difference`, `checkerboard`, `blend`, `line_distance` (world units
+    at the film's line pixels, NaN elsewhere), the array Overlay names active; field data
+    `photograph_report` (the engine's JSON) and the numbers. Output 1: the lines as polylines (cell
+    data `image` 0 film / 1 photograph, `line_distance`, `line_offset`, `line_matched`,
+    `line_match`). A photograph that does not match fails the request with the reason (no
+    registration presented as a match)."""
 
-    _defaults = dict(FileName="", PhotoPixelSize=0.0, PointPairs=[], Refine="Similarity",
+    _defaults = dict(FileName="", PhotoPixelSize=0.0, PointPairs="", Refine="Similarity",
                      ScaleRange=[0.6, 1.6], MaxRotation=12.0, MaxShift=0.3, LineThreshold=0.25,
-                     MinLineLength=8, MaxLineDistance=0.0, CheckerSize=16)
-    _entries = dict(Refine=["Similarity", "Rigid", "Shift", "None"])
+                     MinLineLength=8, MaxLineDistance=0.0, Overlay="Blend", BlendWeight=0.5,
+                     CheckerSize=16)
+    _entries = dict(Refine=["Similarity", "Rigid", "Shift", "None"],
+                    Overlay=list(PHOTOGRAPH_OVERLAYS))
 
     def __init__(self, **kwargs):
         _Properties.__init__(self, 2, nOutputPorts=2, **kwargs)
@@ -1668,11 +1690,14 @@ class SchlierenPhotograph(_Properties):
 
     def _check(self, name, value):
         if name == "PointPairs":
+            # the engine's text: numbers separated by spaces (a list is written so)
+            if isinstance(value, str):
+                return value.strip()
             v = list(np.asarray(value, dtype=float).ravel().tolist())
             if len(v) not in (0, 8, 12, 16):
                 raise ValueError("PointPairs takes 2 to 4 pairs of 4 numbers (photograph pixel u v, "
                                  "world x y), got %d numbers" % len(v))
-            return v
+            return " ".join(repr(x) for x in v)
         return _Properties._check(self, name, value)
 
     def FillInputPortInformation(self, port, info):
@@ -1685,12 +1710,43 @@ class SchlierenPhotograph(_Properties):
         info.Set(vtkDataObject.DATA_TYPE_NAME(), "vtkPolyData" if port == 1 else "vtkImageData")
         return 1
 
+    def _photograph(self, inInfo):
+        """The photograph as grey (rows, columns): the second input's scalars, else FileName's."""
+        photo_in = vtkImageData.GetData(inInfo[1]) if self.GetNumberOfInputConnections(1) else None
+        if photo_in is not None:
+            scalars = photo_in.GetPointData().GetScalars()
+            if scalars is None:
+                raise EngineError("SchlierenPhotograph's photograph input has no scalars.")
+            px, py, _ = photo_in.GetDimensions()
+            return _engine.grey(numpy_support.vtk_to_numpy(scalars).reshape((py, px, -1)),
+                                "the photograph input")
+        if self.FileName:
+            return read_photograph(self.FileName)
+        raise EngineError("SchlierenPhotograph needs a photograph: set FileName (a PNG, JPEG or "
+                          "TIFF file) or connect an image to its second input.")
+
+    def _registration_key(self, film, inInfo, settings):
+        """What a registration depends on: the film, the photograph (its input, or its file as it
+        is on disk) and the engine's settings (not Overlay or BlendWeight: they change the view
+        without registering again, as in the C++ filter)."""
+        import os
+        photo_in = vtkImageData.GetData(inInfo[1]) if self.GetNumberOfInputConnections(1) else None
+        if photo_in is not None:
+            photo = ("input", photo_in.__this__, photo_in.GetMTime())
+        elif self.FileName and os.path.isfile(self.FileName):
+            st = os.stat(self.FileName)
+            photo = ("file", self.FileName, st.st_mtime_ns, st.st_size)
+        else:
+            photo = None
+        return (sorted((k, str(v)) for k, v in settings.items()), film.__this__, film.GetMTime(), photo)
+
     def RequestData(self, request, inInfo, outInfo):
-        from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIntArray, vtkPoints
-        from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+        from vtkmodules.vtkCommonDataModel import vtkPolyData
         film = vtkImageData.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo, 0)
         lines_out = vtkPolyData.GetData(outInfo, 1)
+        out.Initialize()
+        lines_out.Initialize()
         object.__setattr__(self, "Report", None)
         if film is None or _point_array(film, "intensity") is None:
             return self._fail("SchlierenPhotograph needs the output of SchlierenImage (a 2D image "
@@ -1702,42 +1758,38 @@ class SchlierenPhotograph(_Properties):
         sx, sy, _ = film.GetSpacing()
         if abs(sx - sy) > 1e-6 * max(abs(sx), abs(sy)):
             return self._fail("SchlierenPhotograph needs square film pixels; got %g x %g." % (sx, sy))
-        photo_in = vtkImageData.GetData(inInfo[1]) if self.GetNumberOfInputConnections(1) else None
-        if photo_in is not None:
-            a = numpy_support.vtk_to_numpy(photo_in.GetPointData().GetScalars()) \
-                if photo_in.GetPointData().GetScalars() is not None else None
-            if a is None:
-                return self._fail("SchlierenPhotograph's photograph input has no scalars.")
-            px, py, _ = photo_in.GetDimensions()
-            photo = _engine.grey(a.reshape((py, px, -1)) if a.ndim > 1 else a.reshape((py, px)),
-                                 "the photograph input")
-        elif self.FileName:
-            photo = read_photograph(self.FileName)
-        else:
-            return self._fail("SchlierenPhotograph needs a photograph: set FileName or connect an "
-                              "image to its second input.")
         intensity = _point_array(film, "intensity").reshape((ny, nx))
         origin = _first_point(film)
-        settings = {k: self._values[k] for k in self._defaults if k != "FileName"}
+        settings = {k: self._values[k] for k in self._defaults
+                    if k not in ("FileName", "Overlay", "BlendWeight")}
         if not settings["PointPairs"]:
             del settings["PointPairs"]
-        r = _engine.photograph(intensity, origin[:2], sx, photo, settings)
+        try:
+            _engine.photograph_blend(np.empty(0), np.empty(0), self.BlendWeight)  # its range
+            key = self._registration_key(film, inInfo, settings)
+            cached = self.__dict__.get("_registered")
+            if cached is not None and cached[0] == key:
+                r = cached[1]
+            else:
+                object.__setattr__(self, "_registered", None)
+                photo = self._photograph(inInfo)
+                r = _engine.photograph(intensity, origin[:2], sx, photo, settings)
+                object.__setattr__(self, "_registered", (key, r))
+            blend = _engine.photograph_blend(intensity, r["images"]["difference"], self.BlendWeight)
+        except EngineError as err:
+            return self._fail(str(err))
         object.__setattr__(self, "Report", r)
         if not r["match"]:
             return self._fail("The photograph was not registered: " + r["reason"])
-        out.Initialize()
         out.SetExtent(0, nx - 1, 0, ny - 1, 0, 0)
         out.SetSpacing(sx, sy, 1.0)
         out.SetOrigin(origin[0], origin[1], origin[2])
-        out.GetPointData().SetScalars(_add(out, "intensity", intensity.ravel()))
-        names = dict(registered="photograph", calibrated="photograph_calibrated",
-                     difference="difference", checkerboard="checkerboard",
-                     line_distance="line_distance")
-        for k, name in names.items():
+        _add(out, "intensity", intensity.ravel())
+        for k, name in PHOTOGRAPH_ARRAYS.items():
             _add(out, name, r["images"][k].ravel())
-        report = {k: v for k, v in r.items() if k != "images"}
-        import json
-        _field_string(out, "photograph_report", json.dumps(report))
+        _add(out, "blend", blend.ravel())
+        out.GetPointData().SetActiveScalars(PHOTOGRAPH_OVERLAYS[self.Overlay])
+        _field_string(out, "photograph_report", r["json"])
         for k in ("score", "threshold", "scale", "rotation", "photo_pixel_size", "edge_uncertainty",
                   "gamma", "gamma_error", "background", "vignetting"):
             if r.get(k) is not None:
@@ -1748,24 +1800,42 @@ class SchlierenPhotograph(_Properties):
         if r.get("warnings"):
             _field_string(out, "warnings", r["warnings"])
             self._warn(r["warnings"])
-        points, cells = vtkPoints(), vtkCellArray()
-        image, distance = vtkIntArray(), vtkFloatArray()
-        image.SetName("image")
-        distance.SetName("line_distance")
-        for line in r["lines"]:
-            xy = line["points"]
-            cells.InsertNextCell(len(xy) // 2)
-            for a in range(0, len(xy), 2):
-                cells.InsertCellPoint(points.InsertNextPoint(xy[a], xy[a + 1], origin[2]))
-            image.InsertNextValue(0 if line["image"] == "film" else 1)
-            d = line["distance"]
-            distance.InsertNextValue(float("nan") if d is None or d < 0 else d)
-        lines_out.Initialize()
-        lines_out.SetPoints(points)
-        lines_out.SetLines(cells)
-        lines_out.GetCellData().AddArray(image)
-        lines_out.GetCellData().AddArray(distance)
+        _photograph_lines(lines_out, r["lines"], origin[2])
         return 1
+
+
+def _photograph_lines(output, lines, z):
+    """The report's strong-gradient lines as polylines at height `z`, one cell a line, with the cell
+    arrays image (0 the film's, 1 the photograph's), line_distance (world; NaN: none matched),
+    line_offset (2: the mean vector to the other image's lines), line_matched (the fraction of its
+    points matched) and line_match (the other image's line it is nearest to, -1: none)."""
+    from vtkmodules.vtkCommonCore import vtkFloatArray, vtkIntArray, vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray
+    points, cells = vtkPoints(), vtkCellArray()
+    image, match = vtkIntArray(), vtkIntArray()
+    distance, offset, matched = vtkFloatArray(), vtkFloatArray(), vtkFloatArray()
+    offset.SetNumberOfComponents(2)
+    for a, name in ((image, "image"), (distance, "line_distance"), (offset, "line_offset"),
+                    (matched, "line_matched"), (match, "line_match")):
+        a.SetName(name)
+    nan = float("nan")
+    number = lambda v: nan if v is None else v  # noqa: E731 -- the report's null: not a number
+    for line in lines:
+        xy = line["points"]
+        cells.InsertNextCell(len(xy) // 2)
+        for a in range(0, len(xy), 2):
+            cells.InsertCellPoint(points.InsertNextPoint(xy[a], xy[a + 1], z))
+        image.InsertNextValue(0 if line["image"] == "film" else 1)
+        d = line["distance"]
+        distance.InsertNextValue(nan if d is None or d < 0 else d)
+        offset.InsertNextTuple2(number(line["offset"][0]), number(line["offset"][1]))
+        matched.InsertNextValue(number(line["matched"]))
+        match.InsertNextValue(int(line["match"]))
+    output.SetPoints(points)
+    output.SetLines(cells)
+    for a in (image, distance, offset, matched, match):
+        output.GetCellData().AddArray(a)
+    output.GetCellData().SetActiveScalars("line_distance")  # the lines coloured by it
 
 
 def image_to_numpy(image, name="intensity"):

@@ -376,6 +376,61 @@ static void progress_case(void)
   free(n1);
 }
 
+/* NumericalSchlieren's progress and stop (schlieren_numerical_progress): a small LineOfSight image
+ * (one block of rows: python.python_plugin_parity sees several on a larger one); a callback that stops at its first call fails with the message and writes no
+ * pixel; one that goes on, and NULL, give schlieren_numerical's image bit for bit */
+static void numerical_progress_case(void)
+{
+  const int dims[3] = { 24, 24, 24 };
+  const double o[3] = { -1, -1, -1 }, h[3] = { 2.0 / 23, 2.0 / 23, 2.0 / 23 };
+  const int64_t count = 24 * 24 * 24, pixels = 128 * 128;
+  const char* settings = "Mode=LineOfSight\nResolution=128 128\nViewDirection=0.2 0.1 -1";
+  float* n1 = malloc((size_t)count * sizeof(float));
+  float* rho = malloc((size_t)count * sizeof(float));
+  float* out[2][2];
+  unsigned char* blocked[2];
+  struct progress_log stop = { 0, 1, 1, 0 }, go = { 0, -1, 1, 0 };
+  int size[2], rc, k, same = 1;
+  double origin[2], pixel, ml[2];
+  for (k = 0; k < 2; ++k)
+  {
+    out[k][0] = malloc((size_t)pixels * sizeof(float));
+    out[k][1] = malloc((size_t)pixels * sizeof(float));
+    blocked[k] = malloc((size_t)pixels);
+  }
+  schlieren_fill_scene("Scene=GaussianSphere", dims, o, h, count, n1, rho, NULL, NULL);
+  out[1][0][0] = -7.0f;
+  rc = schlieren_numerical_progress(settings, dims, o, h, rho, count, NULL, 0, NULL, 0, size, origin,
+    &pixel, pixels, out[1][0], out[1][1], blocked[1], ml, progress_cb, &stop);
+  EXPECT(rc != 0 && stop.calls == 1 && has(schlieren_last_error(), "aborted at 0 % of the image") &&
+      out[1][0][0] == -7.0f,
+    "fixed: NumericalSchlieren stopped at the first progress call, no pixel written",
+    schlieren_last_error());
+  rc = schlieren_numerical(settings, dims, o, h, rho, count, NULL, 0, NULL, 0, size, origin, &pixel,
+    pixels, out[0][0], out[0][1], blocked[0], ml);
+  for (k = 0; k < 2 && rc == 0; ++k)
+  {
+    rc = schlieren_numerical_progress(settings, dims, o, h, rho, count, NULL, 0, NULL, 0, size,
+      origin, &pixel, pixels, out[1][0], out[1][1], blocked[1], ml, k ? NULL : progress_cb,
+      k ? NULL : &go);
+    same = same && rc == 0 && memcmp(out[0][0], out[1][0], (size_t)pixels * sizeof(float)) == 0 &&
+      memcmp(out[0][1], out[1][1], (size_t)pixels * sizeof(float)) == 0 &&
+      memcmp(blocked[0], blocked[1], (size_t)pixels) == 0;
+  }
+  EXPECT(rc == 0 && same && go.calls >= 2 && go.ordered && go.last == 1.0,
+    "fixed: NumericalSchlieren with a callback that goes on (progress in order to 1) and with "
+    "NULL: schlieren_numerical's image bit for bit",
+    schlieren_last_error());
+  for (k = 0; k < 2; ++k)
+  {
+    free(out[k][0]);
+    free(out[k][1]);
+    free(blocked[k]);
+  }
+  free(rho);
+  free(n1);
+}
+
 /* ---- the random part ---- */
 static const char* const property_names[] = { "ViewDirection", "ViewUp", "Resolution", "Framing",
   "Passes", "StepSize", "Integrator", "Reconstruction", "Tolerance", "KeepInvariant",
@@ -1341,6 +1396,7 @@ int main(int argc, char** argv)
   fixed_cases();
   threads_case();
   progress_case(); /* no random number drawn: the random cases stay those of earlier runs */
+  numerical_progress_case(); /* none drawn either */
   for (i = 0; i < POOL; ++i)
     pool[i] = schlieren_session_new();
   for (k = 0; k < cases; ++k)

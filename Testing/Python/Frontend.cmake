@@ -10,10 +10,11 @@ set(SCHLIEREN_FRONTEND_VTK_OLDEST "vtk==9.2.6 numpy<2" CACHE STRING
   "Requirements of the oldest-vtk venv of the python.frontend tests")
 set(_frontend_ref "${CMAKE_CURRENT_BINARY_DIR}/Temporary/frontend_reference")
 set(_venvs "${CMAKE_BINARY_DIR}/python-venvs")
+# (RefractiveIndex's matrix reads two of the suite's solved OpenFOAM cases: schlieren_openfoam)
 schlieren_python_test(frontend_reference
   COMMAND "${_pvpython}" "${_here}/frontend_reference.py" --plugin "${_plugin}"
-    --output "${_frontend_ref}"
-  PROPERTIES FIXTURES_SETUP frontend_reference)
+    --output "${_frontend_ref}" --openfoam "${CMAKE_BINARY_DIR}/openfoam"
+  PROPERTIES FIXTURES_SETUP frontend_reference FIXTURES_REQUIRED schlieren_openfoam)
 foreach(_which NEWEST OLDEST)
   string(TOLOWER "${_which}" _lower)
   schlieren_python_test(frontend_vtk_${_lower}
@@ -83,12 +84,15 @@ if(SCHLIEREN_PYTHON_PLUGIN)
   # where a user meets it, against the C++ plugin's compiled filters in the same pvpython: one
   # vtkImageData for any input (the blunt fin's multiblock), errors as VTK errors with an empty
   # output (no traceback), NumericalSchlieren's update extent, schlieren_view embedded
-  # (Examples/first_light.py), the C++ filter's refusals and an extent not starting at 0
+  # (Examples/first_light.py), the C++ filter's refusals and an extent not starting at 0;
+  # RefractiveIndex's parity matrix (frontend_cases.INDEX) against the reference run's records;
+  # NumericalSchlieren's progress and abort
   schlieren_python_test(python_plugin_parity
     COMMAND "${_pvpython}" "${_here}/test_python_plugin_parity.py"
       --plugin "${SCHLIEREN_PYTHON_PLUGIN}" --cxx-plugin "${_plugin}" --pvpython "${_pvpython}"
       --example "${PROJECT_SOURCE_DIR}/Examples/first_light.py"
-      --work "${_temp}/python_plugin_parity")
+      --work "${_temp}/python_plugin_parity" --reference "${_frontend_ref}"
+    PROPERTIES FIXTURES_REQUIRED frontend_reference)
   set_property(TEST python.python_plugin_parity APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
   # every value of every property's domain through both plugins in one pvpython: both accept or

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""The overlapping AMR that python.python_plugin_parity and the python.frontend tests resample
+"""The overlapping AMR that python.python_plugin_parity resamples
 through both front ends: level 0 of `cells0`^3 cells over [-1, 1]^3, level 1 two boxes side by side
 (sharing a face) at half the spacing over [-0.5, 0.5]^3, a Gaussian density 1.2 + 0.4 exp(-r^2/0.1)
 centred at x = 0.1, 0.01 higher on level 1 (so that the finest level's choice shows), as point data

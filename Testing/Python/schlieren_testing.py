@@ -63,6 +63,30 @@ class CapturedOutput:
         return False
 
 
+class CapturedStderr:
+    """What the process writes to its standard error (file descriptor 2: VTK's output window, the
+    C++ filters' vtkErrorMacro through vtkLogger, Python's tracebacks) while the block runs, in
+    `text`; written on to the test's log after it."""
+
+    def __enter__(self):
+        import tempfile
+        sys.stderr.flush()
+        self._file = tempfile.TemporaryFile(mode="w+b")
+        self._saved = os.dup(2)
+        os.dup2(self._file.fileno(), 2)
+        return self
+
+    def __exit__(self, *exc):
+        sys.stderr.flush()
+        os.dup2(self._saved, 2)
+        os.close(self._saved)
+        self._file.seek(0)
+        self.text = self._file.read().decode("utf-8", "replace")
+        self._file.close()
+        sys.stderr.write(self.text)  # still in the test's log
+        return False
+
+
 class Checker:
     """Counts failed checks and reports them; `finish()` raises if any failed."""
 

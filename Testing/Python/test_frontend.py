@@ -8,12 +8,21 @@ here): the same engine, the same settings, the same image.
 Run in a venv with PyPI's vtk and NumPy, the package on PYTHONPATH and SCHLIEREN_ENGINE_LIBRARY
 naming the build's libschlieren_engine.so. Also checks the keyword/attribute interface, an error
 naming a bad property value, and that the library traces on the CPU with no OpenCL loader at all
-(SCHLIEREN_OPENCL_LIBRARY pointing nowhere, in a child process)."""
+(SCHLIEREN_OPENCL_LIBRARY pointing nowhere, in a child process).
+
+RefractiveIndex's parity matrix (frontend_cases.INDEX, every property value class: each model,
+Symmetry None/Planar/Axisymmetric, a wedge with no axis typed, bodies from holes and from walls,
+SamplingBounds, each AmbientMode; the table is in frontend_cases.py): each case's input as the
+reference run wrote it, through this package's RefractiveIndex and SchlierenImage, against the C++
+plugin's index (grid, point arrays, field data) and film (arrays, field data) bit for bit
+(frontend_matrix.compare). The Python plugin's leg of the same matrix is in
+test_python_plugin_parity.py."""
 import argparse
 import json
 import os
 import subprocess
 import sys
+import time
 
 import numpy as np
 
@@ -90,18 +99,6 @@ if os.path.exists(vti):
     sources["bluntfin"] = r
 else:
     print("skip blunt fin: no %s (the reference run found no data)" % vti)
-amr_path = os.path.join(args.reference, "amr.vthb")
-if os.path.exists(amr_path):
-    # the overlapping AMR through the Python RefractiveIndex (the engine's AMR sampler)
-    from vtkmodules.vtkIOXML import vtkXMLUniformGridAMRReader
-    amr_reader = vtkXMLUniformGridAMRReader()
-    amr_reader.SetFileName(amr_path)
-    amr_reader.SetMaximumLevelsToReadByDefault(0)  # 0: every level
-    keep.append(amr_reader)
-    sources["amr"] = schlieren.RefractiveIndex(**cases.AMR["index"])
-    sources["amr"].SetInputConnection(amr_reader.GetOutputPort())
-else:
-    print("skip the AMR case: no %s" % amr_path)
 with open(os.path.join(args.reference, "opencl.txt")) as f:
     opencl = f.read().strip()
 compared = 0
@@ -173,6 +170,36 @@ for name, (scene, props) in cases.NUMERICAL.items():
     mine_fd = cases.field_data_list(out.GetFieldData())
     check(mine_fd == json.loads(str(ref["field_data"])),
           "%s: the field data equals the C++ filter's (%s)" % (name, mine_fd))
+
+# RefractiveIndex's parity matrix (frontend_cases.INDEX: every property value class): the inputs
+# the reference run wrote, through this package's RefractiveIndex and SchlierenImage, against the
+# C++ plugin's records bit for bit (the Python plugin's leg: python.python_plugin_parity)
+import frontend_matrix as matrix  # noqa: E402
+matrix_compared, matrix_started = 0, time.time()
+for case, (which, props, image_props) in cases.INDEX.items():
+    path = os.path.join(args.reference, "index_%s.npz" % case)
+    if not os.path.exists(path):
+        print("skip %s: the reference run left it out (no %s data)" % (case, which))
+        continue
+    data = matrix.read_input(args.reference, which)
+    index = schlieren.RefractiveIndex(**props)
+    index.SetInputData(data)
+    image = schlieren.SchlierenImage(**dict(cases.INDEX_IMAGE, **image_props))
+    image.SetInputConnection(index.GetOutputPort())
+    image.Update()
+    newer = case in cases.INDEX_VTK92_ONLY and not vtkmodules.__version__.startswith("9.2.")
+
+    def said(ok, what, version=vtkmodules.__version__):  # (see INDEX_VTK92_ONLY)
+        print(("ok   " if ok else "known (VTK %s's probe, not failed) " % version) + what)
+    matrix.compare(case, matrix.record(index.GetOutput(), image.GetOutput()), np.load(path),
+                   said if newer else check, "pip vtk")
+    matrix_compared += 1
+matrix.known_differences()
+print("RefractiveIndex's matrix in %.1f s" % (time.time() - matrix_started))
+check(matrix_compared >= len([c for c in cases.INDEX.values()
+                               if c[0] not in cases.INDEX_OPTIONAL_INPUTS]),
+      "RefractiveIndex's matrix: %d of %d cases compared (the others need ../shared/data or the "
+      "suite's OpenFOAM cases)" % (matrix_compared, len(cases.INDEX)))
 
 # 3. no OpenCL loader at all: Backend Auto traces on the CPU with a warning naming why
 code = ("import schlieren\n"

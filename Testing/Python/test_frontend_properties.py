@@ -64,7 +64,8 @@ import re  # noqa: E402
 LEFT_OUT = {"RefractiveScene": {"TimeSteps"}, "RefractiveIndex": {"Body"},
             "NumericalSchlieren": {"FollowCamera", "OpenImageView"}}  # the GUI's
 root = ET.parse(args.xml).getroot()
-for proxy_name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "NumericalSchlieren"):
+for proxy_name in ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "NumericalSchlieren",
+                   "SchlierenPhotograph"):
     cls = getattr(schlieren, proxy_name)
     px = [p for p in root.iter("SourceProxy") if p.get("name") == proxy_name][0]
     props = {}

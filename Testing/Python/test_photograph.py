@@ -16,9 +16,6 @@ import sys
 
 import numpy as np
 
-import schlieren
-from schlieren import engine
-
 failures = 0
 
 
@@ -50,25 +47,23 @@ def write(values, path, bits, colour=False):
     writer.Write()
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--work", default="photograph_test")
-    args = ap.parse_args()
-    os.makedirs(args.work, exist_ok=True)
-
-    # the film: a helium plume beside a Gaussian lump would do; a blast wave off the centre with a
-    # plane shock gives lines in two directions (scenes summed through the engine's fill)
-    dims, bounds = [48, 48, 48], [-1.0, 1.0] * 3
+def test_volume(engine, blast_radius=0.4):
+    """The volume whose film the tests photograph: a blast wave off the centre with a plane shock
+    gives lines in two directions, a Gaussian lump a soft feature (scenes summed through the
+    engine's fill); n_minus_1 on a 48^3 image over [-1, 1]^3. `engine`: the package's _engine
+    (python.photograph_plugins passes the Python plugin's); `blast_radius` moves the blast's
+    shock (python.photograph_plugins' moved photograph)."""
+    from vtkmodules.util import numpy_support
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    dims = [48, 48, 48]
     spacing = [2.0 / 47] * 3
-    blast = engine.fill_scene({"Scene": "BlastWave", "Radius": 0.4, "Width": 0.04,
+    blast = engine.fill_scene({"Scene": "BlastWave", "Radius": blast_radius, "Width": 0.04,
                                "Center": [0.2, 0.15, 0.0]}, dims, [-1.0] * 3, spacing)
     lump = engine.fill_scene({"Scene": "GaussianSphere", "Amplitude": 3e-3, "Width": 0.2,
                               "Center": [-0.45, -0.4, 0.0]}, dims, [-1.0] * 3, spacing)
     shock = engine.fill_scene({"Scene": "NormalShock", "Center": [-0.25, 0.0, 0.0], "Width": 0.03,
                                "Mach": 1.3}, dims, [-1.0] * 3, spacing)
     n1 = blast["n_minus_1"] + lump["n_minus_1"] + shock["n_minus_1"] - shock["n_minus_1"][0]
-    from vtkmodules.util import numpy_support
-    from vtkmodules.vtkCommonDataModel import vtkImageData
     volume = vtkImageData()
     volume.SetDimensions(*dims)
     volume.SetOrigin(-1.0, -1.0, -1.0)
@@ -76,6 +71,19 @@ def main():
     a = numpy_support.numpy_to_vtk(n1.astype(np.float32), deep=1)
     a.SetName("n_minus_1")
     volume.GetPointData().AddArray(a)
+    return volume
+
+
+def main():
+    global schlieren, engine
+    import schlieren
+    from schlieren import engine
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--work", default="photograph_test")
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+
+    volume = test_volume(engine)
     image = schlieren.SchlierenImage(Resolution=[112, 112], Passes=4, Backend="CPU")
     image.SetInputData(volume)
     image.Update()

@@ -35,17 +35,29 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      for bit, and SchlierenImage on each the C++ filter's film bit for bit; the wedge with
      Symmetry None warns as the C++ filter does; the C++ filter's refusals (Span 0, a 3D mesh,
      SymmetryAxis normal to the plane) are the Python one's, word for word;
-  8. an overlapping AMR (two levels, the finer one two boxes sharing a face; point data and cell
+  9. RefractiveIndex's parity matrix (frontend_cases.INDEX, every property value class: each
+     model, Symmetry None/Planar/Axisymmetric, a wedge with no axis typed, bodies from holes and
+     from walls, SamplingBounds, each AmbientMode; the table of class -> case is in
+     frontend_cases.py): the inputs frontend_reference.py wrote, through the Python plugin's
+     proxies, against the C++ plugin's records bit for bit (frontend_matrix.compare: the index's
+     grid, point arrays and field data less the C++ filter's cache report, the film's arrays and
+     field data). The same matrix runs through pip VTK in test_frontend.py (python.frontend_vtk_*);
+     sections 1, 6 and 7 compare the two plugins on the same classes in one process.
+  8. NumericalSchlieren (both plugins) reports its progress between blocks of film rows and stops
+     at an abort: an observer aborting at the first progress event ends a LineOfSight image at 0 %
+     with the engine's message and an empty output; the next update is a fresh filter's image bit
+     for bit, its progress rising from 0 to 1 in several steps;
+  10. an overlapping AMR (two levels, the finer one two boxes sharing a face; point data and cell
      data): the C++ filter's grid, n - 1, grad n and field data bit for bit (both read it into
      the engine's AMR sampler), SchlierenImage's film bit for bit; overlapping boxes refused with
      the C++ filter's message;
-  9. the per-time-step cache: a Python source with 4 time steps (a ProgrammableSource counting
+  11. the per-time-step cache: a Python source with 4 time steps (a ProgrammableSource counting
      its executions) played twice through the Python plugin: the second play executes neither
      the source nor RefractiveIndex (index_from_cache 1) and gives the first play's images bit for
      bit; the source's script or a RefractiveIndex property changed: computed again.
 
     pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
-        --example Examples/first_light.py --work DIR [--data ../shared/data]
+        --example Examples/first_light.py --work DIR [--data ../shared/data] [--reference REF]
 
 The blunt fin part is skipped (said so) when ../shared/data (or SCHLIEREN_DATA) has no blunt fin.
 ParaView 5.11.0 under Python 3.11 needs the getargspec shim below before any Python plugin loads
@@ -56,7 +68,7 @@ import inspect
 import os
 import subprocess
 import sys
-import tempfile
+import time
 
 if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11
     _ArgSpec = collections.namedtuple("ArgSpec", "args varargs keywords defaults")
@@ -74,6 +86,7 @@ ap.add_argument("--plugin", required=True, help="SchlierenPython.py")
 ap.add_argument("--cxx-plugin", required=True, help="Schlieren.so (for first_light.py's reference)")
 ap.add_argument("--example", required=True, help="Examples/first_light.py")
 ap.add_argument("--work", required=True)
+ap.add_argument("--reference", help="frontend_reference.py's output: RefractiveIndex's matrix")
 ap.add_argument("--pvpython", default="pvpython", help="to run the example")
 ap.add_argument("--data", default=os.environ.get("SCHLIEREN_DATA") or
                 os.path.join(HERE, "..", "..", "..", "shared", "data"))
@@ -93,26 +106,9 @@ def check(ok, what):
         failures.append(what)
 
 
-class Captured:
-    """What the process writes to its standard error (file descriptor 2: VTK's output window and
-    Python's tracebacks) while the block runs."""
-
-    def __enter__(self):
-        sys.stderr.flush()
-        self._file = tempfile.TemporaryFile(mode="w+b")
-        self._saved = os.dup(2)
-        os.dup2(self._file.fileno(), 2)
-        return self
-
-    def __exit__(self, *exc):
-        sys.stderr.flush()
-        os.dup2(self._saved, 2)
-        os.close(self._saved)
-        self._file.seek(0)
-        self.text = self._file.read().decode("utf-8", "replace")
-        self._file.close()
-        sys.stderr.write(self.text)  # still in the test's log
-        return False
+# what the process writes to its standard error while a block runs (VTK's output window, tracebacks)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from schlieren_testing import CapturedStderr as Captured  # noqa: E402
 
 
 def array(data, name):
@@ -748,7 +744,7 @@ for case, (data, props, message) in REFUSED.items():
           % (case, c.text.strip().splitlines()[0][-120:] if c.text.strip() else ""))
     Delete(index)
 
-# -- 8. an overlapping AMR (vtkOverlappingAMR): both read it into the engine's AMR sampler
+# -- 10. an overlapping AMR (vtkOverlappingAMR): both read it into the engine's AMR sampler
 # (schlieren_amr_sample, OpenCL/SchlierenAMRSample.h): level 0 of 16^3 cells over [-1, 1]^3, level
 # 1 two boxes side by side (sharing a face) over [-0.5, 0.5]^3 at half the spacing, a Gaussian
 # density a little higher on level 1 (so that the finest level's choice shows), as point data and
@@ -831,6 +827,109 @@ check(said in c.text and said in c_cxx.text and "Traceback" not in c.text and
       % (c.text.strip().splitlines()[0][-160:] if c.text.strip() else ""))
 Delete(index)
 
+# -- 9. RefractiveIndex's parity matrix (frontend_cases.INDEX): the inputs the reference run wrote,
+# through the Python plugin's RefractiveIndex and SchlierenImage proxies, against the C++ plugin's
+# records bit for bit (the pip VTK leg: test_frontend.py)
+if args.reference is None:
+    print("SKIP the matrix: no --reference (frontend_reference.py's output)")
+else:
+    sys.path.insert(0, HERE)
+    import frontend_cases as cases  # noqa: E402
+    import frontend_matrix as matrix  # noqa: E402
+    compared, matrix_started = 0, time.time()
+    for case, (which, props, image_props) in cases.INDEX.items():
+        path = os.path.join(args.reference, "index_%s.npz" % case)
+        if not os.path.exists(path):
+            print("SKIP %s: the reference run left it out (no %s data)" % (case, which))
+            continue
+        source = producer(matrix.read_input(args.reference, which))
+        index = ns["RefractiveIndex"](Input=source, **matrix.proxy_properties(props))
+        image = ns["SchlierenImage"](Input=index, **dict(cases.INDEX_IMAGE, **image_props))
+        with Captured() as c:
+            image.UpdatePipeline()
+        matrix.compare(case, matrix.record(servermanager.Fetch(index), servermanager.Fetch(image)),
+                       np.load(path), check, "Python plugin")
+        check("Traceback" not in c.text and "ERR" not in c.text,
+              "%s (Python plugin): no error%s" % (case, "" if "ERR" not in c.text else
+                                                   ": " + c.text.strip()[-200:]))
+        compared += 1
+        for proxy in (image, index, source):
+            Delete(proxy)
+    matrix.known_differences()
+    print("RefractiveIndex's matrix in %.1f s" % (time.time() - matrix_started))
+    check(compared >= len([c for c in cases.INDEX.values()
+                           if c[0] not in cases.INDEX_OPTIONAL_INPUTS]),
+          "RefractiveIndex's matrix: %d of %d cases compared (the others need ../shared/data or "
+          "the suite's OpenFOAM cases)" % (compared, len(cases.INDEX)))
+
+# -- 8. NumericalSchlieren's progress and abort, in both plugins: a LineOfSight image of a 48^3
+# volume on a 384 x 384 film (14 M samples: about a second here, four blocks of rows with the
+# progress between them) reports progress from 0 to 1 in several steps, an observer that aborts at
+# the first progress event stops it there (the engine's "aborted at 0 % of the image: no image", an
+# empty output, the abort spent), and the next update gives the image of a fresh filter bit for bit
+big_scene = cxx.vtkRefractiveScene()
+big_scene.SetDimensions(48, 48, 48)
+big_scene.Update()
+big = vtkImageData()
+big.DeepCopy(big_scene.GetOutput())
+numerical_settings = dict(Mode="LineOfSight", Resolution=[384, 384], ViewDirection=[0.2, 0.1, -1])
+
+
+def cxx_numerical():
+    f = cxx.vtkNumericalSchlieren()
+    f.SetInputData(big)
+    f.SetMode(1)
+    f.SetResolution(384, 384)
+    f.SetViewDirection(0.2, 0.1, -1)
+    return f, f
+
+
+def py_numerical():
+    p = ns["NumericalSchlieren"](Input=producer(big), **numerical_settings)
+    return p, p.GetClientSideObject()
+
+
+fresh, _ = cxx_numerical()
+fresh.Update()
+want = fresh.GetOutput()
+for which, make in (("C++", cxx_numerical), ("Python", py_numerical)):
+    runner, algorithm = make()
+    seen = []
+
+    def abort_at_once(obj, _event):  # as ParaView's abort: once
+        seen.append(obj.GetProgress())
+        if len(seen) == 1:
+            obj.SetAbortExecute(1)
+    tag = algorithm.AddObserver("ProgressEvent", abort_at_once)
+    started = time.time()
+    with Captured() as c:
+        (runner.UpdatePipeline if which == "Python" else runner.Update)()
+    aborted_s = time.time() - started
+    out = algorithm.GetOutputDataObject(0)  # (a Fetch would update it again)
+    check(out.GetNumberOfPoints() == 0 and "aborted at 0 % of the image: no image" in c.text and
+          "Traceback" not in c.text and len(seen) <= 3 and not algorithm.GetAbortExecute(),
+          "%s NumericalSchlieren with an observer aborting at the first progress event: stopped "
+          "there (%.2f s, progress %s), an empty output, the engine's message, the abort spent"
+          % (which, aborted_s, seen))
+    algorithm.RemoveObserver(tag)
+    del seen[:]
+    algorithm.AddObserver("ProgressEvent", lambda obj, _e: seen.append(obj.GetProgress()))
+    algorithm.Modified()  # (a proxy's UpdatePipeline would see no property changed)
+    started = time.time()
+    with Captured() as c:
+        algorithm.Update()
+    whole_s = time.time() - started
+    out = algorithm.GetOutputDataObject(0)
+    check(out.GetNumberOfPoints() == 384 * 384 and "ERR" not in c.text and
+          all(array(out, n) is not None and
+              np.array_equal(array(out, n).view(np.uint8), array(want, n).view(np.uint8))
+              for n in ("intensity", "numerical_gradient", "blocked")) and
+          len(seen) >= 4 and seen == sorted(seen) and seen[-1] == 1.0,
+          "%s NumericalSchlieren updated again: the image of a fresh filter bit for bit (%.2f s), "
+          "progress in %d steps from %s to %s" % (which, whole_s, len(seen), seen[:1], seen[-1:]))
+    if which == "Python":
+        Delete(runner)
+
 # -- 4. schlieren_view embedded; Examples/first_light.py with the Python plugin
 try:
     import schlieren_view
@@ -862,7 +961,7 @@ for which, p in runs.items():
 if all(os.path.exists(p) for p in pngs.values()):
     with open(pngs["python"], "rb") as f, open(pngs["cxx"], "rb") as g:
         check(f.read() == g.read(), "its PNG equals the C++ plugin's bit for bit")
-# -- 9. the per-time-step cache (the engine's rule, schlieren_time_cache_*, as the C++ filter's):
+# -- 11. the per-time-step cache (the engine's rule, schlieren_time_cache_*, as the C++ filter's):
 # a Python source with 4 time steps (a ProgrammableSource counting its executions) through the
 # Python plugin's RefractiveIndex and SchlierenImage, the animation played twice. Last: a
 # ProgrammableSource's script runs in __main__'s namespace, which it leaves with NumPy-interface
