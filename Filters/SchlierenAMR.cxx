@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Overlapping AMR sampled onto an image grid, finest level first (SchlierenAMR.h).
+// Overlapping AMR read into the engine's arrays and sampled there (SchlierenAMR.h,
+// OpenCL/SchlierenAMRSample.h).
 #include "SchlierenAMR.h"
 
 #include "vtkAMRBox.h"
@@ -15,14 +16,10 @@
 #include "vtkUniformGrid.h"
 #include "vtkVersionMacros.h"
 
-#include "SchlierenLimits.h"
+#include "SchlierenAMRSample.h"
 #include "SchlierenParallel.h"
 
 #include <algorithm>
-#include <array>
-#include <cfloat>
-#include <cmath>
-#include <sstream>
 
 namespace
 {
@@ -49,51 +46,69 @@ vtkImageData* BlockOf(vtkOverlappingAMR* amr, unsigned int level, unsigned int i
 #endif
 }
 
-/** One axis of a trilinear stencil: the lower index and the weight of the upper one. */
-struct Stencil
-{
-  int Index;
-  float Weight;
-};
-
 /**
- * Where `u` (a coordinate in units of the samples, 0 at the first) falls between `count`
- * samples: clamped to the first and last sample, so that a point beyond them takes the nearest.
+ * The boxes of `amr` that this process holds, as the engine reads them (SchlierenAMRSample.h):
+ * per box, the point array of each of `names`, else its cell array (float and double read in
+ * place, any other type copied into `storage` as floats).
  */
-Stencil Between(double u, int count)
+std::vector<schlieren::AMRBlock> BlocksFor(vtkOverlappingAMR* amr,
+  const std::vector<std::string>& names, std::vector<std::vector<float>>& storage)
 {
-  if (count <= 1)
+  std::vector<schlieren::AMRBlock> blocks;
+  const unsigned int levels = amr ? amr->GetNumberOfLevels() : 0;
+  for (unsigned int l = 0; l < levels; ++l)
   {
-    return { 0, 0.0f };
-  }
-  u = std::min(std::max(u, 0.0), double(count - 1));
-  const int i = std::min(static_cast<int>(std::floor(u)), count - 2);
-  return { i, static_cast<float>(u - i) };
-}
-
-/** A box's array as floats (its components kept), read in place where it is float already. */
-const float* AsFloats(vtkDataArray* a, std::vector<float>& copy)
-{
-  if (auto* f = vtkFloatArray::SafeDownCast(a))
-  {
-    return f->GetPointer(0);
-  }
-  const vtkIdType n = a->GetNumberOfValues();
-  copy.resize(static_cast<std::size_t>(n));
-  if (auto* d = vtkDoubleArray::SafeDownCast(a))
-  {
-    const double* v = d->GetPointer(0);
-    std::transform(v, v + n, copy.begin(), [](double x) { return static_cast<float>(x); });
-  }
-  else
-  {
-    const int nc = a->GetNumberOfComponents();
-    for (vtkIdType i = 0; i < n; ++i)
+    for (unsigned int b = 0; b < BlocksOf(amr, l); ++b)
     {
-      copy[i] = static_cast<float>(a->GetComponent(i / nc, static_cast<int>(i % nc)));
+      vtkImageData* g = BlockOf(amr, l, b);
+      if (!g)
+      {
+        continue;
+      }
+      schlieren::AMRBlock block;
+      block.Level = static_cast<int>(l);
+      g->GetExtent(block.Extent);
+      g->GetOrigin(block.Origin);
+      g->GetSpacing(block.Spacing);
+      if (g->GetNumberOfPoints() == 0)
+      {
+        block.Extent[1] = block.Extent[0] - 1; // nothing to sample
+      }
+      for (const std::string& name : names)
+      {
+        schlieren::AMRArray array;
+        vtkDataArray* a = g->GetPointData()->GetArray(name.c_str());
+        array.Cells = a == nullptr;
+        if (!a)
+        {
+          a = g->GetCellData()->GetArray(name.c_str());
+        }
+        if (a)
+        {
+          array.Components = a->GetNumberOfComponents();
+          if (vtkFloatArray::SafeDownCast(a) || vtkDoubleArray::SafeDownCast(a))
+          {
+            array.Values = a->GetVoidPointer(0);
+            array.ValueBytes = a->GetDataTypeSize();
+          }
+          else
+          {
+            const vtkIdType n = a->GetNumberOfValues();
+            const int nc = array.Components;
+            storage.emplace_back(static_cast<std::size_t>(n));
+            for (vtkIdType i = 0; i < n; ++i)
+            {
+              storage.back()[i] = static_cast<float>(a->GetComponent(i / nc, static_cast<int>(i % nc)));
+            }
+            array.Values = storage.back().data();
+          }
+        }
+        block.Arrays.push_back(array);
+      }
+      blocks.push_back(std::move(block));
     }
   }
-  return copy.data();
+  return blocks;
 }
 } // namespace
 
@@ -107,179 +122,39 @@ bool FinestSpacing(
   schlieren::Parallel& parallel, vtkDataObject* data, double spacing[3], int& level, int& levels)
 {
   auto* amr = vtkOverlappingAMR::SafeDownCast(data);
-  double found[4] = { -1.0, 0.0, 0.0, 0.0 }; // level, then levels listed
-  double h[3] = { DBL_MAX, DBL_MAX, DBL_MAX };
-  if (amr)
-  {
-    found[1] = amr->GetNumberOfLevels();
-    for (int l = static_cast<int>(amr->GetNumberOfLevels()) - 1; l >= 0 && found[0] < 0; --l)
-    {
-      for (unsigned int b = 0; b < BlocksOf(amr, l); ++b)
-      {
-        if (vtkImageData* g = BlockOf(amr, l, b))
-        {
-          found[0] = l;
-          g->GetSpacing(h);
-          break;
-        }
-      }
-    }
-  }
-  double any[2] = { found[0], found[1] };
-  parallel.Max(any, 2);
-  if (any[0] < 0.0)
-  {
-    return false;
-  }
-  if (found[0] != any[0])
-  {
-    h[0] = h[1] = h[2] = DBL_MAX; // a coarser level here: the finest rank's spacing decides
-  }
-  parallel.Min(h, 3);
-  std::copy(h, h + 3, spacing);
-  level = static_cast<int>(any[0]);
-  levels = static_cast<int>(any[1]);
-  return true;
+  std::vector<std::vector<float>> storage;
+  return schlieren::AMRFinestSpacing(parallel, BlocksFor(amr, {}, storage),
+    amr ? static_cast<int>(amr->GetNumberOfLevels()) : 0, spacing, level, levels);
 }
 
 //------------------------------------------------------------------------------
 bool Dimensions(schlieren::Parallel& parallel, vtkDataObject* data, const double bounds[6],
   double bytesPerPoint, int dims[3], double finest[3], bool& capped, std::string& note)
 {
-  int level = 0, levels = 0;
-  if (!FinestSpacing(parallel, data, finest, level, levels))
-  {
-    return false;
-  }
-  double wanted = 1.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double cells = (bounds[2 * a + 1] - bounds[2 * a]) / finest[a];
-    dims[a] = std::max(1, static_cast<int>(std::min(std::floor(cells + 0.5), 1e6)) + 1);
-    wanted *= dims[a];
-  }
-  const double budget = parallel.Min(0.5 * static_cast<double>(schlieren::AvailableMemory()));
-  const int full[3] = { dims[0], dims[1], dims[2] };
-  capped = false;
-  double scale = std::cbrt(wanted * bytesPerPoint / budget);
-  while (double(dims[0]) * dims[1] * dims[2] * bytesPerPoint > budget)
-  {
-    capped = true;
-    for (int a = 0; a < 3; ++a)
-    {
-      dims[a] = full[a] > 1 ? std::max(2, static_cast<int>((full[a] - 1) / scale) + 1) : 1;
-    }
-    if (dims[0] * dims[1] * dims[2] <= 8)
-    {
-      break; // nothing smaller: CheckHostMemory refuses it with its message
-    }
-    scale *= 1.01;
-  }
-  std::ostringstream m;
-  m << "RefractiveIndex: AMR input: the grid's spacing from its finest level (level " << level
-    << " of " << levels << ", spacing " << finest[0] << ")";
-  if (capped)
-  {
-    m << " would need " << full[0] << " x " << full[1] << " x " << full[2] << " points ("
-      << schlieren::FormatBytes(wanted * bytesPerPoint) << "); capped to " << dims[0] << " x "
-      << dims[1] << " x " << dims[2] << " by the memory budget (half the memory available, "
-      << schlieren::FormatBytes(budget) << "). Set SamplingDimensions to choose another grid.";
-  }
-  else
-  {
-    m << ": " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points.";
-  }
-  note = m.str();
-  return true;
+  auto* amr = vtkOverlappingAMR::SafeDownCast(data);
+  std::vector<std::vector<float>> storage;
+  return schlieren::AMRDimensions(parallel, BlocksFor(amr, {}, storage),
+    amr ? static_cast<int>(amr->GetNumberOfLevels()) : 0, bounds, bytesPerPoint, dims, finest,
+    capped, note);
 }
 
 //------------------------------------------------------------------------------
 std::string OverlapProblem(vtkOverlappingAMR* data)
 {
-  if (!data)
+  std::vector<schlieren::AMRCellBox> boxes;
+  for (unsigned int l = 0; data && l < data->GetNumberOfLevels(); ++l)
   {
-    return std::string();
-  }
-  for (unsigned int l = 0; l < data->GetNumberOfLevels(); ++l)
-  {
-    const unsigned int n = data->GetNumberOfDataSets(l);
-    // each box's cell range (an axis with no cells, a 2D box's, as one cell), swept along x
-    std::vector<std::array<int, 6>> boxes;
-    std::vector<unsigned int> ids;
-    for (unsigned int b = 0; b < n; ++b)
+    for (unsigned int b = 0; b < BlocksOf(data, l); ++b)
     {
       const vtkAMRBox& box = data->GetAMRBox(l, b);
-      if (box.IsInvalid())
-      {
-        continue;
-      }
-      const int* lo = box.GetLoCorner();
-      const int* hi = box.GetHiCorner();
-      std::array<int, 6> r;
-      for (int a = 0; a < 3; ++a)
-      {
-        r[2 * a] = lo[a];
-        r[2 * a + 1] = std::max(lo[a], hi[a]);
-      }
-      boxes.push_back(r);
-      ids.push_back(b);
-    }
-    std::vector<std::size_t> order(boxes.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-    {
-      order[i] = i;
-    }
-    std::sort(order.begin(), order.end(),
-      [&](std::size_t x, std::size_t y) { return boxes[x][0] < boxes[y][0]; });
-    std::size_t pairs = 0;
-    double cells = 0;
-    std::ostringstream first;
-    for (std::size_t i = 0; i < order.size(); ++i)
-    {
-      const std::array<int, 6>& p = boxes[order[i]];
-      for (std::size_t j = i + 1; j < order.size() && boxes[order[j]][0] <= p[1]; ++j)
-      {
-        const std::array<int, 6>& q = boxes[order[j]];
-        double shared = 1;
-        for (int a = 0; a < 3 && shared > 0; ++a)
-        {
-          shared *= std::max(0, std::min(p[2 * a + 1], q[2 * a + 1]) - std::max(p[2 * a], q[2 * a]) + 1);
-        }
-        if (shared <= 0)
-        {
-          continue;
-        }
-        if (pairs == 0)
-        {
-          const unsigned int b0 = std::min(ids[order[i]], ids[order[j]]);
-          const unsigned int b1 = std::max(ids[order[i]], ids[order[j]]);
-          first << "boxes " << b0 << " and " << b1 << " share " << shared << " cells (cells";
-          for (int a = 0; a < 3; ++a)
-          {
-            first << ' ' << "ijk"[a] << ' ' << std::max(p[2 * a], q[2 * a]) << "-"
-                  << std::min(p[2 * a + 1], q[2 * a + 1]);
-          }
-          first << ")";
-        }
-        ++pairs;
-        cells += shared;
-      }
-    }
-    if (pairs > 0)
-    {
-      std::ostringstream m;
-      m << "RefractiveIndex: the AMR input's level " << l << " has boxes that overlap: " << first.str();
-      if (pairs > 1)
-      {
-        m << ", and " << pairs - 1 << " more pairs (" << cells << " cells in all)";
-      }
-      m << ". A level's boxes must tile it without overlap (each cell in one box); where two "
-           "overlap, which box's values to take is undefined. Fix the boxes (the writer's or "
-           "reader's AMR metadata), or resample the data onto an image first.";
-      return m.str();
+      schlieren::AMRCellBox cells;
+      cells.Level = static_cast<int>(l);
+      std::copy(box.GetLoCorner(), box.GetLoCorner() + 3, cells.Lo);
+      std::copy(box.GetHiCorner(), box.GetHiCorner() + 3, cells.Hi);
+      boxes.push_back(cells);
     }
   }
-  return std::string();
+  return schlieren::AMROverlapProblem(boxes);
 }
 
 //------------------------------------------------------------------------------
@@ -291,254 +166,41 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkOverlap
   structure->GetDimensions(D);
   structure->GetOrigin(O);
   structure->GetSpacing(H);
+  std::vector<std::vector<float>> storage;
+  schlieren::AMRSampled r = schlieren::AMRResample(parallel, BlocksFor(data, names, storage),
+    data ? static_cast<int>(data->GetNumberOfLevels()) : 0, D, O, H, names);
   const vtkIdType count = structure->GetNumberOfPoints();
-  std::vector<int> levelOf(static_cast<std::size_t>(count), -1);
-  std::vector<std::vector<float>> values(names.size());
-  std::vector<int> components(names.size(), 0);
-  std::vector<int> fromCells(names.size(), 0);
-  const int levels = data ? static_cast<int>(data->GetNumberOfLevels()) : 0;
-  std::vector<int> loaded(static_cast<std::size_t>(levels), 0);
-  std::vector<float> copy;
-  for (int l = 0; l < levels; ++l)
-  {
-    for (unsigned int b = 0; b < BlocksOf(data, l); ++b)
-    {
-      vtkImageData* g = BlockOf(data, l, b);
-      if (!g || g->GetNumberOfPoints() == 0)
-      {
-        continue;
-      }
-      loaded[l] = 1;
-      int ext[6], np[3];
-      double o[3], h[3], lo[3];
-      g->GetExtent(ext);
-      g->GetOrigin(o);
-      g->GetSpacing(h);
-      // the grid points this box covers, and the stencils along each axis
-      int first[3], last[3];
-      std::vector<Stencil> atPoints[3], atCells[3];
-      bool empty = false;
-      for (int a = 0; a < 3; ++a)
-      {
-        np[a] = ext[2 * a + 1] - ext[2 * a] + 1;
-        lo[a] = o[a] + ext[2 * a] * h[a];
-        const double hi = o[a] + ext[2 * a + 1] * h[a];
-        const double eps = 1e-9 * std::max(std::fabs(H[a]), std::fabs(hi - lo[a]));
-        first[a] = std::max(0, static_cast<int>(std::ceil((lo[a] - eps - O[a]) / H[a])));
-        last[a] = std::min(D[a] - 1, static_cast<int>(std::floor((hi + eps - O[a]) / H[a])));
-        if (D[a] == 1)
-        {
-          first[a] = last[a] = (O[a] >= lo[a] - eps && O[a] <= hi + eps) ? 0 : 1;
-        }
-        empty = empty || last[a] < first[a];
-        for (int i = first[a]; i <= last[a]; ++i)
-        {
-          const double u = (O[a] + i * H[a] - lo[a]) / h[a];
-          atPoints[a].push_back(Between(u, np[a]));
-          atCells[a].push_back(Between(u - 0.5, std::max(np[a] - 1, 1)));
-        }
-      }
-      if (empty)
-      {
-        continue;
-      }
-      for (std::size_t k = 0; k < names.size(); ++k)
-      {
-        vtkDataArray* a = g->GetPointData()->GetArray(names[k].c_str());
-        const bool cells = a == nullptr;
-        if (cells)
-        {
-          a = g->GetCellData()->GetArray(names[k].c_str());
-        }
-        if (!a)
-        {
-          continue;
-        }
-        const int nc = a->GetNumberOfComponents();
-        if (components[k] == 0)
-        {
-          components[k] = nc;
-          values[k].assign(static_cast<std::size_t>(count) * nc, 0.0f);
-        }
-        if (components[k] != nc)
-        {
-          continue; // a box that disagrees on the components: not read
-        }
-        fromCells[k] = fromCells[k] || cells;
-        const float* v = AsFloats(a, copy);
-        const std::vector<Stencil>* s = cells ? atCells : atPoints;
-        vtkIdType n[3] = { np[0], np[1], np[2] };
-        if (cells)
-        {
-          for (int ax = 0; ax < 3; ++ax)
-          {
-            n[ax] = std::max(np[ax] - 1, 1);
-          }
-        }
-        const vtkIdType sx = n[0] > 1 ? 1 : 0, sy = n[1] > 1 ? n[0] : 0,
-                        sz = n[2] > 1 ? n[0] * n[1] : 0;
-        float* out = values[k].data();
-        for (int z = first[2]; z <= last[2]; ++z)
-        {
-          const Stencil& cz = s[2][z - first[2]];
-          for (int y = first[1]; y <= last[1]; ++y)
-          {
-            const Stencil& cy = s[1][y - first[1]];
-            const vtkIdType row = (vtkIdType(z) * D[1] + y) * D[0];
-            for (int x = first[0]; x <= last[0]; ++x)
-            {
-              const Stencil& cx = s[0][x - first[0]];
-              const vtkIdType base = (vtkIdType(cz.Index) * n[1] + cy.Index) * n[0] + cx.Index;
-              const float wx = cx.Weight, wy = cy.Weight, wz = cz.Weight;
-              for (int c = 0; c < nc; ++c)
-              {
-                auto at = [&](vtkIdType offset) { return v[(base + offset) * nc + c]; };
-                const float c00 = at(0) + wx * (at(sx) - at(0));
-                const float c10 = at(sy) + wx * (at(sy + sx) - at(sy));
-                const float c01 = at(sz) + wx * (at(sz + sx) - at(sz));
-                const float c11 = at(sz + sy) + wx * (at(sz + sy + sx) - at(sz + sy));
-                const float c0 = c00 + wy * (c10 - c00), c1 = c01 + wy * (c11 - c01);
-                out[(row + x) * nc + c] = c0 + wz * (c1 - c0);
-              }
-            }
-          }
-        }
-      }
-      for (int z = first[2]; z <= last[2]; ++z)
-      {
-        for (int y = first[1]; y <= last[1]; ++y)
-        {
-          const vtkIdType row = (vtkIdType(z) * D[1] + y) * D[0];
-          std::fill(levelOf.begin() + row + first[0], levelOf.begin() + row + last[0] + 1, l);
-        }
-      }
-    }
-  }
-
-  // under MPI: the finest level found on any rank wins (the mean where two ranks hold it)
-  if (parallel.Size() > 1)
-  {
-    std::vector<double> finest(levelOf.begin(), levelOf.end());
-    parallel.Max(finest.data(), finest.size());
-    std::vector<char> mine(levelOf.size(), 0); // this rank holds the winning level there
-    std::vector<double> hits(levelOf.size(), 0.0);
-    for (std::size_t i = 0; i < finest.size(); ++i)
-    {
-      mine[i] = levelOf[i] >= 0 && levelOf[i] == static_cast<int>(finest[i]) ? 1 : 0;
-      hits[i] = mine[i];
-      levelOf[i] = static_cast<int>(finest[i]);
-    }
-    parallel.Sum(hits.data(), hits.size());
-    for (std::size_t k = 0; k < names.size(); ++k)
-    {
-      components[k] = static_cast<int>(parallel.Max(double(components[k])));
-      fromCells[k] = static_cast<int>(parallel.Max(double(fromCells[k])));
-      if (components[k] == 0)
-      {
-        continue;
-      }
-      const int nc = components[k];
-      std::vector<double> sum(static_cast<std::size_t>(count) * nc, 0.0);
-      if (!values[k].empty())
-      {
-        for (std::size_t i = 0; i < sum.size(); ++i)
-        {
-          sum[i] = mine[i / nc] ? values[k][i] : 0.0;
-        }
-      }
-      parallel.Sum(sum.data(), sum.size());
-      values[k].assign(sum.size(), 0.0f);
-      for (std::size_t i = 0; i < sum.size(); ++i)
-      {
-        const double h = hits[i / nc];
-        values[k][i] = h > 0.0 ? static_cast<float>(sum[i] / h) : 0.0f;
-      }
-    }
-  }
-
   vtkNew<vtkImageData> grid;
   grid->CopyStructure(structure);
   vtkNew<vtkCharArray> mask;
   mask->SetName(MaskName);
   mask->SetNumberOfTuples(count);
-  std::vector<vtkIdType> perLevel(static_cast<std::size_t>(std::max(levels, 1)), 0);
   for (vtkIdType i = 0; i < count; ++i)
   {
-    mask->SetValue(i, levelOf[i] >= 0 ? 1 : 0);
-    if (levelOf[i] >= 0 && levelOf[i] < static_cast<int>(perLevel.size()))
-    {
-      ++perLevel[levelOf[i]];
-    }
+    mask->SetValue(i, static_cast<char>(r.Valid[i]));
   }
   grid->GetPointData()->AddArray(mask);
-  std::vector<std::string> asCells;
   for (std::size_t k = 0; k < names.size(); ++k)
   {
-    if (components[k] == 0)
+    if (r.Components[k] == 0)
     {
       continue; // reported as missing by the caller
     }
     vtkNew<vtkFloatArray> a;
     a->SetName(names[k].c_str());
-    a->SetNumberOfComponents(components[k]);
+    a->SetNumberOfComponents(r.Components[k]);
     a->SetNumberOfTuples(count);
-    if (!values[k].empty())
+    if (!r.Values[k].empty())
     {
-      std::copy(values[k].begin(), values[k].end(), a->GetPointer(0));
+      std::copy(r.Values[k].begin(), r.Values[k].end(), a->GetPointer(0));
     }
     else
     {
       a->FillValue(0.0f);
     }
     grid->GetPointData()->AddArray(a);
-    if (fromCells[k])
-    {
-      asCells.push_back(names[k]);
-    }
   }
-
-  std::ostringstream m;
-  m << "RefractiveIndex: AMR input (" << levels << " level" << (levels == 1 ? "" : "s")
-    << "): each grid point sampled from the finest level covering it (points per level:";
-  for (std::size_t l = 0; l < perLevel.size(); ++l)
-  {
-    m << (l ? ", " : " ") << "L" << l << " " << perLevel[l];
-  }
-  m << ").";
-  if (!asCells.empty())
-  {
-    m << " Cell data (";
-    for (std::size_t i = 0; i < asCells.size(); ++i)
-    {
-      m << (i ? ", " : "") << asCells[i];
-    }
-    m << ") sampled as cells: trilinear between each box's cell centres, not converted to points.";
-  }
-  notes.push_back(m.str());
-  // levels the metadata lists but no rank holds (a reader's MaxLevel)
-  if (parallel.Size() > 1 && !loaded.empty())
-  {
-    std::vector<double> any(loaded.begin(), loaded.end());
-    parallel.Max(any.data(), any.size());
-    for (std::size_t l = 0; l < any.size(); ++l)
-    {
-      loaded[l] = any[l] > 0.5 ? 1 : 0;
-    }
-  }
-  int unloaded = 0;
-  for (int l = 0; l < levels; ++l)
-  {
-    unloaded += loaded[l] ? 0 : 1;
-  }
-  if (unloaded > 0)
-  {
-    std::ostringstream u;
-    u << "RefractiveIndex: the AMR input lists " << levels << " levels but only "
-      << (levels - unloaded)
-      << " hold data: the finer ones were not loaded (an AMR reader loads the levels up to its "
-         "MaxLevel, the Level property of ParaView's AMR readers: raise it to sample them).";
-    notes.push_back(u.str());
-  }
+  notes.insert(notes.end(), r.Notes.begin(), r.Notes.end());
   return grid;
 }
 } // namespace amr

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file SchlierenAMR.h
- * @brief Overlapping AMR input (vtkOverlappingAMR) sampled onto RefractiveIndex's image grid.
+ * @brief Overlapping AMR input (vtkOverlappingAMR) read into the engine's arrays
+ * (OpenCL/SchlierenAMRSample.h, which samples it) for RefractiveIndex's image grid.
  *
  * Every grid point takes its value from the finest level whose boxes cover it, never from a
  * coarser level under a refined patch: the boxes are written level by level, coarsest first, so

@@ -5,6 +5,7 @@
 #define SCHLIEREN_C_BUILDING
 #include "schlieren_c.h"
 
+#include "SchlierenAMRSample.h"
 #include "SchlierenBodies.h"
 #include "SchlierenEngine.h"
 #include "SchlierenLimits.h"
@@ -17,6 +18,7 @@
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
 #include "SchlierenSymmetry.h"
+#include "SchlierenTimeStore.h"
 
 #include <algorithm>
 #include <cctype>
@@ -455,6 +457,11 @@ std::int64_t GridPoints(const char* function, const int dims[3])
     n *= dims[a];
   }
   return n;
+}
+
+bool EmptyExtent(const int extent[6])
+{
+  return extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4];
 }
 
 std::string GridText(const int dims[3])
@@ -1952,6 +1959,300 @@ int schlieren_wedge_warning(const double bounds[6], const double* points, int64_
       ? schlieren::WedgeWithoutSymmetry(points, static_cast<std::size_t>(points_count / 3))
       : std::string();
     *warning = Returned.c_str();
+  });
+}
+
+namespace
+{
+/** The AMR boxes of schlieren_amr_grid and schlieren_amr_sample, checked (schlieren_c.h). */
+std::vector<schlieren::AMRBlock> AMRBlocks(const char* f, int levels, int number_of_blocks,
+  const int* block_levels, const int* block_extents, const double* block_origins,
+  const double* block_spacings)
+{
+  if (levels < 0 || levels > 1024)
+    throw schlieren::Error(std::string(f) + ": levels is " + std::to_string(levels) +
+      ": an AMR lists 0 to 1024 levels.");
+  if (number_of_blocks < 0 || (number_of_blocks > 0 &&
+      (!block_levels || !block_extents || !block_origins || !block_spacings)))
+    throw schlieren::Error(std::string(f) + ": number_of_blocks is " +
+      std::to_string(number_of_blocks) + ": give block_levels, block_extents, block_origins and "
+      "block_spacings for each (or 0).");
+  std::vector<schlieren::AMRBlock> blocks(static_cast<std::size_t>(number_of_blocks));
+  for (int b = 0; b < number_of_blocks; ++b)
+  {
+    schlieren::AMRBlock& block = blocks[static_cast<std::size_t>(b)];
+    const std::string which = std::string(f) + ": block " + std::to_string(b);
+    block.Level = block_levels[b];
+    if (block.Level < 0 || block.Level >= levels)
+      throw schlieren::Error(which + " is on level " + std::to_string(block.Level) +
+        ": the levels are 0 to " + std::to_string(levels - 1) + ".");
+    std::copy(block_extents + 6 * b, block_extents + 6 * b + 6, block.Extent);
+    std::copy(block_origins + 3 * b, block_origins + 3 * b + 3, block.Origin);
+    std::copy(block_spacings + 3 * b, block_spacings + 3 * b + 3, block.Spacing);
+    CheckFinite3(f, (which + "'s origin").c_str(), block.Origin);
+    CheckFinite3(f, (which + "'s spacing").c_str(), block.Spacing);
+    for (int a = 0; a < 3; ++a)
+    {
+      if (!(block.Spacing[a] > 0.0))
+        throw schlieren::Error(which + "'s spacing is not positive.");
+      const double points = double(block.Extent[2 * a + 1]) - double(block.Extent[2 * a]) + 1.0;
+      if (points > double(1 << 30) || std::fabs(double(block.Extent[2 * a])) > double(1 << 30) ||
+        std::fabs(double(block.Extent[2 * a + 1])) > double(1 << 30))
+        throw schlieren::Error(which + "'s extent reaches past 2^30 points along an axis.");
+    }
+  }
+  return blocks;
+}
+} // namespace
+
+int schlieren_amr_overlap(int number_of_boxes, const int* box_levels, const int* box_corners)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_amr_overlap";
+    if (number_of_boxes < 0 || (number_of_boxes > 0 && (!box_levels || !box_corners)))
+      throw schlieren::Error(std::string(f) + ": number_of_boxes is " +
+        std::to_string(number_of_boxes) + ": give box_levels and box_corners for each (or 0).");
+    std::vector<schlieren::AMRCellBox> boxes(static_cast<std::size_t>(number_of_boxes));
+    for (int i = 0; i < number_of_boxes; ++i)
+    {
+      schlieren::AMRCellBox& box = boxes[static_cast<std::size_t>(i)];
+      box.Level = box_levels[i];
+      if (box.Level < 0 || box.Level > 1023)
+        throw schlieren::Error(std::string(f) + ": box " + std::to_string(i) + " is on level " +
+          std::to_string(box.Level) + ": the levels are 0 to 1023.");
+      std::copy(box_corners + 6 * i, box_corners + 6 * i + 3, box.Lo);
+      std::copy(box_corners + 6 * i + 3, box_corners + 6 * i + 6, box.Hi);
+    }
+    const std::string problem = schlieren::AMROverlapProblem(boxes);
+    if (!problem.empty())
+      throw schlieren::Error(problem);
+  });
+}
+
+int schlieren_amr_grid(int levels, int number_of_blocks, const int* block_levels,
+  const int* block_extents, const double* block_origins, const double* block_spacings,
+  const double bounds[6], double bytes_per_point, int dims[3], double finest_spacing[3],
+  int* finest_level, int* capped, const char** note)
+{
+  if (note)
+    *note = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_amr_grid";
+    if (!bounds || !dims || !finest_spacing || !finest_level || !capped || !note)
+      throw schlieren::Error(std::string(f) + ": bounds, dims, finest_spacing, finest_level, "
+                                              "capped and note must be given.");
+    const std::vector<schlieren::AMRBlock> blocks = AMRBlocks(
+      f, levels, number_of_blocks, block_levels, block_extents, block_origins, block_spacings);
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(bounds[2 * a]) || !std::isfinite(bounds[2 * a + 1]) ||
+        bounds[2 * a + 1] < bounds[2 * a])
+        throw schlieren::Error(std::string(f) + ": bounds must be finite, each max at least its min.");
+    if (!std::isfinite(bytes_per_point) || !(bytes_per_point > 0.0))
+      throw schlieren::Error(std::string(f) + ": bytes_per_point must be positive.");
+    bool cap = false;
+    int levelsListed = 0;
+    if (!schlieren::AMRDimensions(schlieren::SerialParallel(), blocks, levels, bounds,
+          bytes_per_point, dims, finest_spacing, cap, Returned))
+      throw schlieren::Error(std::string(f) + ": no box holds data: the AMR input has nothing "
+                                              "to sample.");
+    schlieren::AMRFinestSpacing(
+      schlieren::SerialParallel(), blocks, levels, finest_spacing, *finest_level, levelsListed);
+    *capped = cap ? 1 : 0;
+    *note = Returned.c_str();
+  });
+}
+
+namespace
+{
+thread_local schlieren::AMRSampled AMRReturned;
+thread_local std::string AMRReport;
+}
+
+int schlieren_amr_sample(int levels, int number_of_blocks, const int* block_levels,
+  const int* block_extents, const double* block_origins, const double* block_spacings,
+  int number_of_arrays, const char* const* names, const int* is_cell, const int* components,
+  const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
+  const int dims[3], const double origin[3], const double spacing[3], int* out_components,
+  const float** outputs, const unsigned char** valid, const char** report)
+{
+  if (report)
+    *report = "";
+  if (valid)
+    *valid = nullptr;
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_amr_sample";
+    AMRReturned = schlieren::AMRSampled();
+    std::vector<schlieren::AMRBlock> blocks = AMRBlocks(
+      f, levels, number_of_blocks, block_levels, block_extents, block_origins, block_spacings);
+    const std::int64_t gridPoints = GridPoints(f, dims);
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    for (int a = 0; a < 3; ++a)
+      if (!(spacing[a] > 0.0))
+        throw schlieren::Error(std::string(f) + ": spacing must be positive.");
+    if (!valid || !report || (number_of_arrays > 0 && (!out_components || !outputs)))
+      throw schlieren::Error(std::string(f) + ": valid, report, out_components and outputs "
+                                              "must be given.");
+    if (number_of_arrays < 0 || number_of_arrays > 1024 || (number_of_arrays > 0 &&
+        (!names || (number_of_blocks > 0 && (!is_cell || !components || !value_bytes ||
+          !inputs || !input_lengths)))))
+      throw schlieren::Error(std::string(f) + ": number_of_arrays is " +
+        std::to_string(number_of_arrays) + ": give names (one per array) and is_cell, "
+        "components, value_bytes, inputs and input_lengths (one per block and array), up to 1024 "
+        "arrays.");
+    std::vector<std::string> arrayNames;
+    for (int k = 0; k < number_of_arrays; ++k)
+      arrayNames.push_back(names[k] ? names[k] : "array " + std::to_string(k));
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+    {
+      schlieren::AMRBlock& block = blocks[b];
+      for (int k = 0; k < number_of_arrays; ++k)
+      {
+        const std::size_t i = b * static_cast<std::size_t>(number_of_arrays) + k;
+        schlieren::AMRArray a;
+        const std::string what =
+          "block " + std::to_string(b) + "'s array '" + arrayNames[static_cast<std::size_t>(k)] + "'";
+        if (inputs[i] || input_lengths[i] != 0)
+        {
+          a.Cells = is_cell[i] != 0;
+          a.Components = components[i];
+          a.ValueBytes = value_bytes[i];
+          if (a.Components < 1 || a.Components > 1024)
+            throw schlieren::Error(std::string(f) + ": " + what + " has " +
+              std::to_string(a.Components) + " components (1 to 1024).");
+          if (a.ValueBytes != 4 && a.ValueBytes != 8)
+            throw schlieren::Error(std::string(f) + ": " + what + " has " +
+              std::to_string(a.ValueBytes) + " bytes a value: 4 (float) or 8 (double).");
+          std::int64_t tuples = 1;
+          for (int ax = 0; ax < 3; ++ax)
+          {
+            const std::int64_t np =
+              std::max<std::int64_t>(0, std::int64_t(block.Extent[2 * ax + 1]) - block.Extent[2 * ax] + 1);
+            tuples *= a.Cells ? std::max<std::int64_t>(np - 1, 1) : np;
+            if (tuples > (std::int64_t(1) << 40))
+              throw schlieren::Error(std::string(f) + ": " + what + ": the block has more than "
+                                                                    "2^40 tuples.");
+          }
+          if (EmptyExtent(block.Extent))
+            tuples = 0;
+          CheckArray(f, what.c_str(), inputs[i], input_lengths[i], tuples * a.Components,
+            std::to_string(tuples) + (a.Cells ? " cells" : " points") + " x " +
+              std::to_string(a.Components) + " components",
+            false);
+          a.Values = inputs[i];
+        }
+        block.Arrays.push_back(a);
+      }
+    }
+    double perPoint = 5.0; // the level of each point and its valid byte
+    for (int k = 0; k < number_of_arrays; ++k)
+    {
+      int most = 0;
+      for (std::size_t b = 0; b < blocks.size(); ++b)
+        most = std::max(most, blocks[b].Arrays[static_cast<std::size_t>(k)].Components);
+      perPoint += 4.0 * most;
+    }
+    schlieren::CheckHostMemory(double(gridPoints) * perPoint,
+      "Sampling the AMR input onto " + GridText(dims) + " points", "Lower SamplingDimensions.");
+    AMRReturned = schlieren::AMRResample(schlieren::SerialParallel(), blocks, levels, dims,
+      origin, spacing, arrayNames);
+    for (int k = 0; k < number_of_arrays; ++k)
+    {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      out_components[k] = AMRReturned.Components[kk];
+      outputs[k] = AMRReturned.Components[kk] ? AMRReturned.Values[kk].data() : nullptr;
+    }
+    *valid = AMRReturned.Valid.data();
+    std::string lines;
+    for (const std::string& n : AMRReturned.Notes)
+      lines += "note: " + n + "\n";
+    AMRReport = lines;
+    *report = AMRReport.c_str();
+  });
+}
+
+namespace
+{
+/** The entries of schlieren_time_cache_find and _insert, checked (schlieren_c.h). */
+std::vector<schlieren::TimeStepKey> TimeCacheKeys(const char* f, int64_t count, const double* times,
+  const uint64_t* tokens, const int* extents, const double* bytes, bool needBytes,
+  std::vector<double>& sizes)
+{
+  if (count < 0 || count > (int64_t(1) << 20))
+    throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) +
+      ": the entries held (0 to 2^20).");
+  if (count > 0 && (!times || !tokens || !extents || (needBytes && !bytes)))
+    throw schlieren::Error(std::string(f) + ": count is " + std::to_string(count) +
+      ": give times, tokens, extents" + (needBytes ? " and bytes" : "") + " for each entry.");
+  std::vector<schlieren::TimeStepKey> keys(static_cast<std::size_t>(count));
+  sizes.assign(static_cast<std::size_t>(count), 0.0);
+  for (int64_t i = 0; i < count; ++i)
+  {
+    schlieren::TimeStepKey& k = keys[static_cast<std::size_t>(i)];
+    k.Time = times[i];
+    k.Token = tokens[i];
+    std::copy(extents + 6 * i, extents + 6 * i + 6, k.Extent);
+    if (!std::isfinite(k.Time))
+      throw schlieren::Error(std::string(f) + ": times[" + std::to_string(i) + "] is not finite.");
+    if (bytes)
+    {
+      sizes[static_cast<std::size_t>(i)] = bytes[i];
+      if (!std::isfinite(bytes[i]) || bytes[i] < 0)
+        throw schlieren::Error(std::string(f) + ": bytes[" + std::to_string(i) +
+          "] is not a finite count >= 0.");
+    }
+  }
+  return keys;
+}
+
+schlieren::TimeStepKey TimeCacheKey(const char* f, double time, uint64_t token, const int extent[6])
+{
+  if (!extent || !std::isfinite(time))
+    throw schlieren::Error(std::string(f) + ": the key's time must be finite and its extent given.");
+  schlieren::TimeStepKey k;
+  k.Time = time;
+  k.Token = token;
+  std::copy(extent, extent + 6, k.Extent);
+  return k;
+}
+} // namespace
+
+int schlieren_time_cache_find(int64_t count, const double* times, const uint64_t* tokens,
+  const int* extents, const double* bytes, double time, uint64_t token, const int extent[6],
+  int64_t* index, double* budget)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_time_cache_find";
+    if (!index)
+      throw schlieren::Error(std::string(f) + ": index must be given.");
+    std::vector<double> sizes;
+    const auto keys = TimeCacheKeys(f, count, times, tokens, extents, bytes, false, sizes);
+    *index = schlieren::FindTimeStep(keys, TimeCacheKey(f, time, token, extent));
+    double held = 0.0;
+    for (double b : sizes)
+      held += b;
+    if (budget)
+      *budget = schlieren::TimeStepBudget(held);
+  });
+}
+
+int schlieren_time_cache_insert(int64_t count, const double* times, const uint64_t* tokens,
+  const int* extents, const double* bytes, double time, uint64_t token, const int extent[6],
+  double new_bytes, unsigned char* keep, int* keep_new, double* budget)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_time_cache_insert";
+    if (!keep_new || (count > 0 && !keep))
+      throw schlieren::Error(std::string(f) + ": keep (count bytes) and keep_new must be given.");
+    if (!std::isfinite(new_bytes) || new_bytes < 0)
+      throw schlieren::Error(std::string(f) + ": new_bytes is not a finite count >= 0.");
+    std::vector<double> sizes;
+    const auto keys = TimeCacheKeys(f, count, times, tokens, extents, bytes, true, sizes);
+    std::vector<unsigned char> flags;
+    const bool kept = schlieren::PlanTimeStepInsert(
+      keys, sizes, TimeCacheKey(f, time, token, extent), new_bytes, flags, budget);
+    std::copy(flags.begin(), flags.end(), keep);
+    *keep_new = kept ? 1 : 0;
   });
 }
 

@@ -351,6 +351,71 @@ SCHLIEREN_C_API int schlieren_symmetry_expand(const int64_t* sample_of, int64_t 
   int64_t samples, const float* values, int64_t values_count, int components, float* out,
   int64_t out_count, const unsigned char* sample_valid, int64_t sample_valid_count,
   unsigned char* valid, int64_t valid_count);
+/**
+ * RefractiveIndex's overlapping AMR input (SchlierenAMRSample.h), in three calls: the overlap
+ * check, the automatic grid, the sampling. Every front end reads its AMR into these arrays.
+ *
+ * The boxes that hold data (a process's loaded blocks): `number_of_blocks` of them, box b on level
+ * block_levels[b] (0 to `levels` - 1; `levels` the levels the AMR lists, 0 to 1024), its image's
+ * extent block_extents[6b .. 6b+5] (x min, x max, y min, ...; an empty extent: nothing to sample),
+ * origin block_origins[3b ..] and spacing block_spacings[3b ..] (positive): point i along x lies
+ * at origin x + i spacing x, i within the extent.
+ */
+/** 0 where no two boxes of one level overlap in cells; else non-zero and schlieren_last_error()
+ * gives the C++ filter's message (the level, the first pair and their shared cells). Box i (of
+ * `number_of_boxes`, the AMR's metadata, every box listed) is on level box_levels[i] (0 to 1023)
+ * with the cell corners box_corners[6i .. 6i+5] (low x y z, high x y z: vtkAMRBox's); a box is
+ * named by its index among its level's boxes in this order, an invalid one (high < low - 1) is
+ * passed over. */
+SCHLIEREN_C_API int schlieren_amr_overlap(
+  int number_of_boxes, const int* box_levels, const int* box_corners);
+/** The automatic grid of an AMR input: `dims` over `bounds` (finite, max >= min) at the finest
+ * loaded level's spacing, capped so that the grid at `bytes_per_point` (positive) takes at most
+ * half the memory available. Writes `dims`, `finest_spacing`, `finest_level`, `capped` (0/1) and
+ * `note` (the C++ filter's words; owned by the library until this thread's next call). Non-zero
+ * where no box is given. The blocks as above. */
+SCHLIEREN_C_API int schlieren_amr_grid(int levels, int number_of_blocks, const int* block_levels,
+  const int* block_extents, const double* block_origins, const double* block_spacings,
+  const double bounds[6], double bytes_per_point, int dims[3], double finest_spacing[3],
+  int* finest_level, int* capped, const char** note);
+/**
+ * The boxes sampled at the points of the grid `dims`, `origin`, `spacing` (positive), finest level
+ * first, point arrays trilinear between a box's points, cell arrays between its cell centres, in
+ * float. `number_of_arrays` arrays named names[k]; for box b and array k, entry
+ * i = b * number_of_arrays + k of is_cell, components (1 to 1024), value_bytes (4 float, 8 double),
+ * inputs and input_lengths: the box's values (its points, or its cells, max(points - 1, 1) along
+ * each axis, times the components), or NULL and 0 where the box has no such array (a box whose
+ * components differ from the first box's that is read is passed over for it). Writes
+ * out_components[k] (0: no box holds array k), outputs[k] (grid points x out_components[k] floats,
+ * NULL where 0), `valid` (a byte per grid point, 1 where a box covers it) and `report` (lines
+ * "note: ..."), all owned by the library until this thread's next call of this function.
+ */
+SCHLIEREN_C_API int schlieren_amr_sample(int levels, int number_of_blocks, const int* block_levels,
+  const int* block_extents, const double* block_origins, const double* block_spacings,
+  int number_of_arrays, const char* const* names, const int* is_cell, const int* components,
+  const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
+  const int dims[3], const double origin[3], const double spacing[3], int* out_components,
+  const float** outputs, const unsigned char** valid, const char** report);
+/**
+ * RefractiveIndex's per-time-step cache (SchlierenTimeStore.h), its rule without its state: the
+ * front end holds its outputs, `count` entries oldest first, entry i keyed by times[i], tokens[i]
+ * (the change token the front end gives: its pipeline's modified time) and extents[6i .. 6i+5],
+ * holding bytes[i] (finite, >= 0; may be NULL in schlieren_time_cache_find). Times are finite.
+ *
+ * schlieren_time_cache_find: `index` gets the entry whose key is (time, token, extent), or -1;
+ * `budget` (may be NULL) the cache's budget (a quarter of the memory available, counting the
+ * bytes held).
+ */
+SCHLIEREN_C_API int schlieren_time_cache_find(int64_t count, const double* times,
+  const uint64_t* tokens, const int* extents, const double* bytes, double time, uint64_t token,
+  const int extent[6], int64_t* index, double* budget);
+/** schlieren_time_cache_insert: where an entry of `new_bytes` is kept for (time, token, extent),
+ * `keep` (`count` bytes) gets 1 for each entry that stays (the other tokens' and the same key's
+ * go, then the oldest until the new one fits), `keep_new` 1 where the new one is kept (not where
+ * it is larger than the budget), `budget` (may be NULL) the budget it was measured against. */
+SCHLIEREN_C_API int schlieren_time_cache_insert(int64_t count, const double* times,
+  const uint64_t* tokens, const int* extents, const double* bytes, double time, uint64_t token,
+  const int extent[6], double new_bytes, unsigned char* keep, int* keep_new, double* budget);
 /** The warning the C++ filter gives for an axisymmetric wedge traced with Symmetry None
  * (AxisFromWedge on): `points` every point of the mesh (`points_count` values, 3 a point),
  * `bounds` its bounds. `warning` gets it, or "" (not a wedge); owned by the library until this

@@ -711,6 +711,185 @@ def wedge_warning(bounds, points):
     return _text(warning.value)
 
 
+def _amr_blocks(levels, blocks):
+    """The AMR boxes as schlieren_amr_grid and schlieren_amr_sample take them: levels, count and
+    the four arrays (level, extent, origin, spacing of each)."""
+    blocks = list(blocks)
+    try:
+        levels = int(levels)
+        lv = (ctypes.c_int * max(1, len(blocks)))(*[int(b["level"]) for b in blocks])
+        ext = (ctypes.c_int * max(6, 6 * len(blocks)))(
+            *[int(v) for b in blocks for v in b["extent"]])
+        org = (ctypes.c_double * max(3, 3 * len(blocks)))(
+            *[float(v) for b in blocks for v in b["origin"]])
+        spc = (ctypes.c_double * max(3, 3 * len(blocks)))(
+            *[float(v) for b in blocks for v in b["spacing"]])
+    except (TypeError, ValueError, KeyError) as e:
+        raise ArgumentTypeError("AMR blocks: each a dict of level, extent (6 integers), origin "
+                                "and spacing (3 numbers each) (%s)" % e)
+    if any(len(b["extent"]) != 6 or len(b["origin"]) != 3 or len(b["spacing"]) != 3
+           for b in blocks):
+        raise ArgumentError("AMR blocks: each takes an extent of 6 integers and an origin and a "
+                            "spacing of 3 numbers")
+    return levels, len(blocks), lv, ext, org, spc
+
+
+def amr_overlap(boxes):
+    """Raises EngineError with the C++ filter's message where two boxes of one level of an
+    overlapping AMR share cells (schlieren_amr_overlap). `boxes`: the AMR's metadata boxes,
+    (level, low corner (3), high corner (3)) each, every box of every level in order."""
+    boxes = list(boxes)
+    try:
+        lv = (ctypes.c_int * max(1, len(boxes)))(*[int(b[0]) for b in boxes])
+        corners = (ctypes.c_int * max(6, 6 * len(boxes)))(
+            *[int(v) for b in boxes for v in list(b[1]) + list(b[2])])
+    except (TypeError, ValueError, IndexError) as e:
+        raise ArgumentTypeError("AMR boxes: (level, low corner, high corner) each (%s)" % e)
+    if any(len(b[1]) != 3 or len(b[2]) != 3 for b in boxes):
+        raise ArgumentError("AMR boxes: each corner takes 3 integers")
+    _check(_lib.schlieren_amr_overlap(len(boxes), lv, corners))
+
+
+def amr_grid(levels, blocks, bounds, bytes_per_point):
+    """RefractiveIndex's automatic grid of an AMR input (schlieren_amr_grid): the finest loaded
+    level's spacing over `bounds`, capped by memory. `blocks`: dicts of level, extent, origin,
+    spacing. Returns dict(dims, finest_spacing, finest_level, capped, note)."""
+    f = _sig("schlieren_amr_grid", ctypes.c_int, ctypes.c_int, ctypes.c_int,
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
+             ctypes.c_double * 6, ctypes.c_double, _c_int3, _c_double3,
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+             ctypes.POINTER(ctypes.c_char_p))
+    levels, n, lv, ext, org, spc = _amr_blocks(levels, blocks)
+    dims, finest, level, capped, note = _c_int3(), _c_double3(), ctypes.c_int(), ctypes.c_int(), \
+        ctypes.c_char_p()
+    _check(f(levels, n, lv, ext, org, spc, _six(bounds, "bounds"), float(bytes_per_point), dims,
+             finest, ctypes.byref(level), ctypes.byref(capped), ctypes.byref(note)))
+    return dict(dims=list(dims), finest_spacing=list(finest), finest_level=level.value,
+                capped=bool(capped.value), note=_text(note.value))
+
+
+def amr_sample(levels, blocks, names, dims, origin, spacing):
+    """An overlapping AMR's boxes sampled onto an image grid by the engine (schlieren_amr_sample),
+    as the C++ RefractiveIndex samples them: every grid point from the finest level covering it,
+    point arrays trilinear between a box's points, cell arrays between its cell centres, float32.
+    `blocks`: dicts of level, extent, origin, spacing and arrays ({name: (values, is_cell)}, the
+    values shaped (tuples,) or (tuples, components); float32 read as it is, anything else as
+    float64). Returns (valid: uint8 over the grid's points, {name: float32 array (points,) or
+    (points, components)} for the names some box holds, notes: list of str)."""
+    f = _sig("schlieren_amr_sample", ctypes.c_int, ctypes.c_int, ctypes.c_int,
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double), ctypes.c_int,
+             ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+             ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_int64), _c_int3, _c_double3,
+             _c_double3, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(_f32p),
+             ctypes.POINTER(_u8p), ctypes.POINTER(ctypes.c_char_p))
+    blocks = list(blocks)
+    names = [str(n) for n in names]
+    levels, n, lv, ext, org, spc = _amr_blocks(levels, blocks)
+    d, count = _dims(dims)
+    grid = _grid(dims, origin, spacing)
+    k = len(names)
+    entries = max(1, n * k)
+    cells, comps, nbytes = (ctypes.c_int * entries)(), (ctypes.c_int * entries)(), \
+        (ctypes.c_int * entries)()
+    ins, lengths, keep = (ctypes.c_void_p * entries)(), (ctypes.c_int64 * entries)(), []
+    for b, block in enumerate(blocks):
+        arrays = block.get("arrays", {})
+        for j, name in enumerate(names):
+            if name not in arrays:
+                continue
+            values, is_cell = arrays[name]
+            a = np.asarray(values)
+            if a.ndim not in (1, 2) or a.dtype.kind not in "biuf":
+                raise ArgumentError("AMR block %d's array '%s' has shape %s and dtype %s: give "
+                                    "real numbers shaped (tuples,) or (tuples, components)"
+                                    % (b, name, a.shape, a.dtype))
+            a = np.ascontiguousarray(a, np.float32 if a.dtype == np.float32 else np.float64)
+            keep.append(a)
+            i = b * k + j
+            cells[i], comps[i], nbytes[i] = int(bool(is_cell)), 1 if a.ndim == 1 else \
+                a.shape[1], a.dtype.itemsize
+            ins[i], lengths[i] = a.ctypes.data, a.size
+    out_comps = (ctypes.c_int * max(1, k))()
+    outs = (_f32p * max(1, k))()
+    valid, report = _u8p(), ctypes.c_char_p()
+    _check(f(levels, n, lv, ext, org, spc, k, (ctypes.c_char_p * max(1, k))(
+        *[x.encode() for x in names]), cells, comps, nbytes, ins, lengths, *grid, out_comps, outs,
+        ctypes.byref(valid), ctypes.byref(report)))
+    sampled = {}
+    for j, name in enumerate(names):
+        c = out_comps[j]
+        if c:
+            v = np.ctypeslib.as_array(outs[j], shape=(count * c,)).copy()
+            sampled[name] = v if c == 1 else v.reshape(count, c)
+    mask = np.ctypeslib.as_array(valid, shape=(count,)).copy()
+    notes = [line[len("note: "):] for line in _text(report.value).splitlines()
+             if line.startswith("note: ")]
+    return mask, sampled, notes
+
+
+def _time_cache_arrays(entries):
+    """(time, token, extent, bytes) entries as the C arrays of schlieren_time_cache_*."""
+    entries = list(entries)
+    n = len(entries)
+    try:
+        times = (ctypes.c_double * max(1, n))(*[float(e[0]) for e in entries])
+        tokens = (ctypes.c_uint64 * max(1, n))(*[int(e[1]) for e in entries])
+        extents = (ctypes.c_int * max(6, 6 * n))(*[int(v) for e in entries for v in e[2]])
+        sizes = (ctypes.c_double * max(1, n))(*[float(e[3]) for e in entries])
+    except (TypeError, ValueError, IndexError, OverflowError) as e:
+        raise ArgumentTypeError("time cache entries: (time, token, extent (6), bytes) each (%s)"
+                                % e)
+    if any(len(e[2]) != 6 for e in entries):
+        raise ArgumentError("time cache entries: each extent takes 6 integers")
+    return n, times, tokens, extents, sizes
+
+
+def _time_cache_key(time, token, extent):
+    try:
+        key = float(time), ctypes.c_uint64(int(token)), (ctypes.c_int * 6)(*[int(v) for v in extent])
+    except (TypeError, ValueError, OverflowError) as e:
+        raise ArgumentTypeError("time cache key: a time, a token and an extent of 6 (%s)" % e)
+    if len(list(extent)) != 6:
+        raise ArgumentError("time cache key: the extent takes 6 integers")
+    return key
+
+
+def time_cache_find(entries, time, token, extent):
+    """RefractiveIndex's per-time-step cache (schlieren_time_cache_find): the index among
+    `entries` ((time, token, extent, bytes) each, oldest first) of the one keyed (time, token,
+    extent), or -1; and the cache's budget in bytes (a quarter of the memory available, counting
+    the entries')."""
+    f = _sig("schlieren_time_cache_find", ctypes.c_int, ctypes.c_int64,
+             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_uint64),
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double), ctypes.c_double,
+             ctypes.c_uint64, ctypes.c_int * 6, ctypes.POINTER(ctypes.c_int64),
+             ctypes.POINTER(ctypes.c_double))
+    n, times, tokens, extents, sizes = _time_cache_arrays(entries)
+    index, budget = ctypes.c_int64(-1), ctypes.c_double(0.0)
+    _check(f(n, times, tokens, extents, sizes, *_time_cache_key(time, token, extent),
+             ctypes.byref(index), ctypes.byref(budget)))
+    return index.value, budget.value
+
+
+def time_cache_insert(entries, time, token, extent, nbytes):
+    """Where an output of `nbytes` is kept for (time, token, extent) (schlieren_time_cache_insert):
+    (a keep flag per entry of `entries`, oldest first; whether the new one is kept; the budget)."""
+    f = _sig("schlieren_time_cache_insert", ctypes.c_int, ctypes.c_int64,
+             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_uint64),
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double), ctypes.c_double,
+             ctypes.c_uint64, ctypes.c_int * 6, ctypes.c_double, _u8p,
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_double))
+    n, times, tokens, extents, sizes = _time_cache_arrays(entries)
+    keep = np.zeros(max(1, n), np.uint8)
+    kept, budget = ctypes.c_int(0), ctypes.c_double(0.0)
+    _check(f(n, times, tokens, extents, sizes, *_time_cache_key(time, token, extent),
+             float(nbytes), keep.ctypes.data_as(_u8p), ctypes.byref(kept), ctypes.byref(budget)))
+    return [bool(k) for k in keep[:n]], bool(kept.value), budget.value
+
+
 def automatic_dimensions(bounds, longest):
     """RefractiveIndex's automatic sampling dimensions of a box."""
     dims = _c_int3()

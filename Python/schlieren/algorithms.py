@@ -21,7 +21,7 @@ import numpy as np
 from vtkmodules.util import numpy_support
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkDataObject, vtkDataSet,
-                                           vtkImageData)
+                                           vtkImageData, vtkOverlappingAMR)
 from vtkmodules.vtkCommonExecutionModel import vtkDemandDrivenPipeline as DDP
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
 
@@ -224,7 +224,10 @@ def _first_point(image):
 
 
 def _bounds(data):
-    """The bounds of a data set or of a composite data set's blocks."""
+    """The bounds of a data set or of a composite data set's blocks (an AMR's: those of the boxes
+    it holds, as the C++ filter's, not its metadata's)."""
+    if isinstance(data, vtkOverlappingAMR):
+        return _leaf_bounds(data) or [0.0, -1.0] * 3
     if isinstance(data, vtkCompositeDataSet):
         b = [0.0] * 6
         data.GetBounds(b)
@@ -488,6 +491,92 @@ def _image_input(data, dims=None, bounds=None):
     return out, (None if mask.all() else mask)
 
 
+def _amr_boxes(amr):
+    """(level, index) of every box an overlapping AMR lists, level by level (VTK 9.6 renames
+    GetNumberOfDataSets(level) GetNumberOfBlocks(level); the old name is used where it exists)."""
+    count = getattr(amr, "GetNumberOfDataSets", None) or amr.GetNumberOfBlocks
+    return [(level, b) for level in range(amr.GetNumberOfLevels()) for b in range(count(level))]
+
+
+def _amr_block_list(amr, names=()):
+    """The boxes an overlapping AMR holds as the engine takes them (schlieren_amr_*), as the C++
+    filter reads them (Filters/SchlierenAMR.cxx): dicts of level, extent, origin, spacing and
+    arrays {name: (values, is_cell)}, for each of `names` the box's point array of that name, else
+    its cell array (float32 and float64 as they are, any other type as float64)."""
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    blocks = []
+    for level, b in _amr_boxes(amr):
+        g = (amr.GetDataSet if hasattr(amr, "GetDataSet") else amr.GetDataSetAsImageData)(level, b)
+        if g is not None:
+            extent = list(g.GetExtent())
+            if g.GetNumberOfPoints() == 0:
+                extent[1] = extent[0] - 1  # nothing to sample
+            arrays = {}
+            for name in names:
+                a = g.GetPointData().GetArray(name)
+                cells = a is None
+                if cells:
+                    a = g.GetCellData().GetArray(name)
+                if a is None:
+                    continue
+                if a.GetDataType() not in (10, 11):  # VTK_FLOAT, VTK_DOUBLE
+                    d = vtkDoubleArray()
+                    d.DeepCopy(a)
+                    a = d
+                arrays[name] = (numpy_support.vtk_to_numpy(a), cells)
+            blocks.append(dict(level=level, extent=extent, origin=g.GetOrigin(),
+                               spacing=g.GetSpacing(), arrays=arrays))
+    return blocks
+
+
+def _amr_grid(amr, box, bytes_per_point):
+    """The engine's automatic grid of an AMR over `box` (schlieren_amr_grid: the finest loaded
+    level's spacing, capped by memory), as the C++ filter's."""
+    return _engine.amr_grid(amr.GetNumberOfLevels(), _amr_block_list(amr), box, bytes_per_point)
+
+
+def _amr_input(amr, dims, box):
+    """An overlapping AMR sampled onto `dims` points over `box` by the engine
+    (schlieren_amr_sample), as the C++ RefractiveIndex samples it: (image with every array any box
+    holds as float32 and vtkValidPointMask where some point lies outside every box, valid mask or
+    None where all are valid, notes). The boxes of a level that overlap are refused first, with
+    the C++ filter's message."""
+    boxes = []
+    for level, b in _amr_boxes(amr):
+        lo, hi = [0] * 3, [0] * 3
+        amr.GetAMRBox(level, b).GetDimensions(lo, hi)  # its corners
+        boxes.append((level, lo, hi))
+    _engine.amr_overlap(boxes)
+    names = []
+    for leaf in _leaves(amr):
+        for attributes in (leaf.GetPointData(), leaf.GetCellData()):
+            for i in range(attributes.GetNumberOfArrays()):
+                n = attributes.GetArrayName(i)
+                if n and n not in names and n not in ("vtkGhostType", "vtkValidPointMask"):
+                    names.append(n)
+    d = [int(x) for x in dims]
+    origin = [box[0], box[2], box[4]]
+    spacing = [(box[2 * a + 1] - box[2 * a]) / (d[a] - 1) if d[a] > 1 else 1.0 for a in range(3)]
+    image = vtkImageData()
+    image.SetDimensions(*d)
+    image.SetOrigin(*origin)
+    image.SetSpacing(*spacing)
+    # the C++ filter's structure: its spacing and origin as it sets them, read back
+    mask, sampled, notes = _engine.amr_sample(amr.GetNumberOfLevels(), _amr_block_list(amr, names),
+                                              names, d, image.GetOrigin(), image.GetSpacing())
+    for name in names:
+        if name in sampled:
+            _add(image, name, sampled[name])
+    if not mask.all():
+        from vtkmodules.vtkCommonCore import vtkCharArray
+        m = vtkCharArray()
+        m.SetName("vtkValidPointMask")
+        m.SetNumberOfTuples(mask.size)
+        numpy_support.vtk_to_numpy(m)[:] = mask
+        image.GetPointData().AddArray(m)
+    return image, (None if mask.all() else mask), notes
+
+
 def _image_validity(image):
     """The flow's points of an image input as the C++ filter's Validity reads them (a uint8 array,
     1 in the flow), or None where all are: vtkValidPointMask 0 and hidden points (ghost array)
@@ -606,6 +695,48 @@ class RefractiveScene(_Properties):
         return 1
 
 
+class _TimeStepCache:
+    """RefractiveIndex's outputs kept per time step, so that an animation played again neither
+    resamples nor executes its upstream again: the engine's rule (schlieren_time_cache_find and
+    _insert, OpenCL/SchlierenTimeStore.h, as the C++ filter's SchlierenTimeCache.h): keys of time,
+    change token and extent, a quarter of the memory available, the oldest out first. The entries
+    (time, token, extent, bytes, image) oldest first, the images shallow copies."""
+
+    def __init__(self):
+        self.entries, self.computed, self.served = [], 0, 0
+
+    def find(self, key):
+        i, _ = _engine.time_cache_find([e[:4] for e in self.entries], *key)
+        return None if i < 0 else self.entries[i][4]
+
+    def insert(self, key, image):
+        nbytes = 1024.0 * image.GetActualMemorySize()
+        keep, kept, _ = _engine.time_cache_insert([e[:4] for e in self.entries], *key,
+                                                  nbytes=nbytes)
+        self.entries = [e for e, k in zip(self.entries, keep) if k]
+        if kept:
+            copy = type(image)()
+            copy.ShallowCopy(image)
+            self.entries.append((key[0], key[1], key[2], nbytes, copy))
+
+    def fields(self, out, served):
+        """The cache's counters in the output's field data (its own copy: the kept entry shares
+        it), as the C++ filter's CacheFields."""
+        from vtkmodules.vtkCommonDataModel import vtkFieldData
+        held = sum(e[3] for e in self.entries)
+        _, budget = _engine.time_cache_find([e[:4] for e in self.entries], 0.0, 0,
+                                            (0, -1, 0, -1, 0, -1))
+        fd = vtkFieldData()
+        if out.GetFieldData() is not None:
+            fd.ShallowCopy(out.GetFieldData())
+        out.SetFieldData(fd)
+        for name, value in (("index_computed", self.computed),
+                            ("index_from_cache", 1 if served else 0),
+                            ("index_cache_entries", len(self.entries)),
+                            ("index_cache_bytes", held), ("index_cache_budget", budget)):
+            _field_number(out, name, value)
+
+
 class RefractiveIndex(_Properties):
     """n - 1 from CFD fields by every index model of the engine (Passthrough, GladstoneDale,
     GladstoneDaleMixture, IdealGas, Ciddor), resampled onto an image as needed.
@@ -693,6 +824,7 @@ class RefractiveIndex(_Properties):
 
     def __init__(self, **kwargs):
         _Properties.__init__(self, 1, **kwargs)
+        object.__setattr__(self, "_time_cache", _TimeStepCache())
 
     def FillInputPortInformation(self, port, info):
         # a data set or a composite data set as one input (the C++ filter's types): the blocks
@@ -741,9 +873,29 @@ class RefractiveIndex(_Properties):
                                            if dims[a] > 1 else 1.0 for a in range(3)])
         return 1
 
+    def _cache_key(self, src, info):
+        """The key of this update in the per-time-step cache (time, change token, extent), as the
+        C++ filter's: None where the output is not cached (the input has no time steps or no time
+        is asked for). The token is the pipeline's modified time (this algorithm's and every
+        upstream one's)."""
+        pipeline_mtime = getattr(self.GetExecutive(), "GetPipelineMTime", None)
+        if src is None or info is None or not src.Has(SDDP.TIME_STEPS()) or \
+                not info.Has(SDDP.UPDATE_TIME_STEP()) or pipeline_mtime is None:
+            return None
+        extent = info.Get(SDDP.UPDATE_EXTENT()) if info.Has(SDDP.UPDATE_EXTENT()) else \
+            (0, -1, 0, -1, 0, -1)
+        return info.Get(SDDP.UPDATE_TIME_STEP()), pipeline_mtime(), tuple(extent)
+
     def RequestUpdateExtent(self, request, inInfo, outInfo):
-        # the whole input: resampling (or the gradient at the borders) needs all of it
         src = inInfo[0].GetInformationObject(0)
+        key = self._cache_key(src, outInfo.GetInformationObject(0))
+        held = vtkDataObject.GetData(src)
+        if key is not None and self._time_cache.find(key) is not None and held is not None and \
+                held.GetInformation().Has(vtkDataObject.DATA_TIME_STEP()):
+            # a time step kept: the input stays at the time it holds (it does not execute again)
+            src.Set(SDDP.UPDATE_TIME_STEP(),
+                    held.GetInformation().Get(vtkDataObject.DATA_TIME_STEP()))
+        # the whole input: resampling (or the gradient at the borders) needs all of it
         if src.Has(SDDP.WHOLE_EXTENT()):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
@@ -862,6 +1014,18 @@ class RefractiveIndex(_Properties):
         object.__setattr__(self, "_read", [k.split(":", 1)[1] for k in arrays])
         return n1, warnings
 
+    def _note(self, note):
+        """A note for the user, said once for the settings it was said for (the C++ filter's
+        SayNote: ParaView's Output Messages as plain text)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        said = self.__dict__.get("_notes_said")
+        if said is None or said[0] != self.GetMTime():
+            said = (self.GetMTime(), set())
+            object.__setattr__(self, "_notes_said", said)
+        if note not in said[1]:
+            said[1].add(note)
+            vtkOutputWindow.GetInstance().DisplayText(note + "\n")
+
     def _sampling_bounds(self):
         """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
         None (the input's bounds)."""
@@ -957,7 +1121,13 @@ class RefractiveIndex(_Properties):
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
         automatic = min(dims) <= 0
-        if automatic:
+        if automatic and isinstance(data, vtkOverlappingAMR) and data.GetNumberOfPoints():
+            # an AMR: its finest level's spacing, capped by memory (the C++ filter's bytes: the
+            # mask, n - 1 and grad n, a composite's few double arrays, the engine's share)
+            grid = _amr_grid(data, _sampling_box(data, self._sampling_bounds()),
+                             1.0 + 16.0 + 64.0 + 21.0)
+            dims = grid["dims"]
+        elif automatic:
             # over the box the grid spans (the bounds pulled in by a hair), as the C++ filter
             dims = _engine.automatic_dimensions(_sampling_box(data, self._sampling_bounds()),
                                                 int(self.AutomaticDimension))
@@ -988,12 +1158,38 @@ class RefractiveIndex(_Properties):
                     data.GetNumberOfPoints() == 0:
                 raise EngineError("RefractiveIndex: the input (%s) has no points."
                                   % data.GetClassName())
+            key = self._cache_key(inInfo[0].GetInformationObject(0),
+                                  outInfo.GetInformationObject(0))
+            kept = None if key is None else self._time_cache.find(key)
+            if kept is not None:
+                # this time step, computed before with the same pipeline: that image again
+                out.ShallowCopy(kept)
+                out.GetInformation().Set(vtkDataObject.DATA_TIME_STEP(), key[0])
+                self._time_cache.served += 1
+                self._time_cache.fields(out, True)
+                return 1
             symmetric = self.Symmetry != "None"
             resampled = symmetric or not isinstance(data, vtkImageData)
+            notes, amr_numbers = [], []
             if symmetric:
                 image, valid, plan = self._symmetric_input(data)
                 for w in plan["warnings"]:
                     self._warn(w)
+            elif isinstance(data, vtkOverlappingAMR):
+                # the engine's AMR sampler (the C++ filter's), and its numbers and notes
+                box = _sampling_box(data, self._sampling_bounds())
+                dims = self._dims(data)
+                grid = _amr_grid(data, box, 1.0 + 16.0 + 64.0 + 21.0)
+                automatic = min(int(v) for v in self.SamplingDimensions) <= 0
+                image, valid, notes = _amr_input(data, dims, box)
+                notes = ([grid["note"]] if automatic else []) + notes
+                amr_numbers = [("amr_levels", data.GetNumberOfLevels()),
+                               ("amr_finest_level", grid["finest_level"]),
+                               ("amr_finest_spacing", grid["finest_spacing"][0]),
+                               ("sampling_spacing", image.GetSpacing()[0]),
+                               ("sampling_capped", 1 if automatic and grid["capped"] else 0)]
+                for note in notes:
+                    self._note(note)
             else:
                 image, valid = _image_input(data, None if not resampled else self._dims(data),
                                             self._sampling_bounds())
@@ -1074,8 +1270,20 @@ class RefractiveIndex(_Properties):
         invalid = 0 if valid is None else int(np.count_nonzero(valid == 0))
         _field_number(out, "valid_point_fraction", 1.0 - invalid / n1.size if n1.size else 0.0)
         _field_number(out, "solid_points", 0 if solid is None else int(solid.sum()))
+        if notes:
+            strings = vtkStringArray()
+            strings.SetName("index_notes")
+            for n in notes:
+                strings.InsertNextValue(n)
+            out.GetFieldData().AddArray(strings)
+        for name, value in amr_numbers:
+            _field_number(out, name, value)
         for w in warnings:
             self._warn(w)
+        self._time_cache.computed += 1
+        if key is not None:
+            self._time_cache.insert(key, out)
+        self._time_cache.fields(out, False)
         return 1
 
 

@@ -217,6 +217,140 @@ int main(void)
       "check_property: Tolerance 1e-6 taken, a property without a listed range passes (%s)",
       schlieren_last_error());
   }
+  {
+    /* AMR: level 0 over [0, 4]^3 (spacing 1) holds f = x, level 1 over [1, 3]^3 (spacing 0.5)
+     * holds x + 10: on a grid of spacing 0.5 every point in the patch takes level 1's value, every
+     * other one level 0's trilinear interpolant (exact for a linear field) */
+    const int levels[2] = { 0, 1 };
+    const int extents[12] = { 0, 4, 0, 4, 0, 4, 2, 6, 2, 6, 2, 6 };
+    const double origins[6] = { 0, 0, 0, 0, 0, 0 }, spacings[6] = { 1, 1, 1, 0.5, 0.5, 0.5 };
+    const double bounds[6] = { 0, 4, 0, 4, 0, 4 };
+    const int gd[3] = { 9, 9, 9 };
+    const double go[3] = { 0, 0, 0 }, gh[3] = { 0.5, 0.5, 0.5 };
+    float coarse[125], fine[125];
+    const char* names[1] = { "f" };
+    const int is_cell[2] = { 0, 0 }, comps[2] = { 1, 1 }, bytes[2] = { 4, 4 };
+    const void* inputs[2];
+    int64_t lengths[2] = { 125, 125 };
+    int out_components[1] = { 0 }, gdims[3] = { 0, 0, 0 }, finest_level = -1, capped = -1;
+    double finest[3] = { 0, 0, 0 };
+    const float* outputs[1] = { NULL };
+    const unsigned char* valid = NULL;
+    const char* report = NULL;
+    const char* note = NULL;
+    const int overlapping[12] = { 0, 0, 0, 3, 3, 3, 2, 2, 2, 5, 5, 5 };
+    const int touching[12] = { 0, 0, 0, 3, 3, 3, 4, 0, 0, 7, 3, 3 };
+    const int two_on_zero[2] = { 0, 0 };
+    int x, y, z, right = 1, all_valid = 1;
+    for (z = 0; z < 5; ++z)
+      for (y = 0; y < 5; ++y)
+        for (x = 0; x < 5; ++x)
+        {
+          coarse[(z * 5 + y) * 5 + x] = (float)x;
+          fine[(z * 5 + y) * 5 + x] = (float)(1.0 + 0.5 * x + 10.0);
+        }
+    inputs[0] = coarse;
+    inputs[1] = fine;
+    CHECK(schlieren_amr_grid(2, 2, levels, extents, origins, spacings, bounds, 100.0, gdims, finest,
+            &finest_level, &capped, &note) == 0 &&
+          gdims[0] == 9 && gdims[2] == 9 && finest[0] == 0.5 && finest_level == 1 && capped == 0 &&
+          strstr(note, "level 1 of 2, spacing 0.5): 9 x 9 x 9 points") != NULL,
+      "amr_grid: the finest level's spacing, 9 x 9 x 9 points (%s%s)", note ? note : "",
+      schlieren_last_error());
+    CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+            bytes, inputs, lengths, gd, go, gh, out_components, outputs, &valid, &report) == 0 &&
+          out_components[0] == 1 && outputs[0] != NULL && valid != NULL,
+      "amr_sample: two levels onto 9 x 9 x 9 points (%s)", schlieren_last_error());
+    for (z = 0; z < 9 && outputs[0] && valid; ++z)
+      for (y = 0; y < 9; ++y)
+        for (x = 0; x < 9; ++x)
+        {
+          const int in = x >= 2 && x <= 6 && y >= 2 && y <= 6 && z >= 2 && z <= 6;
+          const float want = (float)(0.5 * x + (in ? 10.0 : 0.0));
+          right = right && outputs[0][(z * 9 + y) * 9 + x] == want;
+          all_valid = all_valid && valid[(z * 9 + y) * 9 + x] == 1;
+        }
+    CHECK(right && all_valid && report && strstr(report, "points per level: L0 604, L1 125") != NULL,
+      "amr_sample: the patch's 125 points from level 1 (x + 10), the other 604 from level 0 (x), "
+      "exactly; every point valid (%s)", report ? report : "");
+    {
+      /* a grid of one plane: z = 2 crosses the patch, z = 10 no box (every point invalid, nothing
+       * written past the plane: the filter's code before the engine wrote one plane past it) */
+      const int flat[3] = { 9, 9, 1 };
+      const double at2[3] = { 0, 0, 2 }, at10[3] = { 0, 0, 10 };
+      int inside = 0, none = 0;
+      CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+              bytes, inputs, lengths, flat, at2, gh, out_components, outputs, &valid, &report) == 0 &&
+            outputs[0] && outputs[0][4 * 9 + 4] == 12.0f && outputs[0][0] == 0.0f && valid[80] == 1,
+        "amr_sample: the plane z = 2 takes the patch's x + 10 at (2, 2) and level 0 at (0, 0) (%s)",
+        schlieren_last_error());
+      CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+              bytes, inputs, lengths, flat, at10, gh, out_components, outputs, &valid, &report) == 0,
+        "amr_sample: the plane z = 10, off every box (%s)", schlieren_last_error());
+      for (x = 0; x < 81 && valid; ++x)
+        none += valid[x] == 0;
+      inside = out_components[0] == 0 && outputs[0] == NULL;
+      CHECK(none == 81 && inside, "amr_sample: off every box: the 81 points invalid, no values "
+        "(no box holds 'f' there: 0 components) (%d invalid)", none);
+    }
+    lengths[1] = 124;
+    CHECK(schlieren_amr_sample(2, 2, levels, extents, origins, spacings, 1, names, is_cell, comps,
+            bytes, inputs, lengths, gd, go, gh, out_components, outputs, &valid, &report) != 0 &&
+          strstr(schlieren_last_error(), "block 1's array 'f' holds 124 values") != NULL,
+      "amr_sample: a short array refused by block and name: %s", schlieren_last_error());
+    CHECK(schlieren_amr_sample(1, 2, levels, extents, origins, spacings, 0, NULL, NULL, NULL, NULL,
+            NULL, NULL, gd, go, gh, NULL, NULL, &valid, &report) != 0 &&
+          strstr(schlieren_last_error(), "block 1 is on level 1: the levels are 0 to 0") != NULL,
+      "amr_sample: a block past the levels listed refused: %s", schlieren_last_error());
+    CHECK(schlieren_amr_overlap(2, two_on_zero, overlapping) != 0 &&
+          strstr(schlieren_last_error(), "level 0 has boxes that overlap: boxes 0 and 1 share 8 cells "
+                                         "(cells i 2-3 j 2-3 k 2-3)") != NULL,
+      "amr_overlap: two boxes sharing 8 cells refused with the C++ filter's message: %s",
+      schlieren_last_error());
+    CHECK(schlieren_amr_overlap(2, two_on_zero, touching) == 0,
+      "amr_overlap: boxes that share a face taken (%s)", schlieren_last_error());
+  }
+  {
+    /* the per-time-step cache's rule: three entries of token 7 (times 0, 1, 2), a key found, the
+     * oldest evicted first when a new one does not fit, another token dropping them all */
+    const double times[3] = { 0, 1, 2 };
+    const uint64_t tokens[3] = { 7, 7, 7 };
+    const int extents[18] = { 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9, 0, 9 };
+    double bytes[3] = { 0, 0, 0 }, budget = 0, measured = 0;
+    int64_t index = -2;
+    unsigned char keep[3] = { 9, 9, 9 };
+    int keep_new = -1;
+    CHECK(schlieren_time_cache_find(3, times, tokens, extents, bytes, 1.0, 7, extents, &index,
+            &budget) == 0 && index == 1 && budget > 0,
+      "time_cache_find: (t 1, token 7, extent) is entry 1 (%lld; budget %g bytes; %s)",
+      (long long)index, budget, schlieren_last_error());
+    CHECK(schlieren_time_cache_find(3, times, tokens, extents, NULL, 1.0, 8, extents, &index,
+            NULL) == 0 && index == -1,
+      "time_cache_find: another token finds nothing (%lld)", (long long)index);
+    bytes[0] = bytes[1] = bytes[2] = 0.1 * budget;
+    schlieren_time_cache_find(3, times, tokens, extents, bytes, 0, 7, extents, &index, &budget);
+    /* 3 x 0.1 b held, a new entry of 0.75 b: it fits once the oldest goes (0.2 b + 0.75 b) */
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 3.0, 7, extents,
+            0.75 * budget, keep, &keep_new, &measured) == 0 &&
+          keep[0] == 0 && keep[1] == 1 && keep[2] == 1 && keep_new == 1,
+      "time_cache_insert: the oldest evicted for a new entry that fits then (keep %d %d %d, new %d)",
+      keep[0], keep[1], keep[2], keep_new);
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 2.0, 7, extents, 1.0, keep,
+            &keep_new, NULL) == 0 && keep[0] == 1 && keep[1] == 1 && keep[2] == 0 && keep_new == 1,
+      "time_cache_insert: the same key replaced, the others kept (keep %d %d %d, new %d)", keep[0],
+      keep[1], keep[2], keep_new);
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 0.0, 8, extents, 1.0, keep,
+            &keep_new, NULL) == 0 && keep[0] + keep[1] + keep[2] == 0 && keep_new == 1,
+      "time_cache_insert: another token drops every entry (keep %d %d %d)", keep[0], keep[1],
+      keep[2]);
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 3.0, 7, extents, 1e30, keep,
+            &keep_new, NULL) == 0 && keep_new == 0,
+      "time_cache_insert: an entry past the budget is not kept");
+    bytes[1] = -1;
+    CHECK(schlieren_time_cache_insert(3, times, tokens, extents, bytes, 3.0, 7, extents, 1.0, keep,
+            &keep_new, NULL) != 0 && strstr(schlieren_last_error(), "bytes[1]") != NULL,
+      "time_cache_insert: negative bytes refused: %s", schlieren_last_error());
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

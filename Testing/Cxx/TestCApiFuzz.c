@@ -73,6 +73,8 @@ enum
   F_MISC,
   F_THREADS,
   F_SAMPLE,
+  F_AMR,
+  F_TIME_CACHE,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -80,7 +82,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "photograph", "version/properties/device",
-  "two threads, one session", "sample_cells" };
+  "two threads, one session", "sample_cells", "amr_overlap/grid/sample", "time_cache_find/insert" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -475,8 +477,8 @@ static int64_t random_count(int64_t needed)
 {
   switch (below(16))
   {
-    case 0: return needed + 1;
-    case 1: return needed - 1;
+    case 0: return needed < INT64_MAX ? needed + 1 : needed - 1; /* (no overflow: undefined) */
+    case 1: return needed > INT64_MIN ? needed - 1 : needed + 1;
     case 2: return 0;
     case 3: return -1;
     case 4: return INT64_MIN;
@@ -484,6 +486,16 @@ static int64_t random_count(int64_t needed)
     case 6: return below(100);
     default: return needed;
   }
+}
+
+/* v * k, held at the ends of int64_t (a count of INT64_MIN times 3 overflowed: undefined) */
+static int64_t scaled(int64_t v, int k)
+{
+  if (v > INT64_MAX / k)
+    return INT64_MAX;
+  if (v < INT64_MIN / k)
+    return INT64_MIN;
+  return v * k;
 }
 
 /* a buffer that truly holds `count` values where it can (the caller does not lie): NULL where the
@@ -975,8 +987,8 @@ static void random_case(int k)
           of[k] = below(50) ? (int64_t)below((unsigned)(m > 0 ? m : 1)) : (below(2) ? -1 : m);
       }
       thin = 1 + (int)below(4);
-      vc = below(5) ? m * thin : random_count(m * thin);
-      oc = below(5) ? c * thin : random_count(c * thin);
+      vc = below(5) ? scaled(m, thin) : random_count(scaled(m, thin));
+      oc = below(5) ? scaled(c, thin) : random_count(scaled(c, thin));
       vals = buffer(vc, sizeof(float), 1);
       out = buffer(oc, sizeof(float), 1);
       sv = buffer(m, 1, 1);
@@ -1240,6 +1252,130 @@ static void fixed_sample_case(void)
   }
 }
 
+/* schlieren_amr_overlap, _grid and _sample: two boxes on two levels (a float point array, a
+ * double cell array of 2 components) with levels, extents, origins, spacings, lengths, names and
+ * grids varied; every buffer holds what its count says (or the count must be refused) */
+static void random_amr_case(void)
+{
+  static const int extent_values[] = { 0, 4, 2, 6, -1, 2147483647, -2147483647 - 1, 1073741824 };
+  int levels = below(6) ? 2 : (below(2) ? -1 : (below(2) ? 0 : 5000));
+  int nblocks = below(8) ? 2 : (below(2) ? 1 : (below(2) ? 0 : -1));
+  int block_levels[2] = { 0, 1 }, extents[12] = { 0, 4, 0, 4, 0, 4, 2, 6, 2, 6, 2, 6 };
+  double origins[6] = { 0, 0, 0, 0, 0, 0 }, spacings[6] = { 1, 1, 1, 0.5, 0.5, 0.5 };
+  double bounds[6] = { 0, 4, 0, 4, 0, 4 }, finest[3], go[3], gh[3];
+  const char* names[2] = { "p", "c" };
+  int is_cell[4] = { 0, 1, 0, 1 }, comps[4] = { 1, 2, 1, 2 }, bytes[4] = { 4, 8, 4, 8 };
+  const void* ins[4];
+  int64_t lengths[4], needed;
+  int out_components[2], gd[3], gdims[3], flevel, capped, b, a, valid, i, corners[12];
+  const float* outs[2];
+  const unsigned char* mask;
+  const char *report, *note;
+  void* buffers[4];
+  for (b = 0; b < 2; ++b)
+  {
+    if (below(12) == 0)
+      block_levels[b] = below(2) ? -1 : 7;
+    for (a = 0; a < 6; ++a)
+      if (below(30) == 0)
+        extents[6 * b + a] = extent_values[below(8)];
+    for (a = 0; a < 3; ++a)
+    {
+      if (below(30) == 0)
+        origins[3 * b + a] = below(2) ? NAN : -1e308;
+      if (below(30) == 0)
+        spacings[3 * b + a] = below(3) ? 0.0 : (below(2) ? -0.5 : INFINITY);
+    }
+  }
+  for (i = 0; i < 4; ++i)
+  {
+    const int* e = extents + 6 * (i / 2);
+    int64_t tuples = 1;
+    for (a = 0; a < 3; ++a)
+    {
+      int64_t np = (int64_t)e[2 * a + 1] - e[2 * a] + 1;
+      np = np < 0 ? 0 : np;
+      tuples *= is_cell[i] ? (np - 1 > 1 ? np - 1 : 1) : np;
+      if (tuples > 1000000)
+        tuples = 2000000;
+    }
+    needed = tuples * comps[i];
+    if (below(20) == 0)
+      comps[i] = below(2) ? 0 : 3000;
+    if (below(20) == 0)
+      bytes[i] = below(2) ? 2 : 16;
+    lengths[i] = sometimes_wrong(needed);
+    buffers[i] = buffer(lengths[i], bytes[i] == 8 ? sizeof(double) : sizeof(float), 1);
+    ins[i] = below(6) ? buffers[i] : NULL;
+    if (!ins[i] && below(2))
+      lengths[i] = 0; /* the box has no such array */
+  }
+  random_grid(gd, &needed, &valid);
+  if (!valid)
+    gd[below(3)] = below(2) ? 0 : -3; /* no huge grid: the engine would allocate it */
+  for (a = 0; a < 3; ++a)
+  {
+    go[a] = below(30) ? -0.5 + uniform() : NAN;
+    gh[a] = below(30) ? 0.2 + uniform() : (below(2) ? 0.0 : -1.0);
+    if (below(40) == 0)
+      bounds[2 * a + 1] = below(2) ? NAN : -9.0;
+  }
+  {
+    int rc = schlieren_amr_sample(levels, nblocks, below(30) ? block_levels : NULL, extents,
+      below(30) ? origins : NULL, spacings, below(8) ? 2 : (below(2) ? 0 : -2),
+      below(30) ? names : NULL, is_cell, comps, bytes, ins, lengths, below(30) ? gd : NULL, go, gh,
+      below(30) ? out_components : NULL, below(30) ? outs : NULL, below(30) ? &mask : NULL,
+      below(30) ? &report : NULL);
+    outcome(F_AMR, rc, schlieren_last_error(), "schlieren_amr_sample");
+    rc = schlieren_amr_grid(levels, nblocks, block_levels, extents, origins, spacings,
+      below(30) ? bounds : NULL, below(20) ? 100.0 : (below(2) ? 0.0 : NAN), gdims, finest,
+      below(30) ? &flevel : NULL, &capped, below(30) ? &note : NULL);
+    outcome(F_AMR, rc, schlieren_last_error(), "schlieren_amr_grid");
+    for (i = 0; i < 12; ++i)
+      corners[i] = below(10) && extents[i] > -2147483647 - 1 ? extents[i] - (i % 6 >= 3 ? 1 : 0)
+                                                             : extent_values[below(8)];
+    rc = schlieren_amr_overlap(below(10) ? 2 : (below(2) ? 0 : -1), below(30) ? block_levels : NULL,
+      below(30) ? corners : NULL);
+    outcome(F_AMR, rc, schlieren_last_error(), "schlieren_amr_overlap");
+  }
+  for (i = 0; i < 4; ++i)
+    free(buffers[i]);
+}
+
+/* schlieren_time_cache_find and _insert: up to 4 entries (times, tokens, extents, bytes) with
+ * counts, NaN, negative and huge bytes, NULLs and extents varied */
+static void random_time_cache_case(void)
+{
+  double times[4], bytes[4], budget;
+  uint64_t tokens[4];
+  int extents[24], i, keep_new;
+  unsigned char keep[4];
+  int64_t index, count = below(10) ? below(5) : (below(2) ? -1 : INT64_MAX);
+  for (i = 0; i < 4; ++i)
+  {
+    times[i] = below(20) ? below(4) : NAN;
+    tokens[i] = below(4) ? 3 : (uint64_t)below(1000) << 40;
+    bytes[i] = below(20) ? 1e6 * uniform() : (below(2) ? -1.0 : (below(2) ? NAN : 1e300));
+  }
+  for (i = 0; i < 24; ++i)
+    extents[i] = below(20) ? (i % 2 ? 9 : 0) : below(2) ? -2147483647 - 1 : 2147483647;
+  {
+    const int rc = schlieren_time_cache_find(count, below(30) ? times : NULL,
+      below(30) ? tokens : NULL, below(30) ? extents : NULL, below(3) ? bytes : NULL,
+      below(20) ? below(4) : NAN, below(4) ? 3 : 4, below(30) ? extents : NULL,
+      below(30) ? &index : NULL, below(2) ? &budget : NULL);
+    outcome(F_TIME_CACHE, rc, schlieren_last_error(), "schlieren_time_cache_find");
+  }
+  {
+    const int rc = schlieren_time_cache_insert(count, below(30) ? times : NULL,
+      below(30) ? tokens : NULL, below(30) ? extents : NULL, below(30) ? bytes : NULL,
+      below(20) ? below(4) : INFINITY, below(4) ? 3 : 4, below(30) ? extents : NULL,
+      below(20) ? 1e6 * uniform() : (below(2) ? -5.0 : 1e300), below(30) ? keep : NULL,
+      below(30) ? &keep_new : NULL, below(2) ? &budget : NULL);
+    outcome(F_TIME_CACHE, rc, schlieren_last_error(), "schlieren_time_cache_insert");
+  }
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -1269,6 +1405,10 @@ int main(int argc, char** argv)
   fixed_sample_case();
   for (k = 0; k < cases / 4; ++k)
     random_sample_case();
+  for (k = 0; k < cases / 4; ++k)
+    random_amr_case();
+  for (k = 0; k < cases / 4; ++k)
+    random_time_cache_case();
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");

@@ -150,10 +150,9 @@ PYTHON_PLUGIN_LEFT_OUT = {
 #   SamplingBounds             sampling_bounds (a box past a curvilinear grid), body_from_walls
 #   AmbientMode                sampling_bounds (Extend), ambient_median, ambient_value,
 #                              bluntfin_ambient_value
-#   not here yet               AMR (the Python front end takes no vtkOverlappingAMR: branch
-#                              issue47-amr-cache; its row and input are ready, commented out
-#                              below), bodies beside walls from the velocity (branch
-#                              issue47-index-engine): one line each below when they come
+#   AMR                        amr (two levels of a vtkOverlappingAMR, .vthb)
+#   not here yet               bodies beside walls from the velocity (branch
+#                              issue47-index-engine): one line below when it comes
 INDEX_OPTIONAL_INPUTS = {"bluntfin", "disk", "ladenburg", "forward_step"}  # left out where absent
 # Symmetry on OpenFOAM's hexahedra one cell thick: each front end samples the mesh where the engine
 # says with VTK's own vtkCompositeDataProbeFilter and vtkStaticCellLocator (the symmetric path's one
@@ -227,13 +226,10 @@ INDEX = {
     "openfoam_forward_step": ("forward_step", dict(Model="Automatic", Symmetry="Planar", Span=0.1,
                                                    SamplingDimensions=[96, 32, 3]),
                               dict(ViewDirection=[0, 0, -1])),
-    # AMR, ready (frontend_matrix._amr: the scene's density on two levels of a vtkOverlappingAMR,
-    # written as .vthb, read back with every level) for when the Python front end takes
-    # vtkOverlappingAMR (issue47-amr-cache). Tried: the C++ filter samples it at the finest level's
-    # spacing (47 x 39 x 31 points, amr_* field data); the Python front end today gives another
-    # grid, a vtkGhostType array, no amr_* field data and another film, so the
-    # row stays a comment
-    # "amr": ("amr", dict(_GD, AutomaticDimension=32), {}),
+    # AMR (frontend_matrix._amr: the scene's density on two levels of a vtkOverlappingAMR, written
+    # as .vthb, read back with every level): both front ends read it into the engine's AMR
+    # sampler (schlieren_amr_sample), the grid at the finest level's spacing (47 x 39 x 31 points)
+    "amr": ("amr", dict(_GD, AutomaticDimension=32), {}),
     "unstructured_disk": ("disk", dict(Model="GladstoneDale", InputArray="Temp",
                                        DensityReference=1e-3, AutomaticDimension=28),
                           dict(ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1])),

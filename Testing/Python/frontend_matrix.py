@@ -15,9 +15,10 @@ comparison with the C++ plugin's record. Plain VTK only (ParaView's in pvpython,
 Known differences of the Python front end's RefractiveIndex (algorithms.py), said on every case
 where they show but not failed (that class is being rewritten on other branches; fixing these is
 theirs, see INDEX_KNOWN):
-  - its field data lacks the C++ filter's per-time-step cache report (INDEX_FIELDS_LEFT_OUT:
-    branch issue47-amr-cache) and `index_notes` (the C++ filter's notes: Model Automatic's choice,
-    the wedge found);
+  - its field data lacks `index_notes` where the C++ filter's notes are not the engine's yet
+    (Model Automatic's choice, the wedge found; an AMR input's are); the per-time-step cache
+    report (INDEX_FIELDS_LEFT_OUT) is left out of both records (its budget is the process's
+    memory);
   - its point arrays end n_minus_1, grad_n where the C++ filter's end grad_n, n_minus_1 (an input
     without n_minus_1: the C++ filter adds grad_n, then sets n_minus_1 as the scalars).
 Every other array, name and value is compared, and a difference fails."""

@@ -34,8 +34,7 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      origin: AxisFromWedge finds it) give the C++ filter's grid, n - 1, grad n and field data bit
      for bit, and SchlierenImage on each the C++ filter's film bit for bit; the wedge with
      Symmetry None warns as the C++ filter does; the C++ filter's refusals (Span 0, a 3D mesh,
-     SymmetryAxis normal to the plane) are the Python one's, word for word.
-
+     SymmetryAxis normal to the plane) are the Python one's, word for word;
   9. RefractiveIndex's parity matrix (frontend_cases.INDEX, every property value class: each
      model, Symmetry None/Planar/Axisymmetric, a wedge with no axis typed, bodies from holes and
      from walls, SamplingBounds, each AmbientMode; the table of class -> case is in
@@ -47,7 +46,15 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
   8. NumericalSchlieren (both plugins) reports its progress between blocks of film rows and stops
      at an abort: an observer aborting at the first progress event ends a LineOfSight image at 0 %
      with the engine's message and an empty output; the next update is a fresh filter's image bit
-     for bit, its progress rising from 0 to 1 in several steps.
+     for bit, its progress rising from 0 to 1 in several steps;
+  10. an overlapping AMR (two levels, the finer one two boxes sharing a face; point data and cell
+     data): the C++ filter's grid, n - 1, grad n and field data bit for bit (both read it into
+     the engine's AMR sampler), SchlierenImage's film bit for bit; overlapping boxes refused with
+     the C++ filter's message;
+  11. the per-time-step cache: a Python source with 4 time steps (a ProgrammableSource counting
+     its executions) played twice through the Python plugin: the second play executes neither
+     the source nor RefractiveIndex (index_from_cache 1) and gives the first play's images bit for
+     bit; the source's script or a RefractiveIndex property changed: computed again.
 
     pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
         --example Examples/first_light.py --work DIR [--data ../shared/data] [--reference REF]
@@ -737,6 +744,89 @@ for case, (data, props, message) in REFUSED.items():
           % (case, c.text.strip().splitlines()[0][-120:] if c.text.strip() else ""))
     Delete(index)
 
+# -- 10. an overlapping AMR (vtkOverlappingAMR): both read it into the engine's AMR sampler
+# (schlieren_amr_sample, OpenCL/SchlierenAMRSample.h): level 0 of 16^3 cells over [-1, 1]^3, level
+# 1 two boxes side by side (sharing a face) over [-0.5, 0.5]^3 at half the spacing, a Gaussian
+# density a little higher on level 1 (so that the finest level's choice shows), as point data and
+# as cell data
+sys.path.insert(0, HERE)
+from amr_cases import two_level_amr as amr_case  # noqa: E402
+
+
+AMR_FIELDS = FIELDS + ("index_notes", "amr_levels", "amr_finest_level", "amr_finest_spacing",
+                       "sampling_spacing", "sampling_capped")
+
+
+def amr_fields(d):
+    out = {}
+    for n in AMR_FIELDS:
+        a = d.GetFieldData().GetAbstractArray(n)
+        if a is not None:
+            out[n] = [a.GetVariantValue(i).ToString() for i in range(a.GetNumberOfValues())]
+    return out
+
+
+for kind in ("point", "cell"):
+    data = amr_case(kind == "cell")
+    ref = RI()
+    ref.SetInputData(data)
+    ref.SetModel(ENUMS["Model"]["GladstoneDale"])
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "density")
+    ok = ref.GetExecutive().Update()
+    theirs = vtkImageData()
+    theirs.DeepCopy(ref.GetOutput())
+    index = ns["RefractiveIndex"](Input=producer(data), Model="GladstoneDale")
+    index.InputArray = ["POINTS", "density"]
+    with Captured() as c:
+        index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    info = tuple(int(v) for v in index.GetDataInformation().DataInformation.GetExtent())
+    mf, tf = amr_fields(mine), amr_fields(theirs)
+    same = ok and mine.GetExtent() == theirs.GetExtent() and info == theirs.GetExtent() and \
+        mine.GetOrigin() == theirs.GetOrigin() and mine.GetSpacing() == theirs.GetSpacing() and \
+        all(array(mine, n) is not None and array(theirs, n) is not None and
+            np.array_equal(array(mine, n).view(np.uint32), array(theirs, n).view(np.uint32))
+            for n in ("n_minus_1", "grad_n")) and mf == tf and len(tf) == len(AMR_FIELDS)
+    check(same and theirs.GetDimensions() == (33, 33, 33) and "ERR" not in c.text and
+          "Traceback" not in c.text,
+          "AMR with %s data (two levels, level 1 two boxes): the C++ filter's grid %s (the finest "
+          "level's spacing, also in the pipeline's information), n_minus_1, grad_n and field data "
+          "(index_notes, amr_*, sampling_*) bit for bit%s"
+          % (kind, theirs.GetDimensions(), "" if mf == tf else "; fields %s vs %s" % (mf, tf)))
+    settings = dict(Resolution=[48, 40], Passes=1, ViewDirection=[0, 0, -1], ViewUp=[0, 1, 0])
+    image = ns["SchlierenImage"](Input=index, Backend="CPU", **settings)
+    image.UpdatePipeline()
+    out = servermanager.Fetch(image)
+    film, film_ok = cxx_image(theirs, **settings)
+    intensity = array(film, "intensity")
+    check(film_ok and same_film(out, film) and intensity is not None and
+          float(intensity.max() - intensity.min()) > 0.05,
+          "SchlierenImage on it: the C++ filter's film bit for bit (intensity %.3f..%.3f)"
+          % ((intensity.min(), intensity.max()) if intensity is not None else (0, 0)))
+    Delete(image)
+    Delete(index)
+# boxes of one level that share cells: the C++ filter's refusal, word for word, an empty output
+data = amr_case(False)
+from vtkmodules.vtkCommonDataModel import vtkAMRBox  # noqa: E402
+data.SetAMRBox(1, 1, vtkAMRBox([-0.25, -0.5, -0.5], [9, 17, 17], [0.0625] * 3, [-1.0] * 3, 8))
+ref = RI()
+ref.SetInputData(data)
+ref.SetModel(ENUMS["Model"]["GladstoneDale"])
+ref.SetInputArrayToProcess(0, 0, 0, 0, "density")
+with Captured() as c_cxx:
+    ref.GetExecutive().Update()
+index = ns["RefractiveIndex"](Input=producer(data), Model="GladstoneDale")
+index.InputArray = ["POINTS", "density"]
+with Captured() as c:
+    index.UpdatePipeline()
+out = servermanager.Fetch(index)
+said = "the AMR input's level 1 has boxes that overlap: boxes 0 and 1 share 1024 cells"
+check(said in c.text and said in c_cxx.text and "Traceback" not in c.text and
+      out.GetNumberOfPoints() == 0,
+      "AMR boxes of one level that overlap: the C++ filter's message, an empty output (%r)"
+      % (c.text.strip().splitlines()[0][-160:] if c.text.strip() else ""))
+Delete(index)
+
 # -- 9. RefractiveIndex's parity matrix (frontend_cases.INDEX): the inputs the reference run wrote,
 # through the Python plugin's RefractiveIndex and SchlierenImage proxies, against the C++ plugin's
 # records bit for bit (the pip VTK leg: test_frontend.py)
@@ -871,5 +961,96 @@ for which, p in runs.items():
 if all(os.path.exists(p) for p in pngs.values()):
     with open(pngs["python"], "rb") as f, open(pngs["cxx"], "rb") as g:
         check(f.read() == g.read(), "its PNG equals the C++ plugin's bit for bit")
+# -- 11. the per-time-step cache (the engine's rule, schlieren_time_cache_*, as the C++ filter's):
+# a Python source with 4 time steps (a ProgrammableSource counting its executions) through the
+# Python plugin's RefractiveIndex and SchlierenImage, the animation played twice. Last: a
+# ProgrammableSource's script runs in __main__'s namespace, which it leaves with NumPy-interface
+# functions named all, array... (hence builtins.all below)
+import builtins  # noqa: E402
+from paraview.simple import ProgrammableSource  # noqa: E402
+
+TIMES = (0.0, 1.0, 2.0, 3.0)
+SOURCE_INFO = """
+executive = self.GetExecutive()
+info = executive.GetOutputInformation(0)
+info.Remove(executive.TIME_STEPS())
+for t in %r:
+    info.Append(executive.TIME_STEPS(), t)
+info.Set(executive.TIME_RANGE(), [%r, %r], 2)
+info.Set(executive.WHOLE_EXTENT(), 0, 19, 0, 17, 0, 15)
+""" % (TIMES, TIMES[0], TIMES[-1])
+SOURCE = """
+import builtins
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+builtins.schlieren_source_runs = getattr(builtins, "schlieren_source_runs", 0) + 1
+info = self.GetOutputInformation(0)
+key = self.GetExecutive().UPDATE_TIME_STEP()
+t = info.Get(key) if info.Has(key) else 0.0
+out = self.GetOutput()
+out.SetExtent(0, 19, 0, 17, 0, 15)
+out.SetSpacing(0.1, 0.1, 0.1)
+z, y, x = np.meshgrid(0.1 * np.arange(16), 0.1 * np.arange(18), 0.1 * np.arange(20), indexing="ij")
+r = 0.3 + 0.1 * t
+rho = 1.2 + 0.5 * np.exp(-((x - 1.0) ** 2 + (y - 0.85) ** 2 + (z - 0.75) ** 2) / (r * r))
+a = numpy_to_vtk(rho.ravel().astype(np.float32), deep=1)
+a.SetName("density")
+out.GetPointData().AddArray(a)
+"""
+builtins.schlieren_source_runs = 0
+timed = ProgrammableSource(OutputDataSetType="vtkImageData", Script=SOURCE,
+                           ScriptRequestInformation=SOURCE_INFO)
+timed_index = ns["RefractiveIndex"](Input=timed, Model="GladstoneDale")
+timed_index.InputArray = ["POINTS", "density"]
+timed_image = ns["SchlierenImage"](Input=timed_index, Backend="CPU", Resolution=[32, 32], Passes=1)
+timed.UpdatePipelineInformation()
+
+
+def cache_fields():
+    fd = timed_index.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
+    return {n: (fd.GetArray(n).GetValue(0) if fd.GetArray(n) else None)
+            for n in ("index_computed", "index_from_cache", "index_cache_entries")}
+
+
+def timed_frame(t):
+    with Captured():
+        timed_image.UpdatePipeline(t)
+    out = timed_image.GetClientSideObject().GetOutputDataObject(0)
+    intensity = numpy_support.vtk_to_numpy(out.GetPointData().GetArray("intensity")).copy()
+    return intensity, builtins.schlieren_source_runs, cache_fields()
+
+
+plays = [[timed_frame(t) for t in TIMES] for _ in range(2)]
+first, second = plays
+check([f[1] for f in first] == [1, 2, 3, 4] and
+      [f[2]["index_computed"] for f in first] == [1, 2, 3, 4] and
+      builtins.all(f[2]["index_from_cache"] == 0 for f in first) and
+      builtins.all(not np.array_equal(first[k][0], first[k - 1][0]) for k in range(1, 4)),
+      "time cache, first play of 4 steps: the Python source ran %s times, RefractiveIndex "
+      "computed %s, each frame differs from the one before"
+      % ([f[1] for f in first], [f[2]["index_computed"] for f in first]))
+check([f[1] for f in second] == [4] * 4 and
+      builtins.all(f[2]["index_computed"] == 4 and f[2]["index_from_cache"] == 1 and
+          f[2]["index_cache_entries"] == 4 for f in second) and
+      builtins.all(np.array_equal(second[k][0].view(np.uint32), first[k][0].view(np.uint32))
+          for k in range(4)),
+      "time cache, second play: the Python source not executed again (runs %s), every step from "
+      "the cache (%s), the first play's images bit for bit"
+      % ([f[1] for f in second], [f[2] for f in second]))
+timed.Script = SOURCE.replace("r = 0.3 +", "r = 0.35 +")  # upstream changed: nothing kept applies
+changed = timed_frame(TIMES[1])
+check(changed[1] == 5 and changed[2]["index_computed"] == 5 and
+      changed[2]["index_from_cache"] == 0 and changed[2]["index_cache_entries"] == 1 and
+      not np.array_equal(changed[0], first[1][0]),
+      "time cache, the source's script changed: executed and computed again, the old entries "
+      "dropped, another image (runs %d, %s)" % (changed[1], changed[2]))
+timed_index.DensityReference = 1.1  # RefractiveIndex's own property: its token changes too
+again = timed_frame(TIMES[1])
+check(again[1] == 5 and again[2]["index_computed"] == 6 and again[2]["index_from_cache"] == 0,
+      "time cache, DensityReference changed: computed again without executing the source (runs "
+      "%d, %s)" % (again[1], again[2]))
+for proxy in (timed_image, timed_index, timed):
+    Delete(proxy)
+
 print("%d failures" % len(failures))
 sys.exit(1 if failures else 0)
