@@ -573,48 +573,8 @@ for case, props in MODELS.items():
 
 # -- 7. Symmetry Planar and Axisymmetric, a wedge with no axis typed: the engine's plan, samples and
 # expansion through both front ends
-from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
-from vtkmodules.vtkCommonDataModel import vtkStructuredGrid  # noqa: E402
-
-
-def plane(extent, shock):
-    """A 2D image (z = 0) with a density: a Gaussian blob, or (shock) a cone's conical shock
-    layer seen in its r-z plane (x axial, y = r >= 0): denser between the cone and the shock."""
-    g = vtkImageData()
-    g.SetExtent(*extent)
-    g.SetSpacing(0.05, 0.05, 1.0)
-    g.SetOrigin(-0.4, 0.0 if shock else -0.3, 0.0)
-    x = np.array([g.GetPoint(i) for i in range(g.GetNumberOfPoints())])
-    if shock:
-        cone, front = np.tan(np.radians(15.0)), np.tan(np.radians(28.0))
-        s = x[:, 0] + 0.4
-        rho = 1.2 + 0.6 * ((x[:, 1] < front * s) & (x[:, 1] > cone * s))
-    else:
-        rho = 1.2 + 0.5 * np.exp(-((x[:, 0] - 0.1) ** 2 + (x[:, 1] - 0.05) ** 2) / 0.02)
-    d = numpy_support.numpy_to_vtk(rho.astype(np.float32), deep=1)
-    d.SetName("density")
-    g.GetPointData().AddArray(d)
-    return g
-
-
-def wedge():
-    """A 5 deg wedge one cell across (OpenFOAM's axisymmetric case) about the line along y at
-    x = 0.3, z = 0.1: SymmetryAxis left at X, AxisFromWedge finds y."""
-    g = vtkStructuredGrid()
-    nr, na = 14, 17
-    g.SetDimensions(nr, na, 2)
-    p, values, half = vtkPoints(), [], np.radians(2.5)
-    for side in (-1, 1):
-        for j in range(na):
-            for i in range(nr):
-                r, y = 0.05 * i, 0.05 * j
-                p.InsertNextPoint(0.3 + r * np.cos(half), y, 0.1 + side * r * np.sin(half))
-                values.append(1.2 + 0.4 * np.exp(-((r - 0.3) ** 2 + (y - 0.4) ** 2) / 0.02))
-    g.SetPoints(p)
-    d = numpy_support.numpy_to_vtk(np.array(values, np.float32), deep=1)
-    d.SetName("density")
-    g.GetPointData().AddArray(d)
-    return g
+# the 2D inputs the matrix of frontend_matrix.py uses too (one definition)
+from frontend_matrix import _plane as plane, _wedge as wedge  # noqa: E402
 
 
 def unstructured(data):
