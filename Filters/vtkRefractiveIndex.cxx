@@ -1560,8 +1560,22 @@ std::string vtkRefractiveIndex::ComputeOnGrid(Work& w)
   {
     read.push_back(in.ArrayNames[idx]);
   }
-  std::vector<std::vector<double>> converted;
   vtkPointData* pd = w.Grid->GetPointData();
+  if (in.ArrayNames[INPUT_ARRAY].empty())
+  {
+    // none chosen: the engine takes the active scalars, else the first point array
+    vtkDataArray* a = pd->GetScalars();
+    for (int i = 0; !a && i < pd->GetNumberOfArrays(); ++i)
+    {
+      const char* n = pd->GetArrayName(i);
+      a = n && std::string(n) == MaskName ? nullptr : pd->GetArray(i);
+    }
+    if (a && a->GetName())
+    {
+      read.emplace_back(a->GetName());
+    }
+  }
+  std::vector<std::vector<double>> converted;
   for (int i = 0; !w.EmptyPiece && i < pd->GetNumberOfArrays(); ++i)
   {
     const char* name = pd->GetArrayName(i);

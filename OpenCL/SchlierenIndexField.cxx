@@ -78,8 +78,12 @@ std::vector<float> FloatValues(const GridArray& a, std::size_t count)
   {
     return std::vector<float>(a.Float, a.Float + count);
   }
+  if (!a.Double)
+  {
+    throw Error("The array '" + a.Name + "' was given without its values.");
+  }
   std::vector<float> v(count, 0.0f);
-  for (std::size_t i = 0; a.Double && i < count; ++i)
+  for (std::size_t i = 0; i < count; ++i)
   {
     v[i] = static_cast<float>(a.Double[i]);
   }

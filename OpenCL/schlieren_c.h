@@ -236,6 +236,37 @@ SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input,
 SCHLIEREN_C_API int schlieren_index_model(const char* settings, int64_t count,
   int number_of_arrays, const char* const* roles, const float* const* arrays,
   const unsigned char* valid, float* n_minus_1, const char** report);
+/**
+ * RefractiveIndex's work once the input is on a grid (the engine's ComputeIndexField, which the
+ * C++ filter calls): the arrays the model reads chosen by name, the model, the points outside the
+ * flow domain (AmbientMode), the checks of n, the gradient, the bodies (BodyFromGrid's enclosed
+ * holes, an upstream `solid` array, SolidArray) and the output's field data, with the C++
+ * filter's messages. `settings`: "Name=value" lines, the proxy's names: every setting of
+ * schlieren_index_model (Model as resolved: not Automatic), the arrays chosen per role
+ * (InputArray, TemperatureArray, PressureArray, MixtureFractionArray, Species1Array ..
+ * Species4Array, HumidityArray, CO2Array; absent or "": none), HumidityFromArray, CO2FromArray,
+ * AmbientMode (Extend, DomainEdgeMedian, Value), AmbientValue, BodyFromGrid, BodyWallFaces (6),
+ * SolidArray ("None" or "": none), and what the front end knows of its grid: Resampled (1: the
+ * grid is a resampling of a mesh), UseSamplingBounds, CellsDescription (the input's cells in
+ * words, for the message where no grid point lies in a cell). The grid's point arrays:
+ * names[i], components[i], values[i] (value_bytes[i] 4 float or 8 double, value_counts[i] values:
+ * the grid's points x components; NULL and 0 allowed for an array of more than one component,
+ * which is only named in messages); `active_scalars` the index of the active scalars (-1: none:
+ * the input array where none is chosen). `cell_arrays`, `notes` (may be NULL): the cell arrays'
+ * names and the notes said so far, one a line. `valid` (NULL and 0: every point): non-zero in
+ * the flow. Writes n_minus_1 (the grid's points), grad3 (3 a point) and solid (a byte a point, 1
+ * in a body). `report` (may be NULL; owned by the library until this thread's next call) gets
+ * JSON, on failure too: {"model_done": the model ran (its warnings are to be said), "warnings",
+ * "notes" (to say now: the voids beside walls), "solid_note", "solid" (any body point),
+ * "arrays_read", "field_data": [[name, number or [strings]], ...] in the C++ filter's order,
+ * "error"}. Non-zero: schlieren_last_error() says why.
+ */
+SCHLIEREN_C_API int schlieren_index_field(const char* settings, const int dims[3],
+  const double spacing[3], int number_of_arrays, const char* const* names, const int* components,
+  const int* value_bytes, const void* const* values, const int64_t* value_counts,
+  int active_scalars, const char* cell_arrays, const char* notes, const unsigned char* valid,
+  int64_t valid_count, float* n_minus_1, int64_t n_minus_1_count, float* grad3,
+  int64_t grad3_count, unsigned char* solid, int64_t solid_count, const char** report);
 /** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
  * RefractiveIndex filter's AmbientMode Extend); `valid` and `n_minus_1` hold `count` values (the
  * grid's points); `filled` (may be NULL) gets how many. */

@@ -397,6 +397,61 @@ def index_model(settings, arrays, valid=None):
     return out, [w for w in _text(report.value).split("\n") if w]
 
 
+def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, cell_arrays=(),
+                notes=()):
+    """RefractiveIndex's work once the input is on a grid (the C interface's
+    schlieren_index_field, which the C++ filter's engine call is): `settings` the proxy's
+    properties by name (Model as resolved, the arrays chosen per role, AmbientMode, BodyFromGrid,
+    SolidArray...; and Resampled, UseSamplingBounds, CellsDescription), `arrays` the grid's point
+    arrays in order, name -> values (points x components; float32 and float64 read as they are,
+    other types as float64), `valid` (None: every point) non-zero in the flow. Returns (n - 1
+    float32, grad n float32 (points, 3), solid uint8 or None where there is no body, the report:
+    warnings, notes, solid_note, arrays_read, field_data [(name, number or [strings])]). A
+    failure raises EngineError with the C++ filter's message; its report is then `error.report`."""
+    f = _sig("schlieren_index_field", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3,
+             ctypes.c_int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_void_p),
+             ctypes.POINTER(ctypes.c_int64), ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
+             _u8p, _i64, _f32p, _i64, _f32p, _i64, _u8p, _i64, ctypes.POINTER(ctypes.c_char_p))
+    grid = _grid(dims, [0] * 3, spacing)
+    n = int(np.prod([int(d) for d in dims]))
+    kept, names, comps, nbytes = [], [], [], []
+    for name, a in arrays.items():
+        a = np.asarray(a)
+        if a.dtype.kind not in "biuf":
+            raise ArgumentTypeError("array %r has dtype %s: give real numbers" % (name, a.dtype))
+        a = np.ascontiguousarray(a, dtype=a.dtype if a.dtype in (np.float32, np.float64)
+                                 else np.float64)
+        c = 1 if a.ndim == 1 else int(np.prod(a.shape[1:]))
+        kept.append(a.reshape(-1))
+        names.append(str(name).encode())
+        comps.append(c)
+        nbytes.append(a.dtype.itemsize)
+    k = max(1, len(kept))
+    c_names = (ctypes.c_char_p * k)(*names)
+    c_comps = (ctypes.c_int * k)(*comps)
+    c_bytes = (ctypes.c_int * k)(*nbytes)
+    c_values = (ctypes.c_void_p * k)(*[a.ctypes.data for a in kept])
+    c_counts = (ctypes.c_int64 * k)(*[a.size for a in kept])
+    v = None if valid is None else _point_array(valid, "valid", dims, np.uint8, mask=True)
+    n1 = np.zeros(n, np.float32)
+    grad = np.zeros((n, 3), np.float32)
+    solid = np.zeros(n, np.uint8)
+    text = "\n".join("%s=%s" % (key, _value_text(x)) for key, x in settings.items()).encode()
+    report = ctypes.c_char_p()
+    rc = f(text, grid[0], grid[2], len(kept), c_names, c_comps, c_bytes, c_values, c_counts,
+           int(active_scalars), "\n".join(cell_arrays).encode(), "\n".join(notes).encode(),
+           _up(v), _size(v), n1.ctypes.data_as(_f32p), n1.size, grad.ctypes.data_as(_f32p),
+           grad.size, solid.ctypes.data_as(_u8p), solid.size, ctypes.byref(report))
+    result = json.loads(_text(report.value) or "{}")
+    result["field_data"] = [tuple(p) for p in result.get("field_data", [])]
+    if rc:
+        error = EngineError(_text(_lib.schlieren_last_error()))
+        error.report = result
+        raise error
+    return n1, grad, (solid if result.get("solid") else None), result
+
+
 def extend_into_invalid(dims, valid, n_minus_1):
     """Fills n - 1 (float32, changed in place) where valid == 0 by the engine's smooth
     continuation of the flow; returns how many points were filled."""

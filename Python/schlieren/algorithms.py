@@ -295,6 +295,18 @@ def _cell_leaves(data):
     return [leaf for leaf in _leaves(data) if leaf.GetNumberOfCells() > 0]
 
 
+def _describe_cells(data):
+    """"N cells: a 3D, b 2D (faces), c 1D or 0D" of a data set or a composite one's leaves (the
+    C++ filter's words, for the message where no grid point lies in a cell)."""
+    from vtkmodules.vtkCommonDataModel import vtkCellTypes
+    counts = [0, 0, 0, 0]
+    for leaf in _leaves(data):
+        for c in range(leaf.GetNumberOfCells()):
+            counts[max(0, min(3, vtkCellTypes.GetDimension(leaf.GetCellType(c))))] += 1
+    return "%d cells: %d 3D, %d 2D (faces), %d 1D or 0D" % (
+        sum(counts), counts[3], counts[2], counts[0] + counts[1])
+
+
 def _values(a):
     """A VTK array's values as NumPy's (a copy where VTK's layout is not a plain array: the
     implicit arrays newer VTKs keep offsets and cell types in)."""
@@ -809,58 +821,24 @@ class RefractiveIndex(_Properties):
                 (names[0] if names else "n_minus_1")
         return model, name, holds_n, chosen
 
-    def _index_model(self, model, image, names, valid, chosen=None):
-        """n - 1 by GladstoneDaleMixture, IdealGas or Ciddor: the engine's models (the C++
-        filter's) on the arrays the properties name (an empty name: the C++ filter's choice among
-        the usual names), with the proxy's settings."""
-        automatic = chosen or {}
+    # the array properties by role, in the engine's order (schlieren_index_field)
+    _role_properties = ("InputArray", "TemperatureArray", "PressureArray", "MixtureFractionArray",
+                        "Species1Array", "Species2Array", "Species3Array", "Species4Array",
+                        "HumidityArray", "CO2Array")
 
-        def pick(prop, role, required=True):
-            chosen = automatic.get(prop) or getattr(self, prop)
-            if not chosen:
-                lower = {n.lower(): n for n in reversed(names)}
-                chosen = next((lower[c] for c in self._candidates.get(prop, ()) if c in lower),
-                              "")
-            if not chosen:
-                if required:
-                    raise EngineError("RefractiveIndex: Model %s needs %s (a point array); the "
-                                      "input has: %s" % (model, prop, ", ".join(names) or "none"))
-                return
-            a = _point_array(image, chosen)
-            if a is None or a.ndim != 1:
-                raise EngineError("RefractiveIndex: %s is '%s': the input has no one-component "
-                                  "point array of that name (it has: %s)"
-                                  % (prop, chosen, ", ".join(names) or "none"))
-            arrays["%s:%s" % (role, chosen)] = a
-        arrays = {}
-        composition = {"GladstoneDaleMixture": self.MixtureComposition,
-                       "IdealGas": self.IdealGasComposition}.get(model, "Gas")
-        if model == "GladstoneDaleMixture" and self.InputArray:
-            pick("InputArray", "density")
-        elif model == "GladstoneDaleMixture":
-            density = self._find(names, "density")
-            if not density:
-                raise EngineError("RefractiveIndex: Model GladstoneDaleMixture needs a density "
-                                  "array (InputArray); the input has: %s" % ", ".join(names))
-            arrays["density:" + density] = _point_array(image, density)
-        if model in ("IdealGas", "Ciddor"):
-            pick("TemperatureArray", "temperature")
-            pick("PressureArray", "pressure")
-        if composition == "MixtureFraction":
-            pick("MixtureFractionArray", "mixture_fraction")
-        elif composition == "Species":
-            for k in range(int(self.NumberOfSpecies)):
-                pick("Species%dArray" % (k + 1), "species%d" % (k + 1))
-        if model == "Ciddor":
-            if self.HumidityFromArray:
-                pick("HumidityArray", "humidity")
-            if self.CO2FromArray:
-                pick("CO2Array", "co2")
-        settings = {k: self._values[k] for k in self._model_settings}
-        settings["Model"] = model
-        n1, warnings = _engine.index_model(settings, arrays, valid)
-        object.__setattr__(self, "_read", [k.split(":", 1)[1] for k in arrays])
-        return n1, warnings
+    def _role_arrays(self, name, chosen, names):
+        """The array chosen per role (property -> name, "" none): as chosen, else Model
+        Automatic's choice, else the first array named as what the role holds (the C++ filter's
+        names); InputArray is `name` (_choose's)."""
+        lower = {n.lower(): n for n in reversed(names)}
+        roles = {}
+        for prop in self._role_properties:
+            value = chosen.get(prop) or getattr(self, prop) or ""
+            if not value:
+                value = next((lower[c] for c in self._candidates.get(prop, ()) if c in lower), "")
+            roles[prop] = value
+        roles["InputArray"] = name or ""
+        return roles
 
     def _sampling_bounds(self):
         """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
@@ -872,36 +850,6 @@ class RefractiveIndex(_Properties):
             raise EngineError("RefractiveIndex: SamplingBounds %s: each max must exceed its min "
                               "(SamplingBounds: xmin xmax ymin ymax zmin zmax)" % b)
         return b
-
-    def _solid(self, image, dims, valid, resampled):
-        """The output's `solid` (uint8, 1: body) as the C++ filter's ComputeSolid makes it, or
-        None where there is no body: the holes of a resampled grid that the flow encloses
-        (BodyFromGrid, with BodyWallFaces; the engine's), a `solid` array the input carries and
-        SolidArray (non-zero, or at least 0.5 where resampled). Not here: the voids beside a
-        mesh's walls found from its velocity (the C++ filter's BodiesBesideWalls)."""
-        solid = np.zeros(int(np.prod(dims)), np.uint8)
-        if self.BodyFromGrid and valid is not None:
-            solid |= _engine.enclosed_invalid(dims, valid, self.BodyWallFaces)
-
-        def mark(values):
-            values = np.asarray(values)
-            solid[(values >= 0.5) if resampled else (values != 0)] = 1
-        upstream = _point_array(image, "solid")
-        if upstream is not None and upstream.ndim == 1:
-            mark(upstream)
-        name = self.SolidArray
-        if name and name != "None":
-            mask = _point_array(image, name)
-            if mask is None:
-                pd = image.GetPointData()
-                raise EngineError("SolidArray '%s' is not a point array of the input. Point "
-                                  "arrays present: %s." % (name, ", ".join(
-                                      pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays()))))
-            if mask.ndim != 1:
-                raise EngineError("SolidArray '%s' has %d components; it must be a scalar "
-                                  "(non-zero: solid)." % (name, mask.shape[1]))
-            mark(mask)
-        return solid if solid.any() else None
 
     def _symmetry_plan(self, data):
         """The engine's plan (schlieren_symmetry_plan) for the 2D input `data`: its checks (the C++
@@ -1012,43 +960,48 @@ class RefractiveIndex(_Properties):
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
             names = [n for n in names if n and n != "vtkValidPointMask"]
             model, name, holds_n, chosen = self._choose(names, pd)
-            if model in ("GladstoneDaleMixture", "IdealGas", "Ciddor"):
-                n1, warnings = self._index_model(model, image, names, valid, chosen)
-                read = self._read
-                name = None
-            else:
-                read = [name]
-            values = None if name is None else _point_array(image, name)
-            if name is not None and (values is None or values.ndim != 1):
-                raise EngineError("RefractiveIndex needs the one-component point array %r "
-                                  "(InputArray); the "
-                                  "input has: %s" % (name, ", ".join(names) or "none"))
-            if name is None:
-                pass
-            elif valid is not None:
-                if not valid.any():
-                    raise EngineError("RefractiveIndex: no point of the sampling grid lies inside "
-                                      "the input's cells.")
-                # the points outside the input's cells are filled below: not checked as flow
-                values = np.where(valid != 0, values, values[np.argmax(valid)])
-            if name is not None:
-                n1, warnings = _engine.field_index(model, values, index_is_n=holds_n,
-                                                   density_reference=self.DensityReference,
-                                                   gas=("Custom %r %r" % (
-                                                       float(self.GladstoneDaleConstant),
-                                                       float(self.MolarMass))
-                                                       if self.Gas == "Custom" else self.Gas))
+            # the engine's work on the grid (schlieren_index_field, the C++ filter's): the
+            # arrays by role, the model, the points outside the flow, the gradient, the bodies,
+            # the field data
+            settings = {k: self._values[k] for k in self._model_settings}
+            settings.update(self._role_arrays(name, chosen, names))
+            settings.update(
+                Model=model, PassthroughHoldsN=int(holds_n),
+                HumidityFromArray=int(self.HumidityFromArray), CO2FromArray=int(self.CO2FromArray),
+                AmbientMode=self.AmbientMode, AmbientValue=float(self.AmbientValue),
+                BodyFromGrid=int(self.BodyFromGrid), BodyWallFaces=self.BodyWallFaces,
+                SolidArray=self.SolidArray or "", Resampled=int(resampled),
+                UseSamplingBounds=int(self.UseSamplingBounds))
+            if resampled and valid is not None and not valid.any():
+                settings["CellsDescription"] = _describe_cells(_internal_mesh(data))
+            arrays, active = {}, -1
+            scalars = pd.GetScalars()
+            for i in range(pd.GetNumberOfArrays()):
+                a = pd.GetArray(i)
+                if a is None or a.GetName() == "vtkValidPointMask" or a.GetName() in arrays:
+                    continue
+                if scalars is not None and a is scalars:
+                    active = len(arrays)
+                arrays[a.GetName() or ""] = numpy_support.vtk_to_numpy(a)
+            cd = image.GetCellData()
+            cells = [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())
+                     if cd.GetArray(i) is not None and cd.GetArrayName(i)]
             dims = list(image.GetDimensions())
-            ambient = None
-            if valid is not None and self.AmbientMode == "Extend":
-                _engine.extend_into_invalid(dims, valid, n1)
-            elif valid is not None:
-                ambient, _ = _engine.fill_ambient(dims, valid, n1, self.AmbientMode,
-                                                  self.AmbientValue)
-            grad = _engine.gradient(dims, image.GetSpacing(), n1)
-            solid = self._solid(image, dims, valid, resampled)
+            try:
+                n1, grad, solid, report = _engine.index_field(
+                    settings, dims, image.GetSpacing(), arrays, valid, active, cells)
+            except EngineError as e:
+                report = getattr(e, "report", {})
+                if report.get("model_done"):
+                    for w in report.get("warnings", []):
+                        self._warn(w)
+                raise
         except EngineError as e:
             return self._fail(str(e))
+        for w in report["warnings"]:
+            self._warn(w)
+        if report["solid_note"]:
+            self._warn(report["solid_note"])
         out.ShallowCopy(image)
         if resampled:
             e = out.GetExtent()  # the resampled grid's, known only now
@@ -1061,21 +1014,17 @@ class RefractiveIndex(_Properties):
         if solid is not None:
             out.GetPointData().RemoveArray("solid")
             _add(out, "solid", solid)
-        # the C++ filter's field data (less its notes and per-model numbers)
-        if ambient is not None:
-            _field_number(out, "ambient_n_minus_1", ambient)
-        _field_string(out, "index_model", model)
+        # the engine's field data, in the C++ filter's order
         from vtkmodules.vtkCommonCore import vtkStringArray
-        arrays = vtkStringArray()
-        arrays.SetName("index_arrays")
-        for r in read:
-            arrays.InsertNextValue(r)
-        out.GetFieldData().AddArray(arrays)
-        invalid = 0 if valid is None else int(np.count_nonzero(valid == 0))
-        _field_number(out, "valid_point_fraction", 1.0 - invalid / n1.size if n1.size else 0.0)
-        _field_number(out, "solid_points", 0 if solid is None else int(solid.sum()))
-        for w in warnings:
-            self._warn(w)
+        for key, value in report["field_data"]:
+            if isinstance(value, list):
+                strings = vtkStringArray()
+                strings.SetName(key)
+                for v in value:
+                    strings.InsertNextValue(v)
+                out.GetFieldData().AddArray(strings)
+            else:
+                _field_number(out, key, value)
         return 1
 
 

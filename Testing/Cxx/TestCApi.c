@@ -217,6 +217,58 @@ int main(void)
       "check_property: Tolerance 1e-6 taken, a property without a listed range passes (%s)",
       schlieren_last_error());
   }
+  {
+    /* RefractiveIndex's work on a grid (schlieren_index_field, the C++ filter's engine call):
+       density 1.0, 1.1, 1.2 along x on 3 x 3 x 3 points, the centre outside the flow */
+    const int d3[3] = { 3, 3, 3 };
+    const double h3[3] = { 0.5, 0.5, 0.5 };
+    float rho[27], n1f[27], g3[81];
+    unsigned char valid3[27], solid3[27];
+    const char* names3[2] = { "density", "U" };
+    const int comps3[2] = { 1, 3 }, bytes3[2] = { 4, 4 };
+    const void* vals3[2];
+    const int64_t counts3[2] = { 27, 0 };
+    const double K = 2.256e-4;
+    const char* rep = NULL;
+    int i3;
+    for (i3 = 0; i3 < 27; ++i3)
+    {
+      rho[i3] = 1.0f + 0.1f * (float)(i3 % 3);
+      valid3[i3] = i3 != 13;
+    }
+    vals3[0] = rho;
+    vals3[1] = NULL;
+    CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nResampled=1", d3, h3, 2,
+            names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, n1f, 27, g3, 81,
+            solid3, 27, &rep) == 0 &&
+          fabs(n1f[1] - K * 1.1) < 1e-9 && fabs(g3[3 * 13] - K * 0.2) < 1e-8 &&
+          fabs(g3[3 * 13 + 1]) < 1e-12 && solid3[13] == 1 && solid3[0] == 0 &&
+          strstr(rep, "[\"index_model\", [\"GladstoneDale\"]], [\"index_arrays\", [\"density\"]]") &&
+          strstr(rep, "[\"solid_points\", 1]") && strstr(rep, "\"solid\": true"),
+      "index_field: n - 1 = K rho (%g), d(n-1)/dx = 0.2 K (%g) at the centre, the enclosed hole "
+      "solid (%d), the field data (%s; %s)", n1f[1], g3[3 * 13], solid3[13], rep ? rep : "",
+      schlieren_last_error());
+    CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=rho", d3, h3, 2, names3, comps3,
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+          strcmp(schlieren_last_error(), "GladstoneDale needs a density array ('rho', InputArray) "
+                                         "but the input has no point array of that name. Point "
+                                         "arrays present: density, U.") == 0,
+      "index_field: a missing array refused with the C++ filter's message: %s", schlieren_last_error());
+    CHECK(schlieren_index_field("Model=Passthrough\nInputArray=U", d3, h3, 2, names3, comps3,
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+          strcmp(schlieren_last_error(), "The n - 1 (or n) array 'U' has 3 components; InputArray "
+                                         "needs a scalar array.") == 0,
+      "index_field: a vector refused: %s", schlieren_last_error());
+    CHECK(schlieren_index_field("Model=Passthrough\nInputArray=density", d3, h3, 1, names3, comps3,
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+          strstr(schlieren_last_error(), "Passthrough takes 'density' as n - 1, but it gives n - 1 "
+                                         "from 1 to 1.2") != NULL,
+      "index_field: a density taken for n - 1 refused: %s", schlieren_last_error());
+    CHECK(schlieren_index_field("Model=GladstoneDale\nAmbientMode=Sideways", d3, h3, 1, names3,
+            comps3, bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, n1f, 27, g3, 81, solid3, 27,
+            &rep) != 0 && strstr(schlieren_last_error(), "AmbientMode 'Sideways' is not one of") != NULL,
+      "index_field: a bad AmbientMode named: %s", schlieren_last_error());
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

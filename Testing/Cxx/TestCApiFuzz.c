@@ -73,6 +73,7 @@ enum
   F_MISC,
   F_THREADS,
   F_SAMPLE,
+  F_INDEX_FIELD,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -80,7 +81,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "photograph", "version/properties/device",
-  "two threads, one session", "sample_cells" };
+  "two threads, one session", "sample_cells", "index_field" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1185,6 +1186,92 @@ static void fixed_sample_case(void)
   }
 }
 
+/* schlieren_index_field with random settings, arrays, lengths and masks: done, or refused with a
+   message, never a crash */
+static void random_index_field_case(int k)
+{
+  static const char* settings[] = { "", "Model=GladstoneDale", "Model=Passthrough\nInputArray=a",
+    "Model=IdealGas\nTemperatureArray=a\nPressureArray=b", "Model=Automatic",
+    "Model=GladstoneDale\nInputArray=b\nAmbientMode=Value\nAmbientValue=nan",
+    "Model=GladstoneDaleMixture\nInputArray=a\nMixtureFractionArray=b",
+    "Model=Ciddor\nTemperatureArray=a\nPressureArray=b\nHumidityFromArray=2",
+    "Model=Passthrough\nInputArray=a\nSolidArray=b\nBodyWallFaces=1 0 1", "Bogus=1",
+    "Model=GladstoneDale\nInputArray=a\nAmbientMode=DomainEdgeMedian\nResampled=1",
+    "Model=GladstoneDale\nInputArray=c\nSolidArray=c" };
+  static const char* names[] = { "a", "b", "c", "", NULL };
+  static const int good[] = { 1, 2, 3, 6, 10 };
+  char what[160];
+  int dims[3], valid, i, rc;
+  int64_t needed, counts[3], c_valid, c_n1, c_grad, c_solid;
+  double h[3];
+  const char* nm[3];
+  int comps[3], bytes[3];
+  void* values[3];
+  unsigned char *v, *solid;
+  float *n1, *grad;
+  const char* report = NULL;
+  int arrays = below(4);
+  /* half the cases with every length right and names given: the settings and values decide */
+  const int sane = below(2);
+  random_grid(dims, &needed, &valid);
+  if (sane && !valid)
+  {
+    dims[0] = 3 + below(4), dims[1] = 2 + below(3), dims[2] = 1 + below(3);
+    needed = (int64_t)dims[0] * dims[1] * dims[2];
+    valid = 1;
+  }
+  random_point(h);
+  if (below(2) || sane)
+    h[0] = h[1] = h[2] = 0.2;
+  snprintf(what, sizeof(what), "index_field case %d: dims %d %d %d, %d arrays", k, dims[0],
+    dims[1], dims[2], arrays);
+  for (i = 0; i < arrays; ++i)
+  {
+    int64_t j;
+    nm[i] = sane ? names[i] : names[below(5)];
+    comps[i] = below(5) || sane ? 1 : below(4) - 1;
+    bytes[i] = below(5) ? 4 : (below(2) || sane ? 8 : 3);
+    counts[i] = sane ? needed : below(4) ? grid_count(needed, valid) : random_count(needed);
+    if (counts[i] >= 0 && counts[i] <= 1000000 && comps[i] > 1)
+      counts[i] *= comps[i];
+    if (counts[i] > 1000000 || counts[i] < 0)
+      counts[i] = below(2) ? -1 : 7;
+    values[i] = buffer(counts[i], bytes[i] == 8 ? 8 : 4, !sane);
+    for (j = 0; values[i] && j < counts[i]; ++j)
+    {
+      const double x = sane && below(20) ? 0.001 * (1.0 + uniform())
+                                         : below(10) ? 1.0 + uniform() : (below(2) ? NAN : -1.0);
+      if (bytes[i] == 8)
+        ((double*)values[i])[j] = x;
+      else
+        ((float*)values[i])[j] = (float)x;
+    }
+  }
+  c_valid = below(2) ? 0 : sane ? needed : grid_count(needed, valid);
+  c_n1 = sane ? needed : grid_count(needed, valid);
+  c_grad = below(5) || sane ? 3 * c_n1 : c_n1;
+  if (c_n1 < 0 || c_n1 > 1000000)
+    c_grad = c_n1;
+  c_solid = sane ? needed : grid_count(needed, valid);
+  v = c_valid ? (sane ? calloc((size_t)c_valid, 1) : buffer(c_valid, 1, 1)) : NULL;
+  for (i = 0; v && c_valid <= 1000000 && i < c_valid; ++i)
+    v[i] = (unsigned char)(below(4) != 0);
+  n1 = buffer(c_n1, sizeof(float), !sane);
+  grad = buffer(c_grad, sizeof(float), !sane);
+  solid = buffer(c_solid, 1, !sane);
+  rc = schlieren_index_field(settings[sane ? good[below(5)] : below(12)], dims, h, arrays, nm, comps, bytes,
+    (const void* const*)values, counts, below(4) - 1, below(2) ? "c\nd" : NULL,
+    below(2) ? "a note" : NULL, v, c_valid, n1, c_n1, grad, c_grad, solid, c_solid,
+    below(2) ? &report : NULL);
+  outcome(F_INDEX_FIELD, rc, schlieren_last_error(), what);
+  for (i = 0; i < arrays; ++i)
+    free(values[i]);
+  free(v);
+  free(n1);
+  free(grad);
+  free(solid);
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -1213,6 +1300,8 @@ int main(int argc, char** argv)
   fixed_sample_case();
   for (k = 0; k < cases / 4; ++k)
     random_sample_case();
+  for (k = 0; k < cases / 4; ++k)
+    random_index_field_case((int)k);
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");
