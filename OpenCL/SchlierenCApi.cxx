@@ -1684,6 +1684,68 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
   return status;
 }
 
+int schlieren_index_choices(
+  const char* settings, const char* present, const char* fallback_input, const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_index_choices";
+    static const char* const roles[] = { "InputArray", "TemperatureArray", "PressureArray",
+      "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array", "Species4Array",
+      "HumidityArray", "CO2Array" };
+    std::vector<std::string> known = ModelSettingNames();
+    known.insert(known.end(), std::begin(roles), std::end(roles));
+    const std::map<std::string, std::string> p = SettingLines(f, settings, known);
+    auto text = [&](const char* name, const char* fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? std::string(fallback) : it->second;
+    };
+    auto number = [&](const char* name, double fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? fallback : NumbersOf(name, it->second, 1)[0];
+    };
+    schlieren::IndexChoiceInput in;
+    in.Present = Lines(present);
+    in.Model = EntryOf("Model", text("Model", "Automatic"),
+                 { "Automatic", "Passthrough", "GladstoneDale", "GladstoneDaleMixture",
+                   "IdealGas", "Ciddor" }) - 1;
+    in.HoldsN = number("PassthroughHoldsN", 0) != 0;
+    for (int r = 0; r < schlieren::NumberOfRoles; ++r)
+      in.Arrays[r] = text(roles[r], "");
+    const std::string gas = text("Gas", "Custom");
+    in.Gas = gas == "Custom" ? -1 : static_cast<int>(schlieren::ParseGas(gas));
+    in.GladstoneDale = number("GladstoneDaleConstant", 2.256e-4);
+    in.MolarMass = number("MolarMass", 0.0289641);
+    in.MixtureComposition = static_cast<schlieren::Composition>(1 +
+      EntryOf("MixtureComposition", text("MixtureComposition", "MixtureFraction"),
+        { "MixtureFraction", "Species" }));
+    in.IdealGasComposition = static_cast<schlieren::Composition>(EntryOf("IdealGasComposition",
+      text("IdealGasComposition", "Gas"), { "Gas", "MixtureFraction", "Species" }));
+    in.TemperatureUnits = static_cast<schlieren::TemperatureUnit>(
+      EntryOf("TemperatureUnit", text("TemperatureUnit", "Kelvin"), { "Kelvin", "Celsius" }));
+    in.PressureUnits = static_cast<schlieren::PressureUnit>(
+      EntryOf("PressureUnit", text("PressureUnit", "Pa"), { "Pa", "kPa", "atm", "bar" }));
+    in.TemperatureReference = number("TemperatureReference", 1.0);
+    in.PressureReference = number("PressureReference", 1.0);
+    in.PressureOffset = number("PressureOffset", 0.0);
+    in.DensityReference = number("DensityReference", 1.0);
+    const std::string fallback = fallback_input ? fallback_input : "";
+    in.FallbackInput = [fallback] { return fallback; };
+    schlieren::IndexChoice out;
+    const std::string problem = schlieren::ResolveIndexChoices(in, out);
+    if (!problem.empty())
+      throw schlieren::Error(problem);
+    Returned = "{\"model\": " + Json(schlieren::IndexModelLabel(out.Model)) +
+      ", \"holds_n\": " + (out.HoldsN ? "true" : "false") + ", \"arrays\": {";
+    for (int r = 0; r < schlieren::NumberOfRoles; ++r)
+      Returned += std::string(r ? ", " : "") + Json(roles[r]) + ": " + Json(out.Arrays[r]);
+    Returned += "}, \"notes\": " + JsonList(out.Notes) + "}";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
 int schlieren_extend_into_invalid(const int dims[3], const unsigned char* valid, int64_t count,
   float* n_minus_1, int64_t* filled)
 {

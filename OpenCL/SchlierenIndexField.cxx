@@ -6,6 +6,7 @@
 #include "SchlierenParallel.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -262,6 +263,335 @@ std::string NoValidPoint(const IndexFieldInput& in)
     "Axisymmetric.";
 }
 } // namespace
+
+namespace
+{
+std::string Lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+/** What a field's name says it holds. */
+enum class Kind
+{
+  NMinus1,
+  N,
+  Density,
+  Temperature,
+  Pressure,
+  MixtureFraction,
+  Unknown
+};
+
+/** The names (lower case) taken for each kind, in order of preference. */
+const std::vector<std::string>& NamesOf(Kind kind)
+{
+  static const std::vector<std::string> n1{ "n_minus_1", "nminus1", "n-1", "refractivity" };
+  static const std::vector<std::string> n{ "n", "refractive_index", "refractiveindex",
+    "index_of_refraction" };
+  static const std::vector<std::string> rho{ "density", "rho", "dens", "mass_density" };
+  static const std::vector<std::string> t{ "temperature", "temp", "t", "static_temperature",
+    "t_static" };
+  static const std::vector<std::string> p{ "pressure", "pres", "press", "p", "static_pressure",
+    "p_static" };
+  static const std::vector<std::string> f{ "mixture_fraction", "mixturefraction", "f", "z" };
+  static const std::vector<std::string> none;
+  switch (kind)
+  {
+    case Kind::NMinus1:
+      return n1;
+    case Kind::N:
+      return n;
+    case Kind::Density:
+      return rho;
+    case Kind::Temperature:
+      return t;
+    case Kind::Pressure:
+      return p;
+    case Kind::MixtureFraction:
+      return f;
+    default:
+      return none;
+  }
+}
+
+Kind KindOf(const std::string& name)
+{
+  const std::string l = Lower(name);
+  for (Kind k : { Kind::NMinus1, Kind::N, Kind::Density, Kind::Temperature, Kind::Pressure })
+  {
+    const auto& names = NamesOf(k);
+    if (std::find(names.begin(), names.end(), l) != names.end())
+    {
+      return k;
+    }
+  }
+  return Kind::Unknown;
+}
+
+/** The first present array whose name is one of `kind`'s (by the order of preference), or "". */
+std::string Find(const std::vector<std::string>& present, Kind kind)
+{
+  for (const std::string& want : NamesOf(kind))
+  {
+    for (const std::string& name : present)
+    {
+      if (Lower(name) == want)
+      {
+        return name;
+      }
+    }
+  }
+  return std::string();
+}
+
+std::string List(const std::vector<std::string>& names)
+{
+  std::ostringstream s;
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    s << (i ? ", " : "") << names[i];
+  }
+  return names.empty() ? std::string("none") : s.str();
+}
+
+const int ModelPassthrough = 0, ModelGladstoneDale = 1, ModelGladstoneDaleMixture = 2,
+          ModelIdealGas = 3, ModelCiddor = 4;
+
+/**
+ * Model Automatic: the model (and whether ModelPassthrough's array holds n) from the name of the chosen
+ * input array, else from the names `present`; fills the arrays it implies. `why` gets the reason
+ * for the note; returns "" or the error where no name says anything.
+ */
+std::string ChooseModel(const std::vector<std::string>& present, std::string* arrays, int& model,
+  bool& holdsN, std::ostringstream& why)
+{
+  const std::string chosen = arrays[RoleInput];
+  if (!chosen.empty())
+  {
+    switch (KindOf(chosen))
+    {
+      case Kind::N:
+        model = ModelPassthrough;
+        holdsN = true;
+        why << "Input Array '" << chosen << "' is named as n";
+        break;
+      case Kind::Density:
+        model = ModelGladstoneDale;
+        why << "Input Array '" << chosen << "' is named as a density";
+        break;
+      case Kind::Temperature:
+      case Kind::Pressure:
+      {
+        const bool isT = KindOf(chosen) == Kind::Temperature;
+        std::string& slot = arrays[isT ? RoleTemperature : RolePressure];
+        if (slot.empty())
+        {
+          slot = chosen;
+        }
+        model = ModelIdealGas;
+        why << "Input Array '" << chosen << "' is named as a "
+            << (isT ? "temperature" : "pressure");
+        break;
+      }
+      case Kind::NMinus1:
+        model = ModelPassthrough;
+        holdsN = false;
+        why << "Input Array '" << chosen << "' is named as n - 1";
+        break;
+      default:
+        model = ModelPassthrough;
+        holdsN = false;
+        why << "Input Array '" << chosen
+            << "' has no name it knows, so it is taken as n - 1 (choose Model if it is not)";
+        break;
+    }
+  }
+  else if (!Find(present, Kind::NMinus1).empty())
+  {
+    model = ModelPassthrough;
+    holdsN = false;
+    arrays[RoleInput] = Find(present, Kind::NMinus1);
+    why << "the input carries n - 1 ('" << arrays[RoleInput] << "')";
+  }
+  else if (!Find(present, Kind::Density).empty())
+  {
+    model = ModelGladstoneDale;
+    arrays[RoleInput] = Find(present, Kind::Density);
+    why << "the input has a density ('" << arrays[RoleInput] << "')";
+  }
+  else if (!Find(present, Kind::Temperature).empty() && !Find(present, Kind::Pressure).empty())
+  {
+    model = ModelIdealGas;
+    why << "the input has a temperature and a pressure";
+  }
+  else if (!Find(present, Kind::N).empty())
+  {
+    model = ModelPassthrough;
+    holdsN = true;
+    arrays[RoleInput] = Find(present, Kind::N);
+    why << "the input carries n ('" << arrays[RoleInput] << "')";
+  }
+  else
+  {
+    return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
+           "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
+           "pressure, Pres, p) among the input's arrays: " +
+      List(present) + ". Choose the Model and its arrays.";
+  }
+  return std::string();
+}
+
+const char* PressureUnitLabel(PressureUnit unit)
+{
+  static const char* const names[] = { "Pa", "kPa", "atm", "bar" };
+  const int u = static_cast<int>(unit);
+  return u >= 0 && u <= 3 ? names[u] : "Pa";
+}
+
+/** The gas the chosen model takes, in words: "air (the default Custom gas: ...)", "He (the table)". */
+std::string GasWords(const IndexChoiceInput& in, int model)
+{
+  std::ostringstream g;
+  if (model == ModelIdealGas && in.IdealGasComposition != Composition::SingleGas)
+  {
+    g << (in.IdealGasComposition == Composition::MixtureFraction
+        ? "a mixture fraction between Mixture Gas 0 and 1"
+        : "species mass fractions");
+    return g.str();
+  }
+  if (in.Gas >= 0)
+  {
+    const GasProperties& p = GetGasProperties(static_cast<Gas>(in.Gas));
+    g << p.Name << " from the gas table (K = " << p.GladstoneDale << " m^3/kg)";
+    return g.str();
+  }
+  const GasProperties& air = GetGasProperties(Gas::Air);
+  const double K = in.GladstoneDale, M = in.MolarMass;
+  const bool isAir = K == air.GladstoneDale && (model != ModelIdealGas || M == air.MolarMass);
+  if (isAir)
+  {
+    g << "air (Gas Custom, whose defaults are air's: K = " << K << " m^3/kg";
+    if (model == ModelIdealGas)
+    {
+      g << ", M = " << M << " kg/mol";
+    }
+    g << "; set Gas for another gas)";
+  }
+  else
+  {
+    g << "the Custom gas, K = " << K << " m^3/kg";
+    if (model == ModelIdealGas)
+    {
+      g << ", M = " << M << " kg/mol";
+    }
+  }
+  return g.str();
+}
+
+/** The note that says what Model Automatic chose, and why. */
+std::string ChoiceNote(const IndexChoiceInput& in, int model, bool holdsN, const std::string& why)
+{
+  std::ostringstream note;
+  note << "RefractiveIndex: Model Automatic chose "
+       << IndexModelLabel(static_cast<IndexModel>(model));
+  if (model == ModelPassthrough && holdsN)
+  {
+    note << " of n";
+  }
+  note << ": " << why << ".";
+  if (model == ModelGladstoneDale || model == ModelIdealGas)
+  {
+    note << " Gas: " << GasWords(in, model) << ".";
+  }
+  return note.str();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::string ResolveIndexChoices(const IndexChoiceInput& in, IndexChoice& out)
+{
+  out = IndexChoice();
+  std::string* arrays = out.Arrays;
+  std::copy(in.Arrays, in.Arrays + NumberOfRoles, arrays);
+  std::vector<std::string>& notes = out.Notes;
+  const bool automatic = in.Model < 0;
+  int model = in.Model;
+  bool holdsN = in.HoldsN;
+  if (automatic)
+  {
+    std::ostringstream why;
+    const std::string problem = ChooseModel(in.Present, arrays, model, holdsN, why);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+    notes.push_back(ChoiceNote(in, model, holdsN, why.str()));
+  }
+  out.Model = static_cast<IndexModel>(model);
+  out.HoldsN = holdsN;
+
+  // The arrays left automatic, found by name for what the model reads there.
+  auto fill = [&](int idx, Kind kind, const char* property) {
+    if (arrays[idx].empty())
+    {
+      arrays[idx] = Find(in.Present, kind);
+      if (!arrays[idx].empty() && !automatic)
+      {
+        notes.push_back(std::string("RefractiveIndex: ") + property + " '" + arrays[idx] +
+          "', found by name.");
+      }
+    }
+  };
+  if (model == ModelPassthrough)
+  {
+    fill(RoleInput, holdsN ? Kind::N : Kind::NMinus1, "InputArray");
+  }
+  else if (model == ModelGladstoneDale || model == ModelGladstoneDaleMixture)
+  {
+    fill(RoleInput, Kind::Density, "InputArray");
+  }
+  if (arrays[RoleInput].empty() && model != ModelIdealGas && model != ModelCiddor && in.FallbackInput)
+  {
+    // Nothing chosen and no name known: the active point scalars, else the first point array
+    // (as before there was an automatic choice).
+    arrays[RoleInput] = in.FallbackInput();
+  }
+  if (model == ModelIdealGas || model == ModelCiddor)
+  {
+    fill(RoleTemperature, Kind::Temperature, "TemperatureArray");
+    fill(RolePressure, Kind::Pressure, "PressureArray");
+  }
+  if ((model == ModelGladstoneDaleMixture && in.MixtureComposition == Composition::MixtureFraction) ||
+    (model == ModelIdealGas && in.IdealGasComposition == Composition::MixtureFraction))
+  {
+    fill(RoleMixtureFraction, Kind::MixtureFraction, "MixtureFractionArray");
+  }
+  if (automatic && model == ModelIdealGas)
+  {
+    std::ostringstream units;
+    units << " Temperature '" << arrays[RoleTemperature] << "' read in "
+          << (in.TemperatureUnits == TemperatureUnit::Celsius ? "C" : "K")
+          << " times TemperatureReference (" << in.TemperatureReference << "), pressure '"
+          << arrays[RolePressure] << "' in " << PressureUnitLabel(in.PressureUnits)
+          << " times PressureReference (" << in.PressureReference << ") plus PressureOffset ("
+          << in.PressureOffset
+          << "): an absolute pressure (a gauge one needs the operating pressure as PressureOffset).";
+    notes.back() += units.str();
+  }
+  if (automatic && model == ModelGladstoneDale)
+  {
+    std::ostringstream units;
+    units << " Density '" << arrays[RoleInput] << "' read in kg/m^3 times DensityReference ("
+          << in.DensityReference
+          << "): a non-dimensional density (PLOT3D's is rho / rho_inf) needs the free-stream "
+             "density in kg/m^3 as DensityReference.";
+    notes.back() += units.str();
+  }
+  return std::string();
+}
 
 //------------------------------------------------------------------------------
 const char* IndexModelLabel(IndexModel model)

@@ -151,6 +151,46 @@ struct IndexFieldOutput
   bool EmptyPiece = false;
 };
 
+/** What ResolveIndexChoices takes: the filter's settings as the user left them. */
+struct IndexChoiceInput
+{
+  /** The input's array names (point, then cell arrays; each once; every rank's under MPI). */
+  std::vector<std::string> Present;
+  int Model = -1; ///< -1 Automatic, else an IndexModel
+  bool HoldsN = false; ///< PassthroughHoldsN
+  std::string Arrays[NumberOfRoles]; ///< as chosen ("": left automatic)
+  // what the notes of Model Automatic's choice say of the gas and the units
+  int Gas = -1; ///< -1 Custom, else a Gas
+  double GladstoneDale = 2.256e-4, MolarMass = 0.0289641;
+  Composition MixtureComposition = Composition::MixtureFraction;
+  Composition IdealGasComposition = Composition::SingleGas;
+  TemperatureUnit TemperatureUnits = TemperatureUnit::Kelvin;
+  PressureUnit PressureUnits = PressureUnit::Pascal;
+  double TemperatureReference = 1.0, PressureReference = 1.0, PressureOffset = 0.0,
+         DensityReference = 1.0;
+  /** The input array where nothing chosen and no name says it: the active point scalars, else
+   * the first point array ("" none); asked only then (collective under MPI in the C++ filter). */
+  std::function<std::string()> FallbackInput;
+};
+
+/** The model and the arrays RefractiveIndex reads, and the notes that say what was chosen. */
+struct IndexChoice
+{
+  IndexModel Model = IndexModel::Passthrough;
+  bool HoldsN = false;
+  std::string Arrays[NumberOfRoles];
+  std::vector<std::string> Notes;
+};
+
+/**
+ * Model Automatic's choice (from the chosen input array's name, else from the names present: n - 1,
+ * a density, a temperature and a pressure, n) and the arrays left automatic found by name (the
+ * candidate names: n_minus_1, nminus1, ...; density, rho, ...; temperature, temp, t, ...;
+ * pressure, pres, press, p, ...; mixture_fraction, mixturefraction, f, z). Returns "" or the
+ * message where no name says anything (the C++ filter's, word for word).
+ */
+std::string ResolveIndexChoices(const IndexChoiceInput& in, IndexChoice& out);
+
 /** The arrays a model reads, as roles in order. */
 std::vector<int> NeededRoles(const FieldModel& model, bool humidityFromArray, bool co2FromArray);
 

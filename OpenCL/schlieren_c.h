@@ -237,6 +237,22 @@ SCHLIEREN_C_API int schlieren_index_model(const char* settings, int64_t count,
   int number_of_arrays, const char* const* roles, const float* const* arrays,
   const unsigned char* valid, float* n_minus_1, const char** report);
 /**
+ * RefractiveIndex's choice of the model and of the arrays left automatic (the engine's
+ * ResolveIndexChoices, which the C++ filter calls): `settings` the proxy's properties as
+ * "Name=value" lines (Model, Automatic included; PassthroughHoldsN; the arrays chosen per role,
+ * InputArray .. CO2Array, absent or "": automatic; and what the notes say: Gas,
+ * GladstoneDaleConstant, MolarMass, MixtureComposition, IdealGasComposition, TemperatureUnit,
+ * TemperatureReference, PressureUnit, PressureReference, PressureOffset, DensityReference; the
+ * other settings of schlieren_index_model are taken and not used). `present`: the input's array
+ * names, one a line (point arrays, then cell arrays); `fallback_input` (may be NULL): the input
+ * array where nothing chooses one (the active point scalars, else the first point array).
+ * `report` (may be NULL; owned by the library until this thread's next call) gets JSON
+ * {"model", "holds_n", "arrays": {"InputArray": name, ...}, "notes": [...]}. Non-zero: no name
+ * says anything for Model Automatic (schlieren_last_error(), the C++ filter's message).
+ */
+SCHLIEREN_C_API int schlieren_index_choices(
+  const char* settings, const char* present, const char* fallback_input, const char** report);
+/**
  * RefractiveIndex's work once the input is on a grid (the engine's ComputeIndexField, which the
  * C++ filter calls): the arrays the model reads chosen by name, the model, the points outside the
  * flow domain (AmbientMode), the checks of n, the gradient, the bodies (BodyFromGrid's enclosed

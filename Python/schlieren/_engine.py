@@ -397,6 +397,22 @@ def index_model(settings, arrays, valid=None):
     return out, [w for w in _text(report.value).split("\n") if w]
 
 
+def index_choices(settings, present, fallback_input=""):
+    """RefractiveIndex's choice of the model and of the arrays left automatic (the C interface's
+    schlieren_index_choices, the C++ filter's): `settings` the proxy's properties by name (Model,
+    Automatic included; the arrays per role, "" automatic), `present` the input's array names,
+    `fallback_input` the input array where nothing chooses one. Returns {"model", "holds_n",
+    "arrays": {property: name}, "notes": [...]}; Model Automatic with no name to go by raises
+    EngineError with the C++ filter's message."""
+    f = _sig("schlieren_index_choices", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
+             ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p))
+    text = "\n".join("%s=%s" % (key, _value_text(x)) for key, x in settings.items()).encode()
+    report = ctypes.c_char_p()
+    _check(f(text, "\n".join(present).encode(), (fallback_input or "").encode(),
+             ctypes.byref(report)))
+    return json.loads(_text(report.value))
+
+
 def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, cell_arrays=(),
                 notes=()):
     """RefractiveIndex's work once the input is on a grid (the C interface's

@@ -622,10 +622,13 @@ class RefractiveIndex(_Properties):
     """n - 1 from CFD fields by every index model of the engine (Passthrough, GladstoneDale,
     GladstoneDaleMixture, IdealGas, Ciddor), resampled onto an image as needed.
 
-    Model Automatic chooses as the C++ filter does: Passthrough on an array named as n - 1, else
-    GladstoneDale on one named as a density, else IdealGas on a temperature and a pressure, else
-    Passthrough of n; a named InputArray decides by its name. An empty array property takes the
-    first array named as what it holds (the C++ filter's names).
+    Model Automatic chooses as the C++ filter does, by the same engine function
+    (schlieren_index_choices): Passthrough on an array named as n - 1, else GladstoneDale on one
+    named as a density, else IdealGas on a temperature and a pressure, else Passthrough of n; a
+    named InputArray decides by its name. An empty array property takes the first array named as
+    what it holds (the C++ filter's names). The work on the grid (the model, the ambient fill, the
+    gradient, the bodies, the field data) is the engine's schlieren_index_field, the C++
+    filter's.
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
     names: SelectInputArray is InputArray). Symmetry Planar (a 2D plane extruded over Span) and
@@ -680,13 +683,6 @@ class RefractiveIndex(_Properties):
                     "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray",
                     "CO2FromArray"} | set(_model_settings)
     _implemented_entries = {}
-    # the names an empty array property takes, in order (the C++ filter's, lower case)
-    _candidates = dict(TemperatureArray=("temperature", "temp", "t", "static_temperature",
-                                         "t_static"),
-                       PressureArray=("pressure", "pres", "press", "p", "static_pressure",
-                                      "p_static"),
-                       MixtureFractionArray=("mixture_fraction", "mixturefraction", "f", "z"))
-
     def _check(self, name, value):
         value = _Properties._check(self, name, value)
         if name.endswith("Array") and isinstance(value, (list, tuple)):
@@ -760,85 +756,22 @@ class RefractiveIndex(_Properties):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
 
-    # what a name says an array holds (lower case, in order of preference: the C++ filter's)
-    _kinds = dict(n_minus_1=("n_minus_1", "nminus1", "n-1", "refractivity"),
-                  n=("n", "refractive_index", "refractiveindex", "index_of_refraction"),
-                  density=("density", "rho", "dens", "mass_density"),
-                  temperature=_candidates["TemperatureArray"],
-                  pressure=_candidates["PressureArray"])
-
-    @classmethod
-    def _kind_of(cls, name):
-        low = name.lower()
-        return next((k for k, v in cls._kinds.items() if low in v), None)
-
-    @classmethod
-    def _find(cls, names, kind):
-        """The first of `names` named as `kind` (by the order of preference), or ""."""
-        for want in cls._kinds[kind]:
-            for n in names:
-                if n.lower() == want:
-                    return n
-        return ""
-
-    def _choose(self, names, pd):
-        """Model Automatic's choice and the input array, as the C++ filter's ChooseModel and its
-        automatic arrays: (model, input array name or None, holds n, {property: array name})."""
-        model, name, holds_n, chosen = self.Model, self.InputArray, bool(self.PassthroughHoldsN), {}
-        if model == "Automatic":
-            holds_n = False
-            if name:
-                kind = self._kind_of(name)
-                model = {"n": "Passthrough", "density": "GladstoneDale", "temperature": "IdealGas",
-                         "pressure": "IdealGas"}.get(kind, "Passthrough")
-                holds_n = kind == "n"
-                if kind in ("temperature", "pressure"):
-                    chosen[kind.capitalize() + "Array"] = name
-            elif self._find(names, "n_minus_1"):
-                model, name = "Passthrough", self._find(names, "n_minus_1")
-            elif self._find(names, "density"):
-                model, name = "GladstoneDale", self._find(names, "density")
-            elif self._find(names, "temperature") and self._find(names, "pressure"):
-                model = "IdealGas"
-            elif self._find(names, "n"):
-                model, name, holds_n = "Passthrough", self._find(names, "n"), True
-            else:
-                raise EngineError(
-                    "Model Automatic found no array named as a refractive index (n_minus_1, n), "
-                    "a density (density, rho) or a temperature and a pressure (temperature, Temp, "
-                    "T; pressure, Pres, p) among the input's arrays: %s. Choose the Model and its "
-                    "arrays." % (", ".join(names) or "none"))
-        if model in ("IdealGas", "Ciddor"):
-            return model, None, holds_n, chosen
-        if not name and model == "Passthrough":
-            name = self._find(names, "n" if holds_n else "n_minus_1")
-        elif not name:
-            name = self._find(names, "density")
-        if not name:
-            # no name known: the active point scalars, else the first point array
-            scalars = pd.GetScalars()
-            name = scalars.GetName() if scalars is not None and scalars.GetName() else \
-                (names[0] if names else "n_minus_1")
-        return model, name, holds_n, chosen
-
     # the array properties by role, in the engine's order (schlieren_index_field)
     _role_properties = ("InputArray", "TemperatureArray", "PressureArray", "MixtureFractionArray",
                         "Species1Array", "Species2Array", "Species3Array", "Species4Array",
                         "HumidityArray", "CO2Array")
 
-    def _role_arrays(self, name, chosen, names):
-        """The array chosen per role (property -> name, "" none): as chosen, else Model
-        Automatic's choice, else the first array named as what the role holds (the C++ filter's
-        names); InputArray is `name` (_choose's)."""
-        lower = {n.lower(): n for n in reversed(names)}
-        roles = {}
-        for prop in self._role_properties:
-            value = chosen.get(prop) or getattr(self, prop) or ""
-            if not value:
-                value = next((lower[c] for c in self._candidates.get(prop, ()) if c in lower), "")
-            roles[prop] = value
-        roles["InputArray"] = name or ""
-        return roles
+    def _note(self, note):
+        """An information note in the output window, once for the same settings (the C++
+        filter's SayNote: time steps repeat none)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        said = self.__dict__.get("_notes_said")
+        if said is None or said[0] != self.GetMTime():
+            said = (self.GetMTime(), set())
+            object.__setattr__(self, "_notes_said", said)
+        if note not in said[1]:
+            said[1].add(note)
+            vtkOutputWindow.GetInstance().DisplayText(note + "\n")
 
     def _sampling_bounds(self):
         """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
@@ -959,14 +892,27 @@ class RefractiveIndex(_Properties):
             pd = image.GetPointData()
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
             names = [n for n in names if n and n != "vtkValidPointMask"]
-            model, name, holds_n, chosen = self._choose(names, pd)
+            # the model and the arrays left automatic: the engine's choice (the C++ filter's),
+            # from the names present (point arrays, then cell arrays)
+            cd = image.GetCellData()
+            cells = [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())
+                     if cd.GetArray(i) is not None and cd.GetArrayName(i)]
+            scalars = pd.GetScalars()
+            fallback = scalars.GetName() if scalars is not None and scalars.GetName() else \
+                (names[0] if names else "")
+            settings = {k: self._values[k] for k in self._model_settings}
+            settings.update({k: self._values[k] or "" for k in self._role_properties})
+            settings["Model"] = self.Model
+            choice = _engine.index_choices(settings, names + [c for c in cells if c not in names],
+                                           fallback)
+            for note in choice["notes"]:
+                self._note(note)
             # the engine's work on the grid (schlieren_index_field, the C++ filter's): the
             # arrays by role, the model, the points outside the flow, the gradient, the bodies,
             # the field data
-            settings = {k: self._values[k] for k in self._model_settings}
-            settings.update(self._role_arrays(name, chosen, names))
+            settings.update(choice["arrays"])
             settings.update(
-                Model=model, PassthroughHoldsN=int(holds_n),
+                Model=choice["model"], PassthroughHoldsN=int(choice["holds_n"]),
                 HumidityFromArray=int(self.HumidityFromArray), CO2FromArray=int(self.CO2FromArray),
                 AmbientMode=self.AmbientMode, AmbientValue=float(self.AmbientValue),
                 BodyFromGrid=int(self.BodyFromGrid), BodyWallFaces=self.BodyWallFaces,
@@ -975,7 +921,6 @@ class RefractiveIndex(_Properties):
             if resampled and valid is not None and not valid.any():
                 settings["CellsDescription"] = _describe_cells(_internal_mesh(data))
             arrays, active = {}, -1
-            scalars = pd.GetScalars()
             for i in range(pd.GetNumberOfArrays()):
                 a = pd.GetArray(i)
                 if a is None or a.GetName() == "vtkValidPointMask" or a.GetName() in arrays:
@@ -983,13 +928,11 @@ class RefractiveIndex(_Properties):
                 if scalars is not None and a is scalars:
                     active = len(arrays)
                 arrays[a.GetName() or ""] = numpy_support.vtk_to_numpy(a)
-            cd = image.GetCellData()
-            cells = [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())
-                     if cd.GetArray(i) is not None and cd.GetArrayName(i)]
             dims = list(image.GetDimensions())
             try:
                 n1, grad, solid, report = _engine.index_field(
-                    settings, dims, image.GetSpacing(), arrays, valid, active, cells)
+                    settings, dims, image.GetSpacing(), arrays, valid, active, cells,
+                    choice["notes"])
             except EngineError as e:
                 report = getattr(e, "report", {})
                 if report.get("model_done"):

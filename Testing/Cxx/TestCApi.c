@@ -269,6 +269,32 @@ int main(void)
             &rep) != 0 && strstr(schlieren_last_error(), "AmbientMode 'Sideways' is not one of") != NULL,
       "index_field: a bad AmbientMode named: %s", schlieren_last_error());
   }
+  {
+    /* Model Automatic's choice and the arrays found by name (schlieren_index_choices) */
+    const char* rep = NULL;
+    CHECK(schlieren_index_choices("Model=Automatic", "x\nRho\nT", NULL, &rep) == 0 &&
+          strstr(rep, "\"model\": \"GladstoneDale\"") && strstr(rep, "\"InputArray\": \"Rho\"") &&
+          strstr(rep, "RefractiveIndex: Model Automatic chose GladstoneDale: the input has a "
+                      "density ('Rho'). Gas: air (Gas Custom, whose defaults are air's: K = "
+                      "0.0002256 m^3/kg; set Gas for another gas). Density 'Rho' read in kg/m^3 "
+                      "times DensityReference (1)"),
+      "index_choices: Automatic takes Rho as a density, with the C++ filter's note (%s; %s)",
+      rep ? rep : "", schlieren_last_error());
+    CHECK(schlieren_index_choices("Model=IdealGas", "Temp\nPres\nU", NULL, &rep) == 0 &&
+          strstr(rep, "\"TemperatureArray\": \"Temp\", \"PressureArray\": \"Pres\"") &&
+          strstr(rep, "RefractiveIndex: TemperatureArray 'Temp', found by name."),
+      "index_choices: IdealGas finds Temp and Pres by name (%s; %s)", rep ? rep : "",
+      schlieren_last_error());
+    CHECK(schlieren_index_choices("Model=Automatic", "a\nb", "a", &rep) != 0 &&
+          strcmp(schlieren_last_error(),
+            "Model Automatic found no array named as a refractive index (n_minus_1, n), a density "
+            "(density, rho) or a temperature and a pressure (temperature, Temp, T; pressure, Pres, "
+            "p) among the input's arrays: a, b. Choose the Model and its arrays.") == 0,
+      "index_choices: no name to go by, the C++ filter's message: %s", schlieren_last_error());
+    CHECK(schlieren_index_choices("Model=Passthrough", "a\nb", "b", &rep) == 0 &&
+          strstr(rep, "\"InputArray\": \"b\""),
+      "index_choices: nothing chosen or named, the fallback (the active scalars) (%s)", rep ? rep : "");
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

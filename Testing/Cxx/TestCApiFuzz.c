@@ -74,6 +74,7 @@ enum
   F_THREADS,
   F_SAMPLE,
   F_INDEX_FIELD,
+  F_INDEX_CHOICES,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -81,7 +82,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "photograph", "version/properties/device",
-  "two threads, one session", "sample_cells", "index_field" };
+  "two threads, one session", "sample_cells", "index_field", "index_choices" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1272,6 +1273,26 @@ static void random_index_field_case(int k)
   free(solid);
 }
 
+/* schlieren_index_choices with random settings and names */
+static void random_index_choices_case(int k)
+{
+  static const char* settings[] = { "", "Model=Automatic", "Model=automatic", "Model=IdealGas",
+    "Model=Passthrough\nPassthroughHoldsN=1", "Model=Automatic\nInputArray=T",
+    "Model=Automatic\nGas=He", "Model=Automatic\nGas=Unobtainium", "Model=GladstoneDaleMixture",
+    "Model=Automatic\nTemperatureUnit=F", "Model=Ciddor\nPressureUnit=bar", "Wavelength=x",
+    "Model=IdealGas\nIdealGasComposition=MixtureFraction", NULL, "Model" };
+  static const char* present[] = { "", "rho", "T\np", "n\nx", "N_MINUS_1\nrho", "a\nb", NULL,
+    "\n\n", "Temp\nPres\nF" };
+  static const char* fallback[] = { NULL, "", "a", "rho" };
+  char what[64];
+  const char* report = NULL;
+  int rc;
+  snprintf(what, sizeof(what), "index_choices case %d", k);
+  rc = schlieren_index_choices(settings[below(15)], present[below(9)], fallback[below(4)],
+    below(2) ? &report : NULL);
+  outcome(F_INDEX_CHOICES, rc, schlieren_last_error(), what);
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -1302,6 +1323,8 @@ int main(int argc, char** argv)
     random_sample_case();
   for (k = 0; k < cases / 4; ++k)
     random_index_field_case((int)k);
+  for (k = 0; k < cases / 8; ++k)
+    random_index_choices_case((int)k);
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");
