@@ -698,20 +698,7 @@ bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
     return false;
   }
   const std::size_t marked = schlieren::InvalidRegionsBesideWalls(dims, valid, rim.data(), solid);
-  std::ostringstream m;
-  m << "RefractiveIndex: BodyFromGrid: of the mesh's "
-    << report.WallFaces + report.FlowFaces + report.StillFaces << " boundary faces, "
-    << report.WallFaces << " are walls (the flow runs along them: |" << report.Velocity
-    << ".n| < " << 100 * schlieren::walls::WallFlux << " % of |" << report.Velocity << "| there"
-    << (report.TurnedFaces ? ", or " + std::to_string(report.TurnedFaces) +
-           " in groups of a few between walls, where the flow turns onto a wall"
-                           : std::string())
-    << "), "
-    << report.FlowFaces << " are crossed by the flow, " << report.StillFaces
-    << " have fluid at rest beside them; " << marked
-    << " grid points of the voids beside them (not enclosed by the flow, on the domain's edge) "
-       "are taken as a body.";
-  note = m.str();
+  note = schlieren::walls::BesideWallsNote(report, marked);
   return marked > 0;
 }
 

@@ -9,6 +9,7 @@
 #include "SchlierenEngine.h"
 #include "SchlierenLimits.h"
 #include "SchlierenIndexField.h"
+#include "SchlierenWallFaces.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenNumerical.h"
 #include "SchlierenParallel.h"
@@ -1568,7 +1569,7 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
   int number_of_arrays, const char* const* names, const int* components, const int* value_bytes,
   const void* const* values, const int64_t* value_counts, int active_scalars,
   const char* cell_arrays, const char* notes, const unsigned char* valid, int64_t valid_count,
-  float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
+  const unsigned char* rim, int64_t rim_count, float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
   unsigned char* solid, int64_t solid_count, const char** report)
 {
   if (report)
@@ -1581,6 +1582,7 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
     CheckFinite3(f, "spacing", spacing);
     const std::string per = "a grid of " + GridText(dims) + " points";
     CheckArray(f, "valid", valid, valid_count, points, per, true, "bytes");
+    CheckArray(f, "rim", rim, rim_count, points, per, true, "bytes");
     CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, points, per, false);
     CheckArray(f, "grad3", grad3, grad3_count, 3 * points, per + " (3 a point)", false);
     CheckArray(f, "solid", solid, solid_count, points, per, false, "bytes");
@@ -1594,7 +1596,8 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
            "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
            "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray", "CO2FromArray",
            "AmbientMode", "AmbientValue", "BodyFromGrid", "BodyWallFaces", "SolidArray",
-           "Resampled", "UseSamplingBounds", "CellsDescription" })
+           "Resampled", "UseSamplingBounds", "CellsDescription", "WallVelocity",
+           "WallFaceCounts" })
       known.emplace_back(extra);
     const std::map<std::string, std::string> p = SettingLines(f, settings, known);
     auto text = [&](const char* name, const char* fallback) {
@@ -1661,6 +1664,28 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
           g.Double = static_cast<const double*>(values[i]);
       }
       in.PointArrays.push_back(g);
+    }
+    if (rim)
+    {
+      // the voids beside the mesh's walls: the rim's kinds the front end found (its nearest
+      // boundary faces' kinds, schlieren_wall_faces)
+      schlieren::walls::RimReport r;
+      r.Velocity = text("WallVelocity", "U");
+      const std::vector<double> c = NumbersOf("WallFaceCounts", text("WallFaceCounts", "0 0 0 0"), 4);
+      for (double v : c)
+        if (!(v >= 0) || v != std::floor(v) || v > 1e15)
+          throw schlieren::Error(std::string(f) + ": WallFaceCounts takes 4 counts (walls, "
+                                                  "crossed by the flow, at rest, turned).");
+      r.WallFaces = static_cast<std::size_t>(c[0]);
+      r.FlowFaces = static_cast<std::size_t>(c[1]);
+      r.StillFaces = static_cast<std::size_t>(c[2]);
+      r.TurnedFaces = static_cast<std::size_t>(c[3]);
+      const int* d = dims;
+      in.BesideWalls = [r, rim, d](const unsigned char* v, unsigned char* solidOut, std::string& note) {
+        const std::size_t marked = schlieren::InvalidRegionsBesideWalls(d, v, rim, solidOut);
+        note = schlieren::walls::BesideWallsNote(r, marked);
+        return marked > 0;
+      };
     }
     in.ActiveScalars = active_scalars >= 0 && active_scalars < number_of_arrays ? active_scalars : -1;
     in.CellArrayNames = Lines(cell_arrays);
@@ -1741,6 +1766,53 @@ int schlieren_index_choices(
     for (int r = 0; r < schlieren::NumberOfRoles; ++r)
       Returned += std::string(r ? ", " : "") + Json(roles[r]) + ": " + Json(out.Arrays[r]);
     Returned += "}, \"notes\": " + JsonList(out.Notes) + "}";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
+int schlieren_wall_faces(int64_t faces, const int64_t* offsets, int64_t offsets_count,
+  const int64_t* connectivity, int64_t connectivity_count, int64_t points, const double* normals,
+  int64_t normals_count, const double* velocity, int64_t velocity_count, double largest_speed,
+  int ignore_axis, const char* velocity_name, unsigned char* kinds, int64_t kinds_count,
+  const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_wall_faces";
+    if (faces < 0 || points < 0)
+      throw schlieren::Error(std::string(f) + ": faces is " + std::to_string(faces) +
+        " and points " + std::to_string(points) + ": counts (>= 0).");
+    const std::string per = std::to_string(faces) + " faces";
+    CheckArray(f, "offsets", offsets, offsets_count, faces + 1, per + " (one more than the faces)", false);
+    CheckArray(f, "normals", normals, normals_count, 3 * faces, per + " (3 a face)", false);
+    CheckArray(f, "velocity", velocity, velocity_count, 3 * faces, per + " (3 a face)", false);
+    CheckArray(f, "kinds", kinds, kinds_count, faces, per, false, "bytes");
+    if (offsets[0] != 0)
+      throw schlieren::Error(std::string(f) + ": offsets[0] is " + std::to_string(offsets[0]) + ": 0.");
+    for (int64_t i = 0; i < faces; ++i)
+      if (offsets[i + 1] < offsets[i])
+        throw schlieren::Error(std::string(f) + ": offsets decrease at face " + std::to_string(i) + ".");
+    CheckArray(f, "connectivity", connectivity, connectivity_count, offsets[faces],
+      "offsets[faces]", offsets[faces] == 0);
+    for (int64_t k = 0; k < connectivity_count; ++k)
+      if (connectivity[k] < 0 || connectivity[k] >= points)
+        throw schlieren::Error(std::string(f) + ": connectivity[" + std::to_string(k) + "] is " +
+          std::to_string(connectivity[k]) + ": a point index below " + std::to_string(points) + ".");
+    if (!std::isfinite(largest_speed) || ignore_axis < -1 || ignore_axis > 2)
+      throw schlieren::Error(std::string(f) + ": largest_speed must be finite and ignore_axis -1, "
+                                              "0, 1 or 2.");
+    schlieren::walls::RimReport r;
+    r.Velocity = velocity_name ? velocity_name : "U";
+    const std::vector<unsigned char> k = schlieren::walls::ClassifyFaces(
+      static_cast<std::size_t>(faces), offsets, connectivity, static_cast<std::size_t>(points),
+      normals, velocity, largest_speed, ignore_axis, r);
+    std::copy(k.begin(), k.end(), kinds);
+    Returned = "{\"velocity\": " + Json(r.Velocity) + ", \"wall_faces\": " +
+      std::to_string(r.WallFaces) + ", \"flow_faces\": " + std::to_string(r.FlowFaces) +
+      ", \"still_faces\": " + std::to_string(r.StillFaces) + ", \"turned_faces\": " +
+      std::to_string(r.TurnedFaces) + "}";
     if (report)
       *report = Returned.c_str();
   });
@@ -2042,6 +2114,36 @@ int schlieren_symmetry_plan(const char* settings, const double bounds[6], const 
       Returned += "warning: " + w + "\n";
     if (report)
       *report = Returned.c_str();
+  });
+}
+
+int schlieren_symmetry_to_mesh(const double geometry[8], const int dims[3],
+  const double origin[3], const double spacing[3], const double* points, int64_t points_count,
+  double* at, int64_t at_count)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_symmetry_to_mesh";
+    if (!geometry)
+      throw schlieren::Error(std::string(f) + ": geometry must be given.");
+    GridPoints(f, dims);
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    if (points_count < 0 || points_count % 3 != 0)
+      throw schlieren::Error(std::string(f) + ": points holds " + std::to_string(points_count) +
+        " values: give 3 per point (x, y, z).");
+    CheckArray(f, "points", points, points_count, points_count, "the points", true);
+    CheckArray(f, "at", at, at_count, points_count, "the points (3 a point)", points_count == 0);
+    schlieren::SymmetryPlan plan;
+    try
+    {
+      plan = schlieren::SymmetryPlan::FromGeometry(geometry, dims, origin, spacing);
+    }
+    catch (const schlieren::Error& e)
+    {
+      throw schlieren::Error(std::string(f) + ": " + e.what());
+    }
+    for (int64_t i = 0; i < points_count / 3; ++i)
+      schlieren::SymmetryToMesh(plan, points + 3 * i, at + 3 * i);
   });
 }
 

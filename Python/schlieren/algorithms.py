@@ -295,6 +295,111 @@ def _cell_leaves(data):
     return [leaf for leaf in _leaves(data) if leaf.GetNumberOfCells() > 0]
 
 
+def _wall_rim(mesh, dims, origin, spacing, valid, ignore_axis, plan=None):
+    """BodyFromGrid's voids beside a mesh's walls, the front end's part (as the C++ filter's
+    schlieren::walls::ClassifyRim): the mesh's boundary faces with their normals and the velocity
+    beside them (VTK's surface filter), their kinds (the engine's, schlieren_wall_faces), and for
+    every invalid grid point next to a valid one the kind of its nearest face (VTK's static cell
+    locator, at the point where the grid sampled the mesh: the engine's SymmetryToMesh for a
+    symmetric `plan`). Returns (rim uint8 a grid point, the faces' report), or None where the mesh
+    has no velocity (a 3-component point or cell array named U or velocity) or no face."""
+    from vtkmodules.vtkCommonCore import vtkIdList, reference
+    from vtkmodules.vtkCommonDataModel import (vtkCellArray, vtkGenericCell, vtkPolyData,
+                                               vtkPolygon, vtkStaticCellLocator)
+    from vtkmodules.vtkFiltersGeometry import vtkDataSetSurfaceFilter
+    if not isinstance(mesh, vtkDataSet) or mesh.GetNumberOfCells() == 0:
+        return None
+
+    def velocity(fd):
+        for i in range(fd.GetNumberOfArrays()):
+            a = fd.GetArray(i)
+            if a is not None and a.GetName() and a.GetNumberOfComponents() == 3 and \
+                    a.GetName().lower() in ("u", "velocity"):
+                return a
+        return None
+    cell_u = velocity(mesh.GetCellData())  # the cell's own value beside a face, before points'
+    point_u = None if cell_u is not None else velocity(mesh.GetPointData())
+    U = cell_u if cell_u is not None else point_u
+    if U is None or U.GetNumberOfTuples() == 0:
+        return None
+    u3 = numpy_support.vtk_to_numpy(U).astype(np.float64).reshape(-1, 3)
+    largest = float(np.sqrt(u3[:, 0] * u3[:, 0] + u3[:, 1] * u3[:, 1] + u3[:, 2] * u3[:, 2]).max())
+    if not largest > 0:
+        return None
+    surface = vtkDataSetSurfaceFilter()
+    surface.SetInputData(mesh)
+    surface.PassThroughCellIdsOn()
+    surface.PassThroughPointIdsOn()
+    surface.Update()
+    faces = surface.GetOutput()
+    cell_ids = faces.GetCellData().GetArray(surface.GetOriginalCellIdsName())
+    point_ids = faces.GetPointData().GetArray(surface.GetOriginalPointIdsName())
+    cell_ids = None if cell_ids is None else numpy_support.vtk_to_numpy(cell_ids)
+    point_ids = None if point_ids is None else numpy_support.vtk_to_numpy(point_ids)
+    count, points, ids = faces.GetNumberOfCells(), faces.GetPoints(), vtkIdList()
+    offsets, connectivity = [0], []
+    normals, speeds = np.zeros((count, 3)), np.zeros((count, 3))
+    for c in range(count):
+        faces.GetCellPoints(c, ids)
+        m = ids.GetNumberOfIds()
+        face = [ids.GetId(k) for k in range(m)]
+        connectivity.extend(face)
+        offsets.append(len(connectivity))
+        if m < 3:
+            continue
+        n = [0.0, 0.0, 0.0]
+        vtkPolygon.ComputeNormal(points, m, face, n)
+        normals[c] = n
+        if cell_u is not None and cell_ids is not None:
+            speeds[c] = u3[cell_ids[c]]
+        elif point_u is not None and point_ids is not None:
+            u = [0.0, 0.0, 0.0]
+            for q in face:
+                v = u3[point_ids[q]]
+                for a in range(3):
+                    u[a] += float(v[a]) / m
+            speeds[c] = u
+    kinds, report = _engine.wall_faces(offsets, connectivity, faces.GetNumberOfPoints(), normals,
+                                       speeds, largest, ignore_axis, U.GetName())
+    kept, polys, kind = vtkPolyData(), vtkCellArray(), []
+    kept.SetPoints(points)
+    for c in range(count):
+        if kinds[c] != 255:
+            faces.GetCellPoints(c, ids)
+            polys.InsertNextCell(ids)
+            kind.append(int(kinds[c]))
+    if not kind:
+        return None
+    kept.SetPolys(polys)
+    locator = vtkStaticCellLocator()
+    locator.SetDataSet(kept)
+    locator.BuildLocator()
+    # the invalid points next to a valid one (6 neighbours), x fastest
+    nx, ny, nz = dims
+    ok = np.asarray(valid).reshape(nz, ny, nx) != 0
+    beside = np.zeros_like(ok)
+    beside[:, :, 1:] |= ok[:, :, :-1]
+    beside[:, :, :-1] |= ok[:, :, 1:]
+    beside[:, 1:, :] |= ok[:, :-1, :]
+    beside[:, :-1, :] |= ok[:, 1:, :]
+    beside[1:, :, :] |= ok[:-1, :, :]
+    beside[:-1, :, :] |= ok[1:, :, :]
+    where = np.flatnonzero(~ok & beside)
+    k, j, i = np.unravel_index(where, (nz, ny, nx))
+    x = np.stack([origin[0] + i * spacing[0], origin[1] + j * spacing[1],
+                  origin[2] + k * spacing[2]], axis=1)
+    at = x if plan is None else _engine.symmetry_to_mesh(plan, x)
+    rim = np.zeros(nx * ny * nz, np.uint8)
+    cell, closest = vtkGenericCell(), [0.0, 0.0, 0.0]
+    found, sub, d2 = reference(-1), reference(0), reference(0.0)
+    for p, point in zip(where, at):
+        found.set(-1)
+        locator.FindClosestPoint(point.tolist(), closest, cell, found, sub, d2)
+        if found.get() >= 0:
+            rim[p] = kind[found.get()]
+    return rim, report
+
+
 def _describe_cells(data):
     """"N cells: a 3D, b 2D (faces), c 1D or 0D" of a data set or a composite one's leaves (the
     C++ filter's words, for the message where no grid point lies in a cell)."""
@@ -634,8 +739,9 @@ class RefractiveIndex(_Properties):
     names: SelectInputArray is InputArray). Symmetry Planar (a 2D plane extruded over Span) and
     Axisymmetric (an r-z half plane revolved about SymmetryAxis, or an OpenFOAM wedge about its
     own axis: AxisFromWedge) are the engine's (schlieren_symmetry_plan, _samples, _expand, as the
-    C++ filter's): this front end samples the mesh where the engine says. Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), a solid
-    array (SolidArray, an upstream `solid`); not from a mesh's walls or a body surface input."""
+    C++ filter's): this front end samples the mesh where the engine says. Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), from the
+    voids beside a mesh's walls where it has a velocity (the engine's kinds of its faces), a solid
+    array (SolidArray, an upstream `solid`); not from a body surface input."""
 
     _defaults = dict(
         Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
@@ -871,6 +977,7 @@ class RefractiveIndex(_Properties):
                                   % data.GetClassName())
             symmetric = self.Symmetry != "None"
             resampled = symmetric or not isinstance(data, vtkImageData)
+            plan = None
             if symmetric:
                 image, valid, plan = self._symmetric_input(data)
                 for w in plan["warnings"]:
@@ -920,6 +1027,17 @@ class RefractiveIndex(_Properties):
                 UseSamplingBounds=int(self.UseSamplingBounds))
             if resampled and valid is not None and not valid.any():
                 settings["CellsDescription"] = _describe_cells(_internal_mesh(data))
+            rim = None
+            if self.BodyFromGrid and resampled and valid is not None and not valid.all():
+                # the voids beside the mesh's walls, where it has a velocity (the C++ filter's)
+                found = _wall_rim(_internal_mesh(data), list(image.GetDimensions()),
+                                  image.GetOrigin(), image.GetSpacing(), valid,
+                                  -1 if plan is None else int(plan["geometry"][1]), plan)
+                if found is not None:
+                    rim, faces = found
+                    settings["WallVelocity"] = faces["velocity"]
+                    settings["WallFaceCounts"] = [faces["wall_faces"], faces["flow_faces"],
+                                                  faces["still_faces"], faces["turned_faces"]]
             arrays, active = {}, -1
             for i in range(pd.GetNumberOfArrays()):
                 a = pd.GetArray(i)
@@ -932,7 +1050,7 @@ class RefractiveIndex(_Properties):
             try:
                 n1, grad, solid, report = _engine.index_field(
                     settings, dims, image.GetSpacing(), arrays, valid, active, cells,
-                    choice["notes"])
+                    choice["notes"], rim)
             except EngineError as e:
                 report = getattr(e, "report", {})
                 if report.get("model_done"):
@@ -943,6 +1061,8 @@ class RefractiveIndex(_Properties):
             return self._fail(str(e))
         for w in report["warnings"]:
             self._warn(w)
+        for note in report["notes"]:
+            self._note(note)
         if report["solid_note"]:
             self._warn(report["solid_note"])
         out.ShallowCopy(image)

@@ -75,6 +75,7 @@ enum
   F_SAMPLE,
   F_INDEX_FIELD,
   F_INDEX_CHOICES,
+  F_WALL_FACES,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -82,7 +83,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "photograph", "version/properties/device",
-  "two threads, one session", "sample_cells", "index_field", "index_choices" };
+  "two threads, one session", "sample_cells", "index_field", "index_choices", "wall_faces" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1198,17 +1199,19 @@ static void random_index_field_case(int k)
     "Model=Ciddor\nTemperatureArray=a\nPressureArray=b\nHumidityFromArray=2",
     "Model=Passthrough\nInputArray=a\nSolidArray=b\nBodyWallFaces=1 0 1", "Bogus=1",
     "Model=GladstoneDale\nInputArray=a\nAmbientMode=DomainEdgeMedian\nResampled=1",
-    "Model=GladstoneDale\nInputArray=c\nSolidArray=c" };
+    "Model=GladstoneDale\nInputArray=c\nSolidArray=c",
+    "Model=GladstoneDale\nInputArray=a\nResampled=1\nWallFaceCounts=3 1 0 0\nWallVelocity=U",
+    "Model=GladstoneDale\nWallFaceCounts=-1 1 0 nan" };
   static const char* names[] = { "a", "b", "c", "", NULL };
-  static const int good[] = { 1, 2, 3, 6, 10 };
+  static const int good[] = { 1, 2, 3, 6, 10, 12 };
   char what[160];
   int dims[3], valid, i, rc;
-  int64_t needed, counts[3], c_valid, c_n1, c_grad, c_solid;
+  int64_t needed, counts[3], c_valid, c_rim, c_n1, c_grad, c_solid;
   double h[3];
   const char* nm[3];
   int comps[3], bytes[3];
   void* values[3];
-  unsigned char *v, *solid;
+  unsigned char *v, *rim, *solid;
   float *n1, *grad;
   const char* report = NULL;
   int arrays = below(4);
@@ -1257,17 +1260,22 @@ static void random_index_field_case(int k)
   v = c_valid ? (sane ? calloc((size_t)c_valid, 1) : buffer(c_valid, 1, 1)) : NULL;
   for (i = 0; v && c_valid <= 1000000 && i < c_valid; ++i)
     v[i] = (unsigned char)(below(4) != 0);
+  c_rim = below(3) ? 0 : sane ? needed : grid_count(needed, valid);
+  rim = c_rim ? (sane ? calloc((size_t)c_rim, 1) : buffer(c_rim, 1, 1)) : NULL;
+  for (i = 0; rim && c_rim <= 1000000 && i < c_rim; ++i)
+    rim[i] = (unsigned char)below(3);
   n1 = buffer(c_n1, sizeof(float), !sane);
   grad = buffer(c_grad, sizeof(float), !sane);
   solid = buffer(c_solid, 1, !sane);
-  rc = schlieren_index_field(settings[sane ? good[below(5)] : below(12)], dims, h, arrays, nm, comps, bytes,
+  rc = schlieren_index_field(settings[sane ? good[below(6)] : below(14)], dims, h, arrays, nm, comps, bytes,
     (const void* const*)values, counts, below(4) - 1, below(2) ? "c\nd" : NULL,
-    below(2) ? "a note" : NULL, v, c_valid, n1, c_n1, grad, c_grad, solid, c_solid,
+    below(2) ? "a note" : NULL, v, c_valid, rim, c_rim, n1, c_n1, grad, c_grad, solid, c_solid,
     below(2) ? &report : NULL);
   outcome(F_INDEX_FIELD, rc, schlieren_last_error(), what);
   for (i = 0; i < arrays; ++i)
     free(values[i]);
   free(v);
+  free(rim);
   free(n1);
   free(grad);
   free(solid);
@@ -1291,6 +1299,54 @@ static void random_index_choices_case(int k)
   rc = schlieren_index_choices(settings[below(15)], present[below(9)], fallback[below(4)],
     below(2) ? &report : NULL);
   outcome(F_INDEX_CHOICES, rc, schlieren_last_error(), what);
+}
+
+/* schlieren_wall_faces with random faces, lengths and indices */
+static void random_wall_faces_case(int k)
+{
+  char what[64];
+  const char* report = NULL;
+  int64_t faces = below(8) ? below(12) : random_count(5), i, total;
+  int64_t points = below(8) ? 1 + below(20) : random_count(10);
+  int64_t *offsets, *conn, c_off, c_conn, c_n, c_u, c_k;
+  double *normals, *u;
+  unsigned char* kinds;
+  int rc;
+  if (faces < 0 || faces > 1000)
+    faces = below(2) ? -1 : 3;
+  c_off = below(6) ? faces + 1 : random_count(faces + 1);
+  offsets = buffer(c_off, sizeof(int64_t), 1);
+  total = 0;
+  for (i = 0; offsets && c_off >= 0 && c_off <= 1000000 && i < c_off; ++i)
+  {
+    offsets[i] = total;
+    total += below(10) ? below(5) : -1;
+  }
+  c_conn = offsets && c_off == faces + 1 && faces >= 0 ? offsets[faces] : random_count(4);
+  if (c_conn < 0 || c_conn > 1000000)
+    c_conn = below(2) ? -1 : 4;
+  conn = buffer(c_conn, sizeof(int64_t), 1);
+  for (i = 0; conn && i < c_conn; ++i)
+    conn[i] = below(10) ? below(points > 0 && points < 1000 ? (int)points : 5) : -3;
+  c_n = below(6) ? 3 * faces : random_count(3 * faces);
+  c_u = below(6) ? 3 * faces : random_count(3 * faces);
+  c_k = below(6) ? faces : random_count(faces);
+  normals = buffer(c_n, sizeof(double), 1);
+  u = buffer(c_u, sizeof(double), 1);
+  kinds = buffer(c_k, 1, 1);
+  for (i = 0; normals && c_n <= 1000000 && i < c_n; ++i)
+    normals[i] = below(10) ? uniform() - 0.5 : NAN;
+  for (i = 0; u && c_u <= 1000000 && i < c_u; ++i)
+    u[i] = below(10) ? uniform() - 0.5 : INFINITY;
+  snprintf(what, sizeof(what), "wall_faces case %d: %lld faces", k, (long long)faces);
+  rc = schlieren_wall_faces(faces, offsets, c_off, conn, c_conn, points, normals, c_n, u, c_u,
+    below(8) ? 1.0 : NAN, below(5) - 2, below(2) ? "U" : NULL, kinds, c_k, below(2) ? &report : NULL);
+  outcome(F_WALL_FACES, rc, schlieren_last_error(), what);
+  free(offsets);
+  free(conn);
+  free(normals);
+  free(u);
+  free(kinds);
 }
 
 int main(int argc, char** argv)
@@ -1325,6 +1381,8 @@ int main(int argc, char** argv)
     random_index_field_case((int)k);
   for (k = 0; k < cases / 8; ++k)
     random_index_choices_case((int)k);
+  for (k = 0; k < cases / 8; ++k)
+    random_wall_faces_case((int)k);
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");
