@@ -144,23 +144,6 @@ bool AnyRank(schlieren::Parallel& parallel, bool value)
   return parallel.Max(value ? 1.0 : 0.0) > 0.5;
 }
 
-std::string List(const std::vector<std::string>& names)
-{
-  std::ostringstream s;
-  for (std::size_t i = 0; i < names.size(); ++i)
-  {
-    s << (i ? ", " : "") << names[i];
-  }
-  return names.empty() ? std::string("none") : s.str();
-}
-
-std::string Lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 /** Names of ids and index arrays that VTK readers and filters add. */
 bool IsIdName(const std::string& name)
 {
@@ -168,7 +151,7 @@ bool IsIdName(const std::string& name)
     "pedigreeids", "vtkoriginalcellids", "vtkoriginalpointids", "vtkoriginalindices",
     "vtkcompositeindex", "vtkblockcolors", "blockid", "processid", "vtkprocessid", "element_id",
     "node_id", "cellid", "pointid", "ids" };
-  const std::string l = Lower(name);
+  const std::string l = schlieren::LowerCase(name);
   return std::find(std::begin(ids), std::end(ids), l) != std::end(ids);
 }
 
@@ -341,7 +324,7 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
         << ": ids and index arrays (ObjectId, GlobalElementId, vtkOriginalCellIds, ...) are not "
            "a density, temperature, pressure or index field. Choose the field itself (Model "
            "and its arrays); arrays present: "
-        << List(GlobalArrayNames(parallel, input)) << ".";
+        << schlieren::NameList(GlobalArrayNames(parallel, input)) << ".";
       error = m.str();
       return nullptr;
     }
@@ -366,14 +349,14 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
   vtkDataObject* converted = toPoints->GetOutputDataObject(0);
   if (!converted)
   {
-    error = "The cell arrays " + List(fromCells) + " could not be converted to point data.";
+    error = "The cell arrays " + schlieren::NameList(fromCells) + " could not be converted to point data.";
     return nullptr;
   }
   vtkSmartPointer<vtkDataObject> copy;
   copy.TakeReference(converted->NewInstance());
   copy->ShallowCopy(converted);
   notes.push_back("RefractiveIndex: the cell array" + std::string(fromCells.size() > 1 ? "s " : " ") +
-    List(fromCells) +
+    schlieren::NameList(fromCells) +
     " converted to point data (each point the mean of the cells around it, "
     "vtkCellDataToPointData), since n - 1 and its gradient are fields on points.");
   return copy;
@@ -415,7 +398,7 @@ vtkDataObject* vtkRefractiveIndex::InternalMesh(vtkDataObject* input, std::strin
       << " cells)";
     if (!others.empty())
     {
-      m << "; the other blocks (" << List(others)
+      m << "; the other blocks (" << schlieren::NameList(others)
         << ": patches, zones) are ignored, since the field lives in the cells";
     }
     m << ".";

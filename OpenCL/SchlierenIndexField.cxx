@@ -266,13 +266,6 @@ std::string NoValidPoint(const IndexFieldInput& in)
 
 namespace
 {
-std::string Lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 /** What a field's name says it holds. */
 enum class Kind
 {
@@ -319,7 +312,7 @@ const std::vector<std::string>& NamesOf(Kind kind)
 
 Kind KindOf(const std::string& name)
 {
-  const std::string l = Lower(name);
+  const std::string l = LowerCase(name);
   for (Kind k : { Kind::NMinus1, Kind::N, Kind::Density, Kind::Temperature, Kind::Pressure })
   {
     const auto& names = NamesOf(k);
@@ -338,23 +331,13 @@ std::string Find(const std::vector<std::string>& present, Kind kind)
   {
     for (const std::string& name : present)
     {
-      if (Lower(name) == want)
+      if (LowerCase(name) == want)
       {
         return name;
       }
     }
   }
   return std::string();
-}
-
-std::string List(const std::vector<std::string>& names)
-{
-  std::ostringstream s;
-  for (std::size_t i = 0; i < names.size(); ++i)
-  {
-    s << (i ? ", " : "") << names[i];
-  }
-  return names.empty() ? std::string("none") : s.str();
 }
 
 const int ModelPassthrough = 0, ModelGladstoneDale = 1, ModelGladstoneDaleMixture = 2,
@@ -439,7 +422,7 @@ std::string ChooseModel(const std::vector<std::string>& present, std::string* ar
     return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
            "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
            "pressure, Pres, p) among the input's arrays: " +
-      List(present) + ". Choose the Model and its arrays.";
+      NameList(present) + ". Choose the Model and its arrays.";
   }
   return std::string();
 }
@@ -591,6 +574,25 @@ std::string ResolveIndexChoices(const IndexChoiceInput& in, IndexChoice& out)
     notes.back() += units.str();
   }
   return std::string();
+}
+
+//------------------------------------------------------------------------------
+std::string NameList(const std::vector<std::string>& names)
+{
+  std::ostringstream s;
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    s << (i ? ", " : "") << names[i];
+  }
+  return names.empty() ? std::string("none") : s.str();
+}
+
+//------------------------------------------------------------------------------
+std::string LowerCase(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
 }
 
 //------------------------------------------------------------------------------

@@ -191,6 +191,12 @@ struct IndexChoice
  */
 std::string ResolveIndexChoices(const IndexChoiceInput& in, IndexChoice& out);
 
+/** "a, b, c", or "none" for no names (the filter's messages list the arrays present so). */
+std::string NameList(const std::vector<std::string>& names);
+
+/** `s` in lower case (ASCII), as the candidate names are compared. */
+std::string LowerCase(std::string s);
+
 /** The arrays a model reads, as roles in order. */
 std::vector<int> NeededRoles(const FieldModel& model, bool humidityFromArray, bool co2FromArray);
 
