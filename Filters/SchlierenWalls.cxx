@@ -90,27 +90,28 @@ bool ClassifyRim(vtkDataSet* mesh, const int dims[3], const double origin[3],
     faces->GetCellData()->GetArray(surface->GetOriginalCellIdsName()));
   auto* pointIds = vtkIdTypeArray::SafeDownCast(
     faces->GetPointData()->GetArray(surface->GetOriginalPointIdsName()));
-  vtkNew<vtkPolyData> kept;
-  kept->SetPoints(faces->GetPoints());
-  vtkNew<vtkCellArray> polys;
-  std::vector<unsigned char> kind;
-  std::vector<std::vector<vtkIdType>> facePoints; // each kept face's points (of `faces`)
+  // every face's points, normal and the velocity beside it: the engine decides their kinds
+  const vtkIdType count = faces->GetNumberOfCells();
+  std::vector<std::int64_t> offsets(1, 0), connectivity;
+  std::vector<double> normals(3 * static_cast<std::size_t>(count), 0.0);
+  std::vector<double> velocity(3 * static_cast<std::size_t>(count), 0.0);
   vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < faces->GetNumberOfCells(); ++c)
+  for (vtkIdType c = 0; c < count; ++c)
   {
     faces->GetCellPoints(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      connectivity.push_back(ids->GetId(k));
+    }
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
     if (ids->GetNumberOfIds() < 3)
     {
       continue;
     }
-    double n[3];
+    double* n = normals.data() + 3 * c;
     vtkPolygon::ComputeNormal(faces->GetPoints(), static_cast<int>(ids->GetNumberOfIds()),
       ids->GetPointer(0), n);
-    if (ignoreAxis >= 0 && std::abs(n[ignoreAxis]) > std::cos(25.0 * 3.14159265358979 / 180.0))
-    {
-      continue;
-    }
-    double u[3] = { 0, 0, 0 };
+    double* u = velocity.data() + 3 * c;
     if (cellU && cellIds)
     {
       cellU->GetTuple(cellIds->GetValue(c), u);
@@ -126,56 +127,27 @@ bool ClassifyRim(vtkDataSet* mesh, const int dims[3], const double origin[3],
         }
       }
     }
-    // fluid at rest says nothing (a quiescent far field as much as a wall): neither
-    const double speed = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    const bool moving = speed >= MovingFluid * umax;
-    const bool wall = moving && std::abs(u[0] * n[0] + u[1] * n[1] + u[2] * n[2]) < WallFlux * speed;
-    (wall ? report.WallFaces : moving ? report.FlowFaces : report.StillFaces) += 1;
-    kind.push_back(wall ? 1 : moving ? 2 : 0);
-    facePoints.emplace_back(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
-    polys->InsertNextCell(ids);
+  }
+  const std::vector<unsigned char> all = ClassifyFaces(static_cast<std::size_t>(count),
+    offsets.data(), connectivity.data(), static_cast<std::size_t>(faces->GetNumberOfPoints()),
+    normals.data(), velocity.data(), umax, ignoreAxis, report);
+  // the faces kept, for the nearest-face search
+  vtkNew<vtkPolyData> kept;
+  kept->SetPoints(faces->GetPoints());
+  vtkNew<vtkCellArray> polys;
+  std::vector<unsigned char> kind;
+  for (vtkIdType c = 0; c < count; ++c)
+  {
+    if (all[c] != LeftOut)
+    {
+      faces->GetCellPoints(c, ids);
+      polys->InsertNextCell(ids);
+      kind.push_back(all[c]);
+    }
   }
   if (kind.empty())
   {
     return false;
-  }
-  // A few faces the flow crosses with only walls (or fluid at rest) beside them are a wall
-  // where the flow turns onto it (a reattachment, a stagnation point): the velocity of the cell
-  // beside the face is not along the face there. An inlet or an outlet is a patch of its own.
-  {
-    std::vector<std::vector<std::size_t>> facesOf(static_cast<std::size_t>(faces->GetNumberOfPoints()));
-    for (std::size_t f = 0; f < facePoints.size(); ++f)
-      for (vtkIdType q : facePoints[f])
-        facesOf[static_cast<std::size_t>(q)].push_back(f);
-    std::vector<char> seen(kind.size(), 0);
-    std::vector<std::size_t> cluster;
-    for (std::size_t f0 = 0; f0 < kind.size(); ++f0)
-    {
-      if (kind[f0] != 2 || seen[f0])
-        continue;
-      cluster.assign(1, f0);
-      seen[f0] = 1;
-      bool besideWall = false;
-      for (std::size_t c = 0; c < cluster.size(); ++c)
-        for (vtkIdType q : facePoints[cluster[c]])
-          for (std::size_t g : facesOf[static_cast<std::size_t>(q)])
-          {
-            if (kind[g] == 2 && !seen[g])
-            {
-              seen[g] = 1;
-              cluster.push_back(g);
-            }
-            besideWall = besideWall || kind[g] == 1;
-          }
-      if (besideWall && cluster.size() <= FewFaces)
-      {
-        for (std::size_t g : cluster)
-          kind[g] = 1;
-        report.FlowFaces -= cluster.size();
-        report.WallFaces += cluster.size();
-        report.TurnedFaces += cluster.size();
-      }
-    }
   }
   kept->SetPolys(polys);
   vtkNew<vtkStaticCellLocator> locator;

@@ -8,10 +8,14 @@
  * the outside beyond a far-field boundary. The mesh's own boundary faces can: the flow does not
  * cross a wall (slip or no-slip, |U.n| small next to it), it does cross an inlet, an outlet or a
  * far field (fluid at rest next to a face tells neither). Each invalid grid point next to a valid one takes the kind of its nearest boundary
- * face; schlieren::InvalidRegionsBesideWalls then decides per void region.
+ * face; schlieren::InvalidRegionsBesideWalls then decides per void region. Here what needs VTK:
+ * the mesh's boundary faces, their normals and velocity, the nearest face; the kinds are the
+ * engine's (schlieren::walls::ClassifyFaces, OpenCL/SchlierenWallFaces.h).
  */
 #ifndef SchlierenWalls_h
 #define SchlierenWalls_h
+
+#include "SchlierenWallFaces.h" // the kinds of the faces, the report: the engine's
 
 #include <cstddef>
 #include <functional>
@@ -24,27 +28,6 @@ namespace schlieren
 {
 namespace walls
 {
-
-/** The fraction of the speed |U| next to a boundary face under which |U.n| makes it a wall. */
-constexpr double WallFlux = 0.05;
-/** Under this fraction of the largest |U| the fluid next to a face is at rest: neither kind. */
-constexpr double MovingFluid = 0.01;
-/**
- * A connected group of at most this many faces the flow crosses, with walls beside it and
- * nothing else but fluid at rest, is taken as walls: the flow turning onto a wall (a
- * reattachment, a stagnation point), where the velocity of the cell beside the face is not
- * along it.
- */
-constexpr std::size_t FewFaces = 8;
-
-/** What ClassifyRim found (for the log). */
-struct RimReport
-{
-  std::string Velocity; // the velocity array's name ("" if the mesh has none)
-  std::size_t WallFaces = 0, FlowFaces = 0, StillFaces = 0, RimPoints = 0;
-  std::size_t TurnedFaces = 0; // of WallFaces: few flow faces between walls (see FewFaces)
-
-};
 
 /**
  * Fills `rim` (one byte per grid point, x fastest) for the invalid points of the grid (dims,

@@ -38,6 +38,7 @@
 #include "SchlierenController.h"
 #include "SchlierenEnums.h"
 #include "SchlierenEngine.h"
+#include "SchlierenIndexField.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
 #include "SchlierenResample.h"
@@ -56,25 +57,6 @@ vtkStandardNewMacro(vtkRefractiveIndex);
 namespace
 {
 const char* const MaskName = "vtkValidPointMask";
-
-/** "a, b, c" for the point arrays of a data set, or "none". */
-std::string PointArrayNames(vtkDataSet* ds)
-{
-  vtkPointData* pd = ds->GetPointData();
-  std::ostringstream names;
-  int shown = 0;
-  for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
-  {
-    const char* name = pd->GetArrayName(i);
-    if (name && std::string(name) == MaskName)
-    {
-      continue;
-    }
-    names << (shown++ ? ", " : "") << (name ? name : "(unnamed)");
-  }
-  const std::string s = names.str();
-  return s.empty() ? std::string("none") : s;
-}
 
 std::string NotAVolume(vtkDataObject* input)
 {
@@ -172,23 +154,6 @@ bool LocalBounds(vtkDataObject* data, double bounds[6])
   return true;
 }
 
-/**
- * Marks `solid` where the one-component `mask` says solid: non-zero, or at least one half on a
- * resampled grid (where the probe interpolates the mask). True where it marked any point.
- */
-bool MarkSolid(vtkDataArray* mask, bool resampled, std::vector<unsigned char>& solid)
-{
-  bool any = false;
-  schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
-    if (static_cast<std::size_t>(i) < solid.size() && (resampled ? v >= 0.5 : v != 0.0))
-    {
-      solid[i] = 1;
-      any = true;
-    }
-  });
-  return any;
-}
-
 /** 1 where a point of `image` is in the flow (vtkValidPointMask != 0 and not a hidden point). */
 std::vector<unsigned char> Validity(vtkImageData* image, bool& any)
 {
@@ -226,44 +191,6 @@ schlieren::GasChoice GasOf(int gas, double K, double M)
     : schlieren::GasChoice::Table(static_cast<schlieren::Gas>(gas));
 }
 
-const char* ModelLabel(int model)
-{
-  static const char* const names[] = { "Passthrough", "GladstoneDale", "GladstoneDaleMixture",
-    "IdealGas", "Ciddor" };
-  return model >= 0 && model <= 4 ? names[model] : "(unknown)";
-}
-
-/** The role of an input-array index, for messages: name, ParaView property, what it holds. */
-struct Role
-{
-  const char* What;
-  const char* Property;
-};
-
-Role RoleOf(int idx, int model)
-{
-  switch (idx)
-  {
-    case vtkRefractiveIndex::INPUT_ARRAY:
-      return { model == vtkRefractiveIndex::PASSTHROUGH ? "n - 1 (or n)" : "density", "InputArray" };
-    case vtkRefractiveIndex::TEMPERATURE_ARRAY:
-      return { "temperature", "TemperatureArray" };
-    case vtkRefractiveIndex::PRESSURE_ARRAY:
-      return { "pressure", "PressureArray" };
-    case vtkRefractiveIndex::MIXTURE_FRACTION_ARRAY:
-      return { "mixture fraction", "MixtureFractionArray" };
-    case vtkRefractiveIndex::HUMIDITY_ARRAY:
-      return { "humidity", "HumidityArray" };
-    case vtkRefractiveIndex::CO2_ARRAY:
-      return { "CO2", "CO2Array" };
-    default:
-      break;
-  }
-  static const char* const species[] = { "Species1Array", "Species2Array", "Species3Array",
-    "Species4Array" };
-  const int s = idx - vtkRefractiveIndex::SPECIES_ARRAY;
-  return { "species mass fraction", s >= 0 && s < 4 ? species[s] : "Species?Array" };
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -748,37 +675,6 @@ std::string ChosenName(vtkRefractiveIndex* self, int idx)
   return self->GetArrayInUse(idx);
 }
 
-/** The array chosen for input-array index `idx` among the point arrays of `data`, or null. */
-vtkDataArray* ChosenArray(vtkRefractiveIndex* self, int idx, vtkImageData* data, std::string& name)
-{
-  name = ChosenName(self, idx);
-  vtkPointData* pd = data->GetPointData();
-  if (!name.empty())
-  {
-    return pd->GetArray(name.c_str());
-  }
-  if (idx != vtkRefractiveIndex::INPUT_ARRAY)
-  {
-    return nullptr;
-  }
-  // No name chosen (e.g. a pvpython proxy created before its input was updated): the active
-  // point scalars, else the first point array that is not the mask.
-  vtkDataArray* a = pd->GetScalars();
-  for (int i = 0; !a && i < pd->GetNumberOfArrays(); ++i)
-  {
-    const char* n = pd->GetArrayName(i);
-    if (!n || std::string(n) != MaskName)
-    {
-      a = pd->GetArray(i);
-    }
-  }
-  if (a && a->GetName())
-  {
-    name = a->GetName();
-  }
-  return a;
-}
-
 /** The composition the model uses (SINGLE_GAS for the models without one). */
 int CompositionOf(vtkRefractiveIndex* self)
 {
@@ -791,42 +687,6 @@ int CompositionOf(vtkRefractiveIndex* self)
     default:
       return vtkRefractiveIndex::SINGLE_GAS;
   }
-}
-
-/** The input-array indices the model reads. */
-std::vector<int> NeededArrays(vtkRefractiveIndex* self)
-{
-  std::vector<int> needed;
-  const int model = self->GetModelInUse();
-  if (model == vtkRefractiveIndex::IDEAL_GAS || model == vtkRefractiveIndex::CIDDOR)
-  {
-    needed = { vtkRefractiveIndex::TEMPERATURE_ARRAY, vtkRefractiveIndex::PRESSURE_ARRAY };
-  }
-  else
-  {
-    needed = { vtkRefractiveIndex::INPUT_ARRAY };
-  }
-  const int composition = CompositionOf(self);
-  if (composition == vtkRefractiveIndex::MIXTURE_FRACTION)
-  {
-    needed.push_back(vtkRefractiveIndex::MIXTURE_FRACTION_ARRAY);
-  }
-  else if (composition == vtkRefractiveIndex::SPECIES)
-  {
-    for (int s = 0; s < self->GetNumberOfSpecies(); ++s)
-    {
-      needed.push_back(vtkRefractiveIndex::SPECIES_ARRAY + s);
-    }
-  }
-  if (model == vtkRefractiveIndex::CIDDOR && self->GetHumidityFromArray())
-  {
-    needed.push_back(vtkRefractiveIndex::HUMIDITY_ARRAY);
-  }
-  if (model == vtkRefractiveIndex::CIDDOR && self->GetCO2FromArray())
-  {
-    needed.push_back(vtkRefractiveIndex::CO2_ARRAY);
-  }
-  return needed;
 }
 
 /** The engine's description of the model, from the filter's properties. */
@@ -861,6 +721,13 @@ schlieren::FieldModel ModelOf(vtkRefractiveIndex* self)
   m.CO2 = self->GetCO2();
   m.Wavelength = self->GetWavelength();
   return m;
+}
+
+/** The input-array indices the model reads (the engine's roles are the filter's indices). */
+std::vector<int> NeededArrays(vtkRefractiveIndex* self)
+{
+  return schlieren::NeededRoles(ModelOf(self), self->GetHumidityFromArray() != 0,
+    self->GetCO2FromArray() != 0);
 }
 
 /**
@@ -965,126 +832,6 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
   return reduced;
 }
 
-/**
- * Points `fields` at float copies (kept in `storage`) of the arrays the model reads; returns ""
- * or a message for the user (a missing array, with the arrays present; a vector; one array chosen
- * for two roles).
- */
-std::string GatherFields(vtkRefractiveIndex* self, vtkImageData* grid, const std::vector<int>& needed,
-  schlieren::FieldArrays& fields, std::vector<std::vector<float>>& storage)
-{
-  const int model = self->GetModelInUse();
-  storage.assign(needed.size(), std::vector<float>());
-  std::vector<std::pair<std::string, int>> chosen; // name, index
-  for (std::size_t k = 0; k < needed.size(); ++k)
-  {
-    const int idx = needed[k];
-    const Role role = RoleOf(idx, model);
-    std::string name;
-    vtkDataArray* a = ChosenArray(self, idx, grid, name);
-    std::ostringstream m;
-    if (!a)
-    {
-      m << ModelLabel(model) << " needs a " << role.What << " array ";
-      if (name.empty())
-      {
-        m << "and none is chosen: choose one with " << role.Property
-          << " (SetInputArrayToProcess index " << idx << ").";
-      }
-      else
-      {
-        m << "('" << name << "', " << role.Property << ") but ";
-        if (grid->GetCellData()->GetArray(name.c_str()))
-        {
-          m << "'" << name << "' is a cell array, and the model reads point arrays: convert it "
-            << "first (Cell Data to Point Data).";
-        }
-        else
-        {
-          m << "the input has no point array of that name.";
-        }
-      }
-      m << " Point arrays present: " << PointArrayNames(grid) << ".";
-      return m.str();
-    }
-    if (a->GetNumberOfComponents() != 1)
-    {
-      m << "The " << role.What << " array '" << name << "' has " << a->GetNumberOfComponents()
-        << " components; " << role.Property << " needs a scalar array.";
-      return m.str();
-    }
-    for (const auto& other : chosen)
-    {
-      if (other.first == name)
-      {
-        const Role first = RoleOf(other.second, model);
-        m << "The " << first.What << " and " << role.What << " arrays are both '" << name
-          << "': choose the right array for each (" << first.Property << ", " << role.Property
-          << "). Point arrays present: " << PointArrayNames(grid) << ".";
-        return m.str();
-      }
-    }
-    chosen.emplace_back(name, idx);
-    storage[k] = schlieren::values::Values<float>(a);
-    const schlieren::NamedArray named{ storage[k].data(), name };
-    switch (idx)
-    {
-      case vtkRefractiveIndex::INPUT_ARRAY:
-        fields.Index = named;
-        fields.Density = named;
-        break;
-      case vtkRefractiveIndex::TEMPERATURE_ARRAY:
-        fields.Temperature = named;
-        break;
-      case vtkRefractiveIndex::PRESSURE_ARRAY:
-        fields.Pressure = named;
-        break;
-      case vtkRefractiveIndex::MIXTURE_FRACTION_ARRAY:
-        fields.MixtureFraction = named;
-        break;
-      case vtkRefractiveIndex::HUMIDITY_ARRAY:
-        fields.Humidity = named;
-        break;
-      case vtkRefractiveIndex::CO2_ARRAY:
-        fields.CO2 = named;
-        break;
-      default:
-        fields.Species[idx - vtkRefractiveIndex::SPECIES_ARRAY] = named;
-        break;
-    }
-  }
-  return std::string();
-}
-
-/**
- * "" or the error of Passthrough on values that no gas has as n - 1 (|n - 1| > 0.1: a density, a
- * temperature or a pressure taken for n - 1), naming the array, its range and the models to use.
- */
-std::string PassthroughRangeError(const float* n1, vtkIdType count, const std::string& name, bool holdsN)
-{
-  const double limit = 0.1;
-  float lo = 0.0f, hi = 0.0f;
-  if (count > 0)
-  {
-    const auto range = std::minmax_element(n1, n1 + count);
-    lo = *range.first;
-    hi = *range.second;
-  }
-  if (hi <= limit && lo >= -limit)
-  {
-    return std::string();
-  }
-  std::ostringstream m;
-  m << "Passthrough takes '" << name << "' as " << (holdsN ? "n" : "n - 1") << ", but it gives n - 1 from "
-    << lo << " to " << hi << ": no gas has |n - 1| above " << limit
-    << " (air at 1 atm: 2.7e-4). If '" << name
-    << "' is a density, choose Model GladstoneDale (with DensityReference for non-dimensional "
-       "data); a temperature and a pressure: IdealGas; if it holds n itself, turn on "
-       "PassthroughHoldsN. A lens or a liquid (not a gas) goes to SchlierenImage directly as an "
-       "image carrying n_minus_1.";
-  return m.str();
-}
-
 /** "The input's extent (...) does not cover the requested extent (...)", or "". */
 std::string CheckCovers(const int gridExt[6], const int outExt[6])
 {
@@ -1143,21 +890,6 @@ struct vtkRefractiveIndex::Work
     CacheFields(this->Output, cache, true);
     return true;
   }
-  /** BodyFromGrid on an image split over ranks: which holes the flow encloses is a flood fill
-   * across the pieces (collective: every rank, an empty piece too, before an empty one leaves). */
-  void FloodAcrossPieces(const int* wallFaces)
-  {
-    if (this->Ranks.Size() <= 1 || this->Resampled ||
-      this->Ranks.Max(this->AnyInvalid ? 1.0 : 0.0) <= 0.5)
-      return;
-    int extent[6] = { 0, -1, 0, -1, 0, -1 };
-    if (!this->EmptyPiece && this->Valid.size() == static_cast<std::size_t>(this->Count))
-      std::copy(this->GridExt, this->GridExt + 6, extent);
-    this->Enclosed.assign(this->Valid.size(), 0);
-    schlieren::EnclosedInvalidPointsOfPiece(
-      this->Ranks, extent, this->Whole, this->Valid.data(), wallFaces, this->Enclosed.data());
-    this->EnclosedFound = true;
-  }
   schlieren::Parallel& Ranks;
   vtkInformationVector** InputVector = nullptr;
   vtkInformation* InInfo = nullptr;
@@ -1175,22 +907,13 @@ struct vtkRefractiveIndex::Work
   vtkSmartPointer<vtkImageData> Grid; // the input image's (grown) piece, or the resampled grid
   vtkIdType Count = 0;
   bool EmptyPiece = false;
-  // the model on the grid
+  // the engine's inputs and results on the grid (schlieren::ComputeIndexField)
   std::vector<unsigned char> Valid;
   bool AnyInvalid = false;
-  vtkNew<vtkFloatArray> NMinus1;
   std::vector<std::string> Warnings;
-  std::vector<float> Edge; // n - 1 at the edge of the flow domain (DomainEdgeMedian)
-  // BodyFromGrid on an image split over ranks: the holes the flow encloses, found across the
-  // pieces (EnclosedInvalidPointsOfPiece) before any rank can leave; empty: not found that way
-  std::vector<unsigned char> Enclosed;
-  bool EnclosedFound = false;
-  // the points outside the flow domain, the gradient, the bodies
-  int AmbientMode = EXTEND;
-  double Ambient = 0.0;
-  vtkIdType InvalidPoints = 0;
+  vtkNew<vtkFloatArray> NMinus1;
   vtkNew<vtkFloatArray> Gradient;
-  std::vector<unsigned char> Solid;
+  schlieren::IndexFieldOutput Field;
   std::vector<std::pair<std::string, double>> Numbers; // more field data (an AMR input's levels)
 };
 
@@ -1234,40 +957,40 @@ int vtkRefractiveIndex::RequestData(
   {
     return 1;
   }
-  // 0. What to read; 1. the grid the model runs on; 2. the model on the grid; 3. under MPI,
-  // every rank learns whether any failed; 3b. BodyFromGrid's flood across the ranks' pieces.
+  // 0. What to read; 1. the grid the model runs on; 2. the engine's work on it: the model, under
+  // MPI the agreement of the ranks, the points outside the flow, the gradient, the bodies.
   std::string problem = this->ReadInputs(w);
   problem = problem.empty() ? this->MakeGrid(w) : problem;
-  problem = problem.empty() ? this->AgreeAcrossRanks(w, this->EvaluateModel(w)) : problem;
-  if (problem.empty() && this->BodyFromGrid)
+  problem = problem.empty() ? this->ComputeOnGrid(w) : problem;
+  if (problem.empty() || w.Field.ModelDone)
   {
-    w.FloodAcrossPieces(this->BodyWallFaces);
-  }
-  for (const std::string& warning : w.Warnings)
-  {
-    if (problem.empty())
+    for (const std::string& warning : w.Warnings)
+    {
+      vtkWarningMacro(<< warning);
+    }
+    for (const std::string& warning : w.Field.Warnings)
     {
       vtkWarningMacro(<< warning);
     }
   }
-  if (problem.empty() && w.EmptyPiece)
+  if (problem.empty() && w.Field.EmptyPiece)
   {
     w.Output->Initialize();
     return 1;
   }
-  // 4. The points outside the flow domain, the check of n, the gradient; the solid bodies.
-  std::string solidNote;
-  problem = problem.empty() ? this->FillAndDifferentiate(w) : problem;
-  problem = problem.empty() ? this->ComputeSolid(w, solidNote) : problem;
+  for (const std::string& note : w.Field.NewNotes)
+  {
+    this->SayNote(note);
+  }
   if (!problem.empty())
   {
     w.Output->Initialize();
     vtkErrorMacro(<< problem);
     return 0;
   }
-  if (!solidNote.empty() && parallel.Rank() == 0)
+  if (!w.Field.SolidNote.empty() && parallel.Rank() == 0)
   {
-    vtkWarningMacro(<< solidNote);
+    vtkWarningMacro(<< w.Field.SolidNote);
   }
   this->UpdateProgress(0.9);
   // 5. The output: the requested extent of the grid, with the new arrays.
@@ -1532,7 +1255,7 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
     if (w.Ranks.Size() <= 1)
     {
       // under MPI a missing array is reported after the probing, since a rank's piece may be empty
-      const std::string missing = MissingArray(w.Input, names, ModelLabel(this->GetModelInUse()));
+      const std::string missing = MissingArray(w.Input, names, schlieren::IndexModelLabel(static_cast<schlieren::IndexModel>(this->GetModelInUse())));
       if (!missing.empty())
       {
         return missing;
@@ -1581,185 +1304,6 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
 }
 
 //------------------------------------------------------------------------------
-std::string vtkRefractiveIndex::EvaluateModel(Work& w)
-{
-  // Failures are returned, not reported, so that under MPI every rank reaches AgreeAcrossRanks.
-  w.NMinus1->SetName(schlieren::arrays::NMinus1);
-  if (w.EmptyPiece)
-  {
-    return std::string();
-  }
-  std::string failure = CheckCovers(w.GridExt, w.OutExt);
-  w.Valid = Validity(w.Grid, w.AnyInvalid);
-  schlieren::FieldArrays fields;
-  fields.Count = static_cast<std::size_t>(w.Count);
-  fields.Valid = w.AnyInvalid ? w.Valid.data() : nullptr;
-  std::vector<std::vector<float>> storage;
-  if (failure.empty())
-  {
-    failure = GatherFields(this, w.Grid, w.Needed, fields, storage);
-  }
-  w.NMinus1->SetNumberOfTuples(w.Count);
-  std::fill(w.NMinus1->GetPointer(0), w.NMinus1->GetPointer(0) + w.Count, 0.0f);
-  if (!failure.empty())
-  {
-    return failure;
-  }
-  try
-  {
-    const schlieren::FieldReport report =
-      schlieren::ComputeFieldIndex(fields, ModelOf(this), w.NMinus1->GetPointer(0));
-    w.Warnings.insert(w.Warnings.end(), report.Warnings.begin(), report.Warnings.end());
-    if (w.AnyInvalid && report.ValidPoints == 0)
-    {
-      if (!w.Resampled)
-      {
-        return "No point of the input is valid (vtkValidPointMask is 0 everywhere): check the "
-               "filter that made the mask.";
-      }
-      if (this->UseSamplingBounds)
-      {
-        return "No point of the sampling grid lies inside the input's cells: SamplingBounds "
-               "(UseSamplingBounds on) lies outside the input's mesh; check SamplingBounds and "
-               "the input.";
-      }
-      // the grid is over the input's own bounds: its cells hold no volume to sample (issue 48:
-      // "check SamplingBounds" was said with SamplingBounds off)
-      return "No point of the sampling grid lies inside the input's cells, though the grid spans "
-             "the input's own bounds: its cells enclose no volume (" + DescribeCells(w.Input) +
-        "). A volume mesh is needed: an OpenFOAM case's internalMesh rather than its patches, a "
-        "wedge with an angle, cells with a thickness; a 2D result takes Symmetry Planar or "
-        "Axisymmetric.";
-    }
-  }
-  catch (const schlieren::Error& e)
-  {
-    return std::string(e.what()) +
-      (w.Resampled ? " (Counted on the image grid the input was resampled onto.)" : "");
-  }
-  // The values at the edge of the flow domain, for DomainEdgeMedian (and for Extend on an image
-  // piece under MPI, which cannot extend across pieces), over the points this piece owns: its
-  // output extent less the upper plane that the next piece also holds. A resampled grid is
-  // whole on every rank: all of it.
-  const bool pieceOfImage = w.Ranks.Size() > 1 && !w.Resampled;
-  if (w.AnyInvalid &&
-    (this->AmbientMode == DOMAIN_EDGE_MEDIAN || (this->AmbientMode == EXTEND && pieceOfImage)))
-  {
-    int dims[3], owned[6];
-    w.Grid->GetDimensions(dims);
-    for (int a = 0; a < 3; ++a)
-    {
-      owned[2 * a] = w.Resampled ? 0 : w.OutExt[2 * a] - w.GridExt[2 * a];
-      owned[2 * a + 1] = w.Resampled ? dims[a] - 1
-                                     : w.OutExt[2 * a + 1] - w.GridExt[2 * a] -
-          (w.OutExt[2 * a + 1] < w.Whole[2 * a + 1] ? 1 : 0);
-    }
-    schlieren::CollectDomainEdge(dims, w.Valid.data(), w.NMinus1->GetPointer(0), owned, w.Edge);
-  }
-  return std::string();
-}
-
-//------------------------------------------------------------------------------
-std::string vtkRefractiveIndex::AgreeAcrossRanks(Work& w, std::string failure)
-{
-  // A resampled grid is whole on every rank, and so is what failed on it: nothing to agree on.
-  if (w.Ranks.Size() <= 1 || w.Resampled)
-  {
-    return failure;
-  }
-  // every failing rank reports its own failure, the others the first failing rank's
-  const std::string agreed = w.Ranks.Failure(failure);
-  if (!agreed.empty())
-  {
-    return failure.empty() ? agreed : failure;
-  }
-  // for an image input with invalid points, the domain edge of all pieces
-  if (w.Ranks.Max(w.AnyInvalid ? 1.0 : 0.0) > 0.5 && this->AmbientMode != AMBIENT_VALUE)
-  {
-    const char* mine = reinterpret_cast<const char*>(w.Edge.data());
-    const std::vector<std::vector<char>> all =
-      w.Ranks.AllGather(std::vector<char>(mine, mine + w.Edge.size() * sizeof(float)));
-    w.Edge.clear();
-    for (const std::vector<char>& theirs : all)
-    {
-      const std::size_t n = theirs.size() / sizeof(float);
-      w.Edge.resize(w.Edge.size() + n);
-      char* to = reinterpret_cast<char*>(w.Edge.data() + w.Edge.size() - n);
-      std::copy(theirs.begin(), theirs.end(), to);
-    }
-  }
-  return std::string();
-}
-
-//------------------------------------------------------------------------------
-std::string vtkRefractiveIndex::FillAndDifferentiate(Work& w)
-{
-  w.AmbientMode = this->AmbientMode;
-  if (w.AnyInvalid && w.AmbientMode == EXTEND && w.Ranks.Size() > 1 && !w.Resampled)
-  {
-    w.AmbientMode = DOMAIN_EDGE_MEDIAN; // extending needs the whole grid
-  }
-  w.Ambient = w.AmbientMode == AMBIENT_VALUE ? this->AmbientValue
-                                             : std::numeric_limits<double>::quiet_NaN();
-  w.Gradient->SetName(schlieren::arrays::GradN);
-  w.Gradient->SetNumberOfComponents(3);
-  w.Gradient->SetNumberOfTuples(w.Count);
-  int dims[3];
-  w.Grid->GetDimensions(dims);
-  float* n1 = w.NMinus1->GetPointer(0);
-  const std::size_t count = static_cast<std::size_t>(w.Count);
-  try
-  {
-    if (w.AnyInvalid && w.AmbientMode == EXTEND)
-    {
-      w.InvalidPoints =
-        static_cast<vtkIdType>(schlieren::ExtendIntoInvalid(dims, w.Valid.data(), n1));
-    }
-    else if (w.AnyInvalid)
-    {
-      if (w.AmbientMode == DOMAIN_EDGE_MEDIAN)
-      {
-        w.Ambient = schlieren::Median(w.Edge);
-        if (!std::isfinite(w.Ambient))
-        {
-          // No valid point touches an invalid one here: the median of the valid points.
-          std::vector<float> values;
-          for (std::size_t i = 0; i < count; ++i)
-          {
-            if (w.Valid[i])
-            {
-              values.push_back(n1[i]);
-            }
-          }
-          w.Ambient = schlieren::Median(values);
-        }
-      }
-      w.InvalidPoints = static_cast<vtkIdType>(
-        schlieren::FillInvalid(count, w.Valid.data(), w.Ambient, n1));
-    }
-    const std::string problem = schlieren::ValidateIndex(n1, count);
-    if (!problem.empty())
-    {
-      return problem + " (model " + ModelLabel(this->GetModelInUse()) + ").";
-    }
-    if (this->GetModelInUse() == PASSTHROUGH)
-    {
-      const std::string notGas = PassthroughRangeError(
-        n1, w.Count, ChosenName(this, INPUT_ARRAY), this->GetPassthroughHoldsNInUse());
-      if (!notGas.empty())
-      {
-        return notGas;
-      }
-    }
-    schlieren::ComputeGradient(dims, w.Grid->GetSpacing(), n1, w.Gradient->GetPointer(0));
-  }
-  catch (const schlieren::Error& e)
-  {
-    return e.what();
-  }
-  return std::string();
-}
-
 //------------------------------------------------------------------------------
 void vtkRefractiveIndex::WriteOutput(Work& w)
 {
@@ -1771,12 +1315,12 @@ void vtkRefractiveIndex::WriteOutput(Work& w)
   }
   pointData->AddArray(w.Gradient);
   pointData->AddArray(w.NMinus1);
-  if (!w.Solid.empty())
+  if (!w.Field.Solid.empty())
   {
     vtkNew<vtkUnsignedCharArray> solid;
     solid->SetName(schlieren::arrays::Solid);
     solid->SetNumberOfTuples(w.Count);
-    std::copy(w.Solid.begin(), w.Solid.end(), solid->GetPointer(0));
+    std::copy(w.Field.Solid.begin(), w.Field.Solid.end(), solid->GetPointer(0));
     pointData->AddArray(solid);
   }
   pointData->SetActiveScalars(schlieren::arrays::NMinus1);
@@ -1810,56 +1354,34 @@ void vtkRefractiveIndex::WriteOutput(Work& w)
     }
   }
   output->GetPointData()->SetActiveScalars(schlieren::arrays::NMinus1);
-  output->GetFieldData()->ShallowCopy(this->OutputFieldData(w));
-}
-
-//------------------------------------------------------------------------------
-vtkSmartPointer<vtkFieldData> vtkRefractiveIndex::OutputFieldData(Work& w)
-{
-  auto fieldData = vtkSmartPointer<vtkFieldData>::New();
+  // the field data: the input image's, then the engine's (what was read, for scripts and for the
+  // GUI's information panel)
+  vtkNew<vtkFieldData> fieldData;
   if (!w.Resampled && w.InputImage->GetFieldData())
   {
     fieldData->ShallowCopy(w.InputImage->GetFieldData());
   }
-  auto addNumber = [&fieldData](const char* name, double value) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->InsertNextValue(value);
-    fieldData->AddArray(a);
-  };
-  auto addStrings = [&fieldData](const char* name, const std::vector<std::string>& values) {
-    vtkNew<vtkStringArray> a;
-    a->SetName(name);
-    for (const std::string& v : values)
+  for (const schlieren::IndexFieldValue& v : w.Field.FieldData)
+  {
+    if (v.IsText)
     {
-      a->InsertNextValue(v);
+      vtkNew<vtkStringArray> a;
+      a->SetName(v.Name.c_str());
+      for (const std::string& t : v.Texts)
+      {
+        a->InsertNextValue(t);
+      }
+      fieldData->AddArray(a);
     }
-    fieldData->AddArray(a);
-  };
-  if (w.AnyInvalid && w.AmbientMode != EXTEND)
-  {
-    addNumber("ambient_n_minus_1", w.Ambient);
+    else
+    {
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(v.Name.c_str());
+      a->InsertNextValue(v.Number);
+      fieldData->AddArray(a);
+    }
   }
-  // What was read, for scripts and for the GUI's information panel.
-  addStrings("index_model", { ModelLabel(this->GetModelInUse()) });
-  std::vector<std::string> read;
-  for (int idx : w.Needed)
-  {
-    read.push_back(ChosenName(this, idx));
-  }
-  addStrings("index_arrays", read);
-  if (!w.Notes.empty())
-  {
-    addStrings("index_notes", w.Notes);
-  }
-  addNumber("valid_point_fraction",
-    w.Count ? 1.0 - static_cast<double>(w.InvalidPoints) / w.Count : 0.0);
-  addNumber("solid_points", static_cast<double>(std::count(w.Solid.begin(), w.Solid.end(), 1)));
-  for (const auto& number : w.Numbers)
-  {
-    addNumber(number.first.c_str(), number.second);
-  }
-  return fieldData;
+  output->GetFieldData()->ShallowCopy(fieldData);
 }
 
 //------------------------------------------------------------------------------
@@ -1870,7 +1392,7 @@ namespace
  * bounds); `any` is set where it marked one. False where the inside test gave no result.
  */
 bool MarkInsideShell(vtkPolyData* shell, vtkImageData* grid, const int dims[3],
-  std::vector<unsigned char>& solid, bool& any, bool& overlapsAny)
+  unsigned char* solid, bool& any, bool& overlapsAny)
 {
   double b[6];
   shell->GetBounds(b);
@@ -1936,8 +1458,8 @@ bool MarkInsideShell(vtkPolyData* shell, vtkImageData* grid, const int dims[3],
  * surface's bounds); `any` is set where it marked one. "" or the error for the user; `note` gets
  * a surface that encloses no point.
  */
-std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
-  std::vector<unsigned char>& solid, bool& any, std::string& note)
+std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid, unsigned char* solid,
+  bool& any, std::string& note)
 {
   int dims[3];
   grid->GetDimensions(dims);
@@ -1999,91 +1521,142 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid,
 } // namespace
 
 //------------------------------------------------------------------------------
-std::string vtkRefractiveIndex::ComputeSolid(Work& w, std::string& note)
+std::string vtkRefractiveIndex::ComputeOnGrid(Work& w)
 {
-  vtkImageData* grid = w.Grid;
-  const std::vector<unsigned char>& valid = w.Valid;
-  const bool resampled = w.Resampled;
-  std::vector<unsigned char>& solid = w.Solid;
-  const vtkIdType count = grid->GetNumberOfPoints();
-  int dims[3];
-  grid->GetDimensions(dims);
-  solid.assign(static_cast<std::size_t>(count), 0);
-  bool any = false;
-  // the holes the grid leaves that the flow encloses (the whole grid: resampled, or one process)
-  if (this->BodyFromGrid && w.AnyInvalid)
+  static_assert(int(schlieren::RoleInput) == int(INPUT_ARRAY) &&
+      int(schlieren::RoleSpecies) == int(SPECIES_ARRAY) && int(schlieren::RoleCO2) == int(CO2_ARRAY),
+    "the engine's roles are the filter's input-array indices");
+  w.NMinus1->SetName(schlieren::arrays::NMinus1);
+  w.NMinus1->SetNumberOfTuples(w.Count);
+  w.Gradient->SetName(schlieren::arrays::GradN);
+  w.Gradient->SetNumberOfComponents(3);
+  w.Gradient->SetNumberOfTuples(w.Count);
+  schlieren::IndexFieldInput in;
+  in.NMinus1 = w.NMinus1->GetPointer(0);
+  in.Gradient = w.Gradient->GetPointer(0);
+  in.EmptyPiece = w.EmptyPiece;
+  if (!w.EmptyPiece)
   {
-    if (resampled || w.Ranks.Size() == 1)
+    w.Grid->GetDimensions(in.Dims);
+    w.Grid->GetSpacing(in.Spacing);
+    in.PieceFailure = CheckCovers(w.GridExt, w.OutExt);
+    w.Valid = Validity(w.Grid, w.AnyInvalid);
+    in.Valid = w.AnyInvalid ? w.Valid.data() : nullptr;
+  }
+  else
+  {
+    in.Dims[0] = in.Dims[1] = in.Dims[2] = 0;
+  }
+  std::copy(w.GridExt, w.GridExt + 6, in.GridExtent);
+  std::copy(w.OutExt, w.OutExt + 6, in.OutExtent);
+  std::copy(w.Whole, w.Whole + 6, in.WholeExtent);
+  for (int idx = 0; idx < schlieren::NumberOfRoles; ++idx)
+  {
+    in.ArrayNames[idx] = ChosenName(this, idx);
+  }
+  // the grid's point arrays: every name (for messages), the values of those the engine may read
+  std::vector<std::string> read = { schlieren::arrays::Solid, this->SolidArray };
+  for (int idx : w.Needed)
+  {
+    read.push_back(in.ArrayNames[idx]);
+  }
+  vtkPointData* pd = w.Grid->GetPointData();
+  if (in.ArrayNames[INPUT_ARRAY].empty())
+  {
+    // none chosen: the engine takes the active scalars, else the first point array
+    vtkDataArray* a = pd->GetScalars();
+    for (int i = 0; !a && i < pd->GetNumberOfArrays(); ++i)
     {
-      any = schlieren::EnclosedInvalidPoints(dims, valid.data(), this->BodyWallFaces, solid.data()) > 0;
+      const char* n = pd->GetArrayName(i);
+      a = n && std::string(n) == MaskName ? nullptr : pd->GetArray(i);
     }
-    else if (w.EnclosedFound && w.Enclosed.size() == solid.size())
+    if (a && a->GetName())
     {
-      // found across the pieces (step 3b)
-      for (std::size_t i = 0; i < solid.size(); ++i)
+      read.emplace_back(a->GetName());
+    }
+  }
+  std::vector<std::vector<double>> converted;
+  for (int i = 0; !w.EmptyPiece && i < pd->GetNumberOfArrays(); ++i)
+  {
+    const char* name = pd->GetArrayName(i);
+    if (name && std::string(name) == MaskName)
+    {
+      continue;
+    }
+    vtkDataArray* a = pd->GetArray(i);
+    schlieren::GridArray g;
+    g.Name = name ? name : "";
+    g.Components = a ? a->GetNumberOfComponents() : 0;
+    const bool first = in.PointArrays.empty() ||
+      std::none_of(in.PointArrays.begin(), in.PointArrays.end(),
+        [&g](const schlieren::GridArray& o) { return o.Name == g.Name; });
+    if (a && a->GetNumberOfComponents() == 1 && name && first &&
+      std::find(read.begin(), read.end(), g.Name) != read.end())
+    {
+      if (auto* f = vtkFloatArray::FastDownCast(a))
       {
-        solid[i] = w.Enclosed[i];
-        any = any || solid[i];
+        g.Float = f->GetPointer(0);
+      }
+      else
+      {
+        converted.push_back(schlieren::values::Values<double>(a));
+        g.Double = converted.back().data();
       }
     }
-  }
-  // the voids beside the mesh's walls (a body on the domain's edge), where the mesh has a velocity
-  if (this->BodyFromGrid && w.AnyInvalid && resampled && w.Ranks.Size() == 1)
-  {
-    std::string wallNote;
-    any = this->BodiesBesideWalls(w.Mesh, grid, valid.data(), solid.data(), wallNote) || any;
-    if (!wallNote.empty())
+    if (a && a == pd->GetScalars())
     {
-      this->SayNote(wallNote);
-      w.Notes.push_back(wallNote);
+      in.ActiveScalars = static_cast<int>(in.PointArrays.size());
+    }
+    if (a)
+    {
+      in.PointArrays.push_back(g);
     }
   }
-  // a body the input already carries (RefractiveScene's Body, an upstream RefractiveIndex's): kept
-  vtkDataArray* upstream = grid->GetPointData()->GetArray(schlieren::arrays::Solid);
-  if (upstream && upstream->GetNumberOfComponents() == 1)
+  vtkCellData* cd = w.Grid->GetCellData();
+  for (int i = 0; !w.EmptyPiece && i < cd->GetNumberOfArrays(); ++i)
   {
-    any = MarkSolid(upstream, resampled, solid) || any;
+    if (cd->GetArray(i) && cd->GetArrayName(i))
+    {
+      in.CellArrayNames.emplace_back(cd->GetArrayName(i));
+    }
   }
-  // the mask array
-  if (!this->SolidArray.empty())
+  in.Model = ModelOf(this);
+  in.HumidityFromArray = this->HumidityFromArray != 0;
+  in.CO2FromArray = this->CO2FromArray != 0;
+  in.Resampled = w.Resampled;
+  in.UseSamplingBounds = this->UseSamplingBounds != 0;
+  vtkDataObject* input = w.Input;
+  in.DescribeCells = [input] { return DescribeCells(input); };
+  in.Ambient = static_cast<schlieren::AmbientFill>(this->AmbientMode);
+  in.AmbientValue = this->AmbientValue;
+  in.BodyFromGrid = this->BodyFromGrid != 0;
+  std::copy(this->BodyWallFaces, this->BodyWallFaces + 6, in.WallFaces);
+  if (w.Mesh)
   {
-    vtkDataArray* mask = grid->GetPointData()->GetArray(this->SolidArray.c_str());
-    if (!mask)
-    {
-      return "SolidArray '" + this->SolidArray + "' is not a point array of the input. Point " +
-        "arrays present: " + PointArrayNames(grid) + ".";
-    }
-    if (mask->GetNumberOfComponents() != 1)
-    {
-      return "SolidArray '" + this->SolidArray + "' has " +
-        std::to_string(mask->GetNumberOfComponents()) + " components; it must be a scalar (non-zero: solid).";
-    }
-    any = MarkSolid(mask, resampled, solid) || any;
+    in.BesideWalls = [this, &w](const unsigned char* valid, unsigned char* solid, std::string& note) {
+      return this->BodiesBesideWalls(w.Mesh, w.Grid, valid, solid, note);
+    };
   }
-  // the body surface: the grid points inside it
+  in.SolidArray = this->SolidArray;
   vtkPolyData* surface = w.InputVector[1] && w.InputVector[1]->GetInformationObject(0)
     ? vtkPolyData::GetData(w.InputVector[1]->GetInformationObject(0))
     : nullptr;
   if (surface)
   {
-    const std::string problem = SurfaceSolid(surface, grid, solid, any, note);
-    if (!problem.empty())
-    {
-      return problem;
-    }
+    in.Surface = [surface, &w](unsigned char* solid, bool& any, std::string& note) {
+      return SurfaceSolid(surface, w.Grid, solid, any, note);
+    };
   }
-  if (!any)
-  {
-    solid.clear();
-  }
-  return std::string();
+  in.Notes = w.Notes;
+  in.Numbers = w.Numbers;
+  return schlieren::ComputeIndexField(w.Ranks, in, w.Field);
 }
 
 //------------------------------------------------------------------------------
 void vtkRefractiveIndex::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Model: " << this->Model << " (" << ModelLabel(this->GetModelInUse()) << ")\n";
+  os << indent << "Model: " << this->Model << " (" << schlieren::IndexModelLabel(static_cast<schlieren::IndexModel>(this->GetModelInUse())) << ")\n";
   os << indent << "PassthroughHoldsN: " << this->PassthroughHoldsN << "\n";
   os << indent << "Gas: " << this->Gas << "\n";
   os << indent << "GladstoneDaleConstant: " << this->GladstoneDaleConstant << " m^3/kg\n";

@@ -592,17 +592,9 @@ private:
   /** A resampled input whose bounds moved since RequestInformation (a moving mesh over time): the
    * grid's origin and spacing in the output information follow them (collective under MPI). */
   void FollowMovingBounds(Work& w);
-  /** n - 1 from the model on the grid, and the domain edge of the points this piece owns. */
-  std::string EvaluateModel(Work& w);
-  /** Under MPI: every rank learns whether any failed (given `failure`), and the whole edge. */
-  std::string AgreeAcrossRanks(Work& w, std::string failure);
-  /** The points outside the flow domain, the check of n, the gradient. */
-  std::string FillAndDifferentiate(Work& w);
-  /**
-   * The `solid` points of the grid (see BodyFromGrid), left empty where there is no body;
-   * `note` gets what the user should know.
-   */
-  std::string ComputeSolid(Work& w, std::string& note);
+  /** The engine's work on the grid (schlieren::ComputeIndexField): n - 1, grad n, the bodies
+   * and the field data; collective where an image is split over ranks. */
+  std::string ComputeOnGrid(Work& w);
   /**
    * Marks in `solid` the void regions of the resampled `grid` that lie beside the walls of
    * `mesh` (schlieren::walls; vtkRefractiveIndexInputs.cxx); `note` says what was found.
@@ -611,7 +603,6 @@ private:
     unsigned char* solid, std::string& note);
   /** The requested extent of the grid, with the new arrays and the field data. */
   void WriteOutput(Work& w);
-  vtkSmartPointer<vtkFieldData> OutputFieldData(Work& w);
   /**
    * Shows an information note in the Output Messages once until a property changes: a new time
    * step (or any update of the same settings) repeats none of the notes said.

@@ -34,6 +34,7 @@
 #include "SchlierenParallel.h"
 #include "SchlierenValues.h"
 #include "SchlierenSymmetry.h"
+#include "SchlierenIndexField.h"
 #include "SchlierenIndexModels.h"
 
 #include <algorithm>
@@ -143,105 +144,6 @@ bool AnyRank(schlieren::Parallel& parallel, bool value)
   return parallel.Max(value ? 1.0 : 0.0) > 0.5;
 }
 
-std::string List(const std::vector<std::string>& names)
-{
-  std::ostringstream s;
-  for (std::size_t i = 0; i < names.size(); ++i)
-  {
-    s << (i ? ", " : "") << names[i];
-  }
-  return names.empty() ? std::string("none") : s.str();
-}
-
-std::string Lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
-/** What a field's name says it holds. */
-enum class Kind
-{
-  NMinus1,
-  N,
-  Density,
-  Temperature,
-  Pressure,
-  MixtureFraction,
-  Unknown
-};
-
-/** The names (lower case) taken for each kind, in order of preference. */
-const std::vector<std::string>& NamesOf(Kind kind)
-{
-  static const std::vector<std::string> n1{ schlieren::arrays::NMinus1, "nminus1", "n-1",
-    "refractivity" };
-  static const std::vector<std::string> n{ "n", "refractive_index", "refractiveindex",
-    "index_of_refraction" };
-  static const std::vector<std::string> rho{ "density", "rho", "dens", "mass_density" };
-  static const std::vector<std::string> t{ "temperature", "temp", "t", "static_temperature",
-    "t_static" };
-  static const std::vector<std::string> p{ "pressure", "pres", "press", "p", "static_pressure",
-    "p_static" };
-  static const std::vector<std::string> f{ "mixture_fraction", "mixturefraction", "f", "z" };
-  static const std::vector<std::string> none;
-  switch (kind)
-  {
-    case Kind::NMinus1:
-      return n1;
-    case Kind::N:
-      return n;
-    case Kind::Density:
-      return rho;
-    case Kind::Temperature:
-      return t;
-    case Kind::Pressure:
-      return p;
-    case Kind::MixtureFraction:
-      return f;
-    default:
-      return none;
-  }
-}
-
-Kind KindOf(const std::string& name)
-{
-  const std::string l = Lower(name);
-  for (Kind k : { Kind::NMinus1, Kind::N, Kind::Density, Kind::Temperature, Kind::Pressure })
-  {
-    const auto& names = NamesOf(k);
-    if (std::find(names.begin(), names.end(), l) != names.end())
-    {
-      return k;
-    }
-  }
-  return Kind::Unknown;
-}
-
-/** The first present array whose name is one of `kind`'s (by the order of preference), or "". */
-std::string Find(const std::vector<std::string>& present, Kind kind)
-{
-  for (const std::string& want : NamesOf(kind))
-  {
-    for (const std::string& name : present)
-    {
-      if (Lower(name) == want)
-      {
-        return name;
-      }
-    }
-  }
-  return std::string();
-}
-
-const char* Label(int model)
-{
-  static const char* const names[] = { "Passthrough", "GladstoneDale", "GladstoneDaleMixture",
-    "IdealGas", "Ciddor" };
-  return model >= 0 && model <= 4 ? names[model] : "Automatic";
-}
-
 /** Names of ids and index arrays that VTK readers and filters add. */
 bool IsIdName(const std::string& name)
 {
@@ -249,7 +151,7 @@ bool IsIdName(const std::string& name)
     "pedigreeids", "vtkoriginalcellids", "vtkoriginalpointids", "vtkoriginalindices",
     "vtkcompositeindex", "vtkblockcolors", "blockid", "processid", "vtkprocessid", "element_id",
     "node_id", "cellid", "pointid", "ids" };
-  const std::string l = Lower(name);
+  const std::string l = schlieren::LowerCase(name);
   return std::find(std::begin(ids), std::end(ids), l) != std::end(ids);
 }
 
@@ -305,160 +207,6 @@ std::string vtkRefractiveIndex::GetArrayInUse(int idx) const
 }
 
 //------------------------------------------------------------------------------
-namespace
-{
-using Filter = vtkRefractiveIndex;
-
-/**
- * Model Automatic: the model (and whether Passthrough's array holds n) from the name of the chosen
- * input array, else from the names `present`; fills the arrays it implies. `why` gets the reason
- * for the note; returns "" or the error where no name says anything.
- */
-std::string ChooseModel(const std::vector<std::string>& present, std::vector<std::string>& arrays,
-  int& model, bool& holdsN, std::ostringstream& why)
-{
-  const std::string chosen = arrays[Filter::INPUT_ARRAY];
-  if (!chosen.empty())
-  {
-    switch (KindOf(chosen))
-    {
-      case Kind::N:
-        model = Filter::PASSTHROUGH;
-        holdsN = true;
-        why << "Input Array '" << chosen << "' is named as n";
-        break;
-      case Kind::Density:
-        model = Filter::GLADSTONE_DALE;
-        why << "Input Array '" << chosen << "' is named as a density";
-        break;
-      case Kind::Temperature:
-      case Kind::Pressure:
-      {
-        const bool isT = KindOf(chosen) == Kind::Temperature;
-        std::string& slot = arrays[isT ? Filter::TEMPERATURE_ARRAY : Filter::PRESSURE_ARRAY];
-        if (slot.empty())
-        {
-          slot = chosen;
-        }
-        model = Filter::IDEAL_GAS;
-        why << "Input Array '" << chosen << "' is named as a "
-            << (isT ? "temperature" : "pressure");
-        break;
-      }
-      case Kind::NMinus1:
-        model = Filter::PASSTHROUGH;
-        holdsN = false;
-        why << "Input Array '" << chosen << "' is named as n - 1";
-        break;
-      default:
-        model = Filter::PASSTHROUGH;
-        holdsN = false;
-        why << "Input Array '" << chosen
-            << "' has no name it knows, so it is taken as n - 1 (choose Model if it is not)";
-        break;
-    }
-  }
-  else if (!Find(present, Kind::NMinus1).empty())
-  {
-    model = Filter::PASSTHROUGH;
-    holdsN = false;
-    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::NMinus1);
-    why << "the input carries n - 1 ('" << arrays[Filter::INPUT_ARRAY] << "')";
-  }
-  else if (!Find(present, Kind::Density).empty())
-  {
-    model = Filter::GLADSTONE_DALE;
-    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::Density);
-    why << "the input has a density ('" << arrays[Filter::INPUT_ARRAY] << "')";
-  }
-  else if (!Find(present, Kind::Temperature).empty() && !Find(present, Kind::Pressure).empty())
-  {
-    model = Filter::IDEAL_GAS;
-    why << "the input has a temperature and a pressure";
-  }
-  else if (!Find(present, Kind::N).empty())
-  {
-    model = Filter::PASSTHROUGH;
-    holdsN = true;
-    arrays[Filter::INPUT_ARRAY] = Find(present, Kind::N);
-    why << "the input carries n ('" << arrays[Filter::INPUT_ARRAY] << "')";
-  }
-  else
-  {
-    return "Model Automatic found no array named as a refractive index (n_minus_1, n), a "
-           "density (density, rho) or a temperature and a pressure (temperature, Temp, T; "
-           "pressure, Pres, p) among the input's arrays: " +
-      List(present) + ". Choose the Model and its arrays.";
-  }
-  return std::string();
-}
-
-const char* PressureUnitLabel(int unit)
-{
-  static const char* const names[] = { "Pa", "kPa", "atm", "bar" };
-  return unit >= 0 && unit <= 3 ? names[unit] : "Pa";
-}
-
-/** The gas the chosen model takes, in words: "air (the default Custom gas: ...)", "He (the table)". */
-std::string GasWords(Filter* self, int model)
-{
-  std::ostringstream g;
-  if (model == Filter::IDEAL_GAS && self->GetIdealGasComposition() != Filter::SINGLE_GAS)
-  {
-    g << (self->GetIdealGasComposition() == Filter::MIXTURE_FRACTION
-        ? "a mixture fraction between Mixture Gas 0 and 1"
-        : "species mass fractions");
-    return g.str();
-  }
-  const int gas = self->GetGas();
-  if (gas >= 0)
-  {
-    const schlieren::GasProperties& p = schlieren::GetGasProperties(static_cast<schlieren::Gas>(gas));
-    g << p.Name << " from the gas table (K = " << p.GladstoneDale << " m^3/kg)";
-    return g.str();
-  }
-  const schlieren::GasProperties& air = schlieren::GetGasProperties(schlieren::Gas::Air);
-  const double K = self->GetGladstoneDaleConstant(), M = self->GetMolarMass();
-  const bool isAir = K == air.GladstoneDale && (model != Filter::IDEAL_GAS || M == air.MolarMass);
-  if (isAir)
-  {
-    g << "air (Gas Custom, whose defaults are air's: K = " << K << " m^3/kg";
-    if (model == Filter::IDEAL_GAS)
-    {
-      g << ", M = " << M << " kg/mol";
-    }
-    g << "; set Gas for another gas)";
-  }
-  else
-  {
-    g << "the Custom gas, K = " << K << " m^3/kg";
-    if (model == Filter::IDEAL_GAS)
-    {
-      g << ", M = " << M << " kg/mol";
-    }
-  }
-  return g.str();
-}
-
-/** The note that says what Model Automatic chose, and why. */
-std::string ChoiceNote(Filter* self, int model, bool holdsN, const std::string& why)
-{
-  std::ostringstream note;
-  note << "RefractiveIndex: Model Automatic chose " << Label(model);
-  if (model == Filter::PASSTHROUGH && holdsN)
-  {
-    note << " of n";
-  }
-  note << ": " << why << ".";
-  if (model == Filter::GLADSTONE_DALE || model == Filter::IDEAL_GAS)
-  {
-    note << " Gas: " << GasWords(self, model) << ".";
-  }
-  return note.str();
-}
-} // namespace
-
-//------------------------------------------------------------------------------
 std::string vtkRefractiveIndex::ResolveChoices(
   schlieren::Parallel& parallel, vtkDataObject* input, std::vector<std::string>& notes)
 {
@@ -475,46 +223,26 @@ std::string vtkRefractiveIndex::ResolveChoices(
       this->ResolvedArrays[idx] = name;
     }
   }
-  std::vector<std::string>& arrays = this->ResolvedArrays;
-  int model = this->Model;
-  bool holdsN = this->PassthroughHoldsN;
-  if (model == AUTOMATIC)
-  {
-    std::ostringstream why;
-    const std::string problem = ChooseModel(present, arrays, model, holdsN, why);
-    if (!problem.empty())
-    {
-      return problem;
-    }
-    notes.push_back(ChoiceNote(this, model, holdsN, why.str()));
-  }
-  this->ResolvedModel = model;
-  this->ResolvedHoldsN = holdsN;
-
-  // The arrays left automatic, found by name for what the model reads there.
-  auto fill = [&](int idx, Kind kind, const char* property) {
-    if (arrays[idx].empty())
-    {
-      arrays[idx] = Find(present, kind);
-      if (!arrays[idx].empty() && this->Model != AUTOMATIC)
-      {
-        notes.push_back(std::string("RefractiveIndex: ") + property + " '" + arrays[idx] +
-          "', found by name.");
-      }
-    }
-  };
-  if (model == PASSTHROUGH)
-  {
-    fill(INPUT_ARRAY, holdsN ? Kind::N : Kind::NMinus1, "InputArray");
-  }
-  else if (model == GLADSTONE_DALE || model == GLADSTONE_DALE_MIXTURE)
-  {
-    fill(INPUT_ARRAY, Kind::Density, "InputArray");
-  }
-  if (arrays[INPUT_ARRAY].empty() && model != IDEAL_GAS && model != CIDDOR)
-  {
-    // Nothing chosen and no name known: the active point scalars, else the first point array
-    // (as before there was an automatic choice).
+  // the choice is the engine's (schlieren::ResolveIndexChoices, which the Python front end calls
+  // too); the active scalars where nothing is chosen are read here
+  schlieren::IndexChoiceInput in;
+  in.Present = present;
+  in.Model = this->Model;
+  in.HoldsN = this->PassthroughHoldsN != 0;
+  std::copy(this->ResolvedArrays.begin(), this->ResolvedArrays.end(), in.Arrays);
+  in.Gas = this->Gas;
+  in.GladstoneDale = this->GladstoneDaleConstant;
+  in.MolarMass = this->MolarMass;
+  in.MixtureComposition = static_cast<schlieren::Composition>(this->MixtureComposition);
+  in.IdealGasComposition = static_cast<schlieren::Composition>(this->IdealGasComposition);
+  in.TemperatureUnits = static_cast<schlieren::TemperatureUnit>(this->TemperatureUnit);
+  in.PressureUnits = static_cast<schlieren::PressureUnit>(this->PressureUnit);
+  in.TemperatureReference = this->TemperatureReference;
+  in.PressureReference = this->PressureReference;
+  in.PressureOffset = this->PressureOffset;
+  in.DensityReference = this->DensityReference;
+  in.FallbackInput = [&parallel, input] {
+    std::string name;
     ForEachLeaf(input, [&](vtkDataSet* ds) {
       vtkPointData* pd = ds->GetPointData();
       vtkDataArray* a = pd->GetScalars();
@@ -526,54 +254,31 @@ std::string vtkRefractiveIndex::ResolveChoices(
           a = pd->GetArray(i);
         }
       }
-      if (arrays[INPUT_ARRAY].empty() && a && a->GetName())
+      if (name.empty() && a && a->GetName())
       {
-        arrays[INPUT_ARRAY] = a->GetName();
+        name = a->GetName();
       }
     });
     // the same on every rank: the first rank's that has one
-    const std::vector<std::string> candidates =
-      GatherNames(parallel, std::vector<std::string>{ arrays[INPUT_ARRAY] });
-    arrays[INPUT_ARRAY].clear();
-    for (const std::string& c : candidates)
+    for (const std::string& c : GatherNames(parallel, std::vector<std::string>{ name }))
     {
       if (!c.empty())
       {
-        arrays[INPUT_ARRAY] = c;
-        break;
+        return c;
       }
     }
-  }
-  if (model == IDEAL_GAS || model == CIDDOR)
+    return std::string();
+  };
+  schlieren::IndexChoice chosen;
+  const std::string problem = schlieren::ResolveIndexChoices(in, chosen);
+  if (!problem.empty())
   {
-    fill(TEMPERATURE_ARRAY, Kind::Temperature, "TemperatureArray");
-    fill(PRESSURE_ARRAY, Kind::Pressure, "PressureArray");
+    return problem;
   }
-  if ((model == GLADSTONE_DALE_MIXTURE && this->MixtureComposition == MIXTURE_FRACTION) ||
-    (model == IDEAL_GAS && this->IdealGasComposition == MIXTURE_FRACTION))
-  {
-    fill(MIXTURE_FRACTION_ARRAY, Kind::MixtureFraction, "MixtureFractionArray");
-  }
-  if (this->Model == AUTOMATIC && model == IDEAL_GAS)
-  {
-    std::ostringstream units;
-    units << " Temperature '" << arrays[TEMPERATURE_ARRAY] << "' read in "
-          << (this->TemperatureUnit == CELSIUS ? "C" : "K") << " times TemperatureReference ("
-          << this->TemperatureReference << "), pressure '" << arrays[PRESSURE_ARRAY] << "' in "
-          << PressureUnitLabel(this->PressureUnit) << " times PressureReference ("
-          << this->PressureReference << ") plus PressureOffset (" << this->PressureOffset
-          << "): an absolute pressure (a gauge one needs the operating pressure as PressureOffset).";
-    notes.back() += units.str();
-  }
-  if (this->Model == AUTOMATIC && model == GLADSTONE_DALE)
-  {
-    std::ostringstream units;
-    units << " Density '" << arrays[INPUT_ARRAY] << "' read in kg/m^3 times DensityReference ("
-          << this->DensityReference
-          << "): a non-dimensional density (PLOT3D's is rho / rho_inf) needs the free-stream "
-             "density in kg/m^3 as DensityReference.";
-    notes.back() += units.str();
-  }
+  this->ResolvedModel = static_cast<int>(chosen.Model);
+  this->ResolvedHoldsN = chosen.HoldsN;
+  this->ResolvedArrays.assign(chosen.Arrays, chosen.Arrays + schlieren::NumberOfRoles);
+  notes.insert(notes.end(), chosen.Notes.begin(), chosen.Notes.end());
   return std::string();
 }
 
@@ -619,7 +324,7 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
         << ": ids and index arrays (ObjectId, GlobalElementId, vtkOriginalCellIds, ...) are not "
            "a density, temperature, pressure or index field. Choose the field itself (Model "
            "and its arrays); arrays present: "
-        << List(GlobalArrayNames(parallel, input)) << ".";
+        << schlieren::NameList(GlobalArrayNames(parallel, input)) << ".";
       error = m.str();
       return nullptr;
     }
@@ -644,14 +349,14 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
   vtkDataObject* converted = toPoints->GetOutputDataObject(0);
   if (!converted)
   {
-    error = "The cell arrays " + List(fromCells) + " could not be converted to point data.";
+    error = "The cell arrays " + schlieren::NameList(fromCells) + " could not be converted to point data.";
     return nullptr;
   }
   vtkSmartPointer<vtkDataObject> copy;
   copy.TakeReference(converted->NewInstance());
   copy->ShallowCopy(converted);
   notes.push_back("RefractiveIndex: the cell array" + std::string(fromCells.size() > 1 ? "s " : " ") +
-    List(fromCells) +
+    schlieren::NameList(fromCells) +
     " converted to point data (each point the mean of the cells around it, "
     "vtkCellDataToPointData), since n - 1 and its gradient are fields on points.");
   return copy;
@@ -693,7 +398,7 @@ vtkDataObject* vtkRefractiveIndex::InternalMesh(vtkDataObject* input, std::strin
       << " cells)";
     if (!others.empty())
     {
-      m << "; the other blocks (" << List(others)
+      m << "; the other blocks (" << schlieren::NameList(others)
         << ": patches, zones) are ignored, since the field lives in the cells";
     }
     m << ".";
@@ -976,20 +681,7 @@ bool vtkRefractiveIndex::BodiesBesideWalls(vtkDataSet* mesh, vtkImageData* grid,
     return false;
   }
   const std::size_t marked = schlieren::InvalidRegionsBesideWalls(dims, valid, rim.data(), solid);
-  std::ostringstream m;
-  m << "RefractiveIndex: BodyFromGrid: of the mesh's "
-    << report.WallFaces + report.FlowFaces + report.StillFaces << " boundary faces, "
-    << report.WallFaces << " are walls (the flow runs along them: |" << report.Velocity
-    << ".n| < " << 100 * schlieren::walls::WallFlux << " % of |" << report.Velocity << "| there"
-    << (report.TurnedFaces ? ", or " + std::to_string(report.TurnedFaces) +
-           " in groups of a few between walls, where the flow turns onto a wall"
-                           : std::string())
-    << "), "
-    << report.FlowFaces << " are crossed by the flow, " << report.StillFaces
-    << " have fluid at rest beside them; " << marked
-    << " grid points of the voids beside them (not enclosed by the flow, on the domain's edge) "
-       "are taken as a body.";
-  note = m.str();
+  note = schlieren::walls::BesideWallsNote(report, marked);
   return marked > 0;
 }
 

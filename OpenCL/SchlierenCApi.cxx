@@ -9,6 +9,8 @@
 #include "SchlierenBodies.h"
 #include "SchlierenEngine.h"
 #include "SchlierenLimits.h"
+#include "SchlierenIndexField.h"
+#include "SchlierenWallFaces.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenNumerical.h"
 #include "SchlierenParallel.h"
@@ -1423,6 +1425,86 @@ schlieren::GasChoice GasByNumber(const std::string& property, double number, dou
   return g < 0 ? schlieren::GasChoice::Typed(K, M)
                : schlieren::GasChoice::Table(static_cast<schlieren::Gas>(g));
 }
+/** The index models' settings (schlieren_index_model, schlieren_index_field). */
+std::vector<std::string> ModelSettingNames()
+{
+  return { "Model", "PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
+    "MixtureComposition", "IdealGasComposition", "MixtureGas0", "MixtureGas1", "NumberOfSpecies",
+    "SpeciesGases", "SpeciesGladstoneDale", "SpeciesMolarMass", "BalanceGas",
+    "BalanceGladstoneDale", "BalanceMolarMass", "DensityReference", "TemperatureUnit",
+    "TemperatureReference", "PressureUnit", "PressureReference", "PressureOffset", "Humidity",
+    "HumidityMeasure", "CO2", "Wavelength" };
+}
+
+/** The engine's model from the settings `p` (absent: the proxy's defaults); an Error names a
+ * setting that does not parse. */
+schlieren::FieldModel ModelOfSettings(const std::map<std::string, std::string>& p)
+{
+  auto text = [&](const char* name, const char* fallback) {
+    const auto it = p.find(name);
+    return it == p.end() ? std::string(fallback) : it->second;
+  };
+  auto number = [&](const char* name, double fallback) {
+    const auto it = p.find(name);
+    return it == p.end() ? fallback : NumbersOf(name, it->second, 1)[0];
+  };
+  auto gas = [&](const char* name, const std::string& value, double K, double M) {
+    if (value == "Custom")
+      return schlieren::GasChoice::Typed(K, M);
+    try
+    {
+      return schlieren::GasChoice::Table(schlieren::ParseGas(value));
+    }
+    catch (const schlieren::Error& e)
+    {
+      throw schlieren::Error(std::string(name) + ": " + e.what());
+    }
+  };
+  schlieren::FieldModel m;
+  m.Model = static_cast<schlieren::IndexModel>(EntryOf("Model", text("Model", "Passthrough"),
+    { "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas", "Ciddor" }));
+  m.IndexIsN = number("PassthroughHoldsN", 0) != 0;
+  m.SingleGas = gas("Gas", text("Gas", "Air"), number("GladstoneDaleConstant", 2.256e-4),
+    number("MolarMass", 0.0289641));
+  if (m.Model == schlieren::IndexModel::GladstoneDaleMixture)
+    m.Mixture = static_cast<schlieren::Composition>(1 +
+      EntryOf("MixtureComposition", text("MixtureComposition", "MixtureFraction"),
+        { "MixtureFraction", "Species" }));
+  else if (m.Model == schlieren::IndexModel::IdealGas)
+    m.Mixture = static_cast<schlieren::Composition>(EntryOf("IdealGasComposition",
+      text("IdealGasComposition", "Gas"), { "Gas", "MixtureFraction", "Species" }));
+  else
+    m.Mixture = schlieren::Composition::SingleGas;
+  m.Gas0 = gas("MixtureGas0", text("MixtureGas0", "Air"), 0, 0).Preset;
+  m.GasF = gas("MixtureGas1", text("MixtureGas1", "He"), 0, 0).Preset;
+  m.NumberOfSpecies = static_cast<int>(number("NumberOfSpecies", 1));
+  const std::vector<double> gases = NumbersOf("SpeciesGases", text("SpeciesGases", "6 8 1 5"), 4);
+  const std::vector<double> K =
+    NumbersOf("SpeciesGladstoneDale", text("SpeciesGladstoneDale", "2.256e-4 2.256e-4 2.256e-4 2.256e-4"), 4);
+  const std::vector<double> M =
+    NumbersOf("SpeciesMolarMass", text("SpeciesMolarMass", "0.0289641 0.0289641 0.0289641 0.0289641"), 4);
+  for (int s = 0; s < schlieren::MaxSpecies; ++s)
+    m.Species[s] = GasByNumber("SpeciesGases", gases[s], K[s], M[s]);
+  const std::string balance = text("BalanceGas", "Air");
+  m.HasBalance = balance != "None";
+  m.Balance = m.HasBalance ? gas("BalanceGas", balance, number("BalanceGladstoneDale", 2.256e-4),
+                               number("BalanceMolarMass", 0.0289641))
+                           : schlieren::GasChoice::Table(schlieren::Gas::Air);
+  m.DensityReference = number("DensityReference", 1.0);
+  m.TemperatureReference = number("TemperatureReference", 1.0);
+  m.TemperatureUnits = static_cast<schlieren::TemperatureUnit>(
+    EntryOf("TemperatureUnit", text("TemperatureUnit", "Kelvin"), { "Kelvin", "Celsius" }));
+  m.PressureReference = number("PressureReference", 1.0);
+  m.PressureOffset = number("PressureOffset", 0.0);
+  m.PressureUnits = static_cast<schlieren::PressureUnit>(
+    EntryOf("PressureUnit", text("PressureUnit", "Pa"), { "Pa", "kPa", "atm", "bar" }));
+  m.Humidity = number("Humidity", 0.0);
+  m.HumidityKind = static_cast<schlieren::HumidityMeasure>(EntryOf("HumidityMeasure",
+    text("HumidityMeasure", "RelativeHumidity"), { "RelativeHumidity", "WaterMoleFraction" }));
+  m.CO2 = number("CO2", 450.0);
+  m.Wavelength = number("Wavelength", 632.8);
+  return m;
+}
 } // namespace
 
 int schlieren_index_model(const char* settings, int64_t count, int number_of_arrays,
@@ -1439,76 +1521,9 @@ int schlieren_index_model(const char* settings, int64_t count, int number_of_arr
       (number_of_arrays > 0 && (!roles || !arrays)))
       throw schlieren::Error("schlieren_index_model: settings, the arrays and n_minus_1 must be "
                              "given.");
-    const std::map<std::string, std::string> p = SettingLines("schlieren_index_model", settings,
-      { "Model", "PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
-        "MixtureComposition", "IdealGasComposition", "MixtureGas0", "MixtureGas1",
-        "NumberOfSpecies", "SpeciesGases", "SpeciesGladstoneDale", "SpeciesMolarMass",
-        "BalanceGas", "BalanceGladstoneDale", "BalanceMolarMass", "DensityReference",
-        "TemperatureUnit", "TemperatureReference", "PressureUnit", "PressureReference",
-        "PressureOffset", "Humidity", "HumidityMeasure", "CO2", "Wavelength" });
-    auto text = [&](const char* name, const char* fallback) {
-      const auto it = p.find(name);
-      return it == p.end() ? std::string(fallback) : it->second;
-    };
-    auto number = [&](const char* name, double fallback) {
-      const auto it = p.find(name);
-      return it == p.end() ? fallback : NumbersOf(name, it->second, 1)[0];
-    };
-    auto gas = [&](const char* name, const std::string& value, double K, double M) {
-      if (value == "Custom")
-        return schlieren::GasChoice::Typed(K, M);
-      try
-      {
-        return schlieren::GasChoice::Table(schlieren::ParseGas(value));
-      }
-      catch (const schlieren::Error& e)
-      {
-        throw schlieren::Error(std::string(name) + ": " + e.what());
-      }
-    };
-    schlieren::FieldModel m;
-    m.Model = static_cast<schlieren::IndexModel>(EntryOf("Model", text("Model", "Passthrough"),
-      { "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas", "Ciddor" }));
-    m.IndexIsN = number("PassthroughHoldsN", 0) != 0;
-    m.SingleGas = gas("Gas", text("Gas", "Air"), number("GladstoneDaleConstant", 2.256e-4),
-      number("MolarMass", 0.0289641));
-    if (m.Model == schlieren::IndexModel::GladstoneDaleMixture)
-      m.Mixture = static_cast<schlieren::Composition>(1 +
-        EntryOf("MixtureComposition", text("MixtureComposition", "MixtureFraction"),
-          { "MixtureFraction", "Species" }));
-    else if (m.Model == schlieren::IndexModel::IdealGas)
-      m.Mixture = static_cast<schlieren::Composition>(EntryOf("IdealGasComposition",
-        text("IdealGasComposition", "Gas"), { "Gas", "MixtureFraction", "Species" }));
-    else
-      m.Mixture = schlieren::Composition::SingleGas;
-    m.Gas0 = gas("MixtureGas0", text("MixtureGas0", "Air"), 0, 0).Preset;
-    m.GasF = gas("MixtureGas1", text("MixtureGas1", "He"), 0, 0).Preset;
-    m.NumberOfSpecies = static_cast<int>(number("NumberOfSpecies", 1));
-    const std::vector<double> gases = NumbersOf("SpeciesGases", text("SpeciesGases", "6 8 1 5"), 4);
-    const std::vector<double> K =
-      NumbersOf("SpeciesGladstoneDale", text("SpeciesGladstoneDale", "2.256e-4 2.256e-4 2.256e-4 2.256e-4"), 4);
-    const std::vector<double> M =
-      NumbersOf("SpeciesMolarMass", text("SpeciesMolarMass", "0.0289641 0.0289641 0.0289641 0.0289641"), 4);
-    for (int s = 0; s < schlieren::MaxSpecies; ++s)
-      m.Species[s] = GasByNumber("SpeciesGases", gases[s], K[s], M[s]);
-    const std::string balance = text("BalanceGas", "Air");
-    m.HasBalance = balance != "None";
-    m.Balance = m.HasBalance ? gas("BalanceGas", balance, number("BalanceGladstoneDale", 2.256e-4),
-                                 number("BalanceMolarMass", 0.0289641))
-                             : schlieren::GasChoice::Table(schlieren::Gas::Air);
-    m.DensityReference = number("DensityReference", 1.0);
-    m.TemperatureReference = number("TemperatureReference", 1.0);
-    m.TemperatureUnits = static_cast<schlieren::TemperatureUnit>(
-      EntryOf("TemperatureUnit", text("TemperatureUnit", "Kelvin"), { "Kelvin", "Celsius" }));
-    m.PressureReference = number("PressureReference", 1.0);
-    m.PressureOffset = number("PressureOffset", 0.0);
-    m.PressureUnits = static_cast<schlieren::PressureUnit>(
-      EntryOf("PressureUnit", text("PressureUnit", "Pa"), { "Pa", "kPa", "atm", "bar" }));
-    m.Humidity = number("Humidity", 0.0);
-    m.HumidityKind = static_cast<schlieren::HumidityMeasure>(EntryOf("HumidityMeasure",
-      text("HumidityMeasure", "RelativeHumidity"), { "RelativeHumidity", "WaterMoleFraction" }));
-    m.CO2 = number("CO2", 450.0);
-    m.Wavelength = number("Wavelength", 632.8);
+    const std::map<std::string, std::string> p =
+      SettingLines("schlieren_index_model", settings, ModelSettingNames());
+    const schlieren::FieldModel m = ModelOfSettings(p);
     // the arrays, by role
     schlieren::FieldArrays a;
     a.Count = static_cast<std::size_t>(count);
@@ -1551,6 +1566,297 @@ int schlieren_index_model(const char* settings, int64_t count, int number_of_arr
     Returned.clear();
     for (const std::string& w : r.Warnings)
       Returned += w + "\n";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
+namespace
+{
+std::string JsonList(const std::vector<std::string>& values)
+{
+  std::string out = "[";
+  for (std::size_t i = 0; i < values.size(); ++i)
+    out += (i ? ", " : "") + Json(values[i]);
+  return out + "]";
+}
+
+/** The lines of `text` (NULL: none), empty lines left out. */
+std::vector<std::string> Lines(const char* text)
+{
+  std::vector<std::string> out;
+  std::istringstream lines(text ? text : "");
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty())
+      out.push_back(line);
+  return out;
+}
+
+/** schlieren_index_field's report (JSON; see schlieren_c.h). */
+std::string IndexFieldReport(const schlieren::IndexFieldOutput& out, const std::string& error)
+{
+  std::string r = "{\"model_done\": " + std::string(out.ModelDone ? "true" : "false") +
+    ", \"warnings\": " + JsonList(out.Warnings) + ", \"notes\": " + JsonList(out.NewNotes) +
+    ", \"solid_note\": " + Json(out.SolidNote) +
+    ", \"solid\": " + (out.Solid.empty() ? "false" : "true") +
+    ", \"arrays_read\": " + JsonList(out.ArraysRead) + ", \"field_data\": [";
+  for (std::size_t i = 0; i < out.FieldData.size(); ++i)
+  {
+    const schlieren::IndexFieldValue& v = out.FieldData[i];
+    r += (i ? ", [" : "[") + Json(v.Name) + ", " + (v.IsText ? JsonList(v.Texts) : Number(v.Number)) + "]";
+  }
+  return r + "], \"error\": " + Json(error) + "}";
+}
+} // namespace
+
+int schlieren_index_field(const char* settings, const int dims[3], const double spacing[3],
+  int number_of_arrays, const char* const* names, const int* components, const int* value_bytes,
+  const void* const* values, const int64_t* value_counts, int active_scalars,
+  const char* cell_arrays, const char* notes, const unsigned char* valid, int64_t valid_count,
+  const unsigned char* rim, int64_t rim_count, float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
+  unsigned char* solid, int64_t solid_count, const char** report)
+{
+  if (report)
+    *report = "";
+  schlieren::IndexFieldOutput out;
+  std::string failure;
+  const int status = Guard(LastError, [&] {
+    const char* f = "schlieren_index_field";
+    const std::int64_t points = GridPoints(f, dims);
+    CheckFinite3(f, "spacing", spacing);
+    const std::string per = "a grid of " + GridText(dims) + " points";
+    CheckArray(f, "valid", valid, valid_count, points, per, true, "bytes");
+    CheckArray(f, "rim", rim, rim_count, points, per, true, "bytes");
+    CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, points, per, false);
+    CheckArray(f, "grad3", grad3, grad3_count, 3 * points, per + " (3 a point)", false);
+    CheckArray(f, "solid", solid, solid_count, points, per, false, "bytes");
+    if (number_of_arrays < 0 ||
+      (number_of_arrays > 0 && (!names || !components || !value_bytes || !values || !value_counts)))
+      throw schlieren::Error(std::string(f) + ": number_of_arrays is " +
+        std::to_string(number_of_arrays) + ": names, components, value_bytes, values and "
+        "value_counts must hold that many entries.");
+    std::vector<std::string> known = ModelSettingNames();
+    for (const char* extra : { "InputArray", "TemperatureArray", "PressureArray",
+           "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array",
+           "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray", "CO2FromArray",
+           "AmbientMode", "AmbientValue", "BodyFromGrid", "BodyWallFaces", "SolidArray",
+           "Resampled", "UseSamplingBounds", "CellsDescription", "WallVelocity",
+           "WallFaceCounts" })
+      known.emplace_back(extra);
+    const std::map<std::string, std::string> p = SettingLines(f, settings, known);
+    auto text = [&](const char* name, const char* fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? std::string(fallback) : it->second;
+    };
+    auto flag = [&](const char* name, double fallback) {
+      const auto it = p.find(name);
+      const double v = it == p.end() ? fallback : NumbersOf(name, it->second, 1)[0];
+      if (v != 0.0 && v != 1.0)
+        throw schlieren::Error(std::string(name) + " '" + it->second + "': 0 or 1 expected.");
+      return v != 0.0;
+    };
+    schlieren::IndexFieldInput in;
+    std::copy(dims, dims + 3, in.Dims);
+    std::copy(spacing, spacing + 3, in.Spacing);
+    in.Model = ModelOfSettings(p);
+    static const char* const roles[] = { "InputArray", "TemperatureArray", "PressureArray",
+      "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array", "Species4Array",
+      "HumidityArray", "CO2Array" };
+    for (int r = 0; r < schlieren::NumberOfRoles; ++r)
+      in.ArrayNames[r] = text(roles[r], "");
+    in.HumidityFromArray = flag("HumidityFromArray", 0);
+    in.CO2FromArray = flag("CO2FromArray", 0);
+    in.Ambient = static_cast<schlieren::AmbientFill>(EntryOf("AmbientMode",
+      text("AmbientMode", "Extend"), { "Extend", "DomainEdgeMedian", "Value" }));
+    in.AmbientValue = NumbersOf("AmbientValue", text("AmbientValue", "2.7164e-4"), 1)[0];
+    in.BodyFromGrid = flag("BodyFromGrid", 1);
+    const std::vector<double> walls =
+      NumbersOf("BodyWallFaces", text("BodyWallFaces", "0 0 0 0 0 0"), 6);
+    for (int w = 0; w < 6; ++w)
+      in.WallFaces[w] = walls[w] != 0.0 ? 1 : 0;
+    in.SolidArray = text("SolidArray", "");
+    if (in.SolidArray == "None")
+      in.SolidArray.clear(); // the proxy's entry for no array
+    in.Resampled = flag("Resampled", 0);
+    in.UseSamplingBounds = flag("UseSamplingBounds", 0);
+    const std::string cells = text("CellsDescription", "");
+    if (!cells.empty())
+      in.DescribeCells = [cells] { return cells; };
+    for (int i = 0; i < number_of_arrays; ++i)
+    {
+      const std::string which = "array " + std::to_string(i);
+      if (!names[i])
+        throw schlieren::Error(std::string(f) + ": " + which + " has no name (NULL).");
+      if (components[i] < 1)
+        throw schlieren::Error(std::string(f) + ": " + which + " ('" + names[i] + "') has " +
+          std::to_string(components[i]) + " components: at least 1.");
+      schlieren::GridArray g;
+      g.Name = names[i];
+      g.Components = components[i];
+      if (components[i] == 1 || values[i] || value_counts[i] != 0)
+      {
+        if (value_bytes[i] != 4 && value_bytes[i] != 8)
+          throw schlieren::Error(std::string(f) + ": " + which + " ('" + names[i] +
+            "') has value_bytes " + std::to_string(value_bytes[i]) + ": 4 (float) or 8 (double).");
+        const std::string label = which + " ('" + g.Name + "')";
+        CheckArray(f, label.c_str(), values[i], value_counts[i],
+          points * components[i], per + " x " + std::to_string(components[i]) + " components",
+          false);
+        if (value_bytes[i] == 4)
+          g.Float = static_cast<const float*>(values[i]);
+        else
+          g.Double = static_cast<const double*>(values[i]);
+      }
+      in.PointArrays.push_back(g);
+    }
+    if (rim)
+    {
+      // the voids beside the mesh's walls: the rim's kinds the front end found (its nearest
+      // boundary faces' kinds, schlieren_wall_faces)
+      schlieren::walls::RimReport r;
+      r.Velocity = text("WallVelocity", "U");
+      const std::vector<double> c = NumbersOf("WallFaceCounts", text("WallFaceCounts", "0 0 0 0"), 4);
+      for (double v : c)
+        if (!(v >= 0) || v != std::floor(v) || v > 1e15)
+          throw schlieren::Error(std::string(f) + ": WallFaceCounts takes 4 counts (walls, "
+                                                  "crossed by the flow, at rest, turned).");
+      r.WallFaces = static_cast<std::size_t>(c[0]);
+      r.FlowFaces = static_cast<std::size_t>(c[1]);
+      r.StillFaces = static_cast<std::size_t>(c[2]);
+      r.TurnedFaces = static_cast<std::size_t>(c[3]);
+      const int* d = dims;
+      in.BesideWalls = [r, rim, d](const unsigned char* v, unsigned char* solidOut, std::string& note) {
+        const std::size_t marked = schlieren::InvalidRegionsBesideWalls(d, v, rim, solidOut);
+        note = schlieren::walls::BesideWallsNote(r, marked);
+        return marked > 0;
+      };
+    }
+    in.ActiveScalars = active_scalars >= 0 && active_scalars < number_of_arrays ? active_scalars : -1;
+    in.CellArrayNames = Lines(cell_arrays);
+    in.Notes = Lines(notes);
+    in.Valid = valid;
+    in.NMinus1 = n_minus_1;
+    in.Gradient = grad3;
+    for (int a = 0; a < 3; ++a)
+    {
+      in.GridExtent[2 * a + 1] = in.OutExtent[2 * a + 1] = in.WholeExtent[2 * a + 1] = dims[a] - 1;
+    }
+    failure = schlieren::ComputeIndexField(schlieren::SerialParallel(), in, out);
+    std::fill(solid, solid + points, static_cast<unsigned char>(0));
+    std::copy(out.Solid.begin(), out.Solid.end(), solid);
+    if (!failure.empty())
+      throw schlieren::Error(failure);
+  });
+  Returned = IndexFieldReport(out, status ? LastError : std::string());
+  if (report)
+    *report = Returned.c_str();
+  return status;
+}
+
+int schlieren_index_choices(
+  const char* settings, const char* present, const char* fallback_input, const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_index_choices";
+    static const char* const roles[] = { "InputArray", "TemperatureArray", "PressureArray",
+      "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array", "Species4Array",
+      "HumidityArray", "CO2Array" };
+    std::vector<std::string> known = ModelSettingNames();
+    known.insert(known.end(), std::begin(roles), std::end(roles));
+    const std::map<std::string, std::string> p = SettingLines(f, settings, known);
+    auto text = [&](const char* name, const char* fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? std::string(fallback) : it->second;
+    };
+    auto number = [&](const char* name, double fallback) {
+      const auto it = p.find(name);
+      return it == p.end() ? fallback : NumbersOf(name, it->second, 1)[0];
+    };
+    schlieren::IndexChoiceInput in;
+    in.Present = Lines(present);
+    in.Model = EntryOf("Model", text("Model", "Automatic"),
+                 { "Automatic", "Passthrough", "GladstoneDale", "GladstoneDaleMixture",
+                   "IdealGas", "Ciddor" }) - 1;
+    in.HoldsN = number("PassthroughHoldsN", 0) != 0;
+    for (int r = 0; r < schlieren::NumberOfRoles; ++r)
+      in.Arrays[r] = text(roles[r], "");
+    const std::string gas = text("Gas", "Custom");
+    in.Gas = gas == "Custom" ? -1 : static_cast<int>(schlieren::ParseGas(gas));
+    in.GladstoneDale = number("GladstoneDaleConstant", 2.256e-4);
+    in.MolarMass = number("MolarMass", 0.0289641);
+    in.MixtureComposition = static_cast<schlieren::Composition>(1 +
+      EntryOf("MixtureComposition", text("MixtureComposition", "MixtureFraction"),
+        { "MixtureFraction", "Species" }));
+    in.IdealGasComposition = static_cast<schlieren::Composition>(EntryOf("IdealGasComposition",
+      text("IdealGasComposition", "Gas"), { "Gas", "MixtureFraction", "Species" }));
+    in.TemperatureUnits = static_cast<schlieren::TemperatureUnit>(
+      EntryOf("TemperatureUnit", text("TemperatureUnit", "Kelvin"), { "Kelvin", "Celsius" }));
+    in.PressureUnits = static_cast<schlieren::PressureUnit>(
+      EntryOf("PressureUnit", text("PressureUnit", "Pa"), { "Pa", "kPa", "atm", "bar" }));
+    in.TemperatureReference = number("TemperatureReference", 1.0);
+    in.PressureReference = number("PressureReference", 1.0);
+    in.PressureOffset = number("PressureOffset", 0.0);
+    in.DensityReference = number("DensityReference", 1.0);
+    const std::string fallback = fallback_input ? fallback_input : "";
+    in.FallbackInput = [fallback] { return fallback; };
+    schlieren::IndexChoice out;
+    const std::string problem = schlieren::ResolveIndexChoices(in, out);
+    if (!problem.empty())
+      throw schlieren::Error(problem);
+    Returned = "{\"model\": " + Json(schlieren::IndexModelLabel(out.Model)) +
+      ", \"holds_n\": " + (out.HoldsN ? "true" : "false") + ", \"arrays\": {";
+    for (int r = 0; r < schlieren::NumberOfRoles; ++r)
+      Returned += std::string(r ? ", " : "") + Json(roles[r]) + ": " + Json(out.Arrays[r]);
+    Returned += "}, \"notes\": " + JsonList(out.Notes) + "}";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
+int schlieren_wall_faces(int64_t faces, const int64_t* offsets, int64_t offsets_count,
+  const int64_t* connectivity, int64_t connectivity_count, int64_t points, const double* normals,
+  int64_t normals_count, const double* velocity, int64_t velocity_count, double largest_speed,
+  int ignore_axis, const char* velocity_name, unsigned char* kinds, int64_t kinds_count,
+  const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_wall_faces";
+    if (faces < 0 || points < 0)
+      throw schlieren::Error(std::string(f) + ": faces is " + std::to_string(faces) +
+        " and points " + std::to_string(points) + ": counts (>= 0).");
+    const std::string per = std::to_string(faces) + " faces";
+    CheckArray(f, "offsets", offsets, offsets_count, faces + 1, per + " (one more than the faces)", false);
+    CheckArray(f, "normals", normals, normals_count, 3 * faces, per + " (3 a face)", false);
+    CheckArray(f, "velocity", velocity, velocity_count, 3 * faces, per + " (3 a face)", false);
+    CheckArray(f, "kinds", kinds, kinds_count, faces, per, false, "bytes");
+    if (offsets[0] != 0)
+      throw schlieren::Error(std::string(f) + ": offsets[0] is " + std::to_string(offsets[0]) + ": 0.");
+    for (int64_t i = 0; i < faces; ++i)
+      if (offsets[i + 1] < offsets[i])
+        throw schlieren::Error(std::string(f) + ": offsets decrease at face " + std::to_string(i) + ".");
+    CheckArray(f, "connectivity", connectivity, connectivity_count, offsets[faces],
+      "offsets[faces]", offsets[faces] == 0);
+    for (int64_t k = 0; k < connectivity_count; ++k)
+      if (connectivity[k] < 0 || connectivity[k] >= points)
+        throw schlieren::Error(std::string(f) + ": connectivity[" + std::to_string(k) + "] is " +
+          std::to_string(connectivity[k]) + ": a point index below " + std::to_string(points) + ".");
+    if (!std::isfinite(largest_speed) || ignore_axis < -1 || ignore_axis > 2)
+      throw schlieren::Error(std::string(f) + ": largest_speed must be finite and ignore_axis -1, "
+                                              "0, 1 or 2.");
+    schlieren::walls::RimReport r;
+    r.Velocity = velocity_name ? velocity_name : "U";
+    const std::vector<unsigned char> k = schlieren::walls::ClassifyFaces(
+      static_cast<std::size_t>(faces), offsets, connectivity, static_cast<std::size_t>(points),
+      normals, velocity, largest_speed, ignore_axis, r);
+    std::copy(k.begin(), k.end(), kinds);
+    Returned = "{\"velocity\": " + Json(r.Velocity) + ", \"wall_faces\": " +
+      std::to_string(r.WallFaces) + ", \"flow_faces\": " + std::to_string(r.FlowFaces) +
+      ", \"still_faces\": " + std::to_string(r.StillFaces) + ", \"turned_faces\": " +
+      std::to_string(r.TurnedFaces) + "}";
     if (report)
       *report = Returned.c_str();
   });
@@ -1852,6 +2158,36 @@ int schlieren_symmetry_plan(const char* settings, const double bounds[6], const 
       Returned += "warning: " + w + "\n";
     if (report)
       *report = Returned.c_str();
+  });
+}
+
+int schlieren_symmetry_to_mesh(const double geometry[8], const int dims[3],
+  const double origin[3], const double spacing[3], const double* points, int64_t points_count,
+  double* at, int64_t at_count)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_symmetry_to_mesh";
+    if (!geometry)
+      throw schlieren::Error(std::string(f) + ": geometry must be given.");
+    GridPoints(f, dims);
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    if (points_count < 0 || points_count % 3 != 0)
+      throw schlieren::Error(std::string(f) + ": points holds " + std::to_string(points_count) +
+        " values: give 3 per point (x, y, z).");
+    CheckArray(f, "points", points, points_count, points_count, "the points", true);
+    CheckArray(f, "at", at, at_count, points_count, "the points (3 a point)", points_count == 0);
+    schlieren::SymmetryPlan plan;
+    try
+    {
+      plan = schlieren::SymmetryPlan::FromGeometry(geometry, dims, origin, spacing);
+    }
+    catch (const schlieren::Error& e)
+    {
+      throw schlieren::Error(std::string(f) + ": " + e.what());
+    }
+    for (int64_t i = 0; i < points_count / 3; ++i)
+      schlieren::SymmetryToMesh(plan, points + 3 * i, at + 3 * i);
   });
 }
 

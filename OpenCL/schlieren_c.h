@@ -251,6 +251,76 @@ SCHLIEREN_C_API int schlieren_field_index(const char* model, const float* input,
 SCHLIEREN_C_API int schlieren_index_model(const char* settings, int64_t count,
   int number_of_arrays, const char* const* roles, const float* const* arrays,
   const unsigned char* valid, float* n_minus_1, const char** report);
+/**
+ * BodyFromGrid's bodies beside a mesh's walls, the engine's part (schlieren::walls::ClassifyFaces,
+ * which the C++ filter calls): the kind of each of `faces` boundary faces of the mesh from the
+ * velocity beside it. Face f has the points connectivity[offsets[f]] .. [offsets[f + 1] - 1]
+ * (indices below `points` of the surface's points: they tell which faces touch; offsets holds
+ * faces + 1 values from 0), the unit normal normals[3f..] and the velocity velocity[3f..]
+ * (the cell's beside it, or the mean of the face's points'); `largest_speed` the largest |U| of
+ * the mesh; faces whose normal lies within 25 deg of axis `ignore_axis` (-1: none; the planar
+ * case's front and back, a wedge's sides) and faces of fewer than 3 points are left out.
+ * Writes `kinds` (a byte a face: 1 a wall, 2 crossed by the flow, 0 fluid at rest beside it,
+ * 255 left out); `report` (may be NULL) gets JSON {"velocity" (`velocity_name`), "wall_faces",
+ * "flow_faces", "still_faces", "turned_faces"} for schlieren_index_field's settings.
+ */
+SCHLIEREN_C_API int schlieren_wall_faces(int64_t faces, const int64_t* offsets,
+  int64_t offsets_count, const int64_t* connectivity, int64_t connectivity_count, int64_t points,
+  const double* normals, int64_t normals_count, const double* velocity, int64_t velocity_count,
+  double largest_speed, int ignore_axis, const char* velocity_name, unsigned char* kinds,
+  int64_t kinds_count, const char** report);
+/**
+ * RefractiveIndex's choice of the model and of the arrays left automatic (the engine's
+ * ResolveIndexChoices, which the C++ filter calls): `settings` the proxy's properties as
+ * "Name=value" lines (Model, Automatic included; PassthroughHoldsN; the arrays chosen per role,
+ * InputArray .. CO2Array, absent or "": automatic; and what the notes say: Gas,
+ * GladstoneDaleConstant, MolarMass, MixtureComposition, IdealGasComposition, TemperatureUnit,
+ * TemperatureReference, PressureUnit, PressureReference, PressureOffset, DensityReference; the
+ * other settings of schlieren_index_model are taken and not used). `present`: the input's array
+ * names, one a line (point arrays, then cell arrays); `fallback_input` (may be NULL): the input
+ * array where nothing chooses one (the active point scalars, else the first point array).
+ * `report` (may be NULL; owned by the library until this thread's next call) gets JSON
+ * {"model", "holds_n", "arrays": {"InputArray": name, ...}, "notes": [...]}. Non-zero: no name
+ * says anything for Model Automatic (schlieren_last_error(), the C++ filter's message).
+ */
+SCHLIEREN_C_API int schlieren_index_choices(
+  const char* settings, const char* present, const char* fallback_input, const char** report);
+/**
+ * RefractiveIndex's work once the input is on a grid (the engine's ComputeIndexField, which the
+ * C++ filter calls): the arrays the model reads chosen by name, the model, the points outside the
+ * flow domain (AmbientMode), the checks of n, the gradient, the bodies (BodyFromGrid's enclosed
+ * holes, an upstream `solid` array, SolidArray) and the output's field data, with the C++
+ * filter's messages. `settings`: "Name=value" lines, the proxy's names: every setting of
+ * schlieren_index_model (Model as resolved: not Automatic), the arrays chosen per role
+ * (InputArray, TemperatureArray, PressureArray, MixtureFractionArray, Species1Array ..
+ * Species4Array, HumidityArray, CO2Array; absent or "": none), HumidityFromArray, CO2FromArray,
+ * AmbientMode (Extend, DomainEdgeMedian, Value), AmbientValue, BodyFromGrid, BodyWallFaces (6),
+ * SolidArray ("None" or "": none), and what the front end knows of its grid: Resampled (1: the
+ * grid is a resampling of a mesh), UseSamplingBounds, CellsDescription (the input's cells in
+ * words, for the message where no grid point lies in a cell). The grid's point arrays:
+ * names[i], components[i], values[i] (value_bytes[i] 4 float or 8 double, value_counts[i] values:
+ * the grid's points x components; NULL and 0 allowed for an array of more than one component,
+ * which is only named in messages); `active_scalars` the index of the active scalars (-1: none:
+ * the input array where none is chosen). `cell_arrays`, `notes` (may be NULL): the cell arrays'
+ * names and the notes said so far, one a line. `valid` (NULL and 0: every point): non-zero in
+ * the flow. `rim` (NULL and 0: none; else a byte a point): where the front end found the voids
+ * beside a mesh's walls (BodyFromGrid on a resampled grid), the kind of the nearest boundary face
+ * of the invalid points next to a valid one (1 wall, 2 crossed by the flow, else 0: see
+ * schlieren_wall_faces), with the settings WallVelocity (the velocity's name) and WallFaceCounts
+ * (walls, crossed, at rest, turned: the counts schlieren_wall_faces gave) for the note. Writes n_minus_1 (the grid's points), grad3 (3 a point) and solid (a byte a point, 1
+ * in a body). `report` (may be NULL; owned by the library until this thread's next call) gets
+ * JSON, on failure too: {"model_done": the model ran (its warnings are to be said), "warnings",
+ * "notes" (to say now: the voids beside walls), "solid_note", "solid" (any body point),
+ * "arrays_read", "field_data": [[name, number or [strings]], ...] in the C++ filter's order,
+ * "error"}. Non-zero: schlieren_last_error() says why.
+ */
+SCHLIEREN_C_API int schlieren_index_field(const char* settings, const int dims[3],
+  const double spacing[3], int number_of_arrays, const char* const* names, const int* components,
+  const int* value_bytes, const void* const* values, const int64_t* value_counts,
+  int active_scalars, const char* cell_arrays, const char* notes, const unsigned char* valid,
+  int64_t valid_count, const unsigned char* rim, int64_t rim_count, float* n_minus_1,
+  int64_t n_minus_1_count, float* grad3,
+  int64_t grad3_count, unsigned char* solid, int64_t solid_count, const char** report);
 /** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
  * RefractiveIndex filter's AmbientMode Extend); `valid` and `n_minus_1` hold `count` values (the
  * grid's points); `filled` (may be NULL) gets how many. */
@@ -342,6 +412,12 @@ SCHLIEREN_C_API int schlieren_symmetry_plan(const char* settings, const double b
 SCHLIEREN_C_API int schlieren_symmetry_samples(const double geometry[8], const int dims[3],
   const double origin[3], const double spacing[3], int64_t* samples, double* points,
   int64_t points_count, int64_t* sample_of, int64_t sample_of_count);
+/** Where the plan's grid samples the 2D input at each of the points (x, y, z each;
+ * `points_count` values, 3 a point): `at` the same count (for the front end's nearest-face search
+ * of the voids beside walls; the engine's SymmetryToMesh). */
+SCHLIEREN_C_API int schlieren_symmetry_to_mesh(const double geometry[8], const int dims[3],
+  const double origin[3], const double spacing[3], const double* points, int64_t points_count,
+  double* at, int64_t at_count);
 /** The samples onto the grid: `out[i]` = `values[sample_of[i]]` for `components` floats each
  * (`values` holds `values_count` floats, `components` a sample; `out` `out_count`, `components` a
  * grid point), and where `sample_valid` is given (`samples` bytes, non-zero: the sample lies in

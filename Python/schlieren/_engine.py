@@ -430,6 +430,108 @@ def index_model(settings, arrays, valid=None):
     return out, [w for w in _text(report.value).split("\n") if w]
 
 
+def index_choices(settings, present, fallback_input=""):
+    """RefractiveIndex's choice of the model and of the arrays left automatic (the C interface's
+    schlieren_index_choices, the C++ filter's): `settings` the proxy's properties by name (Model,
+    Automatic included; the arrays per role, "" automatic), `present` the input's array names,
+    `fallback_input` the input array where nothing chooses one. Returns {"model", "holds_n",
+    "arrays": {property: name}, "notes": [...]}; Model Automatic with no name to go by raises
+    EngineError with the C++ filter's message."""
+    f = _sig("schlieren_index_choices", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
+             ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p))
+    text = "\n".join("%s=%s" % (key, _value_text(x)) for key, x in settings.items()).encode()
+    report = ctypes.c_char_p()
+    _check(f(text, "\n".join(present).encode(), (fallback_input or "").encode(),
+             ctypes.byref(report)))
+    return json.loads(_text(report.value))
+
+
+def wall_faces(offsets, connectivity, points, normals, velocity, largest_speed, ignore_axis=-1,
+               velocity_name="U"):
+    """The kinds of a mesh's boundary faces from the velocity beside them (the C interface's
+    schlieren_wall_faces, the C++ filter's): face f has the surface points
+    connectivity[offsets[f]:offsets[f + 1]] (below `points`), the normal normals[f] and the
+    velocity velocity[f] (arrays of shape (faces, 3)). Returns (kinds uint8: 1 wall, 2 crossed
+    by the flow, 0 at rest, 255 left out; the report: velocity, wall_faces, flow_faces,
+    still_faces, turned_faces)."""
+    f = _sig("schlieren_wall_faces", ctypes.c_int, _i64, ctypes.POINTER(ctypes.c_int64), _i64,
+             ctypes.POINTER(ctypes.c_int64), _i64, _i64, ctypes.POINTER(ctypes.c_double), _i64,
+             ctypes.POINTER(ctypes.c_double), _i64, ctypes.c_double, ctypes.c_int,
+             ctypes.c_char_p, _u8p, _i64, ctypes.POINTER(ctypes.c_char_p))
+    o = np.ascontiguousarray(offsets, dtype=np.int64).reshape(-1)
+    c = np.ascontiguousarray(connectivity, dtype=np.int64).reshape(-1)
+    n = np.ascontiguousarray(normals, dtype=np.float64).reshape(-1)
+    u = np.ascontiguousarray(velocity, dtype=np.float64).reshape(-1)
+    faces = max(0, o.size - 1)
+    kinds = np.zeros(faces, np.uint8)
+    i64p = ctypes.POINTER(ctypes.c_int64)
+    dp = ctypes.POINTER(ctypes.c_double)
+    report = ctypes.c_char_p()
+    _check(f(faces, o.ctypes.data_as(i64p), o.size, c.ctypes.data_as(i64p), c.size, int(points),
+             n.ctypes.data_as(dp), n.size, u.ctypes.data_as(dp), u.size, float(largest_speed),
+             int(ignore_axis), str(velocity_name).encode(), _up(kinds), kinds.size,
+             ctypes.byref(report)))
+    return kinds, json.loads(_text(report.value))
+
+
+def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, cell_arrays=(),
+                notes=(), rim=None):
+    """RefractiveIndex's work once the input is on a grid (the C interface's
+    schlieren_index_field, which the C++ filter's engine call is): `settings` the proxy's
+    properties by name (Model as resolved, the arrays chosen per role, AmbientMode, BodyFromGrid,
+    SolidArray...; and Resampled, UseSamplingBounds, CellsDescription), `arrays` the grid's point
+    arrays in order, name -> values (points x components; float32 and float64 read as they are,
+    other types as float64), `valid` (None: every point) non-zero in the flow. Returns (n - 1
+    float32, grad n float32 (points, 3), solid uint8 or None where there is no body, the report:
+    warnings, notes, solid_note, arrays_read, field_data [(name, number or [strings])]). A
+    failure raises EngineError with the C++ filter's message; its report is then `error.report`."""
+    f = _sig("schlieren_index_field", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3,
+             ctypes.c_int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
+             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_void_p),
+             ctypes.POINTER(ctypes.c_int64), ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
+             _u8p, _i64, _u8p, _i64, _f32p, _i64, _f32p, _i64, _u8p, _i64,
+             ctypes.POINTER(ctypes.c_char_p))
+    grid = _grid(dims, [0] * 3, spacing)
+    n = int(np.prod([int(d) for d in dims]))
+    kept, names, comps, nbytes = [], [], [], []
+    for name, a in arrays.items():
+        a = np.asarray(a)
+        if a.dtype.kind not in "biuf":
+            raise ArgumentTypeError("array %r has dtype %s: give real numbers" % (name, a.dtype))
+        a = np.ascontiguousarray(a, dtype=a.dtype if a.dtype in (np.float32, np.float64)
+                                 else np.float64)
+        c = 1 if a.ndim == 1 else int(np.prod(a.shape[1:]))
+        kept.append(a.reshape(-1))
+        names.append(str(name).encode())
+        comps.append(c)
+        nbytes.append(a.dtype.itemsize)
+    k = max(1, len(kept))
+    c_names = (ctypes.c_char_p * k)(*names)
+    c_comps = (ctypes.c_int * k)(*comps)
+    c_bytes = (ctypes.c_int * k)(*nbytes)
+    c_values = (ctypes.c_void_p * k)(*[a.ctypes.data for a in kept])
+    c_counts = (ctypes.c_int64 * k)(*[a.size for a in kept])
+    v = None if valid is None else _point_array(valid, "valid", dims, np.uint8, mask=True)
+    r = None if rim is None else _point_array(rim, "rim", dims, np.uint8)
+    n1 = np.zeros(n, np.float32)
+    grad = np.zeros((n, 3), np.float32)
+    solid = np.zeros(n, np.uint8)
+    text = "\n".join("%s=%s" % (key, _value_text(x)) for key, x in settings.items()).encode()
+    report = ctypes.c_char_p()
+    rc = f(text, grid[0], grid[2], len(kept), c_names, c_comps, c_bytes, c_values, c_counts,
+           int(active_scalars), "\n".join(cell_arrays).encode(), "\n".join(notes).encode(),
+           _up(v), _size(v), _up(r), _size(r), n1.ctypes.data_as(_f32p), n1.size,
+           grad.ctypes.data_as(_f32p),
+           grad.size, solid.ctypes.data_as(_u8p), solid.size, ctypes.byref(report))
+    result = json.loads(_text(report.value) or "{}")
+    result["field_data"] = [tuple(p) for p in result.get("field_data", [])]
+    if rc:
+        error = EngineError(_text(_lib.schlieren_last_error()))
+        error.report = result
+        raise error
+    return n1, grad, (solid if result.get("solid") else None), result
+
+
 def extend_into_invalid(dims, valid, n_minus_1):
     """Fills n - 1 (float32, changed in place) where valid == 0 by the engine's smooth
     continuation of the flow; returns how many points were filled."""
@@ -640,6 +742,19 @@ def symmetry_plan(settings, bounds, points=None, one_data_set=True, image=None):
     return dict(dims=list(dims), origin=list(o3), spacing=list(h3), geometry=list(g),
                 notes=[w[len("note: "):] for w in lines if w.startswith("note: ")],
                 warnings=[w[len("warning: "):] for w in lines if w.startswith("warning: ")])
+
+
+def symmetry_to_mesh(plan, points):
+    """Where the plan's grid samples the 2D input at `points` (n x 3): the C interface's
+    schlieren_symmetry_to_mesh (the engine's SymmetryToMesh)."""
+    f = _sig("schlieren_symmetry_to_mesh", ctypes.c_int, ctypes.c_double * 8, _c_int3, _c_double3,
+             _c_double3, _f64p, _i64, _f64p, _i64)
+    xyz = np.ascontiguousarray(points, dtype=np.float64).reshape(-1)
+    at = np.zeros_like(xyz)
+    _check(f((ctypes.c_double * 8)(*plan["geometry"]), *_grid(plan["dims"], plan["origin"],
+                                                               plan["spacing"]),
+             xyz.ctypes.data_as(_f64p), xyz.size, at.ctypes.data_as(_f64p), at.size))
+    return at.reshape(-1, 3)
 
 
 def symmetry_samples(plan):

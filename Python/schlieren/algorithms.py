@@ -264,6 +264,26 @@ def _internal_mesh(data):
     return data
 
 
+def _internal_mesh_note(data):
+    """The C++ filter's note where `data` is an OpenFOAM reader's multiblock with an internalMesh
+    ("" otherwise): the block read and the others ignored."""
+    mesh = _internal_mesh(data)
+    if mesh is data:
+        return ""
+    others = []
+    for b in range(data.GetNumberOfBlocks()):
+        meta = data.GetMetaData(b) if data.HasMetaData(b) else None
+        name = meta.Get(vtkCompositeDataSet.NAME()) if meta is not None else None
+        if data.GetBlock(b) is not None and data.GetBlock(b) is not mesh:
+            others.append(name if name else "block %d" % b)
+    note = "RefractiveIndex: the OpenFOAM case's internalMesh is read (%d cells)" % \
+        mesh.GetNumberOfCells()
+    if others:
+        note += ("; the other blocks (%s: patches, zones) are ignored, since the field lives in "
+                 "the cells" % ", ".join(others))
+    return note + "."
+
+
 def _leaves(data):
     """The data sets of a data set (itself) or of a composite data set, in its iterator's order."""
     if isinstance(data, vtkDataSet):
@@ -296,6 +316,123 @@ def _leaf_bounds(data):
 def _cell_leaves(data):
     """The data sets with cells of `data` (itself, or a composite data set's blocks in order)."""
     return [leaf for leaf in _leaves(data) if leaf.GetNumberOfCells() > 0]
+
+
+def _wall_rim(mesh, dims, origin, spacing, valid, ignore_axis, plan=None):
+    """BodyFromGrid's voids beside a mesh's walls, the front end's part (as the C++ filter's
+    schlieren::walls::ClassifyRim): the mesh's boundary faces with their normals and the velocity
+    beside them (VTK's surface filter), their kinds (the engine's, schlieren_wall_faces), and for
+    every invalid grid point next to a valid one the kind of its nearest face (VTK's static cell
+    locator, at the point where the grid sampled the mesh: the engine's SymmetryToMesh for a
+    symmetric `plan`). Returns (rim uint8 a grid point, the faces' report), or None where the mesh
+    has no velocity (a 3-component point or cell array named U or velocity) or no face."""
+    from vtkmodules.vtkCommonCore import vtkIdList, reference
+    from vtkmodules.vtkCommonDataModel import (vtkCellArray, vtkGenericCell, vtkPolyData,
+                                               vtkPolygon, vtkStaticCellLocator)
+    from vtkmodules.vtkFiltersGeometry import vtkDataSetSurfaceFilter
+    if not isinstance(mesh, vtkDataSet) or mesh.GetNumberOfCells() == 0:
+        return None
+
+    def velocity(fd):
+        for i in range(fd.GetNumberOfArrays()):
+            a = fd.GetArray(i)
+            if a is not None and a.GetName() and a.GetNumberOfComponents() == 3 and \
+                    a.GetName().lower() in ("u", "velocity"):
+                return a
+        return None
+    cell_u = velocity(mesh.GetCellData())  # the cell's own value beside a face, before points'
+    point_u = None if cell_u is not None else velocity(mesh.GetPointData())
+    U = cell_u if cell_u is not None else point_u
+    if U is None or U.GetNumberOfTuples() == 0:
+        return None
+    u3 = numpy_support.vtk_to_numpy(U).astype(np.float64).reshape(-1, 3)
+    largest = float(np.sqrt(u3[:, 0] * u3[:, 0] + u3[:, 1] * u3[:, 1] + u3[:, 2] * u3[:, 2]).max())
+    if not largest > 0:
+        return None
+    surface = vtkDataSetSurfaceFilter()
+    surface.SetInputData(mesh)
+    surface.PassThroughCellIdsOn()
+    surface.PassThroughPointIdsOn()
+    surface.Update()
+    faces = surface.GetOutput()
+    cell_ids = faces.GetCellData().GetArray(surface.GetOriginalCellIdsName())
+    point_ids = faces.GetPointData().GetArray(surface.GetOriginalPointIdsName())
+    cell_ids = None if cell_ids is None else numpy_support.vtk_to_numpy(cell_ids)
+    point_ids = None if point_ids is None else numpy_support.vtk_to_numpy(point_ids)
+    count, points, ids = faces.GetNumberOfCells(), faces.GetPoints(), vtkIdList()
+    offsets, connectivity = [0], []
+    normals, speeds = np.zeros((count, 3)), np.zeros((count, 3))
+    for c in range(count):
+        faces.GetCellPoints(c, ids)
+        m = ids.GetNumberOfIds()
+        face = [ids.GetId(k) for k in range(m)]
+        connectivity.extend(face)
+        offsets.append(len(connectivity))
+        if m < 3:
+            continue
+        n = [0.0, 0.0, 0.0]
+        vtkPolygon.ComputeNormal(points, m, face, n)
+        normals[c] = n
+        if cell_u is not None and cell_ids is not None:
+            speeds[c] = u3[cell_ids[c]]
+        elif point_u is not None and point_ids is not None:
+            u = [0.0, 0.0, 0.0]
+            for q in face:
+                v = u3[point_ids[q]]
+                for a in range(3):
+                    u[a] += float(v[a]) / m
+            speeds[c] = u
+    kinds, report = _engine.wall_faces(offsets, connectivity, faces.GetNumberOfPoints(), normals,
+                                       speeds, largest, ignore_axis, U.GetName())
+    kept, polys, kind = vtkPolyData(), vtkCellArray(), []
+    kept.SetPoints(points)
+    for c in range(count):
+        if kinds[c] != 255:
+            faces.GetCellPoints(c, ids)
+            polys.InsertNextCell(ids)
+            kind.append(int(kinds[c]))
+    if not kind:
+        return None
+    kept.SetPolys(polys)
+    locator = vtkStaticCellLocator()
+    locator.SetDataSet(kept)
+    locator.BuildLocator()
+    # the invalid points next to a valid one (6 neighbours), x fastest
+    nx, ny, nz = dims
+    ok = np.asarray(valid).reshape(nz, ny, nx) != 0
+    beside = np.zeros_like(ok)
+    beside[:, :, 1:] |= ok[:, :, :-1]
+    beside[:, :, :-1] |= ok[:, :, 1:]
+    beside[:, 1:, :] |= ok[:, :-1, :]
+    beside[:, :-1, :] |= ok[:, 1:, :]
+    beside[1:, :, :] |= ok[:-1, :, :]
+    beside[:-1, :, :] |= ok[1:, :, :]
+    where = np.flatnonzero(~ok & beside)
+    k, j, i = np.unravel_index(where, (nz, ny, nx))
+    x = np.stack([origin[0] + i * spacing[0], origin[1] + j * spacing[1],
+                  origin[2] + k * spacing[2]], axis=1)
+    at = x if plan is None else _engine.symmetry_to_mesh(plan, x)
+    rim = np.zeros(nx * ny * nz, np.uint8)
+    cell, closest = vtkGenericCell(), [0.0, 0.0, 0.0]
+    found, sub, d2 = reference(-1), reference(0), reference(0.0)
+    for p, point in zip(where, at):
+        found.set(-1)
+        locator.FindClosestPoint(point.tolist(), closest, cell, found, sub, d2)
+        if found.get() >= 0:
+            rim[p] = kind[found.get()]
+    return rim, report
+
+
+def _describe_cells(data):
+    """"N cells: a 3D, b 2D (faces), c 1D or 0D" of a data set or a composite one's leaves (the
+    C++ filter's words, for the message where no grid point lies in a cell)."""
+    from vtkmodules.vtkCommonDataModel import vtkCellTypes
+    counts = [0, 0, 0, 0]
+    for leaf in _leaves(data):
+        for c in range(leaf.GetNumberOfCells()):
+            counts[max(0, min(3, vtkCellTypes.GetDimension(leaf.GetCellType(c))))] += 1
+    return "%d cells: %d 3D, %d 2D (faces), %d 1D or 0D" % (
+        sum(counts), counts[3], counts[2], counts[0] + counts[1])
 
 
 def _values(a):
@@ -741,17 +878,21 @@ class RefractiveIndex(_Properties):
     """n - 1 from CFD fields by every index model of the engine (Passthrough, GladstoneDale,
     GladstoneDaleMixture, IdealGas, Ciddor), resampled onto an image as needed.
 
-    Model Automatic chooses as the C++ filter does: Passthrough on an array named as n - 1, else
-    GladstoneDale on one named as a density, else IdealGas on a temperature and a pressure, else
-    Passthrough of n; a named InputArray decides by its name. An empty array property takes the
-    first array named as what it holds (the C++ filter's names).
+    Model Automatic chooses as the C++ filter does, by the same engine function
+    (schlieren_index_choices): Passthrough on an array named as n - 1, else GladstoneDale on one
+    named as a density, else IdealGas on a temperature and a pressure, else Passthrough of n; a
+    named InputArray decides by its name. An empty array property takes the first array named as
+    what it holds (the C++ filter's names). The work on the grid (the model, the ambient fill, the
+    gradient, the bodies, the field data) is the engine's schlieren_index_field, the C++
+    filter's.
 
     Every property of the RefractiveIndex proxy is here with the proxy's default (the ParaView
     names: SelectInputArray is InputArray). Symmetry Planar (a 2D plane extruded over Span) and
     Axisymmetric (an r-z half plane revolved about SymmetryAxis, or an OpenFOAM wedge about its
     own axis: AxisFromWedge) are the engine's (schlieren_symmetry_plan, _samples, _expand, as the
-    C++ filter's): this front end samples the mesh where the engine says. Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), a solid
-    array (SolidArray, an upstream `solid`); not from a mesh's walls or a body surface input."""
+    C++ filter's): this front end samples the mesh where the engine says. Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), from the
+    voids beside a mesh's walls where it has a velocity (the engine's kinds of its faces), a solid
+    array (SolidArray, an upstream `solid`); not from a body surface input."""
 
     _defaults = dict(
         Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
@@ -799,13 +940,6 @@ class RefractiveIndex(_Properties):
                     "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray",
                     "CO2FromArray"} | set(_model_settings)
     _implemented_entries = {}
-    # the names an empty array property takes, in order (the C++ filter's, lower case)
-    _candidates = dict(TemperatureArray=("temperature", "temp", "t", "static_temperature",
-                                         "t_static"),
-                       PressureArray=("pressure", "pres", "press", "p", "static_pressure",
-                                      "p_static"),
-                       MixtureFractionArray=("mixture_fraction", "mixturefraction", "f", "z"))
-
     def _check(self, name, value):
         value = _Properties._check(self, name, value)
         if name.endswith("Array") and isinstance(value, (list, tuple)):
@@ -900,119 +1034,22 @@ class RefractiveIndex(_Properties):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
         return 1
 
-    # what a name says an array holds (lower case, in order of preference: the C++ filter's)
-    _kinds = dict(n_minus_1=("n_minus_1", "nminus1", "n-1", "refractivity"),
-                  n=("n", "refractive_index", "refractiveindex", "index_of_refraction"),
-                  density=("density", "rho", "dens", "mass_density"),
-                  temperature=_candidates["TemperatureArray"],
-                  pressure=_candidates["PressureArray"])
+    # the array properties by role, in the engine's order (schlieren_index_field)
+    _role_properties = ("InputArray", "TemperatureArray", "PressureArray", "MixtureFractionArray",
+                        "Species1Array", "Species2Array", "Species3Array", "Species4Array",
+                        "HumidityArray", "CO2Array")
 
-    @classmethod
-    def _kind_of(cls, name):
-        low = name.lower()
-        return next((k for k, v in cls._kinds.items() if low in v), None)
-
-    @classmethod
-    def _find(cls, names, kind):
-        """The first of `names` named as `kind` (by the order of preference), or ""."""
-        for want in cls._kinds[kind]:
-            for n in names:
-                if n.lower() == want:
-                    return n
-        return ""
-
-    def _choose(self, names, pd):
-        """Model Automatic's choice and the input array, as the C++ filter's ChooseModel and its
-        automatic arrays: (model, input array name or None, holds n, {property: array name})."""
-        model, name, holds_n, chosen = self.Model, self.InputArray, bool(self.PassthroughHoldsN), {}
-        if model == "Automatic":
-            holds_n = False
-            if name:
-                kind = self._kind_of(name)
-                model = {"n": "Passthrough", "density": "GladstoneDale", "temperature": "IdealGas",
-                         "pressure": "IdealGas"}.get(kind, "Passthrough")
-                holds_n = kind == "n"
-                if kind in ("temperature", "pressure"):
-                    chosen[kind.capitalize() + "Array"] = name
-            elif self._find(names, "n_minus_1"):
-                model, name = "Passthrough", self._find(names, "n_minus_1")
-            elif self._find(names, "density"):
-                model, name = "GladstoneDale", self._find(names, "density")
-            elif self._find(names, "temperature") and self._find(names, "pressure"):
-                model = "IdealGas"
-            elif self._find(names, "n"):
-                model, name, holds_n = "Passthrough", self._find(names, "n"), True
-            else:
-                raise EngineError(
-                    "Model Automatic found no array named as a refractive index (n_minus_1, n), "
-                    "a density (density, rho) or a temperature and a pressure (temperature, Temp, "
-                    "T; pressure, Pres, p) among the input's arrays: %s. Choose the Model and its "
-                    "arrays." % (", ".join(names) or "none"))
-        if model in ("IdealGas", "Ciddor"):
-            return model, None, holds_n, chosen
-        if not name and model == "Passthrough":
-            name = self._find(names, "n" if holds_n else "n_minus_1")
-        elif not name:
-            name = self._find(names, "density")
-        if not name:
-            # no name known: the active point scalars, else the first point array
-            scalars = pd.GetScalars()
-            name = scalars.GetName() if scalars is not None and scalars.GetName() else \
-                (names[0] if names else "n_minus_1")
-        return model, name, holds_n, chosen
-
-    def _index_model(self, model, image, names, valid, chosen=None):
-        """n - 1 by GladstoneDaleMixture, IdealGas or Ciddor: the engine's models (the C++
-        filter's) on the arrays the properties name (an empty name: the C++ filter's choice among
-        the usual names), with the proxy's settings."""
-        automatic = chosen or {}
-
-        def pick(prop, role, required=True):
-            chosen = automatic.get(prop) or getattr(self, prop)
-            if not chosen:
-                lower = {n.lower(): n for n in reversed(names)}
-                chosen = next((lower[c] for c in self._candidates.get(prop, ()) if c in lower),
-                              "")
-            if not chosen:
-                if required:
-                    raise EngineError("RefractiveIndex: Model %s needs %s (a point array); the "
-                                      "input has: %s" % (model, prop, ", ".join(names) or "none"))
-                return
-            a = _point_array(image, chosen)
-            if a is None or a.ndim != 1:
-                raise EngineError("RefractiveIndex: %s is '%s': the input has no one-component "
-                                  "point array of that name (it has: %s)"
-                                  % (prop, chosen, ", ".join(names) or "none"))
-            arrays["%s:%s" % (role, chosen)] = a
-        arrays = {}
-        composition = {"GladstoneDaleMixture": self.MixtureComposition,
-                       "IdealGas": self.IdealGasComposition}.get(model, "Gas")
-        if model == "GladstoneDaleMixture" and self.InputArray:
-            pick("InputArray", "density")
-        elif model == "GladstoneDaleMixture":
-            density = self._find(names, "density")
-            if not density:
-                raise EngineError("RefractiveIndex: Model GladstoneDaleMixture needs a density "
-                                  "array (InputArray); the input has: %s" % ", ".join(names))
-            arrays["density:" + density] = _point_array(image, density)
-        if model in ("IdealGas", "Ciddor"):
-            pick("TemperatureArray", "temperature")
-            pick("PressureArray", "pressure")
-        if composition == "MixtureFraction":
-            pick("MixtureFractionArray", "mixture_fraction")
-        elif composition == "Species":
-            for k in range(int(self.NumberOfSpecies)):
-                pick("Species%dArray" % (k + 1), "species%d" % (k + 1))
-        if model == "Ciddor":
-            if self.HumidityFromArray:
-                pick("HumidityArray", "humidity")
-            if self.CO2FromArray:
-                pick("CO2Array", "co2")
-        settings = {k: self._values[k] for k in self._model_settings}
-        settings["Model"] = model
-        n1, warnings = _engine.index_model(settings, arrays, valid)
-        object.__setattr__(self, "_read", [k.split(":", 1)[1] for k in arrays])
-        return n1, warnings
+    def _note(self, note):
+        """An information note in the output window, once for the same settings (the C++
+        filter's SayNote: time steps repeat none)."""
+        from vtkmodules.vtkCommonCore import vtkOutputWindow
+        said = self.__dict__.get("_notes_said")
+        if said is None or said[0] != self.GetMTime():
+            said = (self.GetMTime(), set())
+            object.__setattr__(self, "_notes_said", said)
+        if note not in said[1]:
+            said[1].add(note)
+            vtkOutputWindow.GetInstance().DisplayText(note + "\n")
 
     def _note(self, note):
         """A note for the user, said once for the settings it was said for (the C++ filter's
@@ -1036,36 +1073,6 @@ class RefractiveIndex(_Properties):
             raise EngineError("RefractiveIndex: SamplingBounds %s: each max must exceed its min "
                               "(SamplingBounds: xmin xmax ymin ymax zmin zmax)" % b)
         return b
-
-    def _solid(self, image, dims, valid, resampled):
-        """The output's `solid` (uint8, 1: body) as the C++ filter's ComputeSolid makes it, or
-        None where there is no body: the holes of a resampled grid that the flow encloses
-        (BodyFromGrid, with BodyWallFaces; the engine's), a `solid` array the input carries and
-        SolidArray (non-zero, or at least 0.5 where resampled). Not here: the voids beside a
-        mesh's walls found from its velocity (the C++ filter's BodiesBesideWalls)."""
-        solid = np.zeros(int(np.prod(dims)), np.uint8)
-        if self.BodyFromGrid and valid is not None:
-            solid |= _engine.enclosed_invalid(dims, valid, self.BodyWallFaces)
-
-        def mark(values):
-            values = np.asarray(values)
-            solid[(values >= 0.5) if resampled else (values != 0)] = 1
-        upstream = _point_array(image, "solid")
-        if upstream is not None and upstream.ndim == 1:
-            mark(upstream)
-        name = self.SolidArray
-        if name and name != "None":
-            mask = _point_array(image, name)
-            if mask is None:
-                pd = image.GetPointData()
-                raise EngineError("SolidArray '%s' is not a point array of the input. Point "
-                                  "arrays present: %s." % (name, ", ".join(
-                                      pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays()))))
-            if mask.ndim != 1:
-                raise EngineError("SolidArray '%s' has %d components; it must be a scalar "
-                                  "(non-zero: solid)." % (name, mask.shape[1]))
-            mark(mask)
-        return solid if solid.any() else None
 
     def _symmetry_plan(self, data):
         """The engine's plan (schlieren_symmetry_plan) for the 2D input `data`: its checks (the C++
@@ -1103,6 +1110,11 @@ class RefractiveIndex(_Properties):
         image.SetDimensions(*plan["dims"])
         image.SetOrigin(*plan["origin"])
         image.SetSpacing(*plan["spacing"])
+        if not valid.all():  # the mask first, as the C++ filter's grid has it
+            from vtkmodules.vtkCommonCore import VTK_CHAR
+            mask = numpy_support.numpy_to_vtk(valid.astype(np.int8), deep=1, array_type=VTK_CHAR)
+            mask.SetName("vtkValidPointMask")
+            image.GetPointData().AddArray(mask)
         for i in range(pd.GetNumberOfArrays()):
             a = pd.GetArray(i)
             if a is None or not a.GetName() or a.GetName() == "vtkValidPointMask":
@@ -1110,13 +1122,7 @@ class RefractiveIndex(_Properties):
             values, _ = _engine.symmetry_expand(sample_of, len(points),
                                                 values=numpy_support.vtk_to_numpy(a))
             _add(image, a.GetName(), values)
-        if valid.all():
-            return image, None, plan
-        from vtkmodules.vtkCommonCore import VTK_CHAR
-        mask = numpy_support.numpy_to_vtk(valid.astype(np.int8), deep=1, array_type=VTK_CHAR)
-        mask.SetName("vtkValidPointMask")
-        image.GetPointData().AddArray(mask)
-        return image, valid, plan
+        return image, (None if valid.all() else valid), plan
 
     def _dims(self, data):
         dims = [int(d) for d in self.SamplingDimensions]
@@ -1170,7 +1176,7 @@ class RefractiveIndex(_Properties):
                 return 1
             symmetric = self.Symmetry != "None"
             resampled = symmetric or not isinstance(data, vtkImageData)
-            notes, amr_numbers = [], []
+            notes, amr_numbers, plan = [], [], None
             if symmetric:
                 image, valid, plan = self._symmetric_input(data)
                 for w in plan["warnings"]:
@@ -1204,82 +1210,105 @@ class RefractiveIndex(_Properties):
                         self._warn(wedge)
             if not resampled:
                 valid = _image_validity(image)
+            # the wedge found and the OpenFOAM mesh read: the first notes (the C++ filter's order)
+            read_notes = [] if plan is None else list(plan["notes"])
+            read_notes += [n for n in [_internal_mesh_note(data)] if n]
+            for note in read_notes:
+                self._note(note)
             pd = image.GetPointData()
             names = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())]
             names = [n for n in names if n and n != "vtkValidPointMask"]
-            model, name, holds_n, chosen = self._choose(names, pd)
-            if model in ("GladstoneDaleMixture", "IdealGas", "Ciddor"):
-                n1, warnings = self._index_model(model, image, names, valid, chosen)
-                read = self._read
-                name = None
-            else:
-                read = [name]
-            values = None if name is None else _point_array(image, name)
-            if name is not None and (values is None or values.ndim != 1):
-                raise EngineError("RefractiveIndex needs the one-component point array %r "
-                                  "(InputArray); the "
-                                  "input has: %s" % (name, ", ".join(names) or "none"))
-            if name is None:
-                pass
-            elif valid is not None:
-                if not valid.any():
-                    raise EngineError("RefractiveIndex: no point of the sampling grid lies inside "
-                                      "the input's cells.")
-                # the points outside the input's cells are filled below: not checked as flow
-                values = np.where(valid != 0, values, values[np.argmax(valid)])
-            if name is not None:
-                n1, warnings = _engine.field_index(model, values, index_is_n=holds_n,
-                                                   density_reference=self.DensityReference,
-                                                   gas=("Custom %r %r" % (
-                                                       float(self.GladstoneDaleConstant),
-                                                       float(self.MolarMass))
-                                                       if self.Gas == "Custom" else self.Gas))
+            # the model and the arrays left automatic: the engine's choice (the C++ filter's),
+            # from the names present (point arrays, then cell arrays)
+            cd = image.GetCellData()
+            cells = [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())
+                     if cd.GetArray(i) is not None and cd.GetArrayName(i)]
+            scalars = pd.GetScalars()
+            fallback = scalars.GetName() if scalars is not None and scalars.GetName() else \
+                (names[0] if names else "")
+            settings = {k: self._values[k] for k in self._model_settings}
+            settings.update({k: self._values[k] or "" for k in self._role_properties})
+            settings["Model"] = self.Model
+            choice = _engine.index_choices(settings, names + [c for c in cells if c not in names],
+                                           fallback)
+            for note in choice["notes"]:
+                self._note(note)
+            # the engine's work on the grid (schlieren_index_field, the C++ filter's): the
+            # arrays by role, the model, the points outside the flow, the gradient, the bodies,
+            # the field data
+            settings.update(choice["arrays"])
+            settings.update(
+                Model=choice["model"], PassthroughHoldsN=int(choice["holds_n"]),
+                HumidityFromArray=int(self.HumidityFromArray), CO2FromArray=int(self.CO2FromArray),
+                AmbientMode=self.AmbientMode, AmbientValue=float(self.AmbientValue),
+                BodyFromGrid=int(self.BodyFromGrid), BodyWallFaces=self.BodyWallFaces,
+                SolidArray=self.SolidArray or "", Resampled=int(resampled),
+                UseSamplingBounds=int(self.UseSamplingBounds))
+            if resampled and valid is not None and not valid.any():
+                settings["CellsDescription"] = _describe_cells(_internal_mesh(data))
+            rim = None
+            if self.BodyFromGrid and resampled and valid is not None and not valid.all():
+                # the voids beside the mesh's walls, where it has a velocity (the C++ filter's)
+                found = _wall_rim(_internal_mesh(data), list(image.GetDimensions()),
+                                  image.GetOrigin(), image.GetSpacing(), valid,
+                                  -1 if plan is None else int(plan["geometry"][1]), plan)
+                if found is not None:
+                    rim, faces = found
+                    settings["WallVelocity"] = faces["velocity"]
+                    settings["WallFaceCounts"] = [faces["wall_faces"], faces["flow_faces"],
+                                                  faces["still_faces"], faces["turned_faces"]]
+            arrays, active = {}, -1
+            for i in range(pd.GetNumberOfArrays()):
+                a = pd.GetArray(i)
+                if a is None or a.GetName() == "vtkValidPointMask" or a.GetName() in arrays:
+                    continue
+                if scalars is not None and a is scalars:
+                    active = len(arrays)
+                arrays[a.GetName() or ""] = numpy_support.vtk_to_numpy(a)
             dims = list(image.GetDimensions())
-            ambient = None
-            if valid is not None and self.AmbientMode == "Extend":
-                _engine.extend_into_invalid(dims, valid, n1)
-            elif valid is not None:
-                ambient, _ = _engine.fill_ambient(dims, valid, n1, self.AmbientMode,
-                                                  self.AmbientValue)
-            grad = _engine.gradient(dims, image.GetSpacing(), n1)
-            solid = self._solid(image, dims, valid, resampled)
+            try:
+                n1, grad, solid, report = _engine.index_field(
+                    settings, dims, image.GetSpacing(), arrays, valid, active, cells,
+                    read_notes + choice["notes"] + notes, rim)
+            except EngineError as e:
+                report = getattr(e, "report", {})
+                if report.get("model_done"):
+                    for w in report.get("warnings", []):
+                        self._warn(w)
+                raise
         except EngineError as e:
             return self._fail(str(e))
+        for w in report["warnings"]:
+            self._warn(w)
+        for note in report["notes"]:
+            self._note(note)
+        if report["solid_note"]:
+            self._warn(report["solid_note"])
         out.ShallowCopy(image)
         if resampled:
             e = out.GetExtent()  # the resampled grid's, known only now
             outInfo.GetInformationObject(0).Set(SDDP.WHOLE_EXTENT(), e, 6)
+        _add(out, "grad_n", grad)  # before n - 1, as the C++ filter writes them
         a = _add(out, "n_minus_1", n1)
         # active, not SetScalars: that would drop the input's active scalars (the blunt fin's
         # Density), which the C++ filter keeps (and NumericalSchlieren prefers a density)
         out.GetPointData().SetActiveScalars(a.GetName())
-        _add(out, "grad_n", grad)
         if solid is not None:
             out.GetPointData().RemoveArray("solid")
             _add(out, "solid", solid)
-        # the C++ filter's field data (less its notes and per-model numbers)
-        if ambient is not None:
-            _field_number(out, "ambient_n_minus_1", ambient)
-        _field_string(out, "index_model", model)
+        # the engine's field data, in the C++ filter's order
         from vtkmodules.vtkCommonCore import vtkStringArray
-        arrays = vtkStringArray()
-        arrays.SetName("index_arrays")
-        for r in read:
-            arrays.InsertNextValue(r)
-        out.GetFieldData().AddArray(arrays)
-        invalid = 0 if valid is None else int(np.count_nonzero(valid == 0))
-        _field_number(out, "valid_point_fraction", 1.0 - invalid / n1.size if n1.size else 0.0)
-        _field_number(out, "solid_points", 0 if solid is None else int(solid.sum()))
-        if notes:
-            strings = vtkStringArray()
-            strings.SetName("index_notes")
-            for n in notes:
-                strings.InsertNextValue(n)
-            out.GetFieldData().AddArray(strings)
-        for name, value in amr_numbers:
+        for field, value in report["field_data"]:
+            if isinstance(value, list):
+                strings = vtkStringArray()
+                strings.SetName(field)
+                for v in value:
+                    strings.InsertNextValue(v)
+                out.GetFieldData().AddArray(strings)
+            else:
+                _field_number(out, field, value)
+        for name, value in amr_numbers:  # the AMR's levels, last (the C++ filter's order)
             _field_number(out, name, value)
-        for w in warnings:
-            self._warn(w)
         self._time_cache.computed += 1
         if key is not None:
             self._time_cache.insert(key, out)

@@ -351,6 +351,129 @@ int main(void)
             &keep_new, NULL) != 0 && strstr(schlieren_last_error(), "bytes[1]") != NULL,
       "time_cache_insert: negative bytes refused: %s", schlieren_last_error());
   }
+  {
+    /* RefractiveIndex's work on a grid (schlieren_index_field, the C++ filter's engine call):
+       density 1.0, 1.1, 1.2 along x on 3 x 3 x 3 points, the centre outside the flow */
+    const int d3[3] = { 3, 3, 3 };
+    const double h3[3] = { 0.5, 0.5, 0.5 };
+    float rho[27], n1f[27], g3[81];
+    unsigned char valid3[27], solid3[27];
+    const char* names3[2] = { "density", "U" };
+    const int comps3[2] = { 1, 3 }, bytes3[2] = { 4, 4 };
+    const void* vals3[2];
+    const int64_t counts3[2] = { 27, 0 };
+    const double K = 2.256e-4;
+    const char* rep = NULL;
+    int i3;
+    for (i3 = 0; i3 < 27; ++i3)
+    {
+      rho[i3] = 1.0f + 0.1f * (float)(i3 % 3);
+      valid3[i3] = i3 != 13;
+    }
+    vals3[0] = rho;
+    vals3[1] = NULL;
+    CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nResampled=1", d3, h3, 2,
+            names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, NULL, 0, n1f, 27, g3, 81,
+            solid3, 27, &rep) == 0 &&
+          fabs(n1f[1] - K * 1.1) < 1e-9 && fabs(g3[3 * 13] - K * 0.2) < 1e-8 &&
+          fabs(g3[3 * 13 + 1]) < 1e-12 && solid3[13] == 1 && solid3[0] == 0 &&
+          strstr(rep, "[\"index_model\", [\"GladstoneDale\"]], [\"index_arrays\", [\"density\"]]") &&
+          strstr(rep, "[\"solid_points\", 1]") && strstr(rep, "\"solid\": true"),
+      "index_field: n - 1 = K rho (%g), d(n-1)/dx = 0.2 K (%g) at the centre, the enclosed hole "
+      "solid (%d), the field data (%s; %s)", n1f[1], g3[3 * 13], solid3[13], rep ? rep : "",
+      schlieren_last_error());
+    CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=rho", d3, h3, 2, names3, comps3,
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+          strcmp(schlieren_last_error(), "GladstoneDale needs a density array ('rho', InputArray) "
+                                         "but the input has no point array of that name. Point "
+                                         "arrays present: density, U.") == 0,
+      "index_field: a missing array refused with the C++ filter's message: %s", schlieren_last_error());
+    CHECK(schlieren_index_field("Model=Passthrough\nInputArray=U", d3, h3, 2, names3, comps3,
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+          strcmp(schlieren_last_error(), "The n - 1 (or n) array 'U' has 3 components; InputArray "
+                                         "needs a scalar array.") == 0,
+      "index_field: a vector refused: %s", schlieren_last_error());
+    CHECK(schlieren_index_field("Model=Passthrough\nInputArray=density", d3, h3, 1, names3, comps3,
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+          strstr(schlieren_last_error(), "Passthrough takes 'density' as n - 1, but it gives n - 1 "
+                                         "from 1 to 1.2") != NULL,
+      "index_field: a density taken for n - 1 refused: %s", schlieren_last_error());
+    CHECK(schlieren_index_field("Model=GladstoneDale\nAmbientMode=Sideways", d3, h3, 1, names3,
+            comps3, bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27,
+            &rep) != 0 && strstr(schlieren_last_error(), "AmbientMode 'Sideways' is not one of") != NULL,
+      "index_field: a bad AmbientMode named: %s", schlieren_last_error());
+  }
+  {
+    /* Model Automatic's choice and the arrays found by name (schlieren_index_choices) */
+    const char* rep = NULL;
+    CHECK(schlieren_index_choices("Model=Automatic", "x\nRho\nT", NULL, &rep) == 0 &&
+          strstr(rep, "\"model\": \"GladstoneDale\"") && strstr(rep, "\"InputArray\": \"Rho\"") &&
+          strstr(rep, "RefractiveIndex: Model Automatic chose GladstoneDale: the input has a "
+                      "density ('Rho'). Gas: air (Gas Custom, whose defaults are air's: K = "
+                      "0.0002256 m^3/kg; set Gas for another gas). Density 'Rho' read in kg/m^3 "
+                      "times DensityReference (1)"),
+      "index_choices: Automatic takes Rho as a density, with the C++ filter's note (%s; %s)",
+      rep ? rep : "", schlieren_last_error());
+    CHECK(schlieren_index_choices("Model=IdealGas", "Temp\nPres\nU", NULL, &rep) == 0 &&
+          strstr(rep, "\"TemperatureArray\": \"Temp\", \"PressureArray\": \"Pres\"") &&
+          strstr(rep, "RefractiveIndex: TemperatureArray 'Temp', found by name."),
+      "index_choices: IdealGas finds Temp and Pres by name (%s; %s)", rep ? rep : "",
+      schlieren_last_error());
+    CHECK(schlieren_index_choices("Model=Automatic", "a\nb", "a", &rep) != 0 &&
+          strcmp(schlieren_last_error(),
+            "Model Automatic found no array named as a refractive index (n_minus_1, n), a density "
+            "(density, rho) or a temperature and a pressure (temperature, Temp, T; pressure, Pres, "
+            "p) among the input's arrays: a, b. Choose the Model and its arrays.") == 0,
+      "index_choices: no name to go by, the C++ filter's message: %s", schlieren_last_error());
+    CHECK(schlieren_index_choices("Model=Passthrough", "a\nb", "b", &rep) == 0 &&
+          strstr(rep, "\"InputArray\": \"b\""),
+      "index_choices: nothing chosen or named, the fallback (the active scalars) (%s)", rep ? rep : "");
+  }
+  {
+    /* the voids beside walls: the faces' kinds (schlieren_wall_faces) and a rim handed to
+       schlieren_index_field */
+    const int64_t offsets[6] = { 0, 3, 6, 9, 11, 14 };
+    const int64_t conn[14] = { 0, 1, 2, 2, 3, 4, 5, 6, 7, 8, 9, 7, 10, 11 };
+    const double normals[15] = { 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 0 };
+    const double velocity[15] = { 1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0 };
+    unsigned char kinds[5];
+    const char* rep = NULL;
+    const int d3[3] = { 3, 3, 3 };
+    const double h3[3] = { 0.5, 0.5, 0.5 };
+    float rho[27], n1f[27], g3[81];
+    unsigned char valid3[27], rim3[27], solid3[27];
+    const char* names3[1] = { "density" };
+    const int comps3[1] = { 1 }, bytes3[1] = { 4 };
+    const void* vals3[1];
+    const int64_t counts3[1] = { 27 };
+    int i3;
+    CHECK(schlieren_wall_faces(5, offsets, 6, conn, 14, 12, normals, 15, velocity, 15, 2.0, -1, "U",
+            kinds, 5, &rep) == 0 && kinds[0] == 1 && kinds[1] == 1 && kinds[2] == 0 &&
+          kinds[3] == 255 && kinds[4] == 2 &&
+          strcmp(rep, "{\"velocity\": \"U\", \"wall_faces\": 2, \"flow_faces\": 1, \"still_faces\": 1, "
+                      "\"turned_faces\": 1}") == 0,
+      "wall_faces: a wall, a flow face beside it turned wall, fluid at rest, a line left out, a "
+      "flow face beside none (%d %d %d %d %d; %s; %s)", kinds[0], kinds[1], kinds[2], kinds[3],
+      kinds[4], rep ? rep : "", schlieren_last_error());
+    for (i3 = 0; i3 < 27; ++i3)
+    {
+      rho[i3] = 1.0f;
+      valid3[i3] = i3 % 3 != 0; /* the plane x = 0 outside the mesh, on the grid's face */
+      rim3[i3] = i3 % 3 == 0 ? 1 : 0;
+    }
+    vals3[0] = rho;
+    CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nResampled=1\n"
+                                "WallVelocity=U\nWallFaceCounts=2 1 1 1",
+            d3, h3, 1, names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, rim3, 27,
+            n1f, 27, g3, 81, solid3, 27, &rep) == 0 &&
+          solid3[0] == 1 && solid3[1] == 0 && strstr(rep, "[\"solid_points\", 9]") &&
+          strstr(rep, "RefractiveIndex: BodyFromGrid: of the mesh's 4 boundary faces, 2 are walls "
+                      "(the flow runs along them: |U.n| < 5 % of |U| there, or 1 in groups of a few "
+                      "between walls, where the flow turns onto a wall), 1 are crossed by the flow, "
+                      "1 have fluid at rest beside them; 9 grid points of the voids beside them"),
+      "index_field: the void on the grid's face beside a wall rim is a body, with the C++ filter's "
+      "note (%s; %s)", rep ? rep : "", schlieren_last_error());
+  }
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

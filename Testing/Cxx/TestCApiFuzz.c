@@ -75,6 +75,9 @@ enum
   F_SAMPLE,
   F_AMR,
   F_TIME_CACHE,
+  F_INDEX_FIELD,
+  F_INDEX_CHOICES,
+  F_WALL_FACES,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -82,7 +85,8 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "session_free", "fill_scene", "octree_levels", "gradient", "numerical", "field_index",
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "photograph", "version/properties/device",
-  "two threads, one session", "sample_cells", "amr_overlap/grid/sample", "time_cache_find/insert" };
+  "two threads, one session", "sample_cells", "amr_overlap/grid/sample", "time_cache_find/insert",
+  "index_field", "index_choices", "wall_faces" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1376,6 +1380,167 @@ static void random_time_cache_case(void)
   }
 }
 
+/* schlieren_index_field with random settings, arrays, lengths and masks: done, or refused with a
+   message, never a crash */
+static void random_index_field_case(int k)
+{
+  static const char* settings[] = { "", "Model=GladstoneDale", "Model=Passthrough\nInputArray=a",
+    "Model=IdealGas\nTemperatureArray=a\nPressureArray=b", "Model=Automatic",
+    "Model=GladstoneDale\nInputArray=b\nAmbientMode=Value\nAmbientValue=nan",
+    "Model=GladstoneDaleMixture\nInputArray=a\nMixtureFractionArray=b",
+    "Model=Ciddor\nTemperatureArray=a\nPressureArray=b\nHumidityFromArray=2",
+    "Model=Passthrough\nInputArray=a\nSolidArray=b\nBodyWallFaces=1 0 1", "Bogus=1",
+    "Model=GladstoneDale\nInputArray=a\nAmbientMode=DomainEdgeMedian\nResampled=1",
+    "Model=GladstoneDale\nInputArray=c\nSolidArray=c",
+    "Model=GladstoneDale\nInputArray=a\nResampled=1\nWallFaceCounts=3 1 0 0\nWallVelocity=U",
+    "Model=GladstoneDale\nWallFaceCounts=-1 1 0 nan" };
+  static const char* names[] = { "a", "b", "c", "", NULL };
+  static const int good[] = { 1, 2, 3, 6, 10, 12 };
+  char what[160];
+  int dims[3], valid, i, rc;
+  int64_t needed, counts[3], c_valid, c_rim, c_n1, c_grad, c_solid;
+  double h[3];
+  const char* nm[3];
+  int comps[3], bytes[3];
+  void* values[3];
+  unsigned char *v, *rim, *solid;
+  float *n1, *grad;
+  const char* report = NULL;
+  int arrays = below(4);
+  /* half the cases with every length right and names given: the settings and values decide */
+  const int sane = below(2);
+  random_grid(dims, &needed, &valid);
+  if (sane && !valid)
+  {
+    dims[0] = 3 + below(4), dims[1] = 2 + below(3), dims[2] = 1 + below(3);
+    needed = (int64_t)dims[0] * dims[1] * dims[2];
+    valid = 1;
+  }
+  random_point(h);
+  if (below(2) || sane)
+    h[0] = h[1] = h[2] = 0.2;
+  snprintf(what, sizeof(what), "index_field case %d: dims %d %d %d, %d arrays", k, dims[0],
+    dims[1], dims[2], arrays);
+  for (i = 0; i < arrays; ++i)
+  {
+    int64_t j;
+    nm[i] = sane ? names[i] : names[below(5)];
+    comps[i] = below(5) || sane ? 1 : below(4) - 1;
+    bytes[i] = below(5) ? 4 : (below(2) || sane ? 8 : 3);
+    counts[i] = sane ? needed : below(4) ? grid_count(needed, valid) : random_count(needed);
+    if (counts[i] >= 0 && counts[i] <= 1000000 && comps[i] > 1)
+      counts[i] *= comps[i];
+    if (counts[i] > 1000000 || counts[i] < 0)
+      counts[i] = below(2) ? -1 : 7;
+    values[i] = buffer(counts[i], bytes[i] == 8 ? 8 : 4, !sane);
+    for (j = 0; values[i] && j < counts[i]; ++j)
+    {
+      const double x = sane && below(20) ? 0.001 * (1.0 + uniform())
+                                         : below(10) ? 1.0 + uniform() : (below(2) ? NAN : -1.0);
+      if (bytes[i] == 8)
+        ((double*)values[i])[j] = x;
+      else
+        ((float*)values[i])[j] = (float)x;
+    }
+  }
+  c_valid = below(2) ? 0 : sane ? needed : grid_count(needed, valid);
+  c_n1 = sane ? needed : grid_count(needed, valid);
+  c_grad = below(5) || sane ? 3 * c_n1 : c_n1;
+  if (c_n1 < 0 || c_n1 > 1000000)
+    c_grad = c_n1;
+  c_solid = sane ? needed : grid_count(needed, valid);
+  v = c_valid ? (sane ? calloc((size_t)c_valid, 1) : buffer(c_valid, 1, 1)) : NULL;
+  for (i = 0; v && c_valid <= 1000000 && i < c_valid; ++i)
+    v[i] = (unsigned char)(below(4) != 0);
+  c_rim = below(3) ? 0 : sane ? needed : grid_count(needed, valid);
+  rim = c_rim ? (sane ? calloc((size_t)c_rim, 1) : buffer(c_rim, 1, 1)) : NULL;
+  for (i = 0; rim && c_rim <= 1000000 && i < c_rim; ++i)
+    rim[i] = (unsigned char)below(3);
+  n1 = buffer(c_n1, sizeof(float), !sane);
+  grad = buffer(c_grad, sizeof(float), !sane);
+  solid = buffer(c_solid, 1, !sane);
+  rc = schlieren_index_field(settings[sane ? good[below(6)] : below(14)], dims, h, arrays, nm, comps, bytes,
+    (const void* const*)values, counts, below(4) - 1, below(2) ? "c\nd" : NULL,
+    below(2) ? "a note" : NULL, v, c_valid, rim, c_rim, n1, c_n1, grad, c_grad, solid, c_solid,
+    below(2) ? &report : NULL);
+  outcome(F_INDEX_FIELD, rc, schlieren_last_error(), what);
+  for (i = 0; i < arrays; ++i)
+    free(values[i]);
+  free(v);
+  free(rim);
+  free(n1);
+  free(grad);
+  free(solid);
+}
+
+/* schlieren_index_choices with random settings and names */
+static void random_index_choices_case(int k)
+{
+  static const char* settings[] = { "", "Model=Automatic", "Model=automatic", "Model=IdealGas",
+    "Model=Passthrough\nPassthroughHoldsN=1", "Model=Automatic\nInputArray=T",
+    "Model=Automatic\nGas=He", "Model=Automatic\nGas=Unobtainium", "Model=GladstoneDaleMixture",
+    "Model=Automatic\nTemperatureUnit=F", "Model=Ciddor\nPressureUnit=bar", "Wavelength=x",
+    "Model=IdealGas\nIdealGasComposition=MixtureFraction", NULL, "Model" };
+  static const char* present[] = { "", "rho", "T\np", "n\nx", "N_MINUS_1\nrho", "a\nb", NULL,
+    "\n\n", "Temp\nPres\nF" };
+  static const char* fallback[] = { NULL, "", "a", "rho" };
+  char what[64];
+  const char* report = NULL;
+  int rc;
+  snprintf(what, sizeof(what), "index_choices case %d", k);
+  rc = schlieren_index_choices(settings[below(15)], present[below(9)], fallback[below(4)],
+    below(2) ? &report : NULL);
+  outcome(F_INDEX_CHOICES, rc, schlieren_last_error(), what);
+}
+
+/* schlieren_wall_faces with random faces, lengths and indices */
+static void random_wall_faces_case(int k)
+{
+  char what[64];
+  const char* report = NULL;
+  int64_t faces = below(8) ? below(12) : random_count(5), i, total;
+  int64_t points = below(8) ? 1 + below(20) : random_count(10);
+  int64_t *offsets, *conn, c_off, c_conn, c_n, c_u, c_k;
+  double *normals, *u;
+  unsigned char* kinds;
+  int rc;
+  if (faces < 0 || faces > 1000)
+    faces = below(2) ? -1 : 3;
+  c_off = below(6) ? faces + 1 : random_count(faces + 1);
+  offsets = buffer(c_off, sizeof(int64_t), 1);
+  total = 0;
+  for (i = 0; offsets && c_off >= 0 && c_off <= 1000000 && i < c_off; ++i)
+  {
+    offsets[i] = total;
+    total += below(10) ? below(5) : -1;
+  }
+  c_conn = offsets && c_off == faces + 1 && faces >= 0 ? offsets[faces] : random_count(4);
+  if (c_conn < 0 || c_conn > 1000000)
+    c_conn = below(2) ? -1 : 4;
+  conn = buffer(c_conn, sizeof(int64_t), 1);
+  for (i = 0; conn && i < c_conn; ++i)
+    conn[i] = below(10) ? below(points > 0 && points < 1000 ? (int)points : 5) : -3;
+  c_n = below(6) ? 3 * faces : random_count(3 * faces);
+  c_u = below(6) ? 3 * faces : random_count(3 * faces);
+  c_k = below(6) ? faces : random_count(faces);
+  normals = buffer(c_n, sizeof(double), 1);
+  u = buffer(c_u, sizeof(double), 1);
+  kinds = buffer(c_k, 1, 1);
+  for (i = 0; normals && c_n <= 1000000 && i < c_n; ++i)
+    normals[i] = below(10) ? uniform() - 0.5 : NAN;
+  for (i = 0; u && c_u <= 1000000 && i < c_u; ++i)
+    u[i] = below(10) ? uniform() - 0.5 : INFINITY;
+  snprintf(what, sizeof(what), "wall_faces case %d: %lld faces", k, (long long)faces);
+  rc = schlieren_wall_faces(faces, offsets, c_off, conn, c_conn, points, normals, c_n, u, c_u,
+    below(8) ? 1.0 : NAN, below(5) - 2, below(2) ? "U" : NULL, kinds, c_k, below(2) ? &report : NULL);
+  outcome(F_WALL_FACES, rc, schlieren_last_error(), what);
+  free(offsets);
+  free(conn);
+  free(normals);
+  free(u);
+  free(kinds);
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -1409,6 +1574,12 @@ int main(int argc, char** argv)
     random_amr_case();
   for (k = 0; k < cases / 4; ++k)
     random_time_cache_case();
+  for (k = 0; k < cases / 4; ++k)
+    random_index_field_case((int)k);
+  for (k = 0; k < cases / 8; ++k)
+    random_index_choices_case((int)k);
+  for (k = 0; k < cases / 8; ++k)
+    random_wall_faces_case((int)k);
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");

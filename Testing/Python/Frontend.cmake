@@ -104,6 +104,12 @@ if(SCHLIEREN_PYTHON_PLUGIN)
       --work "${_temp}/frontend_values")
   set_property(TEST python.frontend_values APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+  # BodyFromGrid's body beside a mesh's walls (from its velocity) through both plugins: the same
+  # solid, n - 1, gradient and note (test_index_walls.py)
+  schlieren_python_test(index_walls
+    COMMAND "${_pvpython}" "${_here}/test_index_walls.py" --plugin "${SCHLIEREN_PYTHON_PLUGIN}")
+  set_property(TEST python.index_walls APPEND PROPERTY ENVIRONMENT
+    "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
 endif()
 
 # the Python plugin loaded in the GUI through Tools > Manage Plugins > Load New with X events

@@ -34,8 +34,9 @@ import frontend_cases as cases
 
 INDEX_FIELDS_LEFT_OUT = {"index_computed", "index_from_cache", "index_cache_entries",
                          "index_cache_bytes", "index_cache_budget"}
-# field data the C++ RefractiveIndex writes and the Python one not yet (see above)
-INDEX_FIELDS_MISSING = {"index_notes"}
+# field data the C++ RefractiveIndex writes and the Python one not yet: none since the engine
+# writes both front ends' field data (schlieren_index_field)
+INDEX_FIELDS_MISSING = set()
 INDEX_KNOWN = []  # the known differences met, said at the end (known_differences())
 
 # the array-selection properties (ParaView's proxies take ["POINTS", name]; the package a name)
@@ -274,14 +275,11 @@ def compare(case, mine, theirs, check, leg):
     differing = [n for n in names if n in mine_names and
                  not _same(mine["index_array_" + n], theirs["index_array_" + n])]
     solid = theirs["index_array_solid"] if "solid" in names else None
-    check(sorted(mine_names) == sorted(names) and not differing,
+    check(mine_names == names and not differing,
           "%s (%s): its point arrays %s bit for bit the C++ filter's (differing: %s%s)%s"
-          % (case, leg, names, differing, "" if sorted(mine_names) == sorted(names) else
+          % (case, leg, names, differing, "" if mine_names == names else
              "; the Python front end's: %s" % mine_names,
              "" if solid is None else ", %d solid points" % int(solid.astype(bool).sum())))
-    if mine_names != names and sorted(mine_names) == sorted(names):
-        INDEX_KNOWN.append("%s: point arrays in the order %s (C++: %s)"
-                           % (case, mine_names[-3:], names[-3:]))
     f_mine = {f[0]: f for f in json.loads(str(mine["index_fields"]))}
     f_theirs = {f[0]: f for f in json.loads(str(theirs["index_fields"]))}
     missing = sorted(set(f_theirs) - set(f_mine))
