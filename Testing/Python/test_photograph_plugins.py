@@ -10,13 +10,13 @@ image and a "photograph" of it made with a known similarity transform, gamma, vi
      (points, cells, image, line_distance, line_offset, line_matched, line_match) bit for bit,
      under Overlay Blend and under Checkerboard with another Blend Weight and Checker Size;
   2. the transform recovered (corner error under half a film pixel), blend = film + weight *
-     difference, the lines' distances within two pixels (the same flow);
+     difference, the distances of the lines over 16 points within two pixels (the same flow);
   3. the photograph given on the C++ filter's second input (a vtkPNGReader) equals FileName's;
   4. refused alike, with the same reason and empty outputs: a photograph of noise, a missing file,
      one point pair, a Blend Weight of 2;
   5. the blast's shock moved by a known distance (radius 0.04 larger, 2.2 film pixels), placed by
      two marks typed as Point Pairs with Refine None: bit for bit again, the blast's lines listed
-     the move apart within half a film pixel, the plane shock's under half a pixel.
+     the move apart within half a film pixel, the plane shock's (over 16 points) under half a pixel.
 
     pvpython test_photograph_plugins.py --plugin build/lib/schlieren-python-plugin/SchlierenPython.py \\
         --work /tmp/photograph_plugins
@@ -52,6 +52,18 @@ import schlieren_paraview_plugin._engine as engine  # noqa: E402 -- the Python p
 
 OVERLAYS = ["Blend", "Checkerboard", "Difference", "Photograph", "Image"]
 N = 112  # film pixels a side (at 80 the registration took 4 times longer: 16-20 s against 4 s)
+# The lines whose distances are checked: more than 16 points. The engine's walk ends a line where
+# the next point's direction leaves the line's chord over its last 8 points by 30 deg: where it
+# meets another line (the plane shock's edge at the blast) or curves tighter than a radius of 9 to
+# 12 pixels (the chord's direction is the tangent 4.5 steps back; the lump's soft edge, 8 pixels). Within those 8 points of the cut the photograph's ridge
+# bends into the other feature or, where the edge is weak (1.0-1.3 times LineThreshold here), is
+# lost in the photograph's noise, and a point's nearest photograph line is then the other
+# feature's (docs/CFD.md: the map is the finer account there). A line of over twice 8 points, cut
+# at both ends, has under half its points there: its median distance is its own. Shorter pieces
+# are listed, not checked: the plane shock's edge between the lump and the blast (11 points) and
+# the lump's edge (9 and 11) read 0.0006-0.0087 world units against photographs without noise,
+# 0.0008-0.07 over six noise seeds of these 3000-photon photographs.
+MEASURED = 2 * 8
 
 # the film: the C++ SchlierenImage on the test volume
 volume = test_volume(engine)
@@ -191,10 +203,16 @@ for path, props in ((png, dict(Overlay="Blend")),
             "%s: blend = film + %.1f difference" % (what, weight))
     distance = numpy_support.vtk_to_numpy(cxx[1].GetCellData().GetArray("line_distance"))
     image = numpy_support.vtk_to_numpy(cxx[1].GetCellData().GetArray("image"))
-    matched = distance[(image == 0) & ~np.isnan(distance)]
-    T.check(matched.size >= 2 and matched.max() < 2 * pixel,
-            "%s: the film's %d matched lines within 2 pixels of the photograph's (largest %.4g, a "
-            "pixel %.4g)" % (what, matched.size, matched.max() if matched.size else -1, pixel))
+    points = np.array([cxx[1].GetCell(k).GetNumberOfPoints() for k in range(cxx[1].GetNumberOfCells())])
+    film_lines = (image == 0) & ~np.isnan(distance)
+    matched = distance[film_lines & (points > MEASURED)]
+    print("%s: the film's lines over %d points %s, shorter %s (a pixel %.4f)"
+          % (what, MEASURED, ["%.4f" % d for d in matched],
+             ["%.4f" % d for d in distance[film_lines & (points <= MEASURED)]], pixel))
+    T.check(matched.size >= 6 and matched.max() < 2 * pixel,
+            "%s: the film's %d matched lines over %d points within 2 pixels of the photograph's "
+            "(largest %.4g, a pixel %.4g)" % (what, matched.size, MEASURED,
+                                               matched.max() if matched.size else -1, pixel))
     if path == png:
         by_name = f
         # Overlay Difference on both: the same registration (not done again), another view
@@ -248,17 +266,22 @@ cxx, cxx_text, py, py_text, alg, f, proxy = run_both(FileName=moved_png, PointPa
 same_outputs(cxx, py, "the moved blast on two marks")
 cd = cxx[1].GetCellData()
 lines = [(int(cd.GetArray("image").GetValue(k)), float(cd.GetArray("line_distance").GetValue(k)),
-          cxx[1].GetCell(k).GetBounds()) for k in range(cxx[1].GetNumberOfCells())]
-# the blast's lines: the film's lines right of the plane shock (x > -0.1); the plane shock's: near x -0.25
-blast = [d for image, d, b in lines if image == 0 and d == d and b[0] > -0.1]
-plane = [d for image, d, b in lines if image == 0 and d == d and b[1] < -0.15 and b[0] > -0.35]
-print("moved blast: the blast's lines %s, the plane shock's %s (moved %g, a pixel %.4g)"
-      % (["%.4f" % d for d in blast], ["%.4f" % d for d in plane], move, pixel))
+          cxx[1].GetCell(k).GetBounds(), cxx[1].GetCell(k).GetNumberOfPoints())
+         for k in range(cxx[1].GetNumberOfCells())]
+# the blast's lines: the film's lines right of the plane shock (x > -0.1); the plane shock's: near x
+# -0.25 (x bounds in -0.35 to -0.15); over MEASURED points (above)
+blast = [d for image, d, b, n in lines if image == 0 and d == d and b[0] > -0.1 and n > MEASURED]
+plane = [d for image, d, b, n in lines if image == 0 and d == d and b[1] < -0.15 and b[0] > -0.35 and n > MEASURED]
+print("moved blast: the blast's lines %s, the plane shock's %s, the plane shock's pieces of %d points "
+      "or fewer %s (moved %g, a pixel %.4g)"
+      % (["%.4f" % d for d in blast], ["%.4f" % d for d in plane], MEASURED,
+         ["%.4f" % d for image, d, b, n in lines if image == 0 and d == d and b[1] < -0.15 and
+          b[0] > -0.35 and n <= MEASURED], move, pixel))
 T.check(alg.Report is not None and alg.Report["match"] and blast and
         abs(float(np.median(blast)) - move) < 0.5 * pixel,
         "the moved blast: its lines' median distance %.4f for a move of %g (within half a film pixel, %.4f)"
         % (float(np.median(blast)) if blast else -1, move, 0.5 * pixel))
-T.check(plane and max(plane) < 0.5 * pixel,
+T.check(len(plane) >= 3 and max(plane) < 0.5 * pixel,
         "the plane shock did not move: %s (under half a film pixel)" % ["%.4f" % d for d in plane])
 
 # 4. refused alike
