@@ -556,7 +556,10 @@ BrickLayout::BrickLayout(const int dims[3])
 
 void SetFieldLayout(sch_params& P, bool bricked)
 {
-  if (!bricked)
+  const int dims[3] = { P.nx, P.ny, P.nz };
+  const BrickLayout b(dims);
+  // the kernels' strides are ints: a layer of bricks past that reads the field linear
+  if (!bricked || b.LayerFloats() > 2147483647u)
   {
     P.fieldShift = 31;
     P.fieldMask = -1;
@@ -566,8 +569,6 @@ void SetFieldLayout(sch_params& P, bool bricked)
     P.outerX = P.outerY = P.outerZ = 0;
     return;
   }
-  const int dims[3] = { P.nx, P.ny, P.nz };
-  const BrickLayout b(dims);
   const int B = 1 << FieldBrickShift;
   P.fieldShift = FieldBrickShift;
   P.fieldMask = B - 1;
