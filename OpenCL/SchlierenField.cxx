@@ -616,10 +616,14 @@ struct KeptBricks
   VolumeIdentity Of;
   std::shared_ptr<const AlignedFloats> Bricks;
 };
+// Never destroyed (as the kept tracer): a TraceSession that a front end destroys after the exit
+// handlers ran (ParaView's session at pvpython's exit) still releases the bricks through it; a
+// static object here was destroyed first, and that release freed its shared_ptr a second time
+// (glibc: "corrupted double-linked list", an abort at exit).
 KeptBricks& Kept()
 {
-  static KeptBricks kept;
-  return kept;
+  static KeptBricks* kept = new KeptBricks;
+  return *kept;
 }
 } // namespace
 
