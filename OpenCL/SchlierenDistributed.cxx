@@ -607,8 +607,7 @@ sch_params PieceParams(const DistributedVolume& dv, const TraceSettings& s, cons
   P.ox = dv.HeldLo[0];
   P.oy = dv.HeldLo[1];
   P.oz = dv.HeldLo[2];
-  P.rowFloats = 4 * P.nx;
-  P.sliceFloats = 4 * P.nx * P.ny;
+  SetFieldLayout(P, false); // a piece's field is packed linear (DistributedVolume::Packed)
   P.featureTol = FeatureTolerance(dv.RangeLo, dv.RangeHi, whole.LevelTolerance);
   P.ownX0 = dv.Owned[0];
   P.ownX1 = dv.Owned[1];

@@ -17,6 +17,7 @@
 #define SchlierenEngineInternal_h
 
 #include "SchlierenEngine.h"
+#include "SchlierenLimits.h"
 #include "SchlierenOptions.h"
 
 // The physics, compiled as C++ for the CPU backend and for the host-side film. The CPU path
@@ -262,6 +263,35 @@ std::vector<unsigned char> MakeCellBytes(const Volume& v, double reach);
  */
 Volume TraceVolume(const Volume& v, std::shared_ptr<std::vector<unsigned char>>& own);
 
+// ------------------------------------------------------------------ the field's layout (SchlierenField.cxx)
+
+/** The kernels' layout of the packed field (sch_params' fieldShift): bricks of 2^FieldBrickShift
+ * points a side, so that a ray in any direction reads lines and pages its neighbours and its last
+ * samples read (a 4^3 brick is 1 KiB: Cubic's 4^3 footprint, a trilinear cell in one to eight). */
+constexpr int FieldBrickShift = 2;
+
+/** Bricks of a field of dims points: the grid rounded up to whole bricks along each axis. */
+struct BrickLayout
+{
+  std::uint64_t Bricks[3] = { 0, 0, 0 };
+  explicit BrickLayout(const int dims[3]);
+  /** floats of a brick, of one layer of bricks along z (2^FieldBrickShift planes), of the field */
+  static std::uint64_t BrickFloats() { return std::uint64_t(4) << (3 * FieldBrickShift); }
+  std::uint64_t LayerFloats() const { return BrickFloats() * Bricks[0] * Bricks[1]; }
+  std::uint64_t Floats() const { return LayerFloats() * Bricks[2]; }
+};
+
+/** Sets P's field layout for its held points (P.nx, P.ny): bricks (BrickLayout), or the linear
+ * layout of Volume::Field. */
+void SetFieldLayout(sch_params& P, bool bricked);
+
+/** Volume::Field rearranged in bricks (BrickLayout; the points past the grid repeat its border
+ * points), kept for the last stamped volume (ReleaseKeptVolume lets it go). Throws std::bad_alloc
+ * where the copy would take more than half the memory left (AvailableMemory). */
+std::shared_ptr<const AlignedFloats> BrickedField(const Volume& v);
+/** Lets go of the bricks BrickedField keeps. */
+void ReleaseBrickedField();
+
 // ------------------------------------------------------------------ CPU backend (SchlierenCpuBackend.cxx)
 
 /** Threads the CPU backend runs on: `requested` (TraceSettings::Threads) where positive, else the
@@ -296,11 +326,11 @@ class OpenCLTracer;
  * buffer for at least `chunk` rays, on the device whose name contains `deviceName` (empty: the
  * options' device) with the OpenCL options of `options`: the kept one where all of these match,
  * else a new one (kept where the volume is stamped). Throws Error where the device cannot take
- * the volume or none matches.
+ * the volume or none matches. bricked: volume.Field is in bricks (BrickedField), else linear.
  */
 std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
   const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem,
-  const RuntimeOptions& options, const std::string& deviceName);
+  const RuntimeOptions& options, const std::string& deviceName, bool bricked = false);
 
 /** Builds (or finds) the kernel that TraceOpenCL (points false) or TracePointsOpenCL (true) runs
  * for P; throws Error on a build failure. */

@@ -7,6 +7,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -543,6 +546,118 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
   }
   const std::size_t total = std::size_t(nx - 1) * (ny - 1) * (nz - 1);
   return total ? double(count.load()) / total : 0.0;
+}
+
+BrickLayout::BrickLayout(const int dims[3])
+{
+  for (int a = 0; a < 3; ++a)
+    Bricks[a] = (std::uint64_t(dims[a]) + (1u << FieldBrickShift) - 1) >> FieldBrickShift;
+}
+
+void SetFieldLayout(sch_params& P, bool bricked)
+{
+  const int dims[3] = { P.nx, P.ny, P.nz };
+  const BrickLayout b(dims);
+  // the kernels' strides are ints: a layer of bricks past that reads the field linear
+  if (!bricked || b.LayerFloats() > 2147483647u)
+  {
+    P.fieldShift = 31;
+    P.fieldMask = -1;
+    P.innerX = 4;
+    P.innerY = 4 * P.nx;
+    P.innerZ = 4 * P.nx * P.ny;
+    P.outerX = P.outerY = P.outerZ = 0;
+    return;
+  }
+  const int B = 1 << FieldBrickShift;
+  P.fieldShift = FieldBrickShift;
+  P.fieldMask = B - 1;
+  P.innerX = 4;
+  P.innerY = 4 * B;
+  P.innerZ = 4 * B * B;
+  P.outerX = static_cast<int>(BrickLayout::BrickFloats());
+  P.outerY = static_cast<int>(BrickLayout::BrickFloats() * b.Bricks[0]);
+  P.outerZ = static_cast<int>(b.LayerFloats());
+}
+
+// Volume::Field in bricks: each layer of bricks along z on its own thread; a brick's rows of 4
+// points are read as 64 contiguous bytes of the linear field and written in order.
+static void MakeBricks(const Volume& v, float* out)
+{
+  const int nx = v.Dimensions[0], ny = v.Dimensions[1], nz = v.Dimensions[2];
+  const BrickLayout b(v.Dimensions);
+  const int B = 1 << FieldBrickShift;
+  const std::size_t sy = std::size_t(nx), sz = std::size_t(nx) * ny;
+  const float* in = v.Field;
+  ParallelSlices(static_cast<int>(b.Bricks[2]), [&](int z0, int z1) {
+    float* o = out + std::size_t(z0) * b.LayerFloats();
+    for (int bz = z0; bz < z1; ++bz)
+      for (std::uint64_t by = 0; by < b.Bricks[1]; ++by)
+        for (std::uint64_t bx = 0; bx < b.Bricks[0]; ++bx)
+          for (int kk = 0; kk < B; ++kk)
+            for (int jj = 0; jj < B; ++jj)
+            {
+              const std::size_t k = std::min<std::size_t>(std::size_t(bz) * B + kk, nz - 1);
+              const std::size_t j = std::min<std::size_t>(by * B + jj, ny - 1);
+              const float* row = in + 4 * (k * sz + j * sy);
+              for (int ii = 0; ii < B; ++ii, o += 4)
+              {
+                const std::size_t i = std::min<std::size_t>(bx * B + ii, nx - 1);
+                std::memcpy(o, row + 4 * i, 4 * sizeof(float));
+              }
+            }
+  });
+}
+
+namespace
+{
+struct KeptBricks
+{
+  VolumeIdentity Of;
+  std::shared_ptr<const AlignedFloats> Bricks;
+};
+// Never destroyed (as the kept tracer): a TraceSession that a front end destroys after the exit
+// handlers ran (ParaView's session at pvpython's exit) still releases the bricks through it; a
+// static object here was destroyed first, and that release freed its shared_ptr a second time
+// (glibc: "corrupted double-linked list", an abort at exit).
+KeptBricks& Kept()
+{
+  static KeptBricks* kept = new KeptBricks;
+  return *kept;
+}
+} // namespace
+
+std::shared_ptr<const AlignedFloats> BrickedField(const Volume& v)
+{
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    if (Kept().Bricks && Kept().Of == VolumeIdentity(v))
+      return Kept().Bricks;
+  }
+  // the last volume's bricks go before this one's are made
+  if (v.Stamp != 0)
+    ReleaseBrickedField();
+  // a second copy of the field: made where it takes at most half the memory left
+  const double bytes = double(BrickLayout(v.Dimensions).Floats()) * sizeof(float);
+  if (bytes > 0.5 * double(AvailableMemory()))
+    throw std::bad_alloc();
+  auto bricks = std::make_shared<AlignedFloats>(BrickLayout(v.Dimensions).Floats());
+  MakeBricks(v, bricks->data());
+  if (v.Stamp != 0)
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    Kept().Of = VolumeIdentity(v);
+    Kept().Bricks = bricks;
+  }
+  return bricks;
+}
+
+void ReleaseBrickedField()
+{
+  std::shared_ptr<const AlignedFloats> gone;
+  std::lock_guard<std::mutex> lock(KeptMutex);
+  gone.swap(Kept().Bricks);
+  Kept().Of = VolumeIdentity();
 }
 
 void CheckVolume(const Volume& v)

@@ -25,26 +25,33 @@ public:
   // bytes: the cell bytes (octree levels, solid points) or null; deviceName: a part of the
   // device's name, empty for the options' device
   OpenCLTracer(const Volume& volume, const unsigned char* cellBytes, std::size_t chunk, int raysPerItem,
-    const RuntimeOptions& options, const std::string& deviceName)
+    const RuntimeOptions& options, const std::string& deviceName, bool bricked)
     : RT(ocl::GetRuntime(deviceName))
     , Options(options)
     , RaysPerItem(raysPerItem > 0 ? raysPerItem : (RT.IsCPU ? 4 : 1))
+    , Bricked(bricked)
   {
     // over one buffer's limit, the field goes in slabs along z, up to MaxSlabs buffers: slab q
-    // holds planes q K .. q K + K (K cells; the shared plane keeps every cell in one slab)
+    // holds planes q K .. q K + K (K cells; the shared plane keeps every cell in one slab). The
+    // field is held in units along z of `unit` planes (a layer of bricks, or a plane): a slab
+    // starts on a unit (K is a multiple of `unit`) and holds the units of its planes.
     const std::uint64_t maxAlloc = MaxAllocation();
-    const std::uint64_t planeFloats = std::uint64_t(volume.Dimensions[0]) * volume.Dimensions[1] * 4;
-    const std::uint64_t bytes = volume.NumberOfPoints() * 4 * sizeof(float);
     const int nz = volume.Dimensions[2];
+    const BrickLayout layout(volume.Dimensions);
+    const int unit = bricked ? 1 << FieldBrickShift : 1;
+    const std::uint64_t unitFloats =
+      bricked ? layout.LayerFloats() : std::uint64_t(volume.Dimensions[0]) * volume.Dimensions[1] * 4;
+    const std::uint64_t bytes =
+      (bricked ? layout.Floats() : volume.NumberOfPoints() * 4) * sizeof(float);
     SlabCells = nz - 1;
     Slabs = 1;
     std::uint64_t total = bytes;
     if (bytes > maxAlloc)
     {
-      const std::int64_t cells = std::int64_t(maxAlloc / (planeFloats * sizeof(float))) - 1;
+      const std::int64_t cells = (std::int64_t(maxAlloc / (unitFloats * sizeof(float))) - 1) * unit;
       Slabs = cells >= 1 ? static_cast<int>((nz - 1 + cells - 1) / cells) : MaxSlabs + 1;
       SlabCells = static_cast<int>(std::max<std::int64_t>(cells, 1));
-      total = bytes + std::uint64_t(Slabs - 1) * planeFloats * sizeof(float);
+      total = bytes + std::uint64_t(Slabs - 1) * unitFloats * sizeof(float);
     }
     const std::uint64_t levelBytes = cellBytes ? volume.NumberOfPoints() : 1;
     if (Slabs > MaxSlabs || total + levelBytes > RT.GlobalMemory)
@@ -64,7 +71,7 @@ public:
     const std::uintptr_t align = std::max<std::uintptr_t>(alignBits / 8, 64);
     const bool shareHost = RT.IsCPU && Options.UseHostPtr;
     auto slabStart = [&](int q) {
-      return volume.Field + std::uint64_t(q) * SlabCells * planeFloats;
+      return volume.Field + std::uint64_t(q) * SlabCells / unit * unitFloats;
     };
     double copied = 0;
     for (int q = 0; q < Slabs; ++q)
@@ -83,9 +90,10 @@ public:
       for (int q = 0; q < Slabs; ++q)
       {
         const std::uint64_t first = std::uint64_t(q) * SlabCells;
-        const std::uint64_t planes = std::min<std::uint64_t>(SlabCells, nz - 1 - first) + 1;
+        const std::uint64_t last = first + std::min<std::uint64_t>(SlabCells, nz - 1 - first);
+        const std::uint64_t units = last / unit - first / unit + 1;
         const cl_mem_flags flags = CL_MEM_READ_ONLY | (Shared[q] ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR);
-        Fields[q] = clCreateBuffer(RT.Context, flags, planes * planeFloats * sizeof(float),
+        Fields[q] = clCreateBuffer(RT.Context, flags, units * unitFloats * sizeof(float),
           const_cast<float*>(slabStart(q)), &err);
         ocl::Check(err, "clCreateBuffer(field)");
       }
@@ -319,6 +327,8 @@ public:
   }
   sch_params WithSlabs(const sch_params& P) const
   {
+    if (P.fieldShift != (Bricked ? FieldBrickShift : 31))
+      throw Error("internal: the trace's field layout (sch_params.fieldShift) is not its buffers'.");
     sch_params Q = P;
     Q.slabCells = SlabCells;
     return Q;
@@ -355,6 +365,7 @@ public:
   cl_mem Fields[MaxSlabs] = { nullptr, nullptr, nullptr, nullptr };
   bool Shared[MaxSlabs] = { false, false, false, false }; // uses the caller's memory (CPU device)
   int Slabs = 1, SlabCells = 0;
+  bool Bricked = false; // the field in bricks (BrickedField), else linear
   cl_mem Levels = nullptr, Out = nullptr;
 };
 
@@ -397,9 +408,9 @@ void ReleaseKeptAtExit()
 
 std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned char* bytes,
   const std::shared_ptr<const void>& bytesOwner, std::size_t chunk, int raysPerItem,
-  const RuntimeOptions& options, const std::string& deviceName)
+  const RuntimeOptions& options, const std::string& deviceName, bool bricked)
 {
-  const std::string device = deviceName + '\n' + options.OpenCLKey();
+  const std::string device = deviceName + '\n' + options.OpenCLKey() + (bricked ? "\nbricks" : "");
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
     KeptTracer& k = Kept();
@@ -418,7 +429,7 @@ std::shared_ptr<OpenCLTracer> AcquireTracer(const Volume& volume, const unsigned
     k.Bytes = nullptr;
     k.BytesOwner.reset();
   }
-  auto t = std::make_shared<OpenCLTracer>(volume, bytes, chunk, raysPerItem, options, deviceName);
+  auto t = std::make_shared<OpenCLTracer>(volume, bytes, chunk, raysPerItem, options, deviceName, bricked);
   if (volume.Stamp != 0)
   {
     std::lock_guard<std::mutex> lock(KeptMutex);
@@ -469,9 +480,12 @@ void WalkPiecesOpenCL(OpenCLTracer& t, const sch_params& P, sch_piece_ray* rays,
 
 void ReleaseKeptVolume()
 {
-  std::lock_guard<std::mutex> lock(KeptMutex);
-  Kept().Tracer.reset();
-  Kept().Identity = VolumeIdentity();
+  {
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    Kept().Tracer.reset();
+    Kept().Identity = VolumeIdentity();
+  }
+  ReleaseBrickedField();
 }
 
 DeviceInfo QueryOpenCLDevice(const std::string& deviceName)

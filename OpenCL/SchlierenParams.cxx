@@ -82,8 +82,9 @@ sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGe
   P.gz0 = static_cast<float>(0.5 * (P.nz - 1));
   if (4.0 * P.nx * P.ny > 2147483647.0)
     throw Error("A slice of the volume has more than 2^29 points: not supported.");
-  P.rowFloats = 4 * P.nx;
-  P.sliceFloats = 4 * P.nx * P.ny;
+  // the field linear, or in bricks (BrickedField, SCHLIEREN_FIELD_BRICKS=1): a ray in any
+  // direction then reads the pages its neighbours read
+  SetFieldLayout(P, GetRuntimeOptions().Bricks);
   if (s.Recon == Reconstruction::Auto)
     throw Error("Reconstruction Auto must be resolved first (ResolveAuto).");
   if (s.Recon == Reconstruction::Cubic && !volume.Smooth)

@@ -203,7 +203,15 @@ typedef struct
   float cellStep;           /* the longest step that moves at most one cell along every axis */
   float gxMax, gyMax, gzMax; /* the largest grid coordinate sampled: the float below n - 1 */
   float gx0, gy0, gz0;       /* grid coordinate of the centre: -(origin - centre) / spacing */
-  int rowFloats, sliceFloats; /* floats from one grid row, and slice, to the next: 4 nx, 4 nx ny */
+  /* The packed field's layout (sch_axis_offset): point (i, j, k) sits at float offset
+   * X(i) + Y(j) + Z(k), each term (c >> fieldShift) outer + (c & fieldMask) inner of its axis.
+   * Bricks (SetFieldLayout): 2^fieldShift points a side, x fastest within a brick (a brick's row
+   * of 4 points is one 64-byte line), the bricks in x, y, z order, so that a step in any direction
+   * stays in the lines and pages its neighbours read. Linear (fieldShift 31, fieldMask all ones,
+   * outer unused): inner 4, 4 nx, 4 nx ny, the layout of Volume::Field. */
+  int fieldShift, fieldMask;
+  int innerX, innerY, innerZ;
+  int outerX, outerY, outerZ;
   int slabCells;              /* cells along z per slab (SCH_SLABS builds only) */
   int recon;       /* reconstruction: SCH_TRILINEAR, or SCH_CUBIC where the cell is smooth */
   float roughStep; /* SCH_CUBIC: the longest step (world units) from a cell that is not smooth */
@@ -344,19 +352,25 @@ SCH_FN float sch_grid_coord(float x, float is, float g0, float hi, int* c)
   return f;
 }
 
-/* The packed point (i, j, k) (indices in the points held): in its slab where the field is in
- * slabs (the slab of k found by comparisons, no indexed array). */
-SCH_FN SCH_GLOBAL const float* sch_cell_corner(
-  SCH_FIELD field, const sch_params* P, int i, int j, int k)
+/* The float offset along one axis of the packed field's point c (sch_params: fieldShift). */
+SCH_FN long sch_axis_offset(int c, int shift, int mask, int outer, int inner)
+{
+  return (long)(c >> shift) * outer + (long)(c & mask) * inner;
+}
+
+/* The buffer that holds grid plane k (index in the points held), k made local to it: its slab
+ * where the field is in slabs (the slab of k found by comparisons, no indexed array). */
+SCH_FN SCH_GLOBAL const float* sch_field_base(SCH_FIELD field, const sch_params* P, int* k)
 {
 #ifdef SCH_SLABS
-  const int q = k / P->slabCells;
-  SCH_GLOBAL const float* base = sch_slab_base(field, q);
-  k -= q * P->slabCells;
+  const int q = *k / P->slabCells;
+  *k -= q * P->slabCells;
+  return sch_slab_base(field, q);
 #else
-  SCH_GLOBAL const float* base = field;
+  (void)P;
+  (void)k;
+  return field;
 #endif
-  return base + (long)k * P->sliceFloats + (long)j * P->rowFloats + (long)i * 4;
 }
 
 /* Trilinear interpolation of the packed field at p (relative to the centre); outside the grid the
@@ -375,15 +389,20 @@ SCH_FN sch_sample sch_sample_cell(
   i -= P->ox;
   j -= P->oy;
   k -= P->oz;
-  const long sy = P->rowFloats, sz = P->sliceFloats;
   *cell = ((long)k * P->ny + j) * P->nx + i;
-  SCH_GLOBAL const float* c000 = sch_cell_corner(field, P, i, j, k);
-  SCH_GLOBAL const float* c001 = c000 + sz;
+  SCH_GLOBAL const float* base = sch_field_base(field, P, &k);
+  const int sh = P->fieldShift, m = P->fieldMask;
+  const long x0 = sch_axis_offset(i, sh, m, P->outerX, P->innerX);
+  const long x1 = sch_axis_offset(i + 1, sh, m, P->outerX, P->innerX);
+  const long y0 = sch_axis_offset(j, sh, m, P->outerY, P->innerY);
+  const long y1 = sch_axis_offset(j + 1, sh, m, P->outerY, P->innerY);
+  SCH_GLOBAL const float* c0 = base + sch_axis_offset(k, sh, m, P->outerZ, P->innerZ);
+  SCH_GLOBAL const float* c1 = base + sch_axis_offset(k + 1, sh, m, P->outerZ, P->innerZ);
   /* seven lerps of the four channels at once: along x on the four edges, then y, then z */
-  sch_f4 e00 = sch_f4_lerp(sch_f4_load(c000), sch_f4_load(c000 + 4), tx);
-  sch_f4 e10 = sch_f4_lerp(sch_f4_load(c000 + sy), sch_f4_load(c000 + sy + 4), tx);
-  sch_f4 e01 = sch_f4_lerp(sch_f4_load(c001), sch_f4_load(c001 + 4), tx);
-  sch_f4 e11 = sch_f4_lerp(sch_f4_load(c001 + sy), sch_f4_load(c001 + sy + 4), tx);
+  sch_f4 e00 = sch_f4_lerp(sch_f4_load(c0 + y0 + x0), sch_f4_load(c0 + y0 + x1), tx);
+  sch_f4 e10 = sch_f4_lerp(sch_f4_load(c0 + y1 + x0), sch_f4_load(c0 + y1 + x1), tx);
+  sch_f4 e01 = sch_f4_lerp(sch_f4_load(c1 + y0 + x0), sch_f4_load(c1 + y0 + x1), tx);
+  sch_f4 e11 = sch_f4_lerp(sch_f4_load(c1 + y1 + x0), sch_f4_load(c1 + y1 + x1), tx);
   sch_f4 f0 = sch_f4_lerp(e00, e10, ty);
   sch_f4 f1 = sch_f4_lerp(e01, e11, ty);
   sch_f4 r = sch_f4_lerp(f0, f1, tz);
@@ -448,26 +467,31 @@ SCH_FN int sch_solid_at(SCH_GLOBAL const sch_uchar* bytes, const sch_params* P, 
   const float w2 = -((t) + 1.0f) * (t) * ((t) - 2.0f) * 0.5f;                                        \
   const float w3 = ((t) + 1.0f) * (t) * ((t) - 1.0f) * (1.0f / 6.0f)
 
-/* One row of 4 points (x - 1 .. x + 2) blended along x. */
-SCH_FN sch_f4 sch_cubic_row(SCH_GLOBAL const float* row, float w0, float w1, float w2, float w3)
+/* One row of 4 points (x - 1 .. x + 2, at row + a0 .. row + a3) blended along x. */
+SCH_FN sch_f4 sch_cubic_row(SCH_GLOBAL const float* row, long a0, long a1, long a2, long a3, float w0,
+  float w1, float w2, float w3)
 {
   sch_f4 r = sch_f4_zero();
-  r = sch_f4_madd(r, w0, sch_f4_load(row));
-  r = sch_f4_madd(r, w1, sch_f4_load(row + 4));
-  r = sch_f4_madd(r, w2, sch_f4_load(row + 8));
-  r = sch_f4_madd(r, w3, sch_f4_load(row + 12));
+  r = sch_f4_madd(r, w0, sch_f4_load(row + a0));
+  r = sch_f4_madd(r, w1, sch_f4_load(row + a1));
+  r = sch_f4_madd(r, w2, sch_f4_load(row + a2));
+  r = sch_f4_madd(r, w3, sch_f4_load(row + a3));
   return r;
 }
 
-/* One plane of 4 x 4 points blended along x, then y. */
-SCH_FN sch_f4 sch_cubic_plane(SCH_GLOBAL const float* p, long sy, float x0, float x1, float x2,
-  float x3, float y0, float y1, float y2, float y3)
+/* The x offsets and weights of a cubic row, the arguments every row repeats. */
+#define SCH_CUBIC_XS a0, a1, a2, a3, x0, x1, x2, x3
+
+/* One plane of 4 x 4 points (rows at p + b0 .. p + b3) blended along x, then y. */
+SCH_FN sch_f4 sch_cubic_plane(SCH_GLOBAL const float* p, long b0, long b1, long b2, long b3, long a0,
+  long a1, long a2, long a3, float x0, float x1, float x2, float x3, float y0, float y1, float y2,
+  float y3)
 {
   sch_f4 r = sch_f4_zero();
-  r = sch_f4_madd(r, y0, sch_cubic_row(p, x0, x1, x2, x3));
-  r = sch_f4_madd(r, y1, sch_cubic_row(p + sy, x0, x1, x2, x3));
-  r = sch_f4_madd(r, y2, sch_cubic_row(p + 2 * sy, x0, x1, x2, x3));
-  r = sch_f4_madd(r, y3, sch_cubic_row(p + 3 * sy, x0, x1, x2, x3));
+  r = sch_f4_madd(r, y0, sch_cubic_row(p + b0, SCH_CUBIC_XS));
+  r = sch_f4_madd(r, y1, sch_cubic_row(p + b1, SCH_CUBIC_XS));
+  r = sch_f4_madd(r, y2, sch_cubic_row(p + b2, SCH_CUBIC_XS));
+  r = sch_f4_madd(r, y3, sch_cubic_row(p + b3, SCH_CUBIC_XS));
   return r;
 }
 
@@ -482,13 +506,28 @@ SCH_FN sch_sample sch_sample_cubic_at(SCH_GLOBAL const float* base, const sch_pa
   SCH_CUBIC_WEIGHTS(tx, x0, x1, x2, x3);
   SCH_CUBIC_WEIGHTS(ty, y0, y1, y2, y3);
   SCH_CUBIC_WEIGHTS(tz, z0, z1, z2, z3);
-  const long sy = P->rowFloats, sz = P->sliceFloats;
-  SCH_GLOBAL const float* c = base + (long)(k - 1) * sz + (long)(j - 1) * sy + (long)(i - 1) * 4;
+  const int sh = P->fieldShift, m = P->fieldMask;
+  const long a0 = sch_axis_offset(i - 1, sh, m, P->outerX, P->innerX);
+  const long a1 = sch_axis_offset(i, sh, m, P->outerX, P->innerX);
+  const long a2 = sch_axis_offset(i + 1, sh, m, P->outerX, P->innerX);
+  const long a3 = sch_axis_offset(i + 2, sh, m, P->outerX, P->innerX);
+  const long b0 = sch_axis_offset(j - 1, sh, m, P->outerY, P->innerY);
+  const long b1 = sch_axis_offset(j, sh, m, P->outerY, P->innerY);
+  const long b2 = sch_axis_offset(j + 1, sh, m, P->outerY, P->innerY);
+  const long b3 = sch_axis_offset(j + 2, sh, m, P->outerY, P->innerY);
   sch_f4 r = sch_f4_zero();
-  r = sch_f4_madd(r, z0, sch_cubic_plane(c, sy, x0, x1, x2, x3, y0, y1, y2, y3));
-  r = sch_f4_madd(r, z1, sch_cubic_plane(c + sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
-  r = sch_f4_madd(r, z2, sch_cubic_plane(c + 2 * sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
-  r = sch_f4_madd(r, z3, sch_cubic_plane(c + 3 * sz, sy, x0, x1, x2, x3, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z0,
+    sch_cubic_plane(base + sch_axis_offset(k - 1, sh, m, P->outerZ, P->innerZ), b0, b1, b2, b3,
+      SCH_CUBIC_XS, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z1,
+    sch_cubic_plane(base + sch_axis_offset(k, sh, m, P->outerZ, P->innerZ), b0, b1, b2, b3,
+      SCH_CUBIC_XS, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z2,
+    sch_cubic_plane(base + sch_axis_offset(k + 1, sh, m, P->outerZ, P->innerZ), b0, b1, b2, b3,
+      SCH_CUBIC_XS, y0, y1, y2, y3));
+  r = sch_f4_madd(r, z3,
+    sch_cubic_plane(base + sch_axis_offset(k + 2, sh, m, P->outerZ, P->innerZ), b0, b1, b2, b3,
+      SCH_CUBIC_XS, y0, y1, y2, y3));
   sch_sample s;
   s.n1 = r.x;
   s.gx = r.y;

@@ -127,17 +127,23 @@ static inline void sch_prefetch_cell(SCH_FIELD field, const sch_params* P, sch_v
   i -= P->ox;
   j -= P->oy;
   k -= P->oz;
-  const long sy = P->rowFloats, sz = P->sliceFloats;
-  /* the two points along x of each of the four rows: 32 bytes, in one or two cache lines */
-  __global const float* c = sch_cell_corner(field, P, i, j, k);
-  __builtin_prefetch(c);
-  __builtin_prefetch(c + 7);
-  __builtin_prefetch(c + sy);
-  __builtin_prefetch(c + sy + 7);
-  __builtin_prefetch(c + sz);
-  __builtin_prefetch(c + sz + 7);
-  __builtin_prefetch(c + sz + sy);
-  __builtin_prefetch(c + sz + sy + 7);
+  /* the eight corners' 64-byte lines: one or two to a row of two points in either layout */
+  __global const float* base = sch_field_base(field, P, &k);
+  const int sh = P->fieldShift, m = P->fieldMask;
+  const long x0 = sch_axis_offset(i, sh, m, P->outerX, P->innerX);
+  const long x1 = sch_axis_offset(i + 1, sh, m, P->outerX, P->innerX);
+  const long y0 = sch_axis_offset(j, sh, m, P->outerY, P->innerY);
+  const long y1 = sch_axis_offset(j + 1, sh, m, P->outerY, P->innerY);
+  __global const float* c0 = base + sch_axis_offset(k, sh, m, P->outerZ, P->innerZ);
+  __global const float* c1 = base + sch_axis_offset(k + 1, sh, m, P->outerZ, P->innerZ);
+  __builtin_prefetch(c0 + y0 + x0);
+  __builtin_prefetch(c0 + y0 + x1);
+  __builtin_prefetch(c0 + y1 + x0);
+  __builtin_prefetch(c0 + y1 + x1);
+  __builtin_prefetch(c1 + y0 + x0);
+  __builtin_prefetch(c1 + y0 + x1);
+  __builtin_prefetch(c1 + y1 + x0);
+  __builtin_prefetch(c1 + y1 + x1);
 }
 
 /* The ray that work-item g of a launch traces: the rays of a film band of SCH_TILE_ROWS rows

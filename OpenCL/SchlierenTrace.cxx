@@ -10,11 +10,46 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace schlieren
 {
 
+namespace
+{
+// The volume as the kernels read it in P's layout (MakeParams): its field in bricks
+// (BrickedField) or as it is, and what a device that uses host memory in place must keep alive,
+// the bricks and the cell bytes. The bricks are a second copy of the field: where there is no room
+// for it (BrickedField), P goes back to the linear layout (the same images, slower oblique views).
+struct FieldForKernels
+{
+  std::shared_ptr<const AlignedFloats> Bricks;
+  Volume Bricked;
+  std::shared_ptr<const void> Owner;
+  FieldForKernels(const Volume& tv, sch_params& P, const std::shared_ptr<const void>& bytesOwner)
+    : Bricked(tv)
+    , Owner(bytesOwner)
+  {
+    if (P.fieldShift != FieldBrickShift)
+      return;
+    try
+    {
+      Bricks = BrickedField(tv);
+    }
+    catch (const std::bad_alloc&)
+    {
+      SetFieldLayout(P, false);
+      return;
+    }
+    Bricked.Field = Bricks->data();
+    Owner = std::make_shared<std::pair<std::shared_ptr<const void>, std::shared_ptr<const void>>>(
+      bytesOwner, Bricks);
+  }
+};
+} // namespace
+
+// (volume.Field in P's layout: the bricks of BrickedField, which bytesOwner then holds too)
 std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned char* bytes,
   const std::shared_ptr<const void>& bytesOwner, const TraceSettings& s,
   const sch_params& P, std::size_t chunk, bool points, std::string& used, std::string& device,
@@ -29,7 +64,8 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned c
   try
   {
     auto t = AcquireTracer(
-      volume, bytes, bytesOwner, chunk, s.RaysPerWorkItem, GetRuntimeOptions(), s.DeviceName);
+      volume, bytes, bytesOwner, chunk, s.RaysPerWorkItem, GetRuntimeOptions(), s.DeviceName,
+      P.fieldShift == FieldBrickShift);
     PrepareKernel(*t, P, points); // built here, so that a build failure falls back like a missing device
     used = "OpenCL";
     device = TracerDeviceName(*t);
@@ -88,11 +124,9 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   // with a body the kernels read its solid and near bits in the levels byte (no Cubic then)
   const auto solidBytes = CellBytesOf(volume, StepReach(P));
   const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
-  // the owner of the bytes where they are not the volume's (a device may use them in place)
-  const std::shared_ptr<const void> owner =
-    solidBytes ? std::shared_ptr<const void>(solidBytes) : levelBytes;
+  const FieldForKernels kf(tv, P, solidBytes ? std::shared_ptr<const void>(solidBytes) : levelBytes);
   std::shared_ptr<OpenCLTracer> cl =
-    OpenBackend(tv, bytes, owner, s, P, chunk, false, used, device, warn);
+    OpenBackend(kf.Bricked, bytes, kf.Owner, s, P, chunk, false, used, device, warn);
   SetFeatureTolerance(P, tv);
   if (volume.Solid && s.Recon == Reconstruction::Cubic && sums.Passes == 0)
     warn += "Reconstruction Cubic is not available with a solid body (the byte per point that "
@@ -115,7 +149,7 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
       if (cl)
         TraceOpenCL(*cl, Pk, first, count, records.data());
       else
-        TraceChunkCPU(tv.Field, bytes, Pk, first, count, records.data(), threads);
+        TraceChunkCPU(kf.Bricked.Field, bytes, Pk, first, count, records.data(), threads);
       splat.Add(records.data(), first, count);
       done += count;
       if (progress && !progress(done / total))
@@ -172,17 +206,16 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   const Volume tv = TraceVolume(volume, levelBytes);
   const auto solidBytes = CellBytesOf(volume, StepReach(P));
   const unsigned char* bytes = solidBytes ? solidBytes->data() : tv.Levels;
-  const std::shared_ptr<const void> owner =
-    solidBytes ? std::shared_ptr<const void>(solidBytes) : levelBytes;
+  const FieldForKernels kf(tv, P, solidBytes ? std::shared_ptr<const void>(solidBytes) : levelBytes);
   std::shared_ptr<OpenCLTracer> cl = OpenBackend(
-    tv, bytes, owner, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
+    kf.Bricked, bytes, kf.Owner, s, P, std::max<std::size_t>(count, 1), true, used, device, warn);
   SetFeatureTolerance(P, tv);
   float* rec = reinterpret_cast<float*>(out.data());
   if (cl)
     TracePointsOpenCL(*cl, P, ab.data(), count, rec);
   else
     for (std::size_t k = 0; k < count; ++k)
-      sch_trace(tv.Field, bytes, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
+      sch_trace(kf.Bricked.Field, bytes, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
   // the flags travel as floats in the record; turn them into integers
   for (RayRecord& r : out)
   {

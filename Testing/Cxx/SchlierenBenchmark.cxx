@@ -28,8 +28,9 @@
 //             camera at rest (the pilot again, the full film): wall ms of each update split into
 //             the pilot, the trace and the rest (packing, set-up, the image)
 //   oblique   the same Gaussian on each grid of --grids seen along -z and along (1, 0.7, -0.4), Euler
-//             at --step voxels, Trilinear and Cubic, alternated --rounds times: median samples/s and
-//             rays/s, oblique over axis time per sample, errors against the closed form
+//             at --step voxels, Trilinear and Cubic, the field linear and in bricks, alternated
+//             --rounds times: median samples/s and rays/s, oblique over axis time per sample, errors
+//             against the closed form
 //   sources   the bench's sources (Point, Slit, Disc, Gaussian) on the Gaussian sphere: rays/s, the
 //             passes for an RMS of 1 %, a camera move
 //   raycost   the Gaussian sphere (--size) traced as a camera move traces it at steps of 0.3 to 30
@@ -40,6 +41,7 @@
 //     [--grids 64,128,256,512] [--tolerance 1e-3] [--rounds 5 --steps 0.3,1,3,10,30 (raycost)]
 #include "SchlierenEngine.h"
 #include "SchlierenLimits.h"
+#include "SchlierenOptions.h"
 #include "SchlierenOracles.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
@@ -795,8 +797,9 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
 // The oblique case (issue 50): the weak Gaussian of the grids case on each grid of --grids, traced
 // along the axis (beam along -z) and obliquely (beam along (1, 0.7, -0.4)), Euler at a fixed step
 // (--step voxels, no octree, no Auto: the samples per unit length are the same), Trilinear and
-// Cubic (one field packed for both by PackFieldHighOrder), the two views alternated --rounds times
-// in one run: medians of samples/s and rays/s, the cost per sample over the axis view's, and the RMS and largest deflection error against the closed form (the sphere is round:
+// Cubic (one field packed for both by PackFieldHighOrder), each with the field in its linear layout
+// and in bricks (SCHLIEREN_FIELD_BRICKS), the four alternated --rounds times in one run: medians of
+// samples/s and rays/s, the cost per sample over the axis view's, and the RMS and largest deflection error against the closed form (the sphere is round:
 // the closed form holds in any view's film coordinates) over the film's pixel centres within 2.2 s.
 void Oblique(const std::string& grids, const std::string& backends, int film, int passes, double step,
   int rounds)
@@ -806,8 +809,10 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
   std::printf("## Oblique views (issue 50): weak Gaussian A = 2e-4, s = 0.25 on [-1, 1]^3, Euler at %g voxel, "
               "no octree, film %d^2, %d passes, axis (0, 0, -1) and oblique (1, 0.7, -0.4) alternated %d times "
               "(medians)\n\n", step, film, passes, rounds);
-  std::printf("| grid | backend | reconstruction | view | samples/ray | M samples/s | M rays/s | time per sample / "
-              "axis | RMS error | max error |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("time per sample: over the same layout's axis view, and over the linear layout's axis view; "
+              "the two layouts' records compared bit for bit\n\n");
+  std::printf("| grid | backend | reconstruction | layout | view | samples/ray | M samples/s | M rays/s | time per "
+              "sample / axis | / linear axis | RMS error | max error |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   auto median = [](std::vector<double> x) {
     std::sort(x.begin(), x.end());
     return x.empty() ? 0.0 : x.size() % 2 ? x[x.size() / 2] : 0.5 * (x[x.size() / 2 - 1] + x[x.size() / 2]);
@@ -847,11 +852,13 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
     ReleaseKeptVolume();
     v.Stamp = NewVolumeStamp();
     const std::vector<float> ab = CentreRays(film, 2.2 * w);
+    const RuntimeOptions options = GetRuntimeOptions();
     std::stringstream bs(backends);
     std::string bname;
     while (std::getline(bs, bname, ','))
       for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
       {
+        // [layout][view]: layout 0 the linear field (SCHLIEREN_FIELD_BRICKS=0), 1 the bricks
         TraceSettings s[2];
         for (int view = 0; view < 2; ++view)
         {
@@ -867,46 +874,79 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
         s[1].ViewDirection[0] = 1;
         s[1].ViewDirection[1] = 0.7;
         s[1].ViewDirection[2] = -0.4;
-        std::vector<double> perSample[2], perRay[2];
+        auto useLayout = [&](int layout) {
+          RuntimeOptions o = options;
+          o.Bricks = layout == 1;
+          SetRuntimeOptions(o);
+        };
+        std::vector<double> perSample[2][2], perRay[2][2];
         double samplesPerRay[2] = { 0, 0 }, rms[2] = { 0, 0 }, worst[2] = { 0, 0 };
+        bool same = true;
         try
         {
-          for (int view = 0; view < 2; ++view)
+          std::vector<RayRecord> first[2];
+          for (int layout = 0; layout < 2; ++layout)
           {
-            const std::vector<RayRecord> rec = TraceRays(v, s[view], ab);
-            double sum = 0;
-            for (std::size_t k = 0; k < rec.size(); ++k)
-            {
-              double e[2];
-              schtest::GaussianDeflection(A, w, ab[2 * k], ab[2 * k + 1], e);
-              double d = std::hypot(rec[k].DeflX - e[0], rec[k].DeflY - e[1]);
-              if (rec[k].Flags & (RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm | RayUnderresolved))
-                d = 1.0;
-              sum += d * d;
-              worst[view] = std::max(worst[view], d);
-            }
-            rms[view] = std::sqrt(sum / std::max<std::size_t>(1, rec.size()));
-            Trace(v, s[view]); // the program and the upload
-          }
-          for (int r = 0; r < rounds; ++r)
+            useLayout(layout);
             for (int view = 0; view < 2; ++view)
             {
-              const TraceResult t = Trace(v, s[view]);
-              perSample[view].push_back(t.Seconds / t.Samples);
-              perRay[view].push_back(t.Seconds / t.Photons);
-              samplesPerRay[view] = t.Samples / t.Photons;
+              const std::vector<RayRecord> rec = TraceRays(v, s[view], ab);
+              if (layout == 0)
+                first[view] = rec;
+              else
+                same = same && std::memcmp(rec.data(), first[view].data(), rec.size() * sizeof(RayRecord)) == 0;
+              double sum = 0;
+              for (std::size_t k = 0; k < rec.size(); ++k)
+              {
+                double e[2];
+                schtest::GaussianDeflection(A, w, ab[2 * k], ab[2 * k + 1], e);
+                double d = std::hypot(rec[k].DeflX - e[0], rec[k].DeflY - e[1]);
+                if (rec[k].Flags & (RayMaxSteps | RayTurned | RayNonFinite | RayOffFilm | RayUnderresolved))
+                  d = 1.0;
+                sum += d * d;
+                worst[view] = std::max(worst[view], d);
+              }
+              rms[view] = std::sqrt(sum / std::max<std::size_t>(1, rec.size()));
+            }
+          }
+          // each round: both layouts, both views; after a change of layout a small trace takes
+          // the device's buffers and kernels (not timed)
+          for (int r = 0; r < rounds; ++r)
+            for (int layout = 0; layout < 2; ++layout)
+            {
+              useLayout(layout);
+              TraceSettings warm = s[0];
+              warm.Resolution[0] = warm.Resolution[1] = 8;
+              warm.Passes = 1;
+              Trace(v, warm);
+              for (int view = 0; view < 2; ++view)
+              {
+                const TraceResult t = Trace(v, s[view]);
+                perSample[layout][view].push_back(t.Seconds / t.Samples);
+                perRay[layout][view].push_back(t.Seconds / t.Photons);
+                samplesPerRay[view] = t.Samples / t.Photons;
+              }
             }
         }
         catch (const Error& e)
         {
-          std::printf("| %d^3 | %s | %s | failed: %s | | | | | |\n", n, bname.c_str(), ReconstructionName(rc), e.what());
+          SetRuntimeOptions(options);
+          std::printf("| %d^3 | %s | %s | failed: %s | | | | | | | |\n", n, bname.c_str(), ReconstructionName(rc),
+            e.what());
           continue;
         }
-        for (int view = 0; view < 2; ++view)
-          std::printf("| %d^3 | %s | %s | %s | %.1f | %.3g | %.3g | %.2f | %.3g %% | %.3g %% |\n", n, bname.c_str(),
-            ReconstructionName(rc), view ? "oblique" : "axis", samplesPerRay[view], 1e-6 / median(perSample[view]),
-            1e-6 / median(perRay[view]), median(perSample[view]) / median(perSample[0]), 100 * rms[view] / peak,
-            100 * worst[view] / peak);
+        SetRuntimeOptions(options);
+        const double axis0 = median(perSample[0][0]);
+        for (int layout = 0; layout < 2; ++layout)
+          for (int view = 0; view < 2; ++view)
+          {
+            const double ps = median(perSample[layout][view]);
+            std::printf("| %d^3 | %s | %s | %s | %s | %.1f | %.3g | %.3g | %.2f | %.2f | %.3g %% | %.3g %%%s |\n", n,
+              bname.c_str(), ReconstructionName(rc), layout ? "bricks" : "linear", view ? "oblique" : "axis",
+              samplesPerRay[view], 1e-6 / ps, 1e-6 / median(perRay[layout][view]),
+              ps / median(perSample[layout][0]), ps / axis0, 100 * rms[view] / peak, 100 * worst[view] / peak,
+              layout && !same ? " (records differ from linear!)" : "");
+          }
         std::fflush(stdout);
       }
     ReleaseKeptVolume();
