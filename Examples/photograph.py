@@ -4,8 +4,12 @@ photon noise, registered onto our traced film, its grey calibrated, and the dist
 two images' shocks printed; the images written (film, photograph, checkerboard, difference, the
 lines coloured by their distance).
 
+    SCHLIEREN_ENGINE_LIBRARY=build/OpenCL/libschlieren_engine.so.1 \
     pvpython Examples/photograph.py --plugin build/lib/paraview-*/plugins/Schlieren/Schlieren.so \
         --output out/photograph
+
+(the photograph is made with the Python package in Python/, which loads the engine library: a
+build tree has it in build/OpenCL/, an installed wheel beside the package).
 
 Two photographs: one of the same time as the film, registered without a start and with the bench's
 magnification (the lines agree: distances of a fraction of a pixel), one of an earlier time of the
