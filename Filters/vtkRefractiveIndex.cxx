@@ -1388,11 +1388,12 @@ void vtkRefractiveIndex::WriteOutput(Work& w)
 namespace
 {
 /**
- * Marks `solid` at the points of `grid` inside the one closed shell `shell` (tested only within its
- * bounds); `any` is set where it marked one. False where the inside test gave no result.
+ * Marks `inside` at the points of `grid` inside the one closed shell `shell` (tested only within
+ * its bounds); `overlapsAny` is set where its bounds overlap the grid. False where the inside test
+ * gave no result.
  */
 bool MarkInsideShell(vtkPolyData* shell, vtkImageData* grid, const int dims[3],
-  unsigned char* solid, bool& any, bool& overlapsAny)
+  std::vector<unsigned char>& inside, bool& overlapsAny)
 {
   double b[6];
   shell->GetBounds(b);
@@ -1416,13 +1417,13 @@ bool MarkInsideShell(vtkPolyData* shell, vtkImageData* grid, const int dims[3],
     box->SetExtent(sub);
     box->SetOrigin(grid->GetOrigin());
     box->SetSpacing(grid->GetSpacing());
-    vtkNew<vtkSelectEnclosedPoints> inside;
-    inside->SetInputData(box);
-    inside->SetSurfaceData(shell);
-    inside->CheckSurfaceOff(); // checked above, with a message of our own
-    inside->Update();
+    vtkNew<vtkSelectEnclosedPoints> select;
+    select->SetInputData(box);
+    select->SetSurfaceData(shell);
+    select->CheckSurfaceOff(); // checked above, with a message of our own
+    select->Update();
     vtkDataArray* selected =
-      inside->GetOutput()->GetPointData()->GetArray("SelectedPoints");
+      select->GetOutput()->GetPointData()->GetArray("SelectedPoints");
     if (!selected)
     {
       return false;
@@ -1442,8 +1443,7 @@ bool MarkInsideShell(vtkPolyData* shell, vtkImageData* grid, const int dims[3],
             const vtkIdType g =
               (static_cast<vtkIdType>(k - ext[4]) * dims[1] + (j - ext[2])) * dims[0] +
               (i - ext[0]);
-            solid[g] = 1;
-            any = true;
+            inside[g] = 1;
           }
         }
       }
@@ -1456,7 +1456,8 @@ bool MarkInsideShell(vtkPolyData* shell, vtkImageData* grid, const int dims[3],
 /**
  * Marks `solid` at the points of `grid` inside the closed `surface` (tested only within the
  * surface's bounds); `any` is set where it marked one. "" or the error for the user; `note` gets
- * a surface that encloses no point.
+ * a surface that encloses no point (the engine's MarkBodySurface, which the Python front end's
+ * test of the surface reaches through schlieren_index_field).
  */
 std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid, unsigned char* solid,
   bool& any, std::string& note)
@@ -1465,8 +1466,7 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid, unsigned char
   grid->GetDimensions(dims);
   if (surface->GetNumberOfPolys() == 0 && surface->GetNumberOfStrips() == 0)
   {
-    return "The Body input has no polygons: it must be a closed surface (vtkPolyData), such as "
-           "an STL of the model.";
+    return schlieren::BodySurfaceProblem(schlieren::BodySurface::NoPolygons);
   }
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputData(surface);
@@ -1476,9 +1476,7 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid, unsigned char
   vtkPolyData* closed = triangles->GetOutput();
   if (!vtkSelectEnclosedPoints::IsSurfaceClosed(closed))
   {
-    return "The Body input is not a closed surface (it has boundary or non-manifold edges), so "
-           "its inside is not defined. Close it (e.g. Fill Holes, or export the model as a "
-           "watertight STL).";
+    return schlieren::BodySurfaceProblem(schlieren::BodySurface::NotClosed);
   }
   // Each connected shell is tested alone and the results are ORed: one inside test over
   // overlapping shells counts crossings of both (even-odd) and leaves their overlap empty. (A
@@ -1488,12 +1486,13 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid, unsigned char
   shells->SetExtractionModeToAllRegions();
   shells->Update();
   const int regions = shells->GetNumberOfExtractedRegions();
+  const std::size_t count = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::vector<unsigned char> inside(count, 0);
   bool overlaps = false;
   if (regions <= 1)
   {
-    if (!MarkInsideShell(closed, grid, dims, solid, any, overlaps))
-      return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
-             "result).";
+    if (!MarkInsideShell(closed, grid, dims, inside, overlaps))
+      return schlieren::BodySurfaceProblem(schlieren::BodySurface::NoInsideTest);
   }
   else
   {
@@ -1504,17 +1503,11 @@ std::string SurfaceSolid(vtkPolyData* surface, vtkImageData* grid, unsigned char
       one->SetExtractionModeToSpecifiedRegions();
       one->AddSpecifiedRegion(r);
       one->Update();
-      if (!MarkInsideShell(one->GetOutput(), grid, dims, solid, any, overlaps))
-        return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
-               "result).";
+      if (!MarkInsideShell(one->GetOutput(), grid, dims, inside, overlaps))
+        return schlieren::BodySurfaceProblem(schlieren::BodySurface::NoInsideTest);
     }
   }
-  if (!overlaps || !any)
-  {
-    note += std::string(note.empty() ? "" : " ") +
-      "The Body surface encloses no point of the grid: check that it is in the data's "
-      "coordinates and inside the sampling bounds.";
-  }
+  schlieren::MarkBodySurface(inside.data(), count, overlaps, solid, any, note);
   return std::string();
 }
 

@@ -1613,7 +1613,8 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
   int number_of_arrays, const char* const* names, const int* components, const int* value_bytes,
   const void* const* values, const int64_t* value_counts, int active_scalars,
   const char* cell_arrays, const char* notes, const unsigned char* valid, int64_t valid_count,
-  const unsigned char* rim, int64_t rim_count, float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
+  const unsigned char* rim, int64_t rim_count, const unsigned char* body, int64_t body_count,
+  float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
   unsigned char* solid, int64_t solid_count, const char** report)
 {
   if (report)
@@ -1627,6 +1628,7 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
     const std::string per = "a grid of " + GridText(dims) + " points";
     CheckArray(f, "valid", valid, valid_count, points, per, true, "bytes");
     CheckArray(f, "rim", rim, rim_count, points, per, true, "bytes");
+    CheckArray(f, "body", body, body_count, points, per, true, "bytes");
     CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, points, per, false);
     CheckArray(f, "grad3", grad3, grad3_count, 3 * points, per + " (3 a point)", false);
     CheckArray(f, "solid", solid, solid_count, points, per, false, "bytes");
@@ -1641,7 +1643,7 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
            "Species4Array", "HumidityArray", "CO2Array", "HumidityFromArray", "CO2FromArray",
            "AmbientMode", "AmbientValue", "BodyFromGrid", "BodyWallFaces", "SolidArray",
            "Resampled", "UseSamplingBounds", "CellsDescription", "WallVelocity",
-           "WallFaceCounts" })
+           "WallFaceCounts", "BodySurface", "BodyOverlaps" })
       known.emplace_back(extra);
     const std::map<std::string, std::string> p = SettingLines(f, settings, known);
     auto text = [&](const char* name, const char* fallback) {
@@ -1729,6 +1731,25 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
         const std::size_t marked = schlieren::InvalidRegionsBesideWalls(d, v, rim, solidOut);
         note = schlieren::walls::BesideWallsNote(r, marked);
         return marked > 0;
+      };
+    }
+    // the Body surface: what the front end's test of it found (the C++ filter's hook's result)
+    const int surface = EntryOf("BodySurface", text("BodySurface", body ? "Inside" : "None"),
+      { "Inside", "NoPolygons", "NotClosed", "NoInsideTest", "None" });
+    if (surface < 4)
+    {
+      const auto found = static_cast<schlieren::BodySurface>(surface);
+      if (found == schlieren::BodySurface::Inside && !body)
+        throw schlieren::Error(std::string(f) + ": BodySurface Inside needs `body`, a byte a "
+                                                "point (non-zero inside the surface).");
+      const bool overlaps = flag("BodyOverlaps", 1);
+      const std::size_t count = static_cast<std::size_t>(points);
+      in.Surface = [found, body, count, overlaps](unsigned char* solidOut, bool& any,
+                     std::string& note) {
+        if (found != schlieren::BodySurface::Inside)
+          return schlieren::BodySurfaceProblem(found);
+        schlieren::MarkBodySurface(body, count, overlaps, solidOut, any, note);
+        return std::string();
       };
     }
     in.ActiveScalars = active_scalars >= 0 && active_scalars < number_of_arrays ? active_scalars : -1;

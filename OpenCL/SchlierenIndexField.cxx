@@ -938,4 +938,45 @@ std::string ComputeIndexField(Parallel& ranks, const IndexFieldInput& in, IndexF
   return std::string();
 }
 
+//------------------------------------------------------------------------------
+std::string BodySurfaceProblem(BodySurface found)
+{
+  switch (found)
+  {
+    case BodySurface::NoPolygons:
+      return "The Body input has no polygons: it must be a closed surface (vtkPolyData), such as "
+             "an STL of the model.";
+    case BodySurface::NotClosed:
+      return "The Body input is not a closed surface (it has boundary or non-manifold edges), so "
+             "its inside is not defined. Close it (e.g. Fill Holes, or export the model as a "
+             "watertight STL).";
+    case BodySurface::NoInsideTest:
+      return "The inside test of the Body surface failed (vtkSelectEnclosedPoints gave no "
+             "result).";
+    case BodySurface::Inside:
+      break;
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+void MarkBodySurface(const unsigned char* inside, std::size_t count, bool overlaps,
+  unsigned char* solid, bool& any, std::string& note)
+{
+  for (std::size_t i = 0; inside && i < count; ++i)
+  {
+    if (inside[i])
+    {
+      solid[i] = 1;
+      any = true;
+    }
+  }
+  if (!overlaps || !any)
+  {
+    note += std::string(note.empty() ? "" : " ") +
+      "The Body surface encloses no point of the grid: check that it is in the data's "
+      "coordinates and inside the sampling bounds.";
+  }
+}
+
 } // namespace schlieren

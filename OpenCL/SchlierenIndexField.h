@@ -210,6 +210,28 @@ const char* IndexModelLabel(IndexModel model);
  */
 std::string ComputeIndexField(Parallel& ranks, const IndexFieldInput& in, IndexFieldOutput& out);
 
+/** What a front end's test of RefractiveIndex's Body surface (its VTK part) found. */
+enum class BodySurface
+{
+  Inside,      ///< closed: the grid points inside it were found
+  NoPolygons,  ///< no polygons or strips
+  NotClosed,   ///< boundary or non-manifold edges once triangulated
+  NoInsideTest ///< vtkSelectEnclosedPoints gave no result
+};
+
+/** The message for the user of a Body surface refused ("" for Inside): the front ends'. */
+std::string BodySurfaceProblem(BodySurface found);
+
+/**
+ * The Body surface's hook's work once the front end found the points inside it: marks in `solid`
+ * (a byte a point, `count`) the points with inside[i] != 0, sets `any` where it marked one, and
+ * adds to `note` that the surface encloses no point where none of its shells' boxes overlaps the
+ * grid (`overlaps` false) or no point is solid (`any` false after). The C++ filter's and, through
+ * schlieren_index_field, the Python one's.
+ */
+void MarkBodySurface(const unsigned char* inside, std::size_t count, bool overlaps,
+  unsigned char* solid, bool& any, std::string& note);
+
 } // namespace schlieren
 
 #endif

@@ -289,7 +289,8 @@ SCHLIEREN_C_API int schlieren_index_choices(
  * RefractiveIndex's work once the input is on a grid (the engine's ComputeIndexField, which the
  * C++ filter calls): the arrays the model reads chosen by name, the model, the points outside the
  * flow domain (AmbientMode), the checks of n, the gradient, the bodies (BodyFromGrid's enclosed
- * holes, an upstream `solid` array, SolidArray) and the output's field data, with the C++
+ * holes, an upstream `solid` array, SolidArray, the Body surface) and the output's field data,
+ * with the C++
  * filter's messages. `settings`: "Name=value" lines, the proxy's names: every setting of
  * schlieren_index_model (Model as resolved: not Automatic), the arrays chosen per role
  * (InputArray, TemperatureArray, PressureArray, MixtureFractionArray, Species1Array ..
@@ -307,7 +308,14 @@ SCHLIEREN_C_API int schlieren_index_choices(
  * beside a mesh's walls (BodyFromGrid on a resampled grid), the kind of the nearest boundary face
  * of the invalid points next to a valid one (1 wall, 2 crossed by the flow, else 0: see
  * schlieren_wall_faces), with the settings WallVelocity (the velocity's name) and WallFaceCounts
- * (walls, crossed, at rest, turned: the counts schlieren_wall_faces gave) for the note. Writes n_minus_1 (the grid's points), grad3 (3 a point) and solid (a byte a point, 1
+ * (walls, crossed, at rest, turned: the counts schlieren_wall_faces gave) for the note. `body`
+ * (NULL and 0: none; else a byte a point): RefractiveIndex's Body input, the points inside the
+ * closed surface as the front end found them (the C++ filter's test: vtkTriangleFilter,
+ * vtkSelectEnclosedPoints shell by shell within each shell's bounds), with the settings
+ * BodySurface (Inside, the default where `body` is given; NoPolygons, NotClosed, NoInsideTest:
+ * the surface refused, with the C++ filter's message; None, the default otherwise) and
+ * BodyOverlaps (0: no shell's bounds overlap the grid, for the note).
+ * Writes n_minus_1 (the grid's points), grad3 (3 a point) and solid (a byte a point, 1
  * in a body). `report` (may be NULL; owned by the library until this thread's next call) gets
  * JSON, on failure too: {"model_done": the model ran (its warnings are to be said), "warnings",
  * "notes" (to say now: the voids beside walls), "solid_note", "solid" (any body point),
@@ -318,8 +326,8 @@ SCHLIEREN_C_API int schlieren_index_field(const char* settings, const int dims[3
   const double spacing[3], int number_of_arrays, const char* const* names, const int* components,
   const int* value_bytes, const void* const* values, const int64_t* value_counts,
   int active_scalars, const char* cell_arrays, const char* notes, const unsigned char* valid,
-  int64_t valid_count, const unsigned char* rim, int64_t rim_count, float* n_minus_1,
-  int64_t n_minus_1_count, float* grad3,
+  int64_t valid_count, const unsigned char* rim, int64_t rim_count, const unsigned char* body,
+  int64_t body_count, float* n_minus_1, int64_t n_minus_1_count, float* grad3,
   int64_t grad3_count, unsigned char* solid, int64_t solid_count, const char** report);
 /** Fills every point with valid[i] == 0 by the engine's smooth continuation of the flow (the
  * RefractiveIndex filter's AmbientMode Extend); `valid` and `n_minus_1` hold `count` values (the

@@ -8,7 +8,7 @@ documentation and domains are copied from it) and the Python package Python/schl
 
 The plugin exposes RefractiveScene, RefractiveIndex, RefractionOctree, SchlierenImage,
 NumericalSchlieren and SchlierenPhotograph with every property of their XML, in its order, with its groups (RefractiveIndex's
-optional Body input is left out); a property the package does not implement takes its default
+optional Body input included); a property the package does not implement takes its default
 only (the package refuses another value by name); it loads
 libschlieren_engine.so from beside itself, SCHLIEREN_ENGINE_LIBRARY or the loader's path."""
 import argparse
@@ -40,7 +40,6 @@ import re
 PROXIES = ("RefractiveScene", "RefractiveIndex", "RefractionOctree", "SchlierenImage",
            "NumericalSchlieren", "SchlierenPhotograph")
 LEFT_OUT = {
-    "RefractiveIndex": {"Body"},  # the optional second input (a body's surface)
     "RefractiveScene": {"TimeSteps"},  # the time steps ParaView's animation reads
     # the C++ plugin's toolbar's (its interactive film scale, its own image view, its pass limit)
     "SchlierenImage": {"InteractiveScale", "OpenImageView", "PassLimit"},

@@ -475,13 +475,15 @@ def wall_faces(offsets, connectivity, points, normals, velocity, largest_speed, 
 
 
 def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, cell_arrays=(),
-                notes=(), rim=None):
+                notes=(), rim=None, body=None):
     """RefractiveIndex's work once the input is on a grid (the C interface's
     schlieren_index_field, which the C++ filter's engine call is): `settings` the proxy's
     properties by name (Model as resolved, the arrays chosen per role, AmbientMode, BodyFromGrid,
     SolidArray...; and Resampled, UseSamplingBounds, CellsDescription), `arrays` the grid's point
     arrays in order, name -> values (points x components; float32 and float64 read as they are,
-    other types as float64), `valid` (None: every point) non-zero in the flow. Returns (n - 1
+    other types as float64), `valid` (None: every point) non-zero in the flow, `body` (None:
+    none) non-zero inside RefractiveIndex's Body surface (settings BodySurface, BodyOverlaps:
+    see schlieren_c.h). Returns (n - 1
     float32, grad n float32 (points, 3), solid uint8 or None where there is no body, the report:
     warnings, notes, solid_note, arrays_read, field_data [(name, number or [strings])]). A
     failure raises EngineError with the C++ filter's message; its report is then `error.report`."""
@@ -489,7 +491,7 @@ def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, 
              ctypes.c_int, ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
              ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_void_p),
              ctypes.POINTER(ctypes.c_int64), ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
-             _u8p, _i64, _u8p, _i64, _f32p, _i64, _f32p, _i64, _u8p, _i64,
+             _u8p, _i64, _u8p, _i64, _u8p, _i64, _f32p, _i64, _f32p, _i64, _u8p, _i64,
              ctypes.POINTER(ctypes.c_char_p))
     grid = _grid(dims, [0] * 3, spacing)
     n = int(np.prod([int(d) for d in dims]))
@@ -513,6 +515,7 @@ def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, 
     c_counts = (ctypes.c_int64 * k)(*[a.size for a in kept])
     v = None if valid is None else _point_array(valid, "valid", dims, np.uint8, mask=True)
     r = None if rim is None else _point_array(rim, "rim", dims, np.uint8)
+    b = None if body is None else _point_array(body, "body", dims, np.uint8, mask=True)
     n1 = np.zeros(n, np.float32)
     grad = np.zeros((n, 3), np.float32)
     solid = np.zeros(n, np.uint8)
@@ -520,7 +523,8 @@ def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, 
     report = ctypes.c_char_p()
     rc = f(text, grid[0], grid[2], len(kept), c_names, c_comps, c_bytes, c_values, c_counts,
            int(active_scalars), "\n".join(cell_arrays).encode(), "\n".join(notes).encode(),
-           _up(v), _size(v), _up(r), _size(r), n1.ctypes.data_as(_f32p), n1.size,
+           _up(v), _size(v), _up(r), _size(r), _up(b), _size(b), n1.ctypes.data_as(_f32p),
+           n1.size,
            grad.ctypes.data_as(_f32p),
            grad.size, solid.ctypes.data_as(_u8p), solid.size, ctypes.byref(report))
     result = json.loads(_text(report.value) or "{}")

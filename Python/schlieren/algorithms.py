@@ -17,11 +17,13 @@ refuse anything else with the C++ filters' reason. Every output is one vtkImageD
 input (no per-block multiblock); a failed request leaves it empty and says why (a VTK error, the
 message kept in LastError), never a Python traceback.
 """
+import math
+
 import numpy as np
 from vtkmodules.util import numpy_support
 from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkDataObject, vtkDataSet,
-                                           vtkImageData, vtkOverlappingAMR)
+                                           vtkImageData, vtkOverlappingAMR, vtkPolyData)
 from vtkmodules.vtkCommonExecutionModel import vtkDemandDrivenPipeline as DDP
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
 
@@ -874,6 +876,82 @@ class _TimeStepCache:
             _field_number(out, name, value)
 
 
+def _inside_shell(shell, image, inside, dims):
+    """Marks `inside` (a byte a point of `image`) at the points inside the one closed `shell`,
+    tested only within its bounds (vtkSelectEnclosedPoints, as the C++ filter's MarkInsideShell).
+    Returns whether its bounds overlap the grid, None where the inside test gave no result."""
+    from vtkmodules.vtkFiltersModeling import vtkSelectEnclosedPoints
+    b = shell.GetBounds()
+    origin, spacing, ext = image.GetOrigin(), image.GetSpacing(), image.GetExtent()
+    sub = [0] * 6
+    for a in range(3):
+        sub[2 * a] = max(ext[2 * a], int(math.floor((b[2 * a] - origin[a]) / spacing[a])))
+        sub[2 * a + 1] = min(ext[2 * a + 1],
+                             int(math.ceil((b[2 * a + 1] - origin[a]) / spacing[a])))
+    if not all(sub[2 * a] <= sub[2 * a + 1] for a in range(3)):
+        return False
+    box = vtkImageData()
+    box.SetExtent(sub)
+    box.SetOrigin(origin)
+    box.SetSpacing(spacing)
+    select = vtkSelectEnclosedPoints()
+    select.SetInputData(box)
+    select.SetSurfaceData(shell)
+    select.CheckSurfaceOff()  # checked before, with the engine's message
+    select.Update()
+    selected = select.GetOutput().GetPointData().GetArray("SelectedPoints")
+    if selected is None:
+        return None
+    enclosed = numpy_support.vtk_to_numpy(selected).reshape(selected.GetNumberOfTuples(), -1)
+    enclosed = (enclosed[:, 0] != 0).reshape(sub[5] - sub[4] + 1, sub[3] - sub[2] + 1,
+                                             sub[1] - sub[0] + 1)
+    grid = inside.reshape(dims[2], dims[1], dims[0])
+    grid[sub[4] - ext[4]:sub[5] - ext[4] + 1, sub[2] - ext[2]:sub[3] - ext[2] + 1,
+         sub[0] - ext[0]:sub[1] - ext[0] + 1] |= enclosed.astype(np.uint8)
+    return True
+
+
+def _body_inside(surface, image):
+    """RefractiveIndex's Body input, the front end's part (the C++ filter's SurfaceSolid): the
+    closed `surface` triangulated, each connected shell tested alone within its bounds and the
+    results ORed. Returns (what was found: schlieren_index_field's BodySurface, the points inside
+    (a byte a point of `image`, None where refused), whether a shell's bounds overlap the grid)."""
+    from vtkmodules.vtkFiltersCore import vtkPolyDataConnectivityFilter, vtkTriangleFilter
+    from vtkmodules.vtkFiltersModeling import vtkSelectEnclosedPoints
+    if surface.GetNumberOfPolys() == 0 and surface.GetNumberOfStrips() == 0:
+        return "NoPolygons", None, False
+    triangles = vtkTriangleFilter()
+    triangles.SetInputData(surface)
+    triangles.PassLinesOff()
+    triangles.PassVertsOff()
+    triangles.Update()
+    closed = triangles.GetOutput()
+    if not vtkSelectEnclosedPoints.IsSurfaceClosed(closed):
+        return "NotClosed", None, False
+    shells = vtkPolyDataConnectivityFilter()
+    shells.SetInputData(closed)
+    shells.SetExtractionModeToAllRegions()
+    shells.Update()
+    regions = shells.GetNumberOfExtractedRegions()
+    dims = image.GetDimensions()
+    inside = np.zeros(int(dims[0]) * dims[1] * dims[2], np.uint8)
+    pieces = [closed] if regions <= 1 else []
+    for r in range(regions if regions > 1 else 0):
+        one = vtkPolyDataConnectivityFilter()
+        one.SetInputData(closed)
+        one.SetExtractionModeToSpecifiedRegions()
+        one.AddSpecifiedRegion(r)
+        one.Update()
+        pieces.append(one.GetOutput())
+    overlaps = False
+    for shell in pieces:
+        found = _inside_shell(shell, image, inside, dims)
+        if found is None:
+            return "NoInsideTest", None, False
+        overlaps = overlaps or found
+    return "Inside", inside, overlaps
+
+
 class RefractiveIndex(_Properties):
     """n - 1 from CFD fields by every index model of the engine (Passthrough, GladstoneDale,
     GladstoneDaleMixture, IdealGas, Ciddor), resampled onto an image as needed.
@@ -892,7 +970,8 @@ class RefractiveIndex(_Properties):
     own axis: AxisFromWedge) are the engine's (schlieren_symmetry_plan, _samples, _expand, as the
     C++ filter's): this front end samples the mesh where the engine says. Bodies: from the grid's holes (BodyFromGrid, BodyWallFaces), from the
     voids beside a mesh's walls where it has a velocity (the engine's kinds of its faces), a solid
-    array (SolidArray, an upstream `solid`); not from a body surface input."""
+    array (SolidArray, an upstream `solid`), and a closed body surface on the optional input
+    port 1 (Body, vtkPolyData: the grid points inside it, found as the C++ filter finds them)."""
 
     _defaults = dict(
         Model="Automatic", InputArray="", TemperatureArray="", PressureArray="",
@@ -957,10 +1036,15 @@ class RefractiveIndex(_Properties):
         return value
 
     def __init__(self, **kwargs):
-        _Properties.__init__(self, 1, **kwargs)
+        _Properties.__init__(self, 2, **kwargs)
         object.__setattr__(self, "_time_cache", _TimeStepCache())
 
     def FillInputPortInformation(self, port, info):
+        if port == 1:
+            # the optional Body: a closed surface whose inside is solid (the C++ filter's port 1)
+            info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData")
+            info.Set(self.INPUT_IS_OPTIONAL(), 1)
+            return 1
         # a data set or a composite data set as one input (the C++ filter's types): the blocks
         # are resampled onto one image, not executed one by one into a multiblock of images
         info.Set(self.INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet")
@@ -1266,10 +1350,18 @@ class RefractiveIndex(_Properties):
                     active = len(arrays)
                 arrays[a.GetName() or ""] = numpy_support.vtk_to_numpy(a)
             dims = list(image.GetDimensions())
+            body = None
+            surface = vtkPolyData.GetData(inInfo[1]) if len(inInfo) > 1 and \
+                inInfo[1].GetNumberOfInformationObjects() else None
+            if surface is not None:
+                # the Body surface's inside, the C++ filter's test; the engine marks it solid
+                # and says what the C++ filter's hook says (a refusal, the note)
+                found, body, overlaps = _body_inside(surface, image)
+                settings.update(BodySurface=found, BodyOverlaps=int(overlaps))
             try:
                 n1, grad, solid, report = _engine.index_field(
                     settings, dims, image.GetSpacing(), arrays, valid, active, cells,
-                    read_notes + choice["notes"] + notes, rim)
+                    read_notes + choice["notes"] + notes, rim, body)
             except EngineError as e:
                 report = getattr(e, "report", {})
                 if report.get("model_done"):

@@ -373,7 +373,7 @@ int main(void)
     vals3[0] = rho;
     vals3[1] = NULL;
     CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nResampled=1", d3, h3, 2,
-            names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, NULL, 0, n1f, 27, g3, 81,
+            names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, NULL, 0, NULL, 0, n1f, 27, g3, 81,
             solid3, 27, &rep) == 0 &&
           fabs(n1f[1] - K * 1.1) < 1e-9 && fabs(g3[3 * 13] - K * 0.2) < 1e-8 &&
           fabs(g3[3 * 13 + 1]) < 1e-12 && solid3[13] == 1 && solid3[0] == 0 &&
@@ -383,25 +383,57 @@ int main(void)
       "solid (%d), the field data (%s; %s)", n1f[1], g3[3 * 13], solid3[13], rep ? rep : "",
       schlieren_last_error());
     CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=rho", d3, h3, 2, names3, comps3,
-            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
           strcmp(schlieren_last_error(), "GladstoneDale needs a density array ('rho', InputArray) "
                                          "but the input has no point array of that name. Point "
                                          "arrays present: density, U.") == 0,
       "index_field: a missing array refused with the C++ filter's message: %s", schlieren_last_error());
     CHECK(schlieren_index_field("Model=Passthrough\nInputArray=U", d3, h3, 2, names3, comps3,
-            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
           strcmp(schlieren_last_error(), "The n - 1 (or n) array 'U' has 3 components; InputArray "
                                          "needs a scalar array.") == 0,
       "index_field: a vector refused: %s", schlieren_last_error());
     CHECK(schlieren_index_field("Model=Passthrough\nInputArray=density", d3, h3, 1, names3, comps3,
-            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+            bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
           strstr(schlieren_last_error(), "Passthrough takes 'density' as n - 1, but it gives n - 1 "
                                          "from 1 to 1.2") != NULL,
       "index_field: a density taken for n - 1 refused: %s", schlieren_last_error());
     CHECK(schlieren_index_field("Model=GladstoneDale\nAmbientMode=Sideways", d3, h3, 1, names3,
-            comps3, bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27,
+            comps3, bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0, NULL, 0, n1f, 27, g3, 81, solid3, 27,
             &rep) != 0 && strstr(schlieren_last_error(), "AmbientMode 'Sideways' is not one of") != NULL,
       "index_field: a bad AmbientMode named: %s", schlieren_last_error());
+    {
+      /* the Body surface's inside as the front end found it (RefractiveIndex's port 1): ORed
+         into solid with the hole; a refused surface's message; the note where it encloses
+         nothing */
+      unsigned char body3[27] = { 0 }, none3[27] = { 0 };
+      body3[0] = body3[1] = 1;
+      CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nResampled=1", d3, h3,
+              1, names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, NULL, 0,
+              body3, 27, n1f, 27, g3, 81, solid3, 27, &rep) == 0 &&
+            solid3[0] == 1 && solid3[1] == 1 && solid3[2] == 0 && solid3[13] == 1 &&
+            strstr(rep, "[\"solid_points\", 3]") && strstr(rep, "\"solid_note\": \"\""),
+        "index_field: the Body's inside solid with the hole (%s; %s)", rep ? rep : "",
+        schlieren_last_error());
+      CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nBodySurface=NotClosed",
+              d3, h3, 1, names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0,
+              NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+            strncmp(schlieren_last_error(), "The Body input is not a closed surface (it has "
+                                            "boundary or non-manifold edges)", 70) == 0,
+        "index_field: an open Body surface refused: %s", schlieren_last_error());
+      CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nBodyOverlaps=0", d3,
+              h3, 1, names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0,
+              none3, 27, n1f, 27, g3, 81, solid3, 27, &rep) == 0 &&
+            strstr(rep, "\"solid_note\": \"The Body surface encloses no point of the grid") &&
+            strstr(rep, "\"solid\": false"),
+        "index_field: a Body enclosing no point noted (%s; %s)", rep ? rep : "",
+        schlieren_last_error());
+      CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nBodySurface=Inside",
+              d3, h3, 1, names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, NULL, 0, NULL, 0,
+              NULL, 0, n1f, 27, g3, 81, solid3, 27, &rep) != 0 &&
+            strstr(schlieren_last_error(), "BodySurface Inside needs `body`") != NULL,
+        "index_field: BodySurface Inside without its points refused: %s", schlieren_last_error());
+    }
   }
   {
     /* Model Automatic's choice and the arrays found by name (schlieren_index_choices) */
@@ -464,7 +496,7 @@ int main(void)
     vals3[0] = rho;
     CHECK(schlieren_index_field("Model=GladstoneDale\nInputArray=density\nResampled=1\n"
                                 "WallVelocity=U\nWallFaceCounts=2 1 1 1",
-            d3, h3, 1, names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, rim3, 27,
+            d3, h3, 1, names3, comps3, bytes3, vals3, counts3, -1, NULL, NULL, valid3, 27, rim3, 27, NULL, 0,
             n1f, 27, g3, 81, solid3, 27, &rep) == 0 &&
           solid3[0] == 1 && solid3[1] == 0 && strstr(rep, "[\"solid_points\", 9]") &&
           strstr(rep, "RefractiveIndex: BodyFromGrid: of the mesh's 4 boundary faces, 2 are walls "

@@ -1390,10 +1390,10 @@ static void random_index_field_case(int k)
     "Model=GladstoneDaleMixture\nInputArray=a\nMixtureFractionArray=b",
     "Model=Ciddor\nTemperatureArray=a\nPressureArray=b\nHumidityFromArray=2",
     "Model=Passthrough\nInputArray=a\nSolidArray=b\nBodyWallFaces=1 0 1", "Bogus=1",
-    "Model=GladstoneDale\nInputArray=a\nAmbientMode=DomainEdgeMedian\nResampled=1",
+    "Model=GladstoneDale\nInputArray=a\nAmbientMode=DomainEdgeMedian\nResampled=1\nBodyOverlaps=0",
     "Model=GladstoneDale\nInputArray=c\nSolidArray=c",
     "Model=GladstoneDale\nInputArray=a\nResampled=1\nWallFaceCounts=3 1 0 0\nWallVelocity=U",
-    "Model=GladstoneDale\nWallFaceCounts=-1 1 0 nan" };
+    "Model=GladstoneDale\nWallFaceCounts=-1 1 0 nan\nBodySurface=open" };
   static const char* names[] = { "a", "b", "c", "", NULL };
   static const int good[] = { 1, 2, 3, 6, 10, 12 };
   char what[160];
@@ -1461,7 +1461,9 @@ static void random_index_field_case(int k)
   solid = buffer(c_solid, 1, !sane);
   rc = schlieren_index_field(settings[sane ? good[below(6)] : below(14)], dims, h, arrays, nm, comps, bytes,
     (const void* const*)values, counts, below(4) - 1, below(2) ? "c\nd" : NULL,
-    below(2) ? "a note" : NULL, v, c_valid, rim, c_rim, n1, c_n1, grad, c_grad, solid, c_solid,
+    below(2) ? "a note" : NULL, v, c_valid, rim, c_rim,
+    c_rim % 2 ? rim : NULL, c_rim % 2 ? c_rim : 0, /* the rim's bytes as a Body's inside */
+    n1, c_n1, grad, c_grad, solid, c_solid,
     below(2) ? &report : NULL);
   outcome(F_INDEX_FIELD, rc, schlieren_last_error(), what);
   for (i = 0; i < arrays; ++i)

@@ -124,7 +124,6 @@ PYTHON_PLUGIN_LEFT_OUT = {
     "SchlierenImage": {"InteractiveScale", "OpenImageView", "PassLimit"},
     "NumericalSchlieren": {"FollowCamera", "OpenImageView"},  # the C++ plugin's toolbar's
     "RefractiveScene": {"TimeSteps", "TimestepValues"},  # the time series ParaView animates
-    "RefractiveIndex": {"Body"},  # the optional second input, a body's surface
 }
 
 # RefractiveIndex's parity matrix: every property value class, each a case run through the C++

@@ -55,13 +55,18 @@ filters (the compiled classes of schlieren_vtk, in the same pvpython):
      its executions) played twice through the Python plugin: the second play executes neither
      the source nor RefractiveIndex (index_from_cache 1) and gives the first play's images bit for
      bit; the source's script or a RefractiveIndex property changed: computed again.
+  12. the Body input (port 1): a sphere surface and two overlapping spheres on a Gaussian scene
+     give the C++ filter's solid, n - 1, grad n and field data bit for bit, a sphere beside the
+     grid the same note; an open surface and one without polygons are refused by both with the
+     C++ filter's message.
 
     pvpython test_python_plugin_parity.py --plugin SchlierenPython.py --cxx-plugin Schlieren.so \\
         --example Examples/first_light.py --work DIR [--data ../shared/data] [--reference REF]
 
 The blunt fin part is skipped (said so) when ../shared/data (or SCHLIEREN_DATA) has no blunt fin.
 ParaView 5.11.0 under Python 3.11 needs the getargspec shim below before any Python plugin loads
-(docs/PYTHON.md)."""
+(docs/PYTHON.md).
+"""
 import argparse
 import collections
 import inspect
@@ -569,6 +574,101 @@ for case, props in MODELS.items():
                              b.min() if b is not None else float("nan"),
                    b.max() if b is not None else float("nan"),
                    "" if "ERR" not in c.text else "; " + c.text.strip().splitlines()[0][:200]))
+    Delete(index)
+
+# -- 12. the Body input (port 1, a closed surface): the C++ filter's inside test in both (the
+# front end's VTK part with the same classes and settings, the engine's MarkBodySurface through
+# schlieren_index_field), on the Gaussian scene: a sphere and two overlapping spheres (one surface
+# of two shells, ORed) give solid, n - 1, grad n and field data bit for bit; a sphere beside the
+# grid the same note; an open surface (a plane) and one without polygons refused word for word
+from vtkmodules.vtkFiltersCore import vtkAppendPolyData  # noqa: E402
+from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
+
+
+def sphere(center, radius, res=24):
+    s = vtkSphereSource()
+    s.SetCenter(center)
+    s.SetRadius(radius)
+    s.SetThetaResolution(res)
+    s.SetPhiResolution(res)
+    s.Update()
+    out = vtkPolyData()
+    out.DeepCopy(s.GetOutput())
+    return out
+
+
+def field_data(d):
+    """The field data, exactly (numbers as float64), less the filters' cache reports (the cache
+    budget is the process's memory: frontend_matrix.INDEX_FIELDS_LEFT_OUT)."""
+    from frontend_matrix import INDEX_FIELDS_LEFT_OUT
+    fd, out = d.GetFieldData(), []
+    for i in range(fd.GetNumberOfArrays()):
+        a = fd.GetAbstractArray(i)
+        if a.GetName() in INDEX_FIELDS_LEFT_OUT:
+            continue
+        values = [a.GetValue(j) for j in range(a.GetNumberOfValues())] if \
+            a.IsA("vtkStringArray") else numpy_support.vtk_to_numpy(a).astype(np.float64).tolist()
+        out.append((a.GetName(), values))
+    return out
+
+
+vb = volume.GetBounds()
+mid = [(vb[0] + vb[1]) / 2, (vb[2] + vb[3]) / 2, (vb[4] + vb[5]) / 2]
+size = min(vb[1] - vb[0], vb[3] - vb[2], vb[5] - vb[4])
+two = vtkAppendPolyData()
+two.AddInputData(sphere([mid[0] - 0.1 * size, mid[1], mid[2]], 0.25 * size))
+two.AddInputData(sphere([mid[0] + 0.15 * size, mid[1], mid[2]], 0.2 * size))
+two.Update()
+plane = vtkPlaneSource()
+plane.SetCenter(mid)
+plane.Update()
+no_polys = vtkPolyData()
+no_polys.SetPoints(sphere(mid, 0.3 * size).GetPoints())
+NOTE = "The Body surface encloses no point of the grid"
+OPEN = ("The Body input is not a closed surface (it has boundary or non-manifold edges), so its "
+        "inside is not defined.")
+NO_POLYS = "The Body input has no polygons: it must be a closed surface (vtkPolyData)"
+BODIES = {"sphere": (sphere(mid, 0.3 * size), None),
+          "two overlapping spheres": (two.GetOutput(), None),
+          "a sphere beside the grid": (sphere([vb[1] + size, mid[1], mid[2]], 0.2 * size), NOTE),
+          "an open surface (a plane)": (plane.GetOutput(), OPEN),
+          "points without polygons": (no_polys, NO_POLYS)}
+for case, (surface, said) in BODIES.items():
+    ref = RI()
+    ref.SetInputData(volume)
+    ref.SetInputData(1, surface)
+    ref.SetModel(0)
+    ref.SetInputArrayToProcess(0, 0, 0, 0, "n_minus_1")
+    with Captured() as c_cxx:
+        ok = ref.GetExecutive().Update()
+    theirs = ref.GetOutput()
+    index = ns["RefractiveIndex"](Input=producer(volume), Body=producer(surface),
+                                  Model="Passthrough", InputArray=["POINTS", "n_minus_1"])
+    with Captured() as c:
+        index.UpdatePipeline()
+    mine = servermanager.Fetch(index)
+    refused = said is not None and said != NOTE
+    if refused:
+        check(not ok and said in c.text and said in c_cxx.text and "Traceback" not in c.text and
+              mine.GetNumberOfPoints() == 0,
+              "Body %s: refused by both with the C++ filter's message, an empty output (%s...)"
+              % (case, said))
+    else:
+        arrays = ("n_minus_1", "grad_n") + (("solid",) if said is None else ())
+        same = ok and all(
+            array(mine, n) is not None and array(theirs, n) is not None and
+            np.array_equal(array(mine, n).view(np.uint8), array(theirs, n).view(np.uint8))
+            for n in arrays) and (said is None or (array(mine, "solid") is None and
+                                                    array(theirs, "solid") is None))
+        solid = array(theirs, "solid")
+        check(same and field_data(mine) == field_data(theirs) and "ERR" not in c.text and
+              (said is None or (said in c.text and said in c_cxx.text)) and
+              (said is not None or int(solid.sum()) > 0),
+              "Body %s: %s, n_minus_1, grad_n and field data bit for bit the C++ filter's (%s "
+              "solid points%s)" % (case, "solid" if said is None else "no solid",
+                                   0 if solid is None else int(solid.sum()),
+                                   "" if said is None else "; both note: " + said))
     Delete(index)
 
 # -- 7. Symmetry Planar and Axisymmetric, a wedge with no axis typed: the engine's plan, samples and
