@@ -752,24 +752,6 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
   return reduced;
 }
 
-/** "The input's extent (...) does not cover the requested extent (...)", or "". */
-std::string CheckCovers(const int gridExt[6], const int outExt[6])
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    if (outExt[2 * a] < gridExt[2 * a] || outExt[2 * a + 1] > gridExt[2 * a + 1])
-    {
-      std::ostringstream m;
-      m << "The input's extent (" << gridExt[0] << " " << gridExt[1] << " " << gridExt[2] << " "
-        << gridExt[3] << " " << gridExt[4] << " " << gridExt[5]
-        << ") does not cover the requested extent (" << outExt[0] << " " << outExt[1] << " "
-        << outExt[2] << " " << outExt[3] << " " << outExt[4] << " " << outExt[5]
-        << "); the upstream filter did not honour the update request.";
-      return m.str();
-    }
-  }
-  return std::string();
-}
 
 } // namespace
 
@@ -994,35 +976,6 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
   return std::string();
 }
 
-//------------------------------------------------------------------------------
-namespace
-{
-/**
- * The message where the input (a data set or composite, on one process) lacks one of `names`:
- * a missing array is reported before the (costly) probing; "" where all are there.
- */
-std::string MissingArray(
-  vtkDataObject* input, const std::vector<std::string>& names, const char* model)
-{
-  const std::vector<std::string> present = InputArrayNames(input);
-  for (const std::string& name : names)
-  {
-    if (std::find(present.begin(), present.end(), name) == present.end())
-    {
-      std::ostringstream m;
-      m << model << " reads the array '" << name
-        << "', which the input does not have. Arrays present: ";
-      for (std::size_t i = 0; i < present.size(); ++i)
-      {
-        m << (i ? ", " : "") << present[i];
-      }
-      m << (present.empty() ? "none" : "") << ". Choose one of them.";
-      return m.str();
-    }
-  }
-  return std::string();
-}
-} // namespace
 
 //------------------------------------------------------------------------------
 namespace
@@ -1138,7 +1091,9 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
     if (w.Ranks.Size() <= 1)
     {
       // under MPI a missing array is reported after the probing, since a rank's piece may be empty
-      const std::string missing = MissingArray(w.Input, names, schlieren::IndexModelLabel(static_cast<schlieren::IndexModel>(this->GetModelInUse())));
+      // reported before the (costly) probing
+      const std::string missing = schlieren::MissingArrayProblem(names, InputArrayNames(w.Input),
+        schlieren::IndexModelLabel(static_cast<schlieren::IndexModel>(this->GetModelInUse())));
       if (!missing.empty())
       {
         return missing;
@@ -1415,7 +1370,7 @@ std::string vtkRefractiveIndex::ComputeOnGrid(Work& w)
   {
     w.Grid->GetDimensions(in.Dims);
     w.Grid->GetSpacing(in.Spacing);
-    in.PieceFailure = CheckCovers(w.GridExt, w.OutExt);
+    in.PieceFailure = schlieren::ExtentCoverProblem(w.GridExt, w.OutExt);
     w.Valid = Validity(w.Grid, w.AnyInvalid);
     in.Valid = w.AnyInvalid ? w.Valid.data() : nullptr;
   }

@@ -230,6 +230,43 @@ InputRequest RequestInput(bool resampled, bool symmetric, int rank, int ranks, i
   return r;
 }
 
+std::string ExtentCoverProblem(const int extent[6], const int requested[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (requested[2 * a] < extent[2 * a] || requested[2 * a + 1] > extent[2 * a + 1])
+    {
+      std::ostringstream m;
+      m << "The input's extent (" << extent[0] << " " << extent[1] << " " << extent[2] << " "
+        << extent[3] << " " << extent[4] << " " << extent[5]
+        << ") does not cover the requested extent (" << requested[0] << " " << requested[1] << " "
+        << requested[2] << " " << requested[3] << " " << requested[4] << " " << requested[5]
+        << "); the upstream filter did not honour the update request.";
+      return m.str();
+    }
+  }
+  return std::string();
+}
+
+std::string MissingArrayProblem(const std::vector<std::string>& names,
+  const std::vector<std::string>& present, const std::string& model)
+{
+  for (const std::string& name : names)
+  {
+    if (std::find(present.begin(), present.end(), name) == present.end())
+    {
+      std::ostringstream m;
+      m << model << " reads the array '" << name
+        << "', which the input does not have. Arrays present: ";
+      for (std::size_t i = 0; i < present.size(); ++i)
+        m << (i ? ", " : "") << present[i];
+      m << (present.empty() ? "none" : "") << ". Choose one of them.";
+      return m.str();
+    }
+  }
+  return std::string();
+}
+
 void AgreeOnRefusal(Parallel& parallel, const std::string& refused)
 {
   if (parallel.Max(refused.empty() ? 0.0 : 1.0) > 0.5)

@@ -115,6 +115,17 @@ bool SplitExtent(
 InputRequest RequestInput(bool resampled, bool symmetric, int rank, int ranks, int piece,
   int pieces, int ghosts, int splitMode, const int updateExtent[6], const int whole[6]);
 
+/** "" where `extent` (the input's, grown) covers `requested` (the output's update extent); else
+ * "The input's extent (...) does not cover the requested extent (...); the upstream filter did
+ * not honour the update request." */
+std::string ExtentCoverProblem(const int extent[6], const int requested[6]);
+
+/** "" where every one of `names` (the arrays the model reads) is among `present` (the input's
+ * point and cell arrays); else "<model> reads the array 'X', which the input does not have.
+ * Arrays present: a, b. Choose one of them." (said before a mesh is resampled). */
+std::string MissingArrayProblem(const std::vector<std::string>& names,
+  const std::vector<std::string>& present, const std::string& model);
+
 /**
  * A piece of the input refused on one rank (a cell type the sampler does not take) fails every
  * rank, so that none waits for it in the collective steps that follow: throws Error with
