@@ -1092,10 +1092,14 @@ class RefractiveIndex(_Properties):
             not image, self.Symmetry != "None",
             update_extent=info.Get(SDDP.UPDATE_EXTENT()) if image else (0, -1, 0, -1, 0, -1),
             whole_extent=src.Get(SDDP.WHOLE_EXTENT()) if image else (0, -1, 0, -1, 0, -1))
-        if extent is None and src.Has(SDDP.WHOLE_EXTENT()):
+        if (extent is None or extent[1] < extent[0] or extent[3] < extent[2] or
+                extent[5] < extent[4]) and src.Has(SDDP.WHOLE_EXTENT()):
+            # whole (an empty update extent too: this front end makes no empty piece yet)
             extent = src.Get(SDDP.WHOLE_EXTENT())
         if extent is not None:
             src.Set(SDDP.UPDATE_EXTENT(), extent, 6)
+        src.Set(SDDP.UPDATE_PIECE_NUMBER(), piece)
+        src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), pieces)
         return 1
 
     # the array properties by role, in the engine's order (schlieren_index_field)
