@@ -1,0 +1,321 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The ParaView Python plugin (SchlierenPython.py) under MPI against the C++ plugin and against one
+process (issue 47: the Python plugin was "one process (no MPI)": each rank saw only its piece).
+
+    pvbatch test_mpi_python_plugin.py --plugin SchlierenPython.py --mpiexec MPIEXEC --work DIR
+
+runs the pipelines on one process through the Python plugin (the reference), then itself as
+`mpiexec -n 2 pvbatch --mpi --symmetric` (every rank runs this script) with --reference, where:
+
+1. a Gaussian sphere from the Python plugin's RefractiveScene, split into two pieces (each rank
+   fills its own), through RefractiveIndex (GladstoneDale), SchlierenImage (an oblique knife edge
+   with the automatic scale, Backend CPU: the volume traced in pieces, rays handed between the
+   ranks), NumericalSchlieren (LineOfSight) and RefractionOctree -> SchlierenImage: the index's
+   pieces tile the grid and hold the one-process n - 1 and grad n there bit for bit; rank 0 holds
+   the images, rank 1 empty ones; the images (every point array) and their field data (less the
+   timings) equal the one-process images bit for bit, and the C++ plugin's (its compiled filters,
+   schlieren_vtk, run on the same pieces with UpdatePiece) bit for bit;
+2. a failure on rank 1 only (RefractiveIndex reading an array its input does not have there): both
+   ranks end with the one agreed error, rank 1 its own, rank 0 "another rank (1) failed: <it>",
+   empty outputs, no hang (the ctest TIMEOUT); a new pipeline right after gives one process's
+   image on rank 0 (the ranks stayed in step).
+"""
+import collections
+import inspect
+import os
+import subprocess
+import sys
+import time
+
+if not hasattr(inspect, "getargspec"):  # ParaView 5.11.0 on Python >= 3.11 (docs/PYTHON.md)
+    _ArgSpec = collections.namedtuple("ArgSpec", "args varargs keywords defaults")
+    inspect.getargspec = lambda f: _ArgSpec(*inspect.getfullargspec(f)[:4])
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import numpy as np  # noqa: E402
+from paraview import simple  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkParallelCore import vtkMultiProcessController  # noqa: E402
+
+import schlieren_testing as st  # noqa: E402
+
+simple.LoadPlugin(st.argument("--plugin"), remote=False, ns=globals())
+controller = vtkMultiProcessController.GetGlobalController()
+ranks = controller.GetNumberOfProcesses() if controller else 1
+rank = controller.GetLocalProcessId() if controller else 0
+T = st.Checker("test_mpi_python_plugin (rank %d of %d)" % (rank, ranks))
+work = st.argument("--work") or "."
+os.makedirs(work, exist_ok=True)
+reference_file = os.path.join(work, "mpi_python_plugin_one.npz")
+
+SCENE = dict(Scene="GaussianSphere", Dimensions=[40, 36, 32], Bounds=[-1, 1, -1, 1, -1, 1],
+             Amplitude=1e-4, Width=0.3, Center=[0.1, -0.05, 0.02])
+KNIFE = dict(ViewDirection=[0.3, -0.2, -1.0], ViewUp=[0, 1, 0], Resolution=[48, 40], Passes=2,
+             Seed=3, Cutoff="KnifeEdge", CutoffScale=0.0, KnifeAngle=30.0, Backend="CPU")
+NUMERICAL = dict(Mode="LineOfSight", Resolution=[48, 40], ViewDirection=[0.3, -0.2, -1.0])
+TIMINGS = ("tracing_seconds", "exchange_seconds")
+# what the report says of the ranks and the session's volumes, not of the image: one process
+# packs the whole volume, two ranks trace pieces
+RANKS_REPORT = ("distributed_ranks", "volume_from", "volumes_packed", "held_points_max",
+                "rays_handed_on", "ray_traffic_bytes", "exchange_rounds", "ghost_layers")
+
+
+def local(proxy):
+    """This rank's output of `proxy` (a copy)."""
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    out = vtkImageData()
+    out.DeepCopy(proxy.GetClientSideObject().GetOutputDataObject(0))
+    return out
+
+
+def record(prefix, data):
+    """Every point array and field data value of an image, by name."""
+    r = {prefix + ":extent": np.array(data.GetExtent()),
+         prefix + ":origin": np.array(data.GetOrigin()),
+         prefix + ":spacing": np.array(data.GetSpacing())}
+    pd = data.GetPointData()
+    for i in range(pd.GetNumberOfArrays()):
+        r[prefix + ":" + pd.GetArrayName(i)] = vtk_to_numpy(pd.GetArray(i)).copy()
+    fd = data.GetFieldData()
+    for i in range(fd.GetNumberOfArrays()):
+        a = fd.GetAbstractArray(i)
+        if a.GetName() in TIMINGS:
+            continue
+        if a.IsA("vtkDataArray"):
+            r[prefix + "@" + a.GetName()] = vtk_to_numpy(a).copy()
+        else:
+            r[prefix + "@" + a.GetName()] = np.array([a.GetValue(k) for k in
+                                                      range(a.GetNumberOfValues())])
+    return r
+
+
+def same(a, b):
+    """Bit for bit (floats by their bits, NaNs included)."""
+    a, b = np.asarray(a), np.asarray(b)
+    if a.shape != b.shape or a.dtype != b.dtype:
+        return False
+    if a.dtype.kind == "f":
+        return np.array_equal(a.view(np.uint8), b.view(np.uint8))
+    return np.array_equal(a, b)
+
+
+def compare(mine, theirs, prefix, what, names=None, leave_out=()):
+    """Every entry of `theirs` under `prefix` equal in `mine` (or only `names`), but the field
+    data in `leave_out`."""
+    keys = [k for k in theirs if k.startswith(prefix + ":") or (
+        k.startswith(prefix + "@") and k.split("@", 1)[1] not in leave_out)]
+    if names is not None:
+        keys = [k for k in keys if k.split(":", 1)[-1].split("@", 1)[-1] in names]
+    missing = [k for k in keys if k not in mine]
+    differ = [k for k in keys if k in mine and not same(mine[k], theirs[k])]
+    T.check(keys and not missing and not differ,
+            "rank %d: %s: %d arrays and field data bit for bit%s%s" % (
+                rank, what, len(keys), "; missing " + ", ".join(missing) if missing else "",
+                "; differ " + ", ".join(differ) if differ else ""))
+
+
+def filter_errors(text):
+    """(filter, message) of the filters' errors ("ERROR: In <filter>: <message>"), not the
+    executive's ("ERROR: In .../vtkExecutive.cxx, line ...")."""
+    out = []
+    for line in text.splitlines():
+        if line.startswith("ERROR: In "):
+            who, _, message = line[len("ERROR: In "):].partition(": ")
+            if ".cxx" not in who:
+                out.append((who, message))
+    return out
+
+
+def python_pipelines():
+    scene = RefractiveScene(**SCENE)  # noqa: F821 (the plugin's proxies)
+    index = RefractiveIndex(Input=scene, Model="GladstoneDale")  # noqa: F821
+    index.InputArray = ["POINTS", "density"]
+    knife = SchlierenImage(Input=index, **KNIFE)  # noqa: F821
+    numerical = NumericalSchlieren(Input=index, **NUMERICAL)  # noqa: F821
+    octree = RefractionOctree(Input=index)  # noqa: F821
+    knife_octree = SchlierenImage(Input=octree, UseOctree=1, **KNIFE)  # noqa: F821
+    return scene, index, knife, numerical, octree, knife_octree
+
+
+def run_python():
+    """The Python plugin's outputs on this rank: (record, error texts)."""
+    proxies = python_pipelines()
+    out = {}
+    with st.CapturedOutput() as c:
+        for name, p in zip(("scene", "index", "knife", "numerical", "octree", "knife_octree"),
+                           proxies):
+            if name in ("scene",):
+                continue
+            p.UpdatePipeline()
+            out.update(record(name, local(p)))
+    for p in reversed(proxies):
+        simple.Delete(p)
+    return out, c.text
+
+
+def run_cxx():
+    """The C++ plugin's compiled filters on this rank's piece (UpdatePiece(rank, ranks))."""
+    import schlieren_vtk as cxx
+    scene = cxx.vtkRefractiveScene()
+    scene.SetScene(cxx.vtkRefractiveScene.GAUSSIAN_SPHERE)
+    scene.SetDimensions(*SCENE["Dimensions"])
+    scene.SetBounds(*SCENE["Bounds"])
+    scene.SetAmplitude(SCENE["Amplitude"])
+    scene.SetWidth(SCENE["Width"])
+    scene.SetCenter(*SCENE["Center"])
+    index = cxx.vtkRefractiveIndex()
+    index.SetInputConnection(scene.GetOutputPort())
+    index.SetModel(cxx.vtkRefractiveIndex.GLADSTONE_DALE)
+    index.SetInputArrayToProcess(0, 0, 0, 0, "density")
+
+    def image(source, octree=0):
+        f = cxx.vtkSchlierenImage()
+        f.SetInputConnection(source.GetOutputPort())
+        f.SetViewDirection(*KNIFE["ViewDirection"])
+        f.SetViewUp(*KNIFE["ViewUp"])
+        f.SetResolution(*KNIFE["Resolution"])
+        f.SetPasses(KNIFE["Passes"])
+        f.SetSeed(KNIFE["Seed"])
+        f.SetCutoffScale(KNIFE["CutoffScale"])
+        f.SetKnifeAngle(KNIFE["KnifeAngle"])
+        f.SetBackend(cxx.vtkSchlierenImage.CPU)
+        f.SetUseOctree(octree)
+        return f
+    knife = image(index)
+    numerical = cxx.vtkNumericalSchlieren()
+    numerical.SetInputConnection(index.GetOutputPort())
+    numerical.SetMode(1)  # LineOfSight
+    numerical.SetResolution(*NUMERICAL["Resolution"])
+    numerical.SetViewDirection(*NUMERICAL["ViewDirection"])
+    octree = cxx.vtkRefractionOctree()
+    octree.SetInputConnection(index.GetOutputPort())
+    knife_octree = image(octree, 1)
+    out = {}
+    for name, f in (("index", index), ("knife", knife), ("numerical", numerical),
+                    ("octree", octree), ("knife_octree", knife_octree)):
+        f.UpdatePiece(rank, ranks, 0)
+        out.update(record(name, f.GetOutputDataObject(0)))
+    return out
+
+
+if ranks == 1:
+    # the reference on one process, then this script on two ranks against it
+    t0 = time.time()
+    one, text = run_python()
+    T.check("ERROR" not in text, "one process: no error%s" % ("" if "ERROR" not in text else
+                                                             ": " + text[:400]))
+    np.savez(reference_file, **{k.replace(":", "|").replace("@", "~"): v for k, v in one.items()})
+    print("one process: %.1f s" % (time.time() - t0))
+    mpiexec = st.argument("--mpiexec", "mpiexec")
+    command = [mpiexec, "-n", "2", "--allow-run-as-root", "--oversubscribe",
+               st.argument("--pvbatch", "pvbatch"),
+               "--mpi", "--symmetric", os.path.abspath(__file__)] + sys.argv[1:]
+    # (pvbatch made this process an MPI singleton: its OpenMPI variables would tie the job to it)
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
+    try:
+        rc = subprocess.run(command, timeout=90, env=env).returncode
+    except subprocess.TimeoutExpired:
+        rc = "a hang (killed after 90 s)"
+    T.check(rc == 0, "two ranks (%s): %s" % (" ".join(command[:5]), "passed" if rc == 0 else
+                                              "failed: %s" % rc))
+    T.finish()
+    sys.exit(0)
+
+# ---- two ranks
+T.check(ranks == 2, "rank %d: 2 ranks (got %d)" % (rank, ranks))
+one = {k.replace("|", ":").replace("~", "@"): v for k, v in np.load(reference_file).items()}
+t0 = time.time()
+mine, text = run_python()
+T.check("ERROR" not in text, "rank %d: the Python plugin: no error%s" % (
+    rank, "" if "ERROR" not in text else ": " + text[:600]))
+
+# 1a. the index in two pieces that tile the grid, each the one-process values there
+e = mine["index:extent"]
+whole = one["index:extent"]
+T.check(any(e[2 * a] > whole[2 * a] or e[2 * a + 1] < whole[2 * a + 1] for a in range(3)),
+        "rank %d: RefractiveIndex computed a piece %s of the grid %s" % (rank, list(e), list(whole)))
+d = [whole[2 * a + 1] - whole[2 * a] + 1 for a in range(3)]
+cut = tuple(slice(e[2 * a] - whole[2 * a], e[2 * a + 1] - whole[2 * a] + 1) for a in (2, 1, 0))
+for name in ("n_minus_1", "grad_n", "density"):
+    ref = one["index:" + name]
+    ref = ref.reshape(d[2], d[1], d[0], -1)[cut].reshape(ref.shape[1:] and (-1,) + ref.shape[1:]
+                                                         or (-1,))
+    T.check(same(mine["index:" + name], ref),
+            "rank %d: RefractiveIndex's piece: %s of one process bit for bit" % (rank, name))
+from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkDoubleArray  # noqa: E402
+gathered = vtkDoubleArray()
+controller.AllGather(numpy_to_vtk(np.array(e, np.float64), deep=1), gathered)
+both = vtk_to_numpy(gathered).reshape(2, 6).astype(int)
+tiled = np.zeros(d[::-1], int)
+for p in both:
+    tiled[p[4]:p[5] + 1, p[2]:p[3] + 1, p[0]:p[1] + 1] += 1
+T.check(tiled.min() == 1 and tiled.max() <= 2 and (tiled == 2).sum() < tiled.size // 4,
+        "rank %d: the two pieces %s tile the grid (a shared plane)" % (rank, both.tolist()))
+
+# 1b. the images: on rank 0, one process's and the C++ plugin's bit for bit; on rank 1 none
+cxx = run_cxx()
+for name in ("knife", "numerical", "knife_octree"):
+    points = int(np.prod(mine[name + ":extent"][1::2] - mine[name + ":extent"][0::2] + 1))
+    if rank == 0:
+        compare(mine, one, name, "%s: the Python plugin on 2 ranks against one process (the "
+                "report less what it says of the ranks)" % name, leave_out=RANKS_REPORT)
+        compare(mine, cxx, name, "%s: the Python plugin against the C++ plugin on 2 ranks" % name)
+    else:
+        T.check(name + ":intensity" not in mine,
+                "rank 1: %s: no image here (rank 0 holds it)" % name)
+if rank == 0:
+    fd = {k.split("@", 1)[1]: v for k, v in mine.items() if k.startswith("knife@")}
+    T.check(fd.get("distributed_ranks", [0])[0] == 2 and fd.get("rays_handed_on", [0])[0] > 0,
+            "rank 0: knife: traced in pieces on 2 ranks (distributed_ranks %s, rays handed on %s)"
+            % (fd.get("distributed_ranks"), fd.get("rays_handed_on")))
+compare(mine, cxx, "index", "the index's piece against the C++ plugin's piece",
+        names=("n_minus_1", "grad_n", "extent", "origin", "spacing"))
+compare(mine, cxx, "octree", "RefractionOctree's piece against the C++ plugin's piece",
+        names=("octree_level", "octree_tolerance", "octree_skippable_fraction", "extent"))
+print("rank %d: the pipelines on 2 ranks: %.1f s" % (rank, time.time() - t0))
+
+# 2. a failure on rank 1 only: one agreed error, empty outputs, no hang
+scene = RefractiveScene(**SCENE)  # noqa: F821
+index = RefractiveIndex(Input=scene, Model="GladstoneDale")  # noqa: F821
+index.InputArray = ["POINTS", "density" if rank == 0 else "no_such_array"]
+knife = SchlierenImage(Input=index, **KNIFE)  # noqa: F821
+with st.CapturedOutput() as c:
+    knife.UpdatePipeline()
+errors = filter_errors(c.text)
+index_errors = [m for w, m in errors if w.endswith("RefractiveIndex")]
+others = [(w, m) for w, m in errors if not w.endswith("RefractiveIndex")]
+theirs = index_errors[0] if index_errors else ""
+from vtkmodules.vtkCommonCore import vtkCharArray  # noqa: E402
+sent = vtkCharArray()
+sent.SetNumberOfTuples(600)
+vtk_to_numpy(sent)[:] = 0
+text1 = theirs.encode()[:599]
+vtk_to_numpy(sent)[:len(text1)] = np.frombuffer(text1, np.int8)
+controller.Broadcast(sent, 1)
+rank1 = bytes(vtk_to_numpy(sent).astype(np.uint8)).split(b"\0", 1)[0].decode()
+expected = rank1 if rank == 1 else "another rank (1) failed: " + rank1
+T.check(len(index_errors) == 1 and theirs == expected and "no_such_array" in rank1 and
+        not others and local(index).GetNumberOfPoints() == 0 and
+        local(knife).GetNumberOfPoints() == 0,
+        "rank %d: a bad array on rank 1 only: one RefractiveIndex error, the agreed one (%r), "
+        "nothing from SchlierenImage (%s), empty outputs" % (rank, theirs, others))
+for p in (knife, index, scene):
+    simple.Delete(p)
+
+# 3. a new pipeline right after: both ranks in step, the image on rank 0, no error
+scene = RefractiveScene(**SCENE)  # noqa: F821
+index = RefractiveIndex(Input=scene, Model="GladstoneDale")  # noqa: F821
+index.InputArray = ["POINTS", "density"]
+knife = SchlierenImage(Input=index, **KNIFE)  # noqa: F821
+with st.CapturedOutput() as c:
+    knife.UpdatePipeline()
+T.check("ERROR" not in c.text and (local(knife).GetNumberOfPoints() > 0) == (rank == 0),
+        "rank %d: a new pipeline right after: the image on rank 0 (%d points here), no error%s"
+        % (rank, local(knife).GetNumberOfPoints(), "" if "ERROR" not in c.text else
+           ": " + c.text[:600]))
+if rank == 0:
+    T.check(same(record("knife", local(knife))["knife:intensity"], one["knife:intensity"]),
+            "rank 0: that image is one process's bit for bit")
+T.finish()
