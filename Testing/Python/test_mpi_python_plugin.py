@@ -10,11 +10,14 @@ own algorithms as one process runs them (their ranks left out, one piece). Then:
 1. a Gaussian sphere from the Python plugin's RefractiveScene, split into two pieces (each rank
    fills its own), through RefractiveIndex (GladstoneDale), SchlierenImage (an oblique knife edge
    with the automatic scale, Backend CPU: the volume traced in pieces, rays handed between the
-   ranks), NumericalSchlieren (LineOfSight) and RefractionOctree -> SchlierenImage: the index's
-   pieces tile the grid and hold the one-process n - 1 and grad n there bit for bit; rank 0 holds
-   the images, rank 1 empty ones; the images (every point array) and their field data (less the
-   timings) equal the one-process images bit for bit, and the C++ plugin's (its compiled filters,
-   schlieren_vtk, run on the same pieces with UpdatePiece) bit for bit;
+   ranks), NumericalSchlieren (LineOfSight), RefractionOctree (its levels and tolerance), and
+   the scene with a solid sphere (its solid points through RefractiveIndex, rays blocked): the
+   index's pieces tile the grid and hold the one-process n - 1 and grad n there bit for bit;
+   rank 0 holds the images, rank 1 empty ones; the images (every point array) and their field
+   data (less the timings and what the report says of the ranks) equal the one-process images bit
+   for bit, and the C++ plugin's (its compiled filters, schlieren_vtk, run on the same pieces with
+   UpdatePiece) bit for bit, the index's and the octree's pieces too; the octree's tolerance is the
+   whole volume's (one process's);
 2. a failure on rank 1 only (RefractiveIndex reading an array its input does not have there): both
    ranks end with the one agreed error, rank 1 its own, rank 0 "another rank (1) failed: <it>",
    empty outputs, no hang (the ctest TIMEOUT); a new pipeline right after gives one process's
@@ -47,8 +50,10 @@ T = st.Checker("test_mpi_python_plugin (rank %d of %d)" % (rank, ranks))
 
 SCENE = dict(Scene="GaussianSphere", Dimensions=[40, 36, 32], Bounds=[-1, 1, -1, 1, -1, 1],
              Amplitude=1e-4, Width=0.3, Center=[0.1, -0.05, 0.02])
-KNIFE = dict(ViewDirection=[0.3, -0.2, -1.0], ViewUp=[0, 1, 0], Resolution=[48, 40], Passes=2,
+KNIFE = dict(ViewDirection=[0.3, -0.2, -1.0], ViewUp=[0, 1, 0], Resolution=[48, 40], Passes=1,
              Seed=3, Cutoff="KnifeEdge", CutoffScale=0.0, KnifeAngle=30.0, Backend="CPU")
+# a scene with a body (RefractiveScene's solid points, passed on by RefractiveIndex, traced in pieces)
+BODY = dict(SCENE, Body="Sphere", BodyRadius=0.2, BodyCenter=[-0.3, 0.1, 0.05])
 NUMERICAL = dict(Mode="LineOfSight", Resolution=[48, 40], ViewDirection=[0.3, -0.2, -1.0])
 TIMINGS = ("tracing_seconds", "exchange_seconds")
 # what the report says of the ranks and the session's volumes, not of the image: one process
@@ -123,6 +128,10 @@ def filter_errors(text):
     return out
 
 
+NAMES = ("scene", "index", "knife", "numerical", "octree", "body_scene", "index_body",
+         "knife_body")
+
+
 def python_pipelines():
     scene = RefractiveScene(**SCENE)  # noqa: F821 (the plugin's proxies)
     index = RefractiveIndex(Input=scene, Model="GladstoneDale")  # noqa: F821
@@ -130,8 +139,11 @@ def python_pipelines():
     knife = SchlierenImage(Input=index, **KNIFE)  # noqa: F821
     numerical = NumericalSchlieren(Input=index, **NUMERICAL)  # noqa: F821
     octree = RefractionOctree(Input=index)  # noqa: F821
-    knife_octree = SchlierenImage(Input=octree, UseOctree=1, **KNIFE)  # noqa: F821
-    return scene, index, knife, numerical, octree, knife_octree
+    body_scene = RefractiveScene(**BODY)  # noqa: F821
+    index_body = RefractiveIndex(Input=body_scene, Model="GladstoneDale")  # noqa: F821
+    index_body.InputArray = ["POINTS", "density"]
+    knife_body = SchlierenImage(Input=index_body, **KNIFE)  # noqa: F821
+    return scene, index, knife, numerical, octree, body_scene, index_body, knife_body
 
 
 def run_python():
@@ -139,9 +151,8 @@ def run_python():
     proxies = python_pipelines()
     out = {}
     with st.CapturedOutput() as c:
-        for name, p in zip(("scene", "index", "knife", "numerical", "octree", "knife_octree"),
-                           proxies):
-            if name in ("scene",):
+        for name, p in zip(NAMES, proxies):
+            if name.endswith("scene"):
                 continue
             p.UpdatePipeline()
             out.update(record(name, local(p)))
@@ -153,19 +164,28 @@ def run_python():
 def run_cxx():
     """The C++ plugin's compiled filters on this rank's piece (UpdatePiece(rank, ranks))."""
     import schlieren_vtk as cxx
-    scene = cxx.vtkRefractiveScene()
-    scene.SetScene(cxx.vtkRefractiveScene.GAUSSIAN_SPHERE)
-    scene.SetDimensions(*SCENE["Dimensions"])
-    scene.SetBounds(*SCENE["Bounds"])
-    scene.SetAmplitude(SCENE["Amplitude"])
-    scene.SetWidth(SCENE["Width"])
-    scene.SetCenter(*SCENE["Center"])
-    index = cxx.vtkRefractiveIndex()
-    index.SetInputConnection(scene.GetOutputPort())
-    index.SetModel(cxx.vtkRefractiveIndex.GLADSTONE_DALE)
-    index.SetInputArrayToProcess(0, 0, 0, 0, "density")
 
-    def image(source, octree=0):
+    def index_of(body):
+        scene = cxx.vtkRefractiveScene()
+        scene.SetScene(cxx.vtkRefractiveScene.GAUSSIAN_SPHERE)
+        scene.SetDimensions(*SCENE["Dimensions"])
+        scene.SetBounds(*SCENE["Bounds"])
+        scene.SetAmplitude(SCENE["Amplitude"])
+        scene.SetWidth(SCENE["Width"])
+        scene.SetCenter(*SCENE["Center"])
+        if body:
+            scene.SetBody(cxx.vtkRefractiveScene.SPHERE_BODY)
+            scene.SetBodyRadius(BODY["BodyRadius"])
+            scene.SetBodyCenter(*BODY["BodyCenter"])
+        index = cxx.vtkRefractiveIndex()
+        index.SetInputConnection(scene.GetOutputPort())
+        index.SetModel(cxx.vtkRefractiveIndex.GLADSTONE_DALE)
+        index.SetInputArrayToProcess(0, 0, 0, 0, "density")
+        index._scene = scene  # kept alive with it
+        return index
+    index, index_body = index_of(False), index_of(True)
+
+    def image(source):
         f = cxx.vtkSchlierenImage()
         f.SetInputConnection(source.GetOutputPort())
         f.SetViewDirection(*KNIFE["ViewDirection"])
@@ -176,7 +196,6 @@ def run_cxx():
         f.SetCutoffScale(KNIFE["CutoffScale"])
         f.SetKnifeAngle(KNIFE["KnifeAngle"])
         f.SetBackend(cxx.vtkSchlierenImage.CPU)
-        f.SetUseOctree(octree)
         return f
     knife = image(index)
     numerical = cxx.vtkNumericalSchlieren()
@@ -186,10 +205,10 @@ def run_cxx():
     numerical.SetViewDirection(*NUMERICAL["ViewDirection"])
     octree = cxx.vtkRefractionOctree()
     octree.SetInputConnection(index.GetOutputPort())
-    knife_octree = image(octree, 1)
+    knife_body = image(index_body)
     out = {}
     for name, f in (("index", index), ("knife", knife), ("numerical", numerical),
-                    ("octree", octree), ("knife_octree", knife_octree)):
+                    ("octree", octree), ("index_body", index_body), ("knife_body", knife_body)):
         f.UpdatePiece(rank, ranks, 0)
         out.update(record(name, f.GetOutputDataObject(0)))
     return out
@@ -212,12 +231,16 @@ def run_one_process():
         numerical.SetInputConnection(index.GetOutputPort())
         octree = alg.RefractionOctree()
         octree.SetInputConnection(index.GetOutputPort())
-        knife_octree = alg.SchlierenImage(UseOctree=1, **KNIFE)
-        knife_octree.SetInputConnection(octree.GetOutputPort())
+        body_scene = alg.RefractiveScene(**BODY)
+        index_body = alg.RefractiveIndex(Model="GladstoneDale", InputArray="density")
+        index_body.SetInputConnection(body_scene.GetOutputPort())
+        knife_body = alg.SchlierenImage(**KNIFE)
+        knife_body.SetInputConnection(index_body.GetOutputPort())
         out = {}
         with st.CapturedOutput() as c:
             for name, f in (("index", index), ("knife", knife), ("numerical", numerical),
-                            ("octree", octree), ("knife_octree", knife_octree)):
+                            ("octree", octree), ("index_body", index_body),
+                            ("knife_body", knife_body)):
                 f.UpdatePiece(0, 1, 0)
                 out.update(record(name, f.GetOutputDataObject(0)))
     finally:
@@ -234,6 +257,7 @@ T.check("ERROR" not in text, "rank %d: one process (the reference): no error%s" 
 print("rank %d: one process: %.1f s" % (rank, time.time() - t0))
 t0 = time.time()
 mine, text = run_python()
+print("rank %d: the Python plugin on 2 ranks: %.1f s" % (rank, time.time() - t0))
 T.check("ERROR" not in text, "rank %d: the Python plugin: no error%s" % (
     rank, "" if "ERROR" not in text else ": " + text[:600]))
 
@@ -262,8 +286,10 @@ T.check(tiled.min() == 1 and tiled.max() <= 2 and (tiled == 2).sum() < tiled.siz
         "rank %d: the two pieces %s tile the grid (a shared plane)" % (rank, both.tolist()))
 
 # 1b. the images: on rank 0, one process's and the C++ plugin's bit for bit; on rank 1 none
+t1 = time.time()
 cxx = run_cxx()
-for name in ("knife", "numerical", "knife_octree"):
+print("rank %d: the C++ plugin on 2 ranks: %.1f s" % (rank, time.time() - t1))
+for name in ("knife", "numerical", "knife_body"):
     points = int(np.prod(mine[name + ":extent"][1::2] - mine[name + ":extent"][0::2] + 1))
     if rank == 0:
         compare(mine, one, name, "%s: the Python plugin on 2 ranks against one process (the "
@@ -279,6 +305,14 @@ if rank == 0:
             % (fd.get("distributed_ranks"), fd.get("rays_handed_on")))
 compare(mine, cxx, "index", "the index's piece against the C++ plugin's piece",
         names=("n_minus_1", "grad_n", "extent", "origin", "spacing"))
+compare(mine, cxx, "index_body", "the index's piece with a body against the C++ plugin's piece",
+        names=("n_minus_1", "grad_n", "solid", "extent"))
+if rank == 0:
+    fd = {k.split("@", 1)[1]: v for k, v in mine.items() if k.startswith("knife_body@")}
+    T.check(fd.get("blocked_rays", [0])[0] > 0 and "knife_body:blocked" in mine,
+            "rank 0: knife_body: the body blocks rays (%s)" % fd.get("blocked_rays"))
+compare(mine, one, "octree", "RefractionOctree's tolerance: one process's (the whole range)",
+        names=("octree_tolerance",))
 compare(mine, cxx, "octree", "RefractionOctree's piece against the C++ plugin's piece",
         names=("octree_level", "octree_tolerance", "octree_skippable_fraction", "extent"))
 print("rank %d: the pipelines on 2 ranks: %.1f s" % (rank, time.time() - t0))
