@@ -3,7 +3,9 @@
  * session, a second trace that keeps the volume, the errors as messages (an unknown property, a
  * bad value, a trace without a volume, a value the engine refuses), and the run-time OpenCL
  * loader: run with SCHLIEREN_OPENCL_LIBRARY pointing nowhere (ctest does), Backend Auto traces on
- * the CPU and says why. */
+ * the CPU and says why; and the ranks (schlieren_parallel): two ranks on two threads trace, make
+ * grad n and the numerical image of a volume in two pieces as one process does, bit for bit. */
+#define _POSIX_C_SOURCE 200112L /* pthread_barrier_t under -std=c99 (python.install builds this so) */
 #include "schlieren_c.h"
 
 #include <math.h>
