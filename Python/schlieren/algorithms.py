@@ -66,6 +66,15 @@ def _empty(extent):
     return any(extent[2 * a + 1] < extent[2 * a] for a in range(3))
 
 
+def _spread(ranks, data, symmetry):
+    """`ranks` where RefractiveIndex resamples a mesh under MPI from every rank's piece (the C++
+    filter's way: each rank samples its piece, the samples summed over the ranks), else None: one
+    process, an image, a 2D input made a volume, an AMR (read whole on every rank)."""
+    if ranks is None or symmetry != "None" or isinstance(data, (vtkImageData, vtkOverlappingAMR)):
+        return None
+    return ranks if isinstance(data, (vtkDataSet, vtkCompositeDataSet)) else None
+
+
 def _crop(image, extent):
     """`image` cut to `extent` in place (its point arrays, its field data kept), where it holds
     more."""
@@ -338,14 +347,25 @@ def _bounds(data):
     return data.GetBounds()
 
 
-def _sampling_box(data, bounds=None):
+def _sampling_box(data, bounds=None, ranks=None):
     """The box RefractiveIndex resamples over: `bounds`, or the input's bounds pulled in by a hair
     about their centre (the grid's outermost points then lie inside the outermost cells despite
-    round-off), as the C++ filter's."""
+    round-off), as the C++ filter's; with `ranks` (MPI) the bounds of every rank's piece."""
     if bounds is not None:
         return [float(b) for b in bounds]
     from vtkmodules.vtkCommonDataModel import vtkBoundingBox
-    box = vtkBoundingBox(_bounds(data))
+    local = _bounds(data)
+    if ranks is not None:
+        # every rank's piece (collective; an empty piece counts for nothing), as the C++
+        # filter's UpdatedInputBounds
+        have = data is not None and data.GetNumberOfPoints() > 0 and local[0] <= local[1]
+        lows = np.array([local[2 * a] if have else np.inf for a in range(3)] +
+                        [-local[2 * a + 1] if have else np.inf for a in range(3)], np.float64)
+        lows = ranks.comm.allreduce(lows, "min")
+        if not np.isfinite(lows).all():
+            return [0.0, -1.0] * 3  # no rank has a point
+        local = [lows[0], -lows[3], lows[1], -lows[4], lows[2], -lows[5]]
+    box = vtkBoundingBox(local)
     box.ScaleAboutCenter(1.0 - 1e-6)
     b = [0.0] * 6
     box.GetBounds(b)
@@ -691,15 +711,28 @@ def _probe(data, points):
     return probe.GetOutput()
 
 
-def _image_input(data, dims=None, bounds=None):
+def _image_input(data, dims=None, bounds=None, ranks=None):
     """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
     or resampled cell by cell by the engine (the C++ RefractiveIndex's sampler) onto `dims`
-    points over its bounds pulled in by a hair (or `bounds`)."""
-    if isinstance(data, vtkImageData):
+    points over its bounds pulled in by a hair (or `bounds`). With `ranks` (MPI, collective) each
+    rank samples its piece of a mesh and the samples are summed over the ranks (_summed)."""
+    if isinstance(data, vtkImageData) and ranks is None:
         return data, None
     if dims is None:
         dims = _engine.automatic_dimensions(_bounds(data), 128)
-    box = _sampling_box(data, bounds)
+    box = _sampling_box(data, bounds, ranks)
+    if ranks is not None:
+        try:
+            out, mask, refused = None, None, ""
+            out, mask = _image_input(data, dims, box)
+            if mask is None:
+                mask = np.ones(out.GetNumberOfPoints(), np.uint8)
+        except EngineError as e:
+            refused = str(e)  # a cell type the sampler does not take
+        agreed = ranks.failure(refused, "RefractiveIndex's resampled pieces")
+        if agreed:
+            raise EngineError(refused or agreed)
+        return _summed(ranks, out, mask)
     if any(isinstance(leaf, vtkImageData) for leaf in _cell_leaves(data)):
         # blocks of images: probed, as the C++ filter probes them (SchlierenResample.h)
         from vtkmodules.vtkFiltersCore import vtkCompositeDataProbeFilter
@@ -729,6 +762,49 @@ def _image_input(data, dims=None, bounds=None):
         numpy_support.vtk_to_numpy(m)[:] = mask
         out.GetPointData().AddArray(m)
     return out, (None if mask.all() else mask)
+
+
+def _summed(ranks, grid, mask):
+    """Under MPI, the resampled grid of every rank's piece on every rank (collective): the C++
+    filter's Resample: per one-component point array any rank holds, value x found summed over
+    the ranks and divided by the times found (in double, then float), the mask where any rank
+    found the point. Arrays of more components are left out (as the C++ filter does)."""
+    n = grid.GetNumberOfPoints()
+    pd = grid.GetPointData()
+    mine = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())
+            if pd.GetArray(i) is not None and pd.GetArray(i).GetNumberOfComponents() == 1 and
+            pd.GetArrayName(i) != "vtkValidPointMask"]
+    text = "\n".join(mine).encode()
+    longest = int(ranks.comm.allreduce(np.array([len(text)], np.float64), "max")[0])
+    names = []
+    if longest:
+        everyone = ranks.comm.allgather(np.frombuffer(text.ljust(longest, b"\0"), np.uint8))
+        for theirs in everyone:
+            for name in bytes(np.asarray(theirs, np.uint8)).rstrip(b"\0").decode().split("\n"):
+                if name and name not in names:
+                    names.append(name)
+    found = (mask != 0).astype(np.float64)
+    total = ranks.comm.allreduce(found, "sum")
+    out = vtkImageData()
+    out.CopyStructure(grid)
+    for name in names:  # the same list, in the same order, on every rank
+        a = pd.GetArray(name)
+        values = np.zeros(n, np.float64)
+        if a is not None and a.GetNumberOfComponents() == 1:
+            v = numpy_support.vtk_to_numpy(a).astype(np.float64)
+            values[found != 0] = v[found != 0]
+        values = ranks.comm.allreduce(values, "sum")
+        _add(out, name, np.where(total > 0, values / np.where(total > 0, total, 1.0), 0.0)
+             .astype(np.float32))
+    valid = (total > 0).astype(np.uint8)
+    if not valid.all():
+        from vtkmodules.vtkCommonCore import vtkCharArray
+        m = vtkCharArray()
+        m.SetName("vtkValidPointMask")
+        m.SetNumberOfTuples(n)
+        numpy_support.vtk_to_numpy(m)[:] = valid
+        out.GetPointData().AddArray(m)
+    return out, (None if valid.all() else valid)
 
 
 def _amr_boxes(amr):
@@ -1182,17 +1258,19 @@ class RefractiveIndex(_Properties):
         connection = self.GetInputConnection(0, 0) if self.GetNumberOfInputConnections(0) else None
         if connection is not None and src.Has(SDDP.WHOLE_EXTENT()):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        spread = _spread(ranks, vtkDataObject.GetData(src), self.Symmetry)
         if connection is not None and ranks is not None:
-            # every rank reads the whole input and resamples it whole (docs/PARALLEL.md)
-            src.Set(SDDP.UPDATE_PIECE_NUMBER(), 0)
-            src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), 1)
+            # a mesh: this rank's piece (resampled here, the samples summed over the ranks); made
+            # a volume or an AMR: the whole input on every rank (docs/PARALLEL.md)
+            src.Set(SDDP.UPDATE_PIECE_NUMBER(), ranks.rank if spread else 0)
+            src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), ranks.size if spread else 1)
             src.Set(SDDP.UPDATE_NUMBER_OF_GHOST_LEVELS(), 0)
         if connection is not None:
             connection.GetProducer().Update(connection.GetIndex())
         data = vtkDataObject.GetData(src)
         info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
         if not isinstance(data, (vtkDataSet, vtkCompositeDataSet)) or \
-                data.GetNumberOfPoints() == 0:
+                (data.GetNumberOfPoints() == 0 and spread is None):
             return 1  # RequestData says why
         if self.Symmetry != "None":
             # the engine's grid for the 2D input (RequestData says why where there is none)
@@ -1207,8 +1285,10 @@ class RefractiveIndex(_Properties):
             return 1
         # the grid the cell sampler fills: the bounds pulled in by a hair about their centre, as
         # the C++ filter's
-        dims = self._dims(data)
-        b = _sampling_box(data, self._sampling_bounds())
+        b = _sampling_box(data, self._sampling_bounds(), spread)
+        if b[1] < b[0]:
+            return 1  # no rank has a point: RequestData says why
+        dims = self._dims(data, spread)
         info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
         info.Set(vtkImageData.ORIGIN(), b[0], b[2], b[4])
         info.Set(vtkImageData.SPACING(), *[(b[2 * a + 1] - b[2 * a]) / (dims[a] - 1)
@@ -1247,9 +1327,10 @@ class RefractiveIndex(_Properties):
             return 1
         info = outInfo.GetInformationObject(0)
         if not isinstance(held, vtkImageData) or self.Symmetry != "None":
-            # resampled (or made a volume): the whole input on every rank
-            src.Set(SDDP.UPDATE_PIECE_NUMBER(), 0)
-            src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), 1)
+            # a mesh: this rank's piece; made a volume or an AMR: the whole input on every rank
+            spread = _spread(ranks, held, self.Symmetry)
+            src.Set(SDDP.UPDATE_PIECE_NUMBER(), ranks.rank if spread else 0)
+            src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), ranks.size if spread else 1)
             src.Set(SDDP.UPDATE_NUMBER_OF_GHOST_LEVELS(), 0)
             return 1
         # an image under MPI (the C++ filter's RequestUpdateExtent): this output's piece, one
@@ -1360,7 +1441,7 @@ class RefractiveIndex(_Properties):
             _add(image, a.GetName(), values)
         return image, (None if valid.all() else valid), plan
 
-    def _dims(self, data):
+    def _dims(self, data, ranks=None):
         dims = [int(d) for d in self.SamplingDimensions]
         automatic = min(dims) <= 0
         if automatic and isinstance(data, vtkOverlappingAMR) and data.GetNumberOfPoints():
@@ -1371,8 +1452,8 @@ class RefractiveIndex(_Properties):
             dims = grid["dims"]
         elif automatic:
             # over the box the grid spans (the bounds pulled in by a hair), as the C++ filter
-            dims = _engine.automatic_dimensions(_sampling_box(data, self._sampling_bounds()),
-                                                int(self.AutomaticDimension))
+            dims = _engine.automatic_dimensions(
+                _sampling_box(data, self._sampling_bounds(), ranks), int(self.AutomaticDimension))
         # the resampled image is this process's to allocate: refused before, as the C++ filter
         # does (its arrays, the mask, and the engine's per-point share; a composite input: a few
         # double arrays, as the C++ filter counts it)
@@ -1423,7 +1504,7 @@ class RefractiveIndex(_Properties):
                 raise EngineError("RefractiveIndex needs a data set or a composite data set; "
                                   "got %s." % (data.GetClassName() if data else "nothing"))
             if isinstance(data, vtkCompositeDataSet) and \
-                    data.GetNumberOfPoints() == 0:
+                    data.GetNumberOfPoints() == 0 and _spread(ranks, data, self.Symmetry) is None:
                 raise EngineError("RefractiveIndex: the input (%s) has no points."
                                   % data.GetClassName())
             key = self._cache_key(inInfo[0].GetInformationObject(0),
@@ -1459,8 +1540,10 @@ class RefractiveIndex(_Properties):
                 for note in notes:
                     self._note(note)
             else:
-                image, valid = _image_input(data, None if not resampled else self._dims(data),
-                                            self._sampling_bounds())
+                spread = _spread(ranks, data, self.Symmetry)
+                image, valid = _image_input(
+                    data, None if not resampled else self._dims(data, spread),
+                    self._sampling_bounds(), spread)
                 if not isinstance(data, vtkImageData) and self.AxisFromWedge:
                     # a wedge traced as it is: a slab of gas a few degrees thick (said as the
                     # C++ filter says it)
@@ -1509,7 +1592,8 @@ class RefractiveIndex(_Properties):
             if resampled and valid is not None and not valid.any():
                 settings["CellsDescription"] = _describe_cells(_internal_mesh(data))
             rim = None
-            if self.BodyFromGrid and resampled and valid is not None and not valid.all():
+            if self.BodyFromGrid and resampled and valid is not None and not valid.all() and \
+                    ranks is None:
                 # the voids beside the mesh's walls, where it has a velocity (the C++ filter's)
                 found = _wall_rim(_internal_mesh(data), list(image.GetDimensions()),
                                   image.GetOrigin(), image.GetSpacing(), valid,
