@@ -888,41 +888,49 @@ def amr_overlap(boxes):
     _check(_lib.schlieren_amr_overlap(len(boxes), lv, corners))
 
 
-def amr_grid(levels, blocks, bounds, bytes_per_point):
+def amr_grid(levels, blocks, bounds, bytes_per_point, ranks=None):
     """RefractiveIndex's automatic grid of an AMR input (schlieren_amr_grid): the finest loaded
     level's spacing over `bounds`, capped by memory. `blocks`: dicts of level, extent, origin,
-    spacing. Returns dict(dims, finest_spacing, finest_level, capped, note)."""
-    f = _sig("schlieren_amr_grid", ctypes.c_int, ctypes.c_int, ctypes.c_int,
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
-             ctypes.c_double * 6, ctypes.c_double, _c_int3, _c_double3,
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_char_p))
+    spacing. Returns dict(dims, finest_spacing, finest_level, capped, note). With `ranks` (a
+    Ranks; collective: schlieren_amr_grid_parallel) `blocks` are this rank's."""
+    args = [ctypes.c_int, ctypes.c_int, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
+            ctypes.c_double * 6, ctypes.c_double, _c_int3, _c_double3,
+            ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_char_p)]
+    f = _sig("schlieren_amr_grid" if ranks is None else "schlieren_amr_grid_parallel",
+             ctypes.c_int, *(args + ([] if ranks is None else [_parallel_p])))
     levels, n, lv, ext, org, spc = _amr_blocks(levels, blocks)
     dims, finest, level, capped, note = _c_int3(), _c_double3(), ctypes.c_int(), ctypes.c_int(), \
         ctypes.c_char_p()
-    _check(f(levels, n, lv, ext, org, spc, _six(bounds, "bounds"), float(bytes_per_point), dims,
-             finest, ctypes.byref(level), ctypes.byref(capped), ctypes.byref(note)))
+    rc = f(levels, n, lv, ext, org, spc, _six(bounds, "bounds"), float(bytes_per_point), dims,
+           finest, ctypes.byref(level), ctypes.byref(capped), ctypes.byref(note),
+           *([] if ranks is None else [ranks.pointer()]))
+    if rc:
+        raise EngineError(_text(_lib.schlieren_last_error())) if ranks is None else ranks.error()
     return dict(dims=list(dims), finest_spacing=list(finest), finest_level=level.value,
                 capped=bool(capped.value), note=_text(note.value))
 
 
-def amr_sample(levels, blocks, names, dims, origin, spacing):
+def amr_sample(levels, blocks, names, dims, origin, spacing, ranks=None):
     """An overlapping AMR's boxes sampled onto an image grid by the engine (schlieren_amr_sample),
     as the C++ RefractiveIndex samples them: every grid point from the finest level covering it,
     point arrays trilinear between a box's points, cell arrays between its cell centres, float32.
     `blocks`: dicts of level, extent, origin, spacing and arrays ({name: (values, is_cell)}, the
     values shaped (tuples,) or (tuples, components); float32 read as it is, anything else as
     float64). Returns (valid: uint8 over the grid's points, {name: float32 array (points,) or
-    (points, components)} for the names some box holds, notes: list of str)."""
-    f = _sig("schlieren_amr_sample", ctypes.c_int, ctypes.c_int, ctypes.c_int,
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double), ctypes.c_int,
-             ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_int64), _c_int3, _c_double3,
-             _c_double3, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(_f32p),
-             ctypes.POINTER(_u8p), ctypes.POINTER(ctypes.c_char_p))
+    (points, components)} for the names some box holds, notes: list of str). With `ranks` (a
+    Ranks; collective: schlieren_amr_sample_parallel) `blocks` are this rank's, `names` the same
+    list on every rank, and every rank gets the whole grid's values."""
+    args = [ctypes.c_int, ctypes.c_int, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double), ctypes.c_int,
+            ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_int64), _c_int3, _c_double3,
+            _c_double3, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(_f32p),
+            ctypes.POINTER(_u8p), ctypes.POINTER(ctypes.c_char_p)]
+    f = _sig("schlieren_amr_sample" if ranks is None else "schlieren_amr_sample_parallel",
+             ctypes.c_int, *(args + ([] if ranks is None else [_parallel_p])))
     blocks = list(blocks)
     names = [str(n) for n in names]
     levels, n, lv, ext, org, spc = _amr_blocks(levels, blocks)
@@ -953,9 +961,11 @@ def amr_sample(levels, blocks, names, dims, origin, spacing):
     out_comps = (ctypes.c_int * max(1, k))()
     outs = (_f32p * max(1, k))()
     valid, report = _u8p(), ctypes.c_char_p()
-    _check(f(levels, n, lv, ext, org, spc, k, (ctypes.c_char_p * max(1, k))(
+    rc = f(levels, n, lv, ext, org, spc, k, (ctypes.c_char_p * max(1, k))(
         *[x.encode() for x in names]), cells, comps, nbytes, ins, lengths, *grid, out_comps, outs,
-        ctypes.byref(valid), ctypes.byref(report)))
+        ctypes.byref(valid), ctypes.byref(report), *([] if ranks is None else [ranks.pointer()]))
+    if rc:
+        raise EngineError(_text(_lib.schlieren_last_error())) if ranks is None else ranks.error()
     sampled = {}
     for j, name in enumerate(names):
         c = out_comps[j]

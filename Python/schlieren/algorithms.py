@@ -67,10 +67,11 @@ def _empty(extent):
 
 
 def _spread(ranks, data, symmetry):
-    """`ranks` where RefractiveIndex resamples a mesh under MPI from every rank's piece (the C++
-    filter's way: each rank samples its piece, the samples summed over the ranks), else None: one
-    process, an image, a 2D input made a volume, an AMR (read whole on every rank)."""
-    if ranks is None or symmetry != "None" or isinstance(data, (vtkImageData, vtkOverlappingAMR)):
+    """`ranks` where RefractiveIndex resamples a mesh or an AMR under MPI from every rank's piece
+    (the C++ filter's way: each rank samples its piece or its boxes, the samples combined over the
+    ranks), else None: one process, an image, a 2D input made a volume (read whole on every
+    rank)."""
+    if ranks is None or symmetry != "None" or isinstance(data, vtkImageData):
         return None
     return ranks if isinstance(data, (vtkDataSet, vtkCompositeDataSet)) else None
 
@@ -764,6 +765,20 @@ def _image_input(data, dims=None, bounds=None, ranks=None):
     return out, (None if mask.all() else mask)
 
 
+def _names_everywhere(ranks, mine):
+    """Every rank's names (`mine`: this rank's), each once, in rank order (collective)."""
+    text = "\n".join(mine).encode()
+    longest = int(ranks.comm.allreduce(np.array([len(text)], np.float64), "max")[0])
+    names = []
+    if longest:
+        everyone = ranks.comm.allgather(np.frombuffer(text.ljust(longest, b"\0"), np.uint8))
+        for theirs in everyone:
+            for name in bytes(np.asarray(theirs, np.uint8)).rstrip(b"\0").decode().split("\n"):
+                if name and name not in names:
+                    names.append(name)
+    return names
+
+
 def _summed(ranks, grid, mask):
     """Under MPI, the resampled grid of every rank's piece on every rank (collective): the C++
     filter's Resample: per one-component point array any rank holds, value x found summed over
@@ -774,15 +789,7 @@ def _summed(ranks, grid, mask):
     mine = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())
             if pd.GetArray(i) is not None and pd.GetArray(i).GetNumberOfComponents() == 1 and
             pd.GetArrayName(i) != "vtkValidPointMask"]
-    text = "\n".join(mine).encode()
-    longest = int(ranks.comm.allreduce(np.array([len(text)], np.float64), "max")[0])
-    names = []
-    if longest:
-        everyone = ranks.comm.allgather(np.frombuffer(text.ljust(longest, b"\0"), np.uint8))
-        for theirs in everyone:
-            for name in bytes(np.asarray(theirs, np.uint8)).rstrip(b"\0").decode().split("\n"):
-                if name and name not in names:
-                    names.append(name)
+    names = _names_everywhere(ranks, mine)
     found = (mask != 0).astype(np.float64)
     total = ranks.comm.allreduce(found, "sum")
     out = vtkImageData()
@@ -845,13 +852,15 @@ def _amr_block_list(amr, names=()):
     return blocks
 
 
-def _amr_grid(amr, box, bytes_per_point):
+def _amr_grid(amr, box, bytes_per_point, ranks=None):
     """The engine's automatic grid of an AMR over `box` (schlieren_amr_grid: the finest loaded
-    level's spacing, capped by memory), as the C++ filter's."""
-    return _engine.amr_grid(amr.GetNumberOfLevels(), _amr_block_list(amr), box, bytes_per_point)
+    level's spacing, capped by memory), as the C++ filter's; with `ranks` (MPI, collective) over
+    the boxes every rank holds."""
+    return _engine.amr_grid(amr.GetNumberOfLevels(), _amr_block_list(amr), box, bytes_per_point,
+                            ranks)
 
 
-def _amr_input(amr, dims, box):
+def _amr_input(amr, dims, box, ranks=None):
     """An overlapping AMR sampled onto `dims` points over `box` by the engine
     (schlieren_amr_sample), as the C++ RefractiveIndex samples it: (image with every array any box
     holds as float32 and vtkValidPointMask where some point lies outside every box, valid mask or
@@ -870,6 +879,8 @@ def _amr_input(amr, dims, box):
                 n = attributes.GetArrayName(i)
                 if n and n not in names and n not in ("vtkGhostType", "vtkValidPointMask"):
                     names.append(n)
+    if ranks is not None:
+        names = _names_everywhere(ranks, names)  # every rank's boxes' arrays (MPI)
     d = [int(x) for x in dims]
     origin = [box[0], box[2], box[4]]
     spacing = [(box[2 * a + 1] - box[2 * a]) / (d[a] - 1) if d[a] > 1 else 1.0 for a in range(3)]
@@ -879,7 +890,8 @@ def _amr_input(amr, dims, box):
     image.SetSpacing(*spacing)
     # the C++ filter's structure: its spacing and origin as it sets them, read back
     mask, sampled, notes = _engine.amr_sample(amr.GetNumberOfLevels(), _amr_block_list(amr, names),
-                                              names, d, image.GetOrigin(), image.GetSpacing())
+                                              names, d, image.GetOrigin(), image.GetSpacing(),
+                                              ranks)
     for name in names:
         if name in sampled:
             _add(image, name, sampled[name])
@@ -1444,11 +1456,12 @@ class RefractiveIndex(_Properties):
     def _dims(self, data, ranks=None):
         dims = [int(d) for d in self.SamplingDimensions]
         automatic = min(dims) <= 0
-        if automatic and isinstance(data, vtkOverlappingAMR) and data.GetNumberOfPoints():
+        if automatic and isinstance(data, vtkOverlappingAMR) and (data.GetNumberOfPoints() or
+                                                                   ranks is not None):
             # an AMR: its finest level's spacing, capped by memory (the C++ filter's bytes: the
             # mask, n - 1 and grad n, a composite's few double arrays, the engine's share)
-            grid = _amr_grid(data, _sampling_box(data, self._sampling_bounds()),
-                             1.0 + 16.0 + 64.0 + 21.0)
+            grid = _amr_grid(data, _sampling_box(data, self._sampling_bounds(), ranks),
+                             1.0 + 16.0 + 64.0 + 21.0, ranks)
             dims = grid["dims"]
         elif automatic:
             # over the box the grid spans (the bounds pulled in by a hair), as the C++ filter
@@ -1526,11 +1539,13 @@ class RefractiveIndex(_Properties):
                     self._warn(w)
             elif isinstance(data, vtkOverlappingAMR):
                 # the engine's AMR sampler (the C++ filter's), and its numbers and notes
-                box = _sampling_box(data, self._sampling_bounds())
-                dims = self._dims(data)
-                grid = _amr_grid(data, box, 1.0 + 16.0 + 64.0 + 21.0)
+                # (under MPI over the boxes every rank holds, collective: the C++ filter's)
+                spread = _spread(ranks, data, self.Symmetry)
+                box = _sampling_box(data, self._sampling_bounds(), spread)
+                dims = self._dims(data, spread)
+                grid = _amr_grid(data, box, 1.0 + 16.0 + 64.0 + 21.0, spread)
                 automatic = min(int(v) for v in self.SamplingDimensions) <= 0
-                image, valid, notes = _amr_input(data, dims, box)
+                image, valid, notes = _amr_input(data, dims, box, spread)
                 notes = ([grid["note"]] if automatic else []) + notes
                 amr_numbers = [("amr_levels", data.GetNumberOfLevels()),
                                ("amr_finest_level", grid["finest_level"]),

@@ -330,7 +330,7 @@ if not (os.path.exists(xyz) and os.path.exists(q)):
           % os.path.abspath(data))
 else:
     t1 = time.time()
-    FIN = dict(Model="GladstoneDale", Gas="Air", DensityReference=1.2, AutomaticDimension=32,
+    FIN = dict(Model="GladstoneDale", Gas="Air", DensityReference=1.2, AutomaticDimension=24,
                BodyFromGrid=1)
     reader = simple.PLOT3DReader(FileName=xyz, QFileName=[q])
     index_fin = RefractiveIndex(Input=reader, **FIN)  # noqa: F821
@@ -378,6 +378,73 @@ else:
     for p in (knife_fin, index_fin, reader):
         simple.Delete(p)
     print("rank %d: the blunt fin: %.1f s" % (rank, time.time() - t1))
+
+# 1d. an overlapping AMR spread over the ranks (rank 0 holds level 0, rank 1 the two boxes of
+# level 1; the metadata on both): the boxes of all ranks sampled by the engine (collective): each
+# rank's piece of one process's grid (the whole AMR) bit for bit, and the C++ plugin's
+import amr_cases  # noqa: E402
+t1 = time.time()
+whole_amr = amr_cases.two_level_amr(False, 8)
+spread_amr = amr_cases.two_level_amr(False, 8)  # (DeepCopy of an AMR copies no boxes in VTK 9.2)
+for level, b in ((0, 0), (1, 0), (1, 1)):
+    if (level == 0) != (rank == 0):
+        spread_amr.SetDataSet(level, b, None)
+source = simple.PVTrivialProducer()
+source.GetClientSideObject().SetOutput(spread_amr)
+index_amr = RefractiveIndex(Input=source, Model="GladstoneDale")  # noqa: F821
+index_amr.InputArray = ["POINTS", "density"]
+knife_amr = SchlierenImage(Input=index_amr, **KNIFE)  # noqa: F821
+with st.CapturedOutput() as c:
+    knife_amr.UpdatePipeline()
+amr = record("index_amr", local(index_amr))
+amr.update(record("knife_amr", local(knife_amr)))
+T.check("ERROR" not in c.text, "rank %d: the AMR spread over 2 ranks: no error%s" % (
+    rank, "" if "ERROR" not in c.text else ": " + c.text[:400]))
+alg = sys.modules["schlieren_paraview_plugin.algorithms"]
+ranks_of, alg._ranks = alg._ranks, (lambda: None)
+try:
+    index_one = alg.RefractiveIndex(Model="GladstoneDale", InputArray="density")
+    index_one.SetInputData(whole_amr)
+    knife_one = alg.SchlierenImage(**KNIFE)
+    knife_one.SetInputConnection(index_one.GetOutputPort())
+    index_one.UpdatePiece(0, 1, 0)
+    whole = record("index_amr", index_one.GetOutputDataObject(0))
+    knife_one.UpdatePiece(0, 1, 0)
+    whole.update(record("knife_amr", knife_one.GetOutputDataObject(0)))
+finally:
+    alg._ranks = ranks_of
+e, w = amr["index_amr:extent"], whole["index_amr:extent"]
+d = [w[2 * a + 1] - w[2 * a] + 1 for a in range(3)]
+cut = tuple(slice(e[2 * a] - w[2 * a], e[2 * a + 1] - w[2 * a] + 1) for a in (2, 1, 0))
+differ = []
+for name in ("n_minus_1", "grad_n", "density"):
+    ref = whole.get("index_amr:" + name)
+    if ref is None or not same(amr.get("index_amr:" + name), ref.reshape(d[2], d[1], d[0], -1)[
+            cut].reshape(ref.shape[1:] and (-1,) + ref.shape[1:] or (-1,))):
+        differ.append(name)
+T.check(list(e) != list(w) and not differ and same(amr["index_amr:origin"],
+                                                   whole["index_amr:origin"]),
+        "rank %d: the AMR's index: this rank's piece %s of one process's grid %s, n - 1, grad n "
+        "and density there bit for bit%s" % (rank, list(e), list(w), "; differ: " +
+                                             ", ".join(differ) if differ else ""))
+compare(amr, whole, "index_amr", "the AMR's index: the field data one process's (less the cache's "
+        "budget, of the memory free)", names=[k.split("@", 1)[1] for k in whole
+                                               if k.startswith("index_amr@")],
+        leave_out=("index_cache_budget",))
+if rank == 0:
+    compare(amr, whole, "knife_amr", "the AMR's image: one process's", leave_out=RANKS_REPORT)
+import schlieren_vtk as cxx  # noqa: E402
+index_c = cxx.vtkRefractiveIndex()
+index_c.SetInputData(spread_amr)
+index_c.SetModel(cxx.vtkRefractiveIndex.GLADSTONE_DALE)
+index_c.SetInputArrayToProcess(0, 0, 0, 0, "density")
+index_c.UpdatePiece(rank, ranks, 0)
+compare(amr, record("index_amr", index_c.GetOutputDataObject(0)), "index_amr",
+        "the AMR's index: this rank's piece against the C++ plugin's",
+        names=("n_minus_1", "grad_n", "extent", "origin", "spacing"))
+for p in (knife_amr, index_amr, source):
+    simple.Delete(p)
+print("rank %d: the AMR: %.1f s" % (rank, time.time() - t1))
 
 # 2. a failure on rank 1 only: one agreed error, empty outputs, no hang
 scene = RefractiveScene(**SCENE)  # noqa: F821
