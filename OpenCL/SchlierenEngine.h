@@ -443,6 +443,12 @@ struct AutoChoice
   /** The tolerance was below Floor: the cheapest candidate within the floor was taken (Met is
    * false, the report and a warning say so). */
   bool AtFloor = false;
+  /** The tricubic reference's own error, radians (0: not measured): the pilot's reference traced
+   * again on the field sampled at about twice the spacing, their difference over 2^4 - 1. Measured
+   * where the tolerance may be within its reach; part of Floor. */
+  double ReferenceError = 0;
+  /** What measuring ReferenceError took, milliseconds (0: not measured). */
+  double ReferenceCheckMs = 0;
   /** The pilot was not traced for this choice: it is the previous update's (a camera move of a
    * TraceSession, see TraceSession::Update). */
   bool Reused = false;
