@@ -38,7 +38,7 @@
  * candidate met it) and `auto_floor` (radians: where the tolerance was below the smallest error the
  * pilot can tell apart, that floor, at which the cheapest candidate was taken; else 0),
  * `auto_reference_error` (radians: the tricubic reference's own error, measured against the field
- * sampled at twice the spacing where the tolerance may be within its reach; else 0; twice it is a
+ * sampled at twice the spacing where the tolerance may be within its reach; else 0; 1.5 times it is a
  * floor, and a tolerance below it is reported not reachable on this grid) and
  * `auto_reused` (1: only the view changed since the last pilot, whose choice was kept).
  * With a finite Source under KnifeEdge (docs/BENCH.md): `bench_sensitivity` (dI/I per radian),

@@ -64,6 +64,7 @@ constexpr double RefShare = 0.05;
 // E2^2 / D at 64^3-256^3); checked where the tolerance is below RefCheckReach E2^2 / D, ten
 // times the Gaussian's ratio.
 constexpr double RefCheckReach = 30.0;
+constexpr double RefFloorMargin = 1.5;
 constexpr double RefCheckOrder = 4.0;
 // the coarse field's smoothness threshold (PackFieldHighOrder's 0.25 at the grid's spacing): a
 // feature's fourth difference relative to its range grows as h^2, 4 times at twice the spacing,
@@ -421,13 +422,15 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
       c.ReferenceError = d / (std::pow(cf.Ratio, RefCheckOrder) - 1);
       c.ReferenceCheckMs = std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count() * 1e3;
       // a candidate's error against the truth is within its error against the reference plus
-      // the reference's: nothing is known to be closer to the truth than twice the reference's
-      // own error (the floor). Above it the candidates are measured against the reference as
-      // before (at 128^3 and 3e-8 rad, the reference 8e-9 rad off, counting the two together
+      // the reference's: nothing is known to be closer to the truth than the reference's own
+      // error, taken with the margin of the ladder's floor (1.5: the estimate was 0.8 of the
+      // smallest error any setting reaches at 64^3, whose coarse grid, 32^3, is not yet in the
+      // fourth order's range). Above it the candidates are measured against the reference as
+      // before (at 128^3 and 3e-8 rad, the reference 6.2e-9 rad off, counting the two together
       // took Cubic Euler at 6.73 voxels, 1.58 times the cheapest swept setting that meets it)
       refErr = c.ReferenceError;
       const int k = static_cast<int>(Reconstruction::Cubic);
-      floorOf[k] = std::max(floorOf[k], 2 * refErr);
+      floorOf[k] = std::max(floorOf[k], RefFloorMargin * refErr);
     }
   }
   // The longest step the field allows: no fixed list. The steps a group (an integrator and a
@@ -492,11 +495,13 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     const Reconstruction refRc = tryCubic ? Reconstruction::Cubic : rc;
     const std::vector<RayRecord>& R = refRc == Reconstruction::Cubic ? refCubic : refTri;
     const std::vector<RayRecord>& own = rc == Reconstruction::Cubic ? refCubic : refTri;
-    // below the floor of the reference's own error: the candidates within it of the reference
-    // (their error against the truth within twice the reference's)
+    // below the floor of the reference's own error: the candidates within that error of the
+    // reference (their error against the truth within about twice it)
     const double refFloorOf = floorOf[static_cast<int>(refRc)];
-    const double allowed = std::max(tol, refFloorOf) -
-      (refRc == Reconstruction::Cubic && tol < refFloorOf && 2 * refErr >= refFloorOf ? refErr : 0.0);
+    const double allowed =
+      refRc == Reconstruction::Cubic && tol < refFloorOf && RefFloorMargin * refErr >= refFloorOf
+      ? refErr
+      : std::max(tol, refFloorOf);
     double err = 0, stepErr = 0, land = 0, samples = 0;
     bool lost = false, over = false;
     // rays the candidate loses where the reference does not disqualify it
@@ -759,7 +764,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   std::string floorWhy;
   // the floor is the tricubic reference's own error: the tolerance is below what this grid's
   // data holds, whatever the step
-  const bool refFloor = c.AtFloor && c.ReferenceError > 0 && 2 * c.ReferenceError >= 1.5 * floorDiff[floorRc];
+  const bool refFloor = c.AtFloor && c.ReferenceError > 0 && RefFloorMargin * c.ReferenceError >= 1.5 * floorDiff[floorRc];
   if (c.AtFloor && !refFloor)
   {
     const double d = floorDiff[floorRc];
@@ -812,12 +817,14 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   {
     std::ostringstream best;
     best << ReconstructionName(c.Recon) << " " << IntegratorName(c.Method) << " at " << c.StepSize << " voxel";
-    rep << "; tolerance " << tol << " rad not reachable on this grid: best estimated "
-        << c.ExpectedError + c.ReferenceError << " rad with " << best.str()
-        << " (its " << c.ExpectedError << " rad from the tricubic reference, and the reference's own error, "
-        << c.ReferenceError << " rad, measured against the field sampled at twice the spacing: the data "
-        << "does not resolve the field finely enough for this tolerance; a finer grid, or a Tolerance of at least "
-        << c.ExpectedError + c.ReferenceError << " rad)";
+    rep << "; no candidate met the tolerance: it is below what this volume allows, a floor of " << c.Floor
+        << " rad (" << RefFloorMargin << " times the tricubic reference's own error, " << c.ReferenceError
+        << " rad, measured against the field sampled at twice the spacing: the data does not resolve the "
+           "field finely enough for this tolerance): tolerance "
+        << tol << " rad not reachable on this grid: best estimated " << c.ExpectedError + c.Floor
+        << " rad with " << best.str() << " (its " << c.ExpectedError
+        << " rad from the reference and the floor; a finer grid, or a Tolerance of at least "
+        << c.ExpectedError + c.Floor << " rad)";
   }
   else if (c.AtFloor)
     rep << "; no candidate met the tolerance: it is below what this volume allows, a floor of "
