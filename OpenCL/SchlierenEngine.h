@@ -444,8 +444,9 @@ struct AutoChoice
    * false, the report and a warning say so). */
   bool AtFloor = false;
   /** The tricubic reference's own error, radians (0: not measured): the pilot's reference traced
-   * again on the field sampled at about twice the spacing, their difference over 2^4 - 1. Measured
-   * where the tolerance may be within its reach; part of Floor. */
+   * again on the field sampled at about r = 2 times the spacing, their difference over r^4 - 1.
+   * Measured where the tolerance may be within its reach; 1.5 times it is part of Floor (a
+   * tolerance below: not reachable on this grid, said in Report). */
   double ReferenceError = 0;
   /** What measuring ReferenceError took, milliseconds (0: not measured). */
   double ReferenceCheckMs = 0;
