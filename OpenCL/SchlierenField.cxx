@@ -149,7 +149,7 @@ static void GradientLoop(const int dims[3], const double spacing[3], const float
             else
               g[a] = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
           }
-          store(idx, g);
+          store(idx, i, j, k, g);
         }
   };
   const int nt = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
@@ -160,7 +160,7 @@ static void GradientLoop(const int dims[3], const double spacing[3], const float
 void ComputeGradient(const int dims[3], const double spacing[3], const float* n1, float* grad3)
 {
   CheckGrid(dims, spacing);
-  GradientLoop(dims, spacing, n1, [grad3](std::size_t idx, const double g[3]) {
+  GradientLoop(dims, spacing, n1, [grad3](std::size_t idx, int, int, int, const double g[3]) {
     grad3[3 * idx] = static_cast<float>(g[0]);
     grad3[3 * idx + 1] = static_cast<float>(g[1]);
     grad3[3 * idx + 2] = static_cast<float>(g[2]);
@@ -177,16 +177,6 @@ void PackField(const int dims[3], const double spacing[3], const float* n1, floa
   PackFieldOf(dims, spacing, n1, out);
 }
 
-void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out)
-{
-  GradientLoop(dims, spacing, n1, [out, n1](std::size_t idx, const double g[3]) {
-    out[4 * idx] = n1[idx];
-    out[4 * idx + 1] = static_cast<float>(g[0]);
-    out[4 * idx + 2] = static_cast<float>(g[1]);
-    out[4 * idx + 3] = static_cast<float>(g[2]);
-  });
-}
-
 // Runs body(k0, k1) over z ranges on up to 8 threads (the packing loops).
 template <typename Body>
 static void ParallelSlices(int nz, Body body)
@@ -194,6 +184,43 @@ static void ParallelSlices(int nz, Body body)
   const int nt = std::max(1, std::min(std::min(8, nz), static_cast<int>(std::thread::hardware_concurrency())));
   RunOnThreads(static_cast<unsigned>(nt),
     [&](unsigned t) { body(nz * int(t) / nt, nz * (int(t) + 1) / nt); });
+}
+
+// A field packed in bricks: the points past the grid (the last bricks' padding) repeat the
+// nearest border point, as the copy of BrickedField does. Every source is a point of the grid,
+// which this never writes: the slabs run on threads without a race.
+static void PadBricks(const int dims[3], const FieldLayout& L, float* out)
+{
+  if (!L.Bricked)
+    return;
+  const BrickLayout b(dims);
+  const int B = 1 << FieldBrickShift;
+  const int nx = dims[0], ny = dims[1], nz = dims[2];
+  const int px = int(b.Bricks[0]) * B, py = int(b.Bricks[1]) * B, pz = int(b.Bricks[2]) * B;
+  if (px == nx && py == ny && pz == nz)
+    return;
+  ParallelSlices(pz, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < py; ++j)
+      {
+        const int kc = std::min(k, nz - 1), jc = std::min(j, ny - 1);
+        for (int i = (k < nz && j < ny) ? nx : 0; i < px; ++i)
+          std::memcpy(out + L.At(i, j, k), out + L.At(std::min(i, nx - 1), jc, kc), 4 * sizeof(float));
+      }
+  });
+}
+
+void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out, bool bricked)
+{
+  const FieldLayout L(dims, bricked);
+  GradientLoop(dims, spacing, n1, [out, n1, &L](std::size_t idx, int i, int j, int k, const double g[3]) {
+    float* o = out + L.At(i, j, k);
+    o[0] = n1[idx];
+    o[1] = static_cast<float>(g[0]);
+    o[2] = static_cast<float>(g[1]);
+    o[3] = static_cast<float>(g[2]);
+  });
+  PadBricks(dims, L, out);
 }
 
 // The smoothness test of a row (PackFieldHighOrderOf, step 1): ok[i] &= the five-point test at i
@@ -327,8 +354,9 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
 }
 
 double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const float* n1, float* out,
-  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax)
+  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax, bool bricked)
 {
+  const FieldLayout layout(dims, bricked);
   const std::size_t strides[3] = { 1, static_cast<std::size_t>(dims[0]),
     static_cast<std::size_t>(dims[0]) * dims[1] };
   // structure below this part of the field's range is left to the smooth scheme: its overshoot
@@ -409,6 +437,7 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
     const std::size_t St[3] = { strides[0], strides[1], strides[2] };
     const double H[3] = { spacing[0], spacing[1], spacing[2] };
     const std::uint64_t* const F[3] = { fourth[0].data(), fourth[1].data(), fourth[2].data() };
+    const FieldLayout L = layout;
     ParallelSlices(nz, [=](int k0, int k1) {
       for (int k = k0; k < k1; ++k)
         for (int j = 0; j < G[1]; ++j)
@@ -418,7 +447,8 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
           {
             const int ijk[3] = { i, j, k };
             const std::size_t idx = i + j * St[1] + k * St[2];
-            out[4 * idx] = n1[idx];
+            float* const o = out + L.At(i, j, k);
+            o[0] = n1[idx];
             for (int a = 0; a < 3; ++a)
             {
               const std::size_t s = St[a];
@@ -432,12 +462,13 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
                 g = (double(n1[idx]) - n1[idx - s]) / H[a];
               else
                 g = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * H[a]);
-              out[4 * idx + 1 + a] = static_cast<float>(g);
+              o[1 + a] = static_cast<float>(g);
             }
           }
         }
     });
   }
+  PadBricks(dims, layout, out);
   // 3. the smooth cells: cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are,
   // along every axis (beyond the grid: not smooth)
   Words& cell = fourth[0];
@@ -554,30 +585,61 @@ BrickLayout::BrickLayout(const int dims[3])
     Bricks[a] = (std::uint64_t(dims[a]) + (1u << FieldBrickShift) - 1) >> FieldBrickShift;
 }
 
-void SetFieldLayout(sch_params& P, bool bricked)
+bool BricksFit(const int dims[3])
 {
-  const int dims[3] = { P.nx, P.ny, P.nz };
-  const BrickLayout b(dims);
   // the kernels' strides are ints: a layer of bricks past that reads the field linear
-  if (!bricked || b.LayerFloats() > 2147483647u)
+  return BrickLayout(dims).LayerFloats() <= 2147483647u;
+}
+
+FieldLayout::FieldLayout(const int dims[3], bool bricked)
+{
+  const BrickLayout b(dims);
+  Bricked = bricked && BricksFit(dims);
+  if (!Bricked)
   {
-    P.fieldShift = 31;
-    P.fieldMask = -1;
-    P.innerX = 4;
-    P.innerY = 4 * P.nx;
-    P.innerZ = 4 * P.nx * P.ny;
-    P.outerX = P.outerY = P.outerZ = 0;
+    Inner[0] = 4;
+    Inner[1] = 4 * dims[0];
+    Inner[2] = static_cast<int>(std::min<std::uint64_t>(std::uint64_t(4) * dims[0] * dims[1], 2147483647u));
+    Floats = std::uint64_t(4) * dims[0] * dims[1] * dims[2];
+    Row = std::size_t(4) * dims[0];
+    Plane = Row * dims[1];
     return;
   }
   const int B = 1 << FieldBrickShift;
-  P.fieldShift = FieldBrickShift;
-  P.fieldMask = B - 1;
-  P.innerX = 4;
-  P.innerY = 4 * B;
-  P.innerZ = 4 * B * B;
-  P.outerX = static_cast<int>(BrickLayout::BrickFloats());
-  P.outerY = static_cast<int>(BrickLayout::BrickFloats() * b.Bricks[0]);
-  P.outerZ = static_cast<int>(b.LayerFloats());
+  Shift = FieldBrickShift;
+  Mask = B - 1;
+  Inner[0] = 4;
+  Inner[1] = 4 * B;
+  Inner[2] = 4 * B * B;
+  Outer[0] = static_cast<int>(BrickLayout::BrickFloats());
+  Outer[1] = static_cast<int>(BrickLayout::BrickFloats() * b.Bricks[0]);
+  Outer[2] = static_cast<int>(b.LayerFloats());
+  Floats = b.Floats();
+}
+
+void SetFieldLayout(sch_params& P, bool bricked)
+{
+  const int dims[3] = { P.nx, P.ny, P.nz };
+  const FieldLayout L(dims, bricked);
+  P.fieldShift = L.Shift;
+  P.fieldMask = L.Mask;
+  P.innerX = L.Inner[0];
+  P.innerY = L.Inner[1];
+  P.innerZ = L.Inner[2];
+  P.outerX = L.Outer[0];
+  P.outerY = L.Outer[1];
+  P.outerZ = L.Outer[2];
+}
+
+bool PackInBricks(const int dims[3])
+{
+  const int forced = GetRuntimeOptions().Bricks;
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || !BricksFit(dims) || forced == 0)
+    return false;
+  if (forced == 1)
+    return true;
+  // unset: where they pay (docs/PERFORMANCE.md, "the field packed in bricks")
+  return double(dims[0]) * dims[1] * dims[2] > BricksFromPoints;
 }
 
 // Volume::Field in bricks: each layer of bricks along z on its own thread; a brick's rows of 4
