@@ -631,14 +631,18 @@ void SetFieldLayout(sch_params& P, bool bricked)
   P.outerZ = L.Outer[2];
 }
 
-bool PackInBricks(const int dims[3])
+bool PackInBricks(const int dims[3], Backend device, Reconstruction recon)
 {
   const int forced = GetRuntimeOptions().Bricks;
   if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || !BricksFit(dims) || forced == 0)
     return false;
   if (forced == 1)
     return true;
-  // unset: where they pay (docs/PERFORMANCE.md, "the field packed in bricks")
+  // unset: where they pay (docs/PERFORMANCE.md, "the field packed in bricks"): large grids, but not
+  // the CPU backend's Cubic (its axis view 1.3-1.5x slower in bricks at 512^3, the oblique no
+  // faster: three runs)
+  if (device == Backend::CPU && recon == Reconstruction::Cubic)
+    return false;
   return double(dims[0]) * dims[1] * dims[2] > BricksFromPoints;
 }
 
