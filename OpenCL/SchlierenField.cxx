@@ -659,32 +659,13 @@ bool PackInBricks(const int dims[3], Backend device, Reconstruction recon)
   return double(dims[0]) * dims[1] * dims[2] > BricksFromPoints;
 }
 
-// Volume::Field in bricks: each layer of bricks along z on its own thread; a brick's rows of 4
-// points are read as 64 contiguous bytes of the linear field and written in order.
+// Volume::Field (linear) copied into bricks, in the bricks' memory order (ForEachSlot).
 static void MakeBricks(const Volume& v, float* out)
 {
-  const int nx = v.Dimensions[0], ny = v.Dimensions[1], nz = v.Dimensions[2];
-  const BrickLayout b(v.Dimensions);
-  const int B = 1 << FieldBrickShift;
-  const std::size_t sy = std::size_t(nx), sz = std::size_t(nx) * ny;
+  const std::size_t sy = std::size_t(v.Dimensions[0]), sz = sy * v.Dimensions[1];
   const float* in = v.Field;
-  ParallelSlices(static_cast<int>(b.Bricks[2]), [&](int z0, int z1) {
-    float* o = out + std::size_t(z0) * b.LayerFloats();
-    for (int bz = z0; bz < z1; ++bz)
-      for (std::uint64_t by = 0; by < b.Bricks[1]; ++by)
-        for (std::uint64_t bx = 0; bx < b.Bricks[0]; ++bx)
-          for (int kk = 0; kk < B; ++kk)
-            for (int jj = 0; jj < B; ++jj)
-            {
-              const std::size_t k = std::min<std::size_t>(std::size_t(bz) * B + kk, nz - 1);
-              const std::size_t j = std::min<std::size_t>(by * B + jj, ny - 1);
-              const float* row = in + 4 * (k * sz + j * sy);
-              for (int ii = 0; ii < B; ++ii, o += 4)
-              {
-                const std::size_t i = std::min<std::size_t>(bx * B + ii, nx - 1);
-                std::memcpy(o, row + 4 * i, 4 * sizeof(float));
-              }
-            }
+  ForEachSlot(v.Dimensions, FieldLayout(v.Dimensions, true), out, [&](int i, int j, int k, float* o) {
+    std::memcpy(o, in + 4 * (i + j * sy + k * sz), 4 * sizeof(float));
   });
 }
 
