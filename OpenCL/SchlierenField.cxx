@@ -656,7 +656,10 @@ bool PackInBricks(const int dims[3], Backend device, Reconstruction recon)
   // faster: three runs)
   if (device == Backend::CPU && recon == Reconstruction::Cubic)
     return false;
-  return double(dims[0]) * dims[1] * dims[2] > BricksFromPoints;
+  // nor where the padding to whole bricks would add more than a tenth (a thin grid: 9 planes
+  // take 12)
+  const double points = double(dims[0]) * dims[1] * dims[2];
+  return points > BricksFromPoints && double(FieldLayout(dims, true).Floats) <= 1.1 * 4.0 * points;
 }
 
 // Volume::Field (linear) copied into bricks, in the bricks' memory order (ForEachSlot).

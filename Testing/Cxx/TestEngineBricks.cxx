@@ -180,6 +180,9 @@ int main()
         PackInBricks(large, Backend::Auto, Reconstruction::Auto),
       "512^3 packs in bricks by default");
     CHECK(!PackInBricks(large, cpu, cubic), "512^3 on the CPU with Cubic: linear by default");
+    const int thin[3] = { 2000, 2000, 9 }, flat[3] = { 1000, 1000, 30 };
+    CHECK(!PackInBricks(thin, cl, tri) && PackInBricks(flat, cl, tri),
+      "not where the padding adds more than a tenth (9 planes in 12; 30 in 32 is in bricks)");
     CHECK(!BricksFit(wide) && !PackInBricks(wide, cl, tri), "a layer of bricks past 2^31 floats: linear");
     const schtest::ScopedOptions one([](RuntimeOptions& opt) { opt.Bricks = 1; });
     CHECK(PackInBricks(small, cl, tri) && PackInBricks(dims, cpu, cubic),
