@@ -200,9 +200,10 @@ static void ParallelSlices(int nz, Body body)
 
 // Calls point(i, j, k, o) for every slot o of a packed field in layout L, in the order the slots
 // lie in memory (the writes stream, in either layout: bricks written point by point along the
-// rows of the linear field were 1.6-1.7x slower to pack at 256^3), on threads over layers along z
-// (a layer of bricks, or a plane). The slots past the grid (the last bricks' padding) take the
-// nearest point of the grid: they repeat the border points, as the copy of BrickedField does.
+// rows of the linear field took 1.7-2x the linear packing's time at 256^3 and 512^3), on threads
+// over layers along z (a layer of bricks, or a plane). The slots past the grid (the last bricks'
+// padding) take the nearest point of the grid: they repeat the border points, as the copy of
+// BrickedField does.
 template <typename Point>
 static void ForEachSlot(const int dims[3], const FieldLayout& L, float* out, Point point)
 {
