@@ -81,7 +81,7 @@ RuntimeOptions RuntimeOptions::FromEnvironment()
   if (const char* v = Value("SCHLIEREN_CL_LOCKSTEP"))
     o.Lockstep = Flag("SCHLIEREN_CL_LOCKSTEP", v) ? 1 : 0;
   if (const char* v = Value("SCHLIEREN_FIELD_BRICKS"))
-    o.Bricks = Flag("SCHLIEREN_FIELD_BRICKS", v);
+    o.Bricks = Flag("SCHLIEREN_FIELD_BRICKS", v) ? 1 : 0;
   if (const char* v = Value("SCHLIEREN_MEMORY_LIMIT"))
     o.MemoryLimit = Unsigned("SCHLIEREN_MEMORY_LIMIT", v, ~std::uint64_t(0));
   if (const char* v = Value("SCHLIEREN_MPI_TIMEOUT"))

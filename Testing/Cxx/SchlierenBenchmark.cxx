@@ -880,7 +880,7 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
         s[1].ViewDirection[2] = -0.4;
         auto useLayout = [&](int layout) {
           RuntimeOptions o = options;
-          o.Bricks = layout == 1;
+          o.Bricks = layout == 1 ? 1 : 0;
           SetRuntimeOptions(o);
         };
         std::vector<double> perSample[2][2], perRay[2][2];
