@@ -9,8 +9,11 @@ both ran before, on the suite's symmetric inputs, in whichever VTK runs it:
 it.) The inputs: the parity matrix's 2D image, its unstructured copy, the cone's r-z half plane
 and the structured 5 degree wedge (Testing/Python/frontend_matrix.py), test_symmetry.py's quads
 and triangles, and the OpenFOAM wedge and forward step (openfoam_cases.py's, where solved), each
-at the points the engine's plan samples (schlieren_symmetry_samples) for the matrix's settings.
-Per case: the samples, those found by one sampler only, and for every array both give the
+at the points the engine's plan samples (schlieren_symmetry_samples) for the matrix's settings;
+and blocks of images (two halves of a Gaussian) on an image grid, the engine's grid mode against
+the probe on that grid (Symmetry None: the other path the probe had).
+Per case: the samples, those found by one sampler only, the seconds each took (one run; the
+blocks of images: both together), and for every array both give the
 largest difference where both found the point (absolute, and relative to the array's range) and
 how many points differ at all. A point found by one only is said with its distance (in the
 nearest cell's parametric coordinates) from the cells' faces.
@@ -18,6 +21,7 @@ nearest cell's parametric coordinates) from the cells' faces.
 import argparse
 import os
 import sys
+import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "Python"))
@@ -103,6 +107,45 @@ def planes():
     return out
 
 
+def image_blocks():
+    """Blocks of images (Symmetry None: the engine's grid mode, where the probe ran before): a
+    Gaussian on 33 x 25 x 17 points cut into two images that share the plane x = 0, sampled onto
+    RefractiveIndex's automatic grid over them (every grid point off the blocks' points)."""
+    from vtkmodules.vtkCommonDataModel import vtkImageData, vtkMultiBlockDataSet
+    blocks = vtkMultiBlockDataSet()
+    for b, (i0, i1) in enumerate(((-16, 0), (0, 16))):
+        g = vtkImageData()
+        g.SetExtent(i0, i1, -12, 12, -8, 8)
+        g.SetSpacing(0.03, 0.03, 0.03)
+        x = np.array([g.GetPoint(k) for k in range(g.GetNumberOfPoints())])
+        v = numpy_support.numpy_to_vtk(np.exp(-(x ** 2).sum(axis=1) / 0.04).astype(np.float32),
+                                       deep=1)
+        v.SetName("density")
+        g.GetPointData().AddArray(v)
+        blocks.SetBlock(b, g)
+    return blocks
+
+
+def grid_mode(blocks):
+    """The engine's grid mode against the probe on the structure: (new, old) as main's rows."""
+    box = algorithms._sampling_box(blocks, None)
+    dims = _engine.automatic_dimensions(algorithms._bounds(blocks), 61)
+    image, found = algorithms._sample_cells(blocks, dims, box)
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    structure = vtkImageData()
+    structure.CopyStructure(image)
+    f = vtkCompositeDataProbeFilter()
+    f.SetInputData(structure)
+    f.SetSourceData(blocks)
+    f.SetValidPointMaskArrayName("vtkValidPointMask")
+    f.Update()
+    pd = f.GetOutput().GetPointData()
+    old = {pd.GetArrayName(i): numpy_support.vtk_to_numpy(pd.GetArray(i))
+           for i in range(pd.GetNumberOfArrays())}
+    new = [(n, image.GetPointData().GetArray(n)) for n in ("density",)]
+    return structure.GetNumberOfPoints(), new, found, old, old.pop("vtkValidPointMask") != 0
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--openfoam", default="build/openfoam")
@@ -124,7 +167,9 @@ def main():
             ("openfoam_wedge", "LadenburgJet60psi", 0.0,
              dict(Symmetry="Axisymmetric", SamplingDimensions=[64, 24, 24])),
             ("openfoam_forward_step", "forwardStep", 2.0,
-             dict(Symmetry="Planar", Span=0.1, SamplingDimensions=[96, 32, 3]))):
+             dict(Symmetry="Planar", Span=0.1, SamplingDimensions=[96, 32, 3])),
+            ("openfoam_biconic", "biconic25-55Run35", 0.0,
+             dict(Symmetry="Axisymmetric", SamplingDimensions=[200, 100, 100]))):
         data = openfoam(a.openfoam, case, t)
         if data is None:
             print("%s: no %s in %s (run openfoam_cases.py)" % (name, case, a.openfoam))
@@ -132,15 +177,26 @@ def main():
             inputs[name] = (data, props)
     print("VTK %s; the engine's points mode against vtkCompositeDataProbeFilter (static cell "
           "locator)" % vtkVersion.GetVTKVersion())
-    print("%-22s %7s %9s %9s  %s" % ("case", "samples", "new only", "old only",
-                                      "array: max |diff| (of its range), points differing"))
+    print("%-22s %7s %9s %9s %8s %8s  %s" % (
+        "case", "samples", "new only", "old only", "probe s", "engine s",
+        "array: max |diff| (of its range), points differing"))
+    inputs["image_blocks"] = (image_blocks(), None)
     for name, (data, props) in inputs.items():
-        ri = algorithms.RefractiveIndex(**props)
-        plan = ri._symmetry_plan(data)
-        mesh = algorithms._internal_mesh(data)
-        points, _ = _engine.symmetry_samples(plan)
-        old, old_found = probe(mesh, points)
-        arrays, found = algorithms._sample_cells_at(mesh, points)
+        if props is None:
+            t0 = time.perf_counter()
+            count, arrays, found, old, old_found = grid_mode(data)
+            seconds = (float("nan"), time.perf_counter() - t0)  # (both, together)
+            points = np.zeros((count, 3))
+        else:
+            ri = algorithms.RefractiveIndex(**props)
+            plan = ri._symmetry_plan(data)
+            mesh = algorithms._internal_mesh(data)
+            points, _ = _engine.symmetry_samples(plan)
+            t0 = time.perf_counter()
+            old, old_found = probe(mesh, points)
+            t1 = time.perf_counter()
+            arrays, found = algorithms._sample_cells_at(mesh, points)
+            seconds = (t1 - t0, time.perf_counter() - t1)
         new_found = found != 0
         both = new_found & old_found
         parts = []
@@ -155,8 +211,9 @@ def main():
             worst = float(d.max()) if d.size else 0.0
             parts.append("%s: %.3g (%.3g), %d" % (array_name, worst, worst / span if span else 0.0,
                                                    int((d.max(axis=1) > 0).sum()) if d.size else 0))
-        print("%-22s %7d %9d %9d  %s" % (name, len(points), int((new_found & ~old_found).sum()),
-                                         int((old_found & ~new_found).sum()), "; ".join(parts)))
+        print("%-22s %7d %9d %9d %8.3f %8.3f  %s" % (
+            name, len(points), int((new_found & ~old_found).sum()),
+            int((old_found & ~new_found).sum()), seconds[0], seconds[1], "; ".join(parts)))
         for k in np.nonzero(new_found != old_found)[0][:3]:
             print("    sample %d at %s: found by the %s sampler only" % (
                 k, np.array2string(points[k], precision=9),
