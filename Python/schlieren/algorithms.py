@@ -455,9 +455,13 @@ def _mesh_of(ds):
                                                vtkUnstructuredGrid)
     n2n = numpy_support.vtk_to_numpy
     if not isinstance(ds, (vtkStructuredGrid, vtkUnstructuredGrid)):
-        # a rectilinear grid's voxels, a poly data's faces: as an unstructured grid
+        # an image's or a rectilinear grid's voxels, a poly data's faces: as an unstructured grid,
+        # its points in double as the C++ adapter reads them (vtkDataSet::GetPoint; the append
+        # filter's default makes an image's points float)
+        from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
         from vtkmodules.vtkFiltersCore import vtkAppendFilter
         append = vtkAppendFilter()
+        append.SetOutputPointsPrecision(vtkAlgorithm.DOUBLE_PRECISION)
         append.AddInputData(ds)
         append.Update()
         ds = append.GetOutput()

@@ -138,7 +138,8 @@ PYTHON_PLUGIN_LEFT_OUT = {
 #                              fraction and by species, IdealGas by gas and by species, Ciddor with
 #                              constants and with arrays, Automatic: a temperature and a pressure,
 #                              an array named n)
-#   Symmetry None              symmetry_none_curvilinear, unstructured_disk (and every model_*)
+#   Symmetry None              symmetry_none_curvilinear, unstructured_disk, image_blocks (and
+#                              every model_*)
 #   Symmetry Planar            symmetry_planar (2D image), symmetry_planar_unstructured,
 #                              openfoam_forward_step (rhoCentralFoam's forwardStep at t = 2)
 #   Symmetry Axisymmetric      symmetry_axisymmetric (a cone's r-z half plane about X)
@@ -228,6 +229,9 @@ INDEX = {
     # as .vthb, read back with every level): both front ends read it into the engine's AMR
     # sampler (schlieren_amr_sample), the grid at the finest level's spacing (47 x 39 x 31 points)
     "amr": ("amr", dict(_GD, AutomaticDimension=32), {}),
+    # blocks of images (the scene's halves in x, sharing a plane): the engine's cell sampler on
+    # their voxels in both front ends (the probe's before)
+    "image_blocks": ("image_blocks", dict(_GD, AutomaticDimension=28), {}),
     "unstructured_disk": ("disk", dict(Model="GladstoneDale", InputArray="Temp",
                                        DensityReference=1e-3, AutomaticDimension=28),
                           dict(ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1])),

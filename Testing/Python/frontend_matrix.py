@@ -162,6 +162,24 @@ def _amr(scene):
     return amr
 
 
+def _image_blocks(scene):
+    """The scene's density as a multiblock of two images, its halves in x sharing the plane
+    between them (blocks of images: the engine's cell sampler on their voxels, as meshes)."""
+    from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
+    dims = scene.GetDimensions()
+    rho = numpy_support.vtk_to_numpy(scene.GetPointData().GetArray("density")).reshape(
+        dims[2], dims[1], dims[0])
+    out, half = vtkMultiBlockDataSet(), dims[0] // 2
+    for b, (i0, i1) in enumerate(((0, half), (half, dims[0] - 1))):
+        g = vtkImageData()
+        g.SetExtent(i0, i1, 0, dims[1] - 1, 0, dims[2] - 1)
+        g.SetSpacing(scene.GetSpacing())
+        g.SetOrigin(scene.GetOrigin())
+        _add(g, "density", np.ascontiguousarray(rho[:, :, i0:i1 + 1]).ravel())
+        out.SetBlock(b, g)
+    return out
+
+
 def sphere(center, radius, res=24):
     """A closed sphere surface (a Body input: frontend_cases.INDEX_BODY's, and
     test_python_plugin_parity.py's section 12)."""
@@ -216,6 +234,7 @@ def make_inputs(scene, readers):
     out["cone"] = _unstructured(_plane((0, 20, 0, 10, 0, 0), True))
     out["wedge"] = _wedge()
     out["amr"] = _amr(scene)
+    out["image_blocks"] = _image_blocks(scene)
     b = scene.GetBounds()  # the Body: about the scene's centre, 0.3 its shortest side
     out["sphere"] = sphere([(b[2 * a] + b[2 * a + 1]) / 2 for a in range(3)],
                            0.3 * min(b[2 * a + 1] - b[2 * a] for a in range(3)))
