@@ -831,6 +831,14 @@ std::int64_t SamplePoints(const SampleMesh& m,
     bins[a] = static_cast<int>(std::max(1.0, std::min(1024.0, count)));
     scale[a] = hi[a] > lo[a] ? bins[a] / (hi[a] - lo[a]) : 0.0;
   }
+  // at most about two bins a point (an extent that underflowed or overflowed the volume above
+  // would ask for 1024^3): the axis with the most bins halved until they fit
+  while (static_cast<double>(bins[0]) * bins[1] * bins[2] > 2.0 * static_cast<double>(n) + 8.0)
+  {
+    const int a = bins[0] >= bins[1] && bins[0] >= bins[2] ? 0 : (bins[1] >= bins[2] ? 1 : 2);
+    bins[a] = (bins[a] + 1) / 2;
+    scale[a] = hi[a] > lo[a] ? bins[a] / (hi[a] - lo[a]) : 0.0;
+  }
   auto binOf = [&](int a, double v)
   {
     const double f = std::floor((v - lo[a]) * scale[a]);
