@@ -10,28 +10,19 @@
 #ifndef SchlierenEnums_h
 #define SchlierenEnums_h
 
+#include "SchlierenLimits.h" // schlieren::EnumerationProblem: the message, the engine's
+
 #include <initializer_list>
 #include <string>
 
-struct SchlierenEntry
-{
-  int Value;
-  const char* Text;
-};
+using SchlierenEntry = schlieren::PropertyEntry;
 
 /** Empty where `value` is one of `entries` (those of the property's EnumerationDomain); else
  * "Name is V: it must be one of A (0), B (1)." */
 inline std::string SchlierenEnumProblem(
   const std::string& name, int value, std::initializer_list<SchlierenEntry> entries)
 {
-  std::string list;
-  for (const SchlierenEntry& e : entries)
-  {
-    if (e.Value == value)
-      return std::string();
-    list += (list.empty() ? "" : ", ") + std::string(e.Text) + " (" + std::to_string(e.Value) + ")";
-  }
-  return name + " is " + std::to_string(value) + ": it must be one of " + list + ".";
+  return schlieren::EnumerationProblem(name, value, std::vector<SchlierenEntry>(entries));
 }
 
 /** Empty where `value` is 0 or 1 (a BooleanDomain); else "Name is V: it must be 0 (off) or 1 (on)." */

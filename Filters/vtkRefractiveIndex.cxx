@@ -41,12 +41,14 @@
 #include "SchlierenIndexModels.h"
 #include "SchlierenLimits.h"
 #include "SchlierenResample.h"
+#include "SchlierenSamplingGrid.h"
 #include "SchlierenTimeCache.h"
 #include "SchlierenValues.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -153,6 +155,33 @@ bool LocalBounds(vtkDataObject* data, double bounds[6])
   return true;
 }
 
+/** The bounds of `data`'s points over every rank (min of the minima, max of the maxima; empty
+ * ranks send +/- infinity): false where no rank has a point. Collective under MPI. */
+bool GlobalBounds(schlieren::Parallel& parallel, vtkDataObject* data, double bounds[6])
+{
+  double local[6] = { 1, -1, 1, -1, 1, -1 };
+  const bool have = LocalBounds(data, local);
+  if (parallel.Size() <= 1)
+  {
+    std::copy(local, local + 6, bounds);
+    return have;
+  }
+  double mins[3], maxs[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    mins[a] = have ? local[2 * a] : VTK_DOUBLE_MAX;
+    maxs[a] = have ? local[2 * a + 1] : -VTK_DOUBLE_MAX;
+  }
+  parallel.Min(mins, 3);
+  parallel.Max(maxs, 3);
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = mins[a];
+    bounds[2 * a + 1] = maxs[a];
+  }
+  return mins[0] <= maxs[0];
+}
+
 /** 1 where a point of `image` is in the flow (vtkValidPointMask != 0 and not a hidden point). */
 std::vector<unsigned char> Validity(vtkImageData* image, bool& any)
 {
@@ -181,6 +210,58 @@ std::vector<unsigned char> Validity(vtkImageData* image, bool& any)
     }
   }
   return valid;
+}
+
+/** The input's arrays, bytes per point, as the probe copies them (a composite input: a few double
+ * arrays): the engine adds the mask, n - 1 and grad n (schlieren::SamplingBytesPerPoint). */
+double ArrayBytesPerPoint(vtkDataObject* input)
+{
+  auto* ds = vtkDataSet::SafeDownCast(input);
+  if (!ds)
+  {
+    return 64.0;
+  }
+  double bytes = 0.0;
+  for (vtkDataSetAttributes* attributes : { static_cast<vtkDataSetAttributes*>(ds->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(ds->GetCellData()) })
+  {
+    for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
+    {
+      if (vtkDataArray* a = attributes->GetArray(i))
+      {
+        bytes += a->GetNumberOfComponents() * a->GetDataTypeSize();
+      }
+    }
+  }
+  return bytes;
+}
+
+/** The engine's request of the input (schlieren::RequestInput) in the pipeline's keys. */
+void SetRequest(vtkInformation* inInfo, const schlieren::InputRequest& r)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!r.WholeExtent)
+  {
+    inInfo->Set(SDDP::UPDATE_EXTENT(), r.Extent, 6);
+  }
+  else if (inInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    inInfo->Set(SDDP::UPDATE_EXTENT(), inInfo->Get(SDDP::WHOLE_EXTENT()), 6);
+  }
+  inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), r.Piece);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), r.Pieces);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+}
+
+/** The sampling properties, for the engine. */
+schlieren::SamplingSettings SamplingOf(vtkRefractiveIndex* self)
+{
+  schlieren::SamplingSettings s;
+  std::copy(self->GetSamplingDimensions(), self->GetSamplingDimensions() + 3, s.SamplingDimensions);
+  s.AutomaticDimension = self->GetAutomaticDimension();
+  s.UseSamplingBounds = self->GetUseSamplingBounds() != 0;
+  std::copy(self->GetSamplingBounds(), self->GetSamplingBounds() + 6, s.SamplingBounds);
+  return s;
 }
 
 schlieren::GasChoice GasOf(int gas, double K, double M)
@@ -230,135 +311,51 @@ bool vtkRefractiveIndex::UpdatedInputBounds(
 {
   // The bounds of a non-image input are known only once it has executed: update it now, for the
   // same piece as RequestUpdateExtent will ask (so that the later update does not run again).
-  using SDDP = vtkStreamingDemandDrivenPipeline;
-  const int rank = parallel.Rank(), size = parallel.Size();
   int producerPort = 0;
   vtkAlgorithm* producer = this->GetInputAlgorithm(0, 0, producerPort);
   if (producer)
   {
-    inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), rank);
-    inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), size);
-    inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-    if (inInfo->Has(SDDP::WHOLE_EXTENT()))
-    {
-      inInfo->Set(SDDP::UPDATE_EXTENT(), inInfo->Get(SDDP::WHOLE_EXTENT()), 6);
-    }
+    const int none[6] = { 0, -1, 0, -1, 0, -1 };
+    SetRequest(inInfo, schlieren::RequestInput(
+                         true, false, parallel.Rank(), parallel.Size(), 0, 1, 0, 3, none, none));
     producer->Update(producerPort);
   }
-  double local[6] = { 1, -1, 1, -1, 1, -1 };
-  const bool have = LocalBounds(vtkDataObject::GetData(inInfo), local);
-  if (size <= 1)
-  {
-    std::copy(local, local + 6, bounds);
-    return have;
-  }
-  // All ranks: min of the minima, max of the maxima (empty ranks send +/- infinity).
-  double mins[3], maxs[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    mins[a] = have ? local[2 * a] : VTK_DOUBLE_MAX;
-    maxs[a] = have ? local[2 * a + 1] : -VTK_DOUBLE_MAX;
-  }
-  parallel.Min(mins, 3);
-  parallel.Max(maxs, 3);
-  for (int a = 0; a < 3; ++a)
-  {
-    bounds[2 * a] = mins[a];
-    bounds[2 * a + 1] = maxs[a];
-  }
-  return mins[0] <= maxs[0];
+  return GlobalBounds(parallel, vtkDataObject::GetData(inInfo), bounds);
 }
 
 //------------------------------------------------------------------------------
 bool vtkRefractiveIndex::SamplingGrid(schlieren::Parallel& parallel, vtkInformation* inInfo,
   int whole[6], double origin[3], double spacing[3])
 {
+  // the rule is the engine's (SchlierenSamplingGrid.h); here the input's bounds, arrays and AMR
   this->SamplingError.clear();
-  double bounds[6];
-  if (this->UseSamplingBounds)
-  {
-    std::copy(this->SamplingBounds, this->SamplingBounds + 6, bounds);
-  }
-  else
-  {
-    if (!this->UpdatedInputBounds(parallel, inInfo, bounds))
-    {
-      this->SamplingError = "The input has no points to resample onto an image grid.";
-      vtkErrorMacro(<< this->SamplingError);
-      return false;
-    }
-    // Pull the box in by a hair, so that the grid's outermost points are found inside the
-    // outermost cells despite round-off (as vtkResampleToImage does).
-    vtkBoundingBox box(bounds);
-    box.ScaleAboutCenter(1.0 - 1e-6);
-    box.GetBounds(bounds);
-  }
-  int dims[3];
-  const bool automatic = this->SamplingDimensions[0] <= 0 || this->SamplingDimensions[1] <= 0 ||
-    this->SamplingDimensions[2] <= 0;
+  this->SamplingNote.clear();
+  const schlieren::SamplingSettings s = SamplingOf(this);
+  schlieren::SamplingGrid grid;
   try
   {
-    if (automatic)
-    {
-      schlieren::AutomaticDimensions(bounds, this->AutomaticDimension, dims);
-    }
-    else
-    {
-      std::copy(this->SamplingDimensions, this->SamplingDimensions + 3, dims);
-      int ignored[3];
-      schlieren::AutomaticDimensions(bounds, 2, ignored); // checks the bounds
-    }
-    // the resampled grid (the probe's copy of every input array, its mask, then n - 1 and
-    // grad n), checked before the probe allocates it
-    double perPoint = 1.0 + 16.0;
-    if (vtkDataSet* ds = vtkDataSet::SafeDownCast(vtkDataObject::GetData(inInfo)))
-    {
-      for (vtkDataSetAttributes* attributes :
-        { static_cast<vtkDataSetAttributes*>(ds->GetPointData()),
-          static_cast<vtkDataSetAttributes*>(ds->GetCellData()) })
-      {
-        for (int i = 0; i < attributes->GetNumberOfArrays(); ++i)
-        {
-          if (vtkDataArray* a = attributes->GetArray(i))
-          {
-            perPoint += a->GetNumberOfComponents() * a->GetDataTypeSize();
-          }
-        }
-      }
-    }
-    else
-    {
-      perPoint += 64.0; // a composite input: a few double arrays
-    }
-    this->SamplingNote.clear();
-    double finest[3];
-    if (automatic)
-    {
-      // an AMR input: its finest level's spacing rather than AutomaticDimension
-      schlieren::amr::Dimensions(parallel, vtkDataObject::GetData(inInfo), bounds,
-        perPoint + schlieren::VolumeBytesPerPoint(), dims, finest, this->SamplingCapped,
-        this->SamplingNote);
-    }
-    std::ostringstream what;
-    what << "Resampling onto " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points";
-    schlieren::CheckHostMemory(double(dims[0]) * dims[1] * dims[2] * perPoint, what.str(),
-      automatic ? "Lower AutomaticDimension (points along the longest side)."
-                : "Lower SamplingDimensions.");
+    double bounds[6];
+    const bool have = !s.UseSamplingBounds && this->UpdatedInputBounds(parallel, inInfo, bounds);
+    double box[6];
+    schlieren::SamplingBox(s, have ? bounds : nullptr, box);
+    vtkDataObject* input = vtkDataObject::GetData(inInfo);
+    const double arrayBytes = ArrayBytesPerPoint(input);
+    grid = schlieren::PlanSamplingGrid(s, box, arrayBytes, [&](const double b[6], int dims[3]) {
+      double finest[3]; // an AMR input: its finest level's spacing rather than AutomaticDimension
+      return schlieren::amr::Dimensions(parallel, input, b,
+        schlieren::SamplingBytesPerPoint(arrayBytes) + schlieren::VolumeBytesPerPoint(), dims,
+        finest, this->SamplingCapped, this->SamplingNote);
+    });
   }
   catch (const schlieren::Error& e)
   {
-    this->SamplingError = std::string(e.what()) +
-      (this->UseSamplingBounds ? " (SamplingBounds: xmin xmax ymin ymax zmin zmax)" : "");
+    this->SamplingError = e.what();
     vtkErrorMacro(<< this->SamplingError);
     return false;
   }
-  for (int a = 0; a < 3; ++a)
-  {
-    whole[2 * a] = 0;
-    whole[2 * a + 1] = dims[a] - 1;
-    origin[a] = bounds[2 * a];
-    spacing[a] = dims[a] > 1 ? (bounds[2 * a + 1] - bounds[2 * a]) / (dims[a] - 1) : 1.0;
-  }
+  std::copy(grid.Whole, grid.Whole + 6, whole);
+  std::copy(grid.Origin, grid.Origin + 3, origin);
+  std::copy(grid.Spacing, grid.Spacing + 3, spacing);
   return true;
 }
 
@@ -371,82 +368,55 @@ namespace
  */
 std::string PropertyProblem(vtkRefractiveIndex* self)
 {
-  // the values, read here; their ranges are the engine's (schlieren::PropertyRangeProblem, which
-  // the Python front end calls through schlieren_check_property)
+  // the values, read here; their ranges, entries and order are the engine's
+  // (schlieren::PropertiesProblem; the Python front end has the same through the C interface)
+  auto v = [](std::initializer_list<double> x) { return std::vector<double>(x); };
   const int* species = self->GetSpeciesGases();
   const double* speciesK = self->GetSpeciesGladstoneDale();
   const double* speciesM = self->GetSpeciesMolarMass();
   const int* sampling = self->GetSamplingDimensions();
   const int* walls = self->GetBodyWallFaces();
-  const std::vector<std::pair<const char*, std::vector<double>>> values = {
-    { "GladstoneDaleConstant", { self->GetGladstoneDaleConstant() } },
-    { "MolarMass", { self->GetMolarMass() } },
-    { "NumberOfSpecies", { double(self->GetNumberOfSpecies()) } },
+  const std::map<std::string, std::vector<double>> values = {
+    { "GladstoneDaleConstant", v({ self->GetGladstoneDaleConstant() }) },
+    { "MolarMass", v({ self->GetMolarMass() }) },
+    { "NumberOfSpecies", v({ double(self->GetNumberOfSpecies()) }) },
     { "SpeciesGases",
-      { double(species[0]), double(species[1]), double(species[2]), double(species[3]) } },
+      v({ double(species[0]), double(species[1]), double(species[2]), double(species[3]) }) },
     { "SpeciesGladstoneDale", std::vector<double>(speciesK, speciesK + 4) },
     { "SpeciesMolarMass", std::vector<double>(speciesM, speciesM + 4) },
-    { "BalanceGladstoneDale", { self->GetBalanceGladstoneDale() } },
-    { "BalanceMolarMass", { self->GetBalanceMolarMass() } },
-    { "DensityReference", { self->GetDensityReference() } },
-    { "TemperatureReference", { self->GetTemperatureReference() } },
-    { "PressureReference", { self->GetPressureReference() } },
-    { "PressureOffset", { self->GetPressureOffset() } },
-    { "Humidity", { self->GetHumidity() } }, { "CO2", { self->GetCO2() } },
-    { "Wavelength", { self->GetWavelength() } }, { "Span", { self->GetSpan() } },
-    { "AutomaticDimension", { double(self->GetAutomaticDimension()) } },
-    { "SamplingDimensions", { double(sampling[0]), double(sampling[1]), double(sampling[2]) } },
+    { "BalanceGladstoneDale", v({ self->GetBalanceGladstoneDale() }) },
+    { "BalanceMolarMass", v({ self->GetBalanceMolarMass() }) },
+    { "DensityReference", v({ self->GetDensityReference() }) },
+    { "TemperatureReference", v({ self->GetTemperatureReference() }) },
+    { "PressureReference", v({ self->GetPressureReference() }) },
+    { "PressureOffset", v({ self->GetPressureOffset() }) },
+    { "Humidity", v({ self->GetHumidity() }) }, { "CO2", v({ self->GetCO2() }) },
+    { "Wavelength", v({ self->GetWavelength() }) }, { "Span", v({ self->GetSpan() }) },
+    { "AutomaticDimension", v({ double(self->GetAutomaticDimension()) }) },
+    { "SamplingDimensions", v({ double(sampling[0]), double(sampling[1]), double(sampling[2]) }) },
     { "BodyWallFaces", std::vector<double>(walls, walls + 6) },
-    { "PassthroughHoldsN", { double(self->GetPassthroughHoldsN()) } },
-    { "HumidityFromArray", { double(self->GetHumidityFromArray()) } },
-    { "CO2FromArray", { double(self->GetCO2FromArray()) } },
-    { "AxisFromWedge", { double(self->GetAxisFromWedge()) } },
-    { "UseSamplingBounds", { double(self->GetUseSamplingBounds()) } },
-    { "BodyFromGrid", { double(self->GetBodyFromGrid()) } } };
-  for (const auto& v : values)
-  {
-    const std::string problem = schlieren::PropertyRangeProblem(
-      "RefractiveIndex", v.first, v.second.data(), static_cast<int>(v.second.size()));
-    if (!problem.empty())
-      return problem;
-  }
-  // the enumerations' and booleans' entries, those of their domains in Schlieren.xml
-  const std::initializer_list<SchlierenEntry> gas = { { 0, "Air" }, { 1, "He" }, { 2, "N2" },
-    { 3, "O2" }, { 4, "Ar" }, { 5, "CO2" }, { 6, "H2" }, { 7, "H2O" }, { 8, "CH4" }, { 9, "CO" } };
-  const std::string problems[] = {
-    SchlierenEnumProblem("Model", self->GetModel(),
-      { { -1, "Automatic" }, { 0, "Passthrough" }, { 1, "GladstoneDale" },
-        { 2, "GladstoneDaleMixture" }, { 3, "IdealGas" }, { 4, "Ciddor" } }),
-    SchlierenEnumProblem("Gas", self->GetGas(),
-      { { -1, "Custom" }, { 0, "Air" }, { 1, "He" }, { 2, "N2" }, { 3, "O2" }, { 4, "Ar" },
-        { 5, "CO2" }, { 6, "H2" }, { 7, "H2O" }, { 8, "CH4" }, { 9, "CO" } }),
-    SchlierenEnumProblem("MixtureComposition", self->GetMixtureComposition(),
-      { { 1, "MixtureFraction" }, { 2, "Species" } }),
-    SchlierenEnumProblem("IdealGasComposition", self->GetIdealGasComposition(),
-      { { 0, "Gas" }, { 1, "MixtureFraction" }, { 2, "Species" } }),
-    SchlierenEnumProblem("MixtureGas0", self->GetMixtureGas0(), gas),
-    SchlierenEnumProblem("MixtureGas1", self->GetMixtureGas1(), gas),
-    SchlierenEnumProblem("BalanceGas", self->GetBalanceGas(),
-      { { -2, "None" }, { -1, "Custom" }, { 0, "Air" }, { 1, "He" }, { 2, "N2" }, { 3, "O2" }, { 4, "Ar" },
-        { 5, "CO2" }, { 6, "H2" }, { 7, "H2O" }, { 8, "CH4" }, { 9, "CO" } }),
-    SchlierenEnumProblem(
-      "TemperatureUnit", self->GetTemperatureUnit(), { { 0, "Kelvin" }, { 1, "Celsius" } }),
-    SchlierenEnumProblem("PressureUnit", self->GetPressureUnit(),
-      { { 0, "Pa" }, { 1, "kPa" }, { 2, "atm" }, { 3, "bar" } }),
-    SchlierenEnumProblem("HumidityMeasure", self->GetHumidityMeasure(),
-      { { 0, "RelativeHumidity" }, { 1, "WaterMoleFraction" } }),
-    SchlierenEnumProblem(
-      "Symmetry", self->GetSymmetry(), { { 0, "None" }, { 1, "Planar" }, { 2, "Axisymmetric" } }),
-    SchlierenEnumProblem(
-      "SymmetryAxis", self->GetSymmetryAxis(), { { 0, "X" }, { 1, "Y" }, { 2, "Z" } }),
-    SchlierenEnumProblem("AmbientMode", self->GetAmbientMode(),
-      { { 0, "Extend" }, { 1, "DomainEdgeMedian" }, { 2, "Value" } }) };
-  for (const std::string& problem : problems)
-  {
-    if (!problem.empty())
-      return problem;
-  }
-  return std::string();
+    { "PassthroughHoldsN", v({ double(self->GetPassthroughHoldsN()) }) },
+    { "HumidityFromArray", v({ double(self->GetHumidityFromArray()) }) },
+    { "CO2FromArray", v({ double(self->GetCO2FromArray()) }) },
+    { "AxisFromWedge", v({ double(self->GetAxisFromWedge()) }) },
+    { "UseSamplingBounds", v({ double(self->GetUseSamplingBounds()) }) },
+    { "BodyFromGrid", v({ double(self->GetBodyFromGrid()) }) },
+    { "Model", v({ double(self->GetModel()) }) }, { "Gas", v({ double(self->GetGas()) }) },
+    { "MixtureComposition", v({ double(self->GetMixtureComposition()) }) },
+    { "IdealGasComposition", v({ double(self->GetIdealGasComposition()) }) },
+    { "MixtureGas0", v({ double(self->GetMixtureGas0()) }) },
+    { "MixtureGas1", v({ double(self->GetMixtureGas1()) }) },
+    { "BalanceGas", v({ double(self->GetBalanceGas()) }) },
+    { "TemperatureUnit", v({ double(self->GetTemperatureUnit()) }) },
+    { "PressureUnit", v({ double(self->GetPressureUnit()) }) },
+    { "HumidityMeasure", v({ double(self->GetHumidityMeasure()) }) },
+    { "Symmetry", v({ double(self->GetSymmetry()) }) },
+    { "SymmetryAxis", v({ double(self->GetSymmetryAxis()) }) },
+    { "AmbientMode", v({ double(self->GetAmbientMode()) }) } };
+  return schlieren::PropertiesProblem("RefractiveIndex", [&values](const std::string& name) {
+    const auto it = values.find(name);
+    return it == values.end() ? std::vector<double>() : it->second;
+  });
 }
 } // namespace
 
@@ -601,66 +571,26 @@ int vtkRefractiveIndex::RequestUpdateExtent(
     bodyInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
     bodyInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   }
-  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES())
-    ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES())
-    : 1;
-  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER())
-    : 0;
-
-  if (!vtkImageData::SafeDownCast(vtkDataObject::GetData(inInfo)) || this->Symmetry != NO_SYMMETRY)
+  // the engine's rule (schlieren::RequestInput): a resampled or symmetric input whole, an image
+  // over the piece the executive will split from the output's update extent (after this call),
+  // grown by one point for the central differences
+  auto number = [outInfo](vtkInformationIntegerKey* key, int fallback) {
+    return outInfo->Has(key) ? outInfo->Get(key) : fallback;
+  };
+  const bool image = vtkImageData::SafeDownCast(vtkDataObject::GetData(inInfo)) != nullptr;
+  int whole[6] = { 0, -1, 0, -1, 0, -1 }, ext[6] = { 0, -1, 0, -1, 0, -1 };
+  if (image)
   {
-    // Resampled: every rank probes the whole grid against its own piece of the input (or the
-    // whole input on one process); a 2D input made into a volume is read whole on every rank.
-    const schlieren::ControllerParallel parallel;
-    int rank = parallel.Rank(), size = parallel.Size();
-    if (this->Symmetry != NO_SYMMETRY)
-    {
-      rank = 0;
-      size = 1;
-    }
-    inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), size > 1 ? rank : 0);
-    inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), size);
-    inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-    if (inInfo->Has(SDDP::WHOLE_EXTENT()))
-    {
-      inInfo->Set(SDDP::UPDATE_EXTENT(), inInfo->Get(SDDP::WHOLE_EXTENT()), 6);
-    }
-    return 1;
+    inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+    outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
   }
-
-  int whole[6], ext[6];
-  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
-  outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
-  // With a piece request the executive splits the output's update extent into this piece (we
-  // produce sub-extents) only after this call: compute the same piece here.
-  if (pieces > 1)
-  {
-    const int ghosts = outInfo->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-      ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS())
-      : 0;
-    const int mode = outInfo->Has(vtkExtentTranslator::UPDATE_SPLIT_MODE())
-      ? outInfo->Get(vtkExtentTranslator::UPDATE_SPLIT_MODE())
-      : vtkExtentTranslator::BLOCK_MODE;
-    const int all[6] = { ext[0], ext[1], ext[2], ext[3], ext[4], ext[5] };
-    vtkNew<vtkExtentTranslator> translator;
-    translator->PieceToExtentThreadSafe(piece, pieces, ghosts, const_cast<int*>(all), ext, mode, 0);
-  }
-  if (!IsEmpty(ext))
-  {
-    // One more point on every side, so that central differences at the piece's borders use the
-    // neighbours' values; clamped to the whole extent (where the engine goes one-sided).
-    for (int a = 0; a < 3; ++a)
-    {
-      ext[2 * a] = std::max(ext[2 * a] - 1, whole[2 * a]);
-      ext[2 * a + 1] = std::min(ext[2 * a + 1] + 1, whole[2 * a + 1]);
-    }
-  }
-  // Exactly this extent from the input: one piece, not to be split again upstream.
-  inInfo->Set(SDDP::UPDATE_EXTENT(), ext, 6);
-  inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  const schlieren::ControllerParallel parallel;
+  SetRequest(inInfo,
+    schlieren::RequestInput(!image, this->Symmetry != NO_SYMMETRY, parallel.Rank(),
+      parallel.Size(), number(SDDP::UPDATE_PIECE_NUMBER(), 0),
+      number(SDDP::UPDATE_NUMBER_OF_PIECES(), 1), number(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0),
+      number(vtkExtentTranslator::UPDATE_SPLIT_MODE(), vtkExtentTranslator::BLOCK_MODE), ext,
+      whole));
   return 1;
 }
 
@@ -748,12 +678,7 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
     refused = e.what(); // a cell type the sampler does not take (a polyhedron)
   }
   // a piece refused fails every rank, so that none waits for it in the sums below
-  if (parallel.Max(refused.empty() ? 0.0 : 1.0) > 0.5)
-  {
-    throw schlieren::Error(refused.empty()
-        ? std::string("Another rank's piece of the input could not be resampled (its message says why).")
-        : refused);
-  }
+  schlieren::AgreeOnRefusal(parallel, refused);
   if (!grid || grid->GetNumberOfPoints() != structure->GetNumberOfPoints())
   {
     // An empty piece of the input (MPI): nothing found here.
@@ -764,79 +689,56 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
   {
     return grid;
   }
+  // the pieces summed over the ranks by the engine (value x found, found): here their reading
   const vtkIdType n = grid->GetNumberOfPoints();
-  vtkDataArray* mask = grid->GetPointData()->GetArray(MaskName);
-  std::vector<double> found(n, 0.0);
-  if (mask)
+  std::vector<unsigned char> found(static_cast<std::size_t>(n), 0);
+  if (vtkDataArray* mask = grid->GetPointData()->GetArray(MaskName))
   {
     schlieren::values::ForEachFirstComponent(mask, [&](vtkIdType i, double v) {
       if (i < n)
       {
-        found[i] = v != 0.0 ? 1.0 : 0.0;
+        found[i] = v != 0.0 ? 1 : 0;
       }
     });
   }
-  std::vector<double> total = found;
-  parallel.Sum(total.data(), total.size());
+  std::vector<schlieren::ProbedArray> probed(names.size());
+  for (std::size_t k = 0; k < names.size(); ++k)
+  {
+    probed[k].Name = names[k];
+    vtkDataArray* a = grid->GetPointData()->GetArray(names[k].c_str());
+    probed[k].Have = a && a->GetNumberOfComponents() == 1;
+    if (probed[k].Have)
+    {
+      probed[k].Values.assign(static_cast<std::size_t>(n), 0.0);
+      schlieren::values::ForEachFirstComponent(a, [&](vtkIdType i, double v) {
+        if (i < n)
+        {
+          probed[k].Values[i] = v;
+        }
+      });
+    }
+  }
+  std::vector<unsigned char> valid;
+  std::vector<schlieren::MergedArray> merged;
+  schlieren::MergeProbedPieces(parallel, found, probed, valid, merged);
   vtkNew<vtkImageData> reduced;
   reduced->CopyStructure(structure);
   vtkNew<vtkCharArray> validMask;
   validMask->SetName(MaskName);
   validMask->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    validMask->SetValue(i, total[i] > 0.0 ? 1 : 0);
-  }
+  std::copy(valid.begin(), valid.end(), validMask->GetPointer(0));
   reduced->GetPointData()->AddArray(validMask);
-  for (const std::string& name : names) // the same list, in the same order, on every rank
+  for (const schlieren::MergedArray& m : merged)
   {
-    vtkDataArray* a = grid->GetPointData()->GetArray(name.c_str());
-    const bool have = a && a->GetNumberOfComponents() == 1;
-    if (parallel.Max(have ? 1.0 : 0.0) < 0.5)
-    {
-      continue; // reported as missing by the caller, the same on every rank
-    }
-    std::vector<double> all(n, 0.0);
-    if (have)
-    {
-      schlieren::values::ForEachFirstComponent(a, [&](vtkIdType i, double v) {
-        if (i < n && found[i] != 0.0)
-        {
-          all[i] = v;
-        }
-      });
-    }
-    parallel.Sum(all.data(), all.size());
     vtkNew<vtkFloatArray> r;
-    r->SetName(name.c_str());
+    r->SetName(m.Name.c_str());
     r->SetNumberOfTuples(n);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      r->SetValue(i, total[i] > 0.0 ? static_cast<float>(all[i] / total[i]) : 0.0f);
-    }
+    std::copy(m.Values.begin(), m.Values.end(), r->GetPointer(0));
     reduced->GetPointData()->AddArray(r);
   }
   return reduced;
 }
 
-/** "The input's extent (...) does not cover the requested extent (...)", or "". */
-std::string CheckCovers(const int gridExt[6], const int outExt[6])
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    if (outExt[2 * a] < gridExt[2 * a] || outExt[2 * a + 1] > gridExt[2 * a + 1])
-    {
-      std::ostringstream m;
-      m << "The input's extent (" << gridExt[0] << " " << gridExt[1] << " " << gridExt[2] << " "
-        << gridExt[3] << " " << gridExt[4] << " " << gridExt[5]
-        << ") does not cover the requested extent (" << outExt[0] << " " << outExt[1] << " "
-        << outExt[2] << " " << outExt[3] << " " << outExt[4] << " " << outExt[5]
-        << "); the upstream filter did not honour the update request.";
-      return m.str();
-    }
-  }
-  return std::string();
-}
 
 } // namespace
 
@@ -1061,35 +963,6 @@ std::string vtkRefractiveIndex::ReadInputs(Work& w)
   return std::string();
 }
 
-//------------------------------------------------------------------------------
-namespace
-{
-/**
- * The message where the input (a data set or composite, on one process) lacks one of `names`:
- * a missing array is reported before the (costly) probing; "" where all are there.
- */
-std::string MissingArray(
-  vtkDataObject* input, const std::vector<std::string>& names, const char* model)
-{
-  const std::vector<std::string> present = InputArrayNames(input);
-  for (const std::string& name : names)
-  {
-    if (std::find(present.begin(), present.end(), name) == present.end())
-    {
-      std::ostringstream m;
-      m << model << " reads the array '" << name
-        << "', which the input does not have. Arrays present: ";
-      for (std::size_t i = 0; i < present.size(); ++i)
-      {
-        m << (i ? ", " : "") << present[i];
-      }
-      m << (present.empty() ? "none" : "") << ". Choose one of them.";
-      return m.str();
-    }
-  }
-  return std::string();
-}
-} // namespace
 
 //------------------------------------------------------------------------------
 namespace
@@ -1136,63 +1009,26 @@ void vtkRefractiveIndex::FollowMovingBounds(Work& w)
   // points (the extent downstream asked for), so that each step is sampled over its own box
   // (issue 48: the first step's box was kept, |dI| 0.2-0.5 against each step alone). Collective
   // under MPI, as UpdatedInputBounds.
-  double local[6] = { 1, -1, 1, -1, 1, -1 };
-  const bool have = LocalBounds(w.Input, local);
-  double mins[3], maxs[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    mins[a] = have ? local[2 * a] : VTK_DOUBLE_MAX;
-    maxs[a] = have ? local[2 * a + 1] : -VTK_DOUBLE_MAX;
-  }
-  if (w.Ranks.Size() > 1)
-  {
-    w.Ranks.Min(mins, 3);
-    w.Ranks.Max(maxs, 3);
-  }
-  if (!(mins[0] <= maxs[0]))
-  {
-    return;
-  }
   double bounds[6];
-  for (int a = 0; a < 3; ++a)
-  {
-    bounds[2 * a] = mins[a];
-    bounds[2 * a + 1] = maxs[a];
-  }
-  vtkBoundingBox box(bounds);
-  box.ScaleAboutCenter(1.0 - 1e-6); // as SamplingGrid
-  box.GetBounds(bounds);
-  double origin[3], spacing[3];
-  w.OutInfo->Get(vtkDataObject::ORIGIN(), origin);
-  w.OutInfo->Get(vtkDataObject::SPACING(), spacing);
-  bool moved = false;
-  double newOrigin[3], newSpacing[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const int n = w.Whole[2 * a + 1] - w.Whole[2 * a];
-    const double lo = origin[a] + w.Whole[2 * a] * spacing[a];
-    const double hi = origin[a] + w.Whole[2 * a + 1] * spacing[a];
-    const double size = std::max({ hi - lo, bounds[2 * a + 1] - bounds[2 * a], 1e-300 });
-    moved = moved || std::fabs(bounds[2 * a] - lo) > 1e-9 * size ||
-      (n > 0 && std::fabs(bounds[2 * a + 1] - hi) > 1e-9 * size);
-    newSpacing[a] = n > 0 && bounds[2 * a + 1] > bounds[2 * a] ? (bounds[2 * a + 1] - bounds[2 * a]) / n : spacing[a];
-    newOrigin[a] = (n > 0 ? bounds[2 * a] : 0.5 * (bounds[2 * a] + bounds[2 * a + 1])) - w.Whole[2 * a] * newSpacing[a];
-  }
-  if (!moved)
+  if (!GlobalBounds(w.Ranks, w.Input, bounds))
   {
     return;
   }
-  w.OutInfo->Set(vtkDataObject::ORIGIN(), newOrigin, 3);
-  w.OutInfo->Set(vtkDataObject::SPACING(), newSpacing, 3);
-  std::ostringstream m;
-  m << "RefractiveIndex: the input's bounds are not those the sampling grid was set over (a mesh "
-       "that moves over time): the grid follows them, the same points over ["
-    << bounds[0] << ", " << bounds[1] << "] x [" << bounds[2] << ", " << bounds[3] << "] x ["
-    << bounds[4] << ", " << bounds[5] << "].";
-  w.Notes.push_back(m.str());
+  schlieren::SamplingGrid grid, moved;
+  std::copy(w.Whole, w.Whole + 6, grid.Whole);
+  w.OutInfo->Get(vtkDataObject::ORIGIN(), grid.Origin);
+  w.OutInfo->Get(vtkDataObject::SPACING(), grid.Spacing);
+  std::string note;
+  if (!schlieren::FollowBounds(grid, bounds, moved, &note)) // the engine's rule
+  {
+    return;
+  }
+  w.OutInfo->Set(vtkDataObject::ORIGIN(), moved.Origin, 3);
+  w.OutInfo->Set(vtkDataObject::SPACING(), moved.Spacing, 3);
+  w.Notes.push_back(note);
   if (w.Ranks.Rank() == 0)
   {
-    vtkOutputWindowDisplayText((m.str() + "\n").c_str());
+    vtkOutputWindowDisplayText((note + "\n").c_str());
   }
 }
 
@@ -1242,7 +1078,9 @@ std::string vtkRefractiveIndex::MakeGrid(Work& w)
     if (w.Ranks.Size() <= 1)
     {
       // under MPI a missing array is reported after the probing, since a rank's piece may be empty
-      const std::string missing = MissingArray(w.Input, names, schlieren::IndexModelLabel(static_cast<schlieren::IndexModel>(this->GetModelInUse())));
+      // reported before the (costly) probing
+      const std::string missing = schlieren::MissingArrayProblem(names, InputArrayNames(w.Input),
+        schlieren::IndexModelLabel(static_cast<schlieren::IndexModel>(this->GetModelInUse())));
       if (!missing.empty())
       {
         return missing;
@@ -1519,7 +1357,7 @@ std::string vtkRefractiveIndex::ComputeOnGrid(Work& w)
   {
     w.Grid->GetDimensions(in.Dims);
     w.Grid->GetSpacing(in.Spacing);
-    in.PieceFailure = CheckCovers(w.GridExt, w.OutExt);
+    in.PieceFailure = schlieren::ExtentCoverProblem(w.GridExt, w.OutExt);
     w.Valid = Validity(w.Grid, w.AnyInvalid);
     in.Valid = w.AnyInvalid ? w.Valid.data() : nullptr;
   }

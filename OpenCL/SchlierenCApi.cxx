@@ -17,6 +17,7 @@
 #include "SchlierenPhotograph.h"
 #include "SchlierenPhotographOverlay.h"
 #include "SchlierenSample.h"
+#include "SchlierenSamplingGrid.h"
 #include "SchlierenScenes.h"
 #include "SchlierenSession.h"
 #include "SchlierenSymmetry.h"
@@ -1415,6 +1416,35 @@ std::map<std::string, std::string> SettingLines(
   return p;
 }
 
+/** RefractiveIndex's sampling settings (SamplingDimensions, AutomaticDimension, UseSamplingBounds,
+ * SamplingBounds) from the settings `p` (absent: the proxy's defaults); an Error names one that does
+ * not parse. */
+schlieren::SamplingSettings SamplingSettingsOf(
+  const char* f, const std::map<std::string, std::string>& p)
+{
+  auto text = [&](const char* name, const char* fallback) {
+    const auto it = p.find(name);
+    return it == p.end() ? std::string(fallback) : it->second;
+  };
+  schlieren::SamplingSettings s;
+  const std::vector<double> sd = NumbersOf("SamplingDimensions", text("SamplingDimensions", "0 0 0"), 3);
+  const double automaticDimension = NumbersOf("AutomaticDimension", text("AutomaticDimension", "128"), 1)[0];
+  for (double v : sd)
+    if (!(std::abs(v) < 1e9) || v != std::floor(v))
+      throw schlieren::Error(std::string(f) + ": SamplingDimensions '" +
+        text("SamplingDimensions", "") + "': whole numbers of points expected.");
+  if (!(std::abs(automaticDimension) < 1e9) || automaticDimension != std::floor(automaticDimension))
+    throw schlieren::Error(std::string(f) + ": AutomaticDimension '" +
+      text("AutomaticDimension", "") + "': a whole number of points expected.");
+  for (int a = 0; a < 3; ++a)
+    s.SamplingDimensions[a] = static_cast<int>(sd[a]);
+  s.AutomaticDimension = static_cast<int>(automaticDimension);
+  s.UseSamplingBounds = NumbersOf("UseSamplingBounds", text("UseSamplingBounds", "0"), 1)[0] != 0;
+  const std::vector<double> sb = NumbersOf("SamplingBounds", text("SamplingBounds", "0 1 0 1 0 1"), 6);
+  std::copy(sb.begin(), sb.end(), s.SamplingBounds);
+  return s;
+}
+
 /** A gas by the proxy's number (-1 Custom with K and M, 0 Air, 1 He, ...: SpeciesGases). */
 schlieren::GasChoice GasByNumber(const std::string& property, double number, double K, double M)
 {
@@ -2139,6 +2169,145 @@ int schlieren_check_memory(double bytes, const char* what, const char* hint)
   });
 }
 
+namespace
+{
+const std::vector<std::string> SamplingSettingNames = { "SamplingDimensions", "AutomaticDimension",
+  "UseSamplingBounds", "SamplingBounds" };
+
+void CheckExtent(const char* f, const char* name, const int* e)
+{
+  if (!e)
+    throw schlieren::Error(std::string(f) + ": " + name + " is NULL: give 6 integers.");
+}
+} // namespace
+
+int schlieren_sampling_box(const char* settings, const double input_bounds[6], double box[6])
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_sampling_box";
+    if (!box)
+      throw schlieren::Error(std::string(f) + ": box is NULL: give 6 doubles.");
+    const schlieren::SamplingSettings s =
+      SamplingSettingsOf(f, SettingLines(f, settings, SamplingSettingNames));
+    schlieren::SamplingBox(s, input_bounds, box);
+  });
+}
+
+int schlieren_sampling_grid(const char* settings, const double box[6], double array_bytes,
+  const int amr_dims[3], int dims[3], double origin[3], double spacing[3])
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_sampling_grid";
+    if (!box || !dims || !origin || !spacing)
+      throw schlieren::Error(std::string(f) + ": box, dims, origin and spacing must be given.");
+    if (!(array_bytes >= 0) || !std::isfinite(array_bytes))
+      throw schlieren::Error(std::string(f) + ": array_bytes is " + Number(array_bytes) +
+        ": give the bytes of the input's arrays per point (>= 0).");
+    const schlieren::SamplingSettings s =
+      SamplingSettingsOf(f, SettingLines(f, settings, SamplingSettingNames));
+    if (amr_dims)
+      GridPoints(f, amr_dims);
+    const schlieren::SamplingGrid g = schlieren::PlanSamplingGrid(s, box, array_bytes,
+      [amr_dims](const double*, int d[3]) {
+        if (amr_dims)
+          std::copy(amr_dims, amr_dims + 3, d);
+        return amr_dims != nullptr;
+      });
+    GridPoints(f, g.Dims);
+    std::copy(g.Dims, g.Dims + 3, dims);
+    std::copy(g.Origin, g.Origin + 3, origin);
+    std::copy(g.Spacing, g.Spacing + 3, spacing);
+  });
+}
+
+int schlieren_follow_bounds(const int whole_extent[6], const double origin[3],
+  const double spacing[3], const double input_bounds[6], int* moved, double new_origin[3],
+  double new_spacing[3], const char** note)
+{
+  if (note)
+    *note = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_follow_bounds";
+    CheckExtent(f, "whole_extent", whole_extent);
+    if (!input_bounds || !moved || !new_origin || !new_spacing)
+      throw schlieren::Error(std::string(f) + ": input_bounds, moved, new_origin and new_spacing "
+                                              "must be given.");
+    CheckFinite3(f, "origin", origin);
+    CheckFinite3(f, "spacing", spacing);
+    for (int a = 0; a < 3; ++a)
+      if (whole_extent[2 * a + 1] < whole_extent[2 * a])
+        throw schlieren::Error(std::string(f) + ": whole_extent is empty along " +
+          std::string(1, "xyz"[a]) + ".");
+    for (int k = 0; k < 6; ++k)
+      if (std::isnan(input_bounds[k]))
+        throw schlieren::Error(std::string(f) + ": input_bounds[" + std::to_string(k) + "] is NaN.");
+    schlieren::SamplingGrid g;
+    std::copy(whole_extent, whole_extent + 6, g.Whole);
+    std::copy(origin, origin + 3, g.Origin);
+    std::copy(spacing, spacing + 3, g.Spacing);
+    schlieren::SamplingGrid m;
+    Returned.clear();
+    *moved = schlieren::FollowBounds(g, input_bounds, m, &Returned) ? 1 : 0;
+    std::copy(*moved ? m.Origin : origin, (*moved ? m.Origin : origin) + 3, new_origin);
+    std::copy(*moved ? m.Spacing : spacing, (*moved ? m.Spacing : spacing) + 3, new_spacing);
+    if (!*moved)
+      Returned.clear();
+    if (note)
+      *note = Returned.c_str();
+  });
+}
+
+int schlieren_input_request(int resampled, int symmetric, int rank, int ranks, int piece,
+  int pieces, int ghosts, int split_mode, const int update_extent[6], const int whole_extent[6],
+  int request[3], int extent[6])
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_input_request";
+    if (!request || !extent)
+      throw schlieren::Error(std::string(f) + ": request and extent must be given.");
+    if (ranks < 1 || rank < 0 || rank >= ranks)
+      throw schlieren::Error(std::string(f) + ": rank " + std::to_string(rank) + " of " +
+        std::to_string(ranks) + ": give 0 <= rank < ranks.");
+    if (pieces < 1 || piece < 0 || piece >= pieces)
+      throw schlieren::Error(std::string(f) + ": piece " + std::to_string(piece) + " of " +
+        std::to_string(pieces) + ": give 0 <= piece < pieces.");
+    if (ghosts < 0 || split_mode < 0 || split_mode > 3)
+      throw schlieren::Error(std::string(f) + ": ghosts " + std::to_string(ghosts) +
+        ", split_mode " + std::to_string(split_mode) + ": give ghosts >= 0 and a split mode 0 "
+        "(X slab), 1 (Y slab), 2 (Z slab) or 3 (block).");
+    const int none[6] = { 0, -1, 0, -1, 0, -1 };
+    const bool image = !resampled && !symmetric;
+    if (image)
+    {
+      CheckExtent(f, "update_extent", update_extent);
+      CheckExtent(f, "whole_extent", whole_extent);
+      for (int k = 0; k < 6; ++k)
+        if (update_extent[k] < -1000000000 || update_extent[k] > 1000000000 ||
+          whole_extent[k] < -1000000000 || whole_extent[k] > 1000000000)
+          throw schlieren::Error(std::string(f) + ": extents are within +/- 1e9.");
+    }
+    const schlieren::InputRequest r = schlieren::RequestInput(resampled != 0, symmetric != 0,
+      rank, ranks, piece, pieces, ghosts, split_mode, image ? update_extent : none,
+      image ? whole_extent : none);
+    request[0] = r.Piece;
+    request[1] = r.Pieces;
+    request[2] = r.WholeExtent ? 1 : 0;
+    std::copy(r.Extent, r.Extent + 6, extent);
+  });
+}
+
+const char* schlieren_property_entries(const char* proxy, const char* property)
+{
+  static thread_local std::string entries;
+  entries = "[";
+  if (proxy && property)
+    for (const schlieren::PropertyEntry& e : schlieren::PropertyEntries(proxy, property))
+      entries += (entries.size() > 1 ? ", [" : "[") + std::to_string(e.Value) + ", " +
+        Json(e.Text) + "]";
+  entries += "]";
+  return entries.c_str();
+}
+
 int schlieren_symmetry_plan(const char* settings, const double bounds[6], const double* points,
   int64_t points_count, int one_data_set, const int image_extent[6], const double image_origin[3],
   const double image_spacing[3], int dims[3], double origin[3], double spacing[3],
@@ -2163,21 +2332,11 @@ int schlieren_symmetry_plan(const char* settings, const double bounds[6], const 
     s.SymmetryAxis = EntryOf("SymmetryAxis", text("SymmetryAxis", "X"), { "X", "Y", "Z" });
     s.Span = NumbersOf("Span", text("Span", "1"), 1)[0];
     s.AxisFromWedge = NumbersOf("AxisFromWedge", text("AxisFromWedge", "1"), 1)[0] != 0;
-    const std::vector<double> sd = NumbersOf("SamplingDimensions", text("SamplingDimensions", "0 0 0"), 3);
-    const double automaticDimension = NumbersOf("AutomaticDimension", text("AutomaticDimension", "128"), 1)[0];
-    for (double v : sd)
-      if (!(std::abs(v) < 1e9) || v != std::floor(v))
-        throw schlieren::Error(std::string(f) + ": SamplingDimensions '" +
-          text("SamplingDimensions", "") + "': whole numbers of points expected.");
-    if (!(std::abs(automaticDimension) < 1e9) || automaticDimension != std::floor(automaticDimension))
-      throw schlieren::Error(std::string(f) + ": AutomaticDimension '" +
-        text("AutomaticDimension", "") + "': a whole number of points expected.");
-    for (int a = 0; a < 3; ++a)
-      s.SamplingDimensions[a] = static_cast<int>(sd[a]);
-    s.AutomaticDimension = static_cast<int>(automaticDimension);
-    s.UseSamplingBounds = NumbersOf("UseSamplingBounds", text("UseSamplingBounds", "0"), 1)[0] != 0;
-    const std::vector<double> sb = NumbersOf("SamplingBounds", text("SamplingBounds", "0 1 0 1 0 1"), 6);
-    std::copy(sb.begin(), sb.end(), s.SamplingBounds);
+    const schlieren::SamplingSettings sampling = SamplingSettingsOf(f, p);
+    std::copy(sampling.SamplingDimensions, sampling.SamplingDimensions + 3, s.SamplingDimensions);
+    s.AutomaticDimension = sampling.AutomaticDimension;
+    s.UseSamplingBounds = sampling.UseSamplingBounds;
+    std::copy(sampling.SamplingBounds, sampling.SamplingBounds + 6, s.SamplingBounds);
     if (s.Symmetry == schlieren::SymmetryNone)
       throw schlieren::Error(std::string(f) + ": Symmetry is None: there is no symmetric grid to "
                                               "make (give Planar or Axisymmetric).");

@@ -204,52 +204,56 @@ double MaxStepsAcross()
   return 4194304.0; // 2^22
 }
 
+namespace
+{
+struct Range
+{
+  const char* Proxy;
+  const char* Name;
+  double Min, Max;
+  bool Boolean;
+  const char* Note; // said after the range
+};
+const double inf = std::numeric_limits<double>::infinity();
+const char* const reference = " (a reference value is positive: 1 for dimensional data)";
+const Range Ranges[] = {
+  { "RefractiveIndex", "GladstoneDaleConstant", 0, 1, false, "" },
+  { "RefractiveIndex", "MolarMass", 0, 10, false, "" },
+  { "RefractiveIndex", "NumberOfSpecies", 0, 4, false, "" },
+  { "RefractiveIndex", "SpeciesGases", -1, 9, false, "" },
+  { "RefractiveIndex", "SpeciesGladstoneDale", 0, inf, false, "" },
+  { "RefractiveIndex", "SpeciesMolarMass", 0, inf, false, "" },
+  { "RefractiveIndex", "BalanceGladstoneDale", 0, inf, false, "" },
+  { "RefractiveIndex", "BalanceMolarMass", 0, inf, false, "" },
+  { "RefractiveIndex", "DensityReference", 1e-12, inf, false, reference },
+  { "RefractiveIndex", "TemperatureReference", 1e-12, inf, false, reference },
+  { "RefractiveIndex", "PressureReference", 1e-12, inf, false, reference },
+  { "RefractiveIndex", "PressureOffset", -inf, inf, false, "" },
+  { "RefractiveIndex", "Humidity", 0, 1, false, "" },
+  { "RefractiveIndex", "CO2", 0, 1e6, false, "" },
+  { "RefractiveIndex", "Wavelength", 100, 20000, false, "" },
+  { "RefractiveIndex", "Span", 0, inf, false, "" },
+  { "RefractiveIndex", "SamplingDimensions", 0, 65536, false, "" },
+  { "RefractiveIndex", "AutomaticDimension", 2, 4096, false, "" },
+  { "RefractiveIndex", "BodyWallFaces", 0, 1, false, "" },
+  { "RefractiveIndex", "PassthroughHoldsN", 0, 1, true, "" },
+  { "RefractiveIndex", "HumidityFromArray", 0, 1, true, "" },
+  { "RefractiveIndex", "CO2FromArray", 0, 1, true, "" },
+  { "RefractiveIndex", "AxisFromWedge", 0, 1, true, "" },
+  { "RefractiveIndex", "UseSamplingBounds", 0, 1, true, "" },
+  { "RefractiveIndex", "BodyFromGrid", 0, 1, true, "" },
+  { "RefractionOctree", "Tolerance", 0, 1, false,
+    ": the largest spread of n - 1 (dimensionless) that a block may hold and still be skipped "
+    "(air's n - 1 is about 3e-4, so useful values are far below 1; 0: automatic, 1e-4 of the "
+    "field's range)" },
+  { "RefractionOctree", "MaxLevel", 0, 10, false, "" },
+};
+} // namespace
+
 std::string PropertyRangeProblem(
   const std::string& proxy, const std::string& property, const double* values, int count)
 {
-  const double inf = std::numeric_limits<double>::infinity();
-  struct Range
-  {
-    const char* Proxy;
-    const char* Name;
-    double Min, Max;
-    bool Boolean;
-    const char* Note; // said after the range
-  };
-  static const char* const reference = " (a reference value is positive: 1 for dimensional data)";
-  static const Range ranges[] = {
-    { "RefractiveIndex", "GladstoneDaleConstant", 0, 1, false, "" },
-    { "RefractiveIndex", "MolarMass", 0, 10, false, "" },
-    { "RefractiveIndex", "NumberOfSpecies", 0, 4, false, "" },
-    { "RefractiveIndex", "SpeciesGases", -1, 9, false, "" },
-    { "RefractiveIndex", "SpeciesGladstoneDale", 0, inf, false, "" },
-    { "RefractiveIndex", "SpeciesMolarMass", 0, inf, false, "" },
-    { "RefractiveIndex", "BalanceGladstoneDale", 0, inf, false, "" },
-    { "RefractiveIndex", "BalanceMolarMass", 0, inf, false, "" },
-    { "RefractiveIndex", "DensityReference", 1e-12, inf, false, reference },
-    { "RefractiveIndex", "TemperatureReference", 1e-12, inf, false, reference },
-    { "RefractiveIndex", "PressureReference", 1e-12, inf, false, reference },
-    { "RefractiveIndex", "PressureOffset", -inf, inf, false, "" },
-    { "RefractiveIndex", "Humidity", 0, 1, false, "" },
-    { "RefractiveIndex", "CO2", 0, 1e6, false, "" },
-    { "RefractiveIndex", "Wavelength", 100, 20000, false, "" },
-    { "RefractiveIndex", "Span", 0, inf, false, "" },
-    { "RefractiveIndex", "SamplingDimensions", 0, 65536, false, "" },
-    { "RefractiveIndex", "AutomaticDimension", 2, 4096, false, "" },
-    { "RefractiveIndex", "BodyWallFaces", 0, 1, false, "" },
-    { "RefractiveIndex", "PassthroughHoldsN", 0, 1, true, "" },
-    { "RefractiveIndex", "HumidityFromArray", 0, 1, true, "" },
-    { "RefractiveIndex", "CO2FromArray", 0, 1, true, "" },
-    { "RefractiveIndex", "AxisFromWedge", 0, 1, true, "" },
-    { "RefractiveIndex", "UseSamplingBounds", 0, 1, true, "" },
-    { "RefractiveIndex", "BodyFromGrid", 0, 1, true, "" },
-    { "RefractionOctree", "Tolerance", 0, 1, false,
-      ": the largest spread of n - 1 (dimensionless) that a block may hold and still be skipped "
-      "(air's n - 1 is about 3e-4, so useful values are far below 1; 0: automatic, 1e-4 of the "
-      "field's range)" },
-    { "RefractionOctree", "MaxLevel", 0, 10, false, "" },
-  };
-  for (const Range& r : ranges)
+  for (const Range& r : Ranges)
   {
     if (proxy != r.Proxy || property != r.Name)
       continue;
@@ -283,6 +287,98 @@ std::string PropertyRangeProblem(
       return msg.str();
     }
     return std::string();
+  }
+  return std::string();
+}
+
+namespace
+{
+struct Enumeration
+{
+  const char* Proxy;
+  const char* Name;
+  std::vector<PropertyEntry> Entries;
+};
+/** RefractiveIndex's enumerations, their EnumerationDomains in Schlieren.xml, in the order the C++
+ * filter checks them. */
+const std::vector<Enumeration>& Enumerations()
+{
+  static const std::vector<PropertyEntry> gases = { { 0, "Air" }, { 1, "He" }, { 2, "N2" },
+    { 3, "O2" }, { 4, "Ar" }, { 5, "CO2" }, { 6, "H2" }, { 7, "H2O" }, { 8, "CH4" }, { 9, "CO" } };
+  auto with = [](std::vector<PropertyEntry> first, const std::vector<PropertyEntry>& rest) {
+    first.insert(first.end(), rest.begin(), rest.end());
+    return first;
+  };
+  static const std::vector<Enumeration> all = {
+    { "RefractiveIndex", "Model",
+      { { -1, "Automatic" }, { 0, "Passthrough" }, { 1, "GladstoneDale" },
+        { 2, "GladstoneDaleMixture" }, { 3, "IdealGas" }, { 4, "Ciddor" } } },
+    { "RefractiveIndex", "Gas", with({ { -1, "Custom" } }, gases) },
+    { "RefractiveIndex", "MixtureComposition", { { 1, "MixtureFraction" }, { 2, "Species" } } },
+    { "RefractiveIndex", "IdealGasComposition",
+      { { 0, "Gas" }, { 1, "MixtureFraction" }, { 2, "Species" } } },
+    { "RefractiveIndex", "MixtureGas0", gases },
+    { "RefractiveIndex", "MixtureGas1", gases },
+    { "RefractiveIndex", "BalanceGas", with({ { -2, "None" }, { -1, "Custom" } }, gases) },
+    { "RefractiveIndex", "TemperatureUnit", { { 0, "Kelvin" }, { 1, "Celsius" } } },
+    { "RefractiveIndex", "PressureUnit", { { 0, "Pa" }, { 1, "kPa" }, { 2, "atm" }, { 3, "bar" } } },
+    { "RefractiveIndex", "HumidityMeasure",
+      { { 0, "RelativeHumidity" }, { 1, "WaterMoleFraction" } } },
+    { "RefractiveIndex", "Symmetry", { { 0, "None" }, { 1, "Planar" }, { 2, "Axisymmetric" } } },
+    { "RefractiveIndex", "SymmetryAxis", { { 0, "X" }, { 1, "Y" }, { 2, "Z" } } },
+    { "RefractiveIndex", "AmbientMode",
+      { { 0, "Extend" }, { 1, "DomainEdgeMedian" }, { 2, "Value" } } },
+  };
+  return all;
+}
+} // namespace
+
+std::string EnumerationProblem(
+  const std::string& name, int value, const std::vector<PropertyEntry>& entries)
+{
+  std::string list;
+  for (const PropertyEntry& e : entries)
+  {
+    if (e.Value == value)
+      return std::string();
+    list += (list.empty() ? "" : ", ") + std::string(e.Text) + " (" + std::to_string(e.Value) + ")";
+  }
+  return name + " is " + std::to_string(value) + ": it must be one of " + list + ".";
+}
+
+const std::vector<PropertyEntry>& PropertyEntries(
+  const std::string& proxy, const std::string& property)
+{
+  static const std::vector<PropertyEntry> none;
+  for (const Enumeration& e : Enumerations())
+    if (proxy == e.Proxy && property == e.Name)
+      return e.Entries;
+  return none;
+}
+
+std::string PropertiesProblem(const std::string& proxy,
+  const std::function<std::vector<double>(const std::string&)>& value)
+{
+  for (const Range& r : Ranges)
+  {
+    if (proxy != r.Proxy)
+      continue;
+    const std::vector<double> v = value(r.Name);
+    const std::string problem =
+      PropertyRangeProblem(proxy, r.Name, v.data(), static_cast<int>(v.size()));
+    if (!problem.empty())
+      return problem;
+  }
+  for (const Enumeration& e : Enumerations())
+  {
+    if (proxy != e.Proxy)
+      continue;
+    const std::vector<double> v = value(e.Name);
+    if (v.empty())
+      continue; // not given
+    const std::string problem = EnumerationProblem(e.Name, static_cast<int>(v[0]), e.Entries);
+    if (!problem.empty())
+      return problem;
   }
   return std::string();
 }

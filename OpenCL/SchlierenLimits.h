@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <new>
 #include <string>
 #include <utility>
@@ -74,6 +75,31 @@ void CheckSettings(const TraceSettings& settings);
  */
 std::string PropertyRangeProblem(
   const std::string& proxy, const std::string& property, const double* values, int count);
+
+/** An entry of an enumeration property (Schlieren.xml's EnumerationDomain): its value and text. */
+struct PropertyEntry
+{
+  int Value;
+  const char* Text;
+};
+
+/** "" where `value` is one of `entries`; else "Name is V: it must be one of A (0), B (1)." */
+std::string EnumerationProblem(
+  const std::string& name, int value, const std::vector<PropertyEntry>& entries);
+
+/** The entries of the enumeration property `property` of the filter `proxy` ("RefractiveIndex"),
+ * in the XML's order; empty where it is not an enumeration the engine lists. */
+const std::vector<PropertyEntry>& PropertyEntries(
+  const std::string& proxy, const std::string& property);
+
+/**
+ * The first problem of the filter `proxy`'s properties, the C++ filter's check before each request:
+ * every numeric and boolean property of PropertyRangeProblem's table in its order, then every
+ * enumeration of PropertyEntries in its order; `value(name)` gives the property's numbers (an
+ * enumeration's: its value; none: not checked). "" where all are in range.
+ */
+std::string PropertiesProblem(const std::string& proxy,
+  const std::function<std::vector<double>(const std::string&)>& value);
 
 /**
  * Checks that the float tracer can honour the volume and settings: a base step that moves a float

@@ -410,6 +410,43 @@ SCHLIEREN_C_API int schlieren_check_property(
 SCHLIEREN_C_API int schlieren_check_memory(double bytes, const char* what, const char* hint);
 
 /**
+ * RefractiveIndex's grid for a resampled input, in two calls (the C++ filter's RequestInformation;
+ * an AMR input's dimensions come from schlieren_amr_grid between them). `settings`: "Name=value"
+ * lines of SamplingDimensions (3; any <= 0: automatic), AutomaticDimension, UseSamplingBounds,
+ * SamplingBounds (6) (absent: the proxy's defaults).
+ * schlieren_sampling_box: the box resampled over, SamplingBounds where UseSamplingBounds is on, else
+ * `input_bounds` (NULL or empty: the input has no points) pulled in about its centre by 1e-6.
+ * schlieren_sampling_grid: the grid over `box`: dims (SamplingDimensions, else `amr_dims` where
+ * given, else AutomaticDimension points along the longest side), origin, spacing; refused where
+ * the grid with `array_bytes` per point of the input's arrays (a composite input: 64) would not fit
+ * in memory. Non-zero: schlieren_last_error() gives the C++ filter's message.
+ */
+SCHLIEREN_C_API int schlieren_sampling_box(const char* settings, const double input_bounds[6], double box[6]);
+SCHLIEREN_C_API int schlieren_sampling_grid(const char* settings, const double box[6],
+  double array_bytes, const int amr_dims[3], int dims[3], double origin[3], double spacing[3]);
+/** A mesh that moves over time: the grid (`whole_extent`, `origin`, `spacing`, as set over an
+ * earlier step) made to span `input_bounds` (this step's, pulled in as schlieren_sampling_box
+ * does) with the same points. `moved` gets 1 where it changed (then `new_origin`, `new_spacing`
+ * the moved grid and `note` the C++ filter's note; owned by the library until this thread's next
+ * call), else 0 (the grid as it was, `note` ""). */
+SCHLIEREN_C_API int schlieren_follow_bounds(const int whole_extent[6], const double origin[3],
+  const double spacing[3], const double input_bounds[6], int* moved, double new_origin[3],
+  double new_spacing[3], const char** note);
+/** What RefractiveIndex asks of its input for an update. A resampled input (`resampled`: not an
+ * image; or `symmetric`: Symmetry made it a volume) is read whole: request = {rank, ranks, 1} (on
+ * one process, or where `symmetric`, {0, 1, 1}). An image: the output's `update_extent` split into
+ * piece `piece` of `pieces` with `ghosts` ghost levels (VTK's split by cells, `split_mode` 0/1/2 X/Y/Z
+ * slab, 3 block), grown by one point on every side and clamped to `whole_extent` in `extent`, as
+ * one piece: request = {0, 1, 0}. */
+SCHLIEREN_C_API int schlieren_input_request(int resampled, int symmetric, int rank, int ranks,
+  int piece, int pieces, int ghosts, int split_mode, const int update_extent[6],
+  const int whole_extent[6], int request[3], int extent[6]);
+/** The entries of an enumeration property of a filter ("RefractiveIndex"), as JSON [[value,
+ * "Text"], ...] in Schlieren.xml's order ("[]": not an enumeration the engine lists); owned by the
+ * library until this thread's next call. */
+SCHLIEREN_C_API const char* schlieren_property_entries(const char* proxy, const char* property);
+
+/**
  * RefractiveIndex's Symmetry Planar and Axisymmetric (a 2D input made a volume; an OpenFOAM wedge
  * found and revolved about its axis), in three calls: plan, samples, expand. The front end samples
  * its own mesh at the points schlieren_symmetry_samples gives.

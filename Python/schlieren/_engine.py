@@ -134,6 +134,17 @@ _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
 _sig("schlieren_check_memory", ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_char_p)
+_sig("schlieren_sampling_box", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(ctypes.c_double),
+     ctypes.c_double * 6)
+_sig("schlieren_sampling_grid", ctypes.c_int, ctypes.c_char_p, ctypes.c_double * 6,
+     ctypes.c_double, ctypes.POINTER(ctypes.c_int), _c_int3, _c_double3, _c_double3)
+_sig("schlieren_follow_bounds", ctypes.c_int, ctypes.c_int * 6, _c_double3, _c_double3,
+     ctypes.c_double * 6, ctypes.POINTER(ctypes.c_int), _c_double3, _c_double3,
+     ctypes.POINTER(ctypes.c_char_p))
+_sig("schlieren_input_request", ctypes.c_int, ctypes.c_int, ctypes.c_int, ctypes.c_int,
+     ctypes.c_int, ctypes.c_int, ctypes.c_int, ctypes.c_int, ctypes.c_int, ctypes.c_int * 6,
+     ctypes.c_int * 6, ctypes.c_int * 3, ctypes.c_int * 6)
+_sig("schlieren_property_entries", ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p)
 _sig("schlieren_check_property", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
      ctypes.POINTER(ctypes.c_double), ctypes.c_int)
 _sig("schlieren_photograph", ctypes.c_int, ctypes.c_char_p, ctypes.c_int * 2, ctypes.c_double * 2,
@@ -262,6 +273,64 @@ def check_property(proxy, name, value):
     _check(_lib.schlieren_check_property(proxy.encode(), name.encode(), array, len(numbers)))
 
 
+def _setting_lines(settings):
+    """{name: value} as the C interface's "Name=value" lines (lists as numbers with spaces)."""
+    return "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items()).encode()
+
+
+def sampling_box(settings, bounds):
+    """RefractiveIndex's box to resample over (schlieren_sampling_box): SamplingBounds where
+    settings' UseSamplingBounds is on, else `bounds` (the input's; None: no points) pulled in by
+    a hair about their centre. EngineError with the C++ filter's message."""
+    box = (ctypes.c_double * 6)()
+    b = None if bounds is None else (ctypes.c_double * 6)(*[float(x) for x in bounds])
+    _check(_lib.schlieren_sampling_box(_setting_lines(settings), b, box))
+    return list(box)
+
+
+def sampling_grid(settings, box, array_bytes, amr_dims=None):
+    """RefractiveIndex's grid over `box` (schlieren_sampling_grid): (dims, origin, spacing);
+    `array_bytes` the input's arrays per point (a composite input: 64), `amr_dims` an AMR input's
+    automatic dimensions. EngineError with the C++ filter's message (memory, the box)."""
+    dims, origin, spacing = _c_int3(), _c_double3(), _c_double3()
+    amr = None if amr_dims is None else (ctypes.c_int * 3)(*[int(d) for d in amr_dims])
+    _check(_lib.schlieren_sampling_grid(_setting_lines(settings),
+                                        (ctypes.c_double * 6)(*[float(x) for x in box]),
+                                        float(array_bytes), amr, dims, origin, spacing))
+    return list(dims), list(origin), list(spacing)
+
+
+def follow_bounds(whole_extent, origin, spacing, bounds):
+    """A mesh that moves over time (schlieren_follow_bounds): (origin, spacing, note) of the grid
+    made to span this step's `bounds` with the same points, or None where it has not moved."""
+    moved, o, h, note = ctypes.c_int(), _c_double3(), _c_double3(), ctypes.c_char_p()
+    _check(_lib.schlieren_follow_bounds(
+        (ctypes.c_int * 6)(*[int(e) for e in whole_extent]), _c_double3(*origin),
+        _c_double3(*spacing), (ctypes.c_double * 6)(*[float(x) for x in bounds]),
+        ctypes.byref(moved), o, h, ctypes.byref(note)))
+    return (list(o), list(h), _text(note.value)) if moved.value else None
+
+
+def input_request(resampled, symmetric, rank=0, ranks=1, piece=0, pieces=1, ghosts=0,
+                  split_mode=3, update_extent=(0, -1, 0, -1, 0, -1),
+                  whole_extent=(0, -1, 0, -1, 0, -1)):
+    """What RefractiveIndex asks of its input (schlieren_input_request): (piece, pieces, extent),
+    extent None for the whole extent. A plain function of the rank and the piece asked for."""
+    request, extent = (ctypes.c_int * 3)(), (ctypes.c_int * 6)()
+    _check(_lib.schlieren_input_request(
+        int(bool(resampled)), int(bool(symmetric)), int(rank), int(ranks), int(piece),
+        int(pieces), int(ghosts), int(split_mode), (ctypes.c_int * 6)(*update_extent),
+        (ctypes.c_int * 6)(*whole_extent), request, extent))
+    return request[0], request[1], (None if request[2] else list(extent))
+
+
+def property_entries(proxy, name):
+    """The entries of an enumeration property of a filter as the engine lists them (Schlieren.xml's
+    order): [(value, text), ...]; [] where it is not an enumeration."""
+    return [tuple(e) for e in json.loads(_text(_lib.schlieren_property_entries(
+        proxy.encode(), name.encode())))]
+
+
 def version():
     return _text(_lib.schlieren_version())
 
@@ -344,7 +413,7 @@ def numerical(settings, dims, origin, spacing, values=None, solid=None, excluded
     given, is called between blocks of film rows (each a fraction of a second); a false return
     stops the image: EngineError "aborted at P % of the image: no image" (the image is bit for bit
     the same with or without it)."""
-    text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items()).encode()
+    text = _setting_lines(settings)
     size, film_origin, pixel = (ctypes.c_int * 2)(), (ctypes.c_double * 2)(), ctypes.c_double()
     grid = _grid(dims, origin, spacing)
     if values is None:
@@ -423,7 +492,7 @@ def index_model(settings, arrays, valid=None):
     ptrs = (_f32p * max(1, len(kept)))(*[a.ctypes.data_as(_f32p) for a in kept])
     v, vp = _bytes(valid)
     out = np.zeros(count, np.float32)
-    text = "\n".join("%s=%s" % (k, _value_text(x)) for k, x in settings.items()).encode()
+    text = _setting_lines(settings)
     report = ctypes.c_char_p()
     _check(f(text, count, len(kept), roles, ptrs, vp, out.ctypes.data_as(_f32p),
              ctypes.byref(report)))
@@ -784,7 +853,7 @@ def symmetry_plan(settings, bounds, points=None, one_data_set=True, image=None):
         origin, spacing = _c_double3(*[float(x) for x in o]), _c_double3(*[float(x) for x in h])
     dims, o3, h3, g = _c_int3(), _c_double3(), _c_double3(), (ctypes.c_double * 8)()
     report = ctypes.c_char_p()
-    text = "\n".join("%s=%s" % (k, _value_text(x)) for k, x in settings.items()).encode()
+    text = _setting_lines(settings)
     _check(f(text, b, None if xyz is None else xyz.ctypes.data_as(_f64p),
              0 if xyz is None else xyz.size, 1 if one_data_set else 0, extent, origin, spacing,
              dims, o3, h3, g, ctypes.byref(report)))

@@ -225,30 +225,15 @@ def _first_point(image):
     return [o[a] + e[2 * a] * s[a] for a in range(3)]
 
 
-def _bounds(data):
-    """The bounds of a data set or of a composite data set's blocks (an AMR's: those of the boxes
-    it holds, as the C++ filter's, not its metadata's)."""
-    if isinstance(data, vtkOverlappingAMR):
-        return _leaf_bounds(data) or [0.0, -1.0] * 3
-    if isinstance(data, vtkCompositeDataSet):
-        b = [0.0] * 6
-        data.GetBounds(b)
-        return b
-    return data.GetBounds()
-
-
-def _sampling_box(data, bounds=None):
-    """The box RefractiveIndex resamples over: `bounds`, or the input's bounds pulled in by a hair
-    about their centre (the grid's outermost points then lie inside the outermost cells despite
-    round-off), as the C++ filter's."""
-    if bounds is not None:
-        return [float(b) for b in bounds]
-    from vtkmodules.vtkCommonDataModel import vtkBoundingBox
-    box = vtkBoundingBox(_bounds(data))
-    box.ScaleAboutCenter(1.0 - 1e-6)
-    b = [0.0] * 6
-    box.GetBounds(b)
-    return b
+def _array_bytes(data):
+    """The input's arrays, bytes per grid point, as the C++ filter counts what the probe copies
+    (every point and cell array; a composite input: 64): the engine adds the rest."""
+    if not isinstance(data, vtkDataSet):
+        return 64.0
+    return float(sum(a.GetNumberOfComponents() * a.GetDataTypeSize()
+                     for attributes in (data.GetPointData(), data.GetCellData())
+                     for a in (attributes.GetArray(i) for i in range(attributes.GetNumberOfArrays()))
+                     if a is not None))
 
 
 def _internal_mesh(data):
@@ -552,13 +537,11 @@ def _sample_leaves(data, n, run):
     return out, found
 
 
-def _sample_cells(data, dims, box):
+def _sample_cells(data, dims, origin, spacing):
     """`data` (a data set or a composite data set: meshes, blocks of images) sampled cell by cell
-    onto `dims` points over `box` by the engine (schlieren_sample_cells), as the C++
+    onto `dims` points at `origin`, `spacing` by the engine (schlieren_sample_cells), as the C++
     RefractiveIndex samples it (_sample_leaves): (image, the valid-point mask)."""
     d = [int(x) for x in dims]
-    origin = [box[0], box[2], box[4]]
-    spacing = [(box[2 * a + 1] - box[2 * a]) / (d[a] - 1) if d[a] > 1 else 1.0 for a in range(3)]
     out = vtkImageData()
     out.SetDimensions(*d)
     out.SetOrigin(*origin)
@@ -595,16 +578,14 @@ def _all_points(data):
     return np.concatenate(parts) if parts else np.zeros((0, 3))
 
 
-def _image_input(data, dims=None, bounds=None):
+def _image_input(data, grid=None):
     """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
-    or resampled cell by cell by the engine (the C++ RefractiveIndex's sampler) onto `dims`
-    points over its bounds pulled in by a hair (or `bounds`)."""
+    or resampled cell by cell by the engine (the C++ RefractiveIndex's sampler) onto `grid`
+    (dims, origin, spacing: the engine's sampling grid)."""
     if isinstance(data, vtkImageData):
         return data, None
-    if dims is None:
-        dims = _engine.automatic_dimensions(_bounds(data), 128)
-    box = _sampling_box(data, bounds)
-    out, mask = _sample_cells(data, dims, box)  # meshes and blocks of images alike
+    dims, origin, spacing = grid
+    out, mask = _sample_cells(data, dims, origin, spacing)  # meshes and blocks of images alike
     if not mask.all():
         # kept where it says something, as the C++ filter does: NumericalSchlieren leaves the
         # points outside the input's cells out of its gradients
@@ -661,8 +642,8 @@ def _amr_grid(amr, box, bytes_per_point):
     return _engine.amr_grid(amr.GetNumberOfLevels(), _amr_block_list(amr), box, bytes_per_point)
 
 
-def _amr_input(amr, dims, box):
-    """An overlapping AMR sampled onto `dims` points over `box` by the engine
+def _amr_input(amr, dims, origin, spacing):
+    """An overlapping AMR sampled onto `dims` points at `origin`, `spacing` by the engine
     (schlieren_amr_sample), as the C++ RefractiveIndex samples it: (image with every array any box
     holds as float32 and vtkValidPointMask where some point lies outside every box, valid mask or
     None where all are valid, notes). The boxes of a level that overlap are refused first, with
@@ -681,8 +662,6 @@ def _amr_input(amr, dims, box):
                 if n and n not in names and n not in ("vtkGhostType", "vtkValidPointMask"):
                     names.append(n)
     d = [int(x) for x in dims]
-    origin = [box[0], box[2], box[4]]
-    spacing = [(box[2 * a + 1] - box[2 * a]) / (d[a] - 1) if d[a] > 1 else 1.0 for a in range(3)]
     image = vtkImageData()
     image.SetDimensions(*d)
     image.SetOrigin(*origin)
@@ -977,17 +956,10 @@ class RefractiveIndex(_Properties):
         AmbientValue=2.7164e-4, BodyFromGrid=1, BodyWallFaces=[0, 0, 0, 0, 0, 0],
         SolidArray="None")
     _range_proxy = "RefractiveIndex"
-    _gases = ["Air", "He", "N2", "O2", "Ar", "CO2", "H2", "H2O", "CH4", "CO"]
-    _entries = dict(
-        Model=["Automatic", "Passthrough", "GladstoneDale", "GladstoneDaleMixture", "IdealGas",
-               "Ciddor"],
-        Gas=["Custom"] + _gases, MixtureComposition=["MixtureFraction", "Species"],
-        IdealGasComposition=["Gas", "MixtureFraction", "Species"], MixtureGas0=_gases,
-        MixtureGas1=_gases, BalanceGas=["None", "Custom"] + _gases,
-        TemperatureUnit=["Kelvin", "Celsius"], PressureUnit=["Pa", "kPa", "atm", "bar"],
-        HumidityMeasure=["RelativeHumidity", "WaterMoleFraction"],
-        Symmetry=["None", "Planar", "Axisymmetric"], SymmetryAxis=["X", "Y", "Z"],
-        AmbientMode=["Extend", "DomainEdgeMedian", "Value"])
+    # the enumerations' entries: the engine's (schlieren_property_entries, the C++ filter's check)
+    _entries = {name: [text for _, text in _engine.property_entries("RefractiveIndex", name)]
+                for name in _defaults}
+    _entries = {name: texts for name, texts in _entries.items() if texts}
     # implemented here: the properties in _implemented (the others are held at their defaults)
     # the index models' settings, handed to the engine by name (schlieren_index_model)
     _model_settings = ("PassthroughHoldsN", "Gas", "GladstoneDaleConstant", "MolarMass",
@@ -1068,14 +1040,12 @@ class RefractiveIndex(_Properties):
             info.Set(vtkImageData.ORIGIN(), *o)
             info.Set(vtkImageData.SPACING(), *h)
             return 1
-        # the grid the cell sampler fills: the bounds pulled in by a hair about their centre, as
-        # the C++ filter's
-        dims = self._dims(data)
-        b = _sampling_box(data, self._sampling_bounds())
+        # the grid the cell sampler fills: the engine's (the C++ filter's)
+        grid = self._sampling_grid(data)
+        dims = grid["dims"]
         info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
-        info.Set(vtkImageData.ORIGIN(), b[0], b[2], b[4])
-        info.Set(vtkImageData.SPACING(), *[(b[2 * a + 1] - b[2 * a]) / (dims[a] - 1)
-                                           if dims[a] > 1 else 1.0 for a in range(3)])
+        info.Set(vtkImageData.ORIGIN(), *grid["origin"])
+        info.Set(vtkImageData.SPACING(), *grid["spacing"])
         return 1
 
     def _cache_key(self, src, info):
@@ -1100,27 +1070,30 @@ class RefractiveIndex(_Properties):
             # a time step kept: the input stays at the time it holds (it does not execute again)
             src.Set(SDDP.UPDATE_TIME_STEP(),
                     held.GetInformation().Get(vtkDataObject.DATA_TIME_STEP()))
-        # the whole input: resampling (or the gradient at the borders) needs all of it
-        if src.Has(SDDP.WHOLE_EXTENT()):
-            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        # the engine's rule (schlieren_input_request, the C++ filter's): a resampled or symmetric
+        # input whole, an image over the output's update extent grown by one point for the
+        # central differences (this front end makes one piece)
+        info = outInfo.GetInformationObject(0)
+        image = isinstance(held, vtkImageData) and src.Has(SDDP.WHOLE_EXTENT()) and \
+            info.Has(SDDP.UPDATE_EXTENT())
+        piece, pieces, extent = _engine.input_request(
+            not image, self.Symmetry != "None",
+            update_extent=info.Get(SDDP.UPDATE_EXTENT()) if image else (0, -1, 0, -1, 0, -1),
+            whole_extent=src.Get(SDDP.WHOLE_EXTENT()) if image else (0, -1, 0, -1, 0, -1))
+        if (extent is None or extent[1] < extent[0] or extent[3] < extent[2] or
+                extent[5] < extent[4]) and src.Has(SDDP.WHOLE_EXTENT()):
+            # whole (an empty update extent too: this front end makes no empty piece yet)
+            extent = src.Get(SDDP.WHOLE_EXTENT())
+        if extent is not None:
+            src.Set(SDDP.UPDATE_EXTENT(), extent, 6)
+        src.Set(SDDP.UPDATE_PIECE_NUMBER(), piece)
+        src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), pieces)
         return 1
 
     # the array properties by role, in the engine's order (schlieren_index_field)
     _role_properties = ("InputArray", "TemperatureArray", "PressureArray", "MixtureFractionArray",
                         "Species1Array", "Species2Array", "Species3Array", "Species4Array",
                         "HumidityArray", "CO2Array")
-
-    def _note(self, note):
-        """An information note in the output window, once for the same settings (the C++
-        filter's SayNote: time steps repeat none)."""
-        from vtkmodules.vtkCommonCore import vtkOutputWindow
-        said = self.__dict__.get("_notes_said")
-        if said is None or said[0] != self.GetMTime():
-            said = (self.GetMTime(), set())
-            object.__setattr__(self, "_notes_said", said)
-        if note not in said[1]:
-            said[1].add(note)
-            vtkOutputWindow.GetInstance().DisplayText(note + "\n")
 
     def _note(self, note):
         """A note for the user, said once for the settings it was said for (the C++ filter's
@@ -1134,21 +1107,47 @@ class RefractiveIndex(_Properties):
             said[1].add(note)
             vtkOutputWindow.GetInstance().DisplayText(note + "\n")
 
-    def _sampling_bounds(self):
-        """SamplingBounds where UseSamplingBounds is on (checked as the C++ filter does), else
-        None (the input's bounds)."""
-        if not self.UseSamplingBounds:
-            return None
-        b = [float(v) for v in self.SamplingBounds]
-        if not all(np.isfinite(b)) or any(b[2 * a + 1] <= b[2 * a] for a in range(3)):
-            raise EngineError("RefractiveIndex: SamplingBounds %s: each max must exceed its min "
-                              "(SamplingBounds: xmin xmax ymin ymax zmin zmax)" % b)
-        return b
+    _sampling_names = ("SamplingDimensions", "AutomaticDimension", "UseSamplingBounds",
+                       "SamplingBounds")
+
+    def _sampling_grid(self, data):
+        """The grid a resampled input is sampled onto, the engine's (schlieren_sampling_box and
+        _grid: the C++ filter's rule, with its messages): dict(dims, origin, spacing, amr: an AMR
+        input's automatic grid where it set the dimensions, else None)."""
+        settings = {k: self._values[k] for k in self._sampling_names}
+        box = _engine.sampling_box(settings, None if self.UseSamplingBounds else _leaf_bounds(data))
+        array_bytes = _array_bytes(data)
+        amr = None
+        if min(int(d) for d in self.SamplingDimensions) <= 0 and \
+                isinstance(data, vtkOverlappingAMR) and data.GetNumberOfPoints():
+            # an AMR: its finest level's spacing, capped by memory (with the engine's share)
+            amr = _amr_grid(data, box, 1.0 + 16.0 + array_bytes + 21.0)
+        dims, origin, spacing = _engine.sampling_grid(settings, box, array_bytes,
+                                                      amr["dims"] if amr else None)
+        return dict(dims=dims, origin=origin, spacing=spacing, box=box, amr=amr)
+
+    def _followed_grid(self, data, info):
+        """RequestInformation's grid (`info`), made to follow a mesh that moves over time (the
+        engine's schlieren_follow_bounds, the C++ filter's): (dims, origin, spacing), note or
+        None."""
+        if not info.Has(vtkImageData.ORIGIN()) or not info.Has(SDDP.WHOLE_EXTENT()):
+            grid = self._sampling_grid(data)
+            return (grid["dims"], grid["origin"], grid["spacing"]), None
+        whole = info.Get(SDDP.WHOLE_EXTENT())
+        dims = [whole[2 * a + 1] - whole[2 * a] + 1 for a in range(3)]
+        origin, spacing = list(info.Get(vtkImageData.ORIGIN())), list(info.Get(vtkImageData.SPACING()))
+        bounds = _leaf_bounds(_internal_mesh(data))
+        moved = None if self.UseSamplingBounds or bounds is None else \
+            _engine.follow_bounds(whole, origin, spacing, bounds)
+        if moved is None:
+            return (dims, origin, spacing), None
+        info.Set(vtkImageData.ORIGIN(), *moved[0])
+        info.Set(vtkImageData.SPACING(), *moved[1])
+        return (dims, moved[0], moved[1]), moved[2]
 
     def _symmetry_plan(self, data):
         """The engine's plan (schlieren_symmetry_plan) for the 2D input `data`: its checks (the C++
         filter's messages), its wedge, its grid."""
-        self._sampling_bounds()  # checked as the C++ filter does
         mesh = _internal_mesh(data)
         settings = {k: self._values[k] for k in (
             "Symmetry", "SymmetryAxis", "Span", "AxisFromWedge", "SamplingDimensions",
@@ -1189,35 +1188,6 @@ class RefractiveIndex(_Properties):
             _add(image, name, values)
         return image, (None if valid.all() else valid), plan
 
-    def _dims(self, data):
-        dims = [int(d) for d in self.SamplingDimensions]
-        automatic = min(dims) <= 0
-        if automatic and isinstance(data, vtkOverlappingAMR) and data.GetNumberOfPoints():
-            # an AMR: its finest level's spacing, capped by memory (the C++ filter's bytes: the
-            # mask, n - 1 and grad n, a composite's few double arrays, the engine's share)
-            grid = _amr_grid(data, _sampling_box(data, self._sampling_bounds()),
-                             1.0 + 16.0 + 64.0 + 21.0)
-            dims = grid["dims"]
-        elif automatic:
-            # over the box the grid spans (the bounds pulled in by a hair), as the C++ filter
-            dims = _engine.automatic_dimensions(_sampling_box(data, self._sampling_bounds()),
-                                                int(self.AutomaticDimension))
-        # the resampled image is this process's to allocate: refused before, as the C++ filter
-        # does (its arrays, the mask, and the engine's per-point share; a composite input: a few
-        # double arrays, as the C++ filter counts it)
-        if isinstance(data, vtkDataSet):
-            pd = data.GetPointData()
-            per_point = 1.0 + 21.0 + sum(
-                pd.GetArray(i).GetNumberOfComponents() * pd.GetArray(i).GetDataTypeSize()
-                for i in range(pd.GetNumberOfArrays()) if pd.GetArray(i) is not None)
-        else:
-            per_point = 1.0 + 21.0 + 64.0
-        _engine.check_memory(float(dims[0]) * dims[1] * dims[2] * per_point,
-                             "Resampling onto %d x %d x %d points" % tuple(dims),
-                             "Lower AutomaticDimension (points along the longest side)."
-                             if automatic else "Lower SamplingDimensions.")
-        return dims
-
     def RequestData(self, request, inInfo, outInfo):
         data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
@@ -1248,11 +1218,11 @@ class RefractiveIndex(_Properties):
                     self._warn(w)
             elif isinstance(data, vtkOverlappingAMR):
                 # the engine's AMR sampler (the C++ filter's), and its numbers and notes
-                box = _sampling_box(data, self._sampling_bounds())
-                dims = self._dims(data)
-                grid = _amr_grid(data, box, 1.0 + 16.0 + 64.0 + 21.0)
+                sampling = self._sampling_grid(data)
+                grid = sampling["amr"] or _amr_grid(data, sampling["box"], 1.0 + 16.0 + 64.0 + 21.0)
                 automatic = min(int(v) for v in self.SamplingDimensions) <= 0
-                image, valid, notes = _amr_input(data, dims, box)
+                image, valid, notes = _amr_input(data, sampling["dims"], sampling["origin"],
+                                                 sampling["spacing"])
                 notes = ([grid["note"]] if automatic else []) + notes
                 amr_numbers = [("amr_levels", data.GetNumberOfLevels()),
                                ("amr_finest_level", grid["finest_level"]),
@@ -1262,8 +1232,13 @@ class RefractiveIndex(_Properties):
                 for note in notes:
                     self._note(note)
             else:
-                image, valid = _image_input(data, None if not resampled else self._dims(data),
-                                            self._sampling_bounds())
+                grid = None
+                if resampled:
+                    grid, moved = self._followed_grid(data, outInfo.GetInformationObject(0))
+                    if moved:
+                        notes.append(moved)
+                        self._note(moved)
+                image, valid = _image_input(data, grid)
                 if not isinstance(data, vtkImageData) and self.AxisFromWedge:
                     # a wedge traced as it is: a slab of gas a few degrees thick (said as the
                     # C++ filter says it)

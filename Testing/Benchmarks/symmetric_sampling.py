@@ -128,9 +128,8 @@ def image_blocks():
 
 def grid_mode(blocks):
     """The engine's grid mode against the probe on the structure: (new, old) as main's rows."""
-    box = algorithms._sampling_box(blocks, None)
-    dims = _engine.automatic_dimensions(algorithms._bounds(blocks), 61)
-    image, found = algorithms._sample_cells(blocks, dims, box)
+    grid = algorithms.RefractiveIndex(AutomaticDimension=61)._sampling_grid(blocks)
+    image, found = algorithms._sample_cells(blocks, grid["dims"], grid["origin"], grid["spacing"])
     from vtkmodules.vtkCommonDataModel import vtkImageData
     structure = vtkImageData()
     structure.CopyStructure(image)

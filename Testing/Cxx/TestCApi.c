@@ -195,6 +195,78 @@ int main(void)
       "symmetry: an axis normal to the plane refused: %s", schlieren_last_error());
   }
   {
+    /* RefractiveIndex's pipeline rules (SchlierenSamplingGrid.h), the C++ filter's: the box, the
+     * grid, a mesh that moved, the input's piece and extent, the enumerations */
+    const double bounds[6] = { 0, 10, 0, 5, 0, 0 }, away[6] = { 1, 21, 0, 5, 0, 0 };
+    double box[6], o[3], h[3], no[3], nh[3];
+    int d[3], moved = -1, request[3], ext[6], i;
+    const int whole[6] = { 0, 10, 0, 5, 0, 0 }, cube[6] = { 0, 10, 0, 10, 0, 10 };
+    const char* note = NULL;
+    CHECK(schlieren_sampling_box("AutomaticDimension=11", bounds, box) == 0 &&
+        fabs(box[0] - 5e-6) < 1e-12 && fabs(box[1] - (10 - 5e-6)) < 1e-12 &&
+        fabs(box[3] - (5 - 2.5e-6)) < 1e-12 && box[4] == 0 && box[5] == 0,
+      "sampling_box: 0 10 0 5 0 0 pulled in by 1e-6 about its centre: %.9g %.9g %.9g %.9g (%s)",
+      box[0], box[1], box[2], box[3], schlieren_last_error());
+    CHECK(schlieren_sampling_grid("AutomaticDimension=11", box, 8.0, NULL, d, o, h) == 0 &&
+        d[0] == 11 && d[1] == 6 && d[2] == 1 && o[0] == box[0] &&
+        fabs(h[0] - (box[1] - box[0]) / 10) < 1e-15 && h[2] == 1.0,
+      "sampling_grid: AutomaticDimension 11 over 10 x 5 x 0: 11 x 6 x 1 points, spacing %.9g (%s)",
+      h[0], schlieren_last_error());
+    {
+      const int amr[3] = { 5, 4, 1 };
+      CHECK(schlieren_sampling_grid("", box, 64.0, amr, d, o, h) == 0 && d[0] == 5 && d[1] == 4 &&
+          d[2] == 1 && fabs(h[0] - (box[1] - box[0]) / 4) < 1e-15 &&
+          schlieren_sampling_grid("SamplingDimensions=3 3 3", box, 64.0, amr, d, o, h) == 0 &&
+          d[0] == 3 && d[1] == 3 && d[2] == 3,
+        "sampling_grid: an AMR's automatic 5 x 4 x 1 taken where automatic, SamplingDimensions "
+        "3 3 3 where typed (%d %d %d; %s)", d[0], d[1], d[2], schlieren_last_error());
+    }
+    CHECK(schlieren_sampling_box("", NULL, box) != 0 &&
+        strcmp(schlieren_last_error(), "The input has no points to resample onto an image grid.") == 0,
+      "sampling_box: no points refused with the C++ filter's message: %s", schlieren_last_error());
+    CHECK(schlieren_sampling_box("UseSamplingBounds=1\nSamplingBounds=1 0 0 1 0 1", bounds, box) != 0 &&
+        strstr(schlieren_last_error(), "are empty or not finite") != NULL &&
+        strstr(schlieren_last_error(), " (SamplingBounds: xmin xmax ymin ymax zmin zmax)") != NULL,
+      "sampling_box: SamplingBounds 1 0 refused, the property named: %s", schlieren_last_error());
+    schlieren_sampling_box("", bounds, box);
+    CHECK(schlieren_sampling_grid("SamplingDimensions=65536 65536 65536", box, 8.0, NULL, d, o, h) != 0 &&
+        strstr(schlieren_last_error(), "Resampling onto 65536 x 65536 x 65536 points needs") != NULL &&
+        strstr(schlieren_last_error(), "Lower SamplingDimensions.") != NULL,
+      "sampling_grid: 65536^3 points refused by memory: %s", schlieren_last_error());
+    CHECK(schlieren_sampling_grid("Bogus=1", box, 8.0, NULL, d, o, h) != 0 &&
+        strstr(schlieren_last_error(), "unknown setting 'Bogus'") != NULL,
+      "sampling_grid: an unknown setting named: %s", schlieren_last_error());
+    schlieren_sampling_grid("AutomaticDimension=11", box, 0.0, NULL, d, o, h);
+    CHECK(schlieren_follow_bounds(whole, o, h, bounds, &moved, no, nh, &note) == 0 && moved == 0 &&
+        no[0] == o[0] && nh[0] == h[0] && note && !*note,
+      "follow_bounds: the bounds the grid was set over: not moved (%s)", schlieren_last_error());
+    CHECK(schlieren_follow_bounds(whole, o, h, away, &moved, no, nh, &note) == 0 && moved == 1 &&
+        fabs(nh[0] - 2 * (1 - 1e-6)) < 1e-12 && fabs(no[0] - (1 + 1e-5)) < 1e-12 && nh[1] == h[1] &&
+        strstr(note, "the grid follows them, the same points over [1.00001, 21]") != NULL,
+      "follow_bounds: moved to x 1..21, the same 11 points, spacing %.9g: %s", nh[0], note);
+    CHECK(schlieren_input_request(1, 0, 1, 3, 0, 1, 0, 3, NULL, NULL, request, ext) == 0 &&
+        request[0] == 1 && request[1] == 3 && request[2] == 1,
+      "input_request: a mesh on rank 1 of 3: its piece 1 of 3, whole (%s)", schlieren_last_error());
+    CHECK(schlieren_input_request(1, 1, 1, 3, 0, 1, 0, 3, NULL, NULL, request, ext) == 0 &&
+        request[0] == 0 && request[1] == 1 && request[2] == 1,
+      "input_request: a symmetric input read whole on every rank (%s)", schlieren_last_error());
+    CHECK(schlieren_input_request(0, 0, 0, 1, 1, 2, 0, 3, cube, cube, request, ext) == 0 &&
+        request[0] == 0 && request[1] == 1 && request[2] == 0 && ext[0] == 0 && ext[1] == 10 &&
+        ext[4] == 4 && ext[5] == 10,
+      "input_request: an image's piece 1 of 2 (z 5..10, VTK's block split) grown by one: z %d..%d (%s)",
+      ext[4], ext[5], schlieren_last_error());
+    CHECK(schlieren_input_request(0, 0, 0, 1, 2, 2, 0, 3, cube, cube, request, ext) != 0 &&
+        strstr(schlieren_last_error(), "piece 2 of 2") != NULL,
+      "input_request: piece 2 of 2 refused: %s", schlieren_last_error());
+    CHECK(strcmp(schlieren_property_entries("RefractiveIndex", "Symmetry"),
+            "[[0, \"None\"], [1, \"Planar\"], [2, \"Axisymmetric\"]]") == 0 &&
+        strcmp(schlieren_property_entries("RefractiveIndex", "Wavelength"), "[]") == 0 &&
+        strcmp(schlieren_property_entries(NULL, NULL), "[]") == 0,
+      "property_entries: Symmetry's entries, none for a number: %s",
+      schlieren_property_entries("RefractiveIndex", "Symmetry"));
+    (void)i;
+  }
+  {
     /* the filters' property ranges, the engine's (the C++ filters check the same table) */
     const double wavelength = 50, inside[3] = { 0, 64, 65536 }, past[3] = { 0, 64, 65537 };
     const double tolerance = 1e-6, nan = NAN, boolean = 2;

@@ -78,6 +78,7 @@ enum
   F_INDEX_FIELD,
   F_INDEX_CHOICES,
   F_WALL_FACES,
+  F_SAMPLING,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -86,7 +87,8 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "extend_into_invalid", "automatic_dimensions", "check_memory", "symmetry_plan/samples/expand",
   "wedge_warning", "check_property", "photograph", "version/properties/device",
   "two threads, one session", "sample_cells", "amr_overlap/grid/sample", "time_cache_find/insert",
-  "index_field", "index_choices", "wall_faces" };
+  "index_field", "index_choices", "wall_faces",
+  "sampling_grid and rules" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1582,6 +1584,69 @@ static void random_wall_faces_case(int k)
   free(kinds);
 }
 
+/* RefractiveIndex's pipeline rules: settings, bounds, extents, ranks and pieces hostile or not */
+static void random_sampling_case(int k)
+{
+  static const char* settings[] = { "", "AutomaticDimension=64", "AutomaticDimension=1",
+    "AutomaticDimension=1e12", "SamplingDimensions=4 5 6", "SamplingDimensions=0 7 0",
+    "SamplingDimensions=-3 2147483647 2", "SamplingDimensions=1.5 2 2", "UseSamplingBounds=1",
+    "UseSamplingBounds=1\nSamplingBounds=0 1 0 1 0 1", "UseSamplingBounds=1\nSamplingBounds=1 0 0 1 0 1",
+    "UseSamplingBounds=1\nSamplingBounds=nan 1 0 1 0 1", "SamplingBounds=0 1", "Bogus=2", "novalue",
+    "SamplingDimensions=65536 65536 65536", "UseSamplingBounds=1\nSamplingBounds=0 0 0 0 0 0" };
+  static const int sizes[] = { 0, 1, 2, 5, 17, -1, -2147483647 - 1, 2147483647 };
+  char what[96];
+  double bounds[6], box[6], o[3], h[3], no[3], nh[3];
+  int d[3], amr[3], whole[6], upd[6], request[3], ext[6], moved, i, rc;
+  const char* note = NULL;
+  const char* text = settings[below(17)];
+  snprintf(what, sizeof(what), "sampling case %d: '%s'", k, text);
+  for (i = 0; i < 6; ++i)
+  {
+    bounds[i] = below(20) ? (i % 2 ? 1 + 10 * uniform() : -10 * uniform()) : (below(2) ? NAN : -INFINITY);
+    box[i] = bounds[i];
+  }
+  rc = schlieren_sampling_box(below(20) ? text : NULL, below(10) ? bounds : NULL, below(30) ? box : NULL);
+  outcome(F_SAMPLING, rc, schlieren_last_error(), what);
+  for (i = 0; i < 3; ++i)
+    amr[i] = sizes[below(8)];
+  rc = schlieren_sampling_grid(below(20) ? text : NULL, below(30) ? box : NULL,
+    below(10) ? 8.0 * below(10) : (below(2) ? NAN : -1.0), below(4) ? NULL : amr, below(30) ? d : NULL,
+    o, h);
+  outcome(F_SAMPLING, rc, schlieren_last_error(), what);
+  for (i = 0; i < 3; ++i)
+  {
+    whole[2 * i] = below(10) ? 0 : sizes[below(8)];
+    whole[2 * i + 1] = below(10) ? sizes[below(5)] : sizes[below(8)];
+    o[i] = below(20) ? -1 : NAN;
+    h[i] = below(20) ? 0.25 : (below(2) ? 0 : INFINITY);
+  }
+  rc = schlieren_follow_bounds(below(30) ? whole : NULL, o, h, below(30) ? bounds : NULL,
+    below(30) ? &moved : NULL, no, nh, below(2) ? &note : NULL);
+  outcome(F_SAMPLING, rc, schlieren_last_error(), what);
+  for (i = 0; i < 6; ++i)
+    upd[i] = below(6) ? whole[i] : sizes[below(8)];
+  rc = schlieren_input_request(below(2), below(4) == 0, below(8) - 1, below(8) ? 1 + below(4) : sizes[below(8)],
+    below(8) - 1, below(8) ? 1 + below(6) : sizes[below(8)], below(8) ? below(3) : -1,
+    below(8) ? 3 : below(6) - 1, below(30) ? upd : NULL, below(30) ? whole : NULL,
+    below(30) ? request : NULL, ext);
+  outcome(F_SAMPLING, rc, schlieren_last_error(), what);
+  /* an image's extent asked for, where not empty, never leaves the whole extent */
+  if (rc == 0 && request[2] == 0 && ext[0] <= ext[1] && ext[2] <= ext[3] && ext[4] <= ext[5])
+    for (i = 0; i < 3; ++i)
+      if (ext[2 * i] < whole[2 * i] || ext[2 * i + 1] > whole[2 * i + 1])
+      {
+        ++failures;
+        printf("FAIL %s: the extent asked for leaves the whole extent along axis %d\n", what, i);
+      }
+  text = schlieren_property_entries(below(2) ? "RefractiveIndex" : "Nothing",
+    below(2) ? "Model" : (below(2) ? "AmbientMode" : NULL));
+  if (!text || text[0] != '[')
+  {
+    ++failures;
+    printf("FAIL %s: property_entries is not a JSON list: %s\n", what, text ? text : "(NULL)");
+  }
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -1621,6 +1686,8 @@ int main(int argc, char** argv)
     random_index_choices_case((int)k);
   for (k = 0; k < cases / 8; ++k)
     random_wall_faces_case((int)k);
+  for (k = 0; k < cases / 4; ++k)
+    random_sampling_case((int)k);
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");

@@ -4,6 +4,7 @@
 // helium/air to the digits given there, the ideal-gas density of air; and bad input (negative
 // temperature, NaN pressure, mass fractions above 1) gets an Error naming the array and the count.
 #include "SchlierenIndexModels.h"
+#include "SchlierenSamplingGrid.h"
 #include "SchlierenTesting.h"
 
 #include <limits>
@@ -553,10 +554,33 @@ void TestDomainEdge()
     AutomaticDimensions(e, 128, d);
   }, { "empty" });
 }
+
+/** RefractiveIndex's messages that the engine gives the C++ filter before resampling and for an
+ * upstream that did not honour the extent asked (SchlierenSamplingGrid.h), word for word. */
+void TestRequestMessages()
+{
+  const int grown[6] = { 0, 10, 0, 10, 4, 10 }, inside[6] = { 0, 10, 0, 10, 5, 10 },
+            past[6] = { 0, 10, 0, 10, 3, 10 };
+  CHECK(ExtentCoverProblem(grown, inside).empty(), "an input extent that covers the request");
+  CHECK(ExtentCoverProblem(grown, past) ==
+      "The input's extent (0 10 0 10 4 10) does not cover the requested extent (0 10 0 10 3 10); "
+      "the upstream filter did not honour the update request.",
+    "an input extent short of the request: the C++ filter's message");
+  CHECK(MissingArrayProblem({ "density" }, { "Density", "Momentum" }, "GladstoneDale") ==
+      "GladstoneDale reads the array 'density', which the input does not have. Arrays present: "
+      "Density, Momentum. Choose one of them.",
+    "a missing array named with the arrays present");
+  CHECK(MissingArrayProblem({ "T" }, {}, "IdealGas") ==
+      "IdealGas reads the array 'T', which the input does not have. Arrays present: none. Choose "
+      "one of them.",
+    "a missing array where the input has none");
+  CHECK(MissingArrayProblem({ "T", "p" }, { "p", "T" }, "IdealGas").empty(), "all present");
+}
 } // namespace
 
 int main()
 {
+  TestRequestMessages();
   TestCiddor();
   TestGladstoneDale();
   TestErrors();

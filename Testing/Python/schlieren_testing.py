@@ -16,6 +16,33 @@ import numpy as np
 KNIFE_SCALE = 1000.0
 
 
+def moving_mesh(path, shift, stretch=1.0):
+    """A time step of a mesh that moves (a .vtu at `path`): an unstructured mesh of 13^3 points over
+    [-1, 1]^3 moved by `shift` along x and stretched by `stretch` along x, carrying a Gaussian
+    density that moves with it (RefractiveIndex's grid follows it: FollowBounds)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkFiltersCore import vtkAppendFilter
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+    im = vtkImageData()
+    im.SetDimensions(13, 13, 13)
+    im.SetOrigin(-stretch + shift, -1.0, -1.0)
+    im.SetSpacing(stretch / 6, 1 / 6, 1 / 6)
+    x = [im.GetOrigin()[a] + np.arange(13) / 6 * (stretch if a == 0 else 1.0) for a in range(3)]
+    Z, Y, X = np.meshgrid(x[2], x[1], x[0], indexing="ij")
+    rho = numpy_to_vtk((1.2 + 0.4 * np.exp(-((X - shift) ** 2 + Y ** 2 + Z ** 2) / 0.1)).ravel(),
+                       deep=1)
+    rho.SetName("density")
+    im.GetPointData().AddArray(rho)
+    ap = vtkAppendFilter()
+    ap.AddInputData(im)
+    ap.Update()
+    w = vtkXMLUnstructuredGridWriter()
+    w.SetFileName(path)
+    w.SetInputData(ap.GetOutput())
+    w.Write()
+
+
 def argument(name, default=None):
     """The value after `name` on the command line (``--name value`` or ``--name=value``)."""
     for i, a in enumerate(sys.argv):

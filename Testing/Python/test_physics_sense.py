@@ -274,30 +274,6 @@ Delete(ri)
 
 # ------------------------------------------------------------------ 6. a mesh that moves
 import tempfile
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkFiltersCore import vtkAppendFilter
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
-
-
-def moving_mesh(path, shift):
-    """An unstructured mesh (13^3 points over [-1, 1]^3 moved by `shift` along x) carrying a
-    Gaussian density that moves with it."""
-    im = vtkImageData()
-    im.SetDimensions(13, 13, 13)
-    im.SetOrigin(-1.0 + shift, -1.0, -1.0)
-    im.SetSpacing(1 / 6, 1 / 6, 1 / 6)
-    x = [im.GetOrigin()[a] + np.arange(13) / 6 for a in range(3)]
-    Z, Y, X = np.meshgrid(x[2], x[1], x[0], indexing="ij")
-    rho = numpy_to_vtk((1.2 + 0.4 * np.exp(-((X - shift) ** 2 + Y ** 2 + Z ** 2) / 0.1)).ravel(), deep=1)
-    rho.SetName("density")
-    im.GetPointData().AddArray(rho)
-    ap = vtkAppendFilter()
-    ap.AddInputData(im)
-    ap.Update()
-    w = vtkXMLUnstructuredGridWriter()
-    w.SetFileName(path)
-    w.SetInputData(ap.GetOutput())
-    w.Write()
 
 
 def traced(reader, time=None):
@@ -322,8 +298,8 @@ def traced(reader, time=None):
 
 folder = tempfile.mkdtemp(prefix="physics_sense_")
 steps = [os.path.join(folder, "mesh_%d.vtu" % i) for i in range(2)]
-moving_mesh(steps[0], 0.0)
-moving_mesh(steps[1], 0.5)
+st.moving_mesh(steps[0], 0.0)
+st.moving_mesh(steps[1], 0.5)
 series = XMLUnstructuredGridReader(FileName=steps)
 series.UpdatePipelineInformation()
 alone = XMLUnstructuredGridReader(FileName=[steps[1]])

@@ -1103,5 +1103,57 @@ check(again[1] == 5 and again[2]["index_computed"] == 6 and again[2]["index_from
 for proxy in (timed_image, timed_index, timed):
     Delete(proxy)
 
+# -- 12. a mesh that moves and stretches over time (issue 47: the engine's FollowBounds in both):
+# the second step, x stretched by 1.5 and moved by 0.5, on the grid set over the first step's
+# bounds with the same points; the C++ filter and the Python plugin give the same grid, n - 1 and
+# note (before issue 47 the Python front end set a new grid from AutomaticDimension: 11 x 8 x 8
+# points where the C++ filter kept 11 x 11 x 11)
+import tempfile  # noqa: E402
+from paraview.simple import XMLUnstructuredGridReader  # noqa: E402
+import schlieren_testing as st  # noqa: E402
+
+steps = [os.path.join(tempfile.mkdtemp(prefix="parity_moving_"), "mesh_%d.vtu" % i) for i in (0, 1)]
+st.moving_mesh(steps[0], 0.0)
+st.moving_mesh(steps[1], 0.5, 1.5)
+series, series_cxx = XMLUnstructuredGridReader(FileName=steps), XMLUnstructuredGridReader(FileName=steps)
+series.UpdatePipelineInformation()
+series_cxx.UpdatePipelineInformation()  # its own reader: each pipeline sets its grid on step 0
+moving_py = ns["RefractiveIndex"](Input=series, Model="GladstoneDale", AutomaticDimension=11)
+moving_py.InputArray = ["POINTS", "density"]
+moving_cxx = cxx.vtkRefractiveIndex()
+moving_cxx.SetInputConnection(series_cxx.GetClientSideObject().GetOutputPort())
+moving_cxx.SetModel(RI.GLADSTONE_DALE)
+moving_cxx.SetAutomaticDimension(11)
+moving_cxx.SetInputArrayToProcess(0, 0, 0, 0, "density")
+with Captured():
+    moving_py.UpdatePipeline(0.0)
+    moving_py.UpdatePipeline(1.0)
+    moving_cxx.UpdateTimeStep(0.0)
+    moving_cxx.UpdateTimeStep(1.0)
+mp = moving_py.GetClientSideObject().GetOutputDataObject(0)
+mc = moving_cxx.GetOutputDataObject(0)
+said = "the grid follows them, the same points over"
+n1 = [numpy_support.vtk_to_numpy(d.GetPointData().GetArray("n_minus_1")).view(np.uint32)
+      for d in (mp, mc)]  # (`array` is the ProgrammableSource's NumPy interface's by now)
+check(mp.GetExtent() == mc.GetExtent() == (0, 10, 0, 10, 0, 10) and
+      mp.GetOrigin() == mc.GetOrigin() and mp.GetSpacing() == mc.GetSpacing() and
+      np.array_equal(n1[0], n1[1]),
+      "a mesh stretched and moved at its second step: the C++ filter's grid (%s %s %s; C++ %s %s "
+      "%s) and n - 1 bit for bit" % (mp.GetExtent(), mp.GetOrigin(), mp.GetSpacing(),
+                                     mc.GetExtent(), mc.GetOrigin(), mc.GetSpacing()))
+
+
+def notes_of(d):
+    a = d.GetFieldData().GetAbstractArray("index_notes")
+    return [a.GetValue(i) for i in range(a.GetNumberOfValues())] if a is not None else []
+
+
+moved_notes = [[n for n in notes_of(d) if said in n] for d in (mp, mc)]
+check(len(moved_notes[0]) == 1 and moved_notes[0] == moved_notes[1],
+      "... and the same note in index_notes of both (%s; C++ %s)" % tuple(moved_notes))
+Delete(moving_py)
+Delete(series)
+Delete(series_cxx)
+
 print("%d failures" % len(failures))
 sys.exit(1 if failures else 0)
