@@ -36,7 +36,10 @@
  * `auto_report` (string: what Auto chose and why), `expected_error` (radians: the chosen setting's
  * error on the pilot rays), `auto_tolerance` (radians, as applied), `auto_met` (1 if a
  * candidate met it) and `auto_floor` (radians: where the tolerance was below the smallest error the
- * pilot can tell apart, that floor, at which the cheapest candidate was taken; else 0) and
+ * pilot can tell apart, that floor, at which the cheapest candidate was taken; else 0),
+ * `auto_reference_error` (radians: the tricubic reference's own error, measured against the field
+ * sampled at twice the spacing where the tolerance may be within its reach; else 0; 1.5 times it is a
+ * floor, and a tolerance below it is reported not reachable on this grid) and
  * `auto_reused` (1: only the view changed since the last pilot, whose choice was kept).
  * With a finite Source under KnifeEdge (docs/BENCH.md): `bench_sensitivity` (dI/I per radian),
  * `bench_range` (2 values, radians: full dark, saturation), `bench_resolvable_deflection` (radians

@@ -558,6 +558,184 @@ void MakeReport(schlieren_session* s, const std::string& error)
 
 namespace
 {
+/** schlieren_parallel's callbacks as the engine's Parallel (docs/PARALLEL.md): lengths are
+ * exchanged first so that every callback moves the same count on every rank; what the callbacks
+ * give back is checked before it is used. */
+class CallbackParallel final : public schlieren::Parallel
+{
+public:
+  CallbackParallel(const schlieren_parallel& p, const char* function)
+    : P(p)
+    , Function(function)
+  {
+  }
+  int Rank() const override { return this->P.rank; }
+  int Size() const override { return this->P.size; }
+
+  void Reduce(double* values, std::size_t count, schlieren::ReduceOp op) override
+  {
+    if (count == 0)
+      return;
+    std::vector<double> in(values, values + count);
+    const int code = op == schlieren::ReduceOp::Sum ? 0 : op == schlieren::ReduceOp::Min ? 1 : 2;
+    this->Check("reduce", this->P.reduce(in.data(), values, static_cast<int64_t>(count), code, this->P.user));
+    const bool finiteIn = std::all_of(in.begin(), in.end(), [](double v) { return std::isfinite(v); });
+    if (finiteIn && !std::all_of(values, values + count, [](double v) { return std::isfinite(v); }))
+      this->Bad("reduce", "a value that is not finite from finite ones");
+  }
+
+  void Broadcast(std::vector<char>& bytes, int root) override
+  {
+    if (root < 0 || root >= this->P.size)
+      this->Bad("broadcast", "a root outside the ranks (" + std::to_string(root) + ")");
+    std::int64_t length = static_cast<std::int64_t>(bytes.size());
+    char head[sizeof(length)];
+    std::memcpy(head, &length, sizeof(length));
+    this->Check("broadcast", this->P.broadcast(head, sizeof(head), root, this->P.user));
+    std::memcpy(&length, head, sizeof(length));
+    this->Length("broadcast", length);
+    if (this->P.rank != root)
+      bytes.assign(static_cast<std::size_t>(length), 0);
+    else if (length != static_cast<std::int64_t>(bytes.size()))
+      this->Bad("broadcast", "the root another length than its own");
+    if (length > 0)
+      this->Check("broadcast", this->P.broadcast(bytes.data(), length, root, this->P.user));
+  }
+
+  std::vector<std::vector<char>> AllGather(const std::vector<char>& mine) override
+  {
+    const int n = this->P.size;
+    const std::int64_t length = static_cast<std::int64_t>(mine.size());
+    std::vector<std::int64_t> lengths(static_cast<std::size_t>(n), 0);
+    this->Check("allgather", this->P.allgather(reinterpret_cast<const char*>(&length),
+                               sizeof(length), reinterpret_cast<char*>(lengths.data()), this->P.user));
+    std::int64_t most = 0;
+    for (std::int64_t l : lengths)
+    {
+      this->Length("allgather", l);
+      most = std::max(most, l);
+    }
+    if (lengths[static_cast<std::size_t>(this->P.rank)] != length)
+      this->Bad("allgather", "this rank another length than its own");
+    std::vector<std::vector<char>> out(static_cast<std::size_t>(n));
+    if (most == 0)
+      return out;
+    schlieren::CheckHostMemory(double(most) * n, "Gathering the ranks' messages",
+      "Use fewer ranks or a smaller volume.");
+    // every rank sends the longest message's count: padded
+    std::vector<char> padded(static_cast<std::size_t>(most), 0), all(static_cast<std::size_t>(most) * n);
+    std::copy(mine.begin(), mine.end(), padded.begin());
+    this->Check("allgather", this->P.allgather(padded.data(), most, all.data(), this->P.user));
+    for (int r = 0; r < n; ++r)
+    {
+      const char* from = all.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(most);
+      out[static_cast<std::size_t>(r)].assign(from, from + lengths[static_cast<std::size_t>(r)]);
+    }
+    return out;
+  }
+
+  std::vector<std::vector<char>> Exchange(const std::vector<std::vector<char>>& outgoing) override
+  {
+    const int n = this->P.size;
+    if (static_cast<int>(outgoing.size()) != n)
+      throw schlieren::Error("Parallel::Exchange: one message per rank expected");
+    // on the all-gather: every rank's messages to every rank, each rank keeps those to it
+    std::vector<char> mine;
+    for (const std::vector<char>& m : outgoing)
+    {
+      const std::int64_t l = static_cast<std::int64_t>(m.size());
+      const char* b = reinterpret_cast<const char*>(&l);
+      mine.insert(mine.end(), b, b + sizeof(l));
+      mine.insert(mine.end(), m.begin(), m.end());
+    }
+    const std::vector<std::vector<char>> all = this->AllGather(mine);
+    std::vector<std::vector<char>> incoming(static_cast<std::size_t>(n));
+    for (int r = 0; r < n; ++r)
+    {
+      const std::vector<char>& theirs = all[static_cast<std::size_t>(r)];
+      std::size_t at = 0;
+      for (int to = 0; to < n; ++to)
+      {
+        std::int64_t l = -1;
+        if (at > theirs.size() || theirs.size() - at < sizeof(l))
+          this->Bad("allgather", "a message cut short");
+        std::memcpy(&l, theirs.data() + at, sizeof(l));
+        at += sizeof(l);
+        if (l < 0 || static_cast<std::uint64_t>(l) > theirs.size() - at)
+          this->Bad("allgather", "a message cut short");
+        if (to == this->P.rank)
+          incoming[static_cast<std::size_t>(r)].assign(
+            theirs.begin() + static_cast<std::ptrdiff_t>(at), theirs.begin() + static_cast<std::ptrdiff_t>(at + l));
+        at += static_cast<std::size_t>(l);
+      }
+    }
+    return incoming;
+  }
+
+private:
+  void Check(const char* callback, int status) const
+  {
+    if (status != 0)
+      throw schlieren::Error(std::string(this->Function) + ": the caller's " + callback +
+        " callback failed (returned " + std::to_string(status) + ") on rank " +
+        std::to_string(this->P.rank) + " of " + std::to_string(this->P.size) + ".");
+  }
+  [[noreturn]] void Bad(const char* callback, const std::string& what) const
+  {
+    throw schlieren::Error(std::string(this->Function) + ": the caller's " + callback +
+      " callback gave " + what + " on rank " + std::to_string(this->P.rank) + " of " +
+      std::to_string(this->P.size) + ".");
+  }
+  void Length(const char* callback, std::int64_t l) const
+  {
+    if (l < 0 || l > (std::int64_t(1) << 40))
+      this->Bad(callback, "a length of " + std::to_string(l) + " bytes (0 to 2^40)");
+  }
+  schlieren_parallel P;
+  const char* Function;
+};
+
+/** The ranks `p` describes, checked: one process for NULL or a size of 1; `own` keeps the
+ * callbacks' Parallel for the call. */
+schlieren::Parallel& RanksOf(
+  const char* f, const schlieren_parallel* p, std::unique_ptr<CallbackParallel>& own)
+{
+  if (!p)
+    return schlieren::SerialParallel();
+  if (p->size < 1)
+    throw schlieren::Error(std::string(f) + ": parallel->size is " + std::to_string(p->size) +
+      ": the number of ranks, at least 1.");
+  if (p->rank < 0 || p->rank >= p->size)
+    throw schlieren::Error(std::string(f) + ": parallel->rank is " + std::to_string(p->rank) +
+      ": it must be in [0, " + std::to_string(p->size) + ") (parallel->size " +
+      std::to_string(p->size) + ").");
+  if (p->size == 1)
+    return schlieren::SerialParallel();
+  if (!p->reduce || !p->broadcast || !p->allgather)
+    throw schlieren::Error(std::string(f) + ": parallel->size is " + std::to_string(p->size) +
+      " but its " + (!p->reduce ? "reduce" : !p->broadcast ? "broadcast" : "allgather") +
+      " callback is NULL: give reduce, broadcast and allgather.");
+  own = std::make_unique<CallbackParallel>(*p, f);
+  return *own;
+}
+} // namespace
+
+int schlieren_parallel_failure(const schlieren_parallel* parallel, const char* mine, const char** agreed)
+{
+  if (agreed)
+    *agreed = "";
+  return Guard(LastError, [&] {
+    if (!agreed)
+      throw schlieren::Error("schlieren_parallel_failure: agreed must be given.");
+    std::unique_ptr<CallbackParallel> own;
+    schlieren::Parallel& ranks = RanksOf("schlieren_parallel_failure", parallel, own);
+    Returned = ranks.Failure(mine ? mine : "");
+    *agreed = Returned.c_str();
+  });
+}
+
+namespace
+{
 const std::string& PropertiesJson();
 const std::string& DeviceJson(const char* device_name);
 }
@@ -759,22 +937,52 @@ const char* schlieren_session_get(schlieren_session* s, const char* name)
   return h->Text.c_str();
 }
 
-int schlieren_session_set_volume(schlieren_session* handle, const int dims[3],
+namespace
+{
+/** The session's volume: this rank's piece `extent` of `whole` (both the whole where one process
+ * holds it), checked. */
+int SetPiece(schlieren_session* handle, const char* f, const int whole[6], const int extent[6],
   const double origin[3], const double spacing[3], const float* n_minus_1,
   int64_t n_minus_1_count, const unsigned char* solid, int64_t solid_count,
   const unsigned char* levels, int64_t levels_count, double level_tolerance, int max_level)
 {
-  Held h(handle, "schlieren_session_set_volume");
+  Held h(handle, f);
   if (!h)
     return 1;
   schlieren_session* s = h.get();
   return Guard(s->Error, [&] {
-    const char* f = "schlieren_session_set_volume";
-    const std::int64_t n = GridPoints(f, dims);
-    const std::string per = "a grid of " + GridText(dims) + " points";
+    if (!whole || !extent)
+      throw schlieren::Error(std::string(f) + ": whole_extent and extent must be given.");
+    int wholeDims[3], dims[3] = { 0, 0, 0 };
+    for (int a = 0; a < 3; ++a)
+      wholeDims[a] = whole[2 * a + 1] >= whole[2 * a] &&
+          std::int64_t(whole[2 * a + 1]) - whole[2 * a] < (std::int64_t(1) << 31) - 1
+        ? whole[2 * a + 1] - whole[2 * a] + 1
+        : 0;
+    GridPoints(f, wholeDims); // the whole volume's points: refused as a grid's dims are
+    const bool empty = EmptyExtent(extent);
+    if (!empty)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        if (extent[2 * a] < whole[2 * a] || extent[2 * a + 1] > whole[2 * a + 1])
+          throw schlieren::Error(std::string(f) + ": extent " + std::to_string(extent[0]) + " " +
+            std::to_string(extent[1]) + " " + std::to_string(extent[2]) + " " +
+            std::to_string(extent[3]) + " " + std::to_string(extent[4]) + " " +
+            std::to_string(extent[5]) + " does not lie inside whole_extent " +
+            std::to_string(whole[0]) + " " + std::to_string(whole[1]) + " " +
+            std::to_string(whole[2]) + " " + std::to_string(whole[3]) + " " +
+            std::to_string(whole[4]) + " " + std::to_string(whole[5]) + ".");
+        dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+      }
+    }
+    const std::int64_t n = empty ? 0 : GridPoints(f, dims);
+    const std::string per = empty ? std::string("an empty piece")
+                                  : (std::equal(whole, whole + 6, extent) ? "a grid of " : "a piece of ") +
+        GridText(dims) + " points";
     CheckFinite3(f, "origin", origin);
     CheckFinite3(f, "spacing", spacing);
-    CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, n, per, false);
+    CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, n, per, empty);
     CheckArray(f, "solid", solid, solid_count, n, per, true);
     CheckArray(f, "levels", levels, levels_count, n, per, true);
     if (!(max_level >= 0 && max_level <= 10))
@@ -801,8 +1009,10 @@ int schlieren_session_set_volume(schlieren_session* handle, const int dims[3],
     schlieren::VolumePiece& piece = s->Piece;
     for (int a = 0; a < 3; ++a)
     {
-      piece.WholeExtent[2 * a] = piece.Extent[2 * a] = 0;
-      piece.WholeExtent[2 * a + 1] = piece.Extent[2 * a + 1] = dims[a] - 1;
+      piece.WholeExtent[2 * a] = whole[2 * a];
+      piece.WholeExtent[2 * a + 1] = whole[2 * a + 1];
+      piece.Extent[2 * a] = empty ? 0 : extent[2 * a];
+      piece.Extent[2 * a + 1] = empty ? -1 : extent[2 * a + 1];
       piece.Origin[a] = origin[a];
       piece.Spacing[a] = spacing[a];
     }
@@ -825,11 +1035,46 @@ int schlieren_session_set_volume(schlieren_session* handle, const int dims[3],
     s->HasVolume = true;
   });
 }
+} // namespace
+
+int schlieren_session_set_volume(schlieren_session* handle, const int dims[3],
+  const double origin[3], const double spacing[3], const float* n_minus_1,
+  int64_t n_minus_1_count, const unsigned char* solid, int64_t solid_count,
+  const unsigned char* levels, int64_t levels_count, double level_tolerance, int max_level)
+{
+  const char* f = "schlieren_session_set_volume";
+  int whole[6] = { 0, -1, 0, -1, 0, -1 };
+  for (int a = 0; a < 3; ++a)
+    {
+      if (!dims || dims[a] < 1)
+      {
+        // the grid's message, as before
+        Held h(handle, f);
+        if (!h)
+          return 1;
+        return Guard(h->Error, [&] { GridPoints(f, dims); });
+      }
+      whole[2 * a + 1] = dims[a] - 1;
+    }
+  return SetPiece(handle, f, whole, whole, origin, spacing,
+    n_minus_1, n_minus_1_count, solid, solid_count, levels, levels_count, level_tolerance,
+    max_level);
+}
+
+int schlieren_session_set_piece(schlieren_session* handle, const int whole_extent[6],
+  const int extent[6], const double origin[3], const double spacing[3], const float* n_minus_1,
+  int64_t n_minus_1_count, const unsigned char* solid, int64_t solid_count,
+  const unsigned char* levels, int64_t levels_count, double level_tolerance, int max_level)
+{
+  return SetPiece(handle, "schlieren_session_set_piece", whole_extent, extent, origin, spacing,
+    n_minus_1, n_minus_1_count, solid, solid_count, levels, levels_count, level_tolerance,
+    max_level);
+}
 
 namespace
 {
 int TraceWith(schlieren_session* handle, const char* name,
-  schlieren_progress_callback callback, void* user)
+  schlieren_progress_callback callback, void* user, const schlieren_parallel* parallel = nullptr)
 {
   Held h(handle, name);
   if (!h)
@@ -856,7 +1101,9 @@ int TraceWith(schlieren_session* handle, const char* name,
         percent = clock.Percent();
         return !stopped;
       };
-    s->Session.Update(schlieren::SerialParallel(), s->Piece, s->Settings, s->Image, progress);
+    std::unique_ptr<CallbackParallel> own;
+    schlieren::Parallel& ranks = RanksOf(name, parallel, own);
+    s->Session.Update(ranks, s->Piece, s->Settings, s->Image, progress);
     s->HasImage = s->Image.HasImage;
   });
   if (rc != 0 && stopped)
@@ -882,6 +1129,12 @@ int schlieren_session_trace_progress(
   schlieren_session* handle, schlieren_progress_callback progress, void* user)
 {
   return TraceWith(handle, "schlieren_session_trace_progress", progress, user);
+}
+
+int schlieren_session_trace_parallel(schlieren_session* handle,
+  const schlieren_parallel* parallel, schlieren_progress_callback progress, void* user)
+{
+  return TraceWith(handle, "schlieren_session_trace_parallel", progress, user, parallel);
 }
 
 int schlieren_session_write_bos_pair(schlieren_session* handle, const char* folder, int bits,
@@ -1105,10 +1358,36 @@ int NumericalWith(const char* f, const char* settings, const int dims[3], const 
   int64_t solid_count, const unsigned char* excluded, int64_t excluded_count, int size[2],
   double film_origin[2], double* pixel_size, int64_t capacity, float* intensity, float* gradient,
   unsigned char* blocked, double maximum_largest[2], schlieren_progress_callback callback,
-  void* user)
+  void* user, const int* offset = nullptr, const int* piece_dims = nullptr,
+  const schlieren_parallel* parallel = nullptr, int* has_image = nullptr)
 {
+  if (has_image)
+    *has_image = 0;
   return Guard(LastError, [&] {
-    const std::int64_t points = GridPoints(f, dims);
+    std::unique_ptr<CallbackParallel> own;
+    schlieren::Parallel& ranks = RanksOf(f, parallel, own);
+    GridPoints(f, dims);
+    // this rank's piece: its points (0 where it holds none) and their index in the whole grid
+    int pieceDims[3] = { dims[0], dims[1], dims[2] }, pieceOffset[3] = { 0, 0, 0 };
+    bool emptyPiece = false;
+    if (piece_dims)
+    {
+      if (!offset)
+        throw schlieren::Error(std::string(f) + ": offset must be given with piece_dims.");
+      for (int a = 0; a < 3; ++a)
+      {
+        emptyPiece = emptyPiece || piece_dims[a] == 0;
+        if (piece_dims[a] < 0 || offset[a] < 0 || offset[a] > dims[a] ||
+          piece_dims[a] > dims[a] - offset[a])
+          throw schlieren::Error(std::string(f) + ": the piece (offset " + std::to_string(offset[0]) +
+            " " + std::to_string(offset[1]) + " " + std::to_string(offset[2]) + ", piece_dims " +
+            std::to_string(piece_dims[0]) + " " + std::to_string(piece_dims[1]) + " " +
+            std::to_string(piece_dims[2]) + ") does not lie inside whole_dims " + GridText(dims) + ".");
+        pieceDims[a] = piece_dims[a];
+        pieceOffset[a] = offset[a];
+      }
+    }
+    const std::int64_t points = emptyPiece ? 0 : GridPoints(f, pieceDims);
     CheckFinite3(f, "origin", origin);
     CheckFinite3(f, "spacing", spacing);
     if (capacity < 0)
@@ -1208,10 +1487,20 @@ int NumericalWith(const char* f, const char* settings, const int dims[3], const 
     if (!gradient || !blocked)
       throw schlieren::Error("schlieren_numerical: intensity, gradient and blocked must be given "
                              "together (each of `capacity` pixels).");
-    const std::string per = "a grid of " + GridText(dims) + " points";
-    CheckArray(f, "values", values, values_count, points, per, false);
+    const std::string per = emptyPiece ? std::string("an empty piece")
+                                       : (piece_dims ? "a piece of " : "a grid of ") + GridText(pieceDims) + " points";
+    CheckArray(f, "values", values, values_count, points, per, emptyPiece);
     CheckArray(f, "solid", solid, solid_count, points, per, true);
     CheckArray(f, "excluded", excluded, excluded_count, points, per, true);
+    schlieren::ScalarGrid piece = grid;
+    for (int a = 0; a < 3; ++a)
+    {
+      piece.Dimensions[a] = emptyPiece ? 0 : pieceDims[a];
+      piece.Origin[a] = origin[a] + pieceOffset[a] * spacing[a];
+    }
+    piece.Values = values;
+    piece.Solid = solid;
+    piece.Excluded = excluded;
     grid.Values = values;
     grid.Solid = solid;
     grid.Excluded = excluded;
@@ -1225,7 +1514,18 @@ int NumericalWith(const char* f, const char* settings, const int dims[3], const 
         stopped = stopped || callback(fraction, text.c_str(), user) == 0;
         return !stopped;
       };
-    const schlieren::NumericalImage image = schlieren::NumericalSchlieren(grid, ns, progress);
+    schlieren::NumericalImage image;
+    if (!piece_dims)
+      image = schlieren::NumericalSchlieren(grid, ns, progress);
+    else
+    {
+      grid.Values = nullptr;
+      grid.Solid = grid.Excluded = nullptr;
+      if (!schlieren::NumericalSchlierenOfPieces(ranks, piece, pieceOffset, grid, ns, image, progress))
+        return; // rank 0 holds the image
+    }
+    if (has_image)
+      *has_image = 1;
     const std::int64_t n = static_cast<std::int64_t>(image.Film.Size[0]) * image.Film.Size[1];
     if (n > capacity)
       throw schlieren::Error("schlieren_numerical: the film has " + std::to_string(n) +
@@ -1272,6 +1572,28 @@ int schlieren_numerical_progress(const char* settings, const int dims[3], const 
   return NumericalWith("schlieren_numerical_progress", settings, dims, origin, spacing, values,
     values_count, solid, solid_count, excluded, excluded_count, size, film_origin, pixel_size,
     capacity, intensity, gradient, blocked, maximum_largest, progress, user);
+}
+
+int schlieren_numerical_pieces(const char* settings, const int whole_dims[3],
+  const double origin[3], const double spacing[3], const int offset[3], const int piece_dims[3],
+  const float* values, int64_t values_count, const unsigned char* solid, int64_t solid_count,
+  const unsigned char* excluded, int64_t excluded_count, int size[2], double film_origin[2],
+  double* pixel_size, int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
+  double maximum_largest[2], schlieren_progress_callback progress, void* user,
+  const schlieren_parallel* parallel, int* has_image)
+{
+  const char* f = "schlieren_numerical_pieces";
+  if (!offset || !piece_dims || !intensity)
+  {
+    if (has_image)
+      *has_image = 0;
+    LastError = std::string(f) + ": offset, piece_dims and intensity (with gradient and blocked) "
+                                 "must be given (schlieren_numerical plans the film).";
+    return 1;
+  }
+  return NumericalWith(f, settings, whole_dims, origin, spacing, values, values_count, solid,
+    solid_count, excluded, excluded_count, size, film_origin, pixel_size, capacity, intensity,
+    gradient, blocked, maximum_largest, progress, user, offset, piece_dims, parallel, has_image);
 }
 
 int schlieren_octree_levels(const int dims[3], const float* n_minus_1, int64_t count,
@@ -1639,29 +1961,60 @@ std::string IndexFieldReport(const schlieren::IndexFieldOutput& out, const std::
 }
 } // namespace
 
-int schlieren_index_field(const char* settings, const int dims[3], const double spacing[3],
+namespace
+{
+/** schlieren_index_field on `dims_in` (one process), or on a piece (`extents`: grid, out and whole
+ * extents, 18 values; dims from the grid's) over `parallel`. */
+int IndexFieldWith(const char* f, const char* settings, const int dims_in[3],
+  const int* extents, const double spacing[3],
   int number_of_arrays, const char* const* names, const int* components, const int* value_bytes,
   const void* const* values, const int64_t* value_counts, int active_scalars,
   const char* cell_arrays, const char* notes, const unsigned char* valid, int64_t valid_count,
   const unsigned char* rim, int64_t rim_count, const unsigned char* body, int64_t body_count,
   float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
-  unsigned char* solid, int64_t solid_count, const char** report)
+  unsigned char* solid, int64_t solid_count, const schlieren_parallel* parallel,
+  const char** report)
 {
   if (report)
     *report = "";
   schlieren::IndexFieldOutput out;
   std::string failure;
+  int dims[3] = { 0, 0, 0 };
+  bool emptyPiece = false;
   const int status = Guard(LastError, [&] {
-    const char* f = "schlieren_index_field";
-    const std::int64_t points = GridPoints(f, dims);
+    std::unique_ptr<CallbackParallel> own;
+    schlieren::Parallel& ranks = RanksOf(f, parallel, own);
+    if (extents)
+    {
+      const int* whole = extents + 12;
+      int wholeDims[3];
+      for (int a = 0; a < 3; ++a)
+        wholeDims[a] = whole[2 * a + 1] >= whole[2 * a] &&
+            std::int64_t(whole[2 * a + 1]) - whole[2 * a] < (std::int64_t(1) << 31) - 1
+          ? whole[2 * a + 1] - whole[2 * a] + 1
+          : 0;
+      GridPoints(f, wholeDims);
+      emptyPiece = EmptyExtent(extents) || EmptyExtent(extents + 6);
+      for (int e = 0; e < 2 && !emptyPiece; ++e)
+        for (int a = 0; a < 3; ++a)
+          if (extents[6 * e + 2 * a] < whole[2 * a] || extents[6 * e + 2 * a + 1] > whole[2 * a + 1] ||
+            (e == 1 && (extents[6 + 2 * a] < extents[2 * a] || extents[6 + 2 * a + 1] > extents[2 * a + 1])))
+            throw schlieren::Error(std::string(f) + ": the extents are not nested: out_extent must "
+                                                    "lie inside grid_extent, and both inside whole_extent.");
+      for (int a = 0; a < 3 && !emptyPiece; ++a)
+        dims[a] = extents[2 * a + 1] - extents[2 * a] + 1;
+    }
+    else if (dims_in)
+      std::copy(dims_in, dims_in + 3, dims);
+    const std::int64_t points = emptyPiece ? 0 : GridPoints(f, extents ? dims : dims_in);
     CheckFinite3(f, "spacing", spacing);
-    const std::string per = "a grid of " + GridText(dims) + " points";
+    const std::string per = emptyPiece ? std::string("an empty piece") : "a grid of " + GridText(dims) + " points";
     CheckArray(f, "valid", valid, valid_count, points, per, true, "bytes");
     CheckArray(f, "rim", rim, rim_count, points, per, true, "bytes");
     CheckArray(f, "body", body, body_count, points, per, true, "bytes");
-    CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, points, per, false);
-    CheckArray(f, "grad3", grad3, grad3_count, 3 * points, per + " (3 a point)", false);
-    CheckArray(f, "solid", solid, solid_count, points, per, false, "bytes");
+    CheckArray(f, "n_minus_1", n_minus_1, n_minus_1_count, points, per, emptyPiece);
+    CheckArray(f, "grad3", grad3, grad3_count, 3 * points, per + " (3 a point)", emptyPiece);
+    CheckArray(f, "solid", solid, solid_count, points, per, emptyPiece, "bytes");
     if (number_of_arrays < 0 ||
       (number_of_arrays > 0 && (!names || !components || !value_bytes || !values || !value_counts)))
       throw schlieren::Error(std::string(f) + ": number_of_arrays is " +
@@ -1788,13 +2141,25 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
     in.Valid = valid;
     in.NMinus1 = n_minus_1;
     in.Gradient = grad3;
-    for (int a = 0; a < 3; ++a)
+    if (extents)
     {
-      in.GridExtent[2 * a + 1] = in.OutExtent[2 * a + 1] = in.WholeExtent[2 * a + 1] = dims[a] - 1;
+      std::copy(extents, extents + 6, in.GridExtent);
+      std::copy(extents + 6, extents + 12, in.OutExtent);
+      std::copy(extents + 12, extents + 18, in.WholeExtent);
+      in.EmptyPiece = emptyPiece;
     }
-    failure = schlieren::ComputeIndexField(schlieren::SerialParallel(), in, out);
-    std::fill(solid, solid + points, static_cast<unsigned char>(0));
-    std::copy(out.Solid.begin(), out.Solid.end(), solid);
+    else
+      for (int a = 0; a < 3; ++a)
+      {
+        in.GridExtent[2 * a + 1] = in.OutExtent[2 * a + 1] = in.WholeExtent[2 * a + 1] = dims[a] - 1;
+      }
+    failure = schlieren::ComputeIndexField(ranks, in, out);
+    if (solid)
+    {
+      std::fill(solid, solid + points, static_cast<unsigned char>(0));
+      std::copy(out.Solid.begin(), out.Solid.begin() + std::min<std::ptrdiff_t>(
+        static_cast<std::ptrdiff_t>(out.Solid.size()), static_cast<std::ptrdiff_t>(points)), solid);
+    }
     if (!failure.empty())
       throw schlieren::Error(failure);
   });
@@ -1802,6 +2167,49 @@ int schlieren_index_field(const char* settings, const int dims[3], const double 
   if (report)
     *report = Returned.c_str();
   return status;
+}
+} // namespace
+
+int schlieren_index_field(const char* settings, const int dims[3], const double spacing[3],
+  int number_of_arrays, const char* const* names, const int* components, const int* value_bytes,
+  const void* const* values, const int64_t* value_counts, int active_scalars,
+  const char* cell_arrays, const char* notes, const unsigned char* valid, int64_t valid_count,
+  const unsigned char* rim, int64_t rim_count, const unsigned char* body, int64_t body_count,
+  float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
+  unsigned char* solid, int64_t solid_count, const char** report)
+{
+  return IndexFieldWith("schlieren_index_field", settings, dims, nullptr, spacing,
+    number_of_arrays, names, components, value_bytes, values, value_counts, active_scalars,
+    cell_arrays, notes, valid, valid_count, rim, rim_count, body, body_count, n_minus_1,
+    n_minus_1_count, grad3, grad3_count, solid, solid_count, nullptr, report);
+}
+
+int schlieren_index_field_piece(const char* settings, const int grid_extent[6],
+  const int out_extent[6], const int whole_extent[6], const double spacing[3],
+  int number_of_arrays, const char* const* names, const int* components, const int* value_bytes,
+  const void* const* values, const int64_t* value_counts, int active_scalars,
+  const char* cell_arrays, const char* notes, const unsigned char* valid, int64_t valid_count,
+  const unsigned char* rim, int64_t rim_count, const unsigned char* body, int64_t body_count,
+  float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
+  unsigned char* solid, int64_t solid_count, const schlieren_parallel* parallel,
+  const char** report)
+{
+  const char* f = "schlieren_index_field_piece";
+  if (!grid_extent || !out_extent || !whole_extent)
+  {
+    LastError = std::string(f) + ": grid_extent, out_extent and whole_extent must be given.";
+    if (report)
+      *report = "";
+    return 1;
+  }
+  int extents[18];
+  std::copy(grid_extent, grid_extent + 6, extents);
+  std::copy(out_extent, out_extent + 6, extents + 6);
+  std::copy(whole_extent, whole_extent + 6, extents + 12);
+  return IndexFieldWith(f, settings, nullptr, extents, spacing, number_of_arrays, names,
+    components, value_bytes, values, value_counts, active_scalars, cell_arrays, notes, valid,
+    valid_count, rim, rim_count, body, body_count, n_minus_1, n_minus_1_count, grad3, grad3_count,
+    solid, solid_count, parallel, report);
 }
 
 int schlieren_index_choices(
@@ -2605,10 +3013,22 @@ int schlieren_amr_grid(int levels, int number_of_blocks, const int* block_levels
   const double bounds[6], double bytes_per_point, int dims[3], double finest_spacing[3],
   int* finest_level, int* capped, const char** note)
 {
+  return schlieren_amr_grid_parallel(levels, number_of_blocks, block_levels, block_extents,
+    block_origins, block_spacings, bounds, bytes_per_point, dims, finest_spacing, finest_level,
+    capped, note, nullptr);
+}
+
+int schlieren_amr_grid_parallel(int levels, int number_of_blocks, const int* block_levels,
+  const int* block_extents, const double* block_origins, const double* block_spacings,
+  const double bounds[6], double bytes_per_point, int dims[3], double finest_spacing[3],
+  int* finest_level, int* capped, const char** note, const schlieren_parallel* parallel)
+{
   if (note)
     *note = "";
   return Guard(LastError, [&] {
-    const char* f = "schlieren_amr_grid";
+    const char* f = parallel ? "schlieren_amr_grid_parallel" : "schlieren_amr_grid";
+    std::unique_ptr<CallbackParallel> own;
+    schlieren::Parallel& ranks = RanksOf(f, parallel, own);
     if (!bounds || !dims || !finest_spacing || !finest_level || !capped || !note)
       throw schlieren::Error(std::string(f) + ": bounds, dims, finest_spacing, finest_level, "
                                               "capped and note must be given.");
@@ -2622,12 +3042,11 @@ int schlieren_amr_grid(int levels, int number_of_blocks, const int* block_levels
       throw schlieren::Error(std::string(f) + ": bytes_per_point must be positive.");
     bool cap = false;
     int levelsListed = 0;
-    if (!schlieren::AMRDimensions(schlieren::SerialParallel(), blocks, levels, bounds,
+    if (!schlieren::AMRDimensions(ranks, blocks, levels, bounds,
           bytes_per_point, dims, finest_spacing, cap, Returned))
       throw schlieren::Error(std::string(f) + ": no box holds data: the AMR input has nothing "
                                               "to sample.");
-    schlieren::AMRFinestSpacing(
-      schlieren::SerialParallel(), blocks, levels, finest_spacing, *finest_level, levelsListed);
+    schlieren::AMRFinestSpacing(ranks, blocks, levels, finest_spacing, *finest_level, levelsListed);
     *capped = cap ? 1 : 0;
     *note = Returned.c_str();
   });
@@ -2646,12 +3065,27 @@ int schlieren_amr_sample(int levels, int number_of_blocks, const int* block_leve
   const int dims[3], const double origin[3], const double spacing[3], int* out_components,
   const float** outputs, const unsigned char** valid, const char** report)
 {
+  return schlieren_amr_sample_parallel(levels, number_of_blocks, block_levels, block_extents,
+    block_origins, block_spacings, number_of_arrays, names, is_cell, components, value_bytes,
+    inputs, input_lengths, dims, origin, spacing, out_components, outputs, valid, report, nullptr);
+}
+
+int schlieren_amr_sample_parallel(int levels, int number_of_blocks, const int* block_levels,
+  const int* block_extents, const double* block_origins, const double* block_spacings,
+  int number_of_arrays, const char* const* names, const int* is_cell, const int* components,
+  const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
+  const int dims[3], const double origin[3], const double spacing[3], int* out_components,
+  const float** outputs, const unsigned char** valid, const char** report,
+  const schlieren_parallel* parallel)
+{
   if (report)
     *report = "";
   if (valid)
     *valid = nullptr;
   return Guard(LastError, [&] {
-    const char* f = "schlieren_amr_sample";
+    const char* f = parallel ? "schlieren_amr_sample_parallel" : "schlieren_amr_sample";
+    std::unique_ptr<CallbackParallel> own;
+    schlieren::Parallel& ranks = RanksOf(f, parallel, own);
     AMRReturned = schlieren::AMRSampled();
     std::vector<schlieren::AMRBlock> blocks = AMRBlocks(
       f, levels, number_of_blocks, block_levels, block_extents, block_origins, block_spacings);
@@ -2725,7 +3159,7 @@ int schlieren_amr_sample(int levels, int number_of_blocks, const int* block_leve
     }
     schlieren::CheckHostMemory(double(gridPoints) * perPoint,
       "Sampling the AMR input onto " + GridText(dims) + " points", "Lower SamplingDimensions.");
-    AMRReturned = schlieren::AMRResample(schlieren::SerialParallel(), blocks, levels, dims,
+    AMRReturned = schlieren::AMRResample(ranks, blocks, levels, dims,
       origin, spacing, arrayNames);
     for (int k = 0; k < number_of_arrays; ++k)
     {

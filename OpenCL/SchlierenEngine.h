@@ -443,6 +443,13 @@ struct AutoChoice
   /** The tolerance was below Floor: the cheapest candidate within the floor was taken (Met is
    * false, the report and a warning say so). */
   bool AtFloor = false;
+  /** The tricubic reference's own error, radians (0: not measured): the pilot's reference traced
+   * again on the field sampled at about r = 2 times the spacing, their difference over r^4 - 1.
+   * Measured where the tolerance may be within its reach; 1.5 times it is part of Floor (a
+   * tolerance below: not reachable on this grid, said in Report). */
+  double ReferenceError = 0;
+  /** What measuring ReferenceError took, milliseconds (0: not measured). */
+  double ReferenceCheckMs = 0;
   /** The pilot was not traced for this choice: it is the previous update's (a camera move of a
    * TraceSession, see TraceSession::Update). */
   bool Reused = false;

@@ -146,6 +146,9 @@ std::vector<ReportEntry> ImageReport(const SessionImage& image)
     number("auto_met", image.Choice.Met ? 1.0 : 0.0);
     // the tolerance was below what the volume allows: the floor the choice was made at (radians)
     number("auto_floor", image.Choice.AtFloor ? image.Choice.Floor : 0.0);
+    // the tricubic reference's own estimated error, radians (0: not measured: the tolerance
+    // was not within its reach)
+    number("auto_reference_error", image.Choice.ReferenceError);
     // 1: a camera move kept the previous view's choice (no pilot this update)
     number("auto_reused", image.Choice.Reused ? 1.0 : 0.0);
   }

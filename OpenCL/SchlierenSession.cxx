@@ -112,7 +112,7 @@ std::vector<double> ChoiceNumbers(const TraceSettings& chosen, const AutoChoice&
   return { double(static_cast<int>(chosen.Method)), chosen.StepSize, chosen.AutoMeasuredError,
     c.ExpectedError, c.ExpectedLandingError, c.SamplesPerRay, c.Tolerance, c.Met ? 1.0 : 0.0,
     chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), c.TrilinearError,
-    c.Floor, c.AtFloor ? 1.0 : 0.0 };
+    c.Floor, c.AtFloor ? 1.0 : 0.0, c.ReferenceError };
 }
 
 /**
@@ -133,7 +133,7 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
     return choice;
   }
   std::string problem;
-  std::vector<double> numbers(13, 0.0);
+  std::vector<double> numbers(14, 0.0);
   if (parallel.Rank() == 0)
   {
     try
@@ -172,6 +172,7 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
   choice.TrilinearError = numbers[10];
   choice.Floor = numbers[11];
   choice.AtFloor = numbers[12] == 1.0;
+  choice.ReferenceError = numbers[13];
   return choice;
 }
 

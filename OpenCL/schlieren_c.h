@@ -37,7 +37,8 @@
  *
  * SCHLIEREN_C_API_VERSION changes only when an existing function changes; functions are added
  * without changing it. Version 2: the array lengths (set_volume, fill_scene, numerical,
- * octree_levels, gradient, extend_into_invalid).
+ * octree_levels, gradient, extend_into_invalid). Added since, in version 2: the ranks
+ * (schlieren_parallel and the functions that take one: issue 47).
  */
 #ifndef schlieren_c_h
 #define schlieren_c_h
@@ -597,6 +598,115 @@ SCHLIEREN_C_API int schlieren_photograph_grey(const double* values, int64_t coun
  */
 SCHLIEREN_C_API int schlieren_photograph_blend(double weight, const float* film, const float* difference,
   int64_t count, float* blend);
+
+/*
+ * Work spread over ranks (MPI processes: pvbatch, pvserver, mpi4py; docs/PARALLEL.md): the engine's
+ * one seam to the ranks (schlieren::Parallel) as callbacks the caller fills in. Every function
+ * below that takes a `const schlieren_parallel*` is then collective: every rank calls it, in the
+ * same order, with arguments of the same shape (its own piece). NULL, or `size` 1 with no
+ * callbacks: one process, as the functions without `_parallel`/`_piece` do. The engine calls the
+ * callbacks on the calling thread, only during that call, always with the same `count` on every
+ * rank (it exchanges lengths first where messages differ); each returns 0 on success, non-zero
+ * for a failure, which ends the call with an error naming the callback (on that rank; the caller's
+ * communication layer must then end the job or its other ranks, as an MPI error would). A
+ * `size` below 1, a `rank` outside [0, size), a missing callback where size > 1, or what a
+ * callback gives that cannot be (a length below 0 or over 2^40, a root outside the ranks) are
+ * errors, never a crash.
+ */
+typedef struct schlieren_parallel
+{
+  int size;   /**< the number of ranks (>= 1) */
+  int rank;   /**< this rank, in [0, size) */
+  void* user; /**< given back to every callback */
+  /** Element-wise over the ranks (op 0 sum, 1 min, 2 max) of `count` doubles: `in` this rank's,
+   * `out` the result, the same on every rank. */
+  int (*reduce)(const double* in, double* out, int64_t count, int op, void* user);
+  /** `count` bytes from rank `root` into `bytes` on every rank. */
+  int (*broadcast)(char* bytes, int64_t count, int root, void* user);
+  /** Every rank's `count` bytes `mine`, in rank order, into `all` (size x count bytes). */
+  int (*allgather)(const char* mine, int64_t count, char* all, void* user);
+} schlieren_parallel;
+
+/** Parallel::Failure: the agreement after a step that may fail on some ranks only (collective).
+ * `mine` this rank's error ("" or NULL: none). `agreed` gets "" where no rank failed, else the
+ * same failure on every rank: the lowest failing rank's own message on that rank, "another rank
+ * (r) failed: <its message>" on the others (owned by the library until this thread's next call).
+ * Returns 0, or non-zero where the parallel is refused or a callback failed. */
+SCHLIEREN_C_API int schlieren_parallel_failure(
+  const schlieren_parallel* parallel, const char* mine, const char** agreed);
+
+/**
+ * The session's volume as this rank's piece of a volume split over ranks (the C++ SchlierenImage's
+ * input under MPI): `whole_extent` the point indices of the whole volume, `extent` this rank's
+ * (inside the whole; empty, max < min on an axis, where this rank holds no point: then the arrays
+ * are NULL and 0), `origin` the world position of point index (0, 0, 0) and `spacing` the whole
+ * volume's; n - 1 (and the optional solid and levels) at the piece's points, x fastest. The pieces
+ * of all ranks must cover the whole extent (they may overlap). Traced by
+ * schlieren_session_trace_parallel; schlieren_session_trace traces it where it is the whole.
+ */
+SCHLIEREN_C_API int schlieren_session_set_piece(schlieren_session* s, const int whole_extent[6],
+  const int extent[6], const double origin[3], const double spacing[3], const float* n_minus_1,
+  int64_t n_minus_1_count, const unsigned char* solid, int64_t solid_count,
+  const unsigned char* levels, int64_t levels_count, double level_tolerance, int max_level);
+/**
+ * schlieren_session_trace_progress over the ranks of `parallel` (collective; NULL: one process):
+ * the pieces traced as the C++ SchlierenImage traces them under MPI (in pieces, rays handed
+ * between ranks, or the whole volume gathered: TraceInPieces), the same image bit for bit as one
+ * process on the CPU backend. Rank 0 holds the image (schlieren_session_film, _array, the report's
+ * field data); the other ranks return 0 with no image (schlieren_session_film non-zero). A failure
+ * on any rank fails every rank, with Parallel::Failure's words.
+ */
+SCHLIEREN_C_API int schlieren_session_trace_parallel(schlieren_session* s,
+  const schlieren_parallel* parallel, schlieren_progress_callback progress, void* user);
+/**
+ * schlieren_index_field on this rank's piece of an image split over ranks (the C++
+ * RefractiveIndex under MPI; collective): `grid_extent` the piece this rank holds (its requested
+ * extent grown by a point on every side, within the whole: the arrays, valid, rim, body,
+ * n_minus_1, grad3 and solid are at its points; empty where this rank holds none: then every
+ * array is NULL and 0), `out_extent` the part it outputs, `whole_extent` the whole image's.
+ * A failure on any rank fails every rank (Parallel::Failure); AmbientMode Extend becomes the
+ * domain edge's median over all pieces and BodyFromGrid's holes are found across the pieces, as
+ * in the C++ filter. `parallel` NULL (or one rank): schlieren_index_field on the grid.
+ */
+SCHLIEREN_C_API int schlieren_index_field_piece(const char* settings, const int grid_extent[6],
+  const int out_extent[6], const int whole_extent[6], const double spacing[3],
+  int number_of_arrays, const char* const* names, const int* components, const int* value_bytes,
+  const void* const* values, const int64_t* value_counts, int active_scalars,
+  const char* cell_arrays, const char* notes, const unsigned char* valid, int64_t valid_count,
+  const unsigned char* rim, int64_t rim_count, const unsigned char* body, int64_t body_count,
+  float* n_minus_1, int64_t n_minus_1_count, float* grad3, int64_t grad3_count,
+  unsigned char* solid, int64_t solid_count, const schlieren_parallel* parallel,
+  const char** report);
+/**
+ * schlieren_numerical_progress on a volume split over ranks (collective): `whole_dims`, `origin`
+ * (the whole grid's first point) and `spacing` the whole grid's; `offset` the index of this
+ * rank's first point in it and `piece_dims` its points (a 0 where this rank holds none: the
+ * arrays NULL and 0). The pieces are gathered on rank 0, which makes the image of the whole grid
+ * (bit for bit one process's) and gets `has_image` 1; the other ranks 0, nothing written.
+ */
+SCHLIEREN_C_API int schlieren_numerical_pieces(const char* settings, const int whole_dims[3],
+  const double origin[3], const double spacing[3], const int offset[3], const int piece_dims[3],
+  const float* values, int64_t values_count, const unsigned char* solid, int64_t solid_count,
+  const unsigned char* excluded, int64_t excluded_count, int size[2], double film_origin[2],
+  double* pixel_size, int64_t capacity, float* intensity, float* gradient, unsigned char* blocked,
+  double maximum_largest[2], schlieren_progress_callback progress, void* user,
+  const schlieren_parallel* parallel, int* has_image);
+/** schlieren_amr_grid over the ranks (collective): each rank gives the boxes it holds; the
+ * finest spacing and the grid are agreed over all. */
+SCHLIEREN_C_API int schlieren_amr_grid_parallel(int levels, int number_of_blocks,
+  const int* block_levels, const int* block_extents, const double* block_origins,
+  const double* block_spacings, const double bounds[6], double bytes_per_point, int dims[3],
+  double finest_spacing[3], int* finest_level, int* capped, const char** note,
+  const schlieren_parallel* parallel);
+/** schlieren_amr_sample over the ranks (collective): each rank samples the boxes it holds and
+ * every rank gets the whole grid's values (finest level first over all ranks' boxes). */
+SCHLIEREN_C_API int schlieren_amr_sample_parallel(int levels, int number_of_blocks,
+  const int* block_levels, const int* block_extents, const double* block_origins,
+  const double* block_spacings, int number_of_arrays, const char* const* names,
+  const int* is_cell, const int* components, const int* value_bytes, const void* const* inputs,
+  const int64_t* input_lengths, const int dims[3], const double origin[3],
+  const double spacing[3], int* out_components, const float** outputs,
+  const unsigned char** valid, const char** report, const schlieren_parallel* parallel);
 
 #ifdef __cplusplus
 }

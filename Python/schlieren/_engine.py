@@ -544,7 +544,7 @@ def wall_faces(offsets, connectivity, points, normals, velocity, largest_speed, 
 
 
 def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, cell_arrays=(),
-                notes=(), rim=None, body=None):
+                notes=(), rim=None, body=None, extents=None, ranks=None):
     """RefractiveIndex's work once the input is on a grid (the C interface's
     schlieren_index_field, which the C++ filter's engine call is): `settings` the proxy's
     properties by name (Model as resolved, the arrays chosen per role, AmbientMode, BodyFromGrid,
@@ -562,7 +562,11 @@ def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, 
              ctypes.POINTER(ctypes.c_int64), ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
              _u8p, _i64, _u8p, _i64, _u8p, _i64, _f32p, _i64, _f32p, _i64, _u8p, _i64,
              ctypes.POINTER(ctypes.c_char_p))
-    grid = _grid(dims, [0] * 3, spacing)
+    if extents is not None:
+        # a piece (index_field_piece): the grid is the piece's
+        g = [int(v) for v in extents[0]]
+        dims = [max(g[2 * a + 1] - g[2 * a] + 1, 0) for a in range(3)]
+    grid = _grid(dims if min(dims) > 0 else [1, 1, 1], [0] * 3, spacing)
     n = int(np.prod([int(d) for d in dims]))
     kept, names, comps, nbytes = [], [], [], []
     for name, a in arrays.items():
@@ -590,16 +594,31 @@ def index_field(settings, dims, spacing, arrays, valid=None, active_scalars=-1, 
     solid = np.zeros(n, np.uint8)
     text = "\n".join("%s=%s" % (key, _value_text(x)) for key, x in settings.items()).encode()
     report = ctypes.c_char_p()
-    rc = f(text, grid[0], grid[2], len(kept), c_names, c_comps, c_bytes, c_values, c_counts,
-           int(active_scalars), "\n".join(cell_arrays).encode(), "\n".join(notes).encode(),
-           _up(v), _size(v), _up(r), _size(r), _up(b), _size(b), n1.ctypes.data_as(_f32p),
-           n1.size,
-           grad.ctypes.data_as(_f32p),
-           grad.size, solid.ctypes.data_as(_u8p), solid.size, ctypes.byref(report))
+    tail = (_up(v), _size(v), _up(r), _size(r), _up(b), _size(b),
+            n1.ctypes.data_as(_f32p) if n else None, n1.size,
+            grad.ctypes.data_as(_f32p) if n else None, grad.size,
+            solid.ctypes.data_as(_u8p) if n else None, solid.size)
+    if extents is None:
+        rc = f(text, grid[0], grid[2], len(kept), c_names, c_comps, c_bytes, c_values, c_counts,
+               int(active_scalars), "\n".join(cell_arrays).encode(), "\n".join(notes).encode(),
+               *tail, ctypes.byref(report))
+    else:
+        ext6 = ctypes.c_int * 6
+        fp = _sig("schlieren_index_field_piece", ctypes.c_int, ctypes.c_char_p, ext6, ext6, ext6,
+                  _c_double3, ctypes.c_int, ctypes.POINTER(ctypes.c_char_p),
+                  ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+                  ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_int64), ctypes.c_int,
+                  ctypes.c_char_p, ctypes.c_char_p, _u8p, _i64, _u8p, _i64, _u8p, _i64, _f32p,
+                  _i64, _f32p, _i64, _u8p, _i64, _parallel_p, ctypes.POINTER(ctypes.c_char_p))
+        rc = fp(text, *[ext6(*[int(x) for x in e]) for e in extents], grid[2], len(kept),
+                c_names, c_comps, c_bytes, c_values, c_counts, int(active_scalars),
+                "\n".join(cell_arrays).encode(), "\n".join(notes).encode(), *tail,
+                _piece_ranks(ranks), ctypes.byref(report))
     result = json.loads(_text(report.value) or "{}")
     result["field_data"] = [tuple(p) for p in result.get("field_data", [])]
     if rc:
-        error = EngineError(_text(_lib.schlieren_last_error()))
+        error = ranks.error() if ranks is not None else \
+            EngineError(_text(_lib.schlieren_last_error()))
         error.report = result
         raise error
     return n1, grad, (solid if result.get("solid") else None), result
@@ -984,41 +1003,49 @@ def amr_overlap(boxes):
     _check(_lib.schlieren_amr_overlap(len(boxes), lv, corners))
 
 
-def amr_grid(levels, blocks, bounds, bytes_per_point):
+def amr_grid(levels, blocks, bounds, bytes_per_point, ranks=None):
     """RefractiveIndex's automatic grid of an AMR input (schlieren_amr_grid): the finest loaded
     level's spacing over `bounds`, capped by memory. `blocks`: dicts of level, extent, origin,
-    spacing. Returns dict(dims, finest_spacing, finest_level, capped, note)."""
-    f = _sig("schlieren_amr_grid", ctypes.c_int, ctypes.c_int, ctypes.c_int,
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
-             ctypes.c_double * 6, ctypes.c_double, _c_int3, _c_double3,
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_char_p))
+    spacing. Returns dict(dims, finest_spacing, finest_level, capped, note). With `ranks` (a
+    Ranks; collective: schlieren_amr_grid_parallel) `blocks` are this rank's."""
+    args = [ctypes.c_int, ctypes.c_int, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
+            ctypes.c_double * 6, ctypes.c_double, _c_int3, _c_double3,
+            ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_char_p)]
+    f = _sig("schlieren_amr_grid" if ranks is None else "schlieren_amr_grid_parallel",
+             ctypes.c_int, *(args + ([] if ranks is None else [_parallel_p])))
     levels, n, lv, ext, org, spc = _amr_blocks(levels, blocks)
     dims, finest, level, capped, note = _c_int3(), _c_double3(), ctypes.c_int(), ctypes.c_int(), \
         ctypes.c_char_p()
-    _check(f(levels, n, lv, ext, org, spc, _six(bounds, "bounds"), float(bytes_per_point), dims,
-             finest, ctypes.byref(level), ctypes.byref(capped), ctypes.byref(note)))
+    rc = f(levels, n, lv, ext, org, spc, _six(bounds, "bounds"), float(bytes_per_point), dims,
+           finest, ctypes.byref(level), ctypes.byref(capped), ctypes.byref(note),
+           *([] if ranks is None else [ranks.pointer()]))
+    if rc:
+        raise EngineError(_text(_lib.schlieren_last_error())) if ranks is None else ranks.error()
     return dict(dims=list(dims), finest_spacing=list(finest), finest_level=level.value,
                 capped=bool(capped.value), note=_text(note.value))
 
 
-def amr_sample(levels, blocks, names, dims, origin, spacing):
+def amr_sample(levels, blocks, names, dims, origin, spacing, ranks=None):
     """An overlapping AMR's boxes sampled onto an image grid by the engine (schlieren_amr_sample),
     as the C++ RefractiveIndex samples them: every grid point from the finest level covering it,
     point arrays trilinear between a box's points, cell arrays between its cell centres, float32.
     `blocks`: dicts of level, extent, origin, spacing and arrays ({name: (values, is_cell)}, the
     values shaped (tuples,) or (tuples, components); float32 read as it is, anything else as
     float64). Returns (valid: uint8 over the grid's points, {name: float32 array (points,) or
-    (points, components)} for the names some box holds, notes: list of str)."""
-    f = _sig("schlieren_amr_sample", ctypes.c_int, ctypes.c_int, ctypes.c_int,
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double), ctypes.c_int,
-             ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
-             ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_int64), _c_int3, _c_double3,
-             _c_double3, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(_f32p),
-             ctypes.POINTER(_u8p), ctypes.POINTER(ctypes.c_char_p))
+    (points, components)} for the names some box holds, notes: list of str). With `ranks` (a
+    Ranks; collective: schlieren_amr_sample_parallel) `blocks` are this rank's, `names` the same
+    list on every rank, and every rank gets the whole grid's values."""
+    args = [ctypes.c_int, ctypes.c_int, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double), ctypes.c_int,
+            ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+            ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_int64), _c_int3, _c_double3,
+            _c_double3, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(_f32p),
+            ctypes.POINTER(_u8p), ctypes.POINTER(ctypes.c_char_p)]
+    f = _sig("schlieren_amr_sample" if ranks is None else "schlieren_amr_sample_parallel",
+             ctypes.c_int, *(args + ([] if ranks is None else [_parallel_p])))
     blocks = list(blocks)
     names = [str(n) for n in names]
     levels, n, lv, ext, org, spc = _amr_blocks(levels, blocks)
@@ -1049,9 +1076,11 @@ def amr_sample(levels, blocks, names, dims, origin, spacing):
     out_comps = (ctypes.c_int * max(1, k))()
     outs = (_f32p * max(1, k))()
     valid, report = _u8p(), ctypes.c_char_p()
-    _check(f(levels, n, lv, ext, org, spc, k, (ctypes.c_char_p * max(1, k))(
+    rc = f(levels, n, lv, ext, org, spc, k, (ctypes.c_char_p * max(1, k))(
         *[x.encode() for x in names]), cells, comps, nbytes, ins, lengths, *grid, out_comps, outs,
-        ctypes.byref(valid), ctypes.byref(report)))
+        ctypes.byref(valid), ctypes.byref(report), *([] if ranks is None else [ranks.pointer()]))
+    if rc:
+        raise EngineError(_text(_lib.schlieren_last_error())) if ranks is None else ranks.error()
     sampled = {}
     for j, name in enumerate(names):
         c = out_comps[j]
@@ -1202,6 +1231,47 @@ class Session:
                                              _up(sol), _size(sol), _up(lv), _size(lv),
                                              float(level_tolerance), int(max_level)):
             raise self._error()
+
+    def set_piece(self, whole_extent, extent, origin, spacing, n_minus_1, solid=None,
+                  levels=None, level_tolerance=-1.0, max_level=7):
+        """This rank's piece of a volume split over ranks (schlieren_session_set_piece): the
+        whole volume's point extent, this piece's (empty: n_minus_1 None), `origin` the world
+        position of point index (0, 0, 0), the arrays at the piece's points."""
+        s = self._live("set_piece")
+        e = [int(v) for v in extent]
+        d = [e[2 * a + 1] - e[2 * a] + 1 for a in range(3)]
+        empty = min(d) < 1
+        a = None if empty else _point_array(n_minus_1, "n_minus_1", d, np.float32)
+        sol = None if empty else _point_array(solid, "solid", d, np.uint8, optional=True,
+                                              mask=True)
+        lv = None if empty else _point_array(levels, "levels", d, np.uint8, optional=True)
+        ext6 = ctypes.c_int * 6
+        if _lib.schlieren_session_set_piece(s, ext6(*[int(v) for v in whole_extent]), ext6(*e),
+                                            _c_double3(*origin), _c_double3(*spacing), _fp(a),
+                                            _size(a), _up(sol), _size(sol), _up(lv), _size(lv),
+                                            float(level_tolerance), int(max_level)):
+            raise self._error()
+
+    def trace_parallel(self, ranks, progress=None):
+        """trace() over `ranks` (collective; schlieren_session_trace_parallel): rank 0 gets the
+        report of the image, the others a report without one (film() raises there)."""
+        s = self._live("trace_parallel")
+        rc = _with_progress(progress, lambda callback, user:
+                            _lib.schlieren_session_trace_parallel(s, _piece_ranks(ranks),
+                                                                  callback, user))
+        report = json.loads(_text(_lib.schlieren_session_report(s)))
+        if rc:
+            err = self._error()
+            if ranks is not None and ranks._raised:
+                err = EngineError("%s (%s)" % (err, ranks._raised[0]))
+            err.report = report
+            raise err
+        return report
+
+    def has_image(self):
+        """Whether the last trace left an image here (rank 0 of a parallel trace)."""
+        s = self._live("has_image")
+        return bool(_lib.schlieren_session_array(s, b"intensity", None, None))
 
     def trace(self, progress=None):
         """Traces; returns the report (dict: field_data, notes, error). Raises EngineError.
@@ -1372,3 +1442,230 @@ def synthetic_photograph(film, scale=1.0, rotation=0.0, shift=(0.0, 0.0), size=N
     if photons > 0:
         p = np.random.default_rng(seed).poisson(p * photons) / photons
     return p.astype(np.float32)
+
+
+# ---- the ranks (MPI processes) through the C interface's schlieren_parallel (docs/PARALLEL.md)
+
+_reduce_fn = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int64,
+                              ctypes.c_int, ctypes.c_void_p)
+_broadcast_fn = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_int64, ctypes.c_int,
+                                 ctypes.c_void_p)
+_allgather_fn = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_int64, ctypes.c_void_p,
+                                 ctypes.c_void_p)
+
+
+class _ParallelStruct(ctypes.Structure):
+    _fields_ = [("size", ctypes.c_int), ("rank", ctypes.c_int), ("user", ctypes.c_void_p),
+                ("reduce", _reduce_fn), ("broadcast", _broadcast_fn),
+                ("allgather", _allgather_fn)]
+
+
+_parallel_p = ctypes.POINTER(_ParallelStruct)
+_sig("schlieren_parallel_failure", ctypes.c_int, _parallel_p, ctypes.c_char_p,
+     ctypes.POINTER(ctypes.c_char_p))
+_sig("schlieren_session_set_piece", ctypes.c_int, ctypes.c_void_p, ctypes.c_int * 6,
+     ctypes.c_int * 6, _c_double3, _c_double3, _f32p, _i64, _u8p, _i64, _u8p, _i64,
+     ctypes.c_double, ctypes.c_int)
+_sig("schlieren_session_trace_parallel", ctypes.c_int, ctypes.c_void_p, _parallel_p,
+     _progress_fn, ctypes.c_void_p)
+_sig("schlieren_numerical_pieces", ctypes.c_int, ctypes.c_char_p, _c_int3, _c_double3,
+     _c_double3, _c_int3, _c_int3, _f32p, _i64, _u8p, _i64, _u8p, _i64, ctypes.c_int * 2,
+     ctypes.c_double * 2, ctypes.POINTER(ctypes.c_double), ctypes.c_int64, _f32p, _f32p, _u8p,
+     ctypes.POINTER(ctypes.c_double), _progress_fn, ctypes.c_void_p, _parallel_p,
+     ctypes.POINTER(ctypes.c_int))
+
+
+class Ranks:
+    """The ranks of a job as the engine's collectives take them (schlieren_parallel): `comm` has
+    rank, size and the three collectives on NumPy arrays, allreduce(float64 array, op) -> array
+    (op "sum", "min", "max"), broadcast(uint8 array, root) -> array and allgather(uint8 array) ->
+    (size, n) array, each the same count on every rank. controller_ranks() makes one of ParaView's
+    or VTK's vtkMultiProcessController. An exception in a collective fails the engine's call with
+    its message (the job's other ranks are then left in the collective: an MPI error ends the job
+    as it would in C)."""
+
+    def __init__(self, comm):
+        self.comm = comm
+        self.rank, self.size = int(comm.rank), int(comm.size)
+        self._raised = []
+
+        def guarded(f):
+            def call(*args):
+                try:
+                    f(*args)
+                    return 0
+                except BaseException as e:  # noqa: BLE001 -- said by the engine's error
+                    self._raised.append(e)
+                    return 1
+            return call
+
+        def view(p, count, dtype=np.uint8):
+            return np.ctypeslib.as_array((ctypes.c_ubyte * (int(count) * np.dtype(dtype)
+                                                            .itemsize)).from_address(p)) \
+                .view(dtype)
+
+        def reduce(src, dst, count, op, _user):
+            view(dst, count, np.float64)[:] = comm.allreduce(
+                view(src, count, np.float64).copy(), ("sum", "min", "max")[op])
+
+        def broadcast(data, count, root, _user):
+            buf = view(data, count)
+            buf[:] = comm.broadcast(buf.copy(), int(root))
+
+        def allgather(mine, count, out, _user):
+            view(out, count * self.size)[:] = np.asarray(
+                comm.allgather(view(mine, count).copy())).reshape(-1)
+        # kept: the engine calls them for as long as this object lives
+        self._callbacks = (_reduce_fn(guarded(reduce)), _broadcast_fn(guarded(broadcast)),
+                           _allgather_fn(guarded(allgather)))
+        self._struct = _ParallelStruct(self.size, self.rank, None, *self._callbacks)
+
+    def pointer(self):
+        """The schlieren_parallel for a C call (valid while this object lives)."""
+        self._raised.clear()
+        return ctypes.pointer(self._struct)
+
+    def error(self):
+        """The engine's last error, with what a collective raised where one did."""
+        text = _text(_lib.schlieren_last_error())
+        if self._raised:
+            text += " (%s: %s)" % (type(self._raised[0]).__name__, self._raised[0])
+        return EngineError(text)
+
+    def failure(self, mine, step=""):
+        """Parallel::Failure (collective): "" where no rank failed, else the same failure on every
+        rank (the lowest failing rank's message on it, "another rank (r) failed: ..." on the
+        others). With `step` (what the caller is about to do, "SchlierenImage's trace"), first
+        whether every rank is at the same step: where not (an update that ran on some ranks only
+        put them out of step) every rank gets the same message naming each rank's step, and no
+        collective of the step runs (the C++ plugin's guard, as its words say)."""
+        if step:
+            names = self.comm.allgather(np.frombuffer(step.encode()[:255].ljust(256, b"\0"),
+                                                      np.uint8))
+            steps = [bytes(np.asarray(n, np.uint8)).rstrip(b"\0").decode("utf-8", "replace")
+                     for n in names]
+            if any(other != steps[0] for other in steps):
+                return ("the ranks are at different collectives: %s (an upstream failure on some "
+                        "ranks put them out of step)" % ", ".join(
+                            "rank %d at %s" % (r, at) for r, at in enumerate(steps)))
+        agreed = ctypes.c_char_p()
+        if _lib.schlieren_parallel_failure(self.pointer(), (mine or "").encode(),
+                                           ctypes.byref(agreed)):
+            raise self.error()
+        return _text(agreed.value)
+
+
+class _ControllerComm:
+    """A vtkMultiProcessController's collectives on NumPy arrays (for Ranks)."""
+
+    def __init__(self, controller):
+        from vtkmodules.vtkParallelCore import vtkCommunicator
+        self.controller = controller
+        self.rank = controller.GetLocalProcessId()
+        self.size = controller.GetNumberOfProcesses()
+        self.ops = {"sum": vtkCommunicator.SUM_OP, "min": vtkCommunicator.MIN_OP,
+                    "max": vtkCommunicator.MAX_OP}
+
+    @staticmethod
+    def _vtk(a):
+        from vtkmodules.util import numpy_support
+        return numpy_support.numpy_to_vtk(np.ascontiguousarray(a), deep=1)
+
+    @staticmethod
+    def _np(a):
+        from vtkmodules.util import numpy_support
+        return numpy_support.vtk_to_numpy(a)
+
+    def allreduce(self, values, op):
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        out = vtkDoubleArray()
+        out.SetNumberOfTuples(len(values))
+        if not self.controller.AllReduce(self._vtk(values), out, self.ops[op]):
+            raise RuntimeError("the controller's all-reduce failed")
+        return self._np(out).copy()
+
+    def broadcast(self, data, root):
+        a = self._vtk(data)
+        if not self.controller.Broadcast(a, root):
+            raise RuntimeError("the controller's broadcast failed")
+        return self._np(a).copy()
+
+    def allgather(self, data):
+        from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+        out = vtkUnsignedCharArray()
+        out.SetNumberOfTuples(len(data) * self.size)
+        if not self.controller.AllGather(self._vtk(data), out):
+            raise RuntimeError("the controller's all-gather failed")
+        return self._np(out).reshape(self.size, len(data)).copy()
+
+
+def controller_ranks(controller=None):
+    """The ranks of `controller` (None: VTK's global controller, which pvbatch and pvserver under
+    MPI set) as a Ranks, or None where it runs one process (or VTK has no parallel module)."""
+    if controller is None:
+        try:
+            from vtkmodules.vtkParallelCore import vtkMultiProcessController
+        except ImportError:
+            return None
+        controller = vtkMultiProcessController.GetGlobalController()
+    if controller is None or controller.GetNumberOfProcesses() <= 1:
+        return None
+    key = controller.__this__
+    kept = _kept_ranks.get(key)
+    if kept is None:
+        kept = _kept_ranks[key] = Ranks(_ControllerComm(controller))
+    return kept
+
+
+_kept_ranks = {}
+
+
+def _piece_ranks(ranks):
+    return None if ranks is None else ranks.pointer()
+
+
+def numerical_pieces(settings, whole_dims, origin, spacing, offset, piece_dims, values=None,
+                     solid=None, excluded=None, ranks=None, progress=None):
+    """NumericalSchlieren on this rank's piece of a volume split over `ranks` (collective;
+    schlieren_numerical_pieces): the whole grid's dims, first point and spacing, this piece's
+    offset and points (a 0: none, values None). Rank 0 gets numerical()'s dict; the others None."""
+    text = "\n".join("%s=%s" % (k, _value_text(v)) for k, v in settings.items()).encode()
+    size, film_origin, pixel = numerical(settings, whole_dims, origin, spacing)
+    empty = min(int(d) for d in piece_dims) == 0
+    a = None if empty else _point_array(values, "values", piece_dims, np.float32)
+    s = None if empty else _point_array(solid, "solid", piece_dims, np.uint8, optional=True,
+                                        mask=True)
+    e = None if empty else _point_array(excluded, "excluded", piece_dims, np.uint8,
+                                        optional=True, mask=True)
+    n = size[0] * size[1]
+    out = {"intensity": np.empty(n, np.float32), "numerical_gradient": np.empty(n, np.float32),
+           "blocked": np.empty(n, np.uint8)}
+    ml, has = (ctypes.c_double * 2)(), ctypes.c_int(0)
+    size, film_origin = (ctypes.c_int * 2)(), (ctypes.c_double * 2)()
+    pixel = ctypes.c_double()
+    rc = _with_progress(progress, lambda callback, user: _lib.schlieren_numerical_pieces(
+        text, _c_int3(*[int(d) for d in whole_dims]), _c_double3(*origin), _c_double3(*spacing),
+        _c_int3(*[int(o) for o in offset]), _c_int3(*[int(d) for d in piece_dims]), _fp(a),
+        _size(a), _up(s), _size(s), _up(e), _size(e), size, film_origin, ctypes.byref(pixel), n,
+        _fp(out["intensity"]), _fp(out["numerical_gradient"]), _up(out["blocked"]), ml,
+        callback, user, _piece_ranks(ranks), ctypes.byref(has)))
+    if rc:
+        raise ranks.error() if ranks is not None else EngineError(
+            _text(_lib.schlieren_last_error()))
+    if not has.value:
+        return None
+    out.update(size=list(size), origin=list(film_origin), pixel=pixel.value, maximum=ml[0],
+               largest=ml[1])
+    return out
+
+
+def index_field_piece(settings, grid_extent, out_extent, whole_extent, spacing, arrays,
+                      valid=None, active_scalars=-1, cell_arrays=(), notes=(), ranks=None,
+                      body=None):
+    """index_field() on this rank's piece of an image split over `ranks` (collective;
+    schlieren_index_field_piece): the arrays at the points of `grid_extent` (the requested
+    `out_extent` grown by a point on every side within `whole_extent`). Returns index_field()'s
+    tuple on the grid's points."""
+    return index_field(settings, None, spacing, arrays, valid, active_scalars, cell_arrays,
+                       notes, body=body, extents=(grid_extent, out_extent, whole_extent),
+                       ranks=ranks)

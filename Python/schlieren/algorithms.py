@@ -25,6 +25,7 @@ from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
 from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkDataObject, vtkDataSet,
                                            vtkImageData, vtkOverlappingAMR, vtkPolyData)
 from vtkmodules.vtkCommonExecutionModel import vtkDemandDrivenPipeline as DDP
+from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as SDDP
 
 from . import _engine
@@ -33,6 +34,96 @@ from ._engine import EngineError
 
 def _is_number(v):
     return isinstance(v, (int, float, np.integer, np.floating, np.bool_))
+
+
+def _ranks():
+    """The job's ranks (pvbatch or pvserver under MPI: VTK's global controller with more than one
+    process) as the engine's collectives take them (_engine.Ranks), or None: one process."""
+    return _engine.controller_ranks()
+
+
+def _empty(extent):
+    return any(extent[2 * a + 1] < extent[2 * a] for a in range(3))
+
+
+def _spread(ranks, data, symmetry):
+    """`ranks` where RefractiveIndex resamples a mesh or an AMR under MPI from every rank's piece
+    (the C++ filter's way: each rank samples its piece or its boxes, the samples combined over the
+    ranks), else None: one process, an image, a 2D input made a volume (read whole on every
+    rank)."""
+    if ranks is None or symmetry != "None" or isinstance(data, vtkImageData):
+        return None
+    return ranks if isinstance(data, (vtkDataSet, vtkCompositeDataSet)) else None
+
+
+def _crop(image, extent):
+    """`image` cut to `extent` in place (its point arrays, its field data kept), where it holds
+    more."""
+    e = [int(v) for v in extent]
+    have = list(image.GetExtent())
+    if e == have or _empty(e) or any(e[2 * a] < have[2 * a] or e[2 * a + 1] > have[2 * a + 1]
+                                      for a in range(3)):
+        return
+    d = [have[2 * a + 1] - have[2 * a] + 1 for a in range(3)]
+    sl = tuple(slice(e[2 * a] - have[2 * a], e[2 * a + 1] - have[2 * a] + 1) for a in (2, 1, 0))
+    cut = vtkImageData()
+    cut.SetExtent(*e)
+    cut.SetOrigin(image.GetOrigin())
+    cut.SetSpacing(image.GetSpacing())
+    from vtkmodules.vtkCommonCore import vtkDataArray
+    pd, cpd = image.GetPointData(), cut.GetPointData()
+    scalars = pd.GetScalars()
+    for i in range(pd.GetNumberOfArrays()):
+        a = pd.GetAbstractArray(i)
+        if not isinstance(a, vtkDataArray):
+            continue
+        v = numpy_support.vtk_to_numpy(a)
+        c = a.GetNumberOfComponents()
+        v = v.reshape(d[2], d[1], d[0], c)[sl].reshape(-1, c) if c > 1 else \
+            v.reshape(d[2], d[1], d[0])[sl].reshape(-1)
+        b = numpy_support.numpy_to_vtk(np.ascontiguousarray(v), deep=1,
+                                       array_type=a.GetDataType())
+        b.SetName(a.GetName())
+        for k in range(c):
+            if a.GetComponentName(k):
+                b.SetComponentName(k, a.GetComponentName(k))
+        cpd.AddArray(b)
+        if scalars is not None and a.GetName() == scalars.GetName():
+            cpd.SetActiveScalars(a.GetName())
+    cut.GetFieldData().ShallowCopy(image.GetFieldData())
+    image.ShallowCopy(cut)
+
+
+def _ask_pieces(src, out_info, ranks):
+    """The input request of a filter that gathers the pieces under MPI (the C++ SchlierenImage's
+    and NumericalSchlieren's): the whole extent, on one process as one piece, under MPI this
+    output's piece of as many (the upstream splits the whole extent)."""
+    if src.Has(SDDP.WHOLE_EXTENT()):
+        src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+    if ranks is None:
+        return
+    piece = out_info.Get(SDDP.UPDATE_PIECE_NUMBER()) if out_info.Has(
+        SDDP.UPDATE_PIECE_NUMBER()) else 0
+    pieces = out_info.Get(SDDP.UPDATE_NUMBER_OF_PIECES()) if out_info.Has(
+        SDDP.UPDATE_NUMBER_OF_PIECES()) else 1
+    src.Set(SDDP.UPDATE_PIECE_NUMBER(), piece)
+    src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), max(pieces, 1))
+    src.Set(SDDP.UPDATE_NUMBER_OF_GHOST_LEVELS(), 0)
+
+
+def _agreed(ranks, mine, step):
+    """Under MPI, before the collective `step`, the failure every rank reports after a step that
+    may fail on some only: this rank's own where it failed, else the first failing rank's
+    ("another rank (r) failed: ..."); "" where none did; where the ranks are not all at `step`,
+    that (every rank). One process: `mine`."""
+    if ranks is None:
+        return mine or ""
+    agreed = ranks.failure(mine or "", step)
+    return agreed if agreed.startswith("the ranks are at different") else (mine or agreed)
+
+
+_INDEX_STEP = "RefractiveIndex's pieces"
+_TRACE_STEP = "SchlierenImage's trace"
 
 
 def _closest(name, names):
@@ -234,6 +325,22 @@ def _array_bytes(data):
                      for attributes in (data.GetPointData(), data.GetCellData())
                      for a in (attributes.GetArray(i) for i in range(attributes.GetNumberOfArrays()))
                      if a is not None))
+
+
+def _bounds_everywhere(data, ranks=None):
+    """The bounds of the leaves that have points (None: no points, _leaf_bounds); with `ranks`
+    (MPI, collective) of every rank's piece, an empty piece counting for nothing, as the C++
+    filter's UpdatedInputBounds."""
+    local = _leaf_bounds(data)
+    if ranks is None:
+        return local
+    have = local is not None
+    lows = np.array([local[2 * a] if have else np.inf for a in range(3)] +
+                    [-local[2 * a + 1] if have else np.inf for a in range(3)], np.float64)
+    lows = ranks.comm.allreduce(lows, "min")
+    if not np.isfinite(lows).all():
+        return None  # no rank has a point
+    return [lows[0], -lows[3], lows[1], -lows[4], lows[2], -lows[5]]
 
 
 def _internal_mesh(data):
@@ -578,12 +685,25 @@ def _all_points(data):
     return np.concatenate(parts) if parts else np.zeros((0, 3))
 
 
-def _image_input(data, grid=None):
+def _image_input(data, grid=None, ranks=None):
     """`data` as an axis-aligned vtkImageData and its valid-point mask (None: all valid): itself,
     or resampled cell by cell by the engine (the C++ RefractiveIndex's sampler) onto `grid`
-    (dims, origin, spacing: the engine's sampling grid)."""
-    if isinstance(data, vtkImageData):
+    (dims, origin, spacing: the engine's sampling grid). With `ranks` (MPI, collective) each
+    rank samples its piece of a mesh and the samples are summed over the ranks (_summed)."""
+    if isinstance(data, vtkImageData) and ranks is None:
         return data, None
+    if ranks is not None:
+        try:
+            out, mask, refused = None, None, ""
+            out, mask = _image_input(data, grid)
+            if mask is None:
+                mask = np.ones(out.GetNumberOfPoints(), np.uint8)
+        except EngineError as e:
+            refused = str(e)  # a cell type the sampler does not take
+        agreed = ranks.failure(refused, "RefractiveIndex's resampled pieces")
+        if agreed:
+            raise EngineError(refused or agreed)
+        return _summed(ranks, out, mask)
     dims, origin, spacing = grid
     out, mask = _sample_cells(data, dims, origin, spacing)  # meshes and blocks of images alike
     if not mask.all():
@@ -596,6 +716,55 @@ def _image_input(data, grid=None):
         numpy_support.vtk_to_numpy(m)[:] = mask
         out.GetPointData().AddArray(m)
     return out, (None if mask.all() else mask)
+
+
+def _names_everywhere(ranks, mine):
+    """Every rank's names (`mine`: this rank's), each once, in rank order (collective)."""
+    text = "\n".join(mine).encode()
+    longest = int(ranks.comm.allreduce(np.array([len(text)], np.float64), "max")[0])
+    names = []
+    if longest:
+        everyone = ranks.comm.allgather(np.frombuffer(text.ljust(longest, b"\0"), np.uint8))
+        for theirs in everyone:
+            for name in bytes(np.asarray(theirs, np.uint8)).rstrip(b"\0").decode().split("\n"):
+                if name and name not in names:
+                    names.append(name)
+    return names
+
+
+def _summed(ranks, grid, mask):
+    """Under MPI, the resampled grid of every rank's piece on every rank (collective): the C++
+    filter's Resample: per one-component point array any rank holds, value x found summed over
+    the ranks and divided by the times found (in double, then float), the mask where any rank
+    found the point. Arrays of more components are left out (as the C++ filter does)."""
+    n = grid.GetNumberOfPoints()
+    pd = grid.GetPointData()
+    mine = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())
+            if pd.GetArray(i) is not None and pd.GetArray(i).GetNumberOfComponents() == 1 and
+            pd.GetArrayName(i) != "vtkValidPointMask"]
+    names = _names_everywhere(ranks, mine)
+    found = (mask != 0).astype(np.float64)
+    total = ranks.comm.allreduce(found, "sum")
+    out = vtkImageData()
+    out.CopyStructure(grid)
+    for name in names:  # the same list, in the same order, on every rank
+        a = pd.GetArray(name)
+        values = np.zeros(n, np.float64)
+        if a is not None and a.GetNumberOfComponents() == 1:
+            v = numpy_support.vtk_to_numpy(a).astype(np.float64)
+            values[found != 0] = v[found != 0]
+        values = ranks.comm.allreduce(values, "sum")
+        _add(out, name, np.where(total > 0, values / np.where(total > 0, total, 1.0), 0.0)
+             .astype(np.float32))
+    valid = (total > 0).astype(np.uint8)
+    if not valid.all():
+        from vtkmodules.vtkCommonCore import vtkCharArray
+        m = vtkCharArray()
+        m.SetName("vtkValidPointMask")
+        m.SetNumberOfTuples(n)
+        numpy_support.vtk_to_numpy(m)[:] = valid
+        out.GetPointData().AddArray(m)
+    return out, (None if valid.all() else valid)
 
 
 def _amr_boxes(amr):
@@ -636,13 +805,15 @@ def _amr_block_list(amr, names=()):
     return blocks
 
 
-def _amr_grid(amr, box, bytes_per_point):
+def _amr_grid(amr, box, bytes_per_point, ranks=None):
     """The engine's automatic grid of an AMR over `box` (schlieren_amr_grid: the finest loaded
-    level's spacing, capped by memory), as the C++ filter's."""
-    return _engine.amr_grid(amr.GetNumberOfLevels(), _amr_block_list(amr), box, bytes_per_point)
+    level's spacing, capped by memory), as the C++ filter's; with `ranks` (MPI, collective) over
+    the boxes every rank holds."""
+    return _engine.amr_grid(amr.GetNumberOfLevels(), _amr_block_list(amr), box, bytes_per_point,
+                            ranks)
 
 
-def _amr_input(amr, dims, origin, spacing):
+def _amr_input(amr, dims, origin, spacing, ranks=None):
     """An overlapping AMR sampled onto `dims` points at `origin`, `spacing` by the engine
     (schlieren_amr_sample), as the C++ RefractiveIndex samples it: (image with every array any box
     holds as float32 and vtkValidPointMask where some point lies outside every box, valid mask or
@@ -661,6 +832,8 @@ def _amr_input(amr, dims, origin, spacing):
                 n = attributes.GetArrayName(i)
                 if n and n not in names and n not in ("vtkGhostType", "vtkValidPointMask"):
                     names.append(n)
+    if ranks is not None:
+        names = _names_everywhere(ranks, names)  # every rank's boxes' arrays (MPI)
     d = [int(x) for x in dims]
     image = vtkImageData()
     image.SetDimensions(*d)
@@ -668,7 +841,8 @@ def _amr_input(amr, dims, origin, spacing):
     image.SetSpacing(*spacing)
     # the C++ filter's structure: its spacing and origin as it sets them, read back
     mask, sampled, notes = _engine.amr_sample(amr.GetNumberOfLevels(), _amr_block_list(amr, names),
-                                              names, d, image.GetOrigin(), image.GetSpacing())
+                                              names, d, image.GetOrigin(), image.GetSpacing(),
+                                              ranks)
     for name in names:
         if name in sampled:
             _add(image, name, sampled[name])
@@ -776,18 +950,31 @@ class RefractiveScene(_Properties):
         info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
         info.Set(vtkImageData.ORIGIN(), *origin)
         info.Set(vtkImageData.SPACING(), *spacing)
+        # any piece (under MPI each rank fills its own, as the C++ source does)
+        info.Set(self.CAN_PRODUCE_SUB_EXTENT(), 1)
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
         out = vtkImageData.GetData(outInfo)
+        info = outInfo.GetInformationObject(0)
         try:
             dims, origin, spacing = self._grid()
+            ext = list(info.Get(SDDP.UPDATE_EXTENT())) if info.Has(SDDP.UPDATE_EXTENT()) else \
+                [0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1]
+            if _empty(ext):
+                out.Initialize()
+                out.SetExtent(*ext)
+                return 1  # an empty piece
             settings = {k: self._values[k] for k in self._defaults
                         if k not in ("Dimensions", "Bounds")}
-            arrays = _engine.fill_scene(settings, dims, origin, spacing)
+            # the requested piece as a grid of its own whose first point is its extent's (the
+            # C++ source's arithmetic: the whole grid where the piece is the whole)
+            arrays = _engine.fill_scene(
+                settings, [ext[2 * a + 1] - ext[2 * a] + 1 for a in range(3)],
+                [origin[a] + ext[2 * a] * spacing[a] for a in range(3)], spacing)
         except EngineError as e:
             return self._fail(str(e))
-        out.SetDimensions(*dims)
+        out.SetExtent(*ext)
         out.SetOrigin(*origin)
         out.SetSpacing(*spacing)
         n1 = _add(out, "n_minus_1", arrays["n_minus_1"])
@@ -1017,17 +1204,29 @@ class RefractiveIndex(_Properties):
         # plans its film from it; without it a view asks for an empty extent and shows nothing)
         src = inInfo[0].GetInformationObject(0)
         info = outInfo.GetInformationObject(0)
+        ranks = _ranks()
+        if ranks is not None:
+            # under MPI any piece of the grid (the C++ filter's): computed from the input's piece
+            # grown by a point, or cut from the whole resampled grid
+            info.Set(self.CAN_PRODUCE_SUB_EXTENT(), 1)
         if isinstance(vtkDataObject.GetData(src), vtkImageData) and self.Symmetry == "None":
             return 1  # (the data object exists, empty, before the input executes)
         connection = self.GetInputConnection(0, 0) if self.GetNumberOfInputConnections(0) else None
         if connection is not None and src.Has(SDDP.WHOLE_EXTENT()):
             src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        spread = _spread(ranks, vtkDataObject.GetData(src), self.Symmetry)
+        if connection is not None and ranks is not None:
+            # a mesh: this rank's piece (resampled here, the samples summed over the ranks); made
+            # a volume or an AMR: the whole input on every rank (docs/PARALLEL.md)
+            src.Set(SDDP.UPDATE_PIECE_NUMBER(), ranks.rank if spread else 0)
+            src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), ranks.size if spread else 1)
+            src.Set(SDDP.UPDATE_NUMBER_OF_GHOST_LEVELS(), 0)
         if connection is not None:
             connection.GetProducer().Update(connection.GetIndex())
         data = vtkDataObject.GetData(src)
         info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
         if not isinstance(data, (vtkDataSet, vtkCompositeDataSet)) or \
-                data.GetNumberOfPoints() == 0:
+                (data.GetNumberOfPoints() == 0 and spread is None):
             return 1  # RequestData says why
         if self.Symmetry != "None":
             # the engine's grid for the 2D input (RequestData says why where there is none)
@@ -1040,8 +1239,14 @@ class RefractiveIndex(_Properties):
             info.Set(vtkImageData.ORIGIN(), *o)
             info.Set(vtkImageData.SPACING(), *h)
             return 1
-        # the grid the cell sampler fills: the engine's (the C++ filter's)
-        grid = self._sampling_grid(data)
+        # the grid the cell sampler fills: the engine's (the C++ filter's); under MPI over every
+        # rank's piece
+        try:
+            grid = self._sampling_grid(data, spread)
+        except EngineError:
+            if spread is None:
+                raise
+            return 1  # no rank has a point, or too many: RequestData says why on every rank
         dims = grid["dims"]
         info.Set(SDDP.WHOLE_EXTENT(), 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1)
         info.Set(vtkImageData.ORIGIN(), *grid["origin"])
@@ -1054,6 +1259,8 @@ class RefractiveIndex(_Properties):
         is asked for). The token is the pipeline's modified time (this algorithm's and every
         upstream one's)."""
         pipeline_mtime = getattr(self.GetExecutive(), "GetPipelineMTime", None)
+        if _ranks() is not None:
+            return None  # not under MPI (the C++ filter's rule)
         if src is None or info is None or not src.Has(SDDP.TIME_STEPS()) or \
                 not info.Has(SDDP.UPDATE_TIME_STEP()) or pipeline_mtime is None:
             return None
@@ -1070,24 +1277,38 @@ class RefractiveIndex(_Properties):
             # a time step kept: the input stays at the time it holds (it does not execute again)
             src.Set(SDDP.UPDATE_TIME_STEP(),
                     held.GetInformation().Get(vtkDataObject.DATA_TIME_STEP()))
-        # the engine's rule (schlieren_input_request, the C++ filter's): a resampled or symmetric
-        # input whole, an image over the output's update extent grown by one point for the
-        # central differences (this front end makes one piece)
+        # the engine's rule (schlieren_input_request, the C++ filter's): a resampled input whole
+        # (under MPI this rank's piece of a mesh), a symmetric one whole on every rank, an image
+        # over this output's piece of the update extent grown by one point for the central
+        # differences
         info = outInfo.GetInformationObject(0)
+        ranks = _ranks()
         image = isinstance(held, vtkImageData) and src.Has(SDDP.WHOLE_EXTENT()) and \
             info.Has(SDDP.UPDATE_EXTENT())
+        resampled = not image
+        spread = _spread(ranks, held, self.Symmetry) if resampled else None
+
+        def asked(key, default):
+            return info.Get(key) if ranks is not None and info.Has(key) else default
         piece, pieces, extent = _engine.input_request(
-            not image, self.Symmetry != "None",
+            resampled, self.Symmetry != "None",
+            rank=ranks.rank if spread else 0, ranks=ranks.size if spread else 1,
+            piece=asked(SDDP.UPDATE_PIECE_NUMBER(), 0),
+            pieces=asked(SDDP.UPDATE_NUMBER_OF_PIECES(), 1),
+            ghosts=asked(SDDP.UPDATE_NUMBER_OF_GHOST_LEVELS(), 0),
+            split_mode=asked(vtkExtentTranslator.UPDATE_SPLIT_MODE(), 3),
             update_extent=info.Get(SDDP.UPDATE_EXTENT()) if image else (0, -1, 0, -1, 0, -1),
             whole_extent=src.Get(SDDP.WHOLE_EXTENT()) if image else (0, -1, 0, -1, 0, -1))
-        if (extent is None or extent[1] < extent[0] or extent[3] < extent[2] or
-                extent[5] < extent[4]) and src.Has(SDDP.WHOLE_EXTENT()):
-            # whole (an empty update extent too: this front end makes no empty piece yet)
+        if (extent is None or (ranks is None and _empty(extent))) and \
+                src.Has(SDDP.WHOLE_EXTENT()):
+            # whole (in one process an empty update extent too: it makes no empty piece)
             extent = src.Get(SDDP.WHOLE_EXTENT())
         if extent is not None:
             src.Set(SDDP.UPDATE_EXTENT(), extent, 6)
         src.Set(SDDP.UPDATE_PIECE_NUMBER(), piece)
         src.Set(SDDP.UPDATE_NUMBER_OF_PIECES(), pieces)
+        if ranks is not None:
+            src.Set(SDDP.UPDATE_NUMBER_OF_GHOST_LEVELS(), 0)
         return 1
 
     # the array properties by role, in the engine's order (schlieren_index_field)
@@ -1097,8 +1318,11 @@ class RefractiveIndex(_Properties):
 
     def _note(self, note):
         """A note for the user, said once for the settings it was said for (the C++ filter's
-        SayNote: ParaView's Output Messages as plain text)."""
+        SayNote: ParaView's Output Messages as plain text); under MPI by rank 0."""
         from vtkmodules.vtkCommonCore import vtkOutputWindow
+        ranks = _ranks()
+        if ranks is not None and ranks.rank != 0:
+            return
         said = self.__dict__.get("_notes_said")
         if said is None or said[0] != self.GetMTime():
             said = (self.GetMTime(), set())
@@ -1110,34 +1334,37 @@ class RefractiveIndex(_Properties):
     _sampling_names = ("SamplingDimensions", "AutomaticDimension", "UseSamplingBounds",
                        "SamplingBounds")
 
-    def _sampling_grid(self, data):
+    def _sampling_grid(self, data, ranks=None):
         """The grid a resampled input is sampled onto, the engine's (schlieren_sampling_box and
         _grid: the C++ filter's rule, with its messages): dict(dims, origin, spacing, amr: an AMR
         input's automatic grid where it set the dimensions, else None)."""
         settings = {k: self._values[k] for k in self._sampling_names}
-        box = _engine.sampling_box(settings, None if self.UseSamplingBounds else _leaf_bounds(data))
+        box = _engine.sampling_box(
+            settings, None if self.UseSamplingBounds else _bounds_everywhere(data, ranks))
         array_bytes = _array_bytes(data)
         amr = None
         if min(int(d) for d in self.SamplingDimensions) <= 0 and \
-                isinstance(data, vtkOverlappingAMR) and data.GetNumberOfPoints():
-            # an AMR: its finest level's spacing, capped by memory (with the engine's share)
-            amr = _amr_grid(data, box, 1.0 + 16.0 + array_bytes + 21.0)
+                isinstance(data, vtkOverlappingAMR) and (data.GetNumberOfPoints() or
+                                                          ranks is not None):
+            # an AMR: its finest level's spacing, capped by memory (with the engine's share;
+            # under MPI over every rank's boxes)
+            amr = _amr_grid(data, box, 1.0 + 16.0 + array_bytes + 21.0, ranks)
         dims, origin, spacing = _engine.sampling_grid(settings, box, array_bytes,
                                                       amr["dims"] if amr else None)
         return dict(dims=dims, origin=origin, spacing=spacing, box=box, amr=amr)
 
-    def _followed_grid(self, data, info):
+    def _followed_grid(self, data, info, ranks=None):
         """RequestInformation's grid (`info`), made to follow a mesh that moves over time (the
         engine's schlieren_follow_bounds, the C++ filter's): (dims, origin, spacing), note or
         None."""
         if not info.Has(vtkImageData.ORIGIN()) or not info.Has(SDDP.WHOLE_EXTENT()):
-            grid = self._sampling_grid(data)
+            grid = self._sampling_grid(data, ranks)
             return (grid["dims"], grid["origin"], grid["spacing"]), None
         whole = info.Get(SDDP.WHOLE_EXTENT())
         dims = [whole[2 * a + 1] - whole[2 * a] + 1 for a in range(3)]
         origin, spacing = list(info.Get(vtkImageData.ORIGIN())), list(info.Get(vtkImageData.SPACING()))
-        bounds = _leaf_bounds(_internal_mesh(data))
-        moved = None if self.UseSamplingBounds or bounds is None else \
+        bounds = None if self.UseSamplingBounds else _bounds_everywhere(_internal_mesh(data), ranks)
+        moved = None if bounds is None else \
             _engine.follow_bounds(whole, origin, spacing, bounds)
         if moved is None:
             return (dims, origin, spacing), None
@@ -1191,12 +1418,38 @@ class RefractiveIndex(_Properties):
     def RequestData(self, request, inInfo, outInfo):
         data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
+        ranks = _ranks()
+        # under MPI an image is computed piece by piece (the engine's collective
+        # schlieren_index_field_piece); a failure before it is agreed on with the other ranks
+        pieces = ranks is not None and isinstance(data, vtkImageData) and \
+            self.Symmetry == "None"
+        collective = [False]
         try:
+            if pieces:
+                whole = list(inInfo[0].GetInformationObject(0).Get(SDDP.WHOLE_EXTENT()))
+                out_ext = list(outInfo.GetInformationObject(0).Get(SDDP.UPDATE_EXTENT()))
+                grid_ext = list(data.GetExtent()) if data.GetNumberOfPoints() else \
+                    [0, -1, 0, -1, 0, -1]
+                if _empty(out_ext) or _empty(grid_ext):
+                    collective[0] = True
+                    agreed = _agreed(ranks, "", _INDEX_STEP)
+                    if agreed:
+                        return self._fail(agreed)
+                    _engine.index_field_piece({"Model": "Passthrough"}, [0, -1, 0, -1, 0, -1],
+                                              out_ext, whole, [1.0] * 3, {}, ranks=ranks)
+                    out.Initialize()
+                    return 1  # this rank holds no point of the image
+                if any(out_ext[2 * a] < grid_ext[2 * a] or out_ext[2 * a + 1] >
+                       grid_ext[2 * a + 1] for a in range(3)):
+                    raise EngineError("The input's extent (%s) does not cover the requested "
+                                      "extent (%s); the upstream filter did not honour the "
+                                      "update request." % (" ".join(map(str, grid_ext)),
+                                                           " ".join(map(str, out_ext))))
             if data is None or not isinstance(data, (vtkDataSet, vtkCompositeDataSet)):
                 raise EngineError("RefractiveIndex needs a data set or a composite data set; "
                                   "got %s." % (data.GetClassName() if data else "nothing"))
             if isinstance(data, vtkCompositeDataSet) and \
-                    data.GetNumberOfPoints() == 0:
+                    data.GetNumberOfPoints() == 0 and _spread(ranks, data, self.Symmetry) is None:
                 raise EngineError("RefractiveIndex: the input (%s) has no points."
                                   % data.GetClassName())
             key = self._cache_key(inInfo[0].GetInformationObject(0),
@@ -1218,11 +1471,14 @@ class RefractiveIndex(_Properties):
                     self._warn(w)
             elif isinstance(data, vtkOverlappingAMR):
                 # the engine's AMR sampler (the C++ filter's), and its numbers and notes
-                sampling = self._sampling_grid(data)
-                grid = sampling["amr"] or _amr_grid(data, sampling["box"], 1.0 + 16.0 + 64.0 + 21.0)
+                # (under MPI over the boxes every rank holds, collective: the C++ filter's)
+                spread = _spread(ranks, data, self.Symmetry)
+                sampling = self._sampling_grid(data, spread)
+                grid = sampling["amr"] or _amr_grid(data, sampling["box"], 1.0 + 16.0 + 64.0 + 21.0,
+                                                    spread)
                 automatic = min(int(v) for v in self.SamplingDimensions) <= 0
                 image, valid, notes = _amr_input(data, sampling["dims"], sampling["origin"],
-                                                 sampling["spacing"])
+                                                 sampling["spacing"], spread)
                 notes = ([grid["note"]] if automatic else []) + notes
                 amr_numbers = [("amr_levels", data.GetNumberOfLevels()),
                                ("amr_finest_level", grid["finest_level"]),
@@ -1233,12 +1489,14 @@ class RefractiveIndex(_Properties):
                     self._note(note)
             else:
                 grid = None
+                spread = _spread(ranks, data, self.Symmetry)
                 if resampled:
-                    grid, moved = self._followed_grid(data, outInfo.GetInformationObject(0))
+                    grid, moved = self._followed_grid(data, outInfo.GetInformationObject(0),
+                                                      spread)
                     if moved:
                         notes.append(moved)
                         self._note(moved)
-                image, valid = _image_input(data, grid)
+                image, valid = _image_input(data, grid, spread)
                 if not isinstance(data, vtkImageData) and self.AxisFromWedge:
                     # a wedge traced as it is: a slab of gas a few degrees thick (said as the
                     # C++ filter says it)
@@ -1287,7 +1545,8 @@ class RefractiveIndex(_Properties):
             if resampled and valid is not None and not valid.any():
                 settings["CellsDescription"] = _describe_cells(_internal_mesh(data))
             rim = None
-            if self.BodyFromGrid and resampled and valid is not None and not valid.all():
+            if self.BodyFromGrid and resampled and valid is not None and not valid.all() and \
+                    ranks is None:
                 # the voids beside the mesh's walls, where it has a velocity (the C++ filter's)
                 found = _wall_rim(_internal_mesh(data), list(image.GetDimensions()),
                                   image.GetOrigin(), image.GetSpacing(), valid,
@@ -1315,9 +1574,19 @@ class RefractiveIndex(_Properties):
                 found, body, overlaps = _body_inside(surface, image)
                 settings.update(BodySurface=found, BodyOverlaps=int(overlaps))
             try:
-                n1, grad, solid, report = _engine.index_field(
-                    settings, dims, image.GetSpacing(), arrays, valid, active, cells,
-                    read_notes + choice["notes"] + notes, rim, body)
+                if pieces:
+                    collective[0] = True
+                    agreed = _agreed(ranks, "", _INDEX_STEP)
+                    if agreed:
+                        return self._fail(agreed)
+                    n1, grad, solid, report = _engine.index_field_piece(
+                        settings, grid_ext, out_ext, whole, image.GetSpacing(), arrays, valid,
+                        active, cells, read_notes + choice["notes"] + notes, ranks=ranks,
+                        body=body)
+                else:
+                    n1, grad, solid, report = _engine.index_field(
+                        settings, dims, image.GetSpacing(), arrays, valid, active, cells,
+                        read_notes + choice["notes"] + notes, rim, body)
             except EngineError as e:
                 report = getattr(e, "report", {})
                 if report.get("model_done"):
@@ -1325,6 +1594,8 @@ class RefractiveIndex(_Properties):
                         self._warn(w)
                 raise
         except EngineError as e:
+            if pieces and not collective[0]:
+                return self._fail(_agreed(ranks, str(e), _INDEX_STEP))
             return self._fail(str(e))
         for w in report["warnings"]:
             self._warn(w)
@@ -1357,6 +1628,9 @@ class RefractiveIndex(_Properties):
                 _field_number(out, field, value)
         for name, value in amr_numbers:  # the AMR's levels, last (the C++ filter's order)
             _field_number(out, name, value)
+        if ranks is not None:
+            # this rank's piece of the grid (the requested extent), as the C++ filter writes it
+            _crop(out, outInfo.GetInformationObject(0).Get(SDDP.UPDATE_EXTENT()))
         self._time_cache.computed += 1
         if key is not None:
             self._time_cache.insert(key, out)
@@ -1383,29 +1657,49 @@ class RefractionOctree(_Properties):
     def RequestData(self, request, inInfo, outInfo):
         image = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
+        ranks = _ranks()
+        problem, n1 = "", None
         if not isinstance(image, vtkImageData):
-            return self._fail("RefractionOctree needs a vtkImageData input with the point "
-                              "array 'n_minus_1' (the output of RefractiveIndex); got %s."
-                              % (image.GetClassName() if image is not None else "nothing"))
-        if not 0 <= int(self.MaxLevel) <= 10:
-            return self._fail("MaxLevel is %d: it must be in [0, 10]." % int(self.MaxLevel))
-        n1 = _point_array(image, "n_minus_1")
-        if n1 is None:
-            return self._fail("RefractionOctree needs the point array 'n_minus_1'.")
+            problem = ("RefractionOctree needs a vtkImageData input with the point array "
+                       "'n_minus_1' (the output of RefractiveIndex); got %s."
+                       % (image.GetClassName() if image is not None else "nothing"))
+        elif not 0 <= int(self.MaxLevel) <= 10:
+            problem = "MaxLevel is %d: it must be in [0, 10]." % int(self.MaxLevel)
+        elif ranks is not None and image.GetNumberOfPoints() == 0:
+            n1 = np.zeros(0, np.float32)  # an empty piece under MPI
+        else:
+            n1 = _point_array(image, "n_minus_1")
+            if n1 is None:
+                problem = "RefractionOctree needs the point array 'n_minus_1'."
+        # under MPI every rank learns whether one failed (no rank waits for one that gave up)
+        problem = _agreed(ranks, problem, "RefractionOctree's range")
+        if problem:
+            return self._fail(problem)
         n1 = np.ascontiguousarray(n1, np.float32)
-        rng = float(n1.max()) - float(n1.min()) if n1.size else 0.0
+        lowest = [float(n1.min()), -float(n1.max())] if n1.size else [np.inf, np.inf]
+        if ranks is not None:
+            # under MPI (the C++ filter's): the range of the whole volume, so that every rank
+            # uses the same tolerance
+            lowest = list(ranks.comm.allreduce(np.array(lowest, np.float64), "min"))
+        rng = -lowest[1] - lowest[0] if np.isfinite(lowest).all() else 0.0
         tol = float(self.Tolerance)
         if not tol > 0:
             tol = self.AutomaticToleranceFraction * rng if rng > 0 else 0.0
         dims = list(image.GetDimensions())
         out.ShallowCopy(image)
-        fraction = 0.0
+        fraction, counts = 0.0, np.zeros(2)
         if min(dims) >= 2:
             try:
                 levels, fraction = _engine.octree_levels(dims, n1, tol, int(self.MaxLevel))
             except EngineError as e:
                 return self._fail(str(e))
             _add(out, "octree_level", levels)
+            cells = float(dims[0] - 1) * (dims[1] - 1) * (dims[2] - 1)
+            counts = np.array([fraction * cells, cells])
+        if ranks is not None:
+            # the skippable fraction of the whole volume
+            counts = ranks.comm.allreduce(counts, "sum")
+            fraction = counts[0] / counts[1] if counts[1] > 0 else 0.0
         _field_number(out, "octree_tolerance", tol)
         _field_number(out, "octree_max_level", int(self.MaxLevel))
         _field_number(out, "octree_skippable_fraction", fraction)
@@ -1432,10 +1726,10 @@ class NumericalSchlieren(_Properties):
 
     def RequestUpdateExtent(self, request, inInfo, outInfo):
         # the whole volume (not the film's extent, which the pipeline would copy upstream and
-        # then report as outside the input's whole extent)
-        src = inInfo[0].GetInformationObject(0)
-        if src.Has(SDDP.WHOLE_EXTENT()):
-            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        # then report as outside the input's whole extent); under MPI each rank's piece of it,
+        # gathered in RequestData (the C++ filter's)
+        _ask_pieces(inInfo[0].GetInformationObject(0), outInfo.GetInformationObject(0),
+                    _ranks())
         return 1
 
     def _settings(self):
@@ -1468,9 +1762,14 @@ class NumericalSchlieren(_Properties):
         info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
         info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
         info.Set(vtkImageData.ORIGIN(), film_origin[0], film_origin[1], 0.0)
+        # every rank executes (the pieces are gathered under MPI); rank 0 makes the image
+        info.Set(self.CAN_HANDLE_PIECE_REQUEST(), 1)
         return 1
 
     def RequestData(self, request, inInfo, outInfo):
+        ranks = _ranks()
+        if ranks is not None:
+            return self._pieces(ranks, inInfo, outInfo)
         image = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
         if image is not None and not isinstance(image, vtkImageData):
@@ -1491,21 +1790,10 @@ class NumericalSchlieren(_Properties):
             a = image.GetPointData().GetArray(name)
             return None if a is None or a.GetNumberOfComponents() != 1 else \
                 numpy_support.vtk_to_numpy(a)
-        name = self.DensityArray
-        if name:
-            values = scalars(name)
-            if values is None:
-                return self._fail("DensityArray is '%s': the input has no one-component point "
-                                  "array of that name." % name)
-        else:
-            for name in ("density", "rho", "Density", "n_minus_1"):
-                values = scalars(name)
-                if values is not None:
-                    break
-            if values is None:
-                return self._fail("NumericalSchlieren needs a density (point array 'density', "
-                                  "'rho' or 'Density', or one named in DensityArray) or "
-                                  "'n_minus_1'; the input has none.")
+        try:
+            name, values = self._field(image)
+        except EngineError as e:
+            return self._fail(str(e))
         solid = scalars("solid")
         mask = scalars("vtkValidPointMask")
         try:
@@ -1518,6 +1806,10 @@ class NumericalSchlieren(_Properties):
             self.SetAbortExecute(0)  # an abort is spent: the next update images again
             out.Initialize()
             return self._fail(str(e))
+        self._write(out, r, name)
+        return 1
+
+    def _write(self, out, r, name):
         out.Initialize()
         out.SetExtent(0, r["size"][0] - 1, 0, r["size"][1] - 1, 0, 0)
         out.SetSpacing(r["pixel"], r["pixel"], 1.0)
@@ -1530,7 +1822,73 @@ class NumericalSchlieren(_Properties):
         _field_string(out, "numerical_gradient_kind", self.Gradient)
         _field_number(out, "gradient_maximum", r["maximum"])
         _field_number(out, "gradient_largest", r["largest"])
+
+    def _pieces(self, ranks, inInfo, outInfo):
+        """RequestData under MPI (the C++ filter's): each rank's piece of the volume gathered on
+        rank 0, which makes the image of the whole; a failure on any rank is every rank's (the
+        engine's agreement), an empty piece sends nothing."""
+        image = vtkDataObject.GetData(inInfo[0])
+        out = vtkImageData.GetData(outInfo)
+        out.Initialize()
+        src = inInfo[0].GetInformationObject(0)
+        empty = not isinstance(image, vtkImageData) or image.GetNumberOfPoints() == 0
+        error, name, values, solid, mask = "", "", None, None, None
+        if image is not None and not isinstance(image, vtkImageData):
+            error = ("NumericalSchlieren needs a vtkImageData input (for example the output of "
+                     "RefractiveIndex or RefractiveScene); got %s. Resample the data onto an "
+                     "image with RefractiveIndex first." % image.GetClassName())
+        elif not empty:
+            try:
+                _axis_aligned_image(image, "NumericalSchlieren")
+                name, values = self._field(image)
+            except EngineError as e:
+                error = str(e)
+            solid, mask = _point_array(image, "solid"), _point_array(image, "vtkValidPointMask")
+        try:
+            agreed = _agreed(ranks, error, "NumericalSchlieren's pieces")
+            if agreed:
+                return self._fail(agreed)
+            whole, origin, spacing = self._grid(src)
+            e = src.Get(SDDP.WHOLE_EXTENT())
+            if empty:
+                offset, piece = [0, 0, 0], [0, 0, 0]
+            else:
+                pe = image.GetExtent()
+                offset = [pe[2 * a] - e[2 * a] for a in range(3)]
+                piece = list(image.GetDimensions())
+            r = _engine.numerical_pieces(
+                self._settings(), whole, origin, spacing, offset, piece, values,
+                None if solid is None else (solid != 0).astype(np.uint8),
+                None if mask is None else (mask == 0).astype(np.uint8), ranks=ranks,
+                progress=self._progress)
+        except EngineError as err:
+            self.SetAbortExecute(0)
+            out.Initialize()
+            return self._fail(str(err))
+        if r is not None:
+            self._write(out, r, name)
         return 1
+
+    def _field(self, image):
+        """(name, values) of the field imaged: DensityArray, else the first of density, rho,
+        Density, n_minus_1 (one-component point arrays); EngineError where none is."""
+        def scalars(name):
+            a = image.GetPointData().GetArray(name)
+            return None if a is None or a.GetNumberOfComponents() != 1 else \
+                numpy_support.vtk_to_numpy(a)
+        if self.DensityArray:
+            values = scalars(self.DensityArray)
+            if values is None:
+                raise EngineError("DensityArray is '%s': the input has no one-component point "
+                                  "array of that name." % self.DensityArray)
+            return self.DensityArray, values
+        for name in ("density", "rho", "Density", "n_minus_1"):
+            values = scalars(name)
+            if values is not None:
+                return name, values
+        raise EngineError("NumericalSchlieren needs a density (point array 'density', 'rho' or "
+                          "'Density', or one named in DensityArray) or 'n_minus_1'; the input "
+                          "has none.")
 
     def _progress(self, fraction, _text):
         """The image's progress, as the C++ filter reports it; False once the pipeline asks to
@@ -1569,47 +1927,75 @@ class SchlierenImage(_Properties):
         data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
         s = self._session
+        ranks = _ranks()
+        # under MPI (the C++ filter's): each rank's piece, traced together by the engine
+        # (collective); a failure before is agreed on, an empty piece sends nothing
+        empty = ranks is not None and isinstance(data, vtkImageData) and \
+            data.GetNumberOfPoints() == 0
+        collective = False
         try:
             # the C++ filter's refusals: not an image (an unstructured grid traced as vacuum
             # outside its cells would be a wrong image: RefractiveIndex resamples it with the
             # validity mask and fills those points), or a turned one
             image = _axis_aligned_image(data, "SchlierenImage")
-            n1 = _point_array(image, "n_minus_1")
-            if n1 is None:
+            n1 = None if empty else _point_array(image, "n_minus_1")
+            if n1 is None and not empty:
                 pd = image.GetPointData()
                 raise EngineError(
                     "SchlierenImage needs the point array 'n_minus_1' (n - 1); the input has "
                     "the point arrays: %s. Apply RefractiveIndex first." % ", ".join(
                         pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())))
-            if n1.ndim != 1:
+            if n1 is not None and n1.ndim != 1:
                 raise EngineError("The point array 'n_minus_1' must have one component.")
             # the input by its C++ object and modification time: id() of the Python wrapper is
             # not stable (a wrapper freed after RequestData may come back at another address),
             # and a resampled image is new each time while its source is unchanged
             key = (data.GetMTime(), data.__this__)
             if key != self._volume_key:
-                solid = _point_array(image, "solid")
-                levels = _point_array(image, "octree_level")
+                object.__setattr__(self, "_volume_key", None)
+                solid = None if empty else _point_array(image, "solid")
+                levels = None if empty else _point_array(image, "octree_level")
                 fd = image.GetFieldData()
                 tol = fd.GetArray("octree_tolerance")
                 maxl = fd.GetArray("octree_max_level")
-                s.set_volume(image.GetDimensions(), _first_point(image), image.GetSpacing(), n1,
-                             None if solid is None else (solid != 0).astype(np.uint8),
-                             None if levels is None else np.clip(levels, 0, 10).astype(np.uint8),
-                             tol.GetValue(0) if tol is not None else -1.0,
-                             int(maxl.GetValue(0)) if maxl is not None else 7)
+                volume = (n1, None if solid is None else (solid != 0).astype(np.uint8),
+                          None if levels is None else np.clip(levels, 0, 10).astype(np.uint8),
+                          tol.GetValue(0) if tol is not None else -1.0,
+                          int(maxl.GetValue(0)) if maxl is not None else 7)
+                if ranks is None:
+                    s.set_volume(image.GetDimensions(), _first_point(image), image.GetSpacing(),
+                                 *volume)
+                else:
+                    src = inInfo[0].GetInformationObject(0)
+                    s.set_piece(src.Get(SDDP.WHOLE_EXTENT()),
+                                [0, -1, 0, -1, 0, -1] if empty else image.GetExtent(),
+                                src.Get(vtkImageData.ORIGIN()), src.Get(vtkImageData.SPACING()),
+                                *volume)
                 object.__setattr__(self, "_volume_key", key)
             for name, value in self._values.items():
                 s.set(name, value)
-            report = s.trace(self._progress)
+            if ranks is None:
+                report = s.trace(self._progress)
+            else:
+                collective = True
+                agreed = _agreed(ranks, "", _TRACE_STEP)
+                if agreed:
+                    raise EngineError(agreed)
+                report = s.trace_parallel(ranks, self._progress)
         except EngineError as e:
             object.__setattr__(self, "LastReport", getattr(e, "report", None))
-            return self._stopped(out, str(e))
+            message = str(e)
+            if ranks is not None and not collective:
+                message = _agreed(ranks, message, _TRACE_STEP)
+            return self._stopped(out, message)
         object.__setattr__(self, "LastReport", report)
         object.__setattr__(self, "LastError", "")
         for note in report["notes"]:
             if note["warning"]:
                 self._warn(note["text"])
+        if ranks is not None and not s.has_image():
+            out.Initialize()
+            return 1  # rank 0 holds the image
         size, origin, pixel = s.film()
         # only the image and the report, as the C++ filter's output (the pipeline passed the
         # input's field data on: RefractiveIndex's index_* are not this image's)
@@ -1699,13 +2085,15 @@ class SchlierenImage(_Properties):
         info.Set(SDDP.WHOLE_EXTENT(), 0, size[0] - 1, 0, size[1] - 1, 0, 0)
         info.Set(vtkImageData.SPACING(), pixel, pixel, 1.0)
         info.Set(vtkImageData.ORIGIN(), origin[0], origin[1], 0.0)
+        # every rank executes (the tracing is collective under MPI); rank 0 makes the image
+        info.Set(self.CAN_HANDLE_PIECE_REQUEST(), 1)
         return 1
 
     def RequestUpdateExtent(self, request, inInfo, outInfo):
-        # the tracer needs the whole volume
-        src = inInfo[0].GetInformationObject(0)
-        if src.Has(SDDP.WHOLE_EXTENT()):
-            src.Set(SDDP.UPDATE_EXTENT(), src.Get(SDDP.WHOLE_EXTENT()), 6)
+        # the tracer needs the whole volume; under MPI each rank its piece of it (the C++
+        # filter's), traced together in RequestData
+        _ask_pieces(inInfo[0].GetInformationObject(0), outInfo.GetInformationObject(0),
+                    _ranks())
         return 1
 
 

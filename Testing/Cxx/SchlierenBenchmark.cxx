@@ -27,6 +27,10 @@
 //             moves on axis and oblique (half film, one pass, as the GUI's follower traces) and the
 //             camera at rest (the pilot again, the full film): wall ms of each update split into
 //             the pilot, the trace and the rest (packing, set-up, the image)
+//   cubicrate issue 50: Auto at --tolerance (rad here) on the same Gaussian on each grid of --grids, its
+//             choice and the same step on the other reconstruction, the field linear and in bricks,
+//             alternated --rounds times: median rays/s, samples/s, the tricubic sample's time over
+//             the trilinear's, the pilot's ms and its reference check's
 //   oblique   the same Gaussian on each grid of --grids seen along -z and along (1, 0.7, -0.4), Euler
 //             at --step voxels, Trilinear and Cubic, the field linear and in bricks, alternated
 //             --rounds times: median samples/s and rays/s, oblique over axis time per sample, errors
@@ -954,6 +958,131 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
   std::printf("\n");
 }
 
+// The cubicrate case (issue 50): Auto (Integrator and Reconstruction) at --tolerance rad on each
+// grid, its choice traced beside the same integrator and step on the trilinear field, in the
+// linear and the bricked layout, alternated --rounds times: median rays/s and samples/s, so that
+// the grids' ratio splits into samples a ray and the rate of a sample, and the tricubic sample's
+// cost over the trilinear one's is read at the step Auto takes (not at a voxel).
+void CubicRate(const std::string& grids, const std::string& backends, int film, int passes, double tol, int rounds)
+{
+  const double A = 2e-4, w = 0.25;
+  std::printf("## Auto at %g rad across grids (issue 50): weak Gaussian A = 2e-4, s = 0.25, beam along -z, film %d^2, "
+              "%d passes, medians of %d alternations (the first trace of each grid and layout, which uploads, left out)\n\n",
+    tol, film, passes, rounds);
+  std::printf("| grid | backend | layout | setting | samples/ray | M rays/s | M samples/s | tricubic / trilinear time per sample | pilot ms | reference check ms |\n"
+              "|---|---|---|---|---|---|---|---|---|---|\n");
+  const RuntimeOptions options = GetRuntimeOptions();
+  std::stringstream gs(grids);
+  std::string g;
+  while (std::getline(gs, g, ','))
+  {
+    const int n = std::atoi(g.c_str());
+    Volume v;
+    for (int a = 0; a < 3; ++a)
+    {
+      v.Dimensions[a] = n;
+      v.Origin[a] = -1;
+      v.Spacing[a] = 2.0 / (n - 1);
+    }
+    AlignedFloats packed;
+    std::vector<unsigned char> smooth;
+    try
+    {
+      std::vector<float> n1(v.NumberOfPoints());
+      SceneParameters p;
+      p.Amplitude = A;
+      p.Width = w;
+      FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
+      packed.resize(4 * n1.size());
+      smooth.resize(n1.size());
+      PackFieldHighOrder(v.Dimensions, v.Spacing, n1.data(), packed.data(), smooth.data());
+    }
+    catch (const std::exception& e)
+    {
+      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | |\n", n, e.what());
+      continue;
+    }
+    v.Field = packed.data();
+    v.Smooth = smooth.data();
+    ReleaseKeptVolume();
+    v.Stamp = NewVolumeStamp();
+    std::stringstream bs(backends);
+    std::string bname;
+    while (std::getline(bs, bname, ','))
+    {
+      TraceSettings s;
+      s.Device = ParseBackend(bname);
+      s.Resolution[0] = s.Resolution[1] = film;
+      s.Passes = passes;
+      s.CutoffScale = 1000;
+      s.UseOctree = false;
+      s.Method = Integrator::Auto;
+      s.Recon = Reconstruction::Auto;
+      s.Tolerance = tol;
+      AutoChoice choice;
+      TraceSettings chosen;
+      double pilotMs = 0;
+      try
+      {
+        ResolveAuto(v, s, &choice); // builds the programs, uploads the field
+        const auto tp = Clock::now();
+        chosen = ResolveAuto(v, s, &choice);
+        pilotMs = Since(tp) * 1e3;
+      }
+      catch (const Error& e)
+      {
+        std::printf("| %d^3 | %s | failed: %s | | | | | | | |\n", n, bname.c_str(), e.what());
+        continue;
+      }
+      TraceSettings twin = chosen;
+      twin.Recon = chosen.Recon == Reconstruction::Cubic ? Reconstruction::Trilinear : Reconstruction::Cubic;
+      const TraceSettings* set[2] = { &chosen, &twin };
+      // [layout][setting]
+      std::vector<double> rays[2][2], samples[2][2];
+      double perRay[2] = { 0, 0 };
+      for (int round = 0; round <= rounds; ++round)
+        for (int layout = 0; layout < 2; ++layout)
+        {
+          RuntimeOptions o = options;
+          o.Bricks = layout == 1;
+          SetRuntimeOptions(o);
+          for (int k = 0; k < 2; ++k)
+          {
+            const TraceResult r = Trace(v, *set[k]);
+            perRay[k] = r.Photons > 0 ? r.Samples / r.Photons : 0;
+            if (round == 0)
+              continue; // the upload of this layout
+            rays[layout][k].push_back(r.Photons / r.Seconds * 1e-6);
+            samples[layout][k].push_back(r.Samples / r.Seconds * 1e-6);
+          }
+        }
+      SetRuntimeOptions(options);
+      auto median = [](std::vector<double> x) {
+        std::sort(x.begin(), x.end());
+        return x.empty() ? 0.0 : x[x.size() / 2];
+      };
+      for (int layout = 0; layout < 2; ++layout)
+        for (int k = 0; k < 2; ++k)
+        {
+          const TraceSettings& t = *set[k];
+          // the time of a tricubic sample over a trilinear one's (the same on both rows)
+          const int cubicAt = chosen.Recon == Reconstruction::Cubic ? 0 : 1;
+          const double cubicOverTri = median(samples[layout][1 - cubicAt]) / median(samples[layout][cubicAt]);
+          std::printf("| %d^3 | %s | %s | %s%s %s %.3g vox | %.1f | %.3g | %.3g | %.2f | %s | %s |\n", n, bname.c_str(),
+            layout ? "bricks" : "linear", k == 0 ? "Auto: " : "", ReconstructionName(t.Recon), IntegratorName(t.Method),
+            t.StepSize, perRay[k], median(rays[layout][k]), median(samples[layout][k]), cubicOverTri,
+            k == 0 ? std::to_string(static_cast<int>(pilotMs)).c_str() : "-",
+            k == 0 && choice.ReferenceError > 0 ? std::to_string(static_cast<int>(choice.ReferenceCheckMs)).c_str() : "-");
+        }
+      if (!choice.Met)
+        std::printf("| %d^3 | %s | | Auto: %s | | | | | | |\n", n, bname.c_str(), choice.Report.c_str());
+      std::fflush(stdout);
+    }
+    ReleaseKeptVolume();
+  }
+  std::printf("\n");
+}
+
 // The moves case (issue 50): per update of a TraceSession, the wall time split into the pilot
 // (from Auto's report), the trace (TraceResult::Seconds) and the rest (packing the volume, the
 // rays' set-up, the image).
@@ -1234,6 +1363,8 @@ int main(int argc, char** argv)
         Oblique(grids, backends, film, passes, step, rounds);
       else if (name == "moves")
         Moves(grids, film);
+      else if (name == "cubicrate")
+        CubicRate(grids, backends, film, passes, tolFrac, rounds);
       else if (name == "raycost")
       {
         if (Gaussian(c, size))
@@ -1246,7 +1377,7 @@ int main(int argc, char** argv)
       else if (name == "bluntfin")
         ok = BluntFin(c, raw);
       else
-        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, autostep, moves, oblique, sources, raycost)\n", name.c_str());
+        std::printf("unknown case '%s' (gaussian, plume, bluntfin, grids, autostep, moves, cubicrate, oblique, sources, raycost)\n", name.c_str());
     }
     catch (const Error& e)
     {

@@ -3,10 +3,13 @@
  * session, a second trace that keeps the volume, the errors as messages (an unknown property, a
  * bad value, a trace without a volume, a value the engine refuses), and the run-time OpenCL
  * loader: run with SCHLIEREN_OPENCL_LIBRARY pointing nowhere (ctest does), Backend Auto traces on
- * the CPU and says why. */
+ * the CPU and says why; and the ranks (schlieren_parallel): two ranks on two threads trace, make
+ * grad n and the numerical image of a volume in two pieces as one process does, bit for bit. */
+#define _POSIX_C_SOURCE 200112L /* pthread_barrier_t under -std=c99 (python.install builds this so) */
 #include "schlieren_c.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +25,260 @@ static int failures = 0;
     if (!ok_)                                                                                     \
       ++failures;                                                                                 \
   } while (0)
+
+/* ---- two ranks on two threads: the callbacks of schlieren_parallel over a shared slot each and a
+ * barrier (what an MPI layer does, in one process) */
+typedef struct
+{
+  pthread_barrier_t barrier;
+  const char* slots[2];
+} Shared;
+typedef struct
+{
+  Shared* shared;
+  int rank;
+  /* what the rank's thread found, checked on the main thread */
+  int ok_trace, ok_index, ok_numerical, has_image, numerical_image;
+  char agreed[256];
+  float* intensity; /* rank 0: the image of the pieces */
+  float* n1_piece;  /* n - 1 on this rank's out extent */
+  float* numerical; /* rank 0: the numerical image */
+  char error[512];
+} Rank;
+
+static int t_allgather(const char* mine, int64_t count, char* all, void* user)
+{
+  Rank* me = (Rank*)user;
+  int r;
+  me->shared->slots[me->rank] = mine;
+  pthread_barrier_wait(&me->shared->barrier);
+  for (r = 0; r < 2; ++r)
+    if (count > 0)
+      memcpy(all + r * count, me->shared->slots[r], (size_t)count);
+  pthread_barrier_wait(&me->shared->barrier);
+  return 0;
+}
+
+static int t_broadcast(char* bytes, int64_t count, int root, void* user)
+{
+  Rank* me = (Rank*)user;
+  me->shared->slots[me->rank] = bytes;
+  pthread_barrier_wait(&me->shared->barrier);
+  if (me->rank != root && count > 0)
+    memcpy(bytes, me->shared->slots[root], (size_t)count);
+  pthread_barrier_wait(&me->shared->barrier);
+  return 0;
+}
+
+static int t_reduce(const double* in, double* out, int64_t count, int op, void* user)
+{
+  double* all = malloc(2 * (size_t)count * sizeof(double) + 1);
+  int64_t i;
+  t_allgather((const char*)in, count * (int64_t)sizeof(double), (char*)all, user);
+  for (i = 0; i < count; ++i)
+  {
+    const double a = all[i], b = all[count + i];
+    out[i] = op == 0 ? a + b : op == 1 ? (a < b ? a : b) : (a > b ? a : b);
+  }
+  free(all);
+  return 0;
+}
+
+enum { RN = 25 };
+static float ranks_n1[RN * RN * RN];
+static const int ranks_dims[3] = { RN, RN, RN };
+static const double ranks_origin[3] = { -1, -1, -1 }, ranks_spacing[3] = { 2.0 / (RN - 1), 2.0 / (RN - 1), 2.0 / (RN - 1) };
+/* rank r's piece: z from its lower to its upper plane (the planes at 12 shared), and the extent it
+ * holds for the index field (its out extent grown by one point, within the whole) */
+static void piece_extents(int rank, int out[6], int grid[6])
+{
+  out[0] = 0; out[1] = RN - 1; out[2] = 0; out[3] = RN - 1;
+  out[4] = rank == 0 ? 0 : 12;
+  out[5] = rank == 0 ? 12 : RN - 1;
+  memcpy(grid, out, 6 * sizeof(int));
+  grid[4] = out[4] > 0 ? out[4] - 1 : 0;
+  grid[5] = out[5] < RN - 1 ? out[5] + 1 : RN - 1;
+}
+
+static void* rank_main(void* arg)
+{
+  Rank* me = (Rank*)arg;
+  schlieren_parallel p;
+  int out[6], grid[6], size[2];
+  int64_t gpoints, opoints, pixels = 0;
+  const int whole[6] = { 0, RN - 1, 0, RN - 1, 0, RN - 1 };
+  const float* piece_n1;
+  float *g3, *n1g;
+  unsigned char* solid;
+  const char* names[1] = { "n_minus_1" };
+  const int comps[1] = { 1 }, bytes[1] = { 4 };
+  const void* vals[1];
+  int64_t counts[1];
+  const char* rep = NULL;
+  const char* agreed = NULL;
+  schlieren_session* s = schlieren_session_new();
+  p.size = 2;
+  p.rank = me->rank;
+  p.user = me;
+  p.reduce = t_reduce;
+  p.broadcast = t_broadcast;
+  p.allgather = t_allgather;
+  piece_extents(me->rank, out, grid);
+  gpoints = (int64_t)RN * RN * (grid[5] - grid[4] + 1);
+  opoints = (int64_t)RN * RN * (out[5] - out[4] + 1);
+  /* the trace: this rank's piece of the volume */
+  piece_n1 = ranks_n1 + (size_t)RN * RN * out[4];
+  schlieren_session_set(s, "Backend", "CPU");
+  schlieren_session_set(s, "Resolution", "20 16");
+  schlieren_session_set(s, "Passes", "1");
+  schlieren_session_set(s, "ViewDirection", "0.3 -0.2 -1");
+  me->ok_trace = schlieren_session_set_piece(s, whole, out, ranks_origin, ranks_spacing, piece_n1,
+                   opoints, NULL, 0, NULL, 0, -1, 7) == 0 &&
+    schlieren_session_trace_parallel(s, &p, NULL, NULL) == 0;
+  if (!me->ok_trace)
+    snprintf(me->error, sizeof(me->error), "%s", schlieren_session_error(s));
+  me->has_image = schlieren_session_film(s, size, NULL, NULL) == 0;
+  if (me->has_image)
+  {
+    const float* I = schlieren_session_array(s, "intensity", NULL, &pixels);
+    me->intensity = malloc((size_t)pixels * sizeof(float));
+    memcpy(me->intensity, I, (size_t)pixels * sizeof(float));
+  }
+  schlieren_session_free(s);
+  /* the index field: the piece grown by a point, n - 1 passed through */
+  g3 = malloc(3 * (size_t)gpoints * sizeof(float));
+  n1g = malloc((size_t)gpoints * sizeof(float));
+  solid = malloc((size_t)gpoints);
+  vals[0] = ranks_n1 + (size_t)RN * RN * grid[4];
+  counts[0] = gpoints;
+  me->ok_index = schlieren_index_field_piece("Model=Passthrough\nInputArray=n_minus_1", grid, out,
+                   whole, ranks_spacing, 1, names, comps, bytes, vals, counts, 0, NULL, NULL, NULL, 0,
+                   NULL, 0, NULL, 0, n1g, gpoints, g3, 3 * gpoints, solid, gpoints, &p, &rep) == 0;
+  if (!me->ok_index)
+    snprintf(me->error, sizeof(me->error), "%s", schlieren_last_error());
+  me->n1_piece = malloc(3 * (size_t)opoints * sizeof(float));
+  memcpy(me->n1_piece, g3 + 3 * (size_t)RN * RN * (out[4] - grid[4]), 3 * (size_t)opoints * sizeof(float));
+  free(g3);
+  free(n1g);
+  free(solid);
+  /* the numerical image of the pieces, gathered on rank 0 */
+  {
+    const int offset[3] = { 0, 0, out[4] }, pdims[3] = { RN, RN, out[5] - out[4] + 1 };
+    float* ni = malloc(20 * 16 * sizeof(float));
+    float* ng = malloc(20 * 16 * sizeof(float));
+    unsigned char* nb = malloc(20 * 16);
+    me->ok_numerical = schlieren_numerical_pieces("Mode=LineOfSight\nResolution=20 16", ranks_dims,
+                         ranks_origin, ranks_spacing, offset, pdims, piece_n1, opoints, NULL, 0, NULL,
+                         0, size, NULL, NULL, 20 * 16, ni, ng, nb, NULL, NULL, NULL, &p,
+                         &me->numerical_image) == 0;
+    if (!me->ok_numerical)
+      snprintf(me->error, sizeof(me->error), "%s", schlieren_last_error());
+    me->numerical = ni;
+    free(ng);
+    free(nb);
+  }
+  /* a failure on rank 1 only: the same agreement on both */
+  if (schlieren_parallel_failure(&p, me->rank == 1 ? "bad array on rank 1" : "", &agreed) == 0)
+    snprintf(me->agreed, sizeof(me->agreed), "%s", agreed);
+  return NULL;
+}
+
+static void ranks_test(void)
+{
+  Shared shared;
+  Rank ranks[2];
+  pthread_t threads[2];
+  int r;
+  const int64_t n = (int64_t)RN * RN * RN;
+  const float* whole_I;
+  int64_t pixels = 0;
+  schlieren_session* s;
+  float g3[3 * RN * RN * RN], n1g[RN * RN * RN];
+  unsigned char solid[RN * RN * RN];
+  const char* names[1] = { "n_minus_1" };
+  const int comps[1] = { 1 }, bytes[1] = { 4 };
+  const void* vals[1];
+  const int64_t counts[1] = { RN * RN * RN };
+  const char* rep = NULL;
+  const char* agreed = NULL;
+  float ni[20 * 16], ng[20 * 16];
+  unsigned char nb[20 * 16];
+  int size[2];
+  schlieren_parallel bad;
+
+  schlieren_fill_scene("Scene=GaussianSphere\nAmplitude=1e-4\nWidth=0.3\nCenter=0.1 -0.05 0.02",
+    ranks_dims, ranks_origin, ranks_spacing, n, ranks_n1, NULL, NULL, NULL);
+  pthread_barrier_init(&shared.barrier, NULL, 2);
+  memset(ranks, 0, sizeof(ranks));
+  for (r = 0; r < 2; ++r)
+  {
+    ranks[r].shared = &shared;
+    ranks[r].rank = r;
+    pthread_create(&threads[r], NULL, rank_main, &ranks[r]);
+  }
+  for (r = 0; r < 2; ++r)
+    pthread_join(threads[r], NULL);
+  pthread_barrier_destroy(&shared.barrier);
+
+  /* one process: the whole volume */
+  s = schlieren_session_new();
+  schlieren_session_set(s, "Backend", "CPU");
+  schlieren_session_set(s, "Resolution", "20 16");
+  schlieren_session_set(s, "Passes", "1");
+  schlieren_session_set(s, "ViewDirection", "0.3 -0.2 -1");
+  schlieren_session_set_volume(s, ranks_dims, ranks_origin, ranks_spacing, ranks_n1, n, NULL, 0, NULL, 0, -1, 7);
+  schlieren_session_trace(s);
+  whole_I = schlieren_session_array(s, "intensity", NULL, &pixels);
+  CHECK(ranks[0].ok_trace && ranks[1].ok_trace && ranks[0].has_image && !ranks[1].has_image &&
+      whole_I && pixels == 20 * 16 && memcmp(whole_I, ranks[0].intensity, (size_t)pixels * sizeof(float)) == 0,
+    "parallel: a volume in two pieces on two ranks (threads) traced by schlieren_session_trace_parallel: "
+    "rank 0 holds one process's image bit for bit, rank 1 none (%s)", ranks[0].error);
+  /* the index field: each rank's out extent equals the whole's there */
+  vals[0] = ranks_n1;
+  CHECK(schlieren_index_field("Model=Passthrough\nInputArray=n_minus_1", ranks_dims, ranks_spacing, 1,
+          names, comps, bytes, vals, counts, 0, NULL, NULL, NULL, 0, NULL, 0, NULL, 0, n1g, n, g3, 3 * n,
+          solid, n, &rep) == 0 && ranks[0].ok_index && ranks[1].ok_index &&
+      memcmp(ranks[0].n1_piece, g3, 3 * sizeof(float) * RN * RN * 13) == 0 &&
+      memcmp(ranks[1].n1_piece, g3 + 3 * RN * RN * 12, 3 * sizeof(float) * RN * RN * 13) == 0,
+    "parallel: schlieren_index_field_piece on two pieces grown by a point: grad n on each out "
+    "extent is the whole grid's bit for bit (%s)", ranks[1].error);
+  CHECK(schlieren_numerical("Mode=LineOfSight\nResolution=20 16", ranks_dims, ranks_origin, ranks_spacing,
+          ranks_n1, n, NULL, 0, NULL, 0, size, NULL, NULL, 20 * 16, ni, ng, nb, NULL) == 0 &&
+      ranks[0].ok_numerical && ranks[1].ok_numerical && ranks[0].numerical_image &&
+      !ranks[1].numerical_image && memcmp(ni, ranks[0].numerical, sizeof(ni)) == 0,
+    "parallel: schlieren_numerical_pieces gathers the pieces on rank 0: one process's image bit for bit");
+  CHECK(strcmp(ranks[0].agreed, "another rank (1) failed: bad array on rank 1") == 0 &&
+      strcmp(ranks[1].agreed, "bad array on rank 1") == 0,
+    "parallel: schlieren_parallel_failure agrees on rank 1's failure ('%s' / '%s')", ranks[0].agreed,
+    ranks[1].agreed);
+  for (r = 0; r < 2; ++r)
+  {
+    free(ranks[r].intensity);
+    free(ranks[r].n1_piece);
+    free(ranks[r].numerical);
+  }
+  /* refused: the ranks as given make no sense */
+  memset(&bad, 0, sizeof(bad));
+  bad.size = 0;
+  CHECK(schlieren_session_trace_parallel(s, &bad, NULL, NULL) != 0 &&
+      strstr(schlieren_session_error(s), "parallel->size is 0"),
+    "parallel: size 0 refused: %s", schlieren_session_error(s));
+  bad.size = 2;
+  bad.rank = 2;
+  CHECK(schlieren_parallel_failure(&bad, "", &agreed) != 0 &&
+      strstr(schlieren_last_error(), "parallel->rank is 2: it must be in [0, 2)"),
+    "parallel: rank 2 of 2 refused: %s", schlieren_last_error());
+  bad.rank = 1;
+  CHECK(schlieren_parallel_failure(&bad, "", &agreed) != 0 &&
+      strstr(schlieren_last_error(), "callback is NULL"),
+    "parallel: size 2 without callbacks refused: %s", schlieren_last_error());
+  bad.size = 1;
+  bad.rank = 0;
+  CHECK(schlieren_parallel_failure(&bad, "mine", &agreed) == 0 && strcmp(agreed, "mine") == 0 &&
+      schlieren_parallel_failure(NULL, "", &agreed) == 0 && strcmp(agreed, "") == 0,
+    "parallel: one rank (size 1 without callbacks, or NULL) is one process");
+  schlieren_session_free(s);
+}
 
 int main(void)
 {
@@ -578,6 +835,7 @@ int main(void)
       "index_field: the void on the grid's face beside a wall rim is a body, with the C++ filter's "
       "note (%s; %s)", rep ? rep : "", schlieren_last_error());
   }
+  ranks_test();
   printf("%d failures\n", failures);
   return failures ? 1 : 0;
 }

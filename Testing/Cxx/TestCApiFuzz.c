@@ -79,6 +79,7 @@ enum
   F_INDEX_CHOICES,
   F_WALL_FACES,
   F_SAMPLING,
+  F_PARALLEL,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -88,7 +89,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "wedge_warning", "check_property", "photograph", "version/properties/device",
   "two threads, one session", "sample_cells", "amr_overlap/grid/sample", "time_cache_find/insert",
   "index_field", "index_choices", "wall_faces",
-  "sampling_grid and rules" };
+  "sampling_grid and rules", "parallel (callbacks)" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1647,6 +1648,147 @@ static void random_sampling_case(int k)
   }
 }
 
+/* ---- the ranks' callbacks as a caller may get them wrong (schlieren_parallel): a size or rank
+ * that cannot be, callbacks missing, failing, writing noise, or a consistent fake of identical
+ * ranks (every rank's bytes this rank's); every call ends with a clear error or a result ---- */
+static int p_mode; /* 0 fake ranks, 1 failing, 2 noise */
+static int p_reduce(const double* in, double* out, int64_t count, int op, void* user)
+{
+  int64_t i;
+  (void)op;
+  (void)user;
+  if (p_mode == 1)
+    return below(3) + 1;
+  for (i = 0; i < count; ++i)
+    out[i] = p_mode == 0 ? in[i] : (below(4) ? (uniform() - 0.5) * 1e6 : NAN);
+  return 0;
+}
+static int p_broadcast(char* bytes, int64_t count, int root, void* user)
+{
+  int64_t i;
+  (void)root;
+  (void)user;
+  if (p_mode == 1)
+    return -1;
+  if (p_mode == 2)
+    for (i = 0; i < count; ++i)
+      bytes[i] = (char)below(256);
+  return 0;
+}
+static int p_allgather(const char* mine, int64_t count, char* all, void* user)
+{
+  const schlieren_parallel* p = (const schlieren_parallel*)user;
+  int64_t i;
+  int r;
+  if (p_mode == 1)
+    return 7;
+  for (r = 0; r < p->size; ++r)
+    for (i = 0; i < count; ++i)
+      all[r * count + i] = p_mode == 0 ? mine[i] : (char)below(256);
+  return 0;
+}
+
+static void random_parallel_case(int k)
+{
+  static const int sizes[] = { -1, 0, 1, 2, 2, 3 };
+  static const int rank_of[] = { -1, 0, 0, 1, 2, 5 };
+  schlieren_parallel p;
+  char what[160];
+  int rc = 0, which = below(5);
+  const char* message = NULL;
+  const int d[3] = { 6, 5, 4 };
+  const double o[3] = { -1, -1, -1 }, h[3] = { 0.4, 0.5, 0.6 };
+  float n1[120], g3[360], ni[64], ng[64];
+  unsigned char solid[120], nb[64];
+  int i, size[2];
+  const char* out = NULL;
+  p.size = sizes[below(6)];
+  p.rank = rank_of[below(6)];
+  p.user = &p;
+  p.reduce = below(8) ? p_reduce : NULL;
+  p.broadcast = below(8) ? p_broadcast : NULL;
+  p.allgather = below(8) ? p_allgather : NULL;
+  p_mode = below(3);
+  if (which == 1 && p_mode == 2)
+    p_mode = below(2); /* noise in the messages' contents (not their lengths) is no caller's
+                          mistake but a broken transport: the traced pieces trust what arrives */
+  for (i = 0; i < 120; ++i)
+    n1[i] = 1e-4f * (float)uniform();
+  snprintf(what, sizeof(what), "parallel case %d: call %d, size %d, rank %d, mode %d", k, which,
+    p.size, p.rank, p_mode);
+  if (verbose > 1)
+  {
+    printf("     (%s)\n", what);
+    fflush(stdout);
+  }
+  if (which == 0)
+  {
+    rc = schlieren_parallel_failure(below(8) ? &p : NULL, below(2) ? "mine" : "", &out);
+    message = schlieren_last_error();
+  }
+  else if (which == 1)
+  {
+    schlieren_session* s = schlieren_session_new();
+    const int whole[6] = { 0, 5, 0, 4, 0, 3 };
+    int ext[6] = { 0, 5, 0, 4, 0, 3 };
+    ext[4] = below(3) - 1;
+    ext[5] = below(5) - 1;
+    schlieren_session_set(s, "Resolution", "8 8");
+    schlieren_session_set(s, "Passes", "1");
+    schlieren_session_set(s, "Backend", "CPU");
+    rc = schlieren_session_set_piece(s, whole, ext, o, h, n1,
+      ext[5] >= ext[4] ? 30 * (ext[5] - ext[4] + 1) : 0, NULL, 0, NULL, 0, -1, 7);
+    if (rc == 0)
+      rc = schlieren_session_trace_parallel(s, below(8) ? &p : NULL, NULL, NULL);
+    message = schlieren_session_error(s);
+    /* copied: the session goes */
+    snprintf(what + strlen(what), sizeof(what) - strlen(what), " (trace, z %d..%d)", ext[4], ext[5]);
+    if (rc != 0 && (!message || !*message))
+      message = "";
+    {
+      static char kept[512];
+      snprintf(kept, sizeof(kept), "%s", message ? message : "");
+      message = kept;
+    }
+    schlieren_session_free(s);
+  }
+  else if (which == 2)
+  {
+    const int whole[6] = { 0, 5, 0, 4, 0, 3 };
+    const int grid[6] = { 0, 5, 0, 4, 0, 3 };
+    int outx[6] = { 0, 5, 0, 4, 0, 3 };
+    const char* names[1] = { "n" };
+    const int comps[1] = { 1 }, bytes[1] = { 4 };
+    const void* vals[1];
+    const int64_t counts[1] = { 120 };
+    vals[0] = n1;
+    outx[4] = below(3);
+    rc = schlieren_index_field_piece(below(2) ? "Model=Passthrough\nInputArray=n" : "Model=Passthrough\nInputArray=n\nAmbientMode=DomainEdgeMedian",
+      grid, outx, whole, h, 1, names, comps, bytes, vals, counts, 0, NULL, NULL, NULL, 0, NULL, 0, NULL,
+      0, n1, 120, g3, 360, solid, 120, &p, &out);
+    message = schlieren_last_error();
+  }
+  else if (which == 3)
+  {
+    const int off[3] = { 0, 0, below(3) }, pd[3] = { 6, 5, 4 - off[2] };
+    int has_image = -1;
+    rc = schlieren_numerical_pieces("Resolution=8 8", d, o, h, off, pd, n1, 30 * pd[2], NULL, 0, NULL,
+      0, size, NULL, NULL, 64, ni, ng, nb, NULL, NULL, NULL, &p, &has_image);
+    message = schlieren_last_error();
+  }
+  else
+  {
+    const int levels[1] = { 0 }, ext[6] = { 0, 5, 0, 4, 0, 3 };
+    const double bo[3] = { 0, 0, 0 }, bs[3] = { 0.1, 0.1, 0.1 }, bounds[6] = { 0, 0.5, 0, 0.4, 0, 0.3 };
+    int dims[3], finest_level, capped;
+    double finest[3];
+    rc = schlieren_amr_grid_parallel(1, 1, levels, ext, bo, bs, bounds, 64, dims, finest,
+      &finest_level, &capped, &out, &p);
+    message = schlieren_last_error();
+  }
+  outcome(F_PARALLEL, rc, message, what);
+}
+
 int main(int argc, char** argv)
 {
   long cases = 4000, seed = 48, k;
@@ -1660,6 +1802,8 @@ int main(int argc, char** argv)
       seed = atol(argv[++i]);
     else if (strcmp(argv[i], "--verbose") == 0)
       verbose = 1;
+    else if (strcmp(argv[i], "--trace-calls") == 0)
+      verbose = 2; /* also each parallel case before its call (a crash's case) */
   }
   state ^= (uint64_t)seed * 0x9E3779B97F4A7C15ull;
   if (!state)
@@ -1688,6 +1832,8 @@ int main(int argc, char** argv)
     random_wall_faces_case((int)k);
   for (k = 0; k < cases / 4; ++k)
     random_sampling_case((int)k);
+  for (k = 0; k < cases / 8; ++k)
+    random_parallel_case((int)k);
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");

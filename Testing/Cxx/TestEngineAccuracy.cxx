@@ -537,8 +537,12 @@ void TestAutoFloor()
       CHECK(eRef[v] <= 1.5 * eRef[0], std::string(names[v]) + ": the reference holds to the closed form as on axis");
   }
   // the tolerances users ask for: every view's choice meets it, and the oblique views cost no
-  // more samples per ray than the axis view (within 1.5 x)
-  for (double tol : { 3e-8, 1e-8 })
+  // more samples per ray than the axis view (within 1.5 x). Not 1e-8 rad (asked here before
+  // issue 50's reference check): on this 128^3 grid the tricubic data itself is about 1e-8 rad
+  // off the exact ray (engine.TestEngineAutoStep: the smallest error of any swept setting 1.04e-8
+  // on axis; the pilot's estimate of its reference's error 6.2e-9 on axis, 7.6e-9 and 1.1e-8
+  // seen obliquely), and Auto now reports it below the floor
+  for (double tol : { 3e-8, 2e-8 })
   {
     double sprAxis = 0;
     for (int v = 0; v < 3; ++v)
