@@ -123,7 +123,7 @@ if(SCHLIEREN_PYTHON_PLUGIN AND SCHLIEREN_XVFB AND _paraview AND SCHLIEREN_XDOTOO
       --python-plugin "${SCHLIEREN_PYTHON_PLUGIN}" --cxx-plugin "${_plugin}"
       --reference "${_frontend_ref}" --work "${_temp}/gui_python_plugin"
     TIMEOUT 300
-    PROPERTIES FIXTURES_REQUIRED frontend_reference)
+    PROPERTIES FIXTURES_REQUIRED frontend_reference RUN_SERIAL ON)
   set_property(TEST python.gui_python_plugin APPEND PROPERTY ENVIRONMENT
     "SCHLIEREN_XVFB_WM=${SCHLIEREN_OPENBOX}")
 endif()
