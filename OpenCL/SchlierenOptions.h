@@ -39,6 +39,11 @@ struct RuntimeOptions
   /// SCHLIEREN_CL_LOCKSTEP: 1 the lock-step kernel, 0 the per-item kernel; -1 (unset): lock step
   /// on CPU devices, per item elsewhere
   int Lockstep = -1;
+  /// SCHLIEREN_CL_LOCAL_SIZE: work-items per work-group of the per-item kernels (rays, points,
+  /// pieces), the global size rounded up to it; 0: the driver's choice; -1 (unset): 16 on CPU
+  /// devices (PoCL compiles a work-group function per local size it meets, 0.6-0.75 s each), the
+  /// driver's choice elsewhere
+  int LocalSize = -1;
   /// SCHLIEREN_FIELD_BRICKS (0 or 1): the packed field in bricks of 4^3 points (faster oblique
   /// views) or in its linear layout; both give the same images, bit for bit. -1 (unset): a
   /// TraceSession packs its field in bricks where they pay (PackInBricks, docs/PERFORMANCE.md), a
