@@ -203,33 +203,25 @@ vtkDataArray* Matching(vtkDataSet* ds, const Field& f)
 
 namespace schlieren
 {
-bool SampledCellByCell(vtkDataObject* input)
+namespace
+{
+/**
+ * The leaves of `input` sampled at `count` points into `out` (the arrays, then the mask
+ * vtkValidPointMask) by `run(mesh, arrays, found)`, the engine's grid or points mode: every array
+ * of the first leaf that every leaf has (with its type and components), as the probe gives them:
+ * point arrays interpolated, cell arrays copied (a cell array named as a point array is left
+ * out), each of its own type.
+ */
+template<typename Run>
+void SampleLeaves(vtkDataObject* input, vtkIdType count, vtkPointData* out, Run run)
 {
   const std::vector<vtkDataSet*> leaves = Leaves(input);
-  return !leaves.empty() &&
-    std::none_of(
-      leaves.begin(), leaves.end(), [](vtkDataSet* l) { return vtkImageData::SafeDownCast(l); });
-}
-
-vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* structure)
-{
-  const std::vector<vtkDataSet*> leaves = Leaves(input);
-  SampleGrid grid;
-  structure->GetDimensions(grid.Dims);
-  structure->GetOrigin(grid.Origin);
-  structure->GetSpacing(grid.Spacing);
-  const vtkIdType count = structure->GetNumberOfPoints();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->CopyStructure(structure);
   vtkNew<vtkCharArray> mask;
   mask->SetName("vtkValidPointMask");
   mask->SetNumberOfTuples(count);
   mask->FillValue(0);
   auto* found = reinterpret_cast<unsigned char*>(mask->GetPointer(0));
 
-  // every array of the first leaf that every leaf has (with its type and components), as the
-  // probe gives them: point arrays interpolated, cell arrays copied (a cell array named as a point
-  // array is left out), each of its own type
   std::vector<Field> fields;
   for (int cells = 0; cells < 2 && !leaves.empty(); ++cells)
   {
@@ -240,7 +232,7 @@ vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* st
     {
       vtkDataArray* a = attributes->GetArray(i);
       if (!a || !a->GetName() || std::string(a->GetName()) == "vtkGhostType" ||
-        a->GetDataType() == VTK_BIT || (cells && image->GetPointData()->GetArray(a->GetName())))
+        a->GetDataType() == VTK_BIT || (cells && out->GetArray(a->GetName())))
       {
         continue;
       }
@@ -260,22 +252,22 @@ vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* st
       {
         f.Wide.assign(static_cast<std::size_t>(count) * f.Components, 0.0);
       }
-      image->GetPointData()->AddArray(f.Out);
+      out->AddArray(f.Out);
       fields.push_back(std::move(f));
     }
   }
-  image->GetPointData()->AddArray(mask);
+  out->AddArray(mask);
 
   for (vtkDataSet* leaf : leaves)
   {
     MeshArrays m;
     ToMesh(leaf, m);
-    std::vector<SampleArray> arrays;
+    std::vector<schlieren::SampleArray> arrays;
     std::vector<vtkSmartPointer<vtkDataArray>> copies; // inputs in the engine's layout
     for (Field& f : fields)
     {
       vtkDataArray* a = Matching(leaf, f);
-      SampleArray s;
+      schlieren::SampleArray s;
       s.Name = f.Name;
       s.Cells = f.Cells;
       s.Components = f.Components;
@@ -304,7 +296,7 @@ vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* st
       s.InValues = a->GetNumberOfValues();
       arrays.push_back(s);
     }
-    schlieren::SampleCells(m.Mesh, grid, arrays, found);
+    run(m.Mesh, arrays, found);
   }
   for (Field& f : fields)
   {
@@ -316,6 +308,33 @@ vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* st
         std::round(f.Wide[i]));
     }
   }
+}
+} // namespace
+
+vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* input, vtkImageData* structure)
+{
+  SampleGrid grid;
+  structure->GetDimensions(grid.Dims);
+  structure->GetOrigin(grid.Origin);
+  structure->GetSpacing(grid.Spacing);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->CopyStructure(structure);
+  SampleLeaves(input,
+    structure->GetNumberOfPoints(),
+    image->GetPointData(),
+    [&](const SampleMesh& mesh, const std::vector<SampleArray>& arrays, unsigned char* found)
+    { schlieren::SampleCells(mesh, grid, arrays, found); });
   return image;
+}
+
+vtkSmartPointer<vtkPointData> SampleCellsAt(vtkDataObject* input, const double* at, vtkIdType count)
+{
+  auto sampled = vtkSmartPointer<vtkPointData>::New();
+  SampleLeaves(input,
+    count,
+    sampled,
+    [&](const SampleMesh& mesh, const std::vector<SampleArray>& arrays, unsigned char* found)
+    { schlieren::SamplePoints(mesh, at, count, arrays, found); });
+  return sampled;
 }
 } // namespace schlieren

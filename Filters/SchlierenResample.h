@@ -14,14 +14,21 @@
  * cell by cell), the hidden cells (vtkGhostType HIDDENCELL; in a structured grid also the cells
  * of hidden points), the point and cell arrays. A point on a face shared by two cells takes the
  * first cell's (the lowest id; of a composite data set, the first block's).
+ *
+ * Every RefractiveIndex input goes through here (no vtkProbeFilter is left in its paths): meshes
+ * and blocks of images onto the grid (an image's cells are voxels, sampled exactly), and a 2D
+ * input under Symmetry at the points the engine's plan gives (SampleCellsAt: the engine's points
+ * mode, which samples a 2D mesh's triangles, pixels and quads in their plane too).
  */
 #ifndef SchlierenResample_h
 #define SchlierenResample_h
 
 #include "vtkSmartPointer.h"
+#include "vtkType.h"
 
 class vtkDataObject;
 class vtkImageData;
+class vtkPointData;
 
 namespace schlieren
 {
@@ -34,9 +41,12 @@ namespace schlieren
  */
 vtkSmartPointer<vtkImageData> SampleCells(vtkDataObject* mesh, vtkImageData* structure);
 
-/** Whether SampleCells takes `input`: a data set with cells that is not an image, or a composite
- * data set whose blocks are such (an image, and blocks of images, go to the probe). */
-bool SampledCellByCell(vtkDataObject* input);
+/**
+ * `mesh` sampled at `count` points `at` (x, y, z each) as SampleCells samples a grid's: the arrays
+ * and vtkValidPointMask, a value per point, in the returned point data. Throws schlieren::Error
+ * as SampleCells does (and for a 2D mesh's strips and polygons: Triangulate first).
+ */
+vtkSmartPointer<vtkPointData> SampleCellsAt(vtkDataObject* mesh, const double* at, vtkIdType count);
 } // namespace schlieren
 
 #endif

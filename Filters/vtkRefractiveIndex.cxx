@@ -7,7 +7,6 @@
 #include "vtkCellTypes.h"
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
-#include "vtkCompositeDataProbeFilter.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
@@ -670,25 +669,13 @@ vtkSmartPointer<vtkImageData> Resample(schlieren::Parallel& parallel, vtkDataObj
 {
   vtkSmartPointer<vtkImageData> grid;
   std::string refused;
-  if (schlieren::SampledCellByCell(input))
+  try
   {
-    try
-    {
-      grid = schlieren::SampleCells(input, structure); // cell by cell: the probe's values, faster
-    }
-    catch (const schlieren::Error& e)
-    {
-      refused = e.what(); // a cell type the sampler does not take (a polyhedron)
-    }
+    grid = schlieren::SampleCells(input, structure); // cell by cell (blocks of images too)
   }
-  else
+  catch (const schlieren::Error& e)
   {
-    vtkNew<vtkCompositeDataProbeFilter> probe;
-    probe->SetInputData(structure);
-    probe->SetSourceData(input);
-    probe->SetValidPointMaskArrayName(MaskName);
-    probe->Update();
-    grid = vtkImageData::SafeDownCast(probe->GetOutputDataObject(0));
+    refused = e.what(); // a cell type the sampler does not take (a polyhedron)
   }
   // a piece refused fails every rank, so that none waits for it in the sums below
   schlieren::AgreeOnRefusal(parallel, refused);

@@ -32,14 +32,14 @@
  * reads only the arrays it needs; a missing one is an error that lists the arrays present.
  *
  * Input: a vtkImageData is used on its own grid. Any other data set or composite data set
- * (unstructured, curvilinear, multiblock such as PLOT3D's) is resampled onto an image grid with
- * vtkCompositeDataProbeFilter: SamplingDimensions points (0 0 0, the default: AutomaticDimension
+ * (unstructured, curvilinear, multiblock such as PLOT3D's, blocks of images) is resampled onto an
+ * image grid by the engine's cell sampler (SchlierenResample.h): SamplingDimensions points (0 0 0, the default: AutomaticDimension
  * points along the longest side of the bounds and the same spacing along the others) over
  * SamplingBounds (with UseSamplingBounds) or the input's bounds. That grid is set when the
  * pipeline information is updated (the filter then updates its input once to learn its bounds,
  * unless both the dimensions and the bounds are given) and stays fixed across time steps.
  *
- * Points outside the flow domain (where the probe found no cell, or an image's
+ * Points outside the flow domain (where the sampler found no cell, or an image's
  * vtkValidPointMask is 0, or hidden points) get an ambient n - 1, never 0, since a jump to vacuum
  * would draw a false shock at the domain's edge. AmbientMode EXTEND (default): the flow's n - 1 is
  * carried outward from the domain's edge, layer by layer (schlieren::ExtendIntoInvalid: a

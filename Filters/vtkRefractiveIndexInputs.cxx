@@ -10,8 +10,6 @@
 #include "vtkCellDataToPointData.h"
 #include "vtkCharArray.h"
 #include "vtkCompositeDataIterator.h"
-#include "vtkCompositeDataProbeFilter.h"
-#include "vtkStaticCellLocator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -32,6 +30,7 @@
 #include "SchlierenWalls.h"
 #include "SchlierenEngine.h"
 #include "SchlierenParallel.h"
+#include "SchlierenResample.h"
 #include "SchlierenValues.h"
 #include "SchlierenSymmetry.h"
 #include "SchlierenIndexField.h"
@@ -591,32 +590,11 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
   schlieren::SymmetrySamples(plan, xyz, sampleOf);
   const vtkIdType count = structure->GetNumberOfPoints();
   const vtkIdType samplesCount = static_cast<vtkIdType>(xyz.size() / 3);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(samplesCount);
-  for (vtkIdType k = 0; k < samplesCount; ++k)
-  {
-    points->SetPoint(k, &xyz[3 * k]);
-  }
-
-  vtkNew<vtkPolyData> samples;
-  samples->SetPoints(points);
-  vtkNew<vtkCompositeDataProbeFilter> probe;
-  probe->SetInputData(samples);
-  probe->SetSourceData(input);
-  probe->SetValidPointMaskArrayName(ValidMask);
-  // A cell locator finds the cell of each sample: the default (closest mesh point, then its cells)
-  // searches far for each sample outside the mesh, and a revolved body-fitted mesh (a thin shock
-  // layer around a cone) leaves most samples outside it.
-  vtkNew<vtkStaticCellLocator> cellLocator;
-  probe->SetCellLocatorPrototype(cellLocator);
-  probe->Update();
-  vtkDataSet* probed = vtkDataSet::SafeDownCast(probe->GetOutputDataObject(0));
-  if (!probed || probed->GetNumberOfPoints() != samplesCount)
-  {
-    return grid;
-  }
-  vtkDataArray* found = probed->GetPointData()->GetArray(ValidMask);
+  // the engine's cell sampler at the plan's points (the grid mode's cells, test and weights)
+  // (a cell type it does not take throws schlieren::Error, which RequestData reports)
+  vtkSmartPointer<vtkPointData> probed =
+    schlieren::SampleCellsAt(input, xyz.data(), samplesCount);
+  vtkDataArray* found = probed->GetArray(ValidMask);
   std::vector<unsigned char> sampleValid(static_cast<std::size_t>(samplesCount), 0);
   if (found)
   {
@@ -635,7 +613,7 @@ vtkSmartPointer<vtkImageData> vtkRefractiveIndex::SymmetricResample(
   grid->GetPointData()->AddArray(mask);
   for (const std::string& name : names)
   {
-    vtkDataArray* a = probed->GetPointData()->GetArray(name.c_str());
+    vtkDataArray* a = probed->GetArray(name.c_str());
     if (!a)
     {
       continue; // reported as missing by the caller

@@ -2407,6 +2407,92 @@ int schlieren_automatic_dimensions(const double bounds[6], int longest, int dims
   });
 }
 
+namespace
+{
+/** schlieren_sample_cells' mesh and arrays (its checks, by argument), for `count` points each
+ * output array holds (`what`: "a grid of ..." or "N points to sample"). */
+struct SampleCall
+{
+  schlieren::SampleMesh Mesh;
+  std::vector<schlieren::SampleArray> Arrays;
+};
+
+SampleCall SampleArguments(const char* f, const double* points, int64_t points_length,
+  const int structured_dims[3], const unsigned char* cell_types, int64_t cell_types_length,
+  const int64_t* offsets, int64_t offsets_length, const int64_t* connectivity,
+  int64_t connectivity_length, const unsigned char* skip_cells, int64_t skip_cells_length,
+  int number_of_arrays, const char* const* names, const int* is_cell, const int* components,
+  const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
+  void* const* outputs, const int64_t* output_lengths, std::int64_t count, const std::string& what)
+{
+  SampleCall call;
+  schlieren::SampleMesh& mesh = call.Mesh;
+  if (points_length < 0 || points_length % 3 != 0)
+    throw schlieren::Error(std::string(f) + ": points holds " + std::to_string(points_length) +
+      " values: give 3 per point (x, y, z).");
+  CheckArray(f, "points", points, points_length, points_length, "the mesh", true);
+  mesh.Points = points;
+  mesh.NumberOfPoints = points_length / 3;
+  if (structured_dims)
+  {
+    GridPoints(f, structured_dims);
+    std::copy(structured_dims, structured_dims + 3, mesh.StructuredDims);
+    CheckArray(f, "points", points, points_length, 3 * GridPoints(f, structured_dims),
+      "a structured grid of " + GridText(structured_dims) + " points (3 each)", false);
+    CheckArray(f, "cell_types", cell_types, cell_types_length, 0, "a structured grid", true);
+    CheckArray(f, "offsets", offsets, offsets_length, 0, "a structured grid", true);
+    CheckArray(f, "connectivity", connectivity, connectivity_length, 0, "a structured grid", true);
+  }
+  else
+  {
+    CheckArray(f, "cell_types", cell_types, cell_types_length, cell_types_length, "the mesh", true);
+    CheckArray(f, "offsets", offsets, offsets_length, cell_types_length + 1,
+      std::to_string(cell_types_length) + " cells", false);
+    CheckArray(f, "connectivity", connectivity, connectivity_length, connectivity_length,
+      "the mesh", true);
+    mesh.CellTypes = cell_types;
+    mesh.Offsets = offsets;
+    mesh.Connectivity = connectivity;
+    mesh.ConnectivityLength = connectivity_length;
+    mesh.NumberOfCells = cell_types_length;
+  }
+  const std::int64_t cells = schlieren::SampleCellCount(mesh);
+  CheckArray(f, "skip_cells", skip_cells, skip_cells_length, cells,
+    "a mesh of " + std::to_string(cells) + " cells", true, "bytes");
+  mesh.SkipCells = skip_cells;
+  if (number_of_arrays < 0 || (number_of_arrays > 0 &&
+      (!names || !is_cell || !components || !value_bytes || !inputs || !input_lengths ||
+        !outputs || !output_lengths)))
+    throw schlieren::Error(std::string(f) + ": number_of_arrays is " +
+      std::to_string(number_of_arrays) + ": give names, is_cell, components, value_bytes, "
+      "inputs, input_lengths, outputs and output_lengths, one entry per array.");
+  std::vector<schlieren::SampleArray>& arrays = call.Arrays;
+  arrays.resize(static_cast<std::size_t>(number_of_arrays));
+  for (int i = 0; i < number_of_arrays; ++i)
+  {
+    schlieren::SampleArray& a = arrays[static_cast<std::size_t>(i)];
+    a.Name = names[i] ? names[i] : "array " + std::to_string(i);
+    a.Cells = is_cell[i] != 0;
+    a.Components = components[i];
+    a.ValueBytes = value_bytes[i];
+    if (a.Components < 1 || a.Components > 1024)
+      throw schlieren::Error(std::string(f) + ": array '" + a.Name + "' has " +
+        std::to_string(a.Components) + " components (1 to 1024).");
+    a.In = inputs[i];
+    a.InValues = input_lengths[i];
+    const std::string input = "array '" + a.Name + "' (input)";
+    CheckArray(f, input.c_str(), a.In, a.InValues, (a.Cells ? cells : mesh.NumberOfPoints) * a.Components,
+      std::to_string(a.Cells ? cells : mesh.NumberOfPoints) + (a.Cells ? " cells" : " points") +
+        " x " + std::to_string(a.Components) + " components", false);
+    const std::string out = "array '" + a.Name + "' (output)";
+    CheckArray(f, out.c_str(), outputs[i], output_lengths[i], count * a.Components,
+      what + " x " + std::to_string(a.Components) + " components", false);
+    a.Out = outputs[i];
+  }
+  return call;
+}
+} // namespace
+
 int schlieren_sample_cells(const double* points, int64_t points_length,
   const int structured_dims[3], const unsigned char* cell_types, int64_t cell_types_length,
   const int64_t* offsets, int64_t offsets_length, const int64_t* connectivity,
@@ -2423,74 +2509,43 @@ int schlieren_sample_cells(const double* points, int64_t points_length,
     CheckFinite3(f, "spacing", spacing);
     CheckArray(f, "found", found, found_length, gridPoints, "a grid of " + GridText(dims) + " points",
       false, "bytes");
-    if (points_length < 0 || points_length % 3 != 0)
-      throw schlieren::Error(std::string(f) + ": points holds " + std::to_string(points_length) +
-        " values: give 3 per point (x, y, z).");
-    CheckArray(f, "points", points, points_length, points_length, "the mesh", true);
-    schlieren::SampleMesh mesh;
-    mesh.Points = points;
-    mesh.NumberOfPoints = points_length / 3;
-    if (structured_dims)
-    {
-      GridPoints(f, structured_dims);
-      std::copy(structured_dims, structured_dims + 3, mesh.StructuredDims);
-      CheckArray(f, "points", points, points_length, 3 * GridPoints(f, structured_dims),
-        "a structured grid of " + GridText(structured_dims) + " points (3 each)", false);
-      CheckArray(f, "cell_types", cell_types, cell_types_length, 0, "a structured grid", true);
-      CheckArray(f, "offsets", offsets, offsets_length, 0, "a structured grid", true);
-      CheckArray(f, "connectivity", connectivity, connectivity_length, 0, "a structured grid", true);
-    }
-    else
-    {
-      CheckArray(f, "cell_types", cell_types, cell_types_length, cell_types_length, "the mesh", true);
-      CheckArray(f, "offsets", offsets, offsets_length, cell_types_length + 1,
-        std::to_string(cell_types_length) + " cells", false);
-      CheckArray(f, "connectivity", connectivity, connectivity_length, connectivity_length,
-        "the mesh", true);
-      mesh.CellTypes = cell_types;
-      mesh.Offsets = offsets;
-      mesh.Connectivity = connectivity;
-      mesh.ConnectivityLength = connectivity_length;
-      mesh.NumberOfCells = cell_types_length;
-    }
-    const std::int64_t cells = schlieren::SampleCellCount(mesh);
-    CheckArray(f, "skip_cells", skip_cells, skip_cells_length, cells,
-      "a mesh of " + std::to_string(cells) + " cells", true, "bytes");
-    mesh.SkipCells = skip_cells;
-    if (number_of_arrays < 0 || (number_of_arrays > 0 &&
-        (!names || !is_cell || !components || !value_bytes || !inputs || !input_lengths ||
-          !outputs || !output_lengths)))
-      throw schlieren::Error(std::string(f) + ": number_of_arrays is " +
-        std::to_string(number_of_arrays) + ": give names, is_cell, components, value_bytes, "
-        "inputs, input_lengths, outputs and output_lengths, one entry per array.");
-    std::vector<schlieren::SampleArray> arrays(static_cast<std::size_t>(number_of_arrays));
-    for (int i = 0; i < number_of_arrays; ++i)
-    {
-      schlieren::SampleArray& a = arrays[static_cast<std::size_t>(i)];
-      a.Name = names[i] ? names[i] : "array " + std::to_string(i);
-      a.Cells = is_cell[i] != 0;
-      a.Components = components[i];
-      a.ValueBytes = value_bytes[i];
-      if (a.Components < 1 || a.Components > 1024)
-        throw schlieren::Error(std::string(f) + ": array '" + a.Name + "' has " +
-          std::to_string(a.Components) + " components (1 to 1024).");
-      a.In = inputs[i];
-      a.InValues = input_lengths[i];
-      const std::string what = "array '" + a.Name + "' (input)";
-      CheckArray(f, what.c_str(), a.In, a.InValues, (a.Cells ? cells : mesh.NumberOfPoints) * a.Components,
-        std::to_string(a.Cells ? cells : mesh.NumberOfPoints) + (a.Cells ? " cells" : " points") +
-          " x " + std::to_string(a.Components) + " components", false);
-      const std::string out = "array '" + a.Name + "' (output)";
-      CheckArray(f, out.c_str(), outputs[i], output_lengths[i], gridPoints * a.Components,
-        "a grid of " + GridText(dims) + " points x " + std::to_string(a.Components) + " components",
-        false);
-      a.Out = outputs[i];
-    }
+    const SampleCall call = SampleArguments(f, points, points_length, structured_dims, cell_types,
+      cell_types_length, offsets, offsets_length, connectivity, connectivity_length, skip_cells,
+      skip_cells_length, number_of_arrays, names, is_cell, components, value_bytes, inputs,
+      input_lengths, outputs, output_lengths, gridPoints, "a grid of " + GridText(dims) + " points");
     schlieren::SampleGrid grid;
     std::copy(dims, dims + 3, grid.Dims);
     std::copy(origin, origin + 3, grid.Origin);
     std::copy(spacing, spacing + 3, grid.Spacing);
-    const std::int64_t n = schlieren::SampleCells(mesh, grid, arrays, found);
+    const std::int64_t n = schlieren::SampleCells(call.Mesh, grid, call.Arrays, found);
+    if (found_here)
+      *found_here = static_cast<int64_t>(n);
+  });
+}
+
+int schlieren_sample_cells_at(const double* points, int64_t points_length,
+  const int structured_dims[3], const unsigned char* cell_types, int64_t cell_types_length,
+  const int64_t* offsets, int64_t offsets_length, const int64_t* connectivity,
+  int64_t connectivity_length, const unsigned char* skip_cells, int64_t skip_cells_length,
+  int number_of_arrays, const char* const* names, const int* is_cell, const int* components,
+  const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
+  void* const* outputs, const int64_t* output_lengths, const double* at, int64_t at_length,
+  unsigned char* found, int64_t found_length, int64_t* found_here)
+{
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_sample_cells_at";
+    if (at_length < 0 || at_length % 3 != 0)
+      throw schlieren::Error(std::string(f) + ": at holds " + std::to_string(at_length) +
+        " values: give 3 per point to sample (x, y, z).");
+    CheckArray(f, "at", at, at_length, at_length, "the points to sample", true);
+    const std::int64_t count = at_length / 3;
+    const std::string what = std::to_string(count) + " points to sample";
+    CheckArray(f, "found", found, found_length, count, what, false, "bytes");
+    const SampleCall call = SampleArguments(f, points, points_length, structured_dims, cell_types,
+      cell_types_length, offsets, offsets_length, connectivity, connectivity_length, skip_cells,
+      skip_cells_length, number_of_arrays, names, is_cell, components, value_bytes, inputs,
+      input_lengths, outputs, output_lengths, count, what);
+    const std::int64_t n = schlieren::SamplePoints(call.Mesh, at, count, call.Arrays, found);
     if (found_here)
       *found_here = static_cast<int64_t>(n);
   });

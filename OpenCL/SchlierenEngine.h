@@ -68,6 +68,13 @@ struct Volume
    * a few more passes do not upload the volume again. 0 (the default): nothing is kept.
    */
   std::uint64_t Stamp = 0;
+  /**
+   * Field's layout: false (the default), the linear layout above (x fastest); true, the points in
+   * bricks of 4^3 (what PackFieldOf and PackFieldHighOrderOf write with `bricked`, and a
+   * TraceSession packs where they pay: BrickLayout in SchlierenEngineInternal.h). Levels, Smooth
+   * and Solid stay linear either way. The images are the same, bit for bit.
+   */
+  bool FieldInBricks = false;
 
   std::size_t NumberOfPoints() const
   {
@@ -375,6 +382,7 @@ struct SilhouetteScan
   int Held[3] = { 0, 0, 0 };
   int Lo[3] = { 0, 0, 0 }, Hi[3] = { 0, 0, 0 };
   int Offset[3] = { 0, 0, 0 };
+  bool FieldInBricks = false; ///< Field in bricks of Held points (Volume::FieldInBricks)
 };
 /** FrameSilhouette of the whole grid `grid` (its geometry) from the points `scan` holds, the
  * largest gradient, the extremes and the count combined over the pieces by `reduce` (max: true

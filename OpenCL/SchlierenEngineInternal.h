@@ -76,8 +76,10 @@ std::string ScanIndex(const float* n1, std::size_t count, float& rangeLo, float&
 /** The smoothness threshold the engine packs with (PackFieldHighOrder's default). */
 constexpr double DefaultSmoothnessThreshold = 0.25;
 
-/** PackField without its checks (CheckGrid, ValidateIndex): the caller's. */
-void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out);
+/** PackField without its checks (CheckGrid, ValidateIndex): the caller's. bricked: `out` in
+ * bricks (FieldLayout's floats, the padding repeating the border points), else linear. */
+void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out,
+  bool bricked = false);
 
 /**
  * PackFieldHighOrder with the range of n - 1 given (the whole grid's, where `n1` is a piece of it:
@@ -86,7 +88,8 @@ void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, fl
  * the piece's faces is the one the whole grid gives (docs/PARALLEL.md). No validation: the caller's.
  */
 double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const float* n1, float* out,
-  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax);
+  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax,
+  bool bricked = false);
 
 // ------------------------------------------------------------------ Auto (SchlierenAuto.cxx)
 
@@ -281,11 +284,45 @@ struct BrickLayout
   std::uint64_t Floats() const { return LayerFloats() * Bricks[2]; }
 };
 
-/** Sets P's field layout for its held points (P.nx, P.ny): bricks (BrickLayout), or the linear
- * layout of Volume::Field. */
+/** Whether a field of dims points can be laid out in bricks: the kernels' strides are ints, and
+ * a layer of bricks must fit in one. */
+bool BricksFit(const int dims[3]);
+
+/** Where point (i, j, k) of a packed field sits (its first float), in bricks (BrickLayout) or
+ * linear: the kernels' addressing (sch_axis_offset), for the host. */
+struct FieldLayout
+{
+  int Shift = 31, Mask = -1;
+  int Inner[3] = { 4, 0, 0 }, Outer[3] = { 0, 0, 0 };
+  std::uint64_t Floats = 0; ///< the field's floats (bricks: the grid rounded up to whole bricks)
+  bool Bricked = false;
+  /** bricked where BricksFit(dims), else linear */
+  FieldLayout(const int dims[3], bool bricked);
+  std::size_t Row = 0, Plane = 0; ///< linear: floats a row of x, a plane (size_t: any grid)
+  std::size_t At(int i, int j, int k) const
+  {
+    if (!Bricked)
+      return 4 * std::size_t(i) + Row * j + Plane * k;
+    return static_cast<std::size_t>(sch_axis_offset(i, Shift, Mask, Outer[0], Inner[0]) +
+      sch_axis_offset(j, Shift, Mask, Outer[1], Inner[1]) +
+      sch_axis_offset(k, Shift, Mask, Outer[2], Inner[2]));
+  }
+};
+
+/** Sets P's field layout for its held points (P.nx, P.ny): bricks (BrickLayout) where `bricked`
+ * and BricksFit, else the linear layout of Volume::Field. */
 void SetFieldLayout(sch_params& P, bool bricked);
 
-/** Volume::Field rearranged in bricks (BrickLayout; the points past the grid repeat its border
+/** Whether a TraceSession packs a volume of dims points in bricks (Volume::FieldInBricks) for a
+ * trace on `device` with `recon`: where the options say (SCHLIEREN_FIELD_BRICKS 0 or 1) or, unset,
+ * where they pay (docs/PERFORMANCE.md: grids past BricksFromPoints, except Backend CPU with
+ * Cubic, and where the padding to whole bricks adds at most a tenth); never where they do not fit
+ * (BricksFit). */
+bool PackInBricks(const int dims[3], Backend device, Reconstruction recon);
+/** PackInBricks's threshold, unset: bricks for grids of more points than this. */
+constexpr double BricksFromPoints = 300.0 * 300.0 * 300.0;
+
+/** Volume::Field (linear) rearranged in bricks (BrickLayout; the points past the grid repeat its border
  * points), kept for the last stamped volume (ReleaseKeptVolume lets it go). Throws std::bad_alloc
  * where the copy would take more than half the memory left (AvailableMemory). */
 std::shared_ptr<const AlignedFloats> BrickedField(const Volume& v);

@@ -126,6 +126,29 @@ std::string ValidateIndex(const float* n1, std::size_t count)
   return ScanIndex(n1, count, lo, hi);
 }
 
+// The second-order difference along axis a at point idx of n1, whose index along a is c (central
+// inside, one-sided at the borders): PackField's gradient, and PackFieldHighOrder's where the data
+// is not smooth.
+static inline double Difference2(const int dims[3], const std::size_t strides[3], const double spacing[3],
+  const float* n1, std::size_t idx, int c, int a)
+{
+  const std::size_t s = strides[a];
+  if (c == 0)
+    return (double(n1[idx + s]) - n1[idx]) / spacing[a];
+  if (c == dims[a] - 1)
+    return (double(n1[idx]) - n1[idx - s]) / spacing[a];
+  return (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
+}
+
+static inline void Gradient2(const int dims[3], const std::size_t strides[3], const double spacing[3],
+  const float* n1, int i, int j, int k, double g[3])
+{
+  const int ijk[3] = { i, j, k };
+  const std::size_t idx = i * strides[0] + j * strides[1] + k * strides[2];
+  for (int a = 0; a < 3; ++a)
+    g[a] = Difference2(dims, strides, spacing, n1, idx, ijk[a], a);
+}
+
 template <typename Store>
 static void GradientLoop(const int dims[3], const double spacing[3], const float* n1, Store store)
 {
@@ -136,20 +159,9 @@ static void GradientLoop(const int dims[3], const double spacing[3], const float
       for (int j = 0; j < dims[1]; ++j)
         for (int i = 0; i < dims[0]; ++i)
         {
-          const int ijk[3] = { i, j, k };
-          const std::size_t idx = i * sx + j * sy + k * sz;
           double g[3];
-          for (int a = 0; a < 3; ++a)
-          {
-            const std::size_t s = strides[a];
-            if (ijk[a] == 0)
-              g[a] = (double(n1[idx + s]) - n1[idx]) / spacing[a];
-            else if (ijk[a] == dims[a] - 1)
-              g[a] = (double(n1[idx]) - n1[idx - s]) / spacing[a];
-            else
-              g[a] = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * spacing[a]);
-          }
-          store(idx, g);
+          Gradient2(dims, strides, spacing, n1, i, j, k, g);
+          store(i * sx + j * sy + k * sz, g);
         }
   };
   const int nt = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
@@ -177,16 +189,6 @@ void PackField(const int dims[3], const double spacing[3], const float* n1, floa
   PackFieldOf(dims, spacing, n1, out);
 }
 
-void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out)
-{
-  GradientLoop(dims, spacing, n1, [out, n1](std::size_t idx, const double g[3]) {
-    out[4 * idx] = n1[idx];
-    out[4 * idx + 1] = static_cast<float>(g[0]);
-    out[4 * idx + 2] = static_cast<float>(g[1]);
-    out[4 * idx + 3] = static_cast<float>(g[2]);
-  });
-}
-
 // Runs body(k0, k1) over z ranges on up to 8 threads (the packing loops).
 template <typename Body>
 static void ParallelSlices(int nz, Body body)
@@ -194,6 +196,61 @@ static void ParallelSlices(int nz, Body body)
   const int nt = std::max(1, std::min(std::min(8, nz), static_cast<int>(std::thread::hardware_concurrency())));
   RunOnThreads(static_cast<unsigned>(nt),
     [&](unsigned t) { body(nz * int(t) / nt, nz * (int(t) + 1) / nt); });
+}
+
+// Calls point(i, j, k, o) for every slot o of a packed field in layout L, in the order the slots
+// lie in memory (the writes stream, in either layout: bricks written point by point along the
+// rows of the linear field took 1.7-2x the linear packing's time at 256^3 and 512^3), on threads
+// over layers along z (a layer of bricks, or a plane). The slots past the grid (the last bricks'
+// padding) take the nearest point of the grid: they repeat the border points, as the copy of
+// BrickedField does.
+template <typename Point>
+static void ForEachSlot(const int dims[3], const FieldLayout& L, float* out, Point point)
+{
+  const int nx = dims[0], ny = dims[1], nz = dims[2];
+  if (!L.Bricked)
+  {
+    ParallelSlices(nz, [&](int k0, int k1) {
+      float* o = out + L.At(0, 0, k0);
+      for (int k = k0; k < k1; ++k)
+        for (int j = 0; j < ny; ++j)
+          for (int i = 0; i < nx; ++i, o += 4)
+            point(i, j, k, o);
+    });
+    return;
+  }
+  const BrickLayout b(dims);
+  const int B = 1 << FieldBrickShift;
+  ParallelSlices(static_cast<int>(b.Bricks[2]), [&](int z0, int z1) {
+    float* o = out + std::size_t(z0) * b.LayerFloats();
+    for (int bz = z0; bz < z1; ++bz)
+      for (int by = 0; by < int(b.Bricks[1]); ++by)
+        for (int bx = 0; bx < int(b.Bricks[0]); ++bx)
+          for (int kk = 0; kk < B; ++kk)
+          {
+            const int k = std::min(bz * B + kk, nz - 1);
+            for (int jj = 0; jj < B; ++jj)
+            {
+              const int j = std::min(by * B + jj, ny - 1);
+              for (int ii = 0; ii < B; ++ii, o += 4)
+                point(std::min(bx * B + ii, nx - 1), j, k, o);
+            }
+          }
+  });
+}
+
+void PackFieldOf(const int dims[3], const double spacing[3], const float* n1, float* out, bool bricked)
+{
+  const FieldLayout L(dims, bricked);
+  const std::size_t strides[3] = { 1, std::size_t(dims[0]), std::size_t(dims[0]) * dims[1] };
+  ForEachSlot(dims, L, out, [&](int i, int j, int k, float* o) {
+    double g[3];
+    Gradient2(dims, strides, spacing, n1, i, j, k, g);
+    o[0] = n1[i + j * strides[1] + k * strides[2]];
+    o[1] = static_cast<float>(g[0]);
+    o[2] = static_cast<float>(g[1]);
+    o[3] = static_cast<float>(g[2]);
+  });
 }
 
 // The smoothness test of a row (PackFieldHighOrderOf, step 1): ok[i] &= the five-point test at i
@@ -327,8 +384,9 @@ double PackFieldHighOrder(const int dims[3], const double spacing[3], const floa
 }
 
 double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const float* n1, float* out,
-  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax)
+  unsigned char* smooth, double threshold, float rangeLo, float rangeHi, int levelMax, bool bricked)
 {
+  const FieldLayout layout(dims, bricked);
   const std::size_t strides[3] = { 1, static_cast<std::size_t>(dims[0]),
     static_cast<std::size_t>(dims[0]) * dims[1] };
   // structure below this part of the field's range is left to the smooth scheme: its overshoot
@@ -405,37 +463,24 @@ double PackFieldHighOrderOf(const int dims[3], const double spacing[3], const fl
   for (int a = 0; a < 3; ++a)
     grid.Erode(point.data(), fourth[a].data(), a, { -2, -1, 0, 1, 2 }, false);
   {
-    const int G[3] = { dims[0], dims[1], dims[2] };
-    const std::size_t St[3] = { strides[0], strides[1], strides[2] };
     const double H[3] = { spacing[0], spacing[1], spacing[2] };
     const std::uint64_t* const F[3] = { fourth[0].data(), fourth[1].data(), fourth[2].data() };
-    ParallelSlices(nz, [=](int k0, int k1) {
-      for (int k = k0; k < k1; ++k)
-        for (int j = 0; j < G[1]; ++j)
-        {
-          const std::size_t row = (std::size_t(k) * G[1] + j) * W;
-          for (int i = 0; i < G[0]; ++i)
-          {
-            const int ijk[3] = { i, j, k };
-            const std::size_t idx = i + j * St[1] + k * St[2];
-            out[4 * idx] = n1[idx];
-            for (int a = 0; a < 3; ++a)
-            {
-              const std::size_t s = St[a];
-              double g;
-              if ((F[a][row + (i >> 6)] >> (i & 63)) & 1)
-                g = (double(n1[idx - 2 * s]) - 8.0 * n1[idx - s] + 8.0 * n1[idx + s] - n1[idx + 2 * s]) /
-                  (12.0 * H[a]);
-              else if (ijk[a] == 0)
-                g = (double(n1[idx + s]) - n1[idx]) / H[a];
-              else if (ijk[a] == G[a] - 1)
-                g = (double(n1[idx]) - n1[idx - s]) / H[a];
-              else
-                g = (double(n1[idx + s]) - n1[idx - s]) / (2.0 * H[a]);
-              out[4 * idx + 1 + a] = static_cast<float>(g);
-            }
-          }
-        }
+    ForEachSlot(dims, layout, out, [&](int i, int j, int k, float* o) {
+      const int ijk[3] = { i, j, k };
+      const std::size_t idx = i + j * strides[1] + k * strides[2];
+      const std::size_t row = (std::size_t(k) * ny + j) * W;
+      o[0] = n1[idx];
+      for (int a = 0; a < 3; ++a)
+      {
+        const std::size_t s = strides[a];
+        double g;
+        if ((F[a][row + (i >> 6)] >> (i & 63)) & 1)
+          g = (double(n1[idx - 2 * s]) - 8.0 * n1[idx - s] + 8.0 * n1[idx + s] - n1[idx + 2 * s]) /
+            (12.0 * H[a]);
+        else
+          g = Difference2(dims, strides, spacing, n1, idx, ijk[a], a);
+        o[1 + a] = static_cast<float>(g);
+      }
     });
   }
   // 3. the smooth cells: cell c (points c .. c + 1) is smooth where the points c - 1 .. c + 2 are,
@@ -554,58 +599,77 @@ BrickLayout::BrickLayout(const int dims[3])
     Bricks[a] = (std::uint64_t(dims[a]) + (1u << FieldBrickShift) - 1) >> FieldBrickShift;
 }
 
-void SetFieldLayout(sch_params& P, bool bricked)
+bool BricksFit(const int dims[3])
 {
-  const int dims[3] = { P.nx, P.ny, P.nz };
-  const BrickLayout b(dims);
   // the kernels' strides are ints: a layer of bricks past that reads the field linear
-  if (!bricked || b.LayerFloats() > 2147483647u)
+  return BrickLayout(dims).LayerFloats() <= 2147483647u;
+}
+
+FieldLayout::FieldLayout(const int dims[3], bool bricked)
+{
+  const BrickLayout b(dims);
+  Bricked = bricked && BricksFit(dims);
+  if (!Bricked)
   {
-    P.fieldShift = 31;
-    P.fieldMask = -1;
-    P.innerX = 4;
-    P.innerY = 4 * P.nx;
-    P.innerZ = 4 * P.nx * P.ny;
-    P.outerX = P.outerY = P.outerZ = 0;
+    Inner[0] = 4;
+    Inner[1] = 4 * dims[0];
+    Inner[2] = static_cast<int>(std::min<std::uint64_t>(std::uint64_t(4) * dims[0] * dims[1], 2147483647u));
+    Floats = std::uint64_t(4) * dims[0] * dims[1] * dims[2];
+    Row = std::size_t(4) * dims[0];
+    Plane = Row * dims[1];
     return;
   }
   const int B = 1 << FieldBrickShift;
-  P.fieldShift = FieldBrickShift;
-  P.fieldMask = B - 1;
-  P.innerX = 4;
-  P.innerY = 4 * B;
-  P.innerZ = 4 * B * B;
-  P.outerX = static_cast<int>(BrickLayout::BrickFloats());
-  P.outerY = static_cast<int>(BrickLayout::BrickFloats() * b.Bricks[0]);
-  P.outerZ = static_cast<int>(b.LayerFloats());
+  Shift = FieldBrickShift;
+  Mask = B - 1;
+  Inner[0] = 4;
+  Inner[1] = 4 * B;
+  Inner[2] = 4 * B * B;
+  Outer[0] = static_cast<int>(BrickLayout::BrickFloats());
+  Outer[1] = static_cast<int>(BrickLayout::BrickFloats() * b.Bricks[0]);
+  Outer[2] = static_cast<int>(b.LayerFloats());
+  Floats = b.Floats();
 }
 
-// Volume::Field in bricks: each layer of bricks along z on its own thread; a brick's rows of 4
-// points are read as 64 contiguous bytes of the linear field and written in order.
+void SetFieldLayout(sch_params& P, bool bricked)
+{
+  const int dims[3] = { P.nx, P.ny, P.nz };
+  const FieldLayout L(dims, bricked);
+  P.fieldShift = L.Shift;
+  P.fieldMask = L.Mask;
+  P.innerX = L.Inner[0];
+  P.innerY = L.Inner[1];
+  P.innerZ = L.Inner[2];
+  P.outerX = L.Outer[0];
+  P.outerY = L.Outer[1];
+  P.outerZ = L.Outer[2];
+}
+
+bool PackInBricks(const int dims[3], Backend device, Reconstruction recon)
+{
+  const int forced = GetRuntimeOptions().Bricks;
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || !BricksFit(dims) || forced == 0)
+    return false;
+  if (forced == 1)
+    return true;
+  // unset: where they pay (docs/PERFORMANCE.md, "the field packed in bricks"): large grids, but not
+  // the CPU backend's Cubic (its axis view 1.3-1.5x slower in bricks at 512^3, the oblique no
+  // faster: three runs)
+  if (device == Backend::CPU && recon == Reconstruction::Cubic)
+    return false;
+  // nor where the padding to whole bricks would add more than a tenth (a thin grid: 9 planes
+  // take 12)
+  const double points = double(dims[0]) * dims[1] * dims[2];
+  return points > BricksFromPoints && double(FieldLayout(dims, true).Floats) <= 1.1 * 4.0 * points;
+}
+
+// Volume::Field (linear) copied into bricks, in the bricks' memory order (ForEachSlot).
 static void MakeBricks(const Volume& v, float* out)
 {
-  const int nx = v.Dimensions[0], ny = v.Dimensions[1], nz = v.Dimensions[2];
-  const BrickLayout b(v.Dimensions);
-  const int B = 1 << FieldBrickShift;
-  const std::size_t sy = std::size_t(nx), sz = std::size_t(nx) * ny;
+  const std::size_t sy = std::size_t(v.Dimensions[0]), sz = sy * v.Dimensions[1];
   const float* in = v.Field;
-  ParallelSlices(static_cast<int>(b.Bricks[2]), [&](int z0, int z1) {
-    float* o = out + std::size_t(z0) * b.LayerFloats();
-    for (int bz = z0; bz < z1; ++bz)
-      for (std::uint64_t by = 0; by < b.Bricks[1]; ++by)
-        for (std::uint64_t bx = 0; bx < b.Bricks[0]; ++bx)
-          for (int kk = 0; kk < B; ++kk)
-            for (int jj = 0; jj < B; ++jj)
-            {
-              const std::size_t k = std::min<std::size_t>(std::size_t(bz) * B + kk, nz - 1);
-              const std::size_t j = std::min<std::size_t>(by * B + jj, ny - 1);
-              const float* row = in + 4 * (k * sz + j * sy);
-              for (int ii = 0; ii < B; ++ii, o += 4)
-              {
-                const std::size_t i = std::min<std::size_t>(bx * B + ii, nx - 1);
-                std::memcpy(o, row + 4 * i, 4 * sizeof(float));
-              }
-            }
+  ForEachSlot(v.Dimensions, FieldLayout(v.Dimensions, true), out, [&](int i, int j, int k, float* o) {
+    std::memcpy(o, in + 4 * (i + j * sy + k * sz), 4 * sizeof(float));
   });
 }
 

@@ -125,6 +125,7 @@ SilhouetteFrame FrameSilhouette(const Volume& volume, const TraceSettings& s)
   SilhouetteScan scan;
   scan.Field = volume.Field;
   scan.Solid = volume.Solid;
+  scan.FieldInBricks = volume.FieldInBricks;
   for (int a = 0; a < 3; ++a)
   {
     scan.Held[a] = volume.Dimensions[a];
@@ -161,22 +162,23 @@ SilhouetteFrame FrameSilhouette(const Volume& grid, const TraceSettings& s, cons
   auto at = [&scan](int i, int j, int k) {
     return (static_cast<std::size_t>(k) * scan.Held[1] + j) * scan.Held[0] + i;
   };
-  auto grad2 = [F](std::size_t p) {
-    return double(F[4 * p + 1]) * F[4 * p + 1] + double(F[4 * p + 2]) * F[4 * p + 2] +
-      double(F[4 * p + 3]) * F[4 * p + 3];
+  const FieldLayout layout(scan.Held, scan.FieldInBricks);
+  auto grad2 = [F, &layout](int i, int j, int k) {
+    const float* f = F + layout.At(i, j, k);
+    return double(f[1]) * f[1] + double(f[2]) * f[2] + double(f[3]) * f[3];
   };
   // the largest |grad n|^2 (the packed gradient, world units), over every piece
   double g2max = 0;
   for (int k = scan.Lo[2]; k < scan.Hi[2]; ++k)
     for (int j = scan.Lo[1]; j < scan.Hi[1]; ++j)
       for (int i = scan.Lo[0]; i < scan.Hi[0]; ++i)
-        g2max = std::max(g2max, grad2(at(i, j, k)));
+        g2max = std::max(g2max, grad2(i, j, k));
   reduce(&g2max, 1, true);
   const double threshold = 1e-6 * g2max; // (1e-3 of the largest |grad n|)^2
-  auto inside = [&](std::size_t p) {
-    if (scan.Solid && scan.Solid[p])
+  auto inside = [&](int i, int j, int k) {
+    if (scan.Solid && scan.Solid[at(i, j, k)])
       return true;
-    return g2max > 0 && grad2(p) > threshold;
+    return g2max > 0 && grad2(i, j, k) > threshold;
   };
   // a point's film coordinates are linear along a row: its first and last silhouette points
   // bound the row's projection (whole-grid indices: scan.Offset + held)
@@ -197,7 +199,7 @@ SilhouetteFrame FrameSilhouette(const Volume& grid, const TraceSettings& s, cons
     {
       int first = -1, last = -1;
       for (int i = scan.Lo[0]; i < scan.Hi[0]; ++i)
-        if (inside(at(i, j, k)))
+        if (inside(i, j, k))
         {
           if (first < 0)
             first = i;

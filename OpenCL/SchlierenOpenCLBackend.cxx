@@ -225,8 +225,7 @@ public:
     }
     else
     {
-      const std::size_t global = (count + RaysPerItem - 1) / RaysPerItem;
-      ocl::Check(clEnqueueNDRangeKernel(RT.Queue, Kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr),
+      ocl::Check(EnqueueItems(Kernel, (count + RaysPerItem - 1) / RaysPerItem),
         "clEnqueueNDRangeKernel(sch_trace_rays)");
     }
     ocl::Check(clEnqueueReadBuffer(RT.Queue, Out, CL_TRUE, 0, count * SCH_RECORD * sizeof(float), out,
@@ -257,8 +256,7 @@ public:
       clReleaseMemObject(abBuf);
       throw;
     }
-    const std::size_t global = count;
-    cl_int st = clEnqueueNDRangeKernel(RT.Queue, PointsKernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
+    cl_int st = EnqueueItems(PointsKernel, count);
     if (st == CL_SUCCESS)
       st = clEnqueueReadBuffer(RT.Queue, Out, CL_TRUE, 0, count * SCH_RECORD * sizeof(float), out, 0,
         nullptr, nullptr);
@@ -296,9 +294,8 @@ public:
       for (cl_int a : args)
         st = st == CL_SUCCESS ? a : st;
     }
-    const std::size_t global = count;
     if (st == CL_SUCCESS)
-      st = clEnqueueNDRangeKernel(RT.Queue, kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr);
+      st = EnqueueItems(kernel, count);
     if (st == CL_SUCCESS)
       st = clEnqueueReadBuffer(RT.Queue, raysBuf, CL_TRUE, 0, count * sizeof(sch_piece_ray), rays, 0,
         nullptr, nullptr);
@@ -354,6 +351,21 @@ public:
     return RT.IsCPU;
   }
   static constexpr std::size_t LockstepGroup = 64;
+  // Launches a per-item kernel (sch_trace_rays, sch_trace_points, sch_walk_pieces: each returns
+  // for an item at or past its count) over `items` work-items in groups of a fixed size, the global
+  // size rounded up to a whole group. PoCL builds a work-group function for every local size it is
+  // given or picks, and with none given it picks a divisor of the global size: the piece walks'
+  // counts, which change every exchange round, made 147 builds of sch_walk_pieces in
+  // engine.TestEngineDistributed alone (0.6-0.75 s each on 2 cores, 110 of its 119 s on a cold
+  // cache). RuntimeOptions::LocalSize (SCHLIEREN_CL_LOCAL_SIZE) overrides; 0 leaves the choice to
+  // the driver, as on GPUs (whose drivers build no code per local size).
+  cl_int EnqueueItems(cl_kernel kernel, std::size_t items)
+  {
+    const std::size_t local = Options.LocalSize >= 0 ? std::size_t(Options.LocalSize) : RT.IsCPU ? 16 : 0;
+    const std::size_t global = local ? (items + local - 1) / local * local : items;
+    return clEnqueueNDRangeKernel(
+      RT.Queue, kernel, 1, nullptr, &global, local ? &local : nullptr, 0, nullptr, nullptr);
+  }
 
   ocl::Runtime& RT;
   const RuntimeOptions Options;

@@ -80,8 +80,10 @@ RuntimeOptions RuntimeOptions::FromEnvironment()
     o.MaxAlloc = Unsigned("SCHLIEREN_CL_MAX_ALLOC", v, ~std::uint64_t(0));
   if (const char* v = Value("SCHLIEREN_CL_LOCKSTEP"))
     o.Lockstep = Flag("SCHLIEREN_CL_LOCKSTEP", v) ? 1 : 0;
+  if (const char* v = Value("SCHLIEREN_CL_LOCAL_SIZE"))
+    o.LocalSize = static_cast<int>(Unsigned("SCHLIEREN_CL_LOCAL_SIZE", v, 4096));
   if (const char* v = Value("SCHLIEREN_FIELD_BRICKS"))
-    o.Bricks = Flag("SCHLIEREN_FIELD_BRICKS", v);
+    o.Bricks = Flag("SCHLIEREN_FIELD_BRICKS", v) ? 1 : 0;
   if (const char* v = Value("SCHLIEREN_MEMORY_LIMIT"))
     o.MemoryLimit = Unsigned("SCHLIEREN_MEMORY_LIMIT", v, ~std::uint64_t(0));
   if (const char* v = Value("SCHLIEREN_MPI_TIMEOUT"))
@@ -95,7 +97,7 @@ std::string RuntimeOptions::OpenCLKey() const
 {
   std::ostringstream k;
   k << OpenCLDevice << '\n' << UseHostPtr << ' ' << Specialise << ' ' << MaxAlloc << ' ' << Lockstep
-    << '\n' << BuildOptions;
+    << ' ' << LocalSize << '\n' << BuildOptions;
   return k.str();
 }
 

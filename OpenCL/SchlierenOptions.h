@@ -39,11 +39,18 @@ struct RuntimeOptions
   /// SCHLIEREN_CL_LOCKSTEP: 1 the lock-step kernel, 0 the per-item kernel; -1 (unset): lock step
   /// on CPU devices, per item elsewhere
   int Lockstep = -1;
-  /// SCHLIEREN_FIELD_BRICKS (0 or 1): the kernels read the packed field in bricks of 4^3 points
-  /// (1: a copy kept beside Volume::Field, 16 more bytes a point; faster oblique views at 512^3,
-  /// not at 256^3: docs/PERFORMANCE.md) or in its own linear layout (0, the default); both give
-  /// the same images, bit for bit
-  bool Bricks = false;
+  /// SCHLIEREN_CL_LOCAL_SIZE: work-items per work-group of the per-item kernels (rays, points,
+  /// pieces), the global size rounded up to it; 0: the driver's choice; -1 (unset): 16 on CPU
+  /// devices (PoCL compiles a work-group function per local size it meets, 0.6-0.75 s each), the
+  /// driver's choice elsewhere
+  int LocalSize = -1;
+  /// SCHLIEREN_FIELD_BRICKS (0 or 1): the packed field in bricks of 4^3 points (faster oblique
+  /// views) or in its linear layout; both give the same images, bit for bit. -1 (unset): a
+  /// TraceSession packs its field in bricks where they pay (PackInBricks, docs/PERFORMANCE.md), a
+  /// linear Volume given to Trace is read as it is. 1: bricks wherever they fit, a linear Volume
+  /// copied into bricks beside it (16 more bytes a point, kept for the last stamped volume).
+  /// 0: linear everywhere.
+  int Bricks = -1;
   /// SCHLIEREN_MEMORY_LIMIT: host bytes the engine assumes it may use at most; 0: what the
   /// machine has available
   std::uint64_t MemoryLimit = 0;

@@ -82,9 +82,13 @@ sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGe
   P.gz0 = static_cast<float>(0.5 * (P.nz - 1));
   if (4.0 * P.nx * P.ny > 2147483647.0)
     throw Error("A slice of the volume has more than 2^29 points: not supported.");
-  // the field linear, or in bricks (BrickedField, SCHLIEREN_FIELD_BRICKS=1): a ray in any
-  // direction then reads the pages its neighbours read
-  SetFieldLayout(P, GetRuntimeOptions().Bricks);
+  // the field in bricks where it is packed so (Volume::FieldInBricks) or the options ask for a copy
+  // in bricks (BrickedField, SCHLIEREN_FIELD_BRICKS=1): a ray in any direction then reads the
+  // pages its neighbours read; else linear
+  SetFieldLayout(P, volume.FieldInBricks || GetRuntimeOptions().Bricks == 1);
+  if (volume.FieldInBricks && P.fieldShift != FieldBrickShift)
+    throw Error("The volume's field is in bricks, which a grid of this size cannot be read in "
+                "(a layer of bricks past 2^31 floats): pack it linear.");
   if (s.Recon == Reconstruction::Auto)
     throw Error("Reconstruction Auto must be resolved first (ResolveAuto).");
   if (s.Recon == Reconstruction::Cubic && !volume.Smooth)
@@ -140,7 +144,8 @@ void SetFeatureTolerance(sch_params& P, const Volume& volume)
       known = true;
     }
   }
-  const std::size_t n = volume.NumberOfPoints();
+  // (in bricks, the padding repeats points of the grid: the same range)
+  const std::size_t n = FieldLayout(volume.Dimensions, volume.FieldInBricks).Floats / 4;
   for (std::size_t i = 0; !known && i < n; ++i)
   {
     lo = std::min(lo, volume.Field[4 * i]);

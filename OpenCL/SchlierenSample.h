@@ -22,6 +22,13 @@
  * over; any other type (a polyhedron, a pentagonal prism, a quadratic cell) is refused by name.
  * A structured grid comes as its point dimensions instead of the connectivity: its cells are the
  * hexahedra of vtkStructuredGrid, numbered x fastest.
+ *
+ * The points mode (SamplePoints) samples the same way at any points (RefractiveIndex's symmetric
+ * plan's, OpenCL/SchlierenSymmetry.h), each cell looking only at the points in the bins its box
+ * meets; there a 2D mesh's faces are sampled in their plane too (within 1e-6 of a face's size
+ * of it): pixels (8) exactly, triangles (5) by projection, quads (9) by Gauss-Newton to 1e-12;
+ * strips and polygons (6, 7) are refused. The cell that holds a point is again the lowest id.
+ * Both modes visit the cells in the same order with the same test and weights.
  */
 #ifndef SchlierenSample_h
 #define SchlierenSample_h
@@ -97,6 +104,26 @@ std::int64_t SampleCellCount(const SampleMesh& mesh);
  */
 std::int64_t SampleCells(const SampleMesh& mesh,
   const SampleGrid& grid,
+  const std::vector<SampleArray>& arrays,
+  unsigned char* found);
+
+/**
+ * Checks as CheckSample does, for `count` points at `at` (x, y, z each) instead of a grid: every
+ * output array holds count x Components values.
+ */
+void CheckSamplePoints(const SampleMesh& mesh,
+  const double* at,
+  std::int64_t count,
+  const std::vector<SampleArray>& arrays);
+
+/**
+ * Samples `mesh` at the `count` points `at` (x, y, z each; a point not finite is in no cell), as
+ * SampleCells samples a grid's: `found` a byte per point (non-zero left alone, found here set to
+ * 1), the arrays' outputs a value per point. Returns the points found here.
+ */
+std::int64_t SamplePoints(const SampleMesh& mesh,
+  const double* at,
+  std::int64_t count,
   const std::vector<SampleArray>& arrays,
   unsigned char* found);
 

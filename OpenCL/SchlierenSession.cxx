@@ -573,6 +573,11 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     vk << ' ' << piece.Extent[a] << ' ' << piece.WholeExtent[a];
   for (int a = 0; a < 3; ++a)
     vk << ' ' << piece.Origin[a] << ' ' << piece.Spacing[a];
+  // the field in bricks where they pay (PackInBricks: the options may change between updates)
+  const int wholeDims[3] = { piece.WholeExtent[1] - piece.WholeExtent[0] + 1,
+    piece.WholeExtent[3] - piece.WholeExtent[2] + 1, piece.WholeExtent[5] - piece.WholeExtent[4] + 1 };
+  const bool inBricks = PackInBricks(wholeDims, settings.Device, settings.Recon);
+  vk << ' ' << inBricks;
   const std::string volumeKey = vk.str();
   const bool reuseVolume = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
     this->Kept.Field && volumeKey == this->VolumeKey);
@@ -661,16 +666,19 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
       const std::string bad = ScanIndex(nMinus1, total, rangeLo, rangeHi);
       if (!bad.empty())
         throw Error(bad);
-      this->Packed.resize(4 * total);
+      // (in bricks: written in place, no linear copy first)
+      const bool bricked = inBricks && std::equal(volume.Dimensions, volume.Dimensions + 3, wholeDims);
+      this->Packed.resize(FieldLayout(volume.Dimensions, bricked).Floats);
       if (settings.Recon == Reconstruction::Trilinear)
-        PackFieldOf(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data());
+        PackFieldOf(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data(), bricked);
       else
       {
         // fourth-order gradients where the data is smooth, and the smoothness per cell
         this->Smooth.resize(total);
         PackFieldHighOrderOf(volume.Dimensions, volume.Spacing, nMinus1, this->Packed.data(),
-          this->Smooth.data(), DefaultSmoothnessThreshold, rangeLo, rangeHi, 7);
+          this->Smooth.data(), DefaultSmoothnessThreshold, rangeLo, rangeHi, 7, bricked);
       }
+      volume.FieldInBricks = bricked;
     }
     catch (const Error& e)
     {

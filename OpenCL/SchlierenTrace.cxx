@@ -31,7 +31,7 @@ struct FieldForKernels
     : Bricked(tv)
     , Owner(bytesOwner)
   {
-    if (P.fieldShift != FieldBrickShift)
+    if (P.fieldShift != FieldBrickShift || tv.FieldInBricks)
       return;
     try
     {
@@ -43,6 +43,7 @@ struct FieldForKernels
       return;
     }
     Bricked.Field = Bricks->data();
+    Bricked.FieldInBricks = true;
     Owner = std::make_shared<std::pair<std::shared_ptr<const void>, std::shared_ptr<const void>>>(
       bytesOwner, Bricks);
   }

@@ -381,6 +381,22 @@ SCHLIEREN_C_API int schlieren_sample_cells(const double* points, int64_t points_
   const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
   void* const* outputs, const int64_t* output_lengths, const int dims[3], const double origin[3],
   const double spacing[3], unsigned char* found, int64_t found_length, int64_t* found_here);
+/**
+ * The same sampler at any points (SchlierenSample.h's points mode; RefractiveIndex samples a 2D
+ * input at the points schlieren_symmetry_samples gives): the mesh and arrays as for
+ * schlieren_sample_cells, the points to sample `at` (x, y, z each, `at_length` values, 3 per
+ * point; a point not finite is in no cell) instead of a grid; each output array and `found` hold a
+ * value per point to sample. Here a 2D mesh's triangles, pixels and quads are sampled too (a point
+ * within 1e-6 of a face's size of its plane); triangle strips and polygons are refused by name.
+ */
+SCHLIEREN_C_API int schlieren_sample_cells_at(const double* points, int64_t points_length,
+  const int structured_dims[3], const unsigned char* cell_types, int64_t cell_types_length,
+  const int64_t* offsets, int64_t offsets_length, const int64_t* connectivity,
+  int64_t connectivity_length, const unsigned char* skip_cells, int64_t skip_cells_length,
+  int number_of_arrays, const char* const* names, const int* is_cell, const int* components,
+  const int* value_bytes, const void* const* inputs, const int64_t* input_lengths,
+  void* const* outputs, const int64_t* output_lengths, const double* at, int64_t at_length,
+  unsigned char* found, int64_t found_length, int64_t* found_here);
 /** 0 where each of the `count` values of `property` (the ParaView name) of the filter `proxy`
  * ("RefractiveIndex", "RefractionOctree") lies in the range of its domain, the same check the C++
  * plugin's filters make, or where the engine lists no range for it; else non-zero and

@@ -8,4 +8,8 @@ schlieren_build
 export SCHLIEREN_REQUIRE_OPENCL=1
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$SCHLIEREN_BUILD/pocl-cache}"
 cd "$SCHLIEREN_BUILD"
-ctest --output-on-failure -j 1 "$@"
+# two tests at a time on 2 cores: most of a test's time is one core's (pvpython starting, PoCL
+# compiling a kernel, an OpenFOAM solver), so a pair fills both. Alone: the GUI tests and the tests
+# that time an abort (RUN_SERIAL), MPI jobs, the fuzz and the wheel's build (PROCESSORS 2).
+# SCHLIEREN_TEST_JOBS=1 runs one at a time.
+ctest --output-on-failure -j "${SCHLIEREN_TEST_JOBS:-2}" "$@"

@@ -698,22 +698,20 @@ def _mesh_array(a, name, dtype, columns=None):
     return np.ascontiguousarray(a, dtype=dtype).reshape(-1)
 
 
-def sample_cells(points, dims, origin, spacing, cell_types=None, offsets=None, connectivity=None,
-                 structured_dims=None, skip_cells=None, point_arrays=(), cell_arrays=(),
-                 found=None):
-    """RefractiveIndex's resampling of a mesh onto an image grid, cell by cell (schlieren_c.h's
-    schlieren_sample_cells): VTK's point-in-cell test and weights, the C++ filter's values.
+_sig("schlieren_sample_cells_at", ctypes.c_int, ctypes.POINTER(ctypes.c_double), _i64,
+     ctypes.c_void_p, _u8p, _i64, ctypes.POINTER(ctypes.c_int64), _i64,
+     ctypes.POINTER(ctypes.c_int64), _i64, _u8p, _i64, ctypes.c_int,
+     ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int),
+     ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_void_p),
+     ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(ctypes.c_void_p),
+     ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(ctypes.c_double), _i64, _u8p, _i64,
+     ctypes.POINTER(ctypes.c_int64))
 
-    `points` (n, 3); the cells either explicit (`cell_types` uint8 VTK types, `offsets` of
-    cells + 1 values, `connectivity`) or a structured grid's (`structured_dims`, its points'
-    dimensions). `skip_cells` (a byte per cell, non-zero: passed over) may be None.
-    `point_arrays` and `cell_arrays`: (name, array) pairs, each array shaped (tuples,) or
-    (tuples, components); a point array of float32 stays float32, any other is interpolated
-    as float64; a cell array keeps its dtype. `found` (a uint8 array over the grid's points,
-    updated in place: an earlier block's points are left alone) may be None.
-    Returns (found, {name: array over the grid's points, (points,) or (points, components)}):
-    the points not found hold 0."""
-    d, n = _dims(dims)
+
+def _sample(n, where, call, points, cell_types, offsets, connectivity, structured_dims,
+            skip_cells, point_arrays, cell_arrays, found):
+    """sample_cells' and sample_cells_at's arguments checked and made C's; `call(mesh_args,
+    array_args, found)` calls the engine. Returns (found, {name: array of n values})."""
     pts = _mesh_array(points, "points", np.float64, 3)
     structured = structured_dims is not None
     if structured:
@@ -737,7 +735,7 @@ def sample_cells(points, dims, origin, spacing, cell_types=None, offsets=None, c
     point_arrays, cell_arrays = list(point_arrays), list(cell_arrays)
     per_point = sum(np.asarray(a).itemsize * max(1, np.asarray(a).size // max(1, len(a)))
                     for _, a in point_arrays + cell_arrays)
-    check_memory(n * (per_point + 1.0), "The resampled arrays (%s points)" % _grid_text(d),
+    check_memory(n * (per_point + 1.0), "The resampled arrays (%s points)" % where,
                  "Lower SamplingDimensions.")
     for is_cell, arrays in ((0, point_arrays), (1, cell_arrays)):
         for name, a in arrays:
@@ -759,22 +757,70 @@ def sample_cells(points, dims, origin, spacing, cell_types=None, offsets=None, c
             outs.append(out)
             keep.append(name)
     k = len(names)
-    count = ctypes.c_int64(0)
 
     def ptr(a, t):
         return None if a is None else a.ctypes.data_as(ctypes.POINTER(t))
-    _check(_lib.schlieren_sample_cells(
-        ptr(pts, ctypes.c_double), pts.size, sdims, ptr(types, ctypes.c_ubyte), _size(types),
-        ptr(offs, ctypes.c_int64), _size(offs), ptr(conn, ctypes.c_int64), _size(conn),
-        ptr(skip, ctypes.c_ubyte), _size(skip), k, (ctypes.c_char_p * k)(*names),
-        (ctypes.c_int * k)(*cells), (ctypes.c_int * k)(*comps), (ctypes.c_int * k)(*nbytes),
-        (ctypes.c_void_p * k)(*[a.ctypes.data for a in ins]),
-        (ctypes.c_int64 * k)(*[a.size for a in ins]),
-        (ctypes.c_void_p * k)(*[a.ctypes.data for a in outs]),
-        (ctypes.c_int64 * k)(*[a.size for a in outs]), _c_int3(*d),
-        _grid(dims, origin, spacing)[1], _grid(dims, origin, spacing)[2],
-        found.ctypes.data_as(_u8p), found.size, ctypes.byref(count)))
+    mesh_args = (ptr(pts, ctypes.c_double), pts.size, sdims, ptr(types, ctypes.c_ubyte),
+                 _size(types), ptr(offs, ctypes.c_int64), _size(offs), ptr(conn, ctypes.c_int64),
+                 _size(conn), ptr(skip, ctypes.c_ubyte), _size(skip))
+    array_args = (k, (ctypes.c_char_p * k)(*names), (ctypes.c_int * k)(*cells),
+                  (ctypes.c_int * k)(*comps), (ctypes.c_int * k)(*nbytes),
+                  (ctypes.c_void_p * k)(*[a.ctypes.data for a in ins]),
+                  (ctypes.c_int64 * k)(*[a.size for a in ins]),
+                  (ctypes.c_void_p * k)(*[a.ctypes.data for a in outs]),
+                  (ctypes.c_int64 * k)(*[a.size for a in outs]))
+    _check(call(mesh_args, array_args, found))
     return found, dict(zip(keep, outs))
+
+
+def sample_cells(points, dims, origin, spacing, cell_types=None, offsets=None, connectivity=None,
+                 structured_dims=None, skip_cells=None, point_arrays=(), cell_arrays=(),
+                 found=None):
+    """RefractiveIndex's resampling of a mesh onto an image grid, cell by cell (schlieren_c.h's
+    schlieren_sample_cells): VTK's point-in-cell test and weights, the C++ filter's values.
+
+    `points` (n, 3); the cells either explicit (`cell_types` uint8 VTK types, `offsets` of
+    cells + 1 values, `connectivity`) or a structured grid's (`structured_dims`, its points'
+    dimensions). `skip_cells` (a byte per cell, non-zero: passed over) may be None.
+    `point_arrays` and `cell_arrays`: (name, array) pairs, each array shaped (tuples,) or
+    (tuples, components); a point array of float32 stays float32, any other is interpolated
+    as float64; a cell array keeps its dtype. `found` (a uint8 array over the grid's points,
+    updated in place: an earlier block's points are left alone) may be None.
+    Returns (found, {name: array over the grid's points, (points,) or (points, components)}):
+    the points not found hold 0."""
+    d, n = _dims(dims)
+    count = ctypes.c_int64(0)
+
+    def call(mesh_args, array_args, found):
+        return _lib.schlieren_sample_cells(
+            *mesh_args, *array_args, _c_int3(*d), _grid(dims, origin, spacing)[1],
+            _grid(dims, origin, spacing)[2], found.ctypes.data_as(_u8p), found.size,
+            ctypes.byref(count))
+    return _sample(n, _grid_text(d), call, points, cell_types, offsets, connectivity,
+                   structured_dims, skip_cells, point_arrays, cell_arrays, found)
+
+
+def sample_cells_at(points, at, cell_types=None, offsets=None, connectivity=None,
+                    structured_dims=None, skip_cells=None, point_arrays=(), cell_arrays=(),
+                    found=None):
+    """The same sampler at any points (schlieren_sample_cells_at): the mesh and arrays as
+    sample_cells takes them, `at` ((m, 3) float64) the points to sample instead of a grid; a 2D
+    mesh's triangles, pixels and quads are sampled in their plane too. Returns (found, {name:
+    array of m values}) as sample_cells does."""
+    if at is None:
+        raise ArgumentError("at (the points to sample, (m, 3)) must be given")
+    where = _xyz(at, "at")
+    m = where.size // 3
+    count = ctypes.c_int64(0)
+
+    def call(mesh_args, array_args, found):
+        return _lib.schlieren_sample_cells_at(
+            *mesh_args, *array_args, where.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
+            where.size, found.ctypes.data_as(_u8p), found.size, ctypes.byref(count))
+    return _sample(m, "%d" % m, call, points, cell_types, offsets, connectivity, structured_dims,
+                   skip_cells, point_arrays, cell_arrays, found)
+
+
 def _xyz(points, name="points"):
     """Points as a C-contiguous float64 array of x, y, z each (an (n, 3) array or n*3 values)."""
     if points is None:

@@ -547,9 +547,13 @@ def _mesh_of(ds):
                                                vtkUnstructuredGrid)
     n2n = numpy_support.vtk_to_numpy
     if not isinstance(ds, (vtkStructuredGrid, vtkUnstructuredGrid)):
-        # a rectilinear grid's voxels, a poly data's faces: as an unstructured grid
+        # an image's or a rectilinear grid's voxels, a poly data's faces: as an unstructured grid,
+        # its points in double as the C++ adapter reads them (vtkDataSet::GetPoint; the append
+        # filter's default makes an image's points float)
+        from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
         from vtkmodules.vtkFiltersCore import vtkAppendFilter
         append = vtkAppendFilter()
+        append.SetOutputPointsPrecision(vtkAlgorithm.DOUBLE_PRECISION)
         append.AddInputData(ds)
         append.Update()
         ds = append.GetOutput()
@@ -583,18 +587,14 @@ def _mesh_of(ds):
     return mesh
 
 
-def _sample_cells(data, dims, origin, spacing):
-    """`data` (a data set or a composite data set) sampled cell by cell onto `dims` points at
-    `origin`, `spacing` by the engine (schlieren_sample_cells), as the C++ RefractiveIndex samples it: every
-    point array of the first block that every block has, interpolated (float32 and float64 kept,
-    integers rounded back), every cell array the holding cell's value, and the valid-point mask."""
+def _sample_leaves(data, n, run):
+    """The leaves of `data` with cells sampled at `n` points by `run(found, point_arrays,
+    cell_arrays, mesh)` (the engine's grid or points mode), as the C++ RefractiveIndex samples
+    them: every point array of the first block that every block has, interpolated (float32 and
+    float64 kept, integers rounded back), every cell array the holding cell's value. Returns
+    ([(name, vtk array of n tuples)] in that order, found: a uint8 per point)."""
     leaves = _cell_leaves(data)
-    d = [int(x) for x in dims]
-    out = vtkImageData()
-    out.SetDimensions(*d)
-    out.SetOrigin(*origin)
-    out.SetSpacing(*spacing)
-    found = np.zeros(d[0] * d[1] * d[2], np.uint8)
+    found = np.zeros(n, np.uint8)
     wanted = []  # (cells, name, vtk type, components), the first block's, kept where all have them
     for cells in (0, 1):
         attributes = (leaves[0].GetCellData() if cells else leaves[0].GetPointData()) if leaves \
@@ -620,9 +620,7 @@ def _sample_cells(data, dims, origin, spacing):
             a = (leaf.GetCellData() if cells else leaf.GetPointData()).GetArray(name)
             arrays[cells].append((name, numpy_support.vtk_to_numpy(a)))
         before = found.copy()
-        _, values = _engine.sample_cells(found=found, dims=d, origin=origin, spacing=spacing,
-                                         point_arrays=arrays[0], cell_arrays=arrays[1],
-                                         **_mesh_of(leaf))
+        _, values = run(found, arrays[0], arrays[1], _mesh_of(leaf))
         here = (found != 0) & (before == 0)  # a later block wrote only the points it found
         for key in wanted:
             if key[1] in sampled:
@@ -630,19 +628,47 @@ def _sample_cells(data, dims, origin, spacing):
             else:
                 sampled[key[1]] = values[key[1]]
     from vtkmodules.vtkCommonCore import vtkDataArray
+    out = []
     for cells, name, vtk_type, components in wanted:
         v = sampled[name]
         a = vtkDataArray.CreateDataArray(vtk_type)
         a.SetName(name)
         a.SetNumberOfComponents(components)
-        a.SetNumberOfTuples(len(found))
+        a.SetNumberOfTuples(n)
         target = numpy_support.vtk_to_numpy(a)
         if not cells and target.dtype.kind in "iub":
             # rounded as vtkDataArray::InterpolateTuple rounds (half away from zero)
             v = np.where(v >= 0, np.floor(v + 0.5), np.ceil(v - 0.5))
         target[...] = v.reshape(target.shape)
+        out.append((name, a))
+    return out, found
+
+
+def _sample_cells(data, dims, origin, spacing):
+    """`data` (a data set or a composite data set: meshes, blocks of images) sampled cell by cell
+    onto `dims` points at `origin`, `spacing` by the engine (schlieren_sample_cells), as the C++
+    RefractiveIndex samples it (_sample_leaves): (image, the valid-point mask)."""
+    d = [int(x) for x in dims]
+    out = vtkImageData()
+    out.SetDimensions(*d)
+    out.SetOrigin(*origin)
+    out.SetSpacing(*spacing)
+    arrays, found = _sample_leaves(data, d[0] * d[1] * d[2], lambda found, pa, ca, mesh:
+                                   _engine.sample_cells(found=found, dims=d, origin=origin,
+                                                        spacing=spacing, point_arrays=pa,
+                                                        cell_arrays=ca, **mesh))
+    for _, a in arrays:
         out.GetPointData().AddArray(a)
     return out, found
+
+
+def _sample_cells_at(data, points):
+    """`data` sampled at `points` ((m, 3) float64) by the engine's points mode
+    (schlieren_sample_cells_at), as the C++ filter samples a 2D input under Symmetry:
+    ([(name, vtk array of m tuples)], found: a uint8 per point)."""
+    at = np.ascontiguousarray(points, np.float64).reshape(-1, 3)
+    return _sample_leaves(data, len(at), lambda found, pa, ca, mesh: _engine.sample_cells_at(
+        at=at, found=found, point_arrays=pa, cell_arrays=ca, **mesh))
 
 
 def _all_points(data):
@@ -657,27 +683,6 @@ def _all_points(data):
         elif n:
             parts.append(np.array([leaf.GetPoint(i) for i in range(n)], np.float64))
     return np.concatenate(parts) if parts else np.zeros((0, 3))
-
-
-def _probe(data, points):
-    """`data` (a data set or composite) sampled at `points` ((m, 3) float64) as the C++ filter's
-    symmetric sampling does: vtkCompositeDataProbeFilter with a static cell locator, the mask
-    vtkValidPointMask."""
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkStaticCellLocator
-    from vtkmodules.vtkFiltersCore import vtkCompositeDataProbeFilter
-    p = vtkPoints()
-    p.SetDataTypeToDouble()
-    p.SetData(numpy_support.numpy_to_vtk(np.ascontiguousarray(points, np.float64), deep=1))
-    samples = vtkPolyData()
-    samples.SetPoints(p)
-    probe = vtkCompositeDataProbeFilter()
-    probe.SetInputData(samples)
-    probe.SetSourceData(data)
-    probe.SetValidPointMaskArrayName("vtkValidPointMask")
-    probe.SetCellLocatorPrototype(vtkStaticCellLocator())
-    probe.Update()
-    return probe.GetOutput()
 
 
 def _image_input(data, grid=None, ranks=None):
@@ -700,24 +705,7 @@ def _image_input(data, grid=None, ranks=None):
             raise EngineError(refused or agreed)
         return _summed(ranks, out, mask)
     dims, origin, spacing = grid
-    if any(isinstance(leaf, vtkImageData) for leaf in _cell_leaves(data)):
-        # blocks of images: probed, as the C++ filter probes them (SchlierenResample.h)
-        from vtkmodules.vtkFiltersCore import vtkCompositeDataProbeFilter
-        structure = vtkImageData()
-        structure.SetDimensions(*dims)
-        structure.SetOrigin(*origin)
-        structure.SetSpacing(*spacing)
-        probe = vtkCompositeDataProbeFilter()
-        probe.SetInputData(structure)
-        probe.SetSourceData(data)
-        probe.SetValidPointMaskArrayName("vtkValidPointMask")
-        probe.Update()
-        out = vtkImageData()
-        out.ShallowCopy(probe.GetOutput())
-        mask = np.ascontiguousarray(_point_array(out, "vtkValidPointMask") != 0, np.uint8)
-        out.GetPointData().RemoveArray("vtkValidPointMask")
-    else:
-        out, mask = _sample_cells(data, dims, origin, spacing)
+    out, mask = _sample_cells(data, dims, origin, spacing)  # meshes and blocks of images alike
     if not mask.all():
         # kept where it says something, as the C++ filter does: NumericalSchlieren leaves the
         # points outside the input's cells out of its gradients
@@ -1409,12 +1397,9 @@ class RefractiveIndex(_Properties):
                              % tuple(plan["dims"]), "Lower SamplingDimensions or "
                              "AutomaticDimension.")
         points, sample_of = _engine.symmetry_samples(plan)
-        probed = _probe(mesh, points)
-        pd = probed.GetPointData()
-        found = _point_array(probed, "vtkValidPointMask")
-        _, valid = _engine.symmetry_expand(sample_of, len(points), sample_valid=(
-            np.zeros(len(points), np.uint8) if found is None else
-            (found if found.ndim == 1 else found[:, 0]) != 0))
+        # the engine's cell sampler at the plan's points (its points mode: the C++ filter's)
+        arrays, found = _sample_cells_at(mesh, points)
+        _, valid = _engine.symmetry_expand(sample_of, len(points), sample_valid=found)
         image = vtkImageData()
         image.SetDimensions(*plan["dims"])
         image.SetOrigin(*plan["origin"])
@@ -1424,13 +1409,10 @@ class RefractiveIndex(_Properties):
             mask = numpy_support.numpy_to_vtk(valid.astype(np.int8), deep=1, array_type=VTK_CHAR)
             mask.SetName("vtkValidPointMask")
             image.GetPointData().AddArray(mask)
-        for i in range(pd.GetNumberOfArrays()):
-            a = pd.GetArray(i)
-            if a is None or not a.GetName() or a.GetName() == "vtkValidPointMask":
-                continue
+        for name, a in arrays:
             values, _ = _engine.symmetry_expand(sample_of, len(points),
                                                 values=numpy_support.vtk_to_numpy(a))
-            _add(image, a.GetName(), values)
+            _add(image, name, values)
         return image, (None if valid.all() else valid), plan
 
     def RequestData(self, request, inInfo, outInfo):

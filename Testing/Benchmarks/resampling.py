@@ -153,7 +153,8 @@ def cases_main(a):
         t = max(times) if isinstance(times, (list, tuple)) and times else 0.0
         r.UpdatePipeline(t)
         mesh = sm.Fetch(r)
-        box = algorithms._sampling_box(mesh)
+        box = algorithms._engine.sampling_box({"UseSamplingBounds": 0},
+                                              algorithms._leaf_bounds(mesh))
         d = list(a.grid)
         structure = vtkImageData()
         structure.SetDimensions(*d)
@@ -178,7 +179,9 @@ def cases_main(a):
                     rti.Modified()
                     rti.Update()
                 else:
-                    ours, found = algorithms._sample_cells(mesh, d, box)
+                    ours, found = algorithms._sample_cells(
+                        mesh, d, [box[0], box[2], box[4]],
+                        [(box[2 * i + 1] - box[2 * i]) / (d[i] - 1) for i in range(3)])
                 best[key] = min(best[key], time.perf_counter() - t0)
         diffs = []
         for theirs in (probe.GetOutput(), rti.GetOutput()):

@@ -436,6 +436,47 @@ std::vector<float> CentreRays(int film, double half)
   return ab;
 }
 
+// The weak Gaussian (A, s = w) on n^3 points over [-1, 1]^3 packed for both reconstructions
+// (PackFieldHighOrder) into `packed` and `smooth`, `v` set to trace it (a new stamp, the kept
+// volume released); false, with the table's row saying why, where it cannot be allocated.
+bool PackedGaussian(int n, double A, double w, Volume& v, AlignedFloats& packed,
+  std::vector<unsigned char>& smooth)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    v.Dimensions[a] = n;
+    v.Origin[a] = -1;
+    v.Spacing[a] = 2.0 / (n - 1);
+  }
+  try
+  {
+    std::vector<float> n1(v.NumberOfPoints());
+    SceneParameters p;
+    p.Amplitude = A;
+    p.Width = w;
+    FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
+    packed.resize(4 * n1.size());
+    smooth.resize(n1.size());
+    PackFieldHighOrder(v.Dimensions, v.Spacing, n1.data(), packed.data(), smooth.data());
+  }
+  catch (const std::exception& e)
+  {
+    std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | |\n", n, e.what());
+    return false;
+  }
+  v.Field = packed.data();
+  v.Smooth = smooth.data();
+  ReleaseKeptVolume();
+  v.Stamp = NewVolumeStamp();
+  return true;
+}
+
+double Median(std::vector<double> x)
+{
+  std::sort(x.begin(), x.end());
+  return x.empty() ? 0.0 : x.size() % 2 ? x[x.size() / 2] : 0.5 * (x[x.size() / 2 - 1] + x[x.size() / 2]);
+}
+
 // The grids case: one row per grid, reconstruction and backend.
 void Grids(const std::string& grids, const std::string& backends, int film, int passes, double tolFrac)
 {
@@ -577,36 +618,10 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
   {
     const int n = std::atoi(g.c_str());
     Volume v;
-    for (int a = 0; a < 3; ++a)
-    {
-      v.Dimensions[a] = n;
-      v.Origin[a] = -1;
-      v.Spacing[a] = 2.0 / (n - 1);
-    }
-    std::vector<float> n1;
     AlignedFloats packed;
     std::vector<unsigned char> smooth;
-    try
-    {
-      n1.resize(v.NumberOfPoints());
-      SceneParameters p;
-      p.Amplitude = A;
-      p.Width = w;
-      FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
-      packed.resize(4 * n1.size());
-      smooth.resize(n1.size());
-      PackFieldHighOrder(v.Dimensions, v.Spacing, n1.data(), packed.data(), smooth.data());
-    }
-    catch (const std::exception& e)
-    {
-      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | |\n", n, e.what());
+    if (!PackedGaussian(n, A, w, v, packed, smooth))
       continue;
-    }
-    std::vector<float>().swap(n1);
-    v.Field = packed.data();
-    v.Smooth = smooth.data();
-    ReleaseKeptVolume();
-    v.Stamp = NewVolumeStamp();
     // the film's pixel centres within 2.2 s, and 24 x 24 rays for the sweep
     const std::vector<float> ab = CentreRays(film, 2.2 * w);
     std::vector<float> sweepAb;
@@ -817,44 +832,17 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
               "the two layouts' records compared bit for bit\n\n");
   std::printf("| grid | backend | reconstruction | layout | view | samples/ray | M samples/s | M rays/s | time per "
               "sample / axis | / linear axis | RMS error | max error |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  auto median = [](std::vector<double> x) {
-    std::sort(x.begin(), x.end());
-    return x.empty() ? 0.0 : x.size() % 2 ? x[x.size() / 2] : 0.5 * (x[x.size() / 2 - 1] + x[x.size() / 2]);
-  };
+  const auto median = Median;
   std::stringstream gs(grids);
   std::string g;
   while (std::getline(gs, g, ','))
   {
     const int n = std::atoi(g.c_str());
     Volume v;
-    for (int a = 0; a < 3; ++a)
-    {
-      v.Dimensions[a] = n;
-      v.Origin[a] = -1;
-      v.Spacing[a] = 2.0 / (n - 1);
-    }
     AlignedFloats packed;
     std::vector<unsigned char> smooth;
-    try
-    {
-      std::vector<float> n1(v.NumberOfPoints());
-      SceneParameters p;
-      p.Amplitude = A;
-      p.Width = w;
-      FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
-      packed.resize(4 * n1.size());
-      smooth.resize(n1.size());
-      PackFieldHighOrder(v.Dimensions, v.Spacing, n1.data(), packed.data(), smooth.data());
-    }
-    catch (const std::exception& e)
-    {
-      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | |\n", n, e.what());
+    if (!PackedGaussian(n, A, w, v, packed, smooth))
       continue;
-    }
-    v.Field = packed.data();
-    v.Smooth = smooth.data();
-    ReleaseKeptVolume();
-    v.Stamp = NewVolumeStamp();
     const std::vector<float> ab = CentreRays(film, 2.2 * w);
     const RuntimeOptions options = GetRuntimeOptions();
     std::stringstream bs(backends);
@@ -880,7 +868,7 @@ void Oblique(const std::string& grids, const std::string& backends, int film, in
         s[1].ViewDirection[2] = -0.4;
         auto useLayout = [&](int layout) {
           RuntimeOptions o = options;
-          o.Bricks = layout == 1;
+          o.Bricks = layout == 1 ? 1 : 0;
           SetRuntimeOptions(o);
         };
         std::vector<double> perSample[2][2], perRay[2][2];
@@ -978,34 +966,10 @@ void CubicRate(const std::string& grids, const std::string& backends, int film, 
   {
     const int n = std::atoi(g.c_str());
     Volume v;
-    for (int a = 0; a < 3; ++a)
-    {
-      v.Dimensions[a] = n;
-      v.Origin[a] = -1;
-      v.Spacing[a] = 2.0 / (n - 1);
-    }
     AlignedFloats packed;
     std::vector<unsigned char> smooth;
-    try
-    {
-      std::vector<float> n1(v.NumberOfPoints());
-      SceneParameters p;
-      p.Amplitude = A;
-      p.Width = w;
-      FillScene(Scene::GaussianSphere, p, v.Dimensions, v.Origin, v.Spacing, n1.data(), nullptr);
-      packed.resize(4 * n1.size());
-      smooth.resize(n1.size());
-      PackFieldHighOrder(v.Dimensions, v.Spacing, n1.data(), packed.data(), smooth.data());
-    }
-    catch (const std::exception& e)
-    {
-      std::printf("| %d^3 | could not allocate or fill: %s | | | | | | | | |\n", n, e.what());
+    if (!PackedGaussian(n, A, w, v, packed, smooth))
       continue;
-    }
-    v.Field = packed.data();
-    v.Smooth = smooth.data();
-    ReleaseKeptVolume();
-    v.Stamp = NewVolumeStamp();
     std::stringstream bs(backends);
     std::string bname;
     while (std::getline(bs, bname, ','))

@@ -1197,12 +1197,51 @@ static void random_sample_case(void)
   out_len[1] = (below(4) ? needed : grid_count(needed, valid));
   outs[0] = buffer(out_len[0], sizeof(float), 1);
   outs[1] = buffer(out_len[1], sizeof(double), 1);
-  rc = schlieren_sample_cells(below(30) ? pts : NULL, c_pts, structured ? sdims : NULL,
-    below(30) ? types : NULL, c_types, below(30) ? offsets : NULL, c_off, below(30) ? conn : NULL,
-    c_conn, c_skip ? skip : NULL, c_skip, narrays, below(40) ? names : NULL, is_cell, comps, bytes,
-    ins, in_len, outs, out_len, dims, origin, spacing, found, c_found,
-    below(2) ? &found_here : NULL);
-  outcome(F_SAMPLE, rc, schlieren_last_error(), "schlieren_sample_cells");
+  if (below(2))
+  {
+    rc = schlieren_sample_cells(below(30) ? pts : NULL, c_pts, structured ? sdims : NULL,
+      below(30) ? types : NULL, c_types, below(30) ? offsets : NULL, c_off,
+      below(30) ? conn : NULL, c_conn, c_skip ? skip : NULL, c_skip, narrays,
+      below(40) ? names : NULL, is_cell, comps, bytes, ins, in_len, outs, out_len, dims, origin,
+      spacing, found, c_found, below(2) ? &found_here : NULL);
+    outcome(F_SAMPLE, rc, schlieren_last_error(), "schlieren_sample_cells");
+  }
+  else
+  {
+    /* the points mode: 8 points to sample (a few not finite or far), the outputs and found
+     * sized for them (or wrongly) */
+    double at[3 * 8];
+    int64_t c_at = sometimes_wrong(24), c_found_at, m = 8, len_at[2];
+    unsigned char* found_at;
+    void* outs_at[2];
+    for (i = 0; i < 24; ++i)
+      at[i] = 2.2 * uniform() - 0.1;
+    if (below(8) == 0)
+      random_point(at + 3 * below(8));
+    if (c_at < 0 || c_at > 24)
+      c_at = below(2) ? -1 : 24;
+    c_found_at = sometimes_wrong(m);
+    if (c_found_at < -1 || c_found_at > m)
+      c_found_at = m;
+    len_at[0] = sometimes_wrong(2 * m);
+    if (len_at[0] < -1 || len_at[0] > 2 * m)
+      len_at[0] = 2 * m;
+    len_at[1] = sometimes_wrong(m);
+    if (len_at[1] < -1 || len_at[1] > m)
+      len_at[1] = m;
+    found_at = buffer(c_found_at, 1, 1);
+    outs_at[0] = buffer(len_at[0], sizeof(float), 1);
+    outs_at[1] = buffer(len_at[1], sizeof(double), 1);
+    rc = schlieren_sample_cells_at(below(30) ? pts : NULL, c_pts, structured ? sdims : NULL,
+      below(30) ? types : NULL, c_types, below(30) ? offsets : NULL, c_off,
+      below(30) ? conn : NULL, c_conn, c_skip ? skip : NULL, c_skip, narrays,
+      below(40) ? names : NULL, is_cell, comps, bytes, ins, in_len, outs_at, len_at,
+      below(30) ? at : NULL, c_at, found_at, c_found_at, below(2) ? &found_here : NULL);
+    outcome(F_SAMPLE, rc, schlieren_last_error(), "schlieren_sample_cells_at");
+    free(found_at);
+    free(outs_at[0]);
+    free(outs_at[1]);
+  }
   free(found);
   free(outs[0]);
   free(outs[1]);

@@ -4,9 +4,14 @@
 // addresses change: every image and record must be the one the linear layout gives, bit for bit,
 // on both backends, both reconstructions, along the axis and obliquely, on a grid that is no
 // multiple of the brick (the padding), and with the field split in slabs along z.
+#include "SchlierenEngineInternal.h" // the packing in bricks, PackInBricks
 #include "SchlierenLimits.h"
+#include "SchlierenParallel.h"
+#include "SchlierenSession.h"
 #include "SchlierenTesting.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -31,9 +36,9 @@ int main()
   std::atexit([] { ReleaseKeptVolume(); });
   const bool haveCL = schtest::HaveOpenCL();
   // the variable: 0 or 1, anything else an error that names it; off by default
-  CHECK(!RuntimeOptions().Bricks, "the linear layout is the default");
+  CHECK(RuntimeOptions().Bricks == -1, "unset by default: bricks where they pay");
   setenv("SCHLIEREN_FIELD_BRICKS", "1", 1);
-  CHECK(RuntimeOptions::FromEnvironment().Bricks, "SCHLIEREN_FIELD_BRICKS=1");
+  CHECK(RuntimeOptions::FromEnvironment().Bricks == 1, "SCHLIEREN_FIELD_BRICKS=1");
   setenv("SCHLIEREN_FIELD_BRICKS", "yes", 1);
   schtest::ExpectError("SCHLIEREN_FIELD_BRICKS=yes", [] { RuntimeOptions::FromEnvironment(); },
     { "SCHLIEREN_FIELD_BRICKS", "0 or 1" });
@@ -105,7 +110,7 @@ int main()
             for (int layout = 0; layout < 2; ++layout)
             {
               const schtest::ScopedOptions o([&](RuntimeOptions& opt) {
-                opt.Bricks = layout == 1;
+                opt.Bricks = layout == 1 ? 1 : 0;
                 opt.MaxAlloc = maxAlloc;
               });
               r[layout] = Trace(v, s);
@@ -131,10 +136,117 @@ int main()
           }
     }
   }
+  // The packing writes the bricks in place (Volume::FieldInBricks, what a TraceSession packs):
+  // the floats of the copy made from the linear field, the padding included, for both packings
+  {
+    Volume linear = v;
+    AlignedFloats inPlace(FieldLayout(v.Dimensions, true).Floats);
+    std::vector<unsigned char> smoothInPlace(n1.size());
+    // (NaN first: every float must be written, the padding too)
+    std::fill(inPlace.begin(), inPlace.end(), std::nanf(""));
+    float lo, hi;
+    CHECK(ScanIndex(n1.data(), n1.size(), lo, hi).empty(), "the field is usable");
+    PackFieldHighOrderOf(v.Dimensions, v.Spacing, n1.data(), inPlace.data(), smoothInPlace.data(),
+      DefaultSmoothnessThreshold, lo, hi, 7, true);
+    const auto copy = BrickedField(linear);
+    CHECK(copy->size() == inPlace.size() &&
+        std::memcmp(copy->data(), inPlace.data(), inPlace.size() * sizeof(float)) == 0,
+      "PackFieldHighOrderOf in bricks: the copy of the linear field in bricks");
+    CHECK(smoothInPlace == smooth, "the smoothness bytes stay linear");
+    AlignedFloats second(4 * n1.size()), secondInPlace(inPlace.size());
+    PackFieldOf(v.Dimensions, v.Spacing, n1.data(), second.data());
+    std::fill(secondInPlace.begin(), secondInPlace.end(), std::nanf(""));
+    PackFieldOf(v.Dimensions, v.Spacing, n1.data(), secondInPlace.data(), true);
+    linear.Field = second.data();
+    const auto copy2 = BrickedField(linear);
+    CHECK(copy2->size() == secondInPlace.size() &&
+        std::memcmp(copy2->data(), secondInPlace.data(), secondInPlace.size() * sizeof(float)) == 0,
+      "PackFieldOf in bricks: the copy of the linear field in bricks");
+    CHECK(FieldLayout(v.Dimensions, false).Floats == 4 * n1.size() &&
+        inPlace.size() == std::size_t(40) * 36 * 32 * 4,
+      "linear: 4 floats a point; bricks: the grid rounded up to whole bricks, 40 x 36 x 32");
+  }
+  // The default (SCHLIEREN_FIELD_BRICKS unset): a session packs in bricks where they pay, large
+  // grids (docs/PERFORMANCE.md); 0 and 1 force either; a grid whose layer of bricks is past the
+  // kernels' int strides stays linear.
+  {
+    const int small[3] = { 64, 64, 64 }, large[3] = { 512, 512, 512 }, wide[3] = { 40000, 40000, 8 };
+    const Backend cl = Backend::OpenCL, cpu = Backend::CPU;
+    const Reconstruction tri = Reconstruction::Trilinear, cubic = Reconstruction::Cubic;
+    const schtest::ScopedOptions o([](RuntimeOptions& opt) { opt.Bricks = -1; });
+    CHECK(!PackInBricks(small, cl, tri) && !PackInBricks(small, Backend::Auto, Reconstruction::Auto),
+      "64^3 packs linear by default");
+    CHECK(PackInBricks(large, cl, tri) && PackInBricks(large, cl, cubic) && PackInBricks(large, cpu, tri) &&
+        PackInBricks(large, Backend::Auto, Reconstruction::Auto),
+      "512^3 packs in bricks by default");
+    CHECK(!PackInBricks(large, cpu, cubic), "512^3 on the CPU with Cubic: linear by default");
+    const int thin[3] = { 2000, 2000, 9 }, flat[3] = { 1000, 1000, 30 };
+    CHECK(!PackInBricks(thin, cl, tri) && PackInBricks(flat, cl, tri),
+      "not where the padding adds more than a tenth (9 planes in 12; 30 in 32 is in bricks)");
+    CHECK(!BricksFit(wide) && !PackInBricks(wide, cl, tri), "a layer of bricks past 2^31 floats: linear");
+    const schtest::ScopedOptions one([](RuntimeOptions& opt) { opt.Bricks = 1; });
+    CHECK(PackInBricks(small, cl, tri) && PackInBricks(dims, cpu, cubic),
+      "SCHLIEREN_FIELD_BRICKS=1: bricks everywhere");
+    CHECK(!PackInBricks(wide, cl, tri), "SCHLIEREN_FIELD_BRICKS=1: never where they do not fit");
+    const schtest::ScopedOptions zero([](RuntimeOptions& opt) { opt.Bricks = 0; });
+    CHECK(!PackInBricks(large, cl, tri), "SCHLIEREN_FIELD_BRICKS=0: linear everywhere");
+  }
+  // A TraceSession packs in bricks in place: the same images, bit for bit, on both backends, both
+  // reconstructions, an oblique view framed to the silhouette (which reads the packed gradient)
+  {
+    VolumePiece piece;
+    for (int a = 0; a < 3; ++a)
+    {
+      piece.WholeExtent[2 * a] = piece.Extent[2 * a] = 0;
+      piece.WholeExtent[2 * a + 1] = piece.Extent[2 * a + 1] = dims[a] - 1;
+      piece.Origin[a] = v.Origin[a];
+      piece.Spacing[a] = v.Spacing[a];
+    }
+    piece.Version = 1;
+    piece.Load = [&n1](PieceValues& values) {
+      values.NMinus1 = n1;
+      return std::string();
+    };
+    for (Backend b : { Backend::CPU, Backend::OpenCL })
+      for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
+      {
+        if (b == Backend::OpenCL && !haveCL)
+          continue;
+        TraceSettings s;
+        s.Device = b;
+        s.Recon = rc;
+        s.Method = Integrator::RK4;
+        s.StepSize = 0.7;
+        s.Resolution[0] = s.Resolution[1] = 40;
+        s.Passes = 2;
+        s.CutoffScale = 1000;
+        s.Frame = Framing::Silhouette;
+        for (int a = 0; a < 3; ++a)
+          s.ViewDirection[a] = views[1][a];
+        SessionImage out[2];
+        for (int layout = 0; layout < 2; ++layout)
+        {
+          const schtest::ScopedOptions o([&](RuntimeOptions& opt) { opt.Bricks = layout; });
+          TraceSession session;
+          session.Update(SerialParallel(), piece, s, out[layout]);
+          CHECK(session.KeptVolume().FieldInBricks == (layout == 1), "the session's field layout");
+        }
+        const std::string what = std::string("a session, ") + (b == Backend::CPU ? "CPU, " : "OpenCL, ") +
+          ReconstructionName(rc);
+        CHECK(out[0].HasImage && out[1].HasImage && out[0].Result.Samples > 0 &&
+            out[0].Result.Samples == out[1].Result.Samples,
+          what + ": the samples differ");
+        CHECK(std::equal(out[0].Traced.FilmExtent, out[0].Traced.FilmExtent + 4, out[1].Traced.FilmExtent),
+          what + ": the silhouette's frame differs");
+        CHECK(SameBits(out[0].Result.Intensity, out[1].Result.Intensity),
+          what + ": the image differs with the field packed in bricks");
+        ++compared;
+      }
+  }
   // a stamped volume: its bricks are kept for the next trace (and let go of at exit, above)
   {
     v.Stamp = NewVolumeStamp();
-    const schtest::ScopedOptions o([](RuntimeOptions& opt) { opt.Bricks = true; });
+    const schtest::ScopedOptions o([](RuntimeOptions& opt) { opt.Bricks = 1; });
     TraceSettings s;
     s.Device = Backend::CPU;
     s.Resolution[0] = s.Resolution[1] = 16;
@@ -142,6 +254,6 @@ int main()
     CHECK(Trace(v, s).Samples > 0, "a stamped volume traced in bricks");
   }
   std::printf("%d settings compared, linear against bricks\n", compared);
-  CHECK(compared == (haveCL ? 16 : 12), "every setting compared");
+  CHECK(compared == (haveCL ? 20 : 14), "every setting compared");
   return schtest::Finish();
 }

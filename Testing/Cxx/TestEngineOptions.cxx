@@ -66,6 +66,13 @@ int main()
   ExpectError("SCHLIEREN_CL_LOCKSTEP=yes", [] { RuntimeOptions::FromEnvironment(); },
     { "SCHLIEREN_CL_LOCKSTEP", "0 or 1" });
   unsetenv("SCHLIEREN_CL_LOCKSTEP");
+  CHECK(RuntimeOptions::FromEnvironment().LocalSize == -1, "SCHLIEREN_CL_LOCAL_SIZE unset: -1 (16 on CPUs)");
+  setenv("SCHLIEREN_CL_LOCAL_SIZE", "0", 1);
+  CHECK(RuntimeOptions::FromEnvironment().LocalSize == 0, "SCHLIEREN_CL_LOCAL_SIZE=0 is read");
+  setenv("SCHLIEREN_CL_LOCAL_SIZE", "-16", 1);
+  ExpectError("SCHLIEREN_CL_LOCAL_SIZE=-16", [] { RuntimeOptions::FromEnvironment(); },
+    { "SCHLIEREN_CL_LOCAL_SIZE", "'-16'", "whole number" });
+  unsetenv("SCHLIEREN_CL_LOCAL_SIZE");
   CHECK(RuntimeOptions::FromEnvironment().MpiTimeout == 120.0, "SCHLIEREN_MPI_TIMEOUT: 120 s unset");
   setenv("SCHLIEREN_MPI_TIMEOUT", "2.5", 1);
   CHECK(RuntimeOptions::FromEnvironment().MpiTimeout == 2.5, "SCHLIEREN_MPI_TIMEOUT=2.5 is read");

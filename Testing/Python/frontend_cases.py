@@ -138,7 +138,8 @@ PYTHON_PLUGIN_LEFT_OUT = {
 #                              fraction and by species, IdealGas by gas and by species, Ciddor with
 #                              constants and with arrays, Automatic: a temperature and a pressure,
 #                              an array named n)
-#   Symmetry None              symmetry_none_curvilinear, unstructured_disk (and every model_*)
+#   Symmetry None              symmetry_none_curvilinear, unstructured_disk, image_blocks (and
+#                              every model_*)
 #   Symmetry Planar            symmetry_planar (2D image), symmetry_planar_unstructured,
 #                              openfoam_forward_step (rhoCentralFoam's forwardStep at t = 2)
 #   Symmetry Axisymmetric      symmetry_axisymmetric (a cone's r-z half plane about X)
@@ -146,6 +147,7 @@ PYTHON_PLUGIN_LEFT_OUT = {
 #                              (LadenburgJet60psi's converged solution)
 #   bodies from holes          body_from_holes (vtkValidPointMask's enclosed hole), body_solid_array
 #   bodies from walls          body_from_walls (the blunt fin, BodyWallFaces 0 1 1 0 1 1)
+#   the Body input (port 1)    body_surface (a sphere's surface on the Gaussian scene: INDEX_BODY)
 #   SamplingBounds             sampling_bounds (a box past a curvilinear grid), body_from_walls
 #   AmbientMode                sampling_bounds (Extend), ambient_median, ambient_value,
 #                              bluntfin_ambient_value
@@ -153,16 +155,13 @@ PYTHON_PLUGIN_LEFT_OUT = {
 #   not here yet               bodies beside walls from the velocity (branch
 #                              issue47-index-engine): one line below when it comes
 INDEX_OPTIONAL_INPUTS = {"bluntfin", "disk", "ladenburg", "forward_step"}  # left out where absent
-# Symmetry on OpenFOAM's hexahedra one cell thick: each front end samples the mesh where the engine
-# says with VTK's own vtkCompositeDataProbeFilter and vtkStaticCellLocator (the symmetric path's one
-# VTK step), and PyPI's vtk 9.7.2 finds other cells there than ParaView 5.11's VTK 9.2 (forward
-# step: valid_point_fraction 0.8268 against 0.8245; values differ): bit for bit on VTK 9.2 (pvpython,
-# pip 9.2.6), said but not failed on a newer pip VTK until the symmetric sampling is the engine's
-# cell sampler (schlieren_sample_cells), as Symmetry None's already is. Measured: on 9.7.2 the
-# forward step's n - 1 differs at 606 of 9216 points, by up to 1.5e-6 (n - 1 at most 4.0e-6); the
-# probe with ComputeToleranceOff and Tolerance 1e-12 gives 9.2's values bit for bit on 9.7.2 (on
-# 9.2 it changes none of the matrix's symmetric cases), but an absolute tolerance is no general fix
-INDEX_VTK92_ONLY = {"openfoam_wedge", "openfoam_forward_step"}
+# Symmetry (OpenFOAM's hexahedra one cell thick, the 2D images and meshes): both front ends sample
+# the input at the points the engine's plan gives with the engine's cell sampler (its points mode,
+# schlieren_sample_cells_at), so every case is bit for bit in every VTK (with VTK's probe, as
+# before, pip vtk 9.7.2 found other cells than 9.2: the forward step's n - 1 differed at 606 of
+# 9216 points, by up to 1.5e-6; Testing/Benchmarks/symmetric_sampling.py compares the two samplers)
+# The cases with a Body input (port 1): the case's name and the input's (a closed surface)
+INDEX_BODY = {"body_surface": "sphere"}
 _GD = dict(Model="GladstoneDale", InputArray="density")
 _BOX = [-1.2, 1.2, -1.1, 1.1, -0.9, 0.9]  # past the sheared grid's bounds on every side
 _FIN = dict(Model="GladstoneDale", Gas="Air", DensityReference=1.2, InputArray="Density",
@@ -208,6 +207,7 @@ INDEX = {
     "body_from_holes": ("masked", dict(Model="Passthrough", InputArray="n_minus_1",
                                        BodyFromGrid=1), {}),
     "body_solid_array": ("fields", dict(_GD, SolidArray="blk"), {}),
+    "body_surface": ("scene", dict(Model="Passthrough", InputArray="n_minus_1"), {}),
     "sampling_bounds": ("sheared", dict(_GD, AutomaticDimension=28, UseSamplingBounds=1,
                                         SamplingBounds=_BOX), {}),
     "ambient_median": ("sheared", dict(_GD, AutomaticDimension=28, UseSamplingBounds=1,
@@ -229,6 +229,9 @@ INDEX = {
     # as .vthb, read back with every level): both front ends read it into the engine's AMR
     # sampler (schlieren_amr_sample), the grid at the finest level's spacing (47 x 39 x 31 points)
     "amr": ("amr", dict(_GD, AutomaticDimension=32), {}),
+    # blocks of images (the scene's halves in x, sharing a plane): the engine's cell sampler on
+    # their voxels in both front ends (the probe's before)
+    "image_blocks": ("image_blocks", dict(_GD, AutomaticDimension=28), {}),
     "unstructured_disk": ("disk", dict(Model="GladstoneDale", InputArray="Temp",
                                        DensityReference=1e-3, AutomaticDimension=28),
                           dict(ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1])),

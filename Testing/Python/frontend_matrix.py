@@ -46,7 +46,7 @@ ARRAY_PROPERTIES = {"InputArray", "TemperatureArray", "PressureArray", "MixtureF
 
 # the file each input is written to (its extension: the data set's XML format)
 EXTENSIONS = {"vtkImageData": ".vti", "vtkStructuredGrid": ".vts", "vtkUnstructuredGrid": ".vtu",
-              "vtkMultiBlockDataSet": ".vtm", "vtkOverlappingAMR": ".vthb"}
+              "vtkMultiBlockDataSet": ".vtm", "vtkOverlappingAMR": ".vthb", "vtkPolyData": ".vtp"}
 
 
 def proxy_properties(props):
@@ -162,10 +162,45 @@ def _amr(scene):
     return amr
 
 
+def _image_blocks(scene):
+    """The scene's density as a multiblock of two images, its halves in x sharing the plane
+    between them (blocks of images: the engine's cell sampler on their voxels, as meshes)."""
+    from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet
+    dims = scene.GetDimensions()
+    rho = numpy_support.vtk_to_numpy(scene.GetPointData().GetArray("density")).reshape(
+        dims[2], dims[1], dims[0])
+    out, half = vtkMultiBlockDataSet(), dims[0] // 2
+    for b, (i0, i1) in enumerate(((0, half), (half, dims[0] - 1))):
+        g = vtkImageData()
+        g.SetExtent(i0, i1, 0, dims[1] - 1, 0, dims[2] - 1)
+        g.SetSpacing(scene.GetSpacing())
+        g.SetOrigin(scene.GetOrigin())
+        _add(g, "density", np.ascontiguousarray(rho[:, :, i0:i1 + 1]).ravel())
+        out.SetBlock(b, g)
+    return out
+
+
+def sphere(center, radius, res=24):
+    """A closed sphere surface (a Body input: frontend_cases.INDEX_BODY's, and
+    test_python_plugin_parity.py's section 12)."""
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    s = vtkSphereSource()
+    s.SetCenter(center)
+    s.SetRadius(radius)
+    s.SetThetaResolution(res)
+    s.SetPhiResolution(res)
+    s.Update()
+    out = vtkPolyData()
+    out.DeepCopy(s.GetOutput())
+    return out
+
+
 def make_inputs(scene, readers):
     """The matrix's inputs: {name: data set}. `scene` is a RefractiveScene's output (a Gaussian
     sphere on 24 x 20 x 16 points, n_minus_1 and density); `readers` {name: data object} the real
-    data read where present (bluntfin: the PLOT3D multiblock; disk: disk_out_ref.ex2)."""
+    data read where present (bluntfin: the PLOT3D multiblock; disk: disk_out_ref.ex2). Also the
+    Body input of frontend_cases.INDEX_BODY (sphere: a closed vtkPolyData)."""
     out = dict(readers)
     fields = _image((14, 11, 9), (0.01, 0.012, 0.015), (-0.07, -0.06, -0.06))
     count = fields.GetNumberOfPoints()
@@ -199,18 +234,23 @@ def make_inputs(scene, readers):
     out["cone"] = _unstructured(_plane((0, 20, 0, 10, 0, 0), True))
     out["wedge"] = _wedge()
     out["amr"] = _amr(scene)
+    out["image_blocks"] = _image_blocks(scene)
+    b = scene.GetBounds()  # the Body: about the scene's centre, 0.3 its shortest side
+    out["sphere"] = sphere([(b[2 * a] + b[2 * a + 1]) / 2 for a in range(3)],
+                           0.3 * min(b[2 * a + 1] - b[2 * a] for a in range(3)))
     return out
 
 
 def write_input(folder, name, data):
     from vtkmodules.vtkIOXML import (vtkXMLImageDataWriter, vtkXMLMultiBlockDataWriter,
-                                     vtkXMLStructuredGridWriter, vtkXMLUniformGridAMRWriter,
-                                     vtkXMLUnstructuredGridWriter)
+                                     vtkXMLPolyDataWriter, vtkXMLStructuredGridWriter,
+                                     vtkXMLUniformGridAMRWriter, vtkXMLUnstructuredGridWriter)
     kind = data.GetClassName()
     writer = {"vtkImageData": vtkXMLImageDataWriter, "vtkStructuredGrid": vtkXMLStructuredGridWriter,
               "vtkUnstructuredGrid": vtkXMLUnstructuredGridWriter,
               "vtkMultiBlockDataSet": vtkXMLMultiBlockDataWriter,
-              "vtkOverlappingAMR": vtkXMLUniformGridAMRWriter}[kind]()
+              "vtkOverlappingAMR": vtkXMLUniformGridAMRWriter,
+              "vtkPolyData": vtkXMLPolyDataWriter}[kind]()
     writer.SetInputData(data)
     writer.SetFileName(os.path.join(folder, "input_" + name + EXTENSIONS[kind]))
     if not writer.Write():

@@ -146,7 +146,7 @@ for name, case, time_value in (("ladenburg", "LadenburgJet60psi", 0.0),
     reader.UpdatePipeline(time_value)
     readers[name] = servermanager.Fetch(reader)
     Delete(reader)
-used = {which for which, _, _ in cases.INDEX.values()}
+used = {which for which, _, _ in cases.INDEX.values()} | set(cases.INDEX_BODY.values())
 for name, data in matrix.make_inputs(servermanager.Fetch(scene), readers).items():
     if name in used:  # (an input no case reads yet is not written: the AMR one)
         matrix.write_input(args.output, name, data)
@@ -157,14 +157,19 @@ for case, (which, props, image_props) in cases.INDEX.items():
         continue
     source = PVTrivialProducer()
     source.GetClientSideObject().SetOutput(data)
-    index = ns["RefractiveIndex"](Input=source, **matrix.proxy_properties(props))
+    body = {}
+    if case in cases.INDEX_BODY:  # the Body input (port 1)
+        body["Body"] = PVTrivialProducer()
+        body["Body"].GetClientSideObject().SetOutput(
+            matrix.read_input(args.output, cases.INDEX_BODY[case]))
+    index = ns["RefractiveIndex"](Input=source, **body, **matrix.proxy_properties(props))
     image = ns["SchlierenImage"](Input=index, **dict(cases.INDEX_IMAGE, **image_props))
     image.UpdatePipeline()
     got = matrix.record(servermanager.Fetch(index), servermanager.Fetch(image))
     np.savez(os.path.join(args.output, "index_%s.npz" % case), **got)
     print("frontend_reference: %s: %d index arrays, film %s" % (
         case, len(json.loads(str(got["index_arrays"]))), got["film_geometry"][:6].tolist()))
-    for proxy in (image, index, source):
+    for proxy in [image, index, source] + list(body.values()):
         Delete(proxy)
 print("frontend_reference: RefractiveIndex's matrix in %.1f s" % (time.time() - matrix_started))
 with open(os.path.join(args.output, "opencl.txt"), "w") as f:

@@ -279,6 +279,48 @@ for what, kw, kinds, words in (
     check(isinstance(err, kinds) and all(w in str(err) for w in words),
           "sample_cells with %s: %s naming it" % (what, kinds.__name__), str(err)[:160])
 
+# ---- its points mode (schlieren_sample_cells_at, RefractiveIndex's symmetric sampling) ----
+# known answers: a linear field is interpolated exactly by every cell type; the first cell (the
+# lowest id) holds a point on a shared face; a point off a face's plane or outside, or not finite,
+# is in no cell
+at = np.array([[0.25, 0.5, 0.75], [1.0, 1.0, 1.0], [1.5, 0.5, 0.5], [np.nan, 0.5, 0.5]])
+found, values = e.sample_cells_at(cube, at, point_arrays=[("f", cube @ [1.0, 2.0, 4.0])],
+                                  cell_arrays=[("id", np.array([7], np.int32))], **hexa)
+check(found.tolist() == [1, 1, 0, 0] and np.allclose(values["f"][:2], [4.25, 7.0], rtol=0,
+                                                     atol=1e-12) and
+      values["id"].tolist() == [7, 7, 0, 0] and values["f"][2:].tolist() == [0, 0],
+      "sample_cells_at: a unit hexahedron: inside and on a corner found, f = x + 2y + 4z exact; "
+      "outside and NaN not found (left 0)", str((found, values)))
+# a 2D mesh in the plane z = 0.3: a pixel (x 0..1), a quad (x 1..2, sheared), two triangles
+# (x 2..3); g = 3x - y + 0.5 at its nodes
+flat = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [2, 0], [2.2, 1], [3, 0], [3, 1]], float)
+nodes = np.column_stack([flat, np.full(len(flat), 0.3)])
+faces = dict(cell_types=[8, 9, 5, 5], offsets=[0, 4, 8, 11, 14],
+             connectivity=[0, 1, 2, 3, 1, 4, 5, 3, 4, 6, 7, 4, 7, 5])
+g = nodes @ [3.0, -1.0, 0.0] + 0.5
+probe = np.array([[0.3, 0.6, 0.3], [1.5, 0.4, 0.3], [2.7, 0.2, 0.3], [2.5, 0.5, 0.3],
+                  [1.0, 0.5, 0.3], [0.3, 0.6, 0.3 + 1e-3], [3.5, 0.5, 0.3]])
+found, values = e.sample_cells_at(nodes, probe, point_arrays=[("g", g)],
+                                  cell_arrays=[("cell", np.arange(4, dtype=np.int64))], **faces)
+exact = probe @ [3.0, -1.0, 0.0] + 0.5
+check(found.tolist() == [1, 1, 1, 1, 1, 0, 0] and
+      np.allclose(values["g"][:5], exact[:5], rtol=0, atol=1e-12) and
+      values["cell"][:5].tolist() == [0, 1, 2, 2, 0],
+      "sample_cells_at: a pixel, a sheared quad and two triangles in z = 0.3: g = 3x - y + 0.5 "
+      "exact in each, a point on the pixel-quad edge and on the triangles' diagonal the lower "
+      "cell's, 1e-3 off the plane and past the mesh not found",
+      str((found.tolist(), values["g"].tolist(), values["cell"].tolist())))
+for what, kw, kinds, words in (
+        ("at shaped (4, 2)", dict(at=np.zeros((4, 2))), e.ArgumentError, ["at", "(n, 3)"]),
+        ("a polygon", dict(cell_types=[8, 9, 7, 5]), e.EngineError, ["polygon", "Triangulate"]),
+        ("an output for 3 of 7 points", dict(found=np.zeros(3, np.uint8)), e.EngineError,
+         ["found", "7 points to sample"])):
+    args = dict(points=nodes, at=probe, point_arrays=[("g", g)], **faces)
+    args.update(kw)
+    err = raises(lambda: e.sample_cells_at(**args), Exception)
+    check(isinstance(err, kinds) and all(w in str(err) for w in words),
+          "sample_cells_at with %s: %s naming it" % (what, kinds.__name__), str(err)[:160])
+
 # ---- python -m schlieren: one line, exit code 2 ----
 env = dict(os.environ)
 for args in (["--resolution", "0"], ["--resolution", "1"], ["--resolution", "-5"],

@@ -582,20 +582,9 @@ for case, props in MODELS.items():
 # of two shells, ORed) give solid, n - 1, grad n and field data bit for bit; a sphere beside the
 # grid the same note; an open surface (a plane) and one without polygons refused word for word
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData  # noqa: E402
-from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource  # noqa: E402
+from vtkmodules.vtkFiltersSources import vtkPlaneSource  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
-
-
-def sphere(center, radius, res=24):
-    s = vtkSphereSource()
-    s.SetCenter(center)
-    s.SetRadius(radius)
-    s.SetThetaResolution(res)
-    s.SetPhiResolution(res)
-    s.Update()
-    out = vtkPolyData()
-    out.DeepCopy(s.GetOutput())
-    return out
+from frontend_matrix import sphere  # noqa: E402  (one definition, the matrix's Body too)
 
 
 def field_data(d):
@@ -903,7 +892,9 @@ else:
             print("SKIP %s: the reference run left it out (no %s data)" % (case, which))
             continue
         source = producer(matrix.read_input(args.reference, which))
-        index = ns["RefractiveIndex"](Input=source, **matrix.proxy_properties(props))
+        body = {} if case not in cases.INDEX_BODY else {  # the Body input (port 1)
+            "Body": producer(matrix.read_input(args.reference, cases.INDEX_BODY[case]))}
+        index = ns["RefractiveIndex"](Input=source, **body, **matrix.proxy_properties(props))
         image = ns["SchlierenImage"](Input=index, **dict(cases.INDEX_IMAGE, **image_props))
         with Captured() as c:
             image.UpdatePipeline()
@@ -913,7 +904,7 @@ else:
               "%s (Python plugin): no error%s" % (case, "" if "ERR" not in c.text else
                                                    ": " + c.text.strip()[-200:]))
         compared += 1
-        for proxy in (image, index, source):
+        for proxy in [image, index, source] + list(body.values()):
             Delete(proxy)
     matrix.known_differences()
     print("RefractiveIndex's matrix in %.1f s" % (time.time() - matrix_started))
