@@ -44,9 +44,20 @@ void Append(std::vector<char>& bytes, const T& value)
   std::memcpy(bytes.data() + at, &value, sizeof(T));
 }
 
-template <typename T>
-std::vector<T> Unpack(const std::vector<char>& bytes)
+/** What rank r sent (`what`) that cannot be, `why`: a broken transport (what arrives from the
+ * other ranks is checked before it is used: sizes, counts, boxes, indices, finite numbers). */
+[[noreturn]] void Impossible(int r, const std::string& what, const std::string& why)
 {
+  throw Error("Distributed tracing: rank " + std::to_string(r) + " sent " + what +
+    " that cannot be: " + why + " (the ranks' messages were changed on the way: a broken transport).");
+}
+
+template <typename T>
+std::vector<T> Unpack(const std::vector<char>& bytes, int from, const char* what)
+{
+  if (bytes.size() % sizeof(T))
+    Impossible(from, what, std::to_string(bytes.size()) + " bytes, not a whole number of " +
+      std::to_string(sizeof(T)) + "-byte entries");
   std::vector<T> out(bytes.size() / sizeof(T));
   if (!out.empty())
     std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
@@ -82,6 +93,24 @@ std::string BoxText(const int b[6])
   s << "[" << b[0] << ", " << b[1] << "] x [" << b[2] << ", " << b[3] << "] x [" << b[4] << ", "
     << b[5] << "]";
   return s.str();
+}
+
+/** The point box rank r sent (`what`) at the start of `m`, checked: `m` holds it (and `rest`
+ * bytes more where rest >= 0) and it is empty or inside `within`. */
+std::array<int, 6> BoxFrom(const std::vector<char>& m, int r, const char* what, const int within[6],
+  long long rest = 0)
+{
+  std::array<int, 6> b{};
+  if (m.size() < sizeof(b) || (rest >= 0 && m.size() != sizeof(b) + static_cast<std::size_t>(rest)))
+    Impossible(r, what, std::to_string(m.size()) + " bytes where " +
+      (rest >= 0 ? std::to_string(sizeof(b) + rest) : "at least " + std::to_string(sizeof(b))) +
+      " are expected");
+  std::memcpy(b.data(), m.data(), sizeof(b));
+  if (!Empty(b.data()))
+    for (int d = 0; d < 3; ++d)
+      if (b[2 * d] < within[2 * d] || b[2 * d + 1] > within[2 * d + 1])
+        Impossible(r, what, "the box " + BoxText(b.data()) + " leaves " + BoxText(within));
+  return b;
 }
 
 /**
@@ -140,8 +169,11 @@ bool HeldValues(const int e[6], const T* values, const int held[6],
   {
     if (in[r].empty())
       continue;
-    int part[6];
-    std::memcpy(part, in[r].data(), 6 * sizeof(int));
+    const std::array<int, 6> box = BoxFrom(in[r], r, "the points of this rank's ghosts", held, -1);
+    const int* part = box.data();
+    if (Empty(part) || in[r].size() != 6 * sizeof(int) + BoxPoints(part) * sizeof(T))
+      Impossible(r, "the points of this rank's ghosts", std::to_string(in[r].size()) +
+        " bytes for the box " + BoxText(part));
     const char* v = in[r].data() + 6 * sizeof(int);
     const int len = part[1] - part[0] + 1;
     for (int z = part[4]; z <= part[5]; ++z)
@@ -241,8 +273,10 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
     Append(mine, e[k]);
   std::vector<std::vector<char>> all = parallel.AllGather(mine);
   std::vector<std::array<int, 6>> extents(ranks);
+  const int wholeBox[6] = { 0, this->WholeDimensions[0] - 1, 0, this->WholeDimensions[1] - 1, 0,
+    this->WholeDimensions[2] - 1 };
   for (int r = 0; r < ranks; ++r)
-    std::memcpy(extents[r].data(), all[r].data(), 6 * sizeof(int));
+    extents[r] = BoxFrom(all[r], r, "its piece's extent", wholeBox);
   this->AllOwned.assign(ranks, { 0, 0, 0, 0, 0, 0 });
   double ownedCells = 0;
   for (int r = 0; r < ranks; ++r)
@@ -327,7 +361,7 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
   all = parallel.AllGather(heldBox);
   std::vector<std::array<int, 6>> heldAll(ranks);
   for (int r = 0; r < ranks; ++r)
-    std::memcpy(heldAll[r].data(), all[r].data(), 6 * sizeof(int));
+    heldAll[r] = BoxFrom(all[r], r, "the box of points it holds", wholeBox);
   all.clear();
   const std::size_t heldPoints = BoxPoints(held);
   std::vector<float> n1;
@@ -867,9 +901,16 @@ std::vector<float> TraceStraightSums(const DistributedVolume& dv, const sch_para
   if (everywhere || me == 0)
   {
     std::vector<StraightRun> all;
-    for (const std::vector<char>& m : got)
+    for (int from = 0; from < static_cast<int>(got.size()); ++from)
     {
-      std::vector<StraightRun> r = Unpack<StraightRun>(m);
+      std::vector<StraightRun> r = Unpack<StraightRun>(got[from], from, "runs of its rays");
+      // (numbers that are not finite are the march's to flag, as on one rank)
+      for (const StraightRun& u : r)
+        if (u.Index >= count || u.Last > 1 || u.Steps > static_cast<std::uint32_t>(P.maxSteps))
+          Impossible(from, "a run of a ray",
+            "ray " + std::to_string(u.Index) + " of " + std::to_string(count) + ", last " +
+              std::to_string(u.Last) + ", steps " + std::to_string(u.Steps) + " of at most " +
+              std::to_string(P.maxSteps));
       all.insert(all.end(), r.begin(), r.end());
     }
     std::sort(all.begin(), all.end(), [](const StraightRun& a, const StraightRun& b) {
@@ -1030,16 +1071,43 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
     handed += sent;
     rounds += 1;
     // every rank learns whether any ray is still in flight or to start (the same answer everywhere)
-    const double inFlight = parallel.Sum(sent + double(fresh.size() - next));
+    const double own = sent + double(fresh.size() - next);
+    const double inFlight = parallel.Sum(own);
+    // counts summed: a whole number, at least this rank's (else the loop would never end)
+    if (!(inFlight >= own && inFlight == std::floor(inFlight) && inFlight <= 1e15))
+    {
+      std::ostringstream msg;
+      msg << "Distributed tracing: the ranks' sum of the rays in flight came back as " << inFlight
+          << " where this rank alone has " << own
+          << ": that cannot be (the ranks' messages were changed on the way: a broken transport).";
+      throw Error(msg.str());
+    }
     if (inFlight == 0)
     {
       exchanging += SecondsSince(tb);
       break;
     }
     std::vector<std::vector<char>> in = parallel.Exchange(out);
-    for (const std::vector<char>& m : in)
+    for (int from = 0; from < ranks; ++from)
     {
-      std::vector<RayState> got = Unpack<RayState>(m);
+      std::vector<RayState> got = Unpack<RayState>(in[from], from, "rays handed on");
+      for (const RayState& st : got)
+      {
+        // a ray handed on is one of the pass's, in a cell of this rank, within its steps (numbers
+        // that are not finite are the march's to flag, as on one rank)
+        if (st.index >= count)
+          Impossible(from, "a ray handed on", "ray " + std::to_string(st.index) + " of " +
+            std::to_string(count));
+        int c[3];
+        CellOf(P, st.w.x, c);
+        if (!dv.OwnsCell(c[0], c[1], c[2]) || st.w.it < 0 || st.w.it > P.maxSteps || st.w.level < 0 ||
+          st.w.level > 255)
+          Impossible(from, "a ray handed on", "ray " + std::to_string(st.index) + " at cell (" +
+            std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
+            ") of rank " + std::to_string(dv.OwnerOfCell(c[0], c[1], c[2])) + ", not this rank (" +
+            std::to_string(me) + "), or its steps " + std::to_string(st.w.it) + " or octree level " +
+            std::to_string(st.w.level) + " out of range");
+      }
       live.insert(live.end(), got.begin(), got.end());
     }
     exchanging += SecondsSince(tb);
@@ -1068,9 +1136,14 @@ std::vector<float> TraceAll(const DistributedVolume& dv, const sch_params& P, st
   {
     records.assign(count * SCH_RECORD, 0.0f);
     std::size_t n = 0;
-    for (const std::vector<char>& m : got)
-      for (const Finished& f : Unpack<Finished>(m))
+    std::vector<unsigned char> seen(count, 0);
+    for (int from = 0; from < static_cast<int>(got.size()); ++from)
+      for (const Finished& f : Unpack<Finished>(got[from], from, "records of finished rays"))
       {
+        if (f.Index >= count || seen[f.Index])
+          Impossible(from, "the record of a finished ray", "ray " + std::to_string(f.Index) +
+            (f.Index >= count ? " of " + std::to_string(count) : ", whose record came already"));
+        seen[f.Index] = 1;
         std::memcpy(records.data() + static_cast<std::size_t>(f.Index) * SCH_RECORD, f.Rec,
           sizeof(f.Rec));
         ++n;

@@ -16,6 +16,18 @@ namespace schlieren
 
 // ------------------------------------------------------------------ conveniences
 
+namespace
+{
+/** A reduction whose result cannot come from this rank's value `mine` (a broken transport: the
+ * engine checks what comes back before it relies on it). */
+[[noreturn]] void ImpossibleReduction(const Parallel& p, const char* op, double mine, double got)
+{
+  throw Error("Parallel: the ranks' " + std::string(op) + " came back as " + std::to_string(got) +
+    " on rank " + std::to_string(p.Rank()) + " of " + std::to_string(p.Size()) + ", whose own value is " +
+    std::to_string(mine) + ": that cannot be (the ranks' messages were changed on the way: a broken transport).");
+}
+}
+
 double Parallel::Sum(double v)
 {
   this->Reduce(&v, 1, ReduceOp::Sum);
@@ -24,19 +36,29 @@ double Parallel::Sum(double v)
 
 double Parallel::Max(double v)
 {
+  const double mine = v;
   this->Reduce(&v, 1, ReduceOp::Max);
+  if (v < mine)
+    ImpossibleReduction(*this, "maximum", mine, v);
   return v;
 }
 
 double Parallel::Min(double v)
 {
+  const double mine = v;
   this->Reduce(&v, 1, ReduceOp::Min);
+  if (v > mine)
+    ImpossibleReduction(*this, "minimum", mine, v);
   return v;
 }
 
 bool Parallel::AllOk(bool ok)
 {
-  return this->Min(ok ? 1.0 : 0.0) > 0.5;
+  // the minimum of 0s and 1s: 0 or 1, and 0 where this rank's is
+  const double all = this->Min(ok ? 1.0 : 0.0);
+  if (!(all == 0.0 || all == 1.0))
+    ImpossibleReduction(*this, "minimum of 0s and 1s", ok ? 1.0 : 0.0, all);
+  return all > 0.5;
 }
 
 std::vector<std::string> Parallel::AllGatherStrings(const std::string& mine)
@@ -62,6 +84,8 @@ std::string Parallel::Failure(const std::string& mine)
     return mine;
   // the lowest failing rank's message, so that every rank reports the same
   const double first = this->Min(mine.empty() ? static_cast<double>(this->Size()) : this->Rank());
+  if (!(first >= 0 && first <= this->Size() && first == static_cast<int>(first)))
+    ImpossibleReduction(*this, "lowest failing rank", mine.empty() ? this->Size() : this->Rank(), first);
   if (first >= this->Size())
     return std::string();
   const int root = static_cast<int>(first);

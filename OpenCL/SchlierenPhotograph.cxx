@@ -978,6 +978,33 @@ PhotographResult RegisterPhotograph(const int film_size[2], const double film_or
       std::max(R.Film.Maps[coarse].W, R.Film.Maps[coarse].H))));
     std::vector<double> scales, angles;
     const double r = 0.5 * std::hypot(R.Film.Maps[coarse].W, R.Film.Maps[coarse].H);
+    {
+      // the coarse search's work, bounded before it starts: scales x angles x shifts correlations
+      // of the coarse level's pixels, three times (the photograph and two scrambled copies). Its
+      // grids grow with the coarse level's size r (scales and angles as r, shifts as r^2), and
+      // the pyramid stops coarsening where the film's shorter side would go under 12 pixels: a
+      // 300 x 16 film searched at 300 x 16 took 4.4e12 pixel visits (hours; the C
+      // interface's fuzz, seeds 3 and 11). Square films up to 16384 a side with the default
+      // settings stay under 3e9.
+      const double w = R.Film.Maps[coarse].W, h = R.Film.Maps[coarse].H;
+      const double nScales = (pairs || settings.PhotoPixelSize > 0 || !similarity) ? 1 :
+        std::floor((std::log(settings.ScaleRange[1]) - std::log(settings.ScaleRange[0]) + 1e-9) * r) + 1;
+      const double nAngles = (pairs || !rotate) ? 1 : std::floor(2 * settings.MaxRotation * Pi / 180 * r + 1e-9) + 1;
+      const double work = 3 * nScales * nAngles * (2.0 * maxShift + 1) * (2.0 * maxShift + 1) * w * h;
+      const double bound = 2e10;
+      if (!(work <= bound))
+      {
+        std::ostringstream msg;
+        msg.precision(3);
+        msg << "SchlierenPhotograph: the registration's coarse search would visit " << work
+            << " pixels (" << nScales << " scales x " << nAngles << " rotations x " << (2 * maxShift + 1)
+            << "^2 shifts on the film's coarse level of " << w << " x " << h << " pixels, three times), over the "
+            << bound << " taken: give PointPairs or PhotoPixelSize, narrow ScaleRange, MaxRotation or MaxShift"
+            << (std::max(FW, FH) > 4 * std::min(FW, FH) ? ", or a film less elongated (the pyramid stops "
+                "coarsening where its shorter side would go under 12 pixels)" : "") << ".";
+        throw Error(msg.str());
+      }
+    }
     if (pairs || settings.PhotoPixelSize > 0 || !similarity)
       scales.push_back(start.S);
     else

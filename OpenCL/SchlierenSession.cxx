@@ -229,6 +229,12 @@ const float* AssembleVolume(Parallel& parallel, const VolumePiece& piece, PieceV
   for (const std::vector<char>& m : all)
   {
     int ext[6];
+    // (a message too short for its head cannot be: the pieces are then taken as not fitting)
+    if (m.size() < 6 * sizeof(int) + 1)
+    {
+      fits = false;
+      break;
+    }
     std::memcpy(ext, m.data(), 6 * sizeof(int));
     const std::size_t n = ExtentPoints(ext);
     const bool withSolid = m[6 * sizeof(int)] != 0;

@@ -74,7 +74,10 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     p.NMinus1 = values.NMinus1Data();
     // its levels up to the highest any piece was built for (as the whole volume's), held up to
     // the highest the volume reaches, with the ghosts that level's blocks need
-    const int maxLevel = static_cast<int>(parallel.Max(present ? double(values.MaxLevel) : -1.0));
+    // (held in int range before the cast: OctreeLevelReached takes 10 at most; a broken
+    // transport's noise is no level)
+    const double maxLevelAll = parallel.Max(present ? double(values.MaxLevel) : -1.0);
+    const int maxLevel = maxLevelAll >= -1 && maxLevelAll <= 64 ? static_cast<int>(maxLevelAll) : 64;
     const int level = octree ? OctreeLevelReached(p, tol, maxLevel, parallel) : 0;
     const int ghost = GhostPointsFor(settings, level);
     // the pieces, ghosts and octree: a failure on any rank throws on every rank

@@ -835,6 +835,35 @@ int main(void)
       "index_field: the void on the grid's face beside a wall rim is a body, with the C++ filter's "
       "note (%s; %s)", rep ? rep : "", schlieren_last_error());
   }
+  {
+    /* the registration's coarse search bounded (the fuzz's seeds 3 and 11 hung here): a 300 x 16
+     * film cannot be coarsened (its shorter side), so the search at its full size would visit
+     * 4.4e12 pixels; a ScaleRange from 1e-300 asks for 15700 scales. Both end at once, refused
+     * with what to change. */
+    const int fs[2] = { 300, 16 }, ps[2] = { 24, 24 }, fs2[2] = { 64, 64 };
+    const double fo[2] = { 0, 0 };
+    float* film = malloc(300 * 16 * sizeof(float));
+    float* photo = malloc(24 * 24 * sizeof(float));
+    float* reg = malloc(300 * 16 * sizeof(float));
+    int q;
+    for (q = 0; q < 300 * 16; ++q)
+      film[q] = (float)((q * 7919) % 101) / 100.0f;
+    for (q = 0; q < 24 * 24; ++q)
+      photo[q] = (float)((q * 104729) % 97) / 96.0f;
+    CHECK(schlieren_photograph("", fs, fo, 0.01, film, 300 * 16, ps, photo, 24 * 24, 300 * 16, reg,
+            NULL, NULL, NULL, NULL, NULL) != 0 &&
+          strstr(schlieren_last_error(), "coarse search would visit") != NULL &&
+          strstr(schlieren_last_error(), "less elongated") != NULL,
+      "photograph: a 300 x 16 film's search is refused, not run for hours: %s", schlieren_last_error());
+    CHECK(schlieren_photograph("ScaleRange=1e-300 100", fs2, fo, 0.01, film, 64 * 64, ps, photo, 24 * 24,
+            64 * 64, reg, NULL, NULL, NULL, NULL, NULL) != 0 &&
+          strstr(schlieren_last_error(), "narrow ScaleRange") != NULL &&
+          strstr(schlieren_last_error(), "less elongated") == NULL,
+      "photograph: a ScaleRange from 1e-300 is refused: %s", schlieren_last_error());
+    free(film);
+    free(photo);
+    free(reg);
+  }
   ranks_test();
   printf("%d failures\n", failures);
   return failures ? 1 : 0;

@@ -1651,7 +1651,15 @@ static void random_sampling_case(int k)
 /* ---- the ranks' callbacks as a caller may get them wrong (schlieren_parallel): a size or rank
  * that cannot be, callbacks missing, failing, writing noise, or a consistent fake of identical
  * ranks (every rank's bytes this rank's); every call ends with a clear error or a result ---- */
-static int p_mode; /* 0 fake ranks, 1 failing, 2 noise */
+static int p_mode; /* 0 fake ranks, 1 failing, 2 noise, 3 the fake with one byte of each message
+                     changed (the lengths and the reductions right): what the engine decodes */
+/* mode 3: one random byte of a message changed; the 8-byte lengths the engine exchanges first
+ * stay, so that the changed contents reach the engine's decoding */
+static void p_corrupt(char* bytes, int64_t count)
+{
+  if (count != 8 && count > 0)
+    bytes[count < 0x7fffffff ? below((int)count) : 0] = (char)below(256);
+}
 static int p_reduce(const double* in, double* out, int64_t count, int op, void* user)
 {
   int64_t i;
@@ -1660,7 +1668,7 @@ static int p_reduce(const double* in, double* out, int64_t count, int op, void* 
   if (p_mode == 1)
     return below(3) + 1;
   for (i = 0; i < count; ++i)
-    out[i] = p_mode == 0 ? in[i] : (below(4) ? (uniform() - 0.5) * 1e6 : NAN);
+    out[i] = p_mode == 0 || p_mode == 3 ? in[i] : (below(4) ? (uniform() - 0.5) * 1e6 : NAN);
   return 0;
 }
 static int p_broadcast(char* bytes, int64_t count, int root, void* user)
@@ -1673,6 +1681,8 @@ static int p_broadcast(char* bytes, int64_t count, int root, void* user)
   if (p_mode == 2)
     for (i = 0; i < count; ++i)
       bytes[i] = (char)below(256);
+  if (p_mode == 3)
+    p_corrupt(bytes, count);
   return 0;
 }
 static int p_allgather(const char* mine, int64_t count, char* all, void* user)
@@ -1683,8 +1693,12 @@ static int p_allgather(const char* mine, int64_t count, char* all, void* user)
   if (p_mode == 1)
     return 7;
   for (r = 0; r < p->size; ++r)
+  {
     for (i = 0; i < count; ++i)
-      all[r * count + i] = p_mode == 0 ? mine[i] : (char)below(256);
+      all[r * count + i] = p_mode == 0 || p_mode == 3 ? mine[i] : (char)below(256);
+    if (p_mode == 3)
+      p_corrupt(all + r * count, count);
+  }
   return 0;
 }
 
@@ -1709,9 +1723,9 @@ static void random_parallel_case(int k)
   p.broadcast = below(8) ? p_broadcast : NULL;
   p.allgather = below(8) ? p_allgather : NULL;
   p_mode = below(3);
-  if (which == 1 && p_mode == 2)
-    p_mode = below(2); /* noise in the messages' contents (not their lengths) is no caller's
-                          mistake but a broken transport: the traced pieces trust what arrives */
+  if (which == 1 && p_mode == 2 && below(2))
+    p_mode = 3; /* (the draw that once kept noise out of the trace cases, when the pieces trusted
+                   what arrived: the same draws keep a seed's later cases those of earlier runs) */
   for (i = 0; i < 120; ++i)
     n1[i] = 1e-4f * (float)uniform();
   snprintf(what, sizeof(what), "parallel case %d: call %d, size %d, rank %d, mode %d", k, which,
