@@ -143,17 +143,6 @@ bool AnyRank(schlieren::Parallel& parallel, bool value)
   return parallel.Max(value ? 1.0 : 0.0) > 0.5;
 }
 
-/** Names of ids and index arrays that VTK readers and filters add. */
-bool IsIdName(const std::string& name)
-{
-  static const char* const ids[] = { "objectid", "globalelementid", "globalnodeid", "pedigreeid",
-    "pedigreeids", "vtkoriginalcellids", "vtkoriginalpointids", "vtkoriginalindices",
-    "vtkcompositeindex", "vtkblockcolors", "blockid", "processid", "vtkprocessid", "element_id",
-    "node_id", "cellid", "pointid", "ids" };
-  const std::string l = schlieren::LowerCase(name);
-  return std::find(std::begin(ids), std::end(ids), l) != std::end(ids);
-}
-
 /** Bounds of the points of a data set or of the leaves of a composite one; false if none. */
 bool BoundsOf(vtkDataObject* data, double bounds[6])
 {
@@ -286,51 +275,41 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
   vtkDataObject* input, const std::vector<std::string>& names, std::vector<std::string>& notes,
   std::string& error)
 {
-  std::vector<std::string> fromCells;
-  for (const std::string& name : names)
+  // where each array the model reads is, over every rank's piece; the rule (ids and integer
+  // arrays refused, which are cell data only, the note) is the engine's, the Python filter's too
+  std::vector<schlieren::ArrayPlace> read(names.size());
+  for (std::size_t i = 0; i < names.size(); ++i)
   {
-    bool inPoints = false, inCells = false, integral = false;
-    std::string type;
+    schlieren::ArrayPlace& place = read[i];
+    place.Name = names[i];
     ForEachLeaf(input, [&](vtkDataSet* ds) {
       for (int cells = 0; cells < 2; ++cells)
       {
         vtkFieldData* fd = cells ? static_cast<vtkFieldData*>(ds->GetCellData())
                                  : static_cast<vtkFieldData*>(ds->GetPointData());
-        vtkAbstractArray* a = fd->GetAbstractArray(name.c_str());
+        vtkAbstractArray* a = fd->GetAbstractArray(place.Name.c_str());
         if (!a)
         {
           continue;
         }
-        (cells ? inCells : inPoints) = true;
-        auto* da = vtkDataArray::SafeDownCast(a);
-        if (!da || da->GetDataType() == VTK_BIT ||
-          (da->GetDataType() != VTK_FLOAT && da->GetDataType() != VTK_DOUBLE))
+        (cells ? place.InCells : place.InPoints) = true;
+        if (a->GetDataType() != VTK_FLOAT && a->GetDataType() != VTK_DOUBLE)
         {
-          integral = true;
-          type = a->GetDataTypeAsString();
+          place.Integral = true;
+          place.Type = a->GetDataTypeAsString();
         }
       }
     });
-    integral = AnyRank(parallel, integral);
-    inPoints = AnyRank(parallel, inPoints);
-    inCells = AnyRank(parallel, inCells);
-    if (integral || ((inPoints || inCells) && IsIdName(name)))
-    {
-      std::ostringstream m;
-      m << "The array '" << name << "' is "
-        << (integral ? "of an integer type" + (type.empty() ? std::string() : " (" + type + ")")
-                     : std::string("named as an id"))
-        << ": ids and index arrays (ObjectId, GlobalElementId, vtkOriginalCellIds, ...) are not "
-           "a density, temperature, pressure or index field. Choose the field itself (Model "
-           "and its arrays); arrays present: "
-        << schlieren::NameList(GlobalArrayNames(parallel, input)) << ".";
-      error = m.str();
-      return nullptr;
-    }
-    if (inCells && !inPoints)
-    {
-      fromCells.push_back(name);
-    }
+    place.Integral = AnyRank(parallel, place.Integral);
+    place.InPoints = AnyRank(parallel, place.InPoints);
+    place.InCells = AnyRank(parallel, place.InCells);
+  }
+  std::vector<std::string> fromCells;
+  std::string note;
+  error = schlieren::CellOnlyFields(read, GlobalArrayNames(parallel, input), fromCells, note);
+  if (!error.empty())
+  {
+    return nullptr;
   }
   if (fromCells.empty() || vtkOverlappingAMR::SafeDownCast(input))
   {
@@ -354,10 +333,7 @@ vtkSmartPointer<vtkDataObject> vtkRefractiveIndex::PointFields(schlieren::Parall
   vtkSmartPointer<vtkDataObject> copy;
   copy.TakeReference(converted->NewInstance());
   copy->ShallowCopy(converted);
-  notes.push_back("RefractiveIndex: the cell array" + std::string(fromCells.size() > 1 ? "s " : " ") +
-    schlieren::NameList(fromCells) +
-    " converted to point data (each point the mean of the cells around it, "
-    "vtkCellDataToPointData), since n - 1 and its gradient are fields on points.");
+  notes.push_back(note);
   return copy;
 }
 

@@ -2274,6 +2274,69 @@ int schlieren_index_choices(
   });
 }
 
+int schlieren_cell_fields(
+  const char* settings, const char* arrays, const char* present, const char** report)
+{
+  if (report)
+    *report = "";
+  return Guard(LastError, [&] {
+    const char* f = "schlieren_cell_fields";
+    static const char* const roles[] = { "InputArray", "TemperatureArray", "PressureArray",
+      "MixtureFractionArray", "Species1Array", "Species2Array", "Species3Array", "Species4Array",
+      "HumidityArray", "CO2Array" };
+    std::vector<std::string> known = ModelSettingNames();
+    known.insert(known.end(), std::begin(roles), std::end(roles));
+    known.emplace_back("HumidityFromArray");
+    known.emplace_back("CO2FromArray");
+    const std::map<std::string, std::string> p = SettingLines(f, settings, known);
+    auto flag = [&](const char* name) {
+      const auto it = p.find(name);
+      return it != p.end() && NumbersOf(name, it->second, 1)[0] != 0.0;
+    };
+    std::vector<std::string> names;
+    for (int r : schlieren::NeededRoles(ModelOfSettings(p), flag("HumidityFromArray"),
+           flag("CO2FromArray")))
+    {
+      const auto it = p.find(roles[r]);
+      if (it != p.end() && !it->second.empty())
+        names.push_back(it->second);
+    }
+    std::vector<schlieren::ArrayPlace> read(names.size());
+    for (std::size_t i = 0; i < names.size(); ++i)
+      read[i].Name = names[i];
+    for (const std::string& line : Lines(arrays))
+    {
+      const std::size_t a = line.find('\t'), b = line.find('\t', a == std::string::npos ? a : a + 1);
+      const std::string where = a == std::string::npos ? std::string() :
+        line.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+      if (where != "point" && where != "cell")
+        throw schlieren::Error(std::string(f) + ": the arrays line '" + line +
+          "' is not \"name<TAB>point|cell<TAB>type\".");
+      const std::string name = line.substr(0, a);
+      const std::string type = b == std::string::npos ? std::string() : line.substr(b + 1);
+      for (schlieren::ArrayPlace& r : read)
+      {
+        if (r.Name != name)
+          continue;
+        (where == "cell" ? r.InCells : r.InPoints) = true;
+        if (type != "float" && type != "double")
+        {
+          r.Integral = true;
+          r.Type = type;
+        }
+      }
+    }
+    std::vector<std::string> fromCells;
+    std::string note;
+    const std::string problem = schlieren::CellOnlyFields(read, Lines(present), fromCells, note);
+    if (!problem.empty())
+      throw schlieren::Error(problem);
+    Returned = "{\"from_cells\": " + JsonList(fromCells) + ", \"note\": " + Json(note) + "}";
+    if (report)
+      *report = Returned.c_str();
+  });
+}
+
 int schlieren_wall_faces(int64_t faces, const int64_t* offsets, int64_t offsets_count,
   const int64_t* connectivity, int64_t connectivity_count, int64_t points, const double* normals,
   int64_t normals_count, const double* velocity, int64_t velocity_count, double largest_speed,

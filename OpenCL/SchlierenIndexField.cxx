@@ -588,6 +588,59 @@ std::string NameList(const std::vector<std::string>& names)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/** Names of ids and index arrays that VTK readers and filters add. */
+bool IsIdName(const std::string& name)
+{
+  static const char* const ids[] = { "objectid", "globalelementid", "globalnodeid", "pedigreeid",
+    "pedigreeids", "vtkoriginalcellids", "vtkoriginalpointids", "vtkoriginalindices",
+    "vtkcompositeindex", "vtkblockcolors", "blockid", "processid", "vtkprocessid", "element_id",
+    "node_id", "cellid", "pointid", "ids" };
+  const std::string l = LowerCase(name);
+  return std::find(std::begin(ids), std::end(ids), l) != std::end(ids);
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+std::string CellOnlyFields(const std::vector<ArrayPlace>& read,
+  const std::vector<std::string>& present, std::vector<std::string>& fromCells,
+  std::string& note)
+{
+  fromCells.clear();
+  note.clear();
+  for (const ArrayPlace& a : read)
+  {
+    if (a.Integral || ((a.InPoints || a.InCells) && IsIdName(a.Name)))
+    {
+      std::ostringstream m;
+      m << "The array '" << a.Name << "' is "
+        << (a.Integral ? "of an integer type" + (a.Type.empty() ? std::string() : " (" + a.Type + ")")
+                       : std::string("named as an id"))
+        << ": ids and index arrays (ObjectId, GlobalElementId, vtkOriginalCellIds, ...) are not "
+           "a density, temperature, pressure or index field. Choose the field itself (Model "
+           "and its arrays); arrays present: "
+        << NameList(present) << ".";
+      fromCells.clear();
+      return m.str();
+    }
+    if (a.InCells && !a.InPoints &&
+      std::find(fromCells.begin(), fromCells.end(), a.Name) == fromCells.end())
+    {
+      fromCells.push_back(a.Name);
+    }
+  }
+  if (!fromCells.empty())
+  {
+    note = "RefractiveIndex: the cell array" + std::string(fromCells.size() > 1 ? "s " : " ") +
+      NameList(fromCells) +
+      " converted to point data (each point the mean of the cells around it, "
+      "vtkCellDataToPointData), since n - 1 and its gradient are fields on points.";
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
 std::string LowerCase(std::string s)
 {
   std::transform(s.begin(), s.end(), s.begin(),

@@ -191,6 +191,26 @@ struct IndexChoice
  */
 std::string ResolveIndexChoices(const IndexChoiceInput& in, IndexChoice& out);
 
+/** Where a front end found an array the model reads (over every rank's piece under MPI). */
+struct ArrayPlace
+{
+  std::string Name;
+  bool InPoints = false, InCells = false;
+  bool Integral = false; ///< not float or double somewhere (an integer, bit or string array)
+  std::string Type;      ///< that type as VTK names it ("int", "bit", "string"; "" not known)
+};
+
+/**
+ * RefractiveIndex's rule for the arrays the model reads (`read`, in the model's order): an id or
+ * an array of an integer type is refused (returns the message; `present`, the input's array
+ * names, listed in it); those found as cell data only go to `fromCells`, which the front end
+ * converts with vtkCellDataToPointData (ProcessAllArrays off, only those arrays, PassCellData
+ * off; not for an AMR, whose cells are sampled as they are), and `note` (else "") says so.
+ */
+std::string CellOnlyFields(const std::vector<ArrayPlace>& read,
+  const std::vector<std::string>& present, std::vector<std::string>& fromCells,
+  std::string& note);
+
 /** "a, b, c", or "none" for no names (the filter's messages list the arrays present so). */
 std::string NameList(const std::vector<std::string>& names);
 

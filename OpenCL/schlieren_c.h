@@ -287,6 +287,22 @@ SCHLIEREN_C_API int schlieren_wall_faces(int64_t faces, const int64_t* offsets,
 SCHLIEREN_C_API int schlieren_index_choices(
   const char* settings, const char* present, const char* fallback_input, const char** report);
 /**
+ * RefractiveIndex's rule for input arrays given as cell data only (the engine's CellOnlyFields,
+ * which the C++ filter calls): `settings` the model as resolved (schlieren_index_field's
+ * settings of the model: Model, not Automatic; the arrays per role, InputArray .. CO2Array;
+ * HumidityFromArray, CO2FromArray) says which arrays the model reads; `arrays` where the input
+ * holds each array, one line a place it is found (a leaf's point or cell data): "name<TAB>point"
+ * or "name<TAB>cell", then "<TAB>type", the type as VTK names it ("float", "double", "int",
+ * "bit", "string"...; any but float and double is an integer type); `present` the input's array
+ * names, one a line (for the message). Non-zero: an array the model reads is an id or of an
+ * integer type (schlieren_last_error(), the C++ filter's message). `report` (may be NULL; owned
+ * by the library until this thread's next call) gets JSON {"from_cells": [names], "note":
+ * text or ""}: the arrays to convert with vtkCellDataToPointData (ProcessAllArrays off, only
+ * those arrays, PassCellData off; not for an AMR) and the note that says so.
+ */
+SCHLIEREN_C_API int schlieren_cell_fields(
+  const char* settings, const char* arrays, const char* present, const char** report);
+/**
  * RefractiveIndex's work once the input is on a grid (the engine's ComputeIndexField, which the
  * C++ filter calls): the arrays the model reads chosen by name, the model, the points outside the
  * flow domain (AmbientMode), the checks of n, the gradient, the bodies (BodyFromGrid's enclosed

@@ -515,6 +515,22 @@ def index_choices(settings, present, fallback_input=""):
     return json.loads(_text(report.value))
 
 
+def cell_fields(settings, places, present):
+    """RefractiveIndex's rule for arrays given as cell data only (the C interface's
+    schlieren_cell_fields, the C++ filter's): `settings` the model as resolved (Model, the arrays
+    per role, HumidityFromArray, CO2FromArray), `places` (name, "point" or "cell", VTK type name)
+    for each place an array is found, `present` the input's array names. Returns {"from_cells":
+    [names to convert with vtkCellDataToPointData], "note": text or ""}; an id or an array of an
+    integer type read by the model raises EngineError with the C++ filter's message."""
+    f = _sig("schlieren_cell_fields", ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
+             ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p))
+    text = "\n".join("%s=%s" % (key, _value_text(x)) for key, x in settings.items()).encode()
+    lines = "\n".join("%s\t%s\t%s" % tuple(p) for p in places).encode()
+    report = ctypes.c_char_p()
+    _check(f(text, lines, "\n".join(present).encode(), ctypes.byref(report)))
+    return json.loads(_text(report.value))
+
+
 def wall_faces(offsets, connectivity, points, normals, velocity, largest_speed, ignore_axis=-1,
                velocity_name="U"):
     """The kinds of a mesh's boundary faces from the velocity beside them (the C interface's

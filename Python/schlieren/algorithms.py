@@ -393,6 +393,48 @@ def _leaves(data):
     return leaves
 
 
+def _input_arrays(data):
+    """The input's array names (point arrays, then cell arrays, each once; the C++ filter's
+    ArrayNames) and where each is found: (name, "point" or "cell", VTK type name) a leaf."""
+    names, places = [], []
+    for cells in (0, 1):
+        for leaf in _leaves(data):
+            fd = leaf.GetCellData() if cells else leaf.GetPointData()
+            for i in range(fd.GetNumberOfArrays()):
+                a, n = fd.GetAbstractArray(i), fd.GetArrayName(i)
+                if a is None or not n or n == "vtkValidPointMask":
+                    continue
+                if n not in names:
+                    names.append(n)
+                places.append("%s\t%s\t%s" % (n, "cell" if cells else "point",
+                                                a.GetDataTypeAsString()))
+    return names, places
+
+
+def _point_fields(data, chosen, names, places):
+    """The C++ RefractiveIndex's PointFields: the arrays the model reads (`chosen`: the model as
+    resolved, schlieren_cell_fields' settings) where the input has them as cell data only, turned
+    into point data by vtkCellDataToPointData with the C++ filter's settings (only those arrays,
+    cell data not passed; an AMR kept as it is); ids and integer arrays refused (EngineError),
+    the rule and the note the engine's. `names`, `places`: _input_arrays' (every rank's under
+    MPI). Returns (the data to sample, the note or "")."""
+    found = _engine.cell_fields(chosen, [p.split("\t") for p in places], names)
+    if not found["from_cells"] or isinstance(data, vtkOverlappingAMR):
+        return data, ""  # (an AMR's cell data is sampled as cells, as the C++ filter's)
+    from vtkmodules.vtkFiltersCore import vtkCellDataToPointData
+    to_points = vtkCellDataToPointData()
+    to_points.SetInputData(data)
+    to_points.SetProcessAllArrays(False)
+    for name in found["from_cells"]:
+        to_points.AddCellDataArray(name)
+    to_points.PassCellDataOff()
+    to_points.Update()
+    converted = to_points.GetOutputDataObject(0)
+    copy = converted.NewInstance()
+    copy.ShallowCopy(converted)
+    return copy, found["note"]
+
+
 def _leaf_bounds(data):
     """The bounds of the leaves that have points (None: no points), as the C++ filter's."""
     from vtkmodules.vtkCommonDataModel import vtkBoundingBox
@@ -1415,6 +1457,39 @@ class RefractiveIndex(_Properties):
             _add(image, name, values)
         return image, (None if valid.all() else valid), plan
 
+    def _point_fields(self, data, ranks):
+        """The input with the arrays the model reads that it has as cell data only turned into
+        point data, and the note (_point_fields): the model and arrays resolved on the input's
+        names as the C++ filter's ResolveChoices (a choice that fails here fails again below,
+        on the sampled grid, with its message)."""
+        names, places = _input_arrays(data)
+        fallback = ""
+        for leaf in _leaves(data):
+            pd = leaf.GetPointData()
+            a = pd.GetScalars()
+            for i in range(pd.GetNumberOfArrays()):
+                if a is None and pd.GetArrayName(i) and pd.GetArrayName(i) != "vtkValidPointMask":
+                    a = pd.GetArray(i)
+            if a is not None and a.GetName():
+                fallback = a.GetName()
+                break
+        if ranks is not None:  # every rank's (collective)
+            names = _names_everywhere(ranks, names)
+            places = _names_everywhere(ranks, places)
+            fallback = ([n for n in _names_everywhere(ranks, [fallback]) if n] or [""])[0]
+        settings = {k: self._values[k] for k in self._model_settings}
+        settings.update({k: self._values[k] or "" for k in self._role_properties})
+        settings["Model"] = self.Model
+        try:
+            choice = _engine.index_choices(settings, names, fallback)
+        except EngineError:
+            return data, ""
+        settings.update(choice["arrays"])
+        settings.update(Model=choice["model"], PassthroughHoldsN=int(choice["holds_n"]),
+                        HumidityFromArray=int(self.HumidityFromArray),
+                        CO2FromArray=int(self.CO2FromArray))
+        return _point_fields(data, settings, names, places)
+
     def RequestData(self, request, inInfo, outInfo):
         data = vtkDataObject.GetData(inInfo[0])
         out = vtkImageData.GetData(outInfo)
@@ -1462,6 +1537,7 @@ class RefractiveIndex(_Properties):
                 self._time_cache.served += 1
                 self._time_cache.fields(out, True)
                 return 1
+            data, cell_note = self._point_fields(data, None if pieces else ranks)
             symmetric = self.Symmetry != "None"
             resampled = symmetric or not isinstance(data, vtkImageData)
             notes, amr_numbers, plan = [], [], None
@@ -1529,7 +1605,8 @@ class RefractiveIndex(_Properties):
             settings["Model"] = self.Model
             choice = _engine.index_choices(settings, names + [c for c in cells if c not in names],
                                            fallback)
-            for note in choice["notes"]:
+            cell_notes = [cell_note] if cell_note else []
+            for note in choice["notes"] + cell_notes:
                 self._note(note)
             # the engine's work on the grid (schlieren_index_field, the C++ filter's): the
             # arrays by role, the model, the points outside the flow, the gradient, the bodies,
@@ -1581,12 +1658,13 @@ class RefractiveIndex(_Properties):
                         return self._fail(agreed)
                     n1, grad, solid, report = _engine.index_field_piece(
                         settings, grid_ext, out_ext, whole, image.GetSpacing(), arrays, valid,
-                        active, cells, read_notes + choice["notes"] + notes, ranks=ranks,
+                        active, cells, read_notes + choice["notes"] + cell_notes + notes,
+                        ranks=ranks,
                         body=body)
                 else:
                     n1, grad, solid, report = _engine.index_field(
                         settings, dims, image.GetSpacing(), arrays, valid, active, cells,
-                        read_notes + choice["notes"] + notes, rim, body)
+                        read_notes + choice["notes"] + cell_notes + notes, rim, body)
             except EngineError as e:
                 report = getattr(e, "report", {})
                 if report.get("model_done"):

@@ -791,6 +791,34 @@ int main(void)
       "index_choices: nothing chosen or named, the fallback (the active scalars) (%s)", rep ? rep : "");
   }
   {
+    /* the arrays the model reads given as cell data only, ids and integer arrays
+       (schlieren_cell_fields, the C++ filter's PointFields) */
+    const char* rep = NULL;
+    CHECK(schlieren_cell_fields("Model=IdealGas\nTemperatureArray=T\nPressureArray=p",
+            "T\tcell\tfloat\np\tpoint\tdouble\np\tcell\tdouble\nrho\tcell\tfloat", "T\np\nrho",
+            &rep) == 0 && strcmp(rep, "{\"from_cells\": [\"T\"], \"note\": \"RefractiveIndex: "
+            "the cell array T converted to point data (each point the mean of the cells around "
+            "it, vtkCellDataToPointData), since n - 1 and its gradient are fields on points.\"}") == 0,
+      "cell_fields: T only in the cells converted, p (in points too) and rho (not read) not (%s; %s)",
+      rep ? rep : "", schlieren_last_error());
+    CHECK(schlieren_cell_fields("Model=GladstoneDale\nInputArray=rho", "rho\tpoint\tfloat",
+            "rho", &rep) == 0 && strcmp(rep, "{\"from_cells\": [], \"note\": \"\"}") == 0,
+      "cell_fields: point data, nothing to convert (%s)", rep ? rep : "");
+    CHECK(schlieren_cell_fields("Model=GladstoneDale\nInputArray=blk", "blk\tcell\tint",
+            "blk\nrho", &rep) != 0 &&
+            strstr(schlieren_last_error(), "The array 'blk' is of an integer type (int): ids and "
+              "index arrays") == schlieren_last_error() &&
+            strstr(schlieren_last_error(), "arrays present: blk, rho.") != NULL,
+      "cell_fields: an int array refused: %s", schlieren_last_error());
+    CHECK(schlieren_cell_fields("Model=GladstoneDale\nInputArray=ObjectId",
+            "ObjectId\tcell\tdouble", "ObjectId", &rep) != 0 &&
+            strstr(schlieren_last_error(), "'ObjectId' is named as an id") != NULL,
+      "cell_fields: an id's name refused: %s", schlieren_last_error());
+    CHECK(schlieren_cell_fields("Model=GladstoneDale\nInputArray=rho", "rho cell float", "rho",
+            &rep) != 0 && strstr(schlieren_last_error(), "is not \"name<TAB>point|cell<TAB>type\"") != NULL,
+      "cell_fields: a malformed line refused: %s", schlieren_last_error());
+  }
+  {
     /* the voids beside walls: the faces' kinds (schlieren_wall_faces) and a rim handed to
        schlieren_index_field */
     const int64_t offsets[6] = { 0, 3, 6, 9, 11, 14 };

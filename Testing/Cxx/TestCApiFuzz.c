@@ -80,6 +80,7 @@ enum
   F_WALL_FACES,
   F_SAMPLING,
   F_PARALLEL,
+  F_CELL_FIELDS,
   F_COUNT
 };
 static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "session_get",
@@ -89,7 +90,7 @@ static const char* fnames[F_COUNT] = { "session_set_volume", "session_set", "ses
   "wedge_warning", "check_property", "photograph", "version/properties/device",
   "two threads, one session", "sample_cells", "amr_overlap/grid/sample", "time_cache_find/insert",
   "index_field", "index_choices", "wall_faces",
-  "sampling_grid and rules", "parallel (callbacks)" };
+  "sampling_grid and rules", "parallel (callbacks)", "cell_fields" };
 static long calls[F_COUNT], done[F_COUNT], refused[F_COUNT], unclear[F_COUNT];
 
 /* rc 0: done; else the message must say something */
@@ -1537,6 +1538,26 @@ static void random_index_choices_case(int k)
   outcome(F_INDEX_CHOICES, rc, schlieren_last_error(), what);
 }
 
+/* schlieren_cell_fields with random settings, places and names */
+static void random_cell_fields_case(int k)
+{
+  static const char* settings[] = { "", "Model=GladstoneDale\nInputArray=rho",
+    "Model=IdealGas\nTemperatureArray=T\nPressureArray=p", "Model=Automatic", "Model=Ciddor\n"
+    "TemperatureArray=T\nPressureArray=p\nHumidityFromArray=1\nHumidityArray=rh",
+    "InputArray=ObjectId", NULL, "Model", "Gas=Unobtainium", "Model=Passthrough\nInputArray=\t" };
+  static const char* arrays[] = { "", NULL, "rho\tcell\tfloat", "rho\tpoint\tdouble\nrho\tcell",
+    "T\tcell\tint\np\tcell\tdouble", "rho", "rho\t\t", "ObjectId\tcell\tdouble\n\t\t\n",
+    "rh\tcell\tbit\nT\tpoint\tfloat\np\tpoint\tfloat", "\tcell\tfloat" };
+  static const char* present[] = { NULL, "", "rho\nT\np", "\n\n" };
+  char what[64];
+  const char* report = NULL;
+  int rc;
+  snprintf(what, sizeof(what), "cell_fields case %d", k);
+  rc = schlieren_cell_fields(settings[below(10)], arrays[below(10)], present[below(4)],
+    below(2) ? &report : NULL);
+  outcome(F_CELL_FIELDS, rc, schlieren_last_error(), what);
+}
+
 /* schlieren_wall_faces with random faces, lengths and indices */
 static void random_wall_faces_case(int k)
 {
@@ -1848,6 +1869,8 @@ int main(int argc, char** argv)
     random_sampling_case((int)k);
   for (k = 0; k < cases / 8; ++k)
     random_parallel_case((int)k);
+  for (k = 0; k < cases / 8; ++k)
+    random_cell_fields_case((int)k);
   for (i = 0; i < POOL; ++i)
     schlieren_session_free(pool[i]);
   printf("\n%-28s %8s %8s %8s %8s\n", "function", "calls", "done", "refused", "unclear");

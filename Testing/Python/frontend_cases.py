@@ -152,6 +152,8 @@ PYTHON_PLUGIN_LEFT_OUT = {
 #   AmbientMode                sampling_bounds (Extend), ambient_median, ambient_value,
 #                              bluntfin_ambient_value
 #   AMR                        amr (two levels of a vtkOverlappingAMR, .vthb)
+#   cell data only             cell_data_only (a tetrahedralized Wavelet's cells: converted to
+#                              point data, noted)
 #   not here yet               bodies beside walls from the velocity (branch
 #                              issue47-index-engine): one line below when it comes
 INDEX_OPTIONAL_INPUTS = {"bluntfin", "disk", "ladenburg", "forward_step"}  # left out where absent
@@ -232,6 +234,10 @@ INDEX = {
     # blocks of images (the scene's halves in x, sharing a plane): the engine's cell sampler on
     # their voxels in both front ends (the probe's before)
     "image_blocks": ("image_blocks", dict(_GD, AutomaticDimension=28), {}),
+    # a field given as cell data only (a tetrahedralized Wavelet, density = RTData / 200 on its
+    # cells): both front ends turn the arrays the model reads into point data first
+    # (vtkCellDataToPointData, the engine's rule CellOnlyFields) and note it in index_notes
+    "cell_data_only": ("cells_only", dict(_GD, AutomaticDimension=20), {}),
     "unstructured_disk": ("disk", dict(Model="GladstoneDale", InputArray="Temp",
                                        DensityReference=1e-3, AutomaticDimension=28),
                           dict(ViewDirection=[1, 0, 0], ViewUp=[0, 0, 1])),

@@ -162,7 +162,7 @@ for case, (which, props, image_props) in cases.INDEX.items():
         body["Body"] = PVTrivialProducer()
         body["Body"].GetClientSideObject().SetOutput(
             matrix.read_input(args.output, cases.INDEX_BODY[case]))
-    index = ns["RefractiveIndex"](Input=source, **body, **matrix.proxy_properties(props))
+    index = ns["RefractiveIndex"](Input=source, **body, **matrix.proxy_properties(props, case))
     image = ns["SchlierenImage"](Input=index, **dict(cases.INDEX_IMAGE, **image_props))
     image.UpdatePipeline()
     got = matrix.record(servermanager.Fetch(index), servermanager.Fetch(image))

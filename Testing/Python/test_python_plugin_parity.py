@@ -894,7 +894,7 @@ else:
         source = producer(matrix.read_input(args.reference, which))
         body = {} if case not in cases.INDEX_BODY else {  # the Body input (port 1)
             "Body": producer(matrix.read_input(args.reference, cases.INDEX_BODY[case]))}
-        index = ns["RefractiveIndex"](Input=source, **body, **matrix.proxy_properties(props))
+        index = ns["RefractiveIndex"](Input=source, **body, **matrix.proxy_properties(props, case))
         image = ns["SchlierenImage"](Input=index, **dict(cases.INDEX_IMAGE, **image_props))
         with Captured() as c:
             image.UpdatePipeline()
