@@ -13,13 +13,13 @@ namespace schlieren
 
 // Whether each step asks for its next sample's lines (sch_prefetch_at; SCHLIEREN_PREFETCH 0 or 1
 // overrides). Where it paid in this machine's measurements (2 cores, PoCL and the CPU path;
-// docs/PERFORMANCE.md, "The prefetch"): a packed field of over 432 MiB (past 300^3 points: 512^3
-// moves 20-45 % faster, oblique views of 1-voxel steps 1.4-2.8x), or over 128 MiB seen obliquely,
-// no direction cosine of the beam over 0.9 (256^3 oblique moves with Cubic 1.2-1.9x). Not below: a
-// field within the caches' reach only pays the prefetch's instructions (64^3, 128^3: 30-38 %
-// slower), and at 256^3 along an axis the rays of a group read neighbouring lines that the
-// hardware fetches itself (20-25 % slower with it); nor for a tricubic trace along an axis of a
-// large field in its linear layout (512^3: 13-21 % slower; in bricks, the default there, it pays).
+// docs/PERFORMANCE.md, "The prefetch"): oblique views (no direction cosine of the beam over 0.9) of
+// a packed field over 128 MiB (about 200^3 points), and views along an axis of a field over 432 MiB
+// (past 300^3) in bricks. 512^3 in bricks: moves 20-45 % faster, oblique views at 1-voxel steps
+// 1.1-2.3x; 256^3 oblique moves with Cubic 1.2-1.9x. Not elsewhere: a field within the caches'
+// reach only pays the prefetch's instructions (64^3, 128^3: 30-38 % slower), and along an axis of
+// a linear field the rays of a group read neighbouring lines that the hardware fetches itself
+// (512^3, a 512^2 film: 24 % slower with it; 256^3: 20-25 %).
 bool PrefetchPays(const sch_params& P)
 {
   const int asked = GetRuntimeOptions().Prefetch;
@@ -28,9 +28,9 @@ bool PrefetchPays(const sch_params& P)
   const double bytes = 16.0 * P.nx * double(P.ny) * P.nz;
   const bool axis = std::max({ std::fabs(P.dx), std::fabs(P.dy), std::fabs(P.dz) }) > 0.9f;
   const bool linear = P.fieldShift == 31;
-  if (bytes > 432.0 * (1 << 20))
-    return !(axis && linear && P.recon == SCH_CUBIC);
-  return bytes > 128.0 * (1 << 20) && !axis;
+  if (bytes <= 128.0 * (1 << 20))
+    return false;
+  return !axis || (!linear && bytes > 432.0 * (1 << 20));
 }
 
 sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGeometry& f)
