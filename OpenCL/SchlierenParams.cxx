@@ -15,8 +15,8 @@ namespace schlieren
 // overrides). Where it paid in this machine's measurements (2 cores, PoCL and the CPU path;
 // docs/PERFORMANCE.md, "The prefetch"): oblique views (no direction cosine of the beam over 0.9) of
 // a packed field over 128 MiB (about 200^3 points), and views along an axis of a field over 432 MiB
-// (past 300^3) in bricks. 512^3 in bricks: moves 20-45 % faster, oblique views at 1-voxel steps
-// 1.1-2.3x; 256^3 oblique moves with Cubic 1.2-1.9x. Not elsewhere: a field within the caches'
+// (past 300^3) in bricks. 512^3 in bricks: moves in 10-45 % less time, oblique views at 1-voxel steps
+// 1.1-2.8x; 256^3 oblique moves with Cubic 1.3-1.9x. Not elsewhere: a field within the caches'
 // reach only pays the prefetch's instructions (64^3, 128^3: 30-38 % slower), and along an axis of
 // a linear field the rays of a group read neighbouring lines that the hardware fetches itself
 // (512^3, a 512^2 film: 24 % slower with it; 256^3: 20-25 %).
