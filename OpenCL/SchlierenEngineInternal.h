@@ -196,6 +196,9 @@ void FilterSums(FilmSums& f, const TraceSettings& s);
 /** The kernels' parameters for a trace of `volume` with settings `s` onto film `f`; throws Error on
  * settings the tracer cannot take. featureTol is left 0: see SetFeatureTolerance. */
 sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGeometry& f);
+/// Whether the steps of a trace with these parameters ask for their next sample's cache lines
+/// (sch_prefetch_at): SCHLIEREN_PREFETCH where set, else where it pays (large fields, oblique views)
+bool PrefetchPays(const sch_params& P);
 
 /** What identifies a stamped volume's contents (Volume::Stamp). */
 struct VolumeIdentity

@@ -176,6 +176,9 @@ public:
       opts << " -DSCH_RAYS_PER_ITEM=" << RaysPerItem;
     if (Slabs > 1)
       opts << " -DSCH_SLABS=" << Slabs;
+    // a CPU device's compiler (PoCL's clang) has the prefetch sch_prefetch_at asks with
+    if (RT.IsCPU)
+      opts << " -DSCH_PREFETCH";
     if (specialise)
       opts << " -DSCH_FIXED_INTEGRATOR=" << P.integrator << " -DSCH_FIXED_LEVELS=" << (P.useLevels ? 1 : 0)
            << " -DSCH_FIXED_KEEP=" << (P.keepInvariant ? 1 : 0) << " -DSCH_FIXED_RECON=" << P.recon

@@ -84,6 +84,8 @@ RuntimeOptions RuntimeOptions::FromEnvironment()
     o.LocalSize = static_cast<int>(Unsigned("SCHLIEREN_CL_LOCAL_SIZE", v, 4096));
   if (const char* v = Value("SCHLIEREN_FIELD_BRICKS"))
     o.Bricks = Flag("SCHLIEREN_FIELD_BRICKS", v) ? 1 : 0;
+  if (const char* v = Value("SCHLIEREN_PREFETCH"))
+    o.Prefetch = Flag("SCHLIEREN_PREFETCH", v) ? 1 : 0;
   if (const char* v = Value("SCHLIEREN_MEMORY_LIMIT"))
     o.MemoryLimit = Unsigned("SCHLIEREN_MEMORY_LIMIT", v, ~std::uint64_t(0));
   if (const char* v = Value("SCHLIEREN_MPI_TIMEOUT"))

@@ -51,6 +51,10 @@ struct RuntimeOptions
   /// copied into bricks beside it (16 more bytes a point, kept for the last stamped volume).
   /// 0: linear everywhere.
   int Bricks = -1;
+  /// SCHLIEREN_PREFETCH (0 or 1): each step of a ray asks the cache for the lines of its next
+  /// sample on the CPU path and on CPU OpenCL devices (1), or not (0); the images are the same,
+  /// bit for bit. -1 (unset): where it pays (PrefetchPays: large fields, oblique views)
+  int Prefetch = -1;
   /// SCHLIEREN_MEMORY_LIMIT: host bytes the engine assumes it may use at most; 0: what the
   /// machine has available
   std::uint64_t MemoryLimit = 0;

@@ -11,6 +11,28 @@
 namespace schlieren
 {
 
+// Whether each step asks for its next sample's lines (sch_prefetch_at; SCHLIEREN_PREFETCH 0 or 1
+// overrides). Where it paid in this machine's measurements (2 cores, PoCL and the CPU path;
+// docs/PERFORMANCE.md, "The prefetch"): oblique views (no direction cosine of the beam over 0.9) of
+// a packed field over 128 MiB (about 200^3 points), and views along an axis of a field over 432 MiB
+// (past 300^3) in bricks. 512^3 in bricks: moves in 10-45 % less time, oblique views at 1-voxel steps
+// 1.1-2.8x; 256^3 oblique moves with Cubic 1.3-1.9x. Not elsewhere: a field within the caches'
+// reach only pays the prefetch's instructions (64^3, 128^3: 30-38 % slower), and along an axis of
+// a linear field the rays of a group read neighbouring lines that the hardware fetches itself
+// (512^3, a 512^2 film: 24 % slower with it; 256^3: 20-25 %).
+bool PrefetchPays(const sch_params& P)
+{
+  const int asked = GetRuntimeOptions().Prefetch;
+  if (asked >= 0)
+    return asked == 1;
+  const double bytes = 16.0 * P.nx * double(P.ny) * P.nz;
+  const bool axis = std::max({ std::fabs(P.dx), std::fabs(P.dy), std::fabs(P.dz) }) > 0.9f;
+  const bool linear = P.fieldShift == 31;
+  if (bytes <= 128.0 * (1 << 20))
+    return false;
+  return !axis || (!linear && bytes > 432.0 * (1 << 20));
+}
+
 sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGeometry& f)
 {
   if (!(s.StepSize > 0) || !std::isfinite(s.StepSize) || s.StepSize > 1e3)
@@ -96,6 +118,7 @@ sch_params MakeParams(const Volume& volume, const TraceSettings& s, const FilmGe
                 "with PackFieldHighOrder, or use Reconstruction Trilinear.");
   // with a body the levels byte carries its bits where Cubic keeps the smoothness: trilinear
   P.recon = s.Recon == Reconstruction::Cubic && !volume.Solid ? SCH_CUBIC : SCH_TRILINEAR;
+  P.prefetch = PrefetchPays(P) ? 1 : 0;
   // from cells that are not smooth, steps of at most a cell: they cannot jump over a feature
   P.roughStep = P.recon == SCH_CUBIC ? P.cellStep : 0.0f;
   return P;

@@ -116,36 +116,6 @@ __kernel void sch_walk_pieces(SCH_FIELD_ARGS, __global const uchar* levels, cons
 
 #else
 
-/* Asks for the cache lines of the trilinear cell at p, addressed as sch_sample_cell addresses it
- * (a prefetch never faults: a cell off the field is harmless). */
-static inline void sch_prefetch_cell(SCH_FIELD field, const sch_params* P, sch_v3 p)
-{
-  int i, j, k;
-  sch_grid_coord(p.x, P->isx, P->gx0, P->gxMax, &i);
-  sch_grid_coord(p.y, P->isy, P->gy0, P->gyMax, &j);
-  sch_grid_coord(p.z, P->isz, P->gz0, P->gzMax, &k);
-  i -= P->ox;
-  j -= P->oy;
-  k -= P->oz;
-  /* the eight corners' 64-byte lines: one or two to a row of two points in either layout */
-  __global const float* base = sch_field_base(field, P, &k);
-  const int sh = P->fieldShift, m = P->fieldMask;
-  const long x0 = sch_axis_offset(i, sh, m, P->outerX, P->innerX);
-  const long x1 = sch_axis_offset(i + 1, sh, m, P->outerX, P->innerX);
-  const long y0 = sch_axis_offset(j, sh, m, P->outerY, P->innerY);
-  const long y1 = sch_axis_offset(j + 1, sh, m, P->outerY, P->innerY);
-  __global const float* c0 = base + sch_axis_offset(k, sh, m, P->outerZ, P->innerZ);
-  __global const float* c1 = base + sch_axis_offset(k + 1, sh, m, P->outerZ, P->innerZ);
-  __builtin_prefetch(c0 + y0 + x0);
-  __builtin_prefetch(c0 + y0 + x1);
-  __builtin_prefetch(c0 + y1 + x0);
-  __builtin_prefetch(c0 + y1 + x1);
-  __builtin_prefetch(c1 + y0 + x0);
-  __builtin_prefetch(c1 + y0 + x1);
-  __builtin_prefetch(c1 + y1 + x0);
-  __builtin_prefetch(c1 + y1 + x1);
-}
-
 /* The ray that work-item g of a launch traces: the rays of a film band of SCH_TILE_ROWS rows
  * taken tile by tile (SCH_TILE_W columns, the band's height), row by row within a tile, so that
  * a lock-step group of 64 is an 8 x 8 block of pixels whose samples share cache lines (a group
@@ -201,12 +171,8 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
   sch_v3 o, entry;
   __local sch_walk walks[SCH_LOCKSTEP_GROUP];
   __local sch_walk* W = &walks[get_local_id(0)];
-  /* steps of more than two cells land in cache lines that no step of the group has read: each
-   * step then asks for those of its next end point, predicted as one more step of the same
-   * length, while the rest of the group steps (measured: 6-8 % faster from 2.5 voxels up, slower
-   * at a voxel, where the lines are read already; Cubic, which computes more per sample, gained
-   * nothing: docs/PERFORMANCE.md) */
-  const int prefetch = SCH_RECON(&P) == SCH_TRILINEAR && P.step > 2.0f * P.cellStep;
+  /* each step asks for the lines of its next end point while the rest of the group steps
+   * (sch_walk_step, P.prefetch; the host builds with -DSCH_PREFETCH for CPU devices) */
   int hit = 0;
   if (valid)
   {
@@ -214,8 +180,10 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
     hit = sch_entry(&P, a, b, &o, &entry, &s1);
     /* the walks begin after the barrier below: their entry samples are asked for while the rest
      * of the group finds its entries */
-    if (hit & prefetch)
-      sch_prefetch_cell(field, &P, entry);
+#ifdef SCH_PREFETCH_LINE
+    if (hit & P.prefetch)
+      sch_prefetch_at(field, levels, &P, entry);
+#endif
   }
   int live = hit;
   /* one barrier per step: a flag per step, in three slots so that resetting the slot of step
@@ -230,12 +198,7 @@ __kernel void sch_trace_lockstep(SCH_FIELD_ARGS, __global const uchar* levels,
   for (int t = 0;; t = t == 2 ? 0 : t + 1)
   {
     if (live)
-    {
-      const sch_v3 before = W->x;
       live = sch_walk_step(field, levels, &P, W);
-      if (prefetch & live)
-        sch_prefetch_cell(field, &P, sch_axpy(-1.0f, before, sch_scale(W->x, 2.0f)));
-    }
     if (live)
       anyLive[t] = 1;
     if (get_local_id(0) == 0)

@@ -3,7 +3,9 @@
 // BrickedField), so that oblique rays read the lines their neighbours read (issue 50). Only the
 // addresses change: every image and record must be the one the linear layout gives, bit for bit,
 // on both backends, both reconstructions, along the axis and obliquely, on a grid that is no
-// multiple of the brick (the padding), and with the field split in slabs along z.
+// multiple of the brick (the padding), and with the field split in slabs along z. The prefetch of
+// each step's next lines (sch_prefetch_at, asked for here on this small grid) changes nothing
+// either: off, the bits are the same.
 #include "SchlierenEngineInternal.h" // the packing in bricks, PackInBricks
 #include "SchlierenLimits.h"
 #include "SchlierenParallel.h"
@@ -43,6 +45,37 @@ int main()
   schtest::ExpectError("SCHLIEREN_FIELD_BRICKS=yes", [] { RuntimeOptions::FromEnvironment(); },
     { "SCHLIEREN_FIELD_BRICKS", "0 or 1" });
   unsetenv("SCHLIEREN_FIELD_BRICKS");
+  // the prefetch (sch_prefetch_at): on unless SCHLIEREN_PREFETCH=0
+  CHECK(RuntimeOptions().Prefetch == -1, "unset by default: the prefetch where it pays");
+  setenv("SCHLIEREN_PREFETCH", "0", 1);
+  CHECK(RuntimeOptions::FromEnvironment().Prefetch == 0, "SCHLIEREN_PREFETCH=0");
+  setenv("SCHLIEREN_PREFETCH", "on", 1);
+  schtest::ExpectError("SCHLIEREN_PREFETCH=on", [] { RuntimeOptions::FromEnvironment(); },
+    { "SCHLIEREN_PREFETCH", "0 or 1" });
+  unsetenv("SCHLIEREN_PREFETCH");
+  // where it pays (docs/PERFORMANCE.md, "The prefetch"): obliquely past 200^3 points, along an
+  // axis past 300^3 in bricks, never within the caches' reach
+  {
+    auto pays = [](int n, double dx, double dy, double dz, bool linear = false) {
+      sch_params P;
+      std::memset(&P, 0, sizeof(P));
+      P.nx = P.ny = P.nz = n;
+      P.fieldShift = linear ? 31 : 2;
+      const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
+      P.dx = static_cast<float>(dx / l);
+      P.dy = static_cast<float>(dy / l);
+      P.dz = static_cast<float>(dz / l);
+      return PrefetchPays(P);
+    };
+    CHECK(pays(512, 0, 0, -1) && pays(384, 0.05, 0.03, -1) && pays(512, 1, 0.7, -0.4), "512^3, 384^3 in bricks: on");
+    CHECK(!pays(512, 0, 0, -1, true) && pays(512, 1, 0.7, -0.4, true),
+      "512^3 in the linear layout: off along an axis, on obliquely");
+    CHECK(pays(256, 1, 0.7, -0.4, true) && !pays(256, 0, 0, -1, true) && !pays(256, 0.05, 0.03, -1, true),
+      "256^3: on obliquely, off along an axis");
+    CHECK(!pays(128, 1, 0.7, -0.4) && !pays(64, 1, 1, 1), "128^3 and 64^3: off");
+    const schtest::ScopedOptions on([](RuntimeOptions& opt) { opt.Prefetch = 1; });
+    CHECK(pays(64, 0, 0, 1), "SCHLIEREN_PREFETCH=1: on everywhere");
+  }
   // a Gaussian sphere on 37 x 34 x 29 points: 3, 2 and 1 padded points along x, y, z
   SceneParameters p;
   p.Amplitude = 2e-4;
@@ -105,12 +138,15 @@ int main()
             s.CutoffScale = 1000;
             for (int a = 0; a < 3; ++a)
               s.ViewDirection[a] = views[view][a];
-            TraceResult r[2];
-            std::vector<RayRecord> rec[2];
-            for (int layout = 0; layout < 2; ++layout)
+            // [2]: the bricks again with the prefetch off (SCHLIEREN_PREFETCH=0), which must
+            // change nothing either
+            TraceResult r[3];
+            std::vector<RayRecord> rec[3];
+            for (int layout = 0; layout < 3; ++layout)
             {
               const schtest::ScopedOptions o([&](RuntimeOptions& opt) {
-                opt.Bricks = layout == 1 ? 1 : 0;
+                opt.Bricks = layout >= 1 ? 1 : 0;
+                opt.Prefetch = layout != 2 ? 1 : 0;
                 opt.MaxAlloc = maxAlloc;
               });
               r[layout] = Trace(v, s);
@@ -125,6 +161,10 @@ int main()
             CHECK(rec[0].size() == ab.size() / 2 &&
                 std::memcmp(rec[0].data(), rec[1].data(), rec[0].size() * sizeof(RayRecord)) == 0,
               what + ": the ray records differ with the field in bricks");
+            CHECK(SameBits(r[1].Intensity, r[2].Intensity) && SameBits(r[1].Deflection, r[2].Deflection) &&
+                r[1].Samples == r[2].Samples && rec[2].size() == rec[1].size() &&
+                std::memcmp(rec[1].data(), rec[2].data(), rec[1].size() * sizeof(RayRecord)) == 0,
+              what + ": the image or the records differ without the prefetch");
             if (maxAlloc)
             {
               CHECK(r[0].DeviceName.find("split in 3 buffers") != std::string::npos,
