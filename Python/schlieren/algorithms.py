@@ -42,6 +42,17 @@ def _ranks():
     return _engine.controller_ranks()
 
 
+def _pass_name(request):
+    """"data", "information", "update extent" or "data object": the pipeline pass `request`
+    asks for."""
+    for name, key in (("data", DDP.REQUEST_DATA()), ("information", DDP.REQUEST_INFORMATION()),
+                      ("update extent", SDDP.REQUEST_UPDATE_EXTENT()),
+                      ("data object", DDP.REQUEST_DATA_OBJECT())):
+        if request.Has(key):
+            return name
+    return "other"
+
+
 def _empty(extent):
     return any(extent[2 * a + 1] < extent[2 * a] for a in range(3))
 
@@ -236,6 +247,11 @@ class _Properties(VTKPythonAlgorithmBase):
         or an exception of any kind becomes a VTK error (ParaView's Output Messages) and an
         empty output, never a traceback."""
         is_data = request.Has(DDP.REQUEST_DATA())
+        ranks = _ranks()
+        # under MPI the pass's collectives are named after it, so that the guard tells the ranks
+        # that are at this pass from those elsewhere (_engine.Ranks.begin)
+        kept = ranks.begin("%s's %s pass" % (type(self).__name__, _pass_name(request))) \
+            if ranks is not None else None
         try:
             if is_data or request.Has(DDP.REQUEST_INFORMATION()):
                 self._check_ranges()  # as the C++ filters' RequestInformation
@@ -251,8 +267,11 @@ class _Properties(VTKPythonAlgorithmBase):
             else:
                 ok = VTKPythonAlgorithmBase.ProcessRequest(self, request, inInfo, outInfo)
         except Exception as e:  # noqa: BLE001 -- a message, not a traceback, whatever it is
-            ok = self._fail(str(e) if isinstance(e, EngineError) else
+            ok = self._fail(str(e) if isinstance(e, (EngineError, _engine.OutOfStep)) else
                             "%s: %s" % (type(e).__name__, e))
+        finally:
+            if ranks is not None:
+                ranks.end(kept)
         if not ok and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
             # no image from before left as if it were this request's (a failed information
             # request is not followed by a data request)
