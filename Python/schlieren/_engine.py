@@ -1788,9 +1788,10 @@ class _MpiGuard:
         except OutOfStep as e:
             if abort_job:
                 # the ranks are out of step: end the job rather than meet a rank held elsewhere
-                sys.stderr.write("Schlieren, rank %d: %s SCHLIEREN_MPI_ABORT=1: the MPI job is "
-                                 "aborted.\n" % (self.rank, e))
-                sys.stderr.flush()
+                from vtkmodules.vtkCommonCore import vtkOutputWindow
+                vtkOutputWindow.GetInstance().DisplayErrorText(
+                    "Schlieren, rank %d: %s SCHLIEREN_MPI_ABORT=1: the MPI job is aborted.\n"
+                    % (self.rank, e))
                 self.comm.Abort(1)
             raise
 
