@@ -1513,7 +1513,9 @@ class Ranks:
     (size, n) array, each the same count on every rank. controller_ranks() makes one of ParaView's
     or VTK's vtkMultiProcessController. An exception in a collective fails the engine's call with
     its message (the job's other ranks are then left in the collective: an MPI error ends the job
-    as it would in C)."""
+    as it would in C). Where `comm` has a `guard` (controller_ranks() on MPI with mpi4py:
+    _MpiGuard), every collective waits first until every rank has reached it, at most
+    SCHLIEREN_MPI_TIMEOUT seconds (OutOfStep past it), as the C++ plugin's do."""
 
     def __init__(self, comm):
         self.rank, self.size = int(comm.rank), int(comm.size)
@@ -1521,7 +1523,9 @@ class Ranks:
         # `comm` has a guard: _ControllerComm on MPI with mpi4py), as the C++ plugin's
         self._guard = getattr(comm, "guard", None)
         self.comm = comm if self._guard is None else _GuardedComm(comm, self._arrive)
-        self._pass = None  # [who, collectives so far] of the filter's pass running (begin())
+        # the filter's pass running (begin()): [who, its collectives so far, the guard's error
+        # where it gave up]
+        self._pass = None
         self._raised = []
 
         def guarded(f):
