@@ -302,8 +302,13 @@ int main(void)
   int mpi_abort = -1;
 
   /* the MPI options as the engine reads them (read on first use: set before any call) */
+#ifdef _WIN32
+  _putenv("SCHLIEREN_MPI_TIMEOUT=7.5");
+  _putenv("SCHLIEREN_MPI_ABORT="); /* (removes it) */
+#else
   setenv("SCHLIEREN_MPI_TIMEOUT", "7.5", 1);
   unsetenv("SCHLIEREN_MPI_ABORT");
+#endif
   CHECK(schlieren_mpi_options(&mpi_timeout, &mpi_abort) == 0 && mpi_timeout == 7.5 && mpi_abort == 0,
     "mpi_options: SCHLIEREN_MPI_TIMEOUT=7.5 gives %g s, abort %d (%s)", mpi_timeout, mpi_abort,
     schlieren_last_error());
