@@ -53,6 +53,13 @@ def _pass_name(request):
     return "other"
 
 
+def _has_grid(info):
+    """Whether the input information `info` gives an image's grid (whole extent, origin, spacing):
+    not where the upstream's information pass failed (on this rank)."""
+    return all(info.Has(k) for k in (SDDP.WHOLE_EXTENT(), vtkImageData.ORIGIN(),
+                                     vtkImageData.SPACING()))
+
+
 def _empty(extent):
     return any(extent[2 * a + 1] < extent[2 * a] for a in range(3))
 
@@ -1941,6 +1948,11 @@ class NumericalSchlieren(_Properties):
             except EngineError as e:
                 error = str(e)
             solid, mask = _point_array(image, "solid"), _point_array(image, "vtkValidPointMask")
+        if not error and not _has_grid(src):
+            # the upstream's information failed on this rank: agreed on, not a TypeError that
+            # leaves the other ranks waiting
+            error = ("The input volume is empty: nothing to image. If a filter upstream reported "
+                     "an error, that is the cause; fix it there.")
         try:
             agreed = _agreed(ranks, error, "NumericalSchlieren's pieces")
             if agreed:
@@ -2064,6 +2076,12 @@ class SchlierenImage(_Properties):
                                  *volume)
                 else:
                     src = inInfo[0].GetInformationObject(0)
+                    if not _has_grid(src):
+                        # the upstream's information failed on this rank: said, and agreed on
+                        # with the other ranks (below), not a TypeError that leaves them waiting
+                        raise EngineError("The input volume is empty: nothing to trace. If a "
+                                          "filter upstream reported an error, that is the "
+                                          "cause; fix it there.")
                     s.set_piece(src.Get(SDDP.WHOLE_EXTENT()),
                                 [0, -1, 0, -1, 0, -1] if empty else image.GetExtent(),
                                 src.Get(vtkImageData.ORIGIN()), src.Get(vtkImageData.SPACING()),
@@ -2163,8 +2181,7 @@ class SchlierenImage(_Properties):
         info = outInfo.GetInformationObject(0)
         # empty until the film is known (not the input's extent, which the executive copied)
         info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
-        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING()) and
-                src.Has(vtkImageData.ORIGIN())):
+        if not _has_grid(src):
             return 1
         e = src.Get(SDDP.WHOLE_EXTENT())
         dims = [e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1]

@@ -13,7 +13,11 @@ Every rank runs this script (--symmetric).
    RefractiveIndex fails within SCHLIEREN_MPI_TIMEOUT (5 s here; checked: 4 to 12 s) with the C++
    guard's words, "rank 1 did not reach RefractiveIndex's collective 1 (... its data pass) within
    5 s: its upstream probably failed (see its error). SCHLIEREN_MPI_TIMEOUT sets the wait.", and
-   nothing from SchlierenImage; rank 1 says nothing of ours; every output is empty.
+   nothing from SchlierenImage; rank 1 says nothing of ours; every output is empty. Then rank 0's
+   file missing: rank 1 names rank 0 after the timeout and twice a grace (7.5 s). Then rank 1's
+   file missing straight in front of SchlierenImage, and of NumericalSchlieren: they run on rank 1
+   on an input without a grid, say so, and both ranks fail at once with the agreed error (before,
+   a TypeError on rank 1 left rank 0 waiting for ever).
 2. Right after, a good pipeline (RefractiveScene -> RefractiveIndex -> SchlierenImage, traced in
    pieces) on both ranks: no error, and rank 0's image is one process's (the plugin's own
    algorithms as one piece) bit for bit: the failed step left no message that the next one takes
@@ -116,9 +120,36 @@ def failing(missing):
     controller.Barrier()
 
 
+def failing_image(name, make, nothing):
+    """A reader whose file is missing on rank 1 straight in front of SchlierenImage or
+    NumericalSchlieren: these filters run there on an input without a grid, say so and agree on
+    it with rank 0 at once (before, a TypeError on rank 1 left rank 0 waiting)."""
+    source = simple.XMLImageDataReader(FileName=[
+        os.path.join(TMP, "no_such_file.vti") if rank == 1 else GOOD_FILE])
+    f = make(source)
+    t0 = time.time()
+    with st.CapturedOutput() as c:
+        f.UpdatePipeline()
+    waited = time.time() - t0
+    said = "The input volume is empty: nothing to %s. If a filter upstream reported an error, " \
+        "that is the cause; fix it there." % nothing
+    expected = said if rank == 1 else "another rank (1) failed: " + said
+    T.check(our_errors(c.text) == [(name, expected)] and waited < 4.0 and points(f) == 0,
+            "rank %d: %s on rank 1's failed reader: the agreed error at once (%.1f s, not the "
+            "guard's 5), empty output (%d points): %s" % (rank, name, waited, points(f),
+                                                         our_errors(c.text)))
+    for p in (f, source):
+        simple.Delete(p)
+
+
 # 1. the upstream fails on rank 1 only, then on rank 0 only
 failing(1)
 failing(0)
+failing_image("SchlierenImage", lambda src: SchlierenImage(Input=src, **KNIFE),  # noqa: F821
+              "trace")
+failing_image("NumericalSchlieren", lambda src: NumericalSchlieren(  # noqa: F821
+    Input=src, Resolution=[32, 28]), "image")
+controller.Barrier()
 
 # 2. a good pipeline after them: rank 0's image one process's bit for bit
 good_scene = RefractiveScene(**SCENE)  # noqa: F821
