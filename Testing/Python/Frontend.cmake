@@ -110,8 +110,9 @@ if(SCHLIEREN_PYTHON_PLUGIN)
       "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
     # the collective guard of the Python plugin (_engine._MpiGuard, the C++ plugin's): a reader
     # failing on rank 1, then on rank 0, in front of RefractiveIndex and SchlierenImage: the other
-    # rank fails within SCHLIEREN_MPI_TIMEOUT=5 naming it, then a good pipeline gives one
-    # process's image on rank 0 bit for bit (test_mpi_python_deadline.py, about 17 s; before the
+    # rank fails within SCHLIEREN_MPI_TIMEOUT=5 naming it; in front of SchlierenImage and
+    # NumericalSchlieren both ranks fail at once (agreed); then a good pipeline gives one
+    # process's image on rank 0 bit for bit (test_mpi_python_deadline.py, about 16 s; before the
     # guard rank 0 waited in the first collective for ever: the TIMEOUT is what a hang hits)
     schlieren_python_test(mpi_python_deadline
       COMMAND "${MPIEXEC_EXECUTABLE}" ${MPIEXEC_NUMPROC_FLAG} 2 --allow-run-as-root --oversubscribe
