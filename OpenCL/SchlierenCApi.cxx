@@ -13,6 +13,7 @@
 #include "SchlierenWallFaces.h"
 #include "SchlierenIndexModels.h"
 #include "SchlierenNumerical.h"
+#include "SchlierenOptions.h"
 #include "SchlierenParallel.h"
 #include "SchlierenPhotograph.h"
 #include "SchlierenPhotographOverlay.h"
@@ -2637,6 +2638,17 @@ int schlieren_check_memory(double bytes, const char* what, const char* hint)
       throw schlieren::Error(msg.str());
     }
     schlieren::CheckHostMemory(bytes, what ? what : "This", hint ? hint : "");
+  });
+}
+
+int schlieren_mpi_options(double* timeout, int* abort_job)
+{
+  return Guard(LastError, [&] {
+    const schlieren::RuntimeOptions options = schlieren::GetRuntimeOptions();
+    if (timeout)
+      *timeout = options.MpiTimeout;
+    if (abort_job)
+      *abort_job = options.MpiAbort ? 1 : 0;
   });
 }
 

@@ -425,6 +425,13 @@ SCHLIEREN_C_API int schlieren_check_property(
  * schlieren_last_error() says "<what> needs N GiB of memory; this machine has M available. <hint>":
  * for front ends that allocate arrays the engine fills. */
 SCHLIEREN_C_API int schlieren_check_memory(double bytes, const char* what, const char* hint);
+/** The engine's MPI options (its runtime options, as the C++ plugin's collective guard reads them):
+ * `timeout`, the seconds a rank waits at a collective for the other ranks to reach it
+ * (SCHLIEREN_MPI_TIMEOUT, default 120), and `abort_job`, 1 where a rank that gives up aborts the
+ * MPI job (SCHLIEREN_MPI_ABORT, default 0). Either pointer may be NULL. For front ends that guard
+ * their own collectives (the Python plugin). Non-zero where a variable's value cannot be read:
+ * schlieren_last_error() names it. */
+SCHLIEREN_C_API int schlieren_mpi_options(double* timeout, int* abort_job);
 
 /**
  * RefractiveIndex's grid for a resampled input, in two calls (the C++ filter's RequestInformation;

@@ -32,7 +32,7 @@ SCHLIEREN_BUILD_PACKAGES=(
   build-essential cmake ninja-build
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   paraview paraview-dev python3-paraview python3-dev
-  openmpi-bin libopenmpi-dev
+  openmpi-bin libopenmpi-dev python3-mpi4py
   libdouble-conversion-dev liblz4-dev libutfcpp-dev
   libglew-dev libxml2-dev libhdf5-dev libboost-dev libnetcdf-dev libtiff-dev
   libavformat-dev libavcodec-dev libavutil-dev libswscale-dev

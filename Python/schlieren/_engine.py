@@ -7,7 +7,9 @@ folder (a wheel), then the system's loader path. Nothing here needs VTK.
 import ctypes
 import json
 import os
+import struct
 import sys
+import time
 
 import numpy as np
 
@@ -134,6 +136,8 @@ _sig("schlieren_extend_into_invalid", ctypes.c_int, _c_int3, _u8p, _i64, _f32p,
      ctypes.POINTER(ctypes.c_int64))
 _sig("schlieren_automatic_dimensions", ctypes.c_int, ctypes.c_double * 6, ctypes.c_int, _c_int3)
 _sig("schlieren_check_memory", ctypes.c_int, ctypes.c_double, ctypes.c_char_p, ctypes.c_char_p)
+_sig("schlieren_mpi_options", ctypes.c_int, ctypes.POINTER(ctypes.c_double),
+     ctypes.POINTER(ctypes.c_int))
 _sig("schlieren_sampling_box", ctypes.c_int, ctypes.c_char_p, ctypes.POINTER(ctypes.c_double),
      ctypes.c_double * 6)
 _sig("schlieren_sampling_grid", ctypes.c_int, ctypes.c_char_p, ctypes.c_double * 6,
@@ -252,6 +256,16 @@ def _size(a):
 def _check(rc):
     if rc:
         raise EngineError(_text(_lib.schlieren_last_error()))
+
+
+def mpi_options():
+    """(timeout, abort_job): the seconds a rank waits at a collective for the other ranks
+    (SCHLIEREN_MPI_TIMEOUT, default 120) and whether a rank that gives up aborts the MPI job
+    (SCHLIEREN_MPI_ABORT), from the engine's runtime options (the C++ plugin's guard's);
+    EngineError naming the variable where a value cannot be read."""
+    timeout, abort_job = ctypes.c_double(), ctypes.c_int()
+    _check(_lib.schlieren_mpi_options(ctypes.byref(timeout), ctypes.byref(abort_job)))
+    return timeout.value, bool(abort_job.value)
 
 
 def check_memory(nbytes, what, hint=""):
@@ -1279,7 +1293,8 @@ class Session:
         if rc:
             err = self._error()
             if ranks is not None and ranks._raised:
-                err = EngineError("%s (%s)" % (err, ranks._raised[0]))
+                err = ranks._raised[0] if isinstance(ranks._raised[0], OutOfStep) else \
+                    EngineError("%s (%s)" % (err, ranks._raised[0]))
             err.report = report
             raise err
         return report
@@ -1498,11 +1513,19 @@ class Ranks:
     (size, n) array, each the same count on every rank. controller_ranks() makes one of ParaView's
     or VTK's vtkMultiProcessController. An exception in a collective fails the engine's call with
     its message (the job's other ranks are then left in the collective: an MPI error ends the job
-    as it would in C)."""
+    as it would in C). Where `comm` has a `guard` (controller_ranks() on MPI with mpi4py:
+    _MpiGuard), every collective waits first until every rank has reached it, at most
+    SCHLIEREN_MPI_TIMEOUT seconds (OutOfStep past it), as the C++ plugin's do."""
 
     def __init__(self, comm):
-        self.comm = comm
         self.rank, self.size = int(comm.rank), int(comm.size)
+        # every collective, ours and the engine's, entered only once every rank is there (where
+        # `comm` has a guard: _ControllerComm on MPI with mpi4py), as the C++ plugin's
+        self._guard = getattr(comm, "guard", None)
+        self.comm = comm if self._guard is None else _GuardedComm(comm, self._arrive)
+        # the filter's pass running (begin()): [who, its collectives so far, the guard's error
+        # where it gave up]
+        self._pass = None
         self._raised = []
 
         def guarded(f):
@@ -1519,6 +1542,8 @@ class Ranks:
             return np.ctypeslib.as_array((ctypes.c_ubyte * (int(count) * np.dtype(dtype)
                                                             .itemsize)).from_address(p)) \
                 .view(dtype)
+
+        comm = self.comm
 
         def reduce(src, dst, count, op, _user):
             view(dst, count, np.float64)[:] = comm.allreduce(
@@ -1541,8 +1566,41 @@ class Ranks:
         self._raised.clear()
         return ctypes.pointer(self._struct)
 
+    def begin(self, who):
+        """A filter's pass starts (`who`: "RefractiveIndex's data pass"): its collectives are
+        numbered from 1 in the guard's step names ("RefractiveIndex's collective 1 (an
+        all-gather, its data pass)"), the same on every rank that runs the same pass. Returns what
+        end() takes back (a pass may run inside another: an upstream updated by RequestInformation).
+        """
+        kept, self._pass = self._pass, [who, 0, None]
+        return kept
+
+    def end(self, kept):
+        self._pass = kept
+
+    def _arrive(self, what):
+        """Before a collective: every rank there at the same step, or OutOfStep (the guard)."""
+        if self._pass is None:
+            self._guard.arrive("a collective of Schlieren's (%s)" % what)
+            return
+        if self._pass[2] is not None:
+            # this pass gave up (every rank that came did): no second wait (an agreement on the
+            # failure, the engine's own), the same error at once
+            raise self._pass[2]
+        self._pass[1] += 1
+        who, _, when = self._pass[0].partition("'s ")
+        try:
+            self._guard.arrive("%s's collective %d (%s%s)" % (
+                who, self._pass[1], what, ", its " + when if when else ""))
+        except OutOfStep as e:
+            self._pass[2] = e
+            raise
+
     def error(self):
-        """The engine's last error, with what a collective raised where one did."""
+        """The engine's last error, with what a collective raised where one did (the guard's
+        OutOfStep itself: its words are the error)."""
+        if self._raised and isinstance(self._raised[0], OutOfStep):
+            return self._raised[0]
         text = _text(_lib.schlieren_last_error())
         if self._raised:
             text += " (%s: %s)" % (type(self._raised[0]).__name__, self._raised[0])
@@ -1581,6 +1639,7 @@ class _ControllerComm:
         self.size = controller.GetNumberOfProcesses()
         self.ops = {"sum": vtkCommunicator.SUM_OP, "min": vtkCommunicator.MIN_OP,
                     "max": vtkCommunicator.MAX_OP}
+        self.guard = _MpiGuard.of(controller)
 
     @staticmethod
     def _vtk(a):
@@ -1613,6 +1672,222 @@ class _ControllerComm:
         if not self.controller.AllGather(self._vtk(data), out):
             raise RuntimeError("the controller's all-gather failed")
         return self._np(out).reshape(self.size, len(data)).copy()
+
+
+class OutOfStep(RuntimeError):
+    """The guard gave up: some rank did not reach a collective in time, or the ranks reached
+    different ones (the message names them, in the C++ plugin's words). Not an EngineError: no
+    handler of a filter's failure on some ranks may take it for one and agree on it (a collective:
+    it would wait again); the filter fails with its words (algorithms' ProcessRequest)."""
+
+
+class _GuardedComm:
+    """A comm whose collectives first call arrive(what) (Ranks' guard)."""
+
+    def __init__(self, comm, arrive):
+        self._comm, self._arrive = comm, arrive
+        self.rank, self.size = comm.rank, comm.size
+
+    def allreduce(self, values, op):
+        self._arrive("an all-reduce")
+        return self._comm.allreduce(values, op)
+
+    def broadcast(self, data, root):
+        self._arrive("a broadcast")
+        return self._comm.broadcast(data, root)
+
+    def allgather(self, data):
+        self._arrive("an all-gather")
+        return self._comm.allgather(data)
+
+
+class _MpiGuard:
+    """The C++ plugin's collective guard (Filters/SchlierenController.cxx, docs/PARALLEL.md) for
+    the Python plugin, over mpi4py on the controller's own MPI communicator with a tag of its own:
+    before each collective every rank tells rank 0 that it is there (ARRIVED, with the step's
+    name) and waits for GO; rank 0 answers GO once every rank has come to the same step, or ABORT
+    with the error (naming the ranks that did not come) after SCHLIEREN_MPI_TIMEOUT seconds. Only
+    non-blocking point-to-point messages: a rank that never comes (its upstream failed, so the
+    pipeline never ran our filter there) leaves no collective half done. Each message carries its
+    sender's count of arrivals (its epoch), so an answer to an earlier, given-up arrival is not
+    taken for this one's. A rank that hears nothing withdraws (WITHDRAWN) and waits a little more
+    for rank 0's last word."""
+
+    TAG = 51209  # the C++ guard's is 51208: the two plugins' messages never meet
+    ARRIVED, WITHDRAWN, GO, ABORT = 1, 2, 3, 4
+    SIZE, TEXT = 512, 496
+    WITHDRAWN_REPLY = "withdrawn"
+    _kept = {}
+
+    @classmethod
+    def of(cls, controller):
+        """The guard of `controller`'s communicator; None where it is not MPI or mpi4py is not
+        importable (pip VTK without it: no guard, as before)."""
+        try:
+            from vtkmodules.vtkParallelMPI import vtkMPICommunicator
+            from vtkmodules.vtkParallelMPI4Py import vtkMPI4PyCommunicator
+            communicator = controller.GetCommunicator()
+            if not isinstance(communicator, vtkMPICommunicator):
+                return None
+            import mpi4py
+            if "mpi4py.MPI" not in sys.modules:
+                # VTK has initialised MPI and finalises it: mpi4py must do neither
+                mpi4py.rc.initialize = False
+                mpi4py.rc.finalize = False
+            from mpi4py import MPI
+            if not MPI.Is_initialized() or MPI.Is_finalized():
+                return None
+            comm = vtkMPI4PyCommunicator.ConvertToPython(communicator)
+        except Exception:  # noqa: BLE001 -- no mpi4py, or one that does not load: no guard
+            return None
+        if comm is None or comm.size <= 1:
+            return None
+        key = communicator.__this__
+        if key not in cls._kept:
+            cls._kept[key] = cls(comm, MPI)
+        return cls._kept[key]
+
+    def __init__(self, comm, mpi):
+        self.comm, self.mpi = comm, mpi
+        self.rank, self.size = comm.rank, comm.size
+        self.epoch = 0                    # this rank's arrivals so far
+        self.live = [0] * self.size       # rank 0: each rank's unanswered arrival, or 0
+        self.at = [""] * self.size        # ... and the step it arrived at
+        self.out = []                     # sends in flight (request, buffer)
+
+    def _send(self, to, kind, epoch, text):
+        b = text.encode("utf-8", "replace")[:self.TEXT - 1]
+        buf = bytearray(self.SIZE)
+        struct.pack_into("<qq", buf, 0, kind, epoch)
+        buf[16:16 + len(b)] = b
+        self.out.append((self.comm.Isend([buf, self.mpi.BYTE], dest=to, tag=self.TAG), buf))
+
+    def _poll(self, source):
+        """(kind, epoch, text) of the next guard message from `source`, or None."""
+        if not self.comm.Iprobe(source=source, tag=self.TAG):
+            return None
+        buf = bytearray(self.SIZE)
+        self.comm.Recv([buf, self.mpi.BYTE], source=source, tag=self.TAG)
+        kind, epoch = struct.unpack_from("<qq", buf, 0)
+        return kind, epoch, bytes(buf[16:]).split(b"\0", 1)[0].decode("utf-8", "replace")
+
+    @staticmethod
+    def _pause(polls):
+        """Short at first (the other ranks are usually there), then longer (a sleep)."""
+        if polls < 200:
+            time.sleep(0)
+        else:
+            time.sleep(1e-4 if polls < 2000 else 2e-3)
+
+    def arrive(self, step):
+        """Returns once every rank is at `step`; OutOfStep (on every rank that came) where some
+        rank did not come within the timeout or the ranks are at different steps."""
+        timeout, abort_job = mpi_options()
+        self.out = [(r, b) for r, b in self.out if not r.Test()]  # sends MPI is done with
+        try:
+            if self.rank == 0:
+                self._coordinate(step, timeout)
+            else:
+                self._follow(step, timeout)
+        except OutOfStep as e:
+            if abort_job:
+                # the ranks are out of step: end the job rather than meet a rank held elsewhere
+                from vtkmodules.vtkCommonCore import vtkOutputWindow
+                vtkOutputWindow.GetInstance().DisplayErrorText(
+                    "Schlieren, rank %d: %s SCHLIEREN_MPI_ABORT=1: the MPI job is aborted.\n"
+                    % (self.rank, e))
+                self.comm.Abort(1)
+            raise
+
+    def _follow(self, step, timeout):
+        self.epoch += 1
+        epoch = self.epoch
+        self._send(0, self.ARRIVED, epoch, step)
+        # rank 0 answers within `timeout` of its own arrival; a rank that hears nothing a while
+        # after that gives up, then waits as long again for rank 0's last word
+        grace = min(10.0, max(1.0, 0.25 * timeout))
+        gave_up = OutOfStep("rank 0 did not reach %s within %s: its upstream probably failed "
+                            "(see its error). SCHLIEREN_MPI_TIMEOUT sets the wait."
+                            % (step, _seconds(timeout)))
+        t0, withdrawn, polls = time.monotonic(), False, 0
+        while True:
+            m = self._poll(0)
+            while m is not None:
+                kind, their_epoch, text = m
+                if their_epoch == epoch:
+                    if kind == self.GO:
+                        return
+                    if kind == self.ABORT:
+                        raise gave_up if text == self.WITHDRAWN_REPLY else OutOfStep(text)
+                m = self._poll(0)  # (an answer to an earlier arrival, given up: dropped)
+            waited = time.monotonic() - t0
+            if not withdrawn and waited > timeout + grace:
+                self._send(0, self.WITHDRAWN, epoch, step)
+                withdrawn = True
+            elif withdrawn and waited > timeout + 2 * grace:
+                raise gave_up
+            polls += 1
+            self._pause(polls)
+
+    def _coordinate(self, step, timeout):
+        self.epoch += 1
+        live, at = self.live, self.at
+
+        def abort_all(why):
+            for r in range(1, self.size):
+                if live[r]:
+                    self._send(r, self.ABORT, live[r], why)
+                    live[r] = 0
+            raise OutOfStep(why)
+        t0, first, polls = time.monotonic(), True, 0
+        while True:
+            for r in range(1, self.size):
+                m = self._poll(r)
+                while m is not None:
+                    kind, epoch, text = m
+                    if kind == self.ARRIVED:
+                        live[r], at[r] = epoch, text
+                    elif kind == self.WITHDRAWN:
+                        self._send(r, self.ABORT, epoch, self.WITHDRAWN_REPLY)
+                        if live[r] == epoch:
+                            live[r] = 0
+                            # given up while this round waited: it will not come back to this step
+                            if not first:
+                                abort_all(
+                                    "rank %d stopped waiting at %s before rank 0 reached %s: the "
+                                    "ranks are out of step (an upstream failure or a rank slower "
+                                    "than SCHLIEREN_MPI_TIMEOUT = %s)"
+                                    % (r, text, step, _seconds(timeout)))
+                    m = self._poll(r)
+            first = False
+            missing = [r for r in range(1, self.size) if not live[r]]
+            if not missing:
+                for r in range(1, self.size):
+                    if at[r] != step:
+                        abort_all("the ranks are at different collectives: rank 0 at %s, rank %d "
+                                  "at %s (an upstream failure on some ranks put them out of step)"
+                                  % (step, r, at[r]))
+                for r in range(1, self.size):
+                    self._send(r, self.GO, live[r], step)
+                    live[r] = 0
+                return
+            if time.monotonic() - t0 > timeout:
+                abort_all("%s did not reach %s within %s: %s. SCHLIEREN_MPI_TIMEOUT sets the wait."
+                          % (_rank_list(missing), step, _seconds(timeout),
+                             "its upstream probably failed (see its error)" if len(missing) == 1
+                             else "their upstream probably failed (see their errors)"))
+            polls += 1
+            self._pause(polls)
+
+
+def _seconds(s):
+    """Seconds as the C++ guard writes them (a stream's default: 6 significant digits)."""
+    return "%g s" % s
+
+
+def _rank_list(ranks):
+    """"rank 2", "ranks 1, 3" (the C++ guard's RankList)."""
+    return ("rank " if len(ranks) == 1 else "ranks ") + ", ".join(str(r) for r in ranks)
 
 
 def controller_ranks(controller=None):

@@ -42,6 +42,24 @@ def _ranks():
     return _engine.controller_ranks()
 
 
+def _pass_name(request):
+    """"data", "information", "update extent" or "data object": the pipeline pass `request`
+    asks for."""
+    for name, key in (("data", DDP.REQUEST_DATA()), ("information", DDP.REQUEST_INFORMATION()),
+                      ("update extent", SDDP.REQUEST_UPDATE_EXTENT()),
+                      ("data object", DDP.REQUEST_DATA_OBJECT())):
+        if request.Has(key):
+            return name
+    return "other"
+
+
+def _has_grid(info):
+    """Whether the input information `info` gives an image's grid (whole extent, origin, spacing):
+    not where the upstream's information pass failed (on this rank)."""
+    return all(info.Has(k) for k in (SDDP.WHOLE_EXTENT(), vtkImageData.ORIGIN(),
+                                     vtkImageData.SPACING()))
+
+
 def _empty(extent):
     return any(extent[2 * a + 1] < extent[2 * a] for a in range(3))
 
@@ -236,6 +254,11 @@ class _Properties(VTKPythonAlgorithmBase):
         or an exception of any kind becomes a VTK error (ParaView's Output Messages) and an
         empty output, never a traceback."""
         is_data = request.Has(DDP.REQUEST_DATA())
+        ranks = _ranks()
+        # under MPI the pass's collectives are named after it, so that the guard tells the ranks
+        # that are at this pass from those elsewhere (_engine.Ranks.begin)
+        kept = ranks.begin("%s's %s pass" % (type(self).__name__, _pass_name(request))) \
+            if ranks is not None else None
         try:
             if is_data or request.Has(DDP.REQUEST_INFORMATION()):
                 self._check_ranges()  # as the C++ filters' RequestInformation
@@ -251,8 +274,11 @@ class _Properties(VTKPythonAlgorithmBase):
             else:
                 ok = VTKPythonAlgorithmBase.ProcessRequest(self, request, inInfo, outInfo)
         except Exception as e:  # noqa: BLE001 -- a message, not a traceback, whatever it is
-            ok = self._fail(str(e) if isinstance(e, EngineError) else
+            ok = self._fail(str(e) if isinstance(e, (EngineError, _engine.OutOfStep)) else
                             "%s: %s" % (type(e).__name__, e))
+        finally:
+            if ranks is not None:
+                ranks.end(kept)
         if not ok and (is_data or request.Has(DDP.REQUEST_INFORMATION())):
             # no image from before left as if it were this request's (a failed information
             # request is not followed by a data request)
@@ -1922,6 +1948,11 @@ class NumericalSchlieren(_Properties):
             except EngineError as e:
                 error = str(e)
             solid, mask = _point_array(image, "solid"), _point_array(image, "vtkValidPointMask")
+        if not error and not _has_grid(src):
+            # the upstream's information failed on this rank: agreed on, not a TypeError that
+            # leaves the other ranks waiting
+            error = ("The input volume is empty: nothing to image. If a filter upstream reported "
+                     "an error, that is the cause; fix it there.")
         try:
             agreed = _agreed(ranks, error, "NumericalSchlieren's pieces")
             if agreed:
@@ -2045,6 +2076,12 @@ class SchlierenImage(_Properties):
                                  *volume)
                 else:
                     src = inInfo[0].GetInformationObject(0)
+                    if not _has_grid(src):
+                        # the upstream's information failed on this rank: said, and agreed on
+                        # with the other ranks (below), not a TypeError that leaves them waiting
+                        raise EngineError("The input volume is empty: nothing to trace. If a "
+                                          "filter upstream reported an error, that is the "
+                                          "cause; fix it there.")
                     s.set_piece(src.Get(SDDP.WHOLE_EXTENT()),
                                 [0, -1, 0, -1, 0, -1] if empty else image.GetExtent(),
                                 src.Get(vtkImageData.ORIGIN()), src.Get(vtkImageData.SPACING()),
@@ -2144,8 +2181,7 @@ class SchlierenImage(_Properties):
         info = outInfo.GetInformationObject(0)
         # empty until the film is known (not the input's extent, which the executive copied)
         info.Set(SDDP.WHOLE_EXTENT(), 0, -1, 0, -1, 0, -1)
-        if not (src.Has(SDDP.WHOLE_EXTENT()) and src.Has(vtkImageData.SPACING()) and
-                src.Has(vtkImageData.ORIGIN())):
+        if not _has_grid(src):
             return 1
         e = src.Get(SDDP.WHOLE_EXTENT())
         dims = [e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1]

@@ -4,7 +4,8 @@
  * bad value, a trace without a volume, a value the engine refuses), and the run-time OpenCL
  * loader: run with SCHLIEREN_OPENCL_LIBRARY pointing nowhere (ctest does), Backend Auto traces on
  * the CPU and says why; and the ranks (schlieren_parallel): two ranks on two threads trace, make
- * grad n and the numerical image of a volume in two pieces as one process does, bit for bit. */
+ * grad n and the numerical image of a volume in two pieces as one process does, bit for bit; the
+ * MPI options (schlieren_mpi_options) from the environment. */
 #define _POSIX_C_SOURCE 200112L /* pthread_barrier_t under -std=c99 (python.install builds this so) */
 #include "schlieren_c.h"
 
@@ -297,6 +298,21 @@ int main(void)
   int64_t i;
   const char* report;
   const char* no_loader = getenv("SCHLIEREN_OPENCL_LIBRARY");
+  double mpi_timeout = 0;
+  int mpi_abort = -1;
+
+  /* the MPI options as the engine reads them (read on first use: set before any call) */
+#ifdef _WIN32
+  _putenv("SCHLIEREN_MPI_TIMEOUT=7.5");
+  _putenv("SCHLIEREN_MPI_ABORT="); /* (removes it) */
+#else
+  setenv("SCHLIEREN_MPI_TIMEOUT", "7.5", 1);
+  unsetenv("SCHLIEREN_MPI_ABORT");
+#endif
+  CHECK(schlieren_mpi_options(&mpi_timeout, &mpi_abort) == 0 && mpi_timeout == 7.5 && mpi_abort == 0,
+    "mpi_options: SCHLIEREN_MPI_TIMEOUT=7.5 gives %g s, abort %d (%s)", mpi_timeout, mpi_abort,
+    schlieren_last_error());
+  CHECK(schlieren_mpi_options(NULL, NULL) == 0, "mpi_options: NULL pointers are allowed");
 
   CHECK(schlieren_api_version() == SCHLIEREN_C_API_VERSION, "API version %d", schlieren_api_version());
   CHECK(strstr(schlieren_properties(), "\"Cutoff\"") != NULL, "the property list names Cutoff");

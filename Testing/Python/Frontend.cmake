@@ -108,6 +108,20 @@ if(SCHLIEREN_PYTHON_PLUGIN)
       PROPERTIES PROCESSORS 2)
     set_property(TEST python.mpi_python_plugin APPEND PROPERTY ENVIRONMENT
       "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>")
+    # the collective guard of the Python plugin (_engine._MpiGuard, the C++ plugin's): a reader
+    # failing on rank 1, then on rank 0, in front of RefractiveIndex and SchlierenImage: the other
+    # rank fails within SCHLIEREN_MPI_TIMEOUT=5 naming it; in front of SchlierenImage and
+    # NumericalSchlieren both ranks fail at once (agreed); then a good pipeline gives one
+    # process's image on rank 0 bit for bit (test_mpi_python_deadline.py, about 16 s; before the
+    # guard rank 0 waited in the first collective for ever: the TIMEOUT is what a hang hits)
+    schlieren_python_test(mpi_python_deadline
+      COMMAND "${MPIEXEC_EXECUTABLE}" ${MPIEXEC_NUMPROC_FLAG} 2 --allow-run-as-root --oversubscribe
+        "${_pvbatch}" --mpi --symmetric "${_here}/test_mpi_python_deadline.py"
+        --plugin "${SCHLIEREN_PYTHON_PLUGIN}" --tmp "${_temp}"
+      TIMEOUT 60
+      PROPERTIES PROCESSORS 2)
+    set_property(TEST python.mpi_python_deadline APPEND PROPERTY ENVIRONMENT
+      "SCHLIEREN_ENGINE_LIBRARY=$<TARGET_FILE:schlieren_engine>" "SCHLIEREN_MPI_TIMEOUT=5")
   endif()
   # every value of every property's domain through both plugins in one pvpython: both accept or
   # both refuse naming the property; the properties' documentation (tooltips) and the proxies'
