@@ -1769,6 +1769,11 @@ class RefractionOctree(_Properties):
                        % (image.GetClassName() if image is not None else "nothing"))
         elif not 0 <= int(self.MaxLevel) <= 10:
             problem = "MaxLevel is %d: it must be in [0, 10]." % int(self.MaxLevel)
+        elif ranks is not None and not _has_grid(inInfo[0].GetInformationObject(0)):
+            # the upstream's information failed on this rank: agreed on (below), not an empty
+            # piece whose range the others would take for the volume's
+            problem = ("The input volume is empty: nothing to build an octree of. If a filter "
+                       "upstream reported an error, that is the cause; fix it there.")
         elif ranks is not None and image.GetNumberOfPoints() == 0:
             n1 = np.zeros(0, np.float32)  # an empty piece under MPI
         else:

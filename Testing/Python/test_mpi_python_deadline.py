@@ -15,9 +15,10 @@ Every rank runs this script (--symmetric).
    5 s: its upstream probably failed (see its error). SCHLIEREN_MPI_TIMEOUT sets the wait.", and
    nothing from SchlierenImage; rank 1 says nothing of ours; every output is empty. Then rank 0's
    file missing: rank 1 names rank 0 after the timeout and twice a grace (7.5 s). Then rank 1's
-   file missing straight in front of SchlierenImage, and of NumericalSchlieren: they run on rank 1
-   on an input without a grid, say so, and both ranks fail at once with the agreed error (before,
-   a TypeError on rank 1 left rank 0 waiting for ever).
+   file missing straight in front of SchlierenImage, NumericalSchlieren and RefractionOctree: they
+   run on rank 1 on an input without a grid, say so, and both ranks fail at once with the agreed
+   error (before, a TypeError on rank 1 left rank 0 waiting for ever; RefractionOctree gave rank
+   0's piece with the tolerance of rank 0's range alone, and no error).
 2. Right after, a good pipeline (RefractiveScene -> RefractiveIndex -> SchlierenImage, traced in
    pieces) on both ranks: no error, and rank 0's image is one process's (the plugin's own
    algorithms as one piece) bit for bit: the failed step left no message that the next one takes
@@ -121,8 +122,8 @@ def failing(missing):
 
 
 def failing_image(name, make, nothing):
-    """A reader whose file is missing on rank 1 straight in front of SchlierenImage or
-    NumericalSchlieren: these filters run there on an input without a grid, say so and agree on
+    """A reader whose file is missing on rank 1 straight in front of SchlierenImage,
+    NumericalSchlieren or RefractionOctree: these filters run there on an input without a grid, say so and agree on
     it with rank 0 at once (before, a TypeError on rank 1 left rank 0 waiting)."""
     source = simple.XMLImageDataReader(FileName=[
         os.path.join(TMP, "no_such_file.vti") if rank == 1 else GOOD_FILE])
@@ -149,6 +150,8 @@ failing_image("SchlierenImage", lambda src: SchlierenImage(Input=src, **KNIFE), 
               "trace")
 failing_image("NumericalSchlieren", lambda src: NumericalSchlieren(  # noqa: F821
     Input=src, Resolution=[32, 28]), "image")
+failing_image("RefractionOctree", lambda src: RefractionOctree(Input=src),  # noqa: F821
+              "build an octree of")
 controller.Barrier()
 
 # 2. a good pipeline after them: rank 0's image one process's bit for bit
