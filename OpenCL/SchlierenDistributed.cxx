@@ -312,7 +312,18 @@ DistributedVolume::DistributedVolume(const Piece& piece, int ghostPoints, Parall
           "): pieces must share only their face points";
     }
   if (failure.empty() && ownedCells != wholeCells)
+  {
+    // a rank whose piece is empty where the grid needs it: most often its upstream failed there
+    // without saying so to the pipeline (a Python source that raised); name it
+    std::string empty;
+    for (int r = 0; r < ranks; ++r)
+      if (Empty(extents[r].data()))
+        empty += (empty.empty() ? "" : ", ") + std::to_string(r);
     failure = "the pieces leave cells of the whole grid uncovered: pieces must tile it";
+    if (!empty.empty())
+      failure += " (empty on rank" + std::string(empty.find(',') != std::string::npos ? "s " : " ") + empty +
+        ": if a filter upstream reported an error there, that is the cause)";
+  }
   // every rank found the same from the same extents
   if (!failure.empty())
     throw Error("Distributed volume: " + failure + ".");

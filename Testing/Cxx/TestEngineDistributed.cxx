@@ -826,10 +826,33 @@ int main()
         }
       });
       const char* word = which ? "uncovered" : "overlap";
-      CHECK(messages[0] == messages[1] && messages[0].find(word) != std::string::npos,
+      CHECK(messages[0] == messages[1] && messages[0].find(word) != std::string::npos &&
+          messages[0].find("empty on rank") == std::string::npos,
         std::string("pieces that ") + (which ? "leave a gap" : "overlap") + " are refused on both ranks: " +
           messages[0]);
     }
+    // a gap where a rank's piece is empty (its upstream failed without the pipeline knowing: a
+    // Python source that raised): the rank is named
+    const Decomposition half = { { 0, n - 1, 0, n - 1, 0, 20 }, { 0, -1, 0, -1, 0, -1 } };
+    std::vector<std::vector<float>> values = { Cut(gauss, half[0]), {} };
+    std::vector<std::string> messages(2);
+    RunInProcessRanks(2, [&](Parallel& p) {
+      try
+      {
+        Piece piece = PieceOf(gauss, half[p.Rank()], values[p.Rank()]);
+        if (p.Rank() == 1)
+          piece.NMinus1 = nullptr;
+        DistributedVolume dv(piece, 4, p);
+      }
+      catch (const Error& e)
+      {
+        messages[p.Rank()] = e.what();
+      }
+    });
+    CHECK(messages[0] == messages[1] &&
+        messages[0].find("uncovered: pieces must tile it (empty on rank 1: if a filter upstream reported an "
+                         "error there, that is the cause)") != std::string::npos,
+      "a gap left by rank 1's empty piece names rank 1 on both ranks: " + messages[0]);
   }
   // a rank with an empty piece (more ranks than a reader splits into): it owns nothing, holds
   // nothing, and the image is still one process's
