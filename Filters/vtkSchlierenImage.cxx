@@ -653,7 +653,8 @@ std::string EnumerationProblem(vtkSchlierenImage* f)
   // value is an error, not a clamp to another choice (empty where all are entries).
   for (const std::string& problem :
     { SchlierenEnumProblem("Integrator", f->GetIntegrator(),
-        { { 0, "Euler" }, { 1, "Midpoint" }, { 2, "RK4" }, { 3, "Straight" }, { 4, "Auto" } }),
+        { { 0, "Euler" }, { 1, "Midpoint" }, { 2, "RK4" }, { 3, "Straight" }, { 4, "Auto" },
+          { 5, "Verlet" } }),
       SchlierenEnumProblem("Reconstruction", f->GetReconstruction(),
         { { 0, "Trilinear" }, { 1, "Cubic" }, { 2, "Auto" } }),
       SchlierenEnumProblem("Cutoff", f->GetCutoff(),

@@ -57,7 +57,8 @@
  * - Resolution (512 512): film pixels.
  * - Passes (4, at least 1): progressive passes, one jittered photon per pixel each.
  * - StepSize (0.5 voxels, in [0.01, 1000]): the base integration step.
- * - Integrator (EULER): EULER (the paper's), MIDPOINT, RK4, STRAIGHT (line of sight: grad n
+ * - Integrator (EULER): EULER (the paper's), VERLET (velocity Verlet: second order at Euler's one
+ *   sample a step), MIDPOINT, RK4, STRAIGHT (line of sight: grad n
  *   integrated along the unbent ray) or AUTO_INTEGRATOR (the cheapest of those, and a step, that
  *   meets Tolerance on a pilot of 16 x 16 rays; StepSize is then ignored).
  * - Reconstruction (TRILINEAR): TRILINEAR (central differences, trilinear: second order), CUBIC
@@ -144,7 +145,8 @@ public:
     MIDPOINT = 1,
     RK4 = 2,
     STRAIGHT = 3,
-    AUTO_INTEGRATOR = 4
+    AUTO_INTEGRATOR = 4,
+    VERLET = 5
   };
 
   /** Cutoffs; the values are those of schlieren::Cutoff. */

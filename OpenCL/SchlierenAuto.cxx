@@ -638,7 +638,8 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   {
     if ((rc == Reconstruction::Trilinear && !tryTri) || (rc == Reconstruction::Cubic && !tryCubic))
       continue;
-    for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    for (Integrator m :
+      { Integrator::Straight, Integrator::Euler, Integrator::Verlet, Integrator::Midpoint, Integrator::RK4 })
     {
       // line of sight is not refined below a voxel (its error there is the data's, not the step's)
       const double shortest = m == Integrator::Straight ? 1.0 : 0.25;

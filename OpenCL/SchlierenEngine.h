@@ -142,7 +142,8 @@ enum class Integrator
   Midpoint = 1, ///< explicit midpoint (second order, 2 samples per step)
   RK4 = 2,      ///< classical Runge-Kutta (fourth order, 4 samples per step)
   Straight = 3, ///< line of sight: grad n integrated along the unbent ray (no refraction)
-  Auto = 4      ///< the cheapest of the above (and step) that meets TraceSettings::Tolerance
+  Auto = 4,     ///< the cheapest of the others (and step) that meets TraceSettings::Tolerance
+  Verlet = 5    ///< velocity Verlet (second order, 1 sample per step: Euler's cost)
 };
 
 /** How the packed field is reconstructed between grid points. */

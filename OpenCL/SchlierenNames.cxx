@@ -95,6 +95,8 @@ const char* IntegratorName(Integrator m)
       return "Straight";
     case Integrator::Auto:
       return "Auto";
+    case Integrator::Verlet:
+      return "Verlet";
   }
   return "?";
 }

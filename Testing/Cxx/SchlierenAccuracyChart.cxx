@@ -84,7 +84,8 @@ int main(int argc, char** argv)
       }
       const std::vector<double> steps = cubic ? std::vector<double>{ 32, 16, 8, 4, 2, 1, 0.5, 0.25 }
                                               : std::vector<double>{ 8, 4, 2, 1, 0.5, 0.25 };
-      for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+      for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Verlet, Integrator::Midpoint,
+           Integrator::RK4 })
         for (double st : steps)
         {
           TraceSettings s = c.S;

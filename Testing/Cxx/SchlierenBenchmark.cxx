@@ -704,7 +704,8 @@ void AutoStep(const std::string& grids, const std::string& backends, int film, i
         double best = 1e300;
         TraceSettings bestS = base;
         for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
-          for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+          for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Verlet, Integrator::Midpoint,
+           Integrator::RK4 })
             for (int k = 14; k >= 0; --k)
             {
               TraceSettings t = base;

@@ -108,6 +108,8 @@ void TestConvergence()
     CHECK_NEAR(err, 0.0, 1e-5, "linear medium: the traced ray is the analytic parabola");
     CheckOrder("linear gradient", sv, s, ab, Integrator::Euler, { 4, 2, 1, 0.5 }, 0.9, 1.1);
     CheckOrder("linear gradient", sv, s, ab, Integrator::Midpoint, { 16, 8, 4 }, 1.6, 2.4);
+    // Verlet: second order at Euler's one sample a step
+    CheckOrder("linear gradient", sv, s, ab, Integrator::Verlet, { 16, 8, 4 }, 1.6, 2.4);
   }
   {
     SceneParameters p;
@@ -122,6 +124,7 @@ void TestConvergence()
     TraceSettings s = Beam(1, 0, 0, 0, 0, 1);
     CheckOrder("Luneburg lens", sv, s, ab, Integrator::Euler, { 1, 0.5, 0.25 }, 0.9, 1.1);
     CheckOrder("Luneburg lens", sv, s, ab, Integrator::Midpoint, { 1, 0.5, 0.25 }, 1.8, 2.6);
+    CheckOrder("Luneburg lens", sv, s, ab, Integrator::Verlet, { 1, 0.5, 0.25 }, 1.8, 2.6);
   }
 }
 
@@ -200,7 +203,7 @@ void TestShock()
   schtest::OracleCase c = schtest::ShockCase(128, 2.0);
   for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5 })
   {
-    for (Integrator m : { Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    for (Integrator m : { Integrator::Euler, Integrator::Verlet, Integrator::Midpoint, Integrator::RK4 })
     {
       TraceSettings s = c.S;
       s.Method = m;
@@ -451,7 +454,8 @@ void TestAuto()
     // the cheapest fixed setting that meets the tolerance against the known answer
     double cheapest = 1e300;
     std::string cheapestName = "none";
-    for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Verlet, Integrator::Midpoint,
+           Integrator::RK4 })
       for (double st : { 8.0, 4.0, 2.0, 1.0, 0.5, 0.25 })
       {
         TraceSettings t = c.S;

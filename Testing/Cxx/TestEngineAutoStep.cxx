@@ -15,7 +15,7 @@
 // asked. So each trace is held to that exact ray, and the exact ray to the closed form within
 // ORACLES' O(A) (2.8e-4 of the peak at A = 2e-4).
 //
-// The sweep: Straight, Euler, Midpoint and RK4 on Trilinear and Cubic data, steps 2^(k/2) voxels
+// The sweep: Straight, Euler, Verlet, Midpoint and RK4 on Trilinear and Cubic data, steps 2^(k/2) voxels
 // from 1 to 128, each group from its longest step down until every tolerance has been met. Its
 // rays: 24 x 24 over |x|, |y| < 2.2 s (not the pilot's). Cost: samples per ray, a tricubic sample
 // counted as 3 (Auto's own weight, CubicSampleCost); the raw samples are held to 1.5 too.
@@ -194,7 +194,8 @@ void RunGrid(int n, const std::vector<double>& kTolerances, const std::vector<do
   }
   int swept = 0;
   for (Reconstruction rc : { Reconstruction::Trilinear, Reconstruction::Cubic })
-    for (Integrator mth : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    for (Integrator mth : { Integrator::Straight, Integrator::Euler, Integrator::Verlet, Integrator::Midpoint,
+           Integrator::RK4 })
     {
       std::map<double, bool> met;
       for (int k = 14; k >= 0; --k)

@@ -338,7 +338,8 @@ void TestIntegrators()
 {
   const double eo = 2e-4, n0m1 = 3e-4, G = -eo * (1 + n0m1) / W;
   Slab slab(n0m1, G);
-  for (Integrator m : { Integrator::Midpoint, Integrator::RK4, Integrator::Straight, Integrator::Auto })
+  for (Integrator m :
+    { Integrator::Verlet, Integrator::Midpoint, Integrator::RK4, Integrator::Straight, Integrator::Auto })
   {
     TraceSettings s = BenchSettings(BenchSource::Slit, 1.0, 1.0, 1.0, 0.5);
     s.Method = m;

@@ -402,6 +402,18 @@ int main()
     cases.push_back(c);
   }
   {
+    // Verlet's two half kicks a step: a ray handed on between two steps carries no half of one,
+    // and its last half kick (where it leaves the box) is taken on the rank it leaves from
+    Case c{ "Luneburg lens, Verlet", &luneburg, TraceSettings() };
+    c.Settings.ViewDirection[0] = -0.4;
+    c.Settings.ViewDirection[1] = 0.3;
+    c.Settings.ViewDirection[2] = -1;
+    c.Settings.Resolution[0] = c.Settings.Resolution[1] = 24;
+    c.Settings.Method = Integrator::Verlet;
+    c.Settings.StepSize = 1.5;
+    cases.push_back(c);
+  }
+  {
     // the octree at one process's default MaxLevel (7): blocks up to the level the volume reaches
     // (OctreeLevelReached, from the pieces' own points), ghosts as deep as such a block (issue 23)
     Case c{ "Gaussian sphere, octree to level 7, RK4", &gauss, TraceSettings(), 2e-6 };

@@ -468,7 +468,8 @@ void TestKernelsAgree(bool haveCL)
   }
   const SmallSphere sphere;
   for (bool octree : { false, true })
-    for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Midpoint, Integrator::RK4 })
+    for (Integrator m : { Integrator::Straight, Integrator::Euler, Integrator::Verlet, Integrator::Midpoint,
+           Integrator::RK4 })
     {
       const Volume v = sphere.With(octree);
       TraceSettings s;

@@ -297,7 +297,7 @@ void TestShock()
   Volume v = oc.SV->V;
   v.Smooth = smooth.data();
   for (double st : { 16.0, 8.0, 2.0, 1.0 })
-    for (Integrator m : { Integrator::Euler, Integrator::Midpoint })
+    for (Integrator m : { Integrator::Euler, Integrator::Verlet, Integrator::Midpoint })
     {
       TraceSettings s = oc.S;
       s.Method = m;

@@ -264,7 +264,7 @@ def random_case(rng, k):
         Resolution=[rng.randint(2, 48), rng.randint(2, 48)],
         Passes=rng.randint(1, 3),
         StepSize=lograng(-2, 1.8),
-        Integrator=pick("Euler", "Midpoint", "RK4", "Straight", "Auto"),
+        Integrator=pick("Euler", "Verlet", "Midpoint", "RK4", "Straight", "Auto"),
         Cutoff=pick("KnifeEdge", "Circular", "ComplementCircular", "ColorFilter", "Shadowgraph",
                     "Interferometry", "BOS"),
         KnifeAngle=rng.uniform(-180, 180),
