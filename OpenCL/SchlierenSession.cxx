@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <new>
 #include <sstream>
@@ -60,6 +61,59 @@ std::string LoadPiece(
   else if (problem.empty() && ranks == 1)
     problem = "SchlierenImage: the input image is empty.";
   return problem;
+}
+
+void LoadPieceAgreed(Parallel& parallel, const VolumePiece& piece, const TraceSettings& settings,
+  PieceValues& values)
+{
+  const int ranks = parallel.Size();
+  // no whole grid on this rank: its input's information failed here (a reader of a file missing
+  // on this rank alone: fuzz_mpi), while the others have theirs
+  const bool noGrid = ranks > 1 && piece.Problem.empty() && ExtentPoints(piece.WholeExtent) == 0;
+  AgreeOrThrow(parallel, noGrid ? "The input volume is empty on rank " + std::to_string(parallel.Rank()) +
+        ": nothing to trace. If a filter upstream reported an error there, that is the cause; "
+        "fix it there."
+                                : LoadPiece(piece, settings, ranks, values));
+  if (ranks <= 1)
+    return;
+  // each rank's grid against the largest and smallest of every rank's (one all-reduce)
+  double grid[12];
+  for (int a = 0; a < 6; ++a)
+    grid[a] = piece.WholeExtent[a];
+  for (int a = 0; a < 3; ++a)
+  {
+    grid[6 + a] = piece.Origin[a] + piece.WholeExtent[2 * a] * piece.Spacing[a];
+    grid[9 + a] = piece.Spacing[a];
+  }
+  double range[24];
+  for (int k = 0; k < 12; ++k)
+  {
+    range[k] = grid[k];
+    range[12 + k] = -grid[k];
+  }
+  parallel.Max(range, 24);
+  double scale = 0;
+  for (int a = 0; a < 3; ++a)
+    scale = std::max(scale, std::fabs(range[9 + a]));
+  for (int k = 0; k < 12; ++k)
+  {
+    const double hi = range[k], lo = -range[12 + k];
+    // extents exactly; origins and spacings to rounding of the spacing
+    const double allowed = k < 6 ? 0.0 : 1e-9 * scale;
+    if (!(hi - lo <= allowed))
+    {
+      std::ostringstream msg;
+      msg.precision(10);
+      msg << "Distributed volume: the ranks' pieces are not of one grid: "
+          << (k < 6 ? "whole extent" : k < 9 ? "origin" : "spacing") << " component "
+          << (k < 6 ? k : (k - 6) % 3) << " is " << lo << " on some rank and " << hi
+          << " on another (each rank must hold a piece of the same image data; this rank's: "
+          << "whole extent " << piece.WholeExtent[0] << ' ' << piece.WholeExtent[1] << ' '
+          << piece.WholeExtent[2] << ' ' << piece.WholeExtent[3] << ' ' << piece.WholeExtent[4]
+          << ' ' << piece.WholeExtent[5] << ").";
+      throw Error(msg.str());
+    }
+  }
 }
 
 namespace
@@ -599,8 +653,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     // 1. This rank's piece.
     PieceValues values;
     const std::size_t count = ExtentPoints(piece.Extent);
-    std::string problem = LoadPiece(piece, settings, ranks, values);
-    AgreeOrThrow(parallel, problem);
+    LoadPieceAgreed(parallel, piece, settings, values);
 
     // 2. The whole volume on every rank.
     Volume volume = WholeGrid(piece);
@@ -650,7 +703,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
     report(0.05);
 
     // 3. n - 1 and its gradient, packed.
-    problem.clear();
+    std::string problem;
     float rangeLo = 0, rangeHi = 0;
     try
     {

@@ -30,6 +30,13 @@ void AgreeOrThrow(Parallel& parallel, const std::string& mine);
 std::string LoadPiece(
   const VolumePiece& piece, const TraceSettings& settings, int ranks, PieceValues& values);
 
+/** LoadPiece on every rank, agreed (AgreeOrThrow), then that every rank's piece is of the same
+ * whole grid (extent, origin, spacing): the collectives after it size their messages by that
+ * grid, so a rank with another one would leave them mismatched (MPI aborts the job). Throws on
+ * every rank where a rank disagrees. Collective. */
+void LoadPieceAgreed(Parallel& parallel, const VolumePiece& piece, const TraceSettings& settings,
+  PieceValues& values);
+
 } // namespace schlieren
 
 #endif

@@ -57,7 +57,7 @@ void TraceSession::UpdatePieces(Parallel& parallel, const VolumePiece& piece,
     this->PiecesKey.clear();
     PieceValues values;
     const std::size_t count = ExtentPoints(piece.Extent);
-    AgreeOrThrow(parallel, LoadPiece(piece, settings, ranks, values));
+    LoadPieceAgreed(parallel, piece, settings, values);
     // a body: its solid points travel with n - 1 (the ghosts' too)
     const bool body = values.Solid.size() == count &&
       std::any_of(values.Solid.begin(), values.Solid.end(), [](unsigned char c) { return c != 0; });

@@ -153,7 +153,8 @@ struct Run
 };
 
 Run RunSession(const Whole& w, int n, int axis, bool overlap, bool autoIntegrator,
-  const std::function<void(int, VolumePiece&)>& spoil = nullptr, bool twoUpdates = true)
+  const std::function<void(int, VolumePiece&)>& spoil = nullptr, bool twoUpdates = true,
+  bool inPieces = false)
 {
   Run run;
   run.Fields.resize(n);
@@ -175,9 +176,14 @@ Run RunSession(const Whole& w, int n, int axis, bool overlap, bool autoIntegrato
     std::string error;
     try
     {
-      session.Update(p, piece, Settings(twoUpdates ? 1 : 3, autoIntegrator), first);
+      TraceSettings s = Settings(twoUpdates ? 1 : 3, autoIntegrator);
+      s.InPieces = inPieces;
+      session.Update(p, piece, s, first);
       if (twoUpdates)
-        session.Update(p, piece, Settings(3, autoIntegrator), second);
+      {
+        s.Passes = 3;
+        session.Update(p, piece, s, second);
+      }
     }
     catch (const Error& e)
     {
@@ -335,6 +341,33 @@ int main()
     for (const std::string& e : run.Errors)
       same = same && e == run.Errors[0];
     CHECK(same, "pieces with a gap: the same error on every rank: " + run.Errors[0]);
+  }
+  for (bool inPieces : { false, true })
+  {
+    const std::string path = inPieces ? " (in pieces)" : " (the whole volume on every rank)";
+    // rank 1 has no grid at all: its input's information failed there alone (a reader of a file
+    // missing on that rank, as fuzz_mpi draws it). Before, the collectives sized by the whole
+    // grid then differed between the ranks: MPI_ERR_TRUNCATE, and the job aborted
+    const Run none = RunSession(w, 3, 2, false, false, [](int r, VolumePiece& piece) {
+      if (r == 1)
+      {
+        const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+        std::memcpy(piece.Extent, empty, sizeof empty);
+        std::memcpy(piece.WholeExtent, empty, sizeof empty);
+      }
+    }, true, inPieces);
+    CHECK(agreed(none, "The input volume is empty on rank 1: nothing to trace. If a filter upstream "
+                       "reported an error there, that is the cause; fix it there.", 1),
+      "no grid on rank 1: its message on every rank" + path);
+    // rank 2's piece of another grid (its whole extent one point longer)
+    const Run other = RunSession(w, 3, 2, false, false, [](int r, VolumePiece& piece) {
+      if (r == 2)
+        piece.WholeExtent[1] += 1;
+    }, true, inPieces);
+    bool said = true;
+    for (const std::string& e : other.Errors)
+      said = said && e.find("the ranks' pieces are not of one grid: whole extent component 1 is") != std::string::npos;
+    CHECK(said, "rank 2's piece of another grid: refused on every rank" + path + ": " + other.Errors[0]);
   }
   {
     // one rank: an empty input is an error; Passes below 1 too

@@ -113,7 +113,7 @@ def draw(rng, k):
         octree=rng.random() < 0.3,
         image=dict(Resolution=[rng.randint(4, 32), rng.randint(4, 32)],
                    Passes=rng.randint(1, 2),
-                   Integrator=rng.choice(["Euler", "RK4", "Straight", "Auto"]),
+                   Integrator=rng.choice(["Euler", "Verlet", "RK4", "Straight", "Auto"]),
                    Cutoff=rng.choice(["KnifeEdge", "Shadowgraph", "Interferometry", "Circular"]),
                    ViewDirection=rng.choice([[0, 0, -1], [1, 0, 0], [0.3, -0.5, 0.8]]),
                    ViewUp=[0, 1, 0.2], Backend="CPU", Threads=1))
