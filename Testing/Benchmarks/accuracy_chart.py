@@ -23,7 +23,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {"Straight": "tab:grey", "Euler": "tab:blue", "Midpoint": "tab:orange", "RK4": "tab:green", "Auto": "tab:red", "Auto 1e-3": "tab:purple"}
+COLOURS = {"Straight": "tab:grey", "Euler": "tab:blue", "Verlet": "tab:cyan", "Midpoint": "tab:orange", "RK4": "tab:green", "Auto": "tab:red", "Auto 1e-3": "tab:purple"}
 AUTO_LINE = "Auto line"
 MARKERS = {0.0: "o", 0.0001: "s", 0.01: "^"}
 
