@@ -862,11 +862,20 @@ std::vector<float> PilotRays(const Volume& volume, const TraceSettings& s)
   std::vector<float> ab;
   const int np = 16;
   const double w = film.Size[0] * film.PixelSize, h = film.Size[1] * film.PixelSize;
+  // Each ray off the centre of its cell of the 16 x 16 pattern, by the R2 sequence (in the cell's
+  // middle half). At the centres, an axis view of a grid of 32 k + 1 points a side (33, 65, 129,
+  // 257, 513) put every pilot ray on a grid line, where the trilinear interpolation across the
+  // ray is exact: the pilot saw none of the trilinear's error (the 129^3 Gaussian at 3e-8 rad:
+  // Trilinear Verlet chosen, 8.8e-7 rad off the exact ray; at 1e-7 rad, 8.3e-7).
+  const double r1 = 0.7548776662466927, r2 = 0.5698402909980532; // 1 / g, 1 / g^2 (g^3 = g + 1)
   for (int j = 0; j < np; ++j)
     for (int i = 0; i < np; ++i)
     {
-      ab.push_back(static_cast<float>(film.Corner[0] + (i + 0.5) * w / np));
-      ab.push_back(static_cast<float>(film.Corner[1] + (j + 0.5) * h / np));
+      const int k = j * np + i + 1;
+      const double u = 0.25 + 0.5 * std::fmod(0.5 + k * r1, 1.0);
+      const double v = 0.25 + 0.5 * std::fmod(0.5 + k * r2, 1.0);
+      ab.push_back(static_cast<float>(film.Corner[0] + (i + u) * w / np));
+      ab.push_back(static_cast<float>(film.Corner[1] + (j + v) * h / np));
     }
   return ab;
 }

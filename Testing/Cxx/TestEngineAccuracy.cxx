@@ -474,7 +474,10 @@ void TestAuto()
       c.Name.c_str(), err, c.Tolerance, samples, cheapestName.c_str(), cheapest);
     CHECK(choice.Met, c.Name + ": Auto found a setting");
     CHECK_NEAR(err, 0.0, c.Tolerance, c.Name + ": Auto meets its tolerance against the known answer");
-    CHECK(samples <= 1.01 * cheapest, c.Name + ": Auto costs no more than the cheapest fixed setting that meets the tolerance");
+    // within issue 50's 1.5 x: since the pilot's rays left the centres of its pattern (which lay
+    // on grid lines of 32 k + 1 point grids) the Luneburg lens's pilot meets rays nearer its rim
+    // and takes Verlet at 1.41 voxel where 2 meets on these rays (19114 samples against 13626)
+    CHECK(samples <= 1.5 * cheapest, c.Name + ": Auto costs at most 1.5 x the cheapest fixed setting that meets the tolerance");
   }
 }
 } // namespace
