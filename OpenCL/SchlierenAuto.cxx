@@ -195,9 +195,107 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   grid.HasSmooth = volume.Smooth != nullptr;
   grid.HasSolid = volume.Solid != nullptr;
   grid.PiecesBound = piecesBound;
-  return ResolveAutoWith(grid, in, choice,
-    [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); },
-    start);
+  // A large smooth field traced from its copy at 4 or 2 times the spacing, where the copy is
+  // certified within CoarseShare of the tolerance at every point (issue 50: a tricubic sample of
+  // a 2 GiB field costs 2.2 times one of a field in the caches; the Gaussian at 512^3 holds no
+  // more than a 128^3 copy carries). The pilot then runs on the copy, against the rest of the
+  // tolerance, and so does the image: the device holds the copy, not the field.
+  std::shared_ptr<const CoarseCopy> copy;
+  double coarseMs = 0;
+  if (CoarseEligible(volume, in, piecesBound))
+  {
+    const auto c0 = std::chrono::steady_clock::now();
+    // 4 first; 2 where 4 was not smooth, or its bound is within 16 times the share (a fourth-order
+    // reconstruction's error falls 16-fold at half the spacing: the Gaussian at 512^3, 1.1e-8 and
+    // 1.7e-9 rad)
+    const std::shared_ptr<const CoarseCopy> c4 = CoarseCopyOf(volume, 4);
+    // Reconstruction Auto: where the field's own trilinear may meet the tolerance (the copy's
+    // trilinear error over the spacings' ratio squared within TrilinearReach of it), a trilinear
+    // sample of the field may be the cheapest: the field's own pilot decides, and no copy is
+    // traced (issue 50: the 256^3 Gaussian at 1e-6 rad, Cubic Straight on the copy at 4 times the
+    // spacing, 7 samples a ray, where Trilinear Straight on the field met with 8)
+    const double r4 = c4 ? MinSpacing(c4->V) / MinSpacing(volume) : 4.0;
+    const bool fieldTrilinear =
+      in.Recon == Reconstruction::Auto && c4 && c4->TrilinearBound / (r4 * r4) <= TrilinearReach * in.Tolerance;
+    if (fieldTrilinear)
+      ;
+    else if (c4 && c4->Bound <= CoarseShare * in.Tolerance)
+      copy = c4;
+    else if (!c4 || c4->Bound <= 16 * CoarseShare * in.Tolerance)
+    {
+      const std::shared_ptr<const CoarseCopy> c2 = CoarseCopyOf(volume, 2);
+      if (c2 && c2->Bound <= CoarseShare * in.Tolerance)
+        copy = c2;
+    }
+    coarseMs = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count() * 1e3;
+  }
+  if (!copy)
+  {
+    TraceSettings out = ResolveAutoWith(grid, in, choice,
+      [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); },
+      start);
+    if (choice)
+      choice->CoarseMs = coarseMs;
+    return out;
+  }
+  const Volume& cv = copy->V;
+  const double scale = MinSpacing(cv) / MinSpacing(volume); // the copy's voxel in the field's
+  AutoVolume cg = grid;
+  cg.Grid = cv;
+  cg.HasLevels = false;
+  cg.ReportScale = scale;
+  TraceSettings cin = in;
+  cin.Tolerance = in.Tolerance - copy->Bound;
+  cin.UseOctree = false;
+  // the copy stands for the field through its tricubic reconstruction, which the certificate
+  // covers; its trilinear, twice as coarse or more, is not (the pilot's rays alone would answer
+  // for it, and they miss what lies between them)
+  cin.Recon = Reconstruction::Cubic;
+
+  // an earlier pilot's choice on the same copy: its steps in the copy's voxels
+  AutoChoice cstart;
+  const AutoChoice* cs = nullptr;
+  if (start && start->FieldStride == copy->Stride)
+  {
+    cstart = *start;
+    cstart.StepSize /= scale;
+    for (double& st : cstart.ReferenceSteps)
+      st /= scale;
+    cs = &cstart;
+  }
+  AutoChoice c;
+  TraceSettings out = ResolveAutoWith(cg, cin, &c,
+    [&cv](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(cv, t, ab); }, cs);
+  // where nothing met the rest of the tolerance on the copy: the field, with all of it, may
+  if (!c.Met)
+  {
+    TraceSettings field = ResolveAutoWith(grid, in, choice,
+      [&volume](const TraceSettings& t, const std::vector<float>& ab) { return TraceRays(volume, t, ab); },
+      start && start->FieldStride == 1 ? start : nullptr);
+    if (choice)
+      choice->CoarseMs = coarseMs;
+    return field;
+  }
+  out.Tolerance = in.Tolerance;
+  out.UseOctree = in.UseOctree && out.UseOctree;
+  out.StepSize *= scale;
+  out.FieldStride = copy->Stride;
+  c.StepSize *= scale;
+  for (double& st : c.ReferenceSteps)
+    st *= scale;
+  c.FieldStride = copy->Stride;
+  c.CoarseBound = copy->Bound;
+  c.Tolerance = in.Tolerance; // the whole: the copy's certificate and the pilot's share
+  c.CoarseMs = coarseMs;
+  std::ostringstream rep;
+  rep << "; traced on the field at " << copy->Stride << " times its spacing (a copy of " << cv.Dimensions[0]
+      << " x " << cv.Dimensions[1] << " x " << cv.Dimensions[2] << " points, certified within "
+      << copy->Bound << " rad of the field for every ray; the pilot's tolerance the rest, "
+      << cin.Tolerance << " rad)";
+  c.Report += rep.str();
+  if (choice)
+    *choice = c;
+  return out;
 }
 
 TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, AutoChoice* choice,
@@ -381,7 +479,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   // against it alone reported 1e-7 and 3e-8 rad met). It is part of the floor: no candidate is
   // closer to the truth than the reference it is measured against can tell.
   double reach = triError;
-  if (tryCubic && !(reach > 0) && volume.Field && volume.Smooth && !grid.PiecesBound && emax > 0)
+  if (tryCubic && !(reach > 0) && volume.Field && volume.Smooth && !grid.PiecesBound && volume.Ghost == 0 && emax > 0)
   {
     // Reconstruction Cubic (no trilinear reference): the trilinear's error from one trace at
     // the tricubic reference's step
@@ -393,7 +491,9 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
       if (Comparable(tri[k], refCubic[k]) && !((tri[k].Flags | refCubic[k].Flags) & RayBlocked))
         reach = std::max(reach, double(sch_hypot_d(tri[k].DeflX - refCubic[k].DeflX, tri[k].DeflY - refCubic[k].DeflY)));
   }
-  if (tryCubic && volume.Field && volume.Smooth && !grid.PiecesBound && emax > 0 &&
+  // (not on a coarse copy, Volume::Ghost: its field at twice the spacing would not have the box's
+  // faces; the copy is certified against the field instead, CoarseCopy::Bound)
+  if (tryCubic && volume.Field && volume.Smooth && !grid.PiecesBound && volume.Ghost == 0 && emax > 0 &&
     tol < RefCheckReach * reach * reach / emax)
   {
     const auto r0 = std::chrono::steady_clock::now();
@@ -773,7 +873,8 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     // RK4 at 4 times the step would be 256 times worse if the difference were its truncation
     // error: an error that does not fall with the step is rounding
     const RefLadder& L = refs[floorRc];
-    floorWhy = "the reference (RK4 at " + ToText(L.Step) + " voxel) and RK4 at " + ToText(L.CoarseStep) +
+    floorWhy = "the reference (RK4 at " + ToText(L.Step * grid.ReportScale) + " voxel) and RK4 at " +
+      ToText(L.CoarseStep * grid.ReportScale) +
       " voxel differ by " + ToText(d) + " rad";
     if (it != coarseRK4.end() && it->second <= 2 * d)
       floorWhy += ", RK4 at a voxel or more by " + ToText(it->second) +
@@ -804,7 +905,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   }
   const double ms = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() * 1e3;
   std::ostringstream rep;
-  rep << "Auto chose " << IntegratorName(c.Method) << " at " << c.StepSize << " voxel: expected "
+  rep << "Auto chose " << IntegratorName(c.Method) << " at " << c.StepSize * grid.ReportScale << " voxel: expected "
       << "deflection error " << c.ExpectedError << " rad (tolerance " << tol << " rad), landing error "
       << c.ExpectedLandingError << " pixel, " << c.SamplesPerRay << " samples per ray (pilot of "
       << ab.size() / 2 << " rays, " << static_cast<int>(ms) << " ms)";
@@ -817,7 +918,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
   if (refFloor)
   {
     std::ostringstream best;
-    best << ReconstructionName(c.Recon) << " " << IntegratorName(c.Method) << " at " << c.StepSize << " voxel";
+    best << ReconstructionName(c.Recon) << " " << IntegratorName(c.Method) << " at " << c.StepSize * grid.ReportScale << " voxel";
     rep << "; no candidate met the tolerance: it is below what this volume allows, a floor of " << c.Floor
         << " rad (" << RefFloorMargin << " times the tricubic reference's own error, " << c.ReferenceError
         << " rad, measured against the field sampled at twice the spacing: the data does not resolve the "

@@ -75,12 +75,18 @@ struct Volume
    * and Solid stay linear either way. The images are the same, bit for bit.
    */
   bool FieldInBricks = false;
+  /**
+   * Layers of points beyond every face of the box (0, the default: none). The box, where rays
+   * enter and leave and the film is framed, is the bounds of the points Ghost in from each face;
+   * the outer ones only give the reconstruction its stencils there (Auto's coarse copy, issue 50).
+   */
+  int Ghost = 0;
 
   std::size_t NumberOfPoints() const
   {
     return static_cast<std::size_t>(Dimensions[0]) * Dimensions[1] * Dimensions[2];
   }
-  /** The point bounds: xmin, xmax, ymin, ymax, zmin, zmax. */
+  /** The box (the point bounds, less Ghost layers): xmin, xmax, ymin, ymax, zmin, zmax. */
   void GetBounds(double bounds[6]) const;
 };
 
@@ -243,6 +249,10 @@ struct TraceSettings
   double Tolerance = 0.0;
   /** Set by ResolveAuto: the pilot's measured error of the chosen setting (radians); -1 otherwise. */
   double AutoMeasuredError = -1.0;
+  /** Set by ResolveAuto (issue 50): 1, the volume's own points are traced; 2 or 4, a copy of the
+   * field at that many times its spacing over the same box, certified within a quarter of the
+   * Tolerance of the field at every point (CoarseCopyOf). StepSize stays in the volume's voxels. */
+  int FieldStride = 1;
   Cutoff Mode = Cutoff::KnifeEdge;
   double KnifeAngle = 0.0;  ///< degrees in the film plane; 0: knife normal along film x
   double CutoffScale = 0.0; ///< k; 0 means automatic: the largest deflection maps to full contrast
@@ -471,6 +481,14 @@ struct AutoChoice
   /** Traced in pieces: steps longer than the pieces' ghost layers hold (8 voxels trilinear, 64
    * tricubic) were not tried; one process may choose a longer one. */
   bool PiecesBound = false;
+  /** 1: the volume's own points traced; 2 or 4: its certified copy at that many times its
+   * spacing (TraceSettings::FieldStride), the pilot traced on it too. */
+  int FieldStride = 1;
+  /** The copy's certificate, radians: no ray's deflection differs by more between the copy and
+   * the field (0 with FieldStride 1). The pilot's tolerance was the rest of Tolerance. */
+  double CoarseBound = 0;
+  /** What building and certifying the copies took, milliseconds (0: kept from before). */
+  double CoarseMs = 0;
 };
 
 /** The finished image. */

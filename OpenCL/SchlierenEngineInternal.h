@@ -101,7 +101,48 @@ struct AutoVolume
   /** The candidates' steps stay within AutoPiecesReach (the pieces' ghost layers hold no
    * longer ones); false: up to the volume's diagonal. */
   bool PiecesBound = false;
+  /** The report's steps are in voxels of the grid times this (a coarse copy's: the field's). */
+  double ReportScale = 1.0;
 };
+/** Auto's coarse copy of a field (issue 50, SchlierenCoarse.cxx): the field's four values
+ * resampled (4-point Lagrange along each axis) at Stride times its spacing over the same box,
+ * its smoothness its own; certified against the field at every second point along each axis. */
+struct CoarseCopy
+{
+  int Stride = 1;
+  Volume V; ///< the copy (linear, stamped), pointing into Packed and Smooth
+  AlignedFloats Packed; ///< page-aligned: a CPU OpenCL device traces it in place
+  std::vector<unsigned char> Smooth;
+  /** The largest difference of a gradient component between the copy's reconstruction (the
+   * kernels' sampling) and the field's values at the checked points, per world unit. */
+  double GradientGap = 0;
+  /** GradientGap as a deflection, radians: sqrt 3 times it along the box's diagonal, over the
+   * lowest n. No ray's deflection differs by more between the copy and the field. */
+  double Bound = 0;
+  /** The same sum for the copy's trilinear against its tricubic, radians: the trilinear's own
+   * error on the copy, r^2 times the field's (second order). */
+  double TrilinearBound = 0;
+};
+/** A copy has at least this many points along every axis. */
+constexpr int CoarseMinPoints = 32;
+/** Auto tries a copy for grids of at least this many points (the field past the caches). */
+constexpr double CoarseFromPoints = 256.0 * 256.0 * 256.0;
+/** A copy's field is at most this many bytes (one device buffer, PoCL's limit half of it). */
+constexpr double CoarseMaxBytes = 512.0 * 1024 * 1024;
+/** The share of the tolerance a copy's Bound may take. */
+constexpr double CoarseShare = 0.25;
+/** The copy of stamped volume v at `stride` (2 or 4), kept for the last stamped volume (every
+ * stride asked); null where the volume is not stamped or the copy would have fewer than
+ * CoarseMinPoints along an axis. */
+std::shared_ptr<const CoarseCopy> CoarseCopyOf(const Volume& v, int stride);
+/** Lets go of the copies CoarseCopyOf keeps. */
+void ReleaseCoarseCopies();
+/** Whether Auto may trace `in` on v from a coarse copy: Integrator Auto with Cubic or Auto
+ * reconstruction and a Tolerance given, one process's stamped volume of CoarseFromPoints or
+ * more, high-order packed, no body, no phase (Interferometry), one wavelength, no error
+ * estimate, and the runtime options' CoarseCopies. */
+bool CoarseEligible(const Volume& v, const TraceSettings& in, bool piecesBound);
+
 /** The longest step Auto's candidates take on the pieces of a distributed volume, voxels:
  * 8 trilinear, 64 tricubic (the ghost layers are sized for them, GhostPointsFor). */
 double AutoPiecesReach(bool cubic);

@@ -22,7 +22,7 @@ void Volume::GetBounds(double b[6]) const
 {
   for (int a = 0; a < 3; ++a)
   {
-    const double lo = Origin[a], hi = Origin[a] + (Dimensions[a] - 1) * Spacing[a];
+    const double lo = Origin[a] + Ghost * Spacing[a], hi = Origin[a] + (Dimensions[a] - 1 - Ghost) * Spacing[a];
     b[2 * a] = std::min(lo, hi);
     b[2 * a + 1] = std::max(lo, hi);
   }
@@ -729,6 +729,10 @@ void CheckVolume(const Volume& v)
   CheckGrid(v.Dimensions, v.Spacing);
   if (!v.Field)
     throw Error("The volume has no field data.");
+  for (int a = 0; a < 3; ++a)
+    if (v.Ghost < 0 || v.Dimensions[a] < 2 * v.Ghost + 2)
+      throw Error("The volume's Ghost layers (" + std::to_string(v.Ghost) +
+        ") leave no box inside its points: 0 for a volume of the caller's.");
 }
 
 } // namespace schlieren

@@ -41,7 +41,7 @@ void FilmGeometry::GetImageOrigin(double origin[2]) const
 void HalfExtent(const Volume& v, double h[3])
 {
   for (int a = 0; a < 3; ++a)
-    h[a] = 0.5 * (v.Dimensions[a] - 1) * v.Spacing[a];
+    h[a] = 0.5 * (v.Dimensions[a] - 1 - 2 * v.Ghost) * v.Spacing[a];
 }
 
 FilmGeometry MakeFilm(const Volume& volume, const TraceSettings& s)

@@ -385,6 +385,9 @@ std::string PropertiesProblem(const std::string& proxy,
 
 void CheckSettings(const TraceSettings& s)
 {
+  if (s.FieldStride != 1 && s.FieldStride != 2 && s.FieldStride != 4)
+    throw Error("FieldStride is " + std::to_string(s.FieldStride) +
+      ": it is 1 (the volume's points), 2 or 4 (Auto's certified copy); ResolveAuto sets it.");
   CheckFinite("ViewDirection", s.ViewDirection, 3);
   CheckFinite("ViewUp", s.ViewUp, 3);
   // a film one pixel wide is a line or a point, which ParaView cannot show as an image

@@ -63,7 +63,7 @@ std::string TraceSettings::PhotonKey() const
     << ' ' << ViewUp[1] << ' ' << ViewUp[2] << ' ' << Resolution[0] << ' ' << Resolution[1] << ' '
     << static_cast<int>(Frame) << ' ' << FilmExtent[0] << ' ' << FilmExtent[1] << ' '
     << FilmExtent[2] << ' ' << FilmExtent[3] << ' ' << StepSize << ' ' << static_cast<int>(Method) << ' ' << KeepInvariant << ' ' << EstimateError
-    << ' ' << UseOctree << ' ' << static_cast<int>(Recon) << ' ' << Tolerance << ' ' << AutoMeasuredError << ' '
+    << ' ' << UseOctree << ' ' << static_cast<int>(Recon) << ' ' << Tolerance << ' ' << AutoMeasuredError << ' ' << FieldStride << ' '
     << static_cast<int>(Mode) << ' ' << KnifeAngle << ' ' << CutoffScale << ' ' << FilmDistance
     << ' ' << Wavelength << ' ' << ReferenceTilt << ' ' << BackgroundDistance << ' '
     << BackgroundPattern << ' ' << BackgroundPeriod << ' ' << RussianRoulette << ' ' << Jitter

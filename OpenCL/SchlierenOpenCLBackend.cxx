@@ -501,6 +501,7 @@ void ReleaseKeptVolume()
     Kept().Identity = VolumeIdentity();
   }
   ReleaseBrickedField();
+  ReleaseCoarseCopies();
 }
 
 DeviceInfo QueryOpenCLDevice(const std::string& deviceName)

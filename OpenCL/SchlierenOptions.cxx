@@ -92,6 +92,8 @@ RuntimeOptions RuntimeOptions::FromEnvironment()
     o.MpiTimeout = Seconds("SCHLIEREN_MPI_TIMEOUT", v);
   if (const char* v = Value("SCHLIEREN_MPI_ABORT"))
     o.MpiAbort = Flag("SCHLIEREN_MPI_ABORT", v);
+  if (const char* v = Value("SCHLIEREN_COARSE"))
+    o.CoarseCopies = Flag("SCHLIEREN_COARSE", v);
   return o;
 }
 

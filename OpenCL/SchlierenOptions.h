@@ -68,6 +68,10 @@ struct RuntimeOptions
   /// there for ever; 0 (the default): the error, and the run goes on (a script can bring its
   /// ranks in step again)
   bool MpiAbort = false;
+  /// SCHLIEREN_COARSE (0 or 1): Integrator Auto may trace a large smooth field from a copy at 2
+  /// or 4 times its spacing where the copy is certified within a quarter of the tolerance at
+  /// every point (1, the default), or always the field itself (0)
+  bool CoarseCopies = true;
 
   /** The options as the environment sets them (unset variables: the defaults above). Throws
    * schlieren::Error naming the variable where a value cannot be read. */

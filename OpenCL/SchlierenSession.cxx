@@ -166,7 +166,7 @@ std::vector<double> ChoiceNumbers(const TraceSettings& chosen, const AutoChoice&
   return { double(static_cast<int>(chosen.Method)), chosen.StepSize, chosen.AutoMeasuredError,
     c.ExpectedError, c.ExpectedLandingError, c.SamplesPerRay, c.Tolerance, c.Met ? 1.0 : 0.0,
     chosen.UseOctree ? 1.0 : 0.0, double(static_cast<int>(chosen.Recon)), c.TrilinearError,
-    c.Floor, c.AtFloor ? 1.0 : 0.0, c.ReferenceError };
+    c.Floor, c.AtFloor ? 1.0 : 0.0, c.ReferenceError, double(chosen.FieldStride), c.CoarseBound };
 }
 
 /**
@@ -187,7 +187,7 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
     return choice;
   }
   std::string problem;
-  std::vector<double> numbers(14, 0.0);
+  std::vector<double> numbers(16, 0.0);
   if (parallel.Rank() == 0)
   {
     try
@@ -227,6 +227,9 @@ AutoChoice ResolveOnRankZero(Parallel& parallel, const Volume& volume, TraceSett
   choice.Floor = numbers[11];
   choice.AtFloor = numbers[12] == 1.0;
   choice.ReferenceError = numbers[13];
+  settings.FieldStride = static_cast<int>(numbers[14]);
+  choice.FieldStride = settings.FieldStride;
+  choice.CoarseBound = numbers[15];
   return choice;
 }
 
@@ -474,6 +477,7 @@ AutoChoice TraceSession::ResolveKept(Parallel& parallel, const Volume& volume, T
     settings.Method = this->AutoTraced.Method;
     settings.StepSize = this->AutoTraced.StepSize;
     settings.Recon = this->AutoTraced.Recon;
+    settings.FieldStride = this->AutoTraced.FieldStride;
     settings.UseOctree = this->AutoTraced.UseOctree;
     settings.AutoMeasuredError = this->AutoTraced.AutoMeasuredError;
     AutoChoice c = this->AutoKept;

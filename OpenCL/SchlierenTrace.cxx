@@ -83,6 +83,25 @@ std::shared_ptr<OpenCLTracer> OpenBackend(const Volume& volume, const unsigned c
   }
 }
 
+namespace
+{
+// The copy a trace with FieldStride traces (ResolveAuto's choice; the caller holds it for the
+// trace) and its settings `t`: the step in the copy's voxels, no octree (the copy has no levels).
+std::shared_ptr<const CoarseCopy> CoarseOf(const Volume& volume, const TraceSettings& s, TraceSettings& t)
+{
+  std::shared_ptr<const CoarseCopy> held = CoarseCopyOf(volume, s.FieldStride);
+  if (!held)
+    throw Error("FieldStride " + std::to_string(s.FieldStride) +
+      " asks for a copy of the field that this volume does not have (a stamped volume of at least " +
+      std::to_string(CoarseMinPoints) + " points a side at that stride); trace with FieldStride 1.");
+  t = s;
+  t.FieldStride = 1;
+  t.StepSize = s.StepSize * MinSpacing(volume) / MinSpacing(held->V);
+  t.UseOctree = false;
+  return held;
+}
+} // namespace
+
 void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   std::string* backendUsed, std::string* deviceName, std::string* warnings,
   const ProgressFunction& progress)
@@ -91,6 +110,13 @@ void Accumulate(const Volume& volume, const TraceSettings& s, FilmSums& sums,
   CheckSettings(s);
   if (s.Method == Integrator::Auto)
     throw Error("Accumulate: resolve Integrator Auto first (ResolveAuto).");
+  if (s.FieldStride != 1)
+  {
+    TraceSettings t;
+    const std::shared_ptr<const CoarseCopy> copy = CoarseOf(volume, s, t);
+    Accumulate(copy->V, t, sums, backendUsed, deviceName, warnings, progress);
+    return;
+  }
   if (s.RussianRoulette && !(s.CutoffScale > 0) &&
     (s.Mode == Cutoff::KnifeEdge || s.Mode == Cutoff::Circular || s.Mode == Cutoff::ComplementCircular))
     throw Error("Photon killing (RussianRoulette) needs a fixed CutoffScale: the automatic scale is "
@@ -198,6 +224,13 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
   CheckVolume(volume);
   if (s.Method == Integrator::Auto)
     throw Error("TraceRays: resolve Integrator Auto first (ResolveAuto).");
+  if (s.FieldStride != 1)
+  {
+    CheckSettings(s);
+    TraceSettings t;
+    const std::shared_ptr<const CoarseCopy> copy = CoarseOf(volume, s, t);
+    return TraceRays(copy->V, t, ab, backendUsed);
+  }
   const FilmGeometry film = MakeFilm(volume, s);
   sch_params P = MakeParams(volume, s, film);
   const std::size_t count = ab.size() / 2;

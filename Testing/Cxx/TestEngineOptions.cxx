@@ -87,6 +87,13 @@ int main()
   ExpectError("SCHLIEREN_MPI_ABORT=yes", [] { RuntimeOptions::FromEnvironment(); },
     { "SCHLIEREN_MPI_ABORT", "'yes'", "0 or 1" });
   unsetenv("SCHLIEREN_MPI_ABORT");
+  CHECK(RuntimeOptions::FromEnvironment().CoarseCopies, "SCHLIEREN_COARSE: on unset");
+  setenv("SCHLIEREN_COARSE", "0", 1);
+  CHECK(!RuntimeOptions::FromEnvironment().CoarseCopies, "SCHLIEREN_COARSE=0 is read");
+  setenv("SCHLIEREN_COARSE", "off", 1);
+  ExpectError("SCHLIEREN_COARSE=off", [] { RuntimeOptions::FromEnvironment(); },
+    { "SCHLIEREN_COARSE", "'off'", "0 or 1" });
+  unsetenv("SCHLIEREN_COARSE");
 
   const bool haveCL = schtest::HaveOpenCL();
   SceneParameters p;
