@@ -288,7 +288,11 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
   c.Tolerance = in.Tolerance; // the whole: the copy's certificate and the pilot's share
   c.CoarseMs = coarseMs;
   std::ostringstream rep;
-  rep << "; traced on the field at " << copy->Stride << " times its spacing (a copy of " << cv.Dimensions[0]
+  // (not the word "spacing": VTK's legacy reader, which carries the image between ranks and to
+  // the client, takes it in a string of field data for its keyword, and says "Error reading
+  // spacing!")
+  rep << "; traced on a copy of the field with 1 point in " << copy->Stride << " along each axis ("
+      << cv.Dimensions[0]
       << " x " << cv.Dimensions[1] << " x " << cv.Dimensions[2] << " points, certified within "
       << copy->Bound << " rad of the field for every ray; the pilot's tolerance the rest, "
       << cin.Tolerance << " rad)";
@@ -921,7 +925,7 @@ TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, A
     best << ReconstructionName(c.Recon) << " " << IntegratorName(c.Method) << " at " << c.StepSize * grid.ReportScale << " voxel";
     rep << "; no candidate met the tolerance: it is below what this volume allows, a floor of " << c.Floor
         << " rad (" << RefFloorMargin << " times the tricubic reference's own error, " << c.ReferenceError
-        << " rad, measured against the field sampled at twice the spacing: the data does not resolve the "
+        << " rad, measured against the field resampled with half its points along each axis: the data does not resolve the "
            "field finely enough for this tolerance): tolerance "
         << tol << " rad not reachable on this grid: best estimated " << c.ExpectedError + c.Floor
         << " rad with " << best.str() << " (its " << c.ExpectedError

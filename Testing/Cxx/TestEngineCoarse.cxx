@@ -153,8 +153,13 @@ void AutoTakesCopies(Packed& g)
     const std::string at = std::to_string(k.Tol) + " rad, " + ReconstructionName(k.Recon) + ": ";
     CHECK(chosen.FieldStride == k.Stride && c.FieldStride == k.Stride,
       at + "Auto traces the copy at stride " + std::to_string(k.Stride) + " (took " + std::to_string(chosen.FieldStride) + ")");
-    CHECK((k.Stride > 1) == (c.Report.find("times its spacing") != std::string::npos),
+    CHECK((k.Stride > 1) == (c.Report.find("traced on a copy of the field with 1 point in " +
+                                std::to_string(k.Stride)) != std::string::npos),
       at + "the report says where a copy is traced");
+    // VTK's legacy reader (the image between ranks, and to the client) takes a keyword of its
+    // own in a string of field data for one: "spacing" gave "Error reading spacing!"
+    for (const char* word : { "spacing", "dimensions", "origin", "aspect_ratio" })
+      CHECK(c.Report.find(word) == std::string::npos, at + "the report does not say '" + word + "'");
     if (k.Stride > 1)
       CHECK(c.CoarseBound > 0 && c.CoarseBound <= CoarseShare * k.Tol, at + "the copy's certificate within its share");
     // the choice traced as Auto chose it, against the field's own reference (RK4, 1/4 voxel)
