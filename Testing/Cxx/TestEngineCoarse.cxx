@@ -5,8 +5,9 @@
 //    traced on the field and on the copy, over rays across the film, rays grazing its faces and
 //    an oblique view, and not far above it (the Gaussian sphere, 256^3);
 //  - Auto takes the copy the tolerance allows (4 at 1e-6 rad, 2 at 1e-7, none at 3e-8 on that
-//    grid), says so, and its image is within the tolerance of the field's own trace; the runtime
-//    option SCHLIEREN_COARSE=0 turns it off;
+//    grid), says so, and its image is within the tolerance of the field's own trace; with
+//    Reconstruction Auto the copy's pilot also tries the field's own trilinear (3e-7 rad); the
+//    runtime option SCHLIEREN_COARSE=0 turns it off;
 //  - a feature the pilot's rays miss: rays through a narrow bump traced finely on a copy and on
 //    the field differ by no more than the certificate, and traced as Auto chose stay within the
 //    tolerance of the field's trace;
@@ -132,14 +133,19 @@ void AutoTakesCopies(Packed& g)
   const std::vector<float> ab = Rays();
   // Reconstruction Auto at 1e-6 rad: the field's trilinear meets it (Trilinear Straight, 7
   // samples a ray), so no copy; Reconstruction Cubic there: the copy at 4 times the spacing
+  // At 3e-7 rad the estimate of the field's trilinear error (the copy's, over r^2: 5.3e-7 rad)
+  // sends the pilot to the copy at 2; the field's trilinear, 2.1e-7 rad off, meets all the same:
+  // the copy's pilot traces it on the field, against the copy's tricubic reference (OnField)
   struct Case
   {
     double Tol;
     Reconstruction Recon;
     int Stride;
+    bool OnField;
   };
-  for (const Case& k : { Case{ 1e-6, Reconstruction::Auto, 1 }, Case{ 1e-6, Reconstruction::Cubic, 4 },
-         Case{ 1e-7, Reconstruction::Auto, 2 }, Case{ 3e-8, Reconstruction::Auto, 1 } })
+  for (const Case& k : { Case{ 1e-6, Reconstruction::Auto, 1, false }, Case{ 1e-6, Reconstruction::Cubic, 4, false },
+         Case{ 3e-7, Reconstruction::Auto, 1, true }, Case{ 1e-7, Reconstruction::Auto, 2, false },
+         Case{ 3e-8, Reconstruction::Auto, 1, false } })
   {
     TraceSettings s;
     s.Resolution[0] = s.Resolution[1] = 256;
@@ -160,8 +166,23 @@ void AutoTakesCopies(Packed& g)
     // own in a string of field data for one: "spacing" gave "Error reading spacing!"
     for (const char* word : { "spacing", "dimensions", "origin", "aspect_ratio" })
       CHECK(c.Report.find(word) == std::string::npos, at + "the report does not say '" + word + "'");
-    if (k.Stride > 1)
+    if (k.Stride > 1 || k.OnField)
       CHECK(c.CoarseBound > 0 && c.CoarseBound <= CoarseShare * k.Tol, at + "the copy's certificate within its share");
+    CHECK(k.OnField == (c.Report.find("traced on the field itself, measured against the tricubic of a copy") !=
+                         std::string::npos),
+      at + "the report says where the field's trilinear was measured against a copy");
+    if (k.OnField)
+    {
+      CHECK(c.Recon == Reconstruction::Trilinear && chosen.Recon == Reconstruction::Trilinear,
+        at + "the field's trilinear chosen");
+      // the next pilot (another view, the same volume) starts from it, on the same copy
+      AutoChoice again;
+      const TraceSettings next = ResolveAuto(g.V, s, &again, false, &c);
+      CHECK(next.FieldStride == 1 && again.Recon == Reconstruction::Trilinear && again.Method == c.Method &&
+          again.StepSize == c.StepSize && again.Candidates < c.Candidates,
+        at + "a pilot started from that choice takes it again, with fewer candidates (" +
+          std::to_string(again.Candidates) + " against " + std::to_string(c.Candidates) + ")");
+    }
     // the choice traced as Auto chose it, against the field's own reference (RK4, 1/4 voxel)
     TraceSettings ref = s;
     ref.Method = Integrator::RK4;
