@@ -171,6 +171,19 @@ void AutoTakesCopies(Packed& g)
     CHECK(k.OnField == (c.Report.find("traced on the field itself, measured against the tricubic of a copy") !=
                          std::string::npos),
       at + "the report says where the field's trilinear was measured against a copy");
+    if (k.Recon == Reconstruction::Auto && k.Stride > 1)
+    {
+      // the field's trilinear (2.1e-7 rad off) rejected at 1e-7: a pilot started from this choice
+      // (another view of the same volume, as a TraceSession's at rest) does not trace it again
+      CHECK(c.TrilinearError > 0 && chosen.Recon == Reconstruction::Cubic, at + "the field's trilinear measured, Cubic chosen");
+      AutoChoice again;
+      const TraceSettings next = ResolveAuto(g.V, s, &again, false, &c);
+      std::printf("  again: %s\n", again.Report.c_str());
+      CHECK(next.FieldStride == k.Stride && again.Method == c.Method && again.StepSize == c.StepSize &&
+          again.Recon == Reconstruction::Cubic && again.TrilinearError == c.TrilinearError &&
+          again.Report.find("not tried again") != std::string::npos,
+        at + "a pilot started from that choice takes it again without the field's trilinear");
+    }
     if (k.OnField)
     {
       CHECK(c.Recon == Reconstruction::Trilinear && chosen.Recon == Reconstruction::Trilinear,
