@@ -179,6 +179,20 @@ bool Comparable(const RayRecord& a, const RayRecord& b)
 }
 } // namespace
 
+// The pilot traces a few hundred rays in a dozen settings, and on OpenCL each setting is a program
+// of its own (the kernel built with the integrator and reconstruction fixed, SCH_FIXED_*): on
+// PoCL, each compiled for 0.4-1.8 s where its cache is cold (a new install, a new PoCL or a new
+// kernel source), 12.4 s of the first update of the 512^3 Gaussian at the default tolerance and
+// 4.3 s at its first oblique view. Where the OpenCL device is the CPU, the C++ build of the same
+// physics runs on the same cores with nothing to compile: the pilot runs there (issue 50). A GPU
+// keeps it: there the rays are cheap and the driver's compiler fast.
+Backend PilotDevice(const TraceSettings& in)
+{
+  if (in.Device == Backend::CPU || OpenCLDeviceIsCPU(in.DeviceName))
+    return Backend::CPU;
+  return in.Device;
+}
+
 double AutoPiecesReach(bool cubic)
 {
   return cubic ? 64.0 : 8.0;
@@ -333,9 +347,16 @@ TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& in, AutoCho
 }
 
 TraceSettings ResolveAutoWith(const AutoVolume& grid, const TraceSettings& in, AutoChoice* choice,
-  const PilotTracer& traceRays, const AutoChoice* start)
+  const PilotTracer& tracer, const AutoChoice* start)
 {
   const Volume& volume = grid.Grid;
+  // The pilot's rays on the device PilotDevice picks; the image keeps the one asked for.
+  const Backend pilotDevice = PilotDevice(in);
+  const PilotTracer traceRays = [&tracer, pilotDevice](const TraceSettings& t, const std::vector<float>& ab) {
+    TraceSettings u = t;
+    u.Device = pilotDevice;
+    return tracer(u, ab);
+  };
   AutoChoice c;
   c.Method = in.Method;
   c.StepSize = in.StepSize;

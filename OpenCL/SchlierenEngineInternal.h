@@ -146,6 +146,9 @@ bool CoarseEligible(const Volume& v, const TraceSettings& in, bool piecesBound);
 /** The longest step Auto's candidates take on the pieces of a distributed volume, voxels:
  * 8 trilinear, 64 tricubic (the ghost layers are sized for them, GhostPointsFor). */
 double AutoPiecesReach(bool cubic);
+/** The device Auto's pilot traces on for settings `in`: the CPU where `in` asks for it or where
+ * its OpenCL device is itself a CPU (the C++ build, nothing to compile), else `in`'s. */
+Backend PilotDevice(const TraceSettings& in);
 /** Traces the pilot's rays (film points, pairs) with settings t: TraceRays, or a distributed trace
  * that returns the same records on every rank (so that every rank makes the same choice). */
 using PilotTracer =
@@ -419,6 +422,12 @@ void PrepareKernel(OpenCLTracer& t, const sch_params& P, bool points);
 
 /** The device's name, and how the field is split on it, for TraceResult::DeviceName. */
 std::string TracerDeviceName(const OpenCLTracer& t);
+
+/** Whether the OpenCL device a trace with this DeviceName would take (empty: the runtime options')
+ * is a CPU (CL_DEVICE_TYPE_CPU: PoCL here); false where no such device can be used. */
+bool OpenCLDeviceIsCPU(const std::string& deviceName);
+/** The OpenCL programs built (or failed) in this process so far (ocl::ProgramsBuilt; for tests). */
+std::size_t OpenCLProgramsBuilt();
 
 /** TraceChunkCPU on the device. */
 void TraceOpenCL(OpenCLTracer& t, const sch_params& P, std::size_t first, std::size_t count, float* out);

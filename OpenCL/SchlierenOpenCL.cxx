@@ -375,5 +375,11 @@ cl_program GetProgram(
   return prog;
 }
 
+std::size_t ProgramsBuilt()
+{
+  std::lock_guard<std::mutex> lock(gMutex);
+  return gPrograms.size();
+}
+
 } // namespace ocl
 } // namespace schlieren

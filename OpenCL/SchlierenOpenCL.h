@@ -55,6 +55,8 @@ cl_program GetProgram(
   Runtime& rt, const std::string& name, const std::string& source, const std::string& options);
 /** GetProgram on the default device (GetRuntime()). */
 cl_program GetProgram(const std::string& name, const std::string& source, const std::string& options);
+/** The programs GetProgram has built (or failed to build) in this process, on every device. */
+std::size_t ProgramsBuilt();
 
 /**
  * Registers a function that releases what its caller holds on the runtime's context (kernels,

@@ -471,6 +471,23 @@ std::string TracerDeviceName(const OpenCLTracer& t)
   return device;
 }
 
+std::size_t OpenCLProgramsBuilt()
+{
+  return ocl::ProgramsBuilt();
+}
+
+bool OpenCLDeviceIsCPU(const std::string& deviceName)
+{
+  try
+  {
+    return ocl::GetRuntime(deviceName).IsCPU;
+  }
+  catch (const Error&)
+  {
+    return false;
+  }
+}
+
 void TraceOpenCL(OpenCLTracer& t, const sch_params& P, std::size_t first, std::size_t count, float* out)
 {
   t.Trace(P, first, count, out);
