@@ -249,15 +249,18 @@ std::vector<RayRecord> TraceRays(const Volume& volume, const TraceSettings& s,
     TracePointsOpenCL(*cl, P, ab.data(), count, rec);
   else
   {
-    // on the CPU backend's threads, in blocks of 8 rays taken in turn (Auto's pilot traces here)
+    // on the CPU backend's threads, in blocks of 8 rays taken in turn (Auto's pilot traces here;
+    // packets of rays as TraceChunkCPU's gained nothing there), each thread with its own copy of
+    // the parameters (as TraceChunkCPU: not beside what the calling thread writes as it steps)
     constexpr std::size_t block = 8;
     std::atomic<std::size_t> next{ 0 };
     const unsigned threads = static_cast<unsigned>(
       std::min<std::size_t>(CpuThreads(s.Threads), (count + block - 1) / block));
     RunOnThreads(threads, [&](unsigned) {
+      const sch_params Pw = P;
       for (std::size_t b; (b = next.fetch_add(block)) < count;)
         for (std::size_t k = b; k < std::min(count, b + block); ++k)
-          sch_trace(kf.Bricked.Field, bytes, &P, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
+          sch_trace(kf.Bricked.Field, bytes, &Pw, ab[2 * k], ab[2 * k + 1], rec + k * SCH_RECORD);
     });
   }
   // the flags travel as floats in the record; turn them into integers
