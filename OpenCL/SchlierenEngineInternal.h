@@ -274,15 +274,19 @@ extern std::mutex KeptMutex;
 
 /**
  * Sets P.featureTol: a step that leaves more than 1 % of the field's index range unexplained by the
- * gradient (or more than the octree tolerance) has jumped over structure. Reads the whole field:
- * call it once the backend has accepted the volume.
+ * gradient (or more than the octree tolerance) has jumped over structure. Reads the whole field
+ * where its range is not kept (KeepIndexRange): call it once the backend has accepted the volume.
  */
 void SetFeatureTolerance(sch_params& P, const Volume& volume);
 /**
  * Tells SetFeatureTolerance the range of a stamped volume's n - 1, found while packing it, so that
- * the first trace does not read the whole field again. Ignored for a volume without a stamp.
+ * the first trace does not read the whole field again. Ignored for a volume without a stamp. The
+ * last few volumes' ranges are kept (a field and its certified copies, which Auto's pilot traces
+ * in turn); SetFeatureTolerance keeps the ranges it finds too.
  */
 void KeepIndexRange(const Volume& volume, float lo, float hi);
+/** How many times SetFeatureTolerance read a whole field for its range (for tests). */
+std::size_t IndexRangeScans();
 /** The feature tolerance for a field whose n - 1 spans [lo, hi] (SetFeatureTolerance's rule). */
 float FeatureTolerance(float lo, float hi, double levelTolerance);
 

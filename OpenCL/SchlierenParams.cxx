@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
+#include <vector>
 
 namespace schlieren
 {
@@ -128,10 +129,18 @@ std::mutex KeptMutex;
 
 namespace
 {
-// the index range of the last stamped volume (finding it is a pass over the whole field), under
-// KeptMutex
-VolumeIdentity rangeOf;
-float rangeLo = 0, rangeHi = 0;
+// The index ranges of the last stamped volumes (finding one is a pass over the whole field),
+// newest first, under KeptMutex. More than one: Auto's pilot on a certified copy traces the copy
+// and the field in turn (issue 50), and with one range kept each trace found the other's range
+// again: 120 of a 200 ms pilot at 512^3 and 3e-8 rad went into passes over the 2 GiB field.
+struct KeptRange
+{
+  VolumeIdentity Of;
+  float Lo = 0, Hi = 0;
+};
+constexpr std::size_t KeptRanges = 4;
+std::vector<KeptRange> kept;
+std::size_t scans = 0; // passes over a field to find its range (IndexRangeScans)
 
 // the range is the field's alone: the tracer's view of a volume (TraceVolume) may carry other
 // level bytes, yet the same range
@@ -148,10 +157,14 @@ void KeepIndexRange(const Volume& volume, float lo, float hi)
 {
   if (volume.Stamp == 0)
     return;
+  const VolumeIdentity id = FieldIdentity(volume);
   std::lock_guard<std::mutex> lock(KeptMutex);
-  rangeOf = FieldIdentity(volume);
-  rangeLo = lo;
-  rangeHi = hi;
+  auto it = std::find_if(kept.begin(), kept.end(), [&id](const KeptRange& k) { return k.Of == id; });
+  if (it != kept.end())
+    kept.erase(it);
+  else if (kept.size() == KeptRanges)
+    kept.pop_back();
+  kept.insert(kept.begin(), KeptRange{ id, lo, hi });
 }
 
 void SetFeatureTolerance(sch_params& P, const Volume& volume)
@@ -159,13 +172,16 @@ void SetFeatureTolerance(sch_params& P, const Volume& volume)
   float lo = volume.Field[0], hi = volume.Field[0];
   bool known = false;
   {
+    const VolumeIdentity id = FieldIdentity(volume);
     std::lock_guard<std::mutex> lock(KeptMutex);
-    if (rangeOf == FieldIdentity(volume))
-    {
-      lo = rangeLo;
-      hi = rangeHi;
-      known = true;
-    }
+    for (const KeptRange& k : kept)
+      if (k.Of == id)
+      {
+        lo = k.Lo;
+        hi = k.Hi;
+        known = true;
+        break;
+      }
   }
   // (in bricks, the padding repeats points of the grid: the same range)
   const std::size_t n = FieldLayout(volume.Dimensions, volume.FieldInBricks).Floats / 4;
@@ -175,8 +191,18 @@ void SetFeatureTolerance(sch_params& P, const Volume& volume)
     hi = std::max(hi, volume.Field[4 * i]);
   }
   if (!known)
+  {
     KeepIndexRange(volume, lo, hi);
+    std::lock_guard<std::mutex> lock(KeptMutex);
+    ++scans;
+  }
   P.featureTol = FeatureTolerance(lo, hi, volume.LevelTolerance);
+}
+
+std::size_t IndexRangeScans()
+{
+  std::lock_guard<std::mutex> lock(KeptMutex);
+  return scans;
 }
 
 float FeatureTolerance(float lo, float hi, double levelTolerance)
