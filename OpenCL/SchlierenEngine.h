@@ -594,8 +594,9 @@ void CameraLensSample(std::uint32_t seed, int pass, double* u, double* v);
 TraceSettings ResolveAuto(const Volume& volume, const TraceSettings& settings, AutoChoice* choice = nullptr,
   bool piecesBound = false, const AutoChoice* start = nullptr);
 
-/** The film coordinates of Auto's pilot rays: the centres of a 16 x 16 grid over the film. */
-std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings);
+/** The film coordinates of Auto's pilot rays: one in each cell of an np x np grid over the film
+ * (off its centre: an R2 sequence in the cell's middle half). The pilot traces 16 x 16. */
+std::vector<float> PilotRays(const Volume& volume, const TraceSettings& settings, int np = 16);
 
 const char* IntegratorName(Integrator m);
 const char* ReconstructionName(Reconstruction r);
@@ -658,7 +659,7 @@ struct RayRecord
   float Drift;            ///< |v| - n at exit
   float Error;            ///< step-doubling estimate (EstimateError only)
   float Path;             ///< geometric path length in the volume
-  float Mismatch;         ///< largest index change a step did not predict
+  float Mismatch;         ///< largest share of a step's index change its end gradients missed (> 0.5: RayUnderresolved)
   float Steps;
 };
 
