@@ -41,9 +41,9 @@ constexpr double LongStepMargin = 0.75;
 // A step longer than 8 voxels meets only where no pilot ray missed more than this share of what a
 // step saw (the kernel flags RayUnderresolved at 0.5, SchlierenPhysics.h): the image's rays lie
 // between the pilot's, and the share grows smoothly with the step (on the Gaussian of width s,
-// 0.40 at 0.84 s, 0.5 at 0.92 s, 0.55 at s), so the margin keeps them unflagged (issue 50: at 0.5
-// the 384^3 Gaussian at 1e-7 rad took 45.1 voxels, and 9 of 576 rays between the pilot's
-// flagged).
+// along an axis: 0.40 at 0.84 s, 0.51 at s; over all the steps' phases, 0.45 and 0.55), so the
+// margin keeps them unflagged (issue 50: at 0.5 the 384^3 Gaussian at 1e-7 rad took 45.1 voxels,
+// and 12 of 576 rays between the pilot's flagged).
 constexpr double PilotFeatureShare = 0.45;
 
 // Reconstruction and Integrator Auto: the trilinear's candidates are tried where its reference is
