@@ -189,7 +189,12 @@ std::shared_ptr<const CoarseCopy> MakeCoarseCopy(const Volume& v, int r)
     }
   });
   const int* D = c->V.Dimensions;
-  c->Smooth.assign(c->V.NumberOfPoints(), 0);
+  // The ghost layer's cells (outside the box) take no tricubic sample (no SCH_SMOOTH_CELL: their
+  // stencils would leave the copy), but the smoothness level of the field's own rule there
+  // (PackFieldHighOrder: beyond the grid no step goes): a ray enters on the box's face, which
+  // the sampler puts in the ghost cell beyond it, and a level of 0 there capped its first step at
+  // a cell, one sample a ray more (issue 50: 12 samples a ray at 512^3 where 11 reach the exit).
+  c->Smooth.assign(c->V.NumberOfPoints(), static_cast<unsigned char>(7 << SCH_SMOOTH_SHIFT));
   const unsigned char inside = static_cast<unsigned char>(SCH_SMOOTH_CELL | (7 << SCH_SMOOTH_SHIFT));
   for (int k = 1; k <= D[2] - 3; ++k)
     for (int j = 1; j <= D[1] - 3; ++j)

@@ -12,6 +12,8 @@
 //    the field differ by no more than the certificate, and traced as Auto chose stay within the
 //    tolerance of the field's trace;
 //  - a pilot on the copy and the field reads neither whole again for its index range;
+//  - a ray on the copy takes as many samples as on the field (its first step from the box's face
+//    is not capped by the ghost cell it enters in);
 //  - a field with a jump gets no copy; FieldStride out of range, or on a volume without a copy,
 //    is an error that names it.
 #include "SchlierenOracles.h"
@@ -229,6 +231,50 @@ void AutoTakesCopies(Packed& g)
   SetRuntimeOptions(keep);
 }
 
+// The copy's first step (issue 50): a ray enters on the box's face, which the sampler puts in the
+// copy's ghost cell beyond it. That cell's smoothness level capped the first step at a cell of the
+// copy (one sample a ray more) where the field's own rule (PackFieldHighOrder) lets a step of the
+// base length go: the known answer is Verlet's count, one sample where the ray enters and one
+// where each step ends (the last at the exit, a hair outside), ceil(path / step) + 1, on every
+// face the beam can enter by, as on the field itself.
+void CopyFirstStep(Packed& g)
+{
+  const double h = 20.0; // voxels of the field: 255 / 20 = 12.75, so 13 steps, 14 samples a ray
+  const double expected = std::ceil(255.0 / h) + 1.0;
+  const std::vector<float> ab = { 0.0f, 0.0f, 0.31f, -0.27f, -0.62f, 0.48f, 0.9f, 0.9f };
+  const double dirs[6][3] = { { 0, 0, -1 }, { 0, 0, 1 }, { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 } };
+  for (int stride : { 1, 2 })
+    for (const auto& d : dirs)
+    {
+      TraceSettings s;
+      s.UseOctree = false;
+      s.Method = Integrator::Verlet;
+      s.Recon = Reconstruction::Cubic;
+      s.StepSize = h;
+      s.FieldStride = stride;
+      for (int a = 0; a < 3; ++a)
+        s.ViewDirection[a] = d[a];
+      if (d[1] != 0)
+      {
+        s.ViewUp[1] = 0;
+        s.ViewUp[2] = 1;
+      }
+      const std::vector<RayRecord> r = TraceRays(g.V, s, ab);
+      double lo = 1e30, hi = 0;
+      for (const RayRecord& q : r)
+      {
+        lo = std::min(lo, double(q.Samples));
+        hi = std::max(hi, double(q.Samples));
+      }
+      char what[160];
+      std::snprintf(what, sizeof(what),
+        "stride %d, beam (%g, %g, %g): %g-%g samples a ray at %g voxels, %g expected", stride, d[0], d[1], d[2],
+        lo, hi, h, expected);
+      std::printf("%s\n", what);
+      CHECK(lo == expected && hi == expected, what);
+    }
+}
+
 void HiddenBump()
 {
   // A bump between the pilot's rays, 1/40 of the sphere's amplitude, 6, 10 and 16 voxels wide: a
@@ -311,6 +357,7 @@ int main()
     Packed g(256);
     CertificateBounds(g);
     AutoTakesCopies(g);
+    CopyFirstStep(g);
   }
   HiddenBump();
   NoCopies();
