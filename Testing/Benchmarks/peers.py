@@ -58,13 +58,14 @@ HELP_BUILD = """Building SHADOWGRAPH (gfortran; not a dependency of this project
   D=$SCHLIEREN_PEERS/cfdtools; mkdir -p $D/build && cd $D/build
   F="-O2 -fdefault-real-8 -fdefault-double-8 -ffixed-line-length-none -ffree-line-length-none -fallow-argument-mismatch -w"
   S=../app/shadowgraph
+  for f in ../lib/{interp3d,intrinsics,numodules,progtools}/*.f*; do gfortran $F -c $f -o lib_$(basename $f).o || true; done
   for f in $S/grid_block_structure.f90 ../lib/xyzq_io/xyzq_io.f90 ../lib/grid_block_utilities/grid_block_utilities.f90 \\
       $S/FieldView_Data.f90 $S/VTK_Data.f90 $S/flow_gradients.f90 $S/triangulate_quad_face.f90 $S/process_tet_cell.f90 \\
       $S/process_pyramid.f90 $S/process_prism.f90 $S/process_hex_cell.f90 $S/read_fieldview.f90 $S/shadowgraph.f90 \\
       ../lib/geomlib/rotate3d.f ../lib/linsys/lusolve.f90; do gfortran $F -c $f; done
-  for f in ../lib/{interp3d,intrinsics,numodules,progtools}/*.f*; do gfortran $F -c $f -o lib_$(basename $f).o || true; done
   ar rcs libpeer.a lib_*.o && gfortran -o shadowgraph $(ls *.o | grep -v '^lib_') libpeer.a
-(the libraries' files that do not compile alone are not needed)
+(the libraries first: the program's files use their modules, trigd among them; the libraries' files
+ that do not compile alone are not needed)
 """
 
 
