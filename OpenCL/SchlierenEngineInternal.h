@@ -364,12 +364,11 @@ struct FieldLayout
  * and BricksFit, else the linear layout of Volume::Field. */
 void SetFieldLayout(sch_params& P, bool bricked);
 
-/** Whether a TraceSession packs a volume of dims points in bricks (Volume::FieldInBricks) for a
- * trace on `device` with `recon`: where the options say (SCHLIEREN_FIELD_BRICKS 0 or 1) or, unset,
- * where they pay (docs/PERFORMANCE.md: grids past BricksFromPoints, except Backend CPU with
- * Cubic, and where the padding to whole bricks adds at most a tenth); never where they do not fit
- * (BricksFit). */
-bool PackInBricks(const int dims[3], Backend device, Reconstruction recon);
+/** Whether a TraceSession packs a volume of dims points in bricks (Volume::FieldInBricks): where
+ * the options say (SCHLIEREN_FIELD_BRICKS 0 or 1) or, unset, where they pay (docs/PERFORMANCE.md:
+ * grids past BricksFromPoints, on every backend and reconstruction, where the padding to whole
+ * bricks adds at most a tenth); never where they do not fit (BricksFit). */
+bool PackInBricks(const int dims[3]);
 /** PackInBricks's threshold, unset: bricks for grids of more points than this. */
 constexpr double BricksFromPoints = 300.0 * 300.0 * 300.0;
 

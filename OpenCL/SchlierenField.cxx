@@ -645,19 +645,18 @@ void SetFieldLayout(sch_params& P, bool bricked)
   P.outerZ = L.Outer[2];
 }
 
-bool PackInBricks(const int dims[3], Backend device, Reconstruction recon)
+bool PackInBricks(const int dims[3])
 {
   const int forced = GetRuntimeOptions().Bricks;
   if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || !BricksFit(dims) || forced == 0)
     return false;
   if (forced == 1)
     return true;
-  // unset: where they pay (docs/PERFORMANCE.md, "the field packed in bricks"): large grids, but not
-  // the CPU backend's Cubic (its axis view 1.3-1.5x slower in bricks at 512^3, the oblique no
-  // faster: three runs)
-  if (device == Backend::CPU && recon == Reconstruction::Cubic)
-    return false;
-  // nor where the padding to whole bricks would add more than a tenth (a thin grid: 9 planes
+  // unset: where they pay (docs/PERFORMANCE.md, "the field packed in bricks"): large grids, on every
+  // backend and reconstruction (the CPU backend's Cubic, linear until 2026-12-08: its oblique view
+  // 1.6-1.9x its axis view's time a sample at 512^3 there, 1.06-1.27x in bricks, where the oblique
+  // view is 1.05-1.44x faster and the axis view 1.2-1.5x slower, as on PoCL), but not where the
+  // padding to whole bricks would add more than a tenth (a thin grid: 9 planes
   // take 12)
   const double points = double(dims[0]) * dims[1] * dims[2];
   return points > BricksFromPoints && double(FieldLayout(dims, true).Floats) <= 1.1 * 4.0 * points;

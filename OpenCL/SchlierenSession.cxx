@@ -634,7 +634,7 @@ void TraceSession::Update(Parallel& parallel, const VolumePiece& piece,
   // the field in bricks where they pay (PackInBricks: the options may change between updates)
   const int wholeDims[3] = { piece.WholeExtent[1] - piece.WholeExtent[0] + 1,
     piece.WholeExtent[3] - piece.WholeExtent[2] + 1, piece.WholeExtent[5] - piece.WholeExtent[4] + 1 };
-  const bool inBricks = PackInBricks(wholeDims, settings.Device, settings.Recon);
+  const bool inBricks = PackInBricks(wholeDims);
   vk << ' ' << inBricks;
   const std::string volumeKey = vk.str();
   const bool reuseVolume = parallel.AllOk(piece.Problem.empty() && settings.Passes >= 1 &&
